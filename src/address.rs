@@ -1,0 +1,443 @@
+//! Addresses: which input, output and memory bit each signal gets, for each PLC
+//! dialect, and the symbol names every output language uses for them (DESIGN §3).
+
+use std::fmt;
+
+use crate::cell::Sign;
+use crate::table::StepTable;
+
+/// The PLC dialect whose address notation is used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Target {
+    /// Festo FST: 16-bit words, `I0.0` / `O0.0`, the paper's layout.
+    #[default]
+    Festo,
+    /// IEC 61131-3 direct addresses `%IX0.0` / `%QX0.0`, 8 bits per byte (CODESYS, OpenPLC).
+    Iec,
+    /// Siemens `I0.0` / `Q0.0` (German `E` / `A`), 8 bits per byte.
+    Siemens,
+}
+
+impl Target {
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Festo => "festo",
+            Target::Iec => "iec",
+            Target::Siemens => "siemens",
+        }
+    }
+
+    fn bits_per_unit(self) -> u32 {
+        match self {
+            Target::Festo => 16,
+            Target::Iec | Target::Siemens => 8,
+        }
+    }
+}
+
+/// English or German operand letters (Siemens `I`/`Q` or `E`/`A`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Mnemonic {
+    #[default]
+    En,
+    De,
+}
+
+/// Input, output or internal memory.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Area {
+    Input,
+    Output,
+    Memory,
+}
+
+/// Every signal the step program reads or writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Signal {
+    /// The START push-button.
+    Start,
+    /// Sensor `xij`: actuator i stands at position j.
+    Sensor { actuator: u32, position: u32 },
+    /// Valve coil `yi+` / `yi-`.
+    Coil { actuator: u32, sign: Sign },
+    /// Memory: actuator i must stop when it reaches middle position j.
+    StopAt { actuator: u32, position: u32 },
+}
+
+impl Signal {
+    pub fn area(self) -> Area {
+        match self {
+            Signal::Start | Signal::Sensor { .. } => Area::Input,
+            Signal::Coil { .. } => Area::Output,
+            Signal::StopAt { .. } => Area::Memory,
+        }
+    }
+
+    /// The symbol of the published method, as on the address sheets (`x21`, `y2+`).
+    pub fn symbol(self) -> String {
+        match self {
+            Signal::Start => "START".to_string(),
+            Signal::Sensor { actuator, position } => format!("x{}", pair(actuator, position)),
+            Signal::Coil { actuator, sign } => format!("y{actuator}{}", sign.symbol()),
+            Signal::StopAt { actuator, position } => format!("m{actuator}_{position}"),
+        }
+    }
+
+    /// An identifier legal in IEC 61131-3 and every other target language
+    /// (`+`/`-` become `p`/`m`; no keyword, no double underscore).
+    pub fn ident(self) -> String {
+        match self {
+            Signal::Coil { actuator, sign } => {
+                format!("y{actuator}{}", if sign == Sign::Plus { 'p' } else { 'm' })
+            }
+            other => other.symbol(),
+        }
+    }
+
+    /// The `kind` column of the allocation list.
+    pub fn kind(self) -> &'static str {
+        match self {
+            Signal::Start => "start",
+            Signal::Sensor { .. } => "sensor",
+            Signal::Coil { .. } => "coil",
+            Signal::StopAt { .. } => "memory",
+        }
+    }
+
+    /// A human description ("cylinder 2, middle position 1").
+    pub fn comment(self, table: &StepTable) -> String {
+        let pmax = |a: u32| table.actuator(a).map(|x| x.max_position).unwrap_or(1);
+        match self {
+            Signal::Start => "START push-button".to_string(),
+            Signal::Sensor { actuator, position } => {
+                let which = if position == 0 {
+                    "home position 0".to_string()
+                } else if position == pmax(actuator) {
+                    format!("end position {position}")
+                } else {
+                    format!("middle position {position}")
+                };
+                format!("cylinder {actuator}, {which}")
+            }
+            Signal::Coil { actuator, sign } => match sign {
+                Sign::Plus => format!("cylinder {actuator}, coil + (extend)"),
+                Sign::Minus => format!("cylinder {actuator}, coil - (retract)"),
+            },
+            Signal::StopAt { actuator, position } => {
+                format!("cylinder {actuator} stops at middle position {position}")
+            }
+        }
+    }
+}
+
+/// `21` for actuator 2 position 1; `12_3` once either number has two digits,
+/// so that `x1_23` and `x12_3` can never be confused.
+fn pair(actuator: u32, position: u32) -> String {
+    if actuator <= 9 && position <= 9 {
+        format!("{actuator}{position}")
+    } else {
+        format!("{actuator}_{position}")
+    }
+}
+
+/// A bit address: unit (word or byte, per target) and bit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Address {
+    pub area: Area,
+    pub target: Target,
+    pub unit: u32,
+    pub bit: u32,
+}
+
+impl Address {
+    fn from_index(area: Area, target: Target, index: u32) -> Self {
+        let width = target.bits_per_unit();
+        Address {
+            area,
+            target,
+            unit: index / width,
+            bit: index % width,
+        }
+    }
+
+    /// The address in the target's notation (`I0.1`, `%QX0.1`, `E0.1`).
+    pub fn display(self, mnemonic: Mnemonic) -> String {
+        let letter = match (self.target, self.area, mnemonic) {
+            (Target::Festo, Area::Input, _) => "I",
+            (Target::Festo, Area::Output, _) => "O",
+            (Target::Festo, Area::Memory, _) => "F",
+            (Target::Iec, Area::Input, _) => "%IX",
+            (Target::Iec, Area::Output, _) => "%QX",
+            (Target::Iec, Area::Memory, _) => "%MX",
+            (Target::Siemens, Area::Input, Mnemonic::En) => "I",
+            (Target::Siemens, Area::Input, Mnemonic::De) => "E",
+            (Target::Siemens, Area::Output, Mnemonic::En) => "Q",
+            (Target::Siemens, Area::Output, Mnemonic::De) => "A",
+            (Target::Siemens, Area::Memory, _) => "M",
+        };
+        format!("{letter}{}.{}", self.unit, self.bit)
+    }
+
+    /// The same physical bit as an IEC direct address (`%IX1.2`), for the
+    /// located variables of Structured Text. A 16-bit Festo word is two bytes,
+    /// low byte first: `I0.10` is `%IX1.2`.
+    pub fn iec(self) -> String {
+        let (byte, bit) = match self.target {
+            Target::Festo => (self.unit * 2 + self.bit / 8, self.bit % 8),
+            Target::Iec | Target::Siemens => (self.unit, self.bit),
+        };
+        let prefix = match self.area {
+            Area::Input => "%IX",
+            Area::Output => "%QX",
+            Area::Memory => "%MX",
+        };
+        format!("{prefix}{byte}.{bit}")
+    }
+}
+
+/// One signal with its address.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Assigned {
+    pub signal: Signal,
+    pub address: Address,
+}
+
+/// The complete I/O and memory allocation of one table for one target.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Allocation {
+    pub target: Target,
+    pub mnemonic: Mnemonic,
+    /// In address order: START, then each actuator's sensors.
+    pub inputs: Vec<Assigned>,
+    /// In address order.
+    pub outputs: Vec<Assigned>,
+    /// Internal memory bits of the program (middle-stop requests).
+    pub memories: Vec<Assigned>,
+}
+
+impl Allocation {
+    /// Allocates addresses for every signal the table needs.
+    ///
+    /// Inputs: START first, then for each actuator in ascending number its
+    /// sensors 0…pmax, packed densely. Outputs on Festo follow the paper: all
+    /// `+` coils from `O0.1` on, all `-` coils from bit 1 of the next free word.
+    /// On IEC and Siemens targets each valve's two coils sit side by side
+    /// (`+` then `-`), as they do on a valve terminal.
+    pub fn new(table: &StepTable, target: Target, mnemonic: Mnemonic) -> Self {
+        let mut inputs = vec![Assigned {
+            signal: Signal::Start,
+            address: Address::from_index(Area::Input, target, 0),
+        }];
+        let mut index = 1;
+        for actuator in &table.actuators {
+            for position in 0..=actuator.max_position {
+                inputs.push(Assigned {
+                    signal: Signal::Sensor {
+                        actuator: actuator.number,
+                        position,
+                    },
+                    address: Address::from_index(Area::Input, target, index),
+                });
+                index += 1;
+            }
+        }
+
+        let count = table.actuators.len() as u32;
+        let mut outputs = Vec::with_capacity(2 * table.actuators.len());
+        for (rank, actuator) in table.actuators.iter().enumerate() {
+            let rank = rank as u32;
+            let (plus, minus) = match target {
+                Target::Festo => {
+                    let width = target.bits_per_unit();
+                    let minus_base = (count + 1).div_ceil(width) * width;
+                    (rank + 1, minus_base + rank + 1)
+                }
+                Target::Iec | Target::Siemens => (2 * rank, 2 * rank + 1),
+            };
+            for (sign, index) in [(Sign::Plus, plus), (Sign::Minus, minus)] {
+                outputs.push(Assigned {
+                    signal: Signal::Coil {
+                        actuator: actuator.number,
+                        sign,
+                    },
+                    address: Address::from_index(Area::Output, target, index),
+                });
+            }
+        }
+        outputs.sort_by_key(|a| a.address);
+
+        let mut memories = Vec::new();
+        let mut stops: Vec<(u32, u32)> = table
+            .steps
+            .iter()
+            .flat_map(|s| &s.moves)
+            .filter(|m| {
+                table
+                    .actuator(m.actuator)
+                    .is_some_and(|a| m.to > 0 && m.to < a.max_position)
+            })
+            .map(|m| (m.actuator, m.to))
+            .collect();
+        stops.sort_unstable();
+        stops.dedup();
+        for (index, (actuator, position)) in stops.into_iter().enumerate() {
+            memories.push(Assigned {
+                signal: Signal::StopAt { actuator, position },
+                address: Address::from_index(Area::Memory, target, index as u32),
+            });
+        }
+
+        Allocation {
+            target,
+            mnemonic,
+            inputs,
+            outputs,
+            memories,
+        }
+    }
+
+    /// The address of a signal.
+    pub fn address_of(&self, signal: Signal) -> Option<Address> {
+        self.inputs
+            .iter()
+            .chain(&self.outputs)
+            .chain(&self.memories)
+            .find(|a| a.signal == signal)
+            .map(|a| a.address)
+    }
+
+    /// The address of a signal in the target's notation, or `?` if it has none
+    /// (which the program builder never lets happen).
+    pub fn display(&self, signal: Signal) -> String {
+        self.address_of(signal)
+            .map(|a| a.display(self.mnemonic))
+            .unwrap_or_else(|| "?".to_string())
+    }
+}
+
+impl fmt::Display for Target {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diag::{CellPos, Diagnostics};
+    use crate::read::{CellValue, Grid, GridCell};
+
+    fn table(rows: &[&[&str]]) -> StepTable {
+        let mut cells = Vec::new();
+        for (r, row) in rows.iter().enumerate() {
+            for (c, text) in row.iter().enumerate() {
+                if !text.is_empty() {
+                    cells.push(GridCell {
+                        pos: CellPos::new(r as u32, c as u32),
+                        value: CellValue::Text(text.to_string()),
+                    });
+                }
+            }
+        }
+        let grid = Grid {
+            file: "t.csv".into(),
+            sheet: None,
+            cells,
+        };
+        crate::table::build(&grid, &mut Diagnostics::new()).expect("valid table")
+    }
+
+    #[test]
+    fn festo_outputs_follow_the_paper() {
+        let t = table(&[&["C1+1", "C2+1"], &["C1-0", "C2-0"]]);
+        let alloc = Allocation::new(&t, Target::Festo, Mnemonic::En);
+        let outs: Vec<String> = alloc
+            .outputs
+            .iter()
+            .map(|a| format!("{} {}", a.address.display(Mnemonic::En), a.signal.symbol()))
+            .collect();
+        assert_eq!(outs, ["O0.1 y1+", "O0.2 y2+", "O1.1 y1-", "O1.2 y2-"]);
+    }
+
+    #[test]
+    fn forty_actuators_get_unique_valid_addresses() {
+        let plus: Vec<String> = (1..=40).map(|i| format!("C{i}+1")).collect();
+        let minus: Vec<String> = (1..=40).map(|i| format!("C{i}-0")).collect();
+        let plus_ref: Vec<&str> = plus.iter().map(String::as_str).collect();
+        let minus_ref: Vec<&str> = minus.iter().map(String::as_str).collect();
+        let t = table(&[&plus_ref, &minus_ref]);
+        for target in [Target::Festo, Target::Iec, Target::Siemens] {
+            let alloc = Allocation::new(&t, target, Mnemonic::En);
+            let mut seen = std::collections::BTreeSet::new();
+            for a in alloc.inputs.iter().chain(&alloc.outputs) {
+                assert!(a.address.bit < target.bits_per_unit());
+                assert!(
+                    seen.insert(a.address),
+                    "{target}: duplicate {:?}",
+                    a.address
+                );
+            }
+            assert_eq!(alloc.inputs.len(), 81);
+            assert_eq!(alloc.outputs.len(), 80);
+        }
+    }
+
+    #[test]
+    fn symbols_are_unambiguous_identifiers() {
+        let a = Signal::Sensor {
+            actuator: 1,
+            position: 23,
+        };
+        let b = Signal::Sensor {
+            actuator: 12,
+            position: 3,
+        };
+        assert_ne!(a.ident(), b.ident());
+        assert_eq!(
+            Signal::Sensor {
+                actuator: 2,
+                position: 1
+            }
+            .ident(),
+            "x21"
+        );
+        assert_eq!(
+            Signal::Coil {
+                actuator: 2,
+                sign: Sign::Minus
+            }
+            .ident(),
+            "y2m"
+        );
+        assert_eq!(
+            Signal::Coil {
+                actuator: 2,
+                sign: Sign::Minus
+            }
+            .symbol(),
+            "y2-"
+        );
+    }
+
+    #[test]
+    fn festo_words_map_to_iec_bytes() {
+        let addr = Address {
+            area: Area::Input,
+            target: Target::Festo,
+            unit: 0,
+            bit: 10,
+        };
+        assert_eq!(addr.display(Mnemonic::En), "I0.10");
+        assert_eq!(addr.iec(), "%IX1.2");
+        let q = Address {
+            area: Area::Output,
+            target: Target::Siemens,
+            unit: 3,
+            bit: 7,
+        };
+        assert_eq!(q.display(Mnemonic::De), "A3.7");
+        assert_eq!(q.iec(), "%QX3.7");
+    }
+}

@@ -1,0 +1,225 @@
+//! Command-line parsing (clap) and the commands. Raw arguments become
+//! validated [`Settings`] before any work starts; exit codes are 0 (ok),
+//! 1 (bad input, diagnostics printed) and 2 (internal or I/O failure).
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+use steptable::address::{Mnemonic, Target};
+use steptable::convert::{self, Failure, Settings};
+use steptable::diag::Diagnostic;
+use steptable::output;
+use steptable::read::display_name;
+
+const EXIT_OK: i32 = 0;
+const EXIT_BAD_INPUT: i32 = 1;
+const EXIT_INTERNAL: i32 = 2;
+
+#[derive(Parser)]
+#[command(
+    name = "steptable",
+    version,
+    about = "Turn a step table of pneumatic cylinder moves into I/O address lists and PLC programs"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Convert step tables into address sheets and PLC programs.
+    Convert(ConvertArgs),
+    /// Read and check step tables without writing anything.
+    Check(CheckArgs),
+}
+
+#[derive(Args)]
+struct ConvertArgs {
+    /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+    /// Output folder; each input gets a folder DIR/NAME/ in it.
+    #[arg(short, long, value_name = "DIR", default_value = "steptable-out")]
+    output: PathBuf,
+    #[command(flatten)]
+    common: CommonArgs,
+}
+
+#[derive(Args)]
+struct CheckArgs {
+    /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+    #[command(flatten)]
+    common: CommonArgs,
+}
+
+#[derive(Args)]
+struct CommonArgs {
+    /// Address dialect: festo (I0.0/O0.0, 16-bit words), iec (%IX0.0/%QX0.0), siemens (I0.0/Q0.0).
+    #[arg(long, value_enum, default_value_t = TargetArg::Festo)]
+    target: TargetArg,
+    /// Operand letters for siemens: en (I/Q) or de (E/A).
+    #[arg(long, value_enum, default_value_t = MnemonicArg::En)]
+    mnemonic: MnemonicArg,
+    /// Read this sheet instead of "SEQUENTIAL CONTROL DESCRIPTION" or the first sheet with moves.
+    #[arg(long, value_name = "NAME")]
+    sheet: Option<String>,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum TargetArg {
+    Festo,
+    Iec,
+    Siemens,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum MnemonicArg {
+    En,
+    De,
+}
+
+impl CommonArgs {
+    fn settings(&self) -> Settings {
+        let mut settings = Settings::new();
+        settings.target = match self.target {
+            TargetArg::Festo => Target::Festo,
+            TargetArg::Iec => Target::Iec,
+            TargetArg::Siemens => Target::Siemens,
+        };
+        settings.mnemonic = match self.mnemonic {
+            MnemonicArg::En => Mnemonic::En,
+            MnemonicArg::De => Mnemonic::De,
+        };
+        settings.sheet = self.sheet.clone();
+        settings
+    }
+}
+
+/// Runs the command line and returns the process exit code.
+pub fn run() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(err) => {
+            let _ = err.print();
+            return if err.use_stderr() {
+                EXIT_INTERNAL
+            } else {
+                EXIT_OK
+            };
+        }
+    };
+    match cli.command {
+        Command::Convert(args) => run_convert(&args),
+        Command::Check(args) => run_check(&args),
+    }
+}
+
+/// Prints to stdout; a closed pipe (`steptable check … | head`) is not an error.
+fn out(line: &str) {
+    let mut stdout = std::io::stdout().lock();
+    if writeln!(stdout, "{line}").is_err() {
+        std::process::exit(EXIT_OK);
+    }
+}
+
+fn print_diagnostics(diagnostics: &[Diagnostic]) {
+    let mut stderr = std::io::stderr().lock();
+    for d in diagnostics {
+        let _ = writeln!(stderr, "{d}");
+    }
+}
+
+fn summary(table: &steptable::table::StepTable) -> String {
+    let inputs = 1 + table
+        .actuators
+        .iter()
+        .map(|a| a.max_position as usize + 1)
+        .sum::<usize>();
+    format!(
+        "{} steps, {} branch(es), {} actuators, {} inputs, {} outputs",
+        table.steps.len(),
+        table.branches,
+        table.actuators.len(),
+        inputs,
+        2 * table.actuators.len()
+    )
+}
+
+fn run_check(args: &CheckArgs) -> i32 {
+    let settings = args.common.settings();
+    let mut code = EXIT_OK;
+    for input in &args.inputs {
+        match convert::check_path(input, &settings) {
+            Ok(checked) => {
+                print_diagnostics(&checked.warnings);
+                out(&format!(
+                    "{}: ok: {}",
+                    display_name(input),
+                    summary(&checked.table)
+                ));
+            }
+            Err(diagnostics) => {
+                print_diagnostics(&diagnostics);
+                out(&format!(
+                    "{}: {} error(s)",
+                    display_name(input),
+                    diagnostics
+                        .iter()
+                        .filter(|d| d.severity == steptable::diag::Severity::Error)
+                        .count()
+                ));
+                code = code.max(EXIT_BAD_INPUT);
+            }
+        }
+    }
+    code
+}
+
+fn run_convert(args: &ConvertArgs) -> i32 {
+    let settings = args.common.settings();
+    let mut code = EXIT_OK;
+    let names = convert::output_names(&args.inputs);
+    for (input, name) in args.inputs.iter().zip(&names) {
+        let conversion = match convert::convert_path_as(input, name, &settings) {
+            Ok(c) => c,
+            Err(Failure::Input(diagnostics)) => {
+                print_diagnostics(&diagnostics);
+                eprintln!("{}: not converted, nothing written", display_name(input));
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+            Err(Failure::Internal(why)) => {
+                eprintln!("{}: internal error: {why}", display_name(input));
+                code = EXIT_INTERNAL;
+                continue;
+            }
+        };
+        print_diagnostics(&conversion.warnings);
+        let folder = args.output.join(&conversion.name);
+        match output::write_files(&folder, &conversion.files, &args.inputs) {
+            Ok(written) => {
+                let names: Vec<String> = written
+                    .iter()
+                    .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().to_string()))
+                    .collect();
+                out(&format!(
+                    "{}: {} -> {}/ ({})",
+                    display_name(input),
+                    summary(&conversion.table),
+                    folder.display(),
+                    names.join(", ")
+                ));
+            }
+            Err(err) => {
+                eprintln!("error: {err}");
+                code = EXIT_INTERNAL;
+            }
+        }
+    }
+    code
+}

@@ -1,0 +1,210 @@
+//! The pipeline, end to end and in memory: read → table → addresses → program
+//! → every output file. Writing to disk is [`crate::output`]'s job.
+
+use std::path::Path;
+
+use crate::address::{Allocation, Mnemonic, Target};
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::emit::{self, EmitInput};
+use crate::program::{self, ProgramOptions, StepProgram};
+use crate::read::{self, Format, Grid};
+use crate::table::{self, StepTable};
+
+/// Validated settings of one run (raw command-line values are turned into this
+/// before any work starts).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Settings {
+    pub target: Target,
+    pub mnemonic: Mnemonic,
+    /// Sheet to read instead of the default choice.
+    pub sheet: Option<String>,
+    pub program: ProgramOptions,
+    /// PLC scan time for the generated task, in milliseconds.
+    pub scan_millis: u32,
+}
+
+impl Settings {
+    pub fn new() -> Self {
+        Settings {
+            scan_millis: 10,
+            ..Settings::default()
+        }
+    }
+}
+
+/// A table that passed every check, with any warnings.
+#[derive(Debug, Clone)]
+pub struct Checked {
+    pub table: StepTable,
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// One generated file, in memory.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OutputFile {
+    /// File name without folder, e.g. `paper.st`.
+    pub name: String,
+    pub bytes: Vec<u8>,
+}
+
+/// Everything a conversion produced.
+#[derive(Debug, Clone)]
+pub struct Conversion {
+    /// Base name of the outputs (the input's file stem).
+    pub name: String,
+    pub table: StepTable,
+    pub allocation: Allocation,
+    pub program: StepProgram,
+    pub files: Vec<OutputFile>,
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Why a conversion produced nothing.
+#[derive(Debug)]
+pub enum Failure {
+    /// The input is wrong; every problem found is listed.
+    Input(Vec<Diagnostic>),
+    /// A bug or an environment problem (a template failed to render, …).
+    Internal(String),
+}
+
+/// Reads and checks one file.
+pub fn check_path(path: &Path, settings: &Settings) -> Result<Checked, Vec<Diagnostic>> {
+    let mut diags = Diagnostics::new();
+    let grid = read::read_path(path, settings.sheet.as_deref(), &mut diags);
+    finish_check(grid, diags)
+}
+
+/// Reads and checks an in-memory file of a known format.
+pub fn check_bytes(
+    file: &str,
+    format: Format,
+    bytes: Vec<u8>,
+    settings: &Settings,
+) -> Result<Checked, Vec<Diagnostic>> {
+    let mut diags = Diagnostics::new();
+    let grid = read::read_bytes(file, format, bytes, settings.sheet.as_deref(), &mut diags);
+    finish_check(grid, diags)
+}
+
+fn finish_check(grid: Option<Grid>, mut diags: Diagnostics) -> Result<Checked, Vec<Diagnostic>> {
+    let table = grid.and_then(|g| table::build(&g, &mut diags));
+    match table {
+        Some(table) if !diags.has_errors() => Ok(Checked {
+            table,
+            warnings: diags.into_sorted(),
+        }),
+        _ => Err(diags.into_sorted()),
+    }
+}
+
+/// The output base name for an input path: its file stem.
+pub fn output_name(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .filter(|s| !s.is_empty())
+        .unwrap_or_else(|| "steptable".to_string())
+}
+
+/// Distinct output names for several inputs, in order: the file stem, or
+/// `stem-ext` when another input already has that stem (`line.csv` beside
+/// `line.xlsx`), or `stem-2`, `stem-3`, … when that is taken too.
+pub fn output_names(paths: &[impl AsRef<Path>]) -> Vec<String> {
+    let mut taken = std::collections::BTreeSet::new();
+    let mut names = Vec::with_capacity(paths.len());
+    for path in paths {
+        let path = path.as_ref();
+        let stem = output_name(path);
+        let mut name = stem.clone();
+        if taken.contains(&name.to_lowercase()) {
+            if let Some(ext) = path.extension() {
+                name = format!("{stem}-{}", ext.to_string_lossy().to_lowercase());
+            }
+            let mut n = 2;
+            while taken.contains(&name.to_lowercase()) {
+                name = format!("{stem}-{n}");
+                n += 1;
+            }
+        }
+        taken.insert(name.to_lowercase());
+        names.push(name);
+    }
+    names
+}
+
+/// Converts one file completely, in memory; outputs are named after its stem.
+pub fn convert_path(path: &Path, settings: &Settings) -> Result<Conversion, Failure> {
+    convert_path_as(path, &output_name(path), settings)
+}
+
+/// Converts one file completely, in memory, naming the outputs `name.*`.
+pub fn convert_path_as(
+    path: &Path,
+    name: &str,
+    settings: &Settings,
+) -> Result<Conversion, Failure> {
+    let checked = check_path(path, settings).map_err(Failure::Input)?;
+    generate(name, checked, settings)
+}
+
+/// Generates every output of a checked table.
+pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Conversion, Failure> {
+    let table = checked.table;
+    let allocation = Allocation::new(&table, settings.target, settings.mnemonic);
+    let program = program::build(&table, &allocation, settings.program);
+    let input = EmitInput {
+        name,
+        table: &table,
+        allocation: &allocation,
+        program: &program,
+    };
+    let internal =
+        |what: &str, e: &dyn std::fmt::Display| Failure::Internal(format!("{what}: {e}"));
+    let files = vec![
+        OutputFile {
+            name: format!("{name}.xlsx"),
+            bytes: emit::workbook::render(&input).map_err(|e| internal("workbook", &e))?,
+        },
+        OutputFile {
+            name: format!("{name}.st"),
+            bytes: emit::st::render(&input, settings.scan_millis)
+                .map_err(|e| internal("structured text", &e))?
+                .into_bytes(),
+        },
+        OutputFile {
+            name: format!("{name}.fst.txt"),
+            bytes: emit::fst::render(&input)
+                .map_err(|e| internal("FST statement list", &e))?
+                .into_bytes(),
+        },
+        OutputFile {
+            name: format!("{name}.io.csv"),
+            bytes: emit::io_csv::render(&input).map_err(|e| internal("allocation list", &e))?,
+        },
+    ];
+    Ok(Conversion {
+        name: name.to_string(),
+        table,
+        allocation,
+        program,
+        files,
+        warnings: checked.warnings,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn colliding_inputs_get_distinct_names() {
+        let names = output_names(&[
+            "a/line.xlsx",
+            "b/line.xlsx",
+            "line.csv",
+            "c/LINE.xlsx",
+            "other.ods",
+        ]);
+        assert_eq!(names, ["line", "line-xlsx", "line-csv", "LINE-2", "other"]);
+    }
+}

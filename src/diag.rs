@@ -1,0 +1,244 @@
+//! Diagnostics: every problem found in an input, with where it is and a stable
+//! code, collected rather than thrown so that an engineer sees all of them at once.
+
+use std::fmt;
+
+/// How bad a diagnostic is. Any error stops the conversion; warnings do not.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Severity {
+    Warning,
+    Error,
+}
+
+/// Stable diagnostic codes. The numbers never change meaning; new kinds get new numbers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Code {
+    /// The file could not be read from disk.
+    E001Unreadable,
+    /// The file is not a workbook or CSV we can decode (corrupt zip, binary data, …).
+    E002NotAWorkbook,
+    /// No step table was found (empty sheet, no moves).
+    E003NoTable,
+    /// The sheet asked for with `--sheet` does not exist.
+    E004NoSuchSheet,
+    /// The file is larger than the limit.
+    E005TooLarge,
+    /// A cell inside the table is not a move.
+    E010NotAMove,
+    /// Actuator number out of range (0 or too large).
+    E011BadActuator,
+    /// Position number out of range.
+    E012BadPosition,
+    /// A `+` move that does not go up or a `-` move that does not go down.
+    E020WrongDirection,
+    /// The same actuator moves twice in one step.
+    E021TwiceInStep,
+    /// An actuator is not back at position 0 when the cycle ends.
+    E022NotHome,
+    /// A step row without any move between steps that have moves.
+    E023EmptyStep,
+    /// The table is larger than the limits.
+    E024TableTooLarge,
+}
+
+impl Code {
+    /// The code as printed, e.g. `E010`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Code::E001Unreadable => "E001",
+            Code::E002NotAWorkbook => "E002",
+            Code::E003NoTable => "E003",
+            Code::E004NoSuchSheet => "E004",
+            Code::E005TooLarge => "E005",
+            Code::E010NotAMove => "E010",
+            Code::E011BadActuator => "E011",
+            Code::E012BadPosition => "E012",
+            Code::E020WrongDirection => "E020",
+            Code::E021TwiceInStep => "E021",
+            Code::E022NotHome => "E022",
+            Code::E023EmptyStep => "E023",
+            Code::E024TableTooLarge => "E024",
+        }
+    }
+}
+
+/// Where a cell is: zero-based absolute row and column on its sheet.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct CellPos {
+    pub row: u32,
+    pub col: u32,
+}
+
+impl CellPos {
+    pub fn new(row: u32, col: u32) -> Self {
+        CellPos { row, col }
+    }
+
+    /// A1 notation (`D7`).
+    pub fn a1(self) -> String {
+        format!("{}{}", column_letters(self.col), self.row + 1)
+    }
+}
+
+/// Excel column letters for a zero-based column index (0 → A, 26 → AA).
+pub fn column_letters(col: u32) -> String {
+    let mut n = col as u64 + 1;
+    let mut letters = Vec::new();
+    while n > 0 {
+        let rem = ((n - 1) % 26) as u8;
+        letters.push(b'A' + rem);
+        n = (n - 1) / 26;
+    }
+    letters.reverse();
+    String::from_utf8(letters).unwrap_or_default()
+}
+
+/// The place a diagnostic points at.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Location {
+    /// File name as the user gave it (display form).
+    pub file: String,
+    /// Sheet name for workbooks; `None` for CSV files and whole-file problems.
+    pub sheet: Option<String>,
+    /// The cell, if the problem has one.
+    pub cell: Option<CellPos>,
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match (&self.sheet, self.cell) {
+            (Some(sheet), Some(cell)) => write!(f, "{}: {}!{}", self.file, sheet, cell.a1()),
+            (Some(sheet), None) => write!(f, "{}: {}", self.file, sheet),
+            // CSV: line:column, both one-based, as compilers print them.
+            (None, Some(cell)) => write!(f, "{}:{}:{}", self.file, cell.row + 1, cell.col + 1),
+            (None, None) => write!(f, "{}", self.file),
+        }
+    }
+}
+
+/// One problem found in an input.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Diagnostic {
+    pub severity: Severity,
+    pub code: Code,
+    pub location: Location,
+    pub message: String,
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let kind = match self.severity {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        };
+        write!(
+            f,
+            "{}: {kind}[{}]: {}",
+            self.location,
+            self.code.as_str(),
+            self.message
+        )
+    }
+}
+
+/// Collects diagnostics for one input file.
+#[derive(Debug, Clone, Default)]
+pub struct Diagnostics {
+    items: Vec<Diagnostic>,
+}
+
+impl Diagnostics {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    pub fn push(&mut self, diagnostic: Diagnostic) {
+        self.items.push(diagnostic);
+    }
+
+    pub fn error(&mut self, code: Code, location: Location, message: impl Into<String>) {
+        self.push(Diagnostic {
+            severity: Severity::Error,
+            code,
+            location,
+            message: message.into(),
+        });
+    }
+
+    pub fn warning(&mut self, code: Code, location: Location, message: impl Into<String>) {
+        self.push(Diagnostic {
+            severity: Severity::Warning,
+            code,
+            location,
+            message: message.into(),
+        });
+    }
+
+    pub fn has_errors(&self) -> bool {
+        self.items.iter().any(|d| d.severity == Severity::Error)
+    }
+
+    pub fn error_count(&self) -> usize {
+        self.items
+            .iter()
+            .filter(|d| d.severity == Severity::Error)
+            .count()
+    }
+
+    /// All diagnostics, sorted by position in the file so they read top to bottom.
+    pub fn into_sorted(mut self) -> Vec<Diagnostic> {
+        self.items.sort_by(|a, b| {
+            let key = |d: &Diagnostic| {
+                (
+                    d.location.sheet.clone(),
+                    d.location.cell.map(|c| (c.row, c.col)),
+                )
+            };
+            key(a).cmp(&key(b))
+        });
+        self.items
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = &Diagnostic> {
+        self.items.iter()
+    }
+
+    pub fn extend(&mut self, other: Diagnostics) {
+        self.items.extend(other.items);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn column_letters_follow_excel() {
+        assert_eq!(column_letters(0), "A");
+        assert_eq!(column_letters(25), "Z");
+        assert_eq!(column_letters(26), "AA");
+        assert_eq!(column_letters(701), "ZZ");
+        assert_eq!(column_letters(702), "AAA");
+        assert_eq!(column_letters(16383), "XFD");
+    }
+
+    #[test]
+    fn locations_print_as_engineers_read_them() {
+        let sheet = Location {
+            file: "line.xlsx".into(),
+            sheet: Some("SEQUENTIAL CONTROL DESCRIPTION".into()),
+            cell: Some(CellPos::new(6, 3)),
+        };
+        assert_eq!(
+            sheet.to_string(),
+            "line.xlsx: SEQUENTIAL CONTROL DESCRIPTION!D7"
+        );
+        let csv = Location {
+            file: "line.csv".into(),
+            sheet: None,
+            cell: Some(CellPos::new(6, 2)),
+        };
+        assert_eq!(csv.to_string(), "line.csv:7:3");
+    }
+}

@@ -1,0 +1,92 @@
+//! Output languages. Each emitter turns the one step program (plus the table and
+//! the allocation) into the bytes of one file. What a name, an address or an
+//! operator is, is decided here in Rust; templates in `templates/` only lay out.
+
+pub mod fst;
+pub mod io_csv;
+pub mod st;
+pub mod templates;
+pub mod workbook;
+
+use crate::address::{Allocation, Signal};
+use crate::cell::Sign;
+use crate::program::{Action, StepProgram};
+use crate::table::{Move, StepTable};
+
+/// Everything an emitter may read.
+#[derive(Debug, Clone, Copy)]
+pub struct EmitInput<'a> {
+    /// Base name of the outputs (the input file's stem).
+    pub name: &'a str,
+    pub table: &'a StepTable,
+    pub allocation: &'a Allocation,
+    pub program: &'a StepProgram,
+}
+
+impl EmitInput<'_> {
+    /// `paper.xlsx, sheet SEQUENTIAL CONTROL DESCRIPTION` — where the table
+    /// came from. Only the file name, not its folder, so that outputs do not
+    /// depend on where the command was run.
+    pub fn source(&self) -> String {
+        let file = std::path::Path::new(&self.table.file)
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_else(|| self.table.file.clone());
+        match &self.table.sheet {
+            Some(sheet) => format!("{file}, sheet {sheet}"),
+            None => file,
+        }
+    }
+}
+
+/// The moves of a step as the table writes them: `C3+2, C2+2`.
+pub fn moves_text(moves: &[Move]) -> String {
+    moves
+        .iter()
+        .map(Move::notation)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A short explanation of an action for a program comment.
+pub fn action_comment(action: Action, moves: &[Move]) -> String {
+    let symbol = action.signal().symbol();
+    match action {
+        Action::Set(Signal::Coil { actuator, sign }) => {
+            let target = moves
+                .iter()
+                .find(|m| m.actuator == actuator && m.sign == sign)
+                .map(|m| {
+                    let sensor = Signal::Sensor {
+                        actuator,
+                        position: m.to,
+                    };
+                    format!(", {} towards {}", m.notation(), sensor.symbol())
+                })
+                .unwrap_or_default();
+            let verb = if sign == Sign::Plus {
+                "extend"
+            } else {
+                "retract"
+            };
+            format!("{symbol} on: {verb} C{actuator}{target}")
+        }
+        Action::Reset(Signal::Coil { .. }) => format!("{symbol} off"),
+        Action::Set(Signal::StopAt { actuator, position }) => {
+            format!(
+                "{symbol}: stop C{actuator} at {}",
+                Signal::Sensor { actuator, position }.symbol()
+            )
+        }
+        Action::Reset(Signal::StopAt { .. }) => format!("{symbol} off: stop request cleared"),
+        Action::Set(s) => format!("{} on", s.symbol()),
+        Action::Reset(s) => format!("{} off", s.symbol()),
+    }
+}
+
+/// Text on one line: control characters (a newline in a file name) become spaces.
+pub fn one_line(text: &str) -> String {
+    text.chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect()
+}

@@ -1,0 +1,143 @@
+//! The output workbook (`NAME.xlsx`) with the four sheets of the published
+//! method: the normalised table, input addresses, output addresses and the PLC
+//! program, each readable as it is. The file is byte-stable: its creation time
+//! is fixed, so the same input always gives the same bytes.
+
+use rust_xlsxwriter::{DocProperties, ExcelDateTime, Format, Workbook, Worksheet, XlsxError};
+
+use super::EmitInput;
+use crate::address::{Assigned, Signal};
+use crate::program::{Action, paper_sentence};
+use crate::read::TABLE_SHEET;
+
+pub const INPUT_SHEET: &str = "INPUT ADDRESSES";
+pub const OUTPUT_SHEET: &str = "OUTPUT ADDRESSES";
+pub const PROGRAM_SHEET: &str = "PLC PROGRAM";
+
+/// The rows of the PLC PROGRAM sheet: `[label, sentence, stop requests]`.
+/// The sentence holds the step's condition and its coil actions in the
+/// paper's notation; the third column holds the middle-stop requests it sets.
+pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
+    let is_output = |a: &Action| matches!(a.signal(), Signal::Coil { .. });
+    let mut rows = Vec::new();
+    for step in &input.program.steps {
+        let (outputs, memories): (Vec<Action>, Vec<Action>) =
+            step.actions.iter().partition(|a| is_output(a));
+        let requests = memories
+            .iter()
+            .map(|a| {
+                let verb = if a.value() { "SET" } else { "RESET" };
+                format!("{verb} {}", a.signal().symbol())
+            })
+            .collect::<Vec<_>>()
+            .join(" ");
+        rows.push([
+            format!("STEP {}", step.number),
+            paper_sentence(&step.condition, &outputs, Signal::symbol),
+            requests,
+        ]);
+    }
+    rows.push([String::new(), "JMP TO STEP 1".to_string(), String::new()]);
+    for rung in &input.program.rungs {
+        rows.push([
+            "MIDDLE STOP".to_string(),
+            paper_sentence(&rung.condition, &rung.actions, Signal::symbol),
+            String::new(),
+        ]);
+    }
+    rows
+}
+
+/// Renders `NAME.xlsx`.
+pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
+    let mut workbook = Workbook::new();
+    let fixed_time = ExcelDateTime::from_ymd(2020, 1, 1)?;
+    workbook.set_properties(
+        &DocProperties::new()
+            .set_title(format!("steptable: {}", input.name))
+            .set_creation_datetime(&fixed_time),
+    );
+    let bold = Format::new().set_bold();
+    let title = Format::new().set_bold().set_font_size(14);
+
+    // The table, normalised, laid out as the paper's Fig. 7.
+    let sheet = workbook.add_worksheet();
+    sheet.set_name(TABLE_SHEET)?;
+    sheet.write_string_with_format(0, 0, TABLE_SHEET, &title)?;
+    sheet.write_string(1, 0, input.source())?;
+    let header_row = 2;
+    for branch in 0..input.table.branches {
+        let col = branch as u16 + 1;
+        sheet.write_string_with_format(header_row, col, format!("BRANCH {}", branch + 1), &bold)?;
+        sheet.set_column_width(col, 12)?;
+    }
+    sheet.set_column_width(0, 12)?;
+    for (i, step) in input.table.steps.iter().enumerate() {
+        let row = header_row + 1 + i as u32;
+        sheet.write_string_with_format(row, 0, format!("STEP {}", step.number), &bold)?;
+        for m in &step.moves {
+            sheet.write_string(row, m.branch as u16 + 1, m.notation())?;
+        }
+    }
+    sheet.set_freeze_panes(header_row + 1, 1)?;
+
+    address_sheet(
+        workbook.add_worksheet(),
+        INPUT_SHEET,
+        &input.allocation.inputs,
+        input,
+        &bold,
+    )?;
+    address_sheet(
+        workbook.add_worksheet(),
+        OUTPUT_SHEET,
+        &input.allocation.outputs,
+        input,
+        &bold,
+    )?;
+
+    let sheet = workbook.add_worksheet();
+    sheet.set_name(PROGRAM_SHEET)?;
+    for (col, header) in ["STEP", "PROGRAM", "STOP REQUESTS"].iter().enumerate() {
+        sheet.write_string_with_format(0, col as u16, *header, &bold)?;
+    }
+    let rows = program_rows(input);
+    let widest = rows.iter().map(|r| r[1].len()).max().unwrap_or(10);
+    for (i, row) in rows.iter().enumerate() {
+        for (col, text) in row.iter().enumerate() {
+            if !text.is_empty() {
+                sheet.write_string(i as u32 + 1, col as u16, text)?;
+            }
+        }
+    }
+    sheet.set_column_width(0, 14)?;
+    sheet.set_column_width(1, (widest as f64 * 1.05).clamp(20.0, 120.0))?;
+    sheet.set_column_width(2, 24)?;
+    sheet.set_freeze_panes(1, 0)?;
+
+    workbook.save_to_buffer()
+}
+
+fn address_sheet(
+    sheet: &mut Worksheet,
+    name: &str,
+    list: &[Assigned],
+    input: &EmitInput,
+    bold: &Format,
+) -> Result<(), XlsxError> {
+    sheet.set_name(name)?;
+    for (col, header) in ["ADDRESS", "SYMBOL", "COMMENT"].iter().enumerate() {
+        sheet.write_string_with_format(0, col as u16, *header, bold)?;
+    }
+    for (i, a) in list.iter().enumerate() {
+        let row = i as u32 + 1;
+        sheet.write_string(row, 0, a.address.display(input.allocation.mnemonic))?;
+        sheet.write_string(row, 1, a.signal.symbol())?;
+        sheet.write_string(row, 2, a.signal.comment(input.table))?;
+    }
+    sheet.set_column_width(0, 10)?;
+    sheet.set_column_width(1, 10)?;
+    sheet.set_column_width(2, 36)?;
+    sheet.set_freeze_panes(1, 0)?;
+    Ok(())
+}

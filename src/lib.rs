@@ -1,0 +1,20 @@
+//! steptable turns a step table of pneumatic cylinder moves (a branches × steps
+//! spreadsheet of `C1+1`, `C2-0` cells, as in Blagojević et al. 2019) into I/O
+//! address lists and PLC programs.
+//!
+//! The pipeline, one module per stage, data flowing one way:
+//! [`read`] (file → grid of cells) → [`table`] (grid → checked steps and moves)
+//! → [`address`] (signals → addresses per PLC dialect) → [`program`] (the step
+//! program every output is rendered from) → [`emit`] (one file per output
+//! language). [`convert`] runs the whole pipeline in memory and [`output`]
+//! writes the result atomically.
+
+pub mod address;
+pub mod cell;
+pub mod convert;
+pub mod diag;
+pub mod emit;
+pub mod output;
+pub mod program;
+pub mod read;
+pub mod table;

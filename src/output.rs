@@ -1,0 +1,72 @@
+//! Writing outputs: all files of one conversion land complete or not at all.
+//! Each is written to a temporary file in its destination folder and renamed
+//! into place only after every file was written; an input is never overwritten.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use crate::convert::OutputFile;
+
+/// Why outputs could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum WriteError {
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: refusing to overwrite an input file; choose another output folder with -o")]
+    WouldOverwriteInput { path: String },
+}
+
+fn io_error(path: &Path, source: std::io::Error) -> WriteError {
+    WriteError::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+/// Writes `files` into `folder` (created if missing). Returns the paths written.
+pub fn write_files(
+    folder: &Path,
+    files: &[OutputFile],
+    inputs: &[PathBuf],
+) -> Result<Vec<PathBuf>, WriteError> {
+    let inputs: Vec<PathBuf> = inputs
+        .iter()
+        .filter_map(|p| std::fs::canonicalize(p).ok())
+        .collect();
+    if let Ok(existing) = std::fs::canonicalize(folder) {
+        for file in files {
+            let target = existing.join(&file.name);
+            if inputs.contains(&target) {
+                return Err(WriteError::WouldOverwriteInput {
+                    path: folder.join(&file.name).display().to_string(),
+                });
+            }
+        }
+    }
+    std::fs::create_dir_all(folder).map_err(|e| io_error(folder, e))?;
+
+    let mut staged = Vec::with_capacity(files.len());
+    for file in files {
+        let target = folder.join(&file.name);
+        let mut temp = tempfile::Builder::new()
+            .prefix(".steptable-")
+            .suffix(".tmp")
+            .tempfile_in(folder)
+            .map_err(|e| io_error(&target, e))?;
+        temp.write_all(&file.bytes)
+            .and_then(|_| temp.as_file().sync_all())
+            .map_err(|e| io_error(&target, e))?;
+        staged.push((temp, target));
+    }
+    let mut written = Vec::with_capacity(staged.len());
+    for (temp, target) in staged {
+        temp.persist(&target)
+            .map_err(|e| io_error(&target, e.error))?;
+        written.push(target);
+    }
+    Ok(written)
+}

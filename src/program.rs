@@ -1,0 +1,347 @@
+//! The step program: the one intermediate model every output language is
+//! rendered from and the simulator executes (DESIGN §4).
+//!
+//! Execution model, per PLC scan:
+//! 1. The sequence waits at one step (step 1 after power-up). If that step's
+//!    condition (an AND of literals) holds, its actions run in order and the
+//!    sequence waits at the next step; after the last step it waits at step 1.
+//!    At most one step fires per scan.
+//! 2. Then every rung runs: if its condition holds, its actions run. Rungs are
+//!    the logic that must act while the sequence waits, such as middle stops.
+//!
+//! Conditions are conjunctions of (possibly negated) signals and actions are
+//! SET / RESET of outputs or memories, which is what every target language has
+//! in common. Dwell timers, machine inputs and extra outputs become further
+//! signals; one-coil valves simply get different actions.
+
+use crate::address::{Allocation, Signal};
+use crate::cell::Sign;
+use crate::table::{Move, StepTable};
+
+/// A signal in a condition, possibly negated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Literal {
+    pub signal: Signal,
+    pub negated: bool,
+}
+
+impl Literal {
+    pub fn is(signal: Signal) -> Self {
+        Literal {
+            signal,
+            negated: false,
+        }
+    }
+}
+
+/// What a step or rung does to an output or memory bit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Action {
+    Set(Signal),
+    Reset(Signal),
+}
+
+impl Action {
+    pub fn signal(self) -> Signal {
+        match self {
+            Action::Set(s) | Action::Reset(s) => s,
+        }
+    }
+
+    pub fn value(self) -> bool {
+        matches!(self, Action::Set(_))
+    }
+}
+
+/// One step of the sequence.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProgramStep {
+    /// One-based step number, as in the table.
+    pub number: usize,
+    /// The table's moves of this step (for comments).
+    pub moves: Vec<Move>,
+    /// All literals must hold for the step to fire.
+    pub condition: Vec<Literal>,
+    /// Run in order when the step fires.
+    pub actions: Vec<Action>,
+}
+
+/// Logic evaluated on every scan after the sequence.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rung {
+    /// What the rung is for, in words.
+    pub comment: String,
+    pub condition: Vec<Literal>,
+    pub actions: Vec<Action>,
+}
+
+/// Choices that change the generated program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ProgramOptions {
+    /// Switch both coils off when an actuator reaches a middle target. Off only
+    /// to show what the published method does without it (it hangs).
+    pub middle_stops: bool,
+}
+
+impl Default for ProgramOptions {
+    fn default() -> Self {
+        ProgramOptions { middle_stops: true }
+    }
+}
+
+/// The complete step program of one table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepProgram {
+    pub steps: Vec<ProgramStep>,
+    pub rungs: Vec<Rung>,
+}
+
+/// Builds the step program of a checked table.
+///
+/// Step k fires when every sensor reached at the end of step k−1 is on; step 1
+/// fires on START and every home sensor. Each move sets its coil and resets the
+/// opposite one. A move to a middle position also sets a stop request, and a
+/// rung switches both coils off the moment the middle sensor is reached: a
+/// 5/3 valve only holds the piston with both coils off (DESIGN §4, trap 2).
+pub fn build(table: &StepTable, allocation: &Allocation, options: ProgramOptions) -> StepProgram {
+    let is_middle = |actuator: u32, position: u32| {
+        table
+            .actuator(actuator)
+            .is_some_and(|a| position > 0 && position < a.max_position)
+    };
+    let middle_stops = options.middle_stops;
+
+    let mut steps = Vec::with_capacity(table.steps.len());
+    for (index, step) in table.steps.iter().enumerate() {
+        let condition = if index == 0 {
+            std::iter::once(Literal::is(Signal::Start))
+                .chain(table.actuators.iter().map(|a| {
+                    Literal::is(Signal::Sensor {
+                        actuator: a.number,
+                        position: 0,
+                    })
+                }))
+                .collect()
+        } else {
+            table.steps[index - 1]
+                .moves
+                .iter()
+                .map(|m| {
+                    Literal::is(Signal::Sensor {
+                        actuator: m.actuator,
+                        position: m.to,
+                    })
+                })
+                .collect()
+        };
+
+        let mut actions = Vec::new();
+        for m in &step.moves {
+            actions.push(Action::Set(Signal::Coil {
+                actuator: m.actuator,
+                sign: m.sign,
+            }));
+            actions.push(Action::Reset(Signal::Coil {
+                actuator: m.actuator,
+                sign: m.sign.opposite(),
+            }));
+            if middle_stops {
+                // A stop request left from reaching the previous middle target
+                // must not cut this new move.
+                if is_middle(m.actuator, m.from) {
+                    actions.push(Action::Reset(Signal::StopAt {
+                        actuator: m.actuator,
+                        position: m.from,
+                    }));
+                }
+                if is_middle(m.actuator, m.to) {
+                    actions.push(Action::Set(Signal::StopAt {
+                        actuator: m.actuator,
+                        position: m.to,
+                    }));
+                }
+            }
+        }
+        steps.push(ProgramStep {
+            number: step.number,
+            moves: step.moves.clone(),
+            condition,
+            actions,
+        });
+    }
+
+    let mut rungs = Vec::new();
+    if middle_stops {
+        for memory in &allocation.memories {
+            let Signal::StopAt { actuator, position } = memory.signal else {
+                continue;
+            };
+            let sensor = Signal::Sensor { actuator, position };
+            rungs.push(Rung {
+                comment: format!(
+                    "middle stop: C{actuator} stops at {} (both coils off, the 5/3 valve holds it)",
+                    sensor.symbol()
+                ),
+                condition: vec![Literal::is(memory.signal), Literal::is(sensor)],
+                actions: vec![
+                    Action::Reset(Signal::Coil {
+                        actuator,
+                        sign: Sign::Plus,
+                    }),
+                    Action::Reset(Signal::Coil {
+                        actuator,
+                        sign: Sign::Minus,
+                    }),
+                    Action::Reset(memory.signal),
+                ],
+            });
+        }
+    }
+    StepProgram { steps, rungs }
+}
+
+/// `IF a AND b THEN SET y1+ RESET y1-` in the paper's notation, with symbols
+/// from `name`. Only actions on outputs are listed when `outputs_only`.
+pub fn paper_sentence(
+    condition: &[Literal],
+    actions: &[Action],
+    name: impl Fn(Signal) -> String,
+) -> String {
+    let mut text = format!("IF {}", condition_text(condition, &name, "AND", "NOT "));
+    text.push_str(" THEN");
+    for action in actions {
+        let verb = if action.value() { "SET" } else { "RESET" };
+        text.push_str(&format!(" {verb} {}", name(action.signal())));
+    }
+    text
+}
+
+/// A conjunction as text, e.g. `x11 AND NOT x12`.
+pub fn condition_text(
+    condition: &[Literal],
+    name: impl Fn(Signal) -> String,
+    and: &str,
+    not: &str,
+) -> String {
+    condition
+        .iter()
+        .map(|l| {
+            if l.negated {
+                format!("{not}{}", name(l.signal))
+            } else {
+                name(l.signal)
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(&format!(" {and} "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::address::{Mnemonic, Target};
+    use crate::diag::{CellPos, Diagnostics};
+    use crate::read::{CellValue, Grid, GridCell};
+
+    /// The paper's example table (DESIGN §4), as a bare grid.
+    pub(crate) fn paper_table() -> StepTable {
+        let rows: [[&str; 3]; 8] = [
+            ["C1+1", "", ""],
+            ["C2+3", "", ""],
+            ["C2-1", "", ""],
+            ["C3+2", "C2+2", ""],
+            ["C3-0", "C2-1", ""],
+            ["C3+1", "C2+2", "C4+1"],
+            ["C3-0", "C2-0", "C4-0"],
+            ["C1-0", "", ""],
+        ];
+        let mut cells = Vec::new();
+        for (r, row) in rows.iter().enumerate() {
+            for (c, text) in row.iter().enumerate() {
+                if !text.is_empty() {
+                    cells.push(GridCell {
+                        pos: CellPos::new(r as u32, c as u32),
+                        value: CellValue::Text(text.to_string()),
+                    });
+                }
+            }
+        }
+        let grid = Grid {
+            file: "paper.csv".into(),
+            sheet: None,
+            cells,
+        };
+        crate::table::build(&grid, &mut Diagnostics::new()).expect("paper table is valid")
+    }
+
+    #[test]
+    fn paper_program_matches_design_section_4() {
+        let table = paper_table();
+        let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
+        let program = build(&table, &alloc, ProgramOptions::default());
+        let lines: Vec<String> = program
+            .steps
+            .iter()
+            .map(|s| {
+                let outputs: Vec<Action> = s
+                    .actions
+                    .iter()
+                    .copied()
+                    .filter(|a| matches!(a.signal(), Signal::Coil { .. }))
+                    .collect();
+                paper_sentence(&s.condition, &outputs, Signal::symbol)
+            })
+            .collect();
+        assert_eq!(
+            lines,
+            [
+                "IF START AND x10 AND x20 AND x30 AND x40 THEN SET y1+ RESET y1-",
+                "IF x11 THEN SET y2+ RESET y2-",
+                "IF x23 THEN SET y2- RESET y2+",
+                "IF x21 THEN SET y3+ RESET y3- SET y2+ RESET y2-",
+                "IF x32 AND x22 THEN SET y3- RESET y3+ SET y2- RESET y2+",
+                "IF x30 AND x21 THEN SET y3+ RESET y3- SET y2+ RESET y2- SET y4+ RESET y4-",
+                "IF x31 AND x22 AND x41 THEN SET y3- RESET y3+ SET y2- RESET y2+ SET y4- RESET y4+",
+                "IF x30 AND x20 AND x40 THEN SET y1- RESET y1+",
+            ]
+        );
+    }
+
+    #[test]
+    fn middle_targets_get_a_stop_rung() {
+        let table = paper_table();
+        let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
+        let program = build(&table, &alloc, ProgramOptions::default());
+        // C2 stops at 1 and 2, C3 at 1 (C3's pmax is 2).
+        let rungs: Vec<String> = program
+            .rungs
+            .iter()
+            .map(|r| paper_sentence(&r.condition, &r.actions, Signal::symbol))
+            .collect();
+        assert_eq!(
+            rungs,
+            [
+                "IF m2_1 AND x21 THEN RESET y2+ RESET y2- RESET m2_1",
+                "IF m2_2 AND x22 THEN RESET y2+ RESET y2- RESET m2_2",
+                "IF m3_1 AND x31 THEN RESET y3+ RESET y3- RESET m3_1",
+            ]
+        );
+        // Step 5 moves C2 from middle 2 to middle 1: it withdraws the old request.
+        assert!(
+            program.steps[4]
+                .actions
+                .contains(&Action::Reset(Signal::StopAt {
+                    actuator: 2,
+                    position: 2
+                }))
+        );
+        let plain = build(
+            &table,
+            &alloc,
+            ProgramOptions {
+                middle_stops: false,
+            },
+        );
+        assert!(plain.rungs.is_empty());
+    }
+}

@@ -1,0 +1,558 @@
+//! Reading: file bytes → one sheet as a grid of cells with absolute positions.
+//! Workbooks (`.xlsx`, `.xlsm`, `.xls`, `.ods`) go through calamine; CSV is
+//! decoded here (UTF-8 with or without BOM, UTF-16 with BOM; `,` `;` or tab).
+
+use std::io::Cursor;
+use std::path::Path;
+
+use calamine::{Data, Ods, Range, Reader, Xls, Xlsx, open_workbook_from_rs};
+
+use crate::cell::looks_like_move;
+use crate::diag::{CellPos, Code, Diagnostics, Location};
+use crate::table::header_kind;
+
+/// Largest input file read, in bytes.
+pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
+
+/// The sheet name of the published method's table.
+pub const TABLE_SHEET: &str = "SEQUENTIAL CONTROL DESCRIPTION";
+
+/// The value of one non-empty cell.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CellValue {
+    Text(String),
+    Number(f64),
+    Bool(bool),
+    /// A date or time, as the workbook shows it.
+    Date(String),
+    /// An error value such as `#REF!`.
+    Error(String),
+}
+
+/// One non-empty cell at its absolute position on the sheet.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridCell {
+    pub pos: CellPos,
+    pub value: CellValue,
+}
+
+/// The sheet that holds the step table, as read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    /// File name for messages.
+    pub file: String,
+    /// Sheet name; `None` for CSV.
+    pub sheet: Option<String>,
+    /// Non-empty cells in row-major order.
+    pub cells: Vec<GridCell>,
+}
+
+impl Grid {
+    /// The location of a cell of this grid, for diagnostics.
+    pub fn location(&self, pos: CellPos) -> Location {
+        Location {
+            file: self.file.clone(),
+            sheet: self.sheet.clone(),
+            cell: Some(pos),
+        }
+    }
+
+    /// The location of the sheet as a whole.
+    pub fn sheet_location(&self) -> Location {
+        Location {
+            file: self.file.clone(),
+            sheet: self.sheet.clone(),
+            cell: None,
+        }
+    }
+
+    fn holds_table(&self) -> bool {
+        self.cells.iter().any(|c| match &c.value {
+            CellValue::Text(t) => looks_like_move(t) || header_kind(t).is_some(),
+            _ => false,
+        })
+    }
+}
+
+/// Which reader a file needs, decided by its extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    Xlsx,
+    Xls,
+    Ods,
+    Csv,
+}
+
+impl Format {
+    /// The format for a file name, or `None` for an extension we do not read.
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "xlsx" | "xlsm" => Some(Format::Xlsx),
+            "xls" => Some(Format::Xls),
+            "ods" => Some(Format::Ods),
+            "csv" | "txt" | "tsv" => Some(Format::Csv),
+            _ => None,
+        }
+    }
+}
+
+/// Reads the file at `path` and returns the sheet holding the step table.
+/// Problems go to `diags`; `None` means nothing usable was read.
+pub fn read_path(path: &Path, sheet: Option<&str>, diags: &mut Diagnostics) -> Option<Grid> {
+    let file = display_name(path);
+    let whole_file = Location {
+        file: file.clone(),
+        sheet: None,
+        cell: None,
+    };
+    let Some(format) = Format::from_path(path) else {
+        diags.error(
+            Code::E002NotAWorkbook,
+            whole_file,
+            "unknown file type (expected .xlsx, .xlsm, .xls, .ods or .csv)",
+        );
+        return None;
+    };
+    match std::fs::metadata(path) {
+        Ok(meta) if meta.len() > MAX_FILE_BYTES => {
+            diags.error(
+                Code::E005TooLarge,
+                whole_file,
+                format!(
+                    "file is {} MiB; the limit is {} MiB",
+                    meta.len() / (1024 * 1024),
+                    MAX_FILE_BYTES / (1024 * 1024)
+                ),
+            );
+            return None;
+        }
+        Ok(meta) if meta.is_dir() => {
+            diags.error(Code::E001Unreadable, whole_file, "is a folder, not a file");
+            return None;
+        }
+        _ => {}
+    }
+    match std::fs::read(path) {
+        Ok(bytes) => read_bytes(&file, format, bytes, sheet, diags),
+        Err(err) => {
+            diags.error(
+                Code::E001Unreadable,
+                whole_file,
+                format!("cannot read file: {err}"),
+            );
+            None
+        }
+    }
+}
+
+/// The file name shown in messages: the name as given, without `./`.
+pub fn display_name(path: &Path) -> String {
+    let shown = path.to_string_lossy();
+    shown.strip_prefix("./").unwrap_or(&shown).to_string()
+}
+
+/// Reads an in-memory file of a known format. Never panics, whatever the bytes.
+pub fn read_bytes(
+    file: &str,
+    format: Format,
+    bytes: Vec<u8>,
+    sheet: Option<&str>,
+    diags: &mut Diagnostics,
+) -> Option<Grid> {
+    match format {
+        Format::Csv => read_csv(file, &bytes, diags),
+        _ => {
+            // calamine is a large parser of untrusted zip and OLE data; a panic
+            // deep inside it must become a diagnostic, not a crash.
+            let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                let mut local = Diagnostics::new();
+                let grid = read_workbook(file, format, bytes, sheet, &mut local);
+                (grid, local)
+            }));
+            match result {
+                Ok((grid, local)) => {
+                    diags.extend(local);
+                    grid
+                }
+                Err(_) => {
+                    diags.error(
+                        Code::E002NotAWorkbook,
+                        Location {
+                            file: file.to_string(),
+                            sheet: None,
+                            cell: None,
+                        },
+                        "the workbook is damaged and could not be decoded",
+                    );
+                    None
+                }
+            }
+        }
+    }
+}
+
+fn read_workbook(
+    file: &str,
+    format: Format,
+    bytes: Vec<u8>,
+    wanted: Option<&str>,
+    diags: &mut Diagnostics,
+) -> Option<Grid> {
+    let whole_file = Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: None,
+    };
+    let cursor = Cursor::new(bytes);
+    let opened: Result<Box<dyn SheetSource>, String> = match format {
+        Format::Xlsx => open_workbook_from_rs::<Xlsx<_>, _>(cursor)
+            .map(|w| Box::new(w) as Box<dyn SheetSource>)
+            .map_err(|e| e.to_string()),
+        Format::Xls => open_workbook_from_rs::<Xls<_>, _>(cursor)
+            .map(|w| Box::new(w) as Box<dyn SheetSource>)
+            .map_err(|e| e.to_string()),
+        Format::Ods => open_workbook_from_rs::<Ods<_>, _>(cursor)
+            .map(|w| Box::new(w) as Box<dyn SheetSource>)
+            .map_err(|e| e.to_string()),
+        Format::Csv => Err("internal: CSV is not a workbook".to_string()),
+    };
+    let mut workbook = match opened {
+        Ok(w) => w,
+        Err(err) => {
+            diags.error(
+                Code::E002NotAWorkbook,
+                whole_file,
+                format!("not a readable {} workbook ({err})", format_name(format)),
+            );
+            return None;
+        }
+    };
+    let names = workbook.names();
+    let read_sheet =
+        |workbook: &mut Box<dyn SheetSource>, name: &str, diags: &mut Diagnostics| match workbook
+            .range(name)
+        {
+            Ok(range) => Some(grid_from_range(file, name, &range)),
+            Err(err) => {
+                diags.error(
+                    Code::E002NotAWorkbook,
+                    Location {
+                        file: file.to_string(),
+                        sheet: Some(name.to_string()),
+                        cell: None,
+                    },
+                    format!("sheet could not be read ({err})"),
+                );
+                None
+            }
+        };
+
+    if let Some(wanted) = wanted {
+        let Some(name) = names
+            .iter()
+            .find(|n| n.trim().eq_ignore_ascii_case(wanted.trim()))
+        else {
+            diags.error(
+                Code::E004NoSuchSheet,
+                whole_file,
+                format!(
+                    "no sheet named \"{wanted}\" (the workbook has: {})",
+                    names.join(", ")
+                ),
+            );
+            return None;
+        };
+        return read_sheet(&mut workbook, name, diags);
+    }
+    if let Some(name) = names
+        .iter()
+        .find(|n| n.trim().eq_ignore_ascii_case(TABLE_SHEET))
+    {
+        return read_sheet(&mut workbook, name, diags);
+    }
+    for name in &names {
+        let mut local = Diagnostics::new();
+        if let Some(grid) = read_sheet(&mut workbook, name, &mut local)
+            && grid.holds_table()
+        {
+            return Some(grid);
+        }
+    }
+    diags.error(
+        Code::E003NoTable,
+        whole_file,
+        format!(
+            "no step table found: no sheet named \"{TABLE_SHEET}\" and no sheet holding moves such as C1+1"
+        ),
+    );
+    None
+}
+
+fn format_name(format: Format) -> &'static str {
+    match format {
+        Format::Xlsx => ".xlsx",
+        Format::Xls => ".xls",
+        Format::Ods => ".ods",
+        Format::Csv => ".csv",
+    }
+}
+
+/// The two things we need from any calamine reader, object-safe.
+trait SheetSource {
+    fn names(&self) -> Vec<String>;
+    fn range(&mut self, name: &str) -> Result<Range<Data>, String>;
+}
+
+impl<R: Reader<Cursor<Vec<u8>>>> SheetSource for R
+where
+    R::Error: std::fmt::Display,
+{
+    fn names(&self) -> Vec<String> {
+        self.sheet_names()
+    }
+
+    fn range(&mut self, name: &str) -> Result<Range<Data>, String> {
+        self.worksheet_range(name).map_err(|e| e.to_string())
+    }
+}
+
+fn grid_from_range(file: &str, sheet: &str, range: &Range<Data>) -> Grid {
+    // calamine's Range starts at its first non-empty cell: add the start back.
+    let (row0, col0) = range.start().unwrap_or((0, 0));
+    let mut cells = Vec::new();
+    for (r, c, data) in range.used_cells() {
+        let value = match data {
+            Data::Empty => continue,
+            Data::String(s) => {
+                if s.trim().is_empty() {
+                    continue;
+                }
+                CellValue::Text(s.clone())
+            }
+            Data::Int(i) => CellValue::Number(*i as f64),
+            Data::Float(f) => CellValue::Number(*f),
+            Data::Bool(b) => CellValue::Bool(*b),
+            Data::DateTime(dt) => CellValue::Date(dt.to_string()),
+            Data::DateTimeIso(s) | Data::DurationIso(s) => CellValue::Date(s.clone()),
+            Data::Error(e) => CellValue::Error(e.to_string()),
+        };
+        cells.push(GridCell {
+            pos: CellPos::new(row0 + r as u32, col0 + c as u32),
+            value,
+        });
+    }
+    Grid {
+        file: file.to_string(),
+        sheet: Some(sheet.to_string()),
+        cells,
+    }
+}
+
+fn read_csv(file: &str, bytes: &[u8], diags: &mut Diagnostics) -> Option<Grid> {
+    let whole_file = Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: None,
+    };
+    let text = match decode_text(bytes) {
+        Ok(text) => text,
+        Err(why) => {
+            diags.error(Code::E002NotAWorkbook, whole_file, why);
+            return None;
+        }
+    };
+    let delimiter = detect_delimiter(&text);
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .delimiter(delimiter)
+        .from_reader(text.as_bytes());
+    let mut cells = Vec::new();
+    // Lines are counted from byte offsets: the reader's own line numbers lag
+    // behind with CRLF endings, and a quoted field may span lines.
+    let mut counted_to = 0usize;
+    let mut line = 1u64;
+    for record in reader.records() {
+        let record = match record {
+            Ok(r) => r,
+            Err(err) => {
+                let line = err.position().map(|p| p.line()).unwrap_or(1);
+                diags.error(
+                    Code::E002NotAWorkbook,
+                    Location {
+                        file: file.to_string(),
+                        sheet: None,
+                        cell: Some(CellPos::new(line.saturating_sub(1) as u32, 0)),
+                    },
+                    format!("not valid CSV ({err})"),
+                );
+                return None;
+            }
+        };
+        let bytes = text.as_bytes();
+        let mut start = record
+            .position()
+            .map(|p| p.byte() as usize)
+            .unwrap_or(counted_to)
+            .min(bytes.len());
+        // With CRLF the reader reports a record as starting on the LF.
+        while start < bytes.len() && matches!(bytes[start], b'\r' | b'\n') {
+            start += 1;
+        }
+        if start > counted_to {
+            line += count_line_breaks(&bytes[counted_to..start]);
+            counted_to = start;
+        }
+        let row = line.saturating_sub(1).min(u32::MAX as u64) as u32;
+        for (col, field) in record.iter().enumerate() {
+            if field.trim().is_empty() {
+                continue;
+            }
+            cells.push(GridCell {
+                pos: CellPos::new(row, col.min(u32::MAX as usize) as u32),
+                value: CellValue::Text(field.to_string()),
+            });
+        }
+    }
+    Some(Grid {
+        file: file.to_string(),
+        sheet: None,
+        cells,
+    })
+}
+
+/// Line breaks in a byte slice: LF, CRLF and a lone CR each count once.
+fn count_line_breaks(bytes: &[u8]) -> u64 {
+    let mut count = 0;
+    for (i, b) in bytes.iter().enumerate() {
+        match b {
+            b'\n' => count += 1,
+            b'\r' if bytes.get(i + 1) != Some(&b'\n') => count += 1,
+            _ => {}
+        }
+    }
+    count
+}
+
+/// Decodes CSV bytes: UTF-8 (BOM optional) or UTF-16 with a BOM.
+fn decode_text(bytes: &[u8]) -> Result<String, String> {
+    if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]) {
+        return String::from_utf8(rest.to_vec())
+            .map_err(|_| "starts with a UTF-8 byte order mark but is not valid UTF-8".to_string());
+    }
+    let utf16 = |rest: &[u8], little: bool| -> Result<String, String> {
+        let units: Vec<u16> = rest
+            .chunks_exact(2)
+            .map(|p| {
+                if little {
+                    u16::from_le_bytes([p[0], p[1]])
+                } else {
+                    u16::from_be_bytes([p[0], p[1]])
+                }
+            })
+            .collect();
+        String::from_utf16(&units).map_err(|_| "UTF-16 text with invalid characters".to_string())
+    };
+    if let Some(rest) = bytes.strip_prefix(&[0xFF, 0xFE]) {
+        return utf16(rest, true);
+    }
+    if let Some(rest) = bytes.strip_prefix(&[0xFE, 0xFF]) {
+        return utf16(rest, false);
+    }
+    if bytes.contains(&0) {
+        return Err("binary data, not a CSV text file".to_string());
+    }
+    String::from_utf8(bytes.to_vec()).map_err(|e| {
+        format!(
+            "not UTF-8 text (invalid byte at offset {}); save the CSV as \"CSV UTF-8\"",
+            e.utf8_error().valid_up_to()
+        )
+    })
+}
+
+/// Picks `,`, `;` or tab: whichever occurs most often outside quotes in the
+/// first lines. Comma on a tie, as in a single-column file.
+fn detect_delimiter(text: &str) -> u8 {
+    let mut counts = [0usize; 3];
+    let mut in_quotes = false;
+    for line in text.lines().take(50) {
+        for ch in line.chars() {
+            match ch {
+                '"' => in_quotes = !in_quotes,
+                ',' if !in_quotes => counts[0] += 1,
+                ';' if !in_quotes => counts[1] += 1,
+                '\t' if !in_quotes => counts[2] += 1,
+                _ => {}
+            }
+        }
+    }
+    let candidates = [b',', b';', b'\t'];
+    let mut best = 0;
+    for i in 1..3 {
+        if counts[i] > counts[best] {
+            best = i;
+        }
+    }
+    candidates[best]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn text_at(grid: &Grid, row: u32, col: u32) -> Option<&str> {
+        grid.cells.iter().find_map(|c| match &c.value {
+            CellValue::Text(t) if c.pos == CellPos::new(row, col) => Some(t.as_str()),
+            _ => None,
+        })
+    }
+
+    #[test]
+    fn csv_delimiters_and_bom_are_detected() {
+        for (bytes, _) in [
+            (
+                b"\xEF\xBB\xBF,BRANCH 1,BRANCH 2\nSTEP 1,C1+1,\n".to_vec(),
+                ',',
+            ),
+            (b";BRANCH 1;BRANCH 2\nSTEP 1;C1+1;\n".to_vec(), ';'),
+            (b"\tBRANCH 1\tBRANCH 2\nSTEP 1\tC1+1\t\n".to_vec(), '\t'),
+        ] {
+            let mut diags = Diagnostics::new();
+            let grid = read_bytes("t.csv", Format::Csv, bytes, None, &mut diags).unwrap();
+            assert!(!diags.has_errors());
+            assert_eq!(text_at(&grid, 0, 1), Some("BRANCH 1"));
+            assert_eq!(text_at(&grid, 1, 1), Some("C1+1"));
+        }
+    }
+
+    #[test]
+    fn utf16_csv_is_read() {
+        let mut bytes = vec![0xFF, 0xFE];
+        for unit in "C1+1\nC1-0\n".encode_utf16() {
+            bytes.extend_from_slice(&unit.to_le_bytes());
+        }
+        let mut diags = Diagnostics::new();
+        let grid = read_bytes("t.csv", Format::Csv, bytes, None, &mut diags).unwrap();
+        assert_eq!(text_at(&grid, 1, 0), Some("C1-0"));
+    }
+
+    #[test]
+    fn binary_and_corrupt_inputs_are_diagnosed() {
+        let mut diags = Diagnostics::new();
+        assert!(read_bytes("x.csv", Format::Csv, vec![0, 1, 2, 255], None, &mut diags).is_none());
+        assert!(
+            read_bytes(
+                "x.xlsx",
+                Format::Xlsx,
+                b"PK\x03\x04garbage".to_vec(),
+                None,
+                &mut diags
+            )
+            .is_none()
+        );
+        assert!(read_bytes("x.ods", Format::Ods, vec![], None, &mut diags).is_none());
+        assert!(read_bytes("x.xls", Format::Xls, vec![0xD0, 0xCF], None, &mut diags).is_none());
+        assert_eq!(diags.error_count(), 4);
+    }
+}

@@ -1,0 +1,681 @@
+//! The table model: a grid of cells → typed steps and moves, checked against
+//! every rule of the method (DESIGN §2). The table is found by its `BRANCH n` /
+//! `STEP n` headers anywhere on the sheet, or taken as a bare grid of moves.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use crate::cell::{CellError, CellMove, MAX_ACTUATOR, MAX_POSITION, Sign, parse_move};
+use crate::diag::{CellPos, Code, Diagnostics, Location};
+use crate::read::{CellValue, Grid};
+
+/// Largest number of steps accepted.
+pub const MAX_STEPS: usize = 10_000;
+/// Largest number of branches accepted.
+pub const MAX_BRANCHES: usize = 256;
+
+/// A header cell of the published layout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Header {
+    Branch(u32),
+    Step(u32),
+}
+
+/// Recognises `BRANCH 1` / `STEP 1` (any case and spacing).
+pub fn header_kind(text: &str) -> Option<Header> {
+    let upper: String = text
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .to_ascii_uppercase();
+    let number = |rest: &str| -> Option<u32> {
+        if !rest.is_empty() && rest.chars().all(|c| c.is_ascii_digit()) {
+            rest.parse().ok()
+        } else {
+            None
+        }
+    };
+    if let Some(rest) = upper.strip_prefix("BRANCH") {
+        return number(rest).map(Header::Branch);
+    }
+    if let Some(rest) = upper.strip_prefix("STEP") {
+        return number(rest).map(Header::Step);
+    }
+    None
+}
+
+/// One resolved move: actuator `actuator` goes from `from` to `to`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct Move {
+    pub actuator: u32,
+    pub sign: Sign,
+    pub from: u32,
+    pub to: u32,
+    /// Zero-based branch (column of the table).
+    pub branch: usize,
+    /// Where the move was written.
+    #[serde(skip)]
+    pub cell: CellPos,
+}
+
+impl Move {
+    /// The move in the table's notation, e.g. `C2+3`.
+    pub fn notation(&self) -> String {
+        format!("C{}{}{}", self.actuator, self.sign.symbol(), self.to)
+    }
+}
+
+/// One step: all of its moves start together.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Step {
+    /// One-based step number.
+    pub number: usize,
+    /// Moves in branch order.
+    pub moves: Vec<Move>,
+}
+
+/// What the table says about one actuator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Actuator {
+    pub number: u32,
+    /// Highest position used (`pmax`); 1 for a plain two-position cylinder.
+    pub max_position: u32,
+}
+
+impl Actuator {
+    /// True when the actuator has middle stops (and so a 5/3 valve).
+    pub fn has_middle_positions(&self) -> bool {
+        self.max_position > 1
+    }
+}
+
+/// A checked step table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepTable {
+    /// File name, for titles and comments.
+    pub file: String,
+    /// Sheet the table came from (`None` for CSV).
+    pub sheet: Option<String>,
+    /// Number of branches (columns) of the table.
+    pub branches: usize,
+    pub steps: Vec<Step>,
+    /// Actuators in ascending number.
+    pub actuators: Vec<Actuator>,
+}
+
+impl StepTable {
+    pub fn actuator(&self, number: u32) -> Option<&Actuator> {
+        self.actuators.iter().find(|a| a.number == number)
+    }
+}
+
+/// A table cell found on the sheet, before parsing.
+struct RawCell {
+    pos: CellPos,
+    value: CellValue,
+    branch: usize,
+}
+
+/// The table's frame on the sheet: which rows are steps, which columns branches.
+struct Frame {
+    step_rows: Vec<u32>,
+    /// Step rows that carry a `STEP n` label (trailing empty labelled rows are allowed).
+    labelled: bool,
+    branch_cols: Vec<u32>,
+}
+
+/// Builds the table from a sheet and checks it. Returns `None` when any error
+/// was found (all of them are in `diags`).
+pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
+    let errors_before = diags.error_count();
+    let Some(frame) = find_frame(grid, diags) else {
+        if diags.error_count() == errors_before {
+            diags.error(
+                Code::E003NoTable,
+                grid.sheet_location(),
+                "no step table found: expected BRANCH n / STEP n headers or cells such as C1+1",
+            );
+        }
+        return None;
+    };
+    if frame.branch_cols.len() > MAX_BRANCHES || frame.step_rows.len() > MAX_STEPS {
+        diags.error(
+            Code::E024TableTooLarge,
+            grid.sheet_location(),
+            format!(
+                "table has {} steps × {} branches; the limit is {MAX_STEPS} steps × {MAX_BRANCHES} branches",
+                frame.step_rows.len(),
+                frame.branch_cols.len()
+            ),
+        );
+        return None;
+    }
+
+    // Collect the raw cells of every step row, by row.
+    let row_index: BTreeMap<u32, usize> = frame
+        .step_rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| (*r, i))
+        .collect();
+    let col_index: BTreeMap<u32, usize> = frame
+        .branch_cols
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (*c, i))
+        .collect();
+    let mut rows: Vec<Vec<RawCell>> = (0..frame.step_rows.len()).map(|_| Vec::new()).collect();
+    for cell in &grid.cells {
+        let Some(&r) = row_index.get(&cell.pos.row) else {
+            continue;
+        };
+        match col_index.get(&cell.pos.col) {
+            Some(&branch) => rows[r].push(RawCell {
+                pos: cell.pos,
+                value: cell.value.clone(),
+                branch,
+            }),
+            None => {
+                // A move written beside the table would silently be lost.
+                if let CellValue::Text(t) = &cell.value
+                    && crate::cell::looks_like_move(t)
+                    && cell.pos.col > frame.branch_cols.first().copied().unwrap_or(0)
+                {
+                    diags.error(
+                        Code::E010NotAMove,
+                        grid.location(cell.pos),
+                        format!(
+                            "\"{}\" lies outside the table: its column has no BRANCH header",
+                            t.trim()
+                        ),
+                    );
+                }
+            }
+        }
+    }
+
+    // Parse every cell.
+    let mut parsed: Vec<Vec<(CellMove, CellPos, usize)>> = Vec::with_capacity(rows.len());
+    for row in &rows {
+        let mut moves = Vec::new();
+        for raw in row {
+            if let Some(m) = parse_cell(grid, raw, diags) {
+                moves.push((m, raw.pos, raw.branch));
+            }
+        }
+        parsed.push(moves);
+    }
+
+    // Steps without moves: trailing labelled rows are unused template rows;
+    // any other empty step is an error (we never renumber silently).
+    let last_with_moves = rows.iter().rposition(|r| !r.is_empty());
+    let Some(last_with_moves) = last_with_moves else {
+        diags.error(
+            Code::E003NoTable,
+            grid.sheet_location(),
+            "the step table has no moves: fill at least one cell such as C1+1",
+        );
+        return None;
+    };
+    for (i, row) in rows.iter().enumerate().take(last_with_moves) {
+        if row.is_empty() {
+            let first_col = frame.branch_cols.first().copied().unwrap_or(0);
+            let pos = CellPos::new(frame.step_rows[i], first_col);
+            let what = if frame.labelled {
+                format!("STEP {} has no move", i + 1)
+            } else {
+                format!("row {} of the table has no move", i + 1)
+            };
+            diags.error(
+                Code::E023EmptyStep,
+                grid.location(pos),
+                format!("{what}; every step needs at least one move (delete the empty row)"),
+            );
+        }
+    }
+    parsed.truncate(last_with_moves + 1);
+
+    let table = check(grid, &frame, parsed, diags);
+    if diags.error_count() > errors_before {
+        None
+    } else {
+        table
+    }
+}
+
+fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Option<CellMove> {
+    let location = grid.location(raw.pos);
+    let text = match &raw.value {
+        CellValue::Text(t) => t,
+        CellValue::Number(n) => {
+            diags.error(
+                Code::E010NotAMove,
+                location,
+                format!("the number {n} is not a move (expected text such as C2+1)"),
+            );
+            return None;
+        }
+        CellValue::Bool(b) => {
+            diags.error(
+                Code::E010NotAMove,
+                location,
+                format!(
+                    "the value {} is not a move (expected text such as C2+1)",
+                    if *b { "TRUE" } else { "FALSE" }
+                ),
+            );
+            return None;
+        }
+        CellValue::Date(d) => {
+            diags.error(
+                Code::E010NotAMove,
+                location,
+                format!("the date {d} is not a move (expected text such as C2+1; format the cell as text)"),
+            );
+            return None;
+        }
+        CellValue::Error(e) => {
+            diags.error(
+                Code::E010NotAMove,
+                location,
+                format!("the cell shows the error {e}, not a move"),
+            );
+            return None;
+        }
+    };
+    match parse_move(text) {
+        Ok(m) => Some(m),
+        Err(CellError::NotAMove) => {
+            diags.error(
+                Code::E010NotAMove,
+                location,
+                format!(
+                    "\"{}\" is not a move (expected C<number>+<position>, e.g. C2+1)",
+                    text.trim()
+                ),
+            );
+            None
+        }
+        Err(CellError::BadActuator(n)) => {
+            diags.error(
+                Code::E011BadActuator,
+                location,
+                format!(
+                    "\"{}\": actuator number {n} is out of range (expected 1 to {MAX_ACTUATOR})",
+                    text.trim()
+                ),
+            );
+            None
+        }
+        Err(CellError::BadPosition(n)) => {
+            diags.error(
+                Code::E012BadPosition,
+                location,
+                format!(
+                    "\"{}\": position {n} is out of range (expected 0 to {MAX_POSITION})",
+                    text.trim()
+                ),
+            );
+            None
+        }
+    }
+}
+
+/// Finds step rows and branch columns: by headers, or as a bare grid of moves.
+fn find_frame(grid: &Grid, diags: &mut Diagnostics) -> Option<Frame> {
+    let mut branch_headers: Vec<CellPos> = Vec::new();
+    let mut step_labels: Vec<CellPos> = Vec::new();
+    for cell in &grid.cells {
+        if let CellValue::Text(t) = &cell.value {
+            match header_kind(t) {
+                Some(Header::Branch(_)) => branch_headers.push(cell.pos),
+                Some(Header::Step(_)) => step_labels.push(cell.pos),
+                None => {}
+            }
+        }
+    }
+
+    if !branch_headers.is_empty() {
+        // The header row is the row with the most BRANCH headers (topmost on a tie).
+        let header_row = most_common(branch_headers.iter().map(|p| p.row))?;
+        let branch_cols: Vec<u32> = branch_headers
+            .iter()
+            .filter(|p| p.row == header_row)
+            .map(|p| p.col)
+            .collect::<BTreeSet<_>>()
+            .into_iter()
+            .collect();
+        let first_branch = *branch_cols.first()?;
+        let last_branch = *branch_cols.last()?;
+        let labels: Vec<CellPos> = step_labels
+            .iter()
+            .copied()
+            .filter(|p| p.row > header_row && p.col < first_branch)
+            .collect();
+        if let Some(label_col) = most_common(labels.iter().map(|p| p.col)) {
+            let step_rows = labels
+                .iter()
+                .filter(|p| p.col == label_col)
+                .map(|p| p.row)
+                .collect::<BTreeSet<_>>()
+                .into_iter()
+                .collect();
+            return Some(Frame {
+                step_rows,
+                labelled: true,
+                branch_cols,
+            });
+        }
+        // No labels: rows below the header down to the last move in the branch columns.
+        let last_row = grid
+            .cells
+            .iter()
+            .filter(|c| c.pos.row > header_row && (first_branch..=last_branch).contains(&c.pos.col))
+            .filter(|c| matches!(&c.value, CellValue::Text(t) if crate::cell::looks_like_move(t)))
+            .map(|c| c.pos.row)
+            .max()?;
+        return Some(Frame {
+            step_rows: (header_row + 1..=last_row).collect(),
+            labelled: false,
+            branch_cols,
+        });
+    }
+
+    let move_cells: Vec<CellPos> = grid
+        .cells
+        .iter()
+        .filter(|c| matches!(&c.value, CellValue::Text(t) if crate::cell::looks_like_move(t)))
+        .map(|c| c.pos)
+        .collect();
+
+    if let Some(label_col) = most_common(step_labels.iter().map(|p| p.col)) {
+        let step_rows: Vec<u32> = step_labels
+            .iter()
+            .filter(|p| p.col == label_col)
+            .map(|p| p.row)
+            .collect::<BTreeSet<_>>()
+            .into_iter()
+            .collect();
+        let last_col = move_cells
+            .iter()
+            .filter(|p| p.col > label_col && step_rows.binary_search(&p.row).is_ok())
+            .map(|p| p.col)
+            .max()?;
+        return Some(Frame {
+            step_rows,
+            labelled: true,
+            branch_cols: (label_col + 1..=last_col).collect(),
+        });
+    }
+
+    // A bare grid: the bounding box of the cells that look like moves.
+    let _ = diags;
+    let min_row = move_cells.iter().map(|p| p.row).min()?;
+    let max_row = move_cells.iter().map(|p| p.row).max()?;
+    let min_col = move_cells.iter().map(|p| p.col).min()?;
+    let max_col = move_cells.iter().map(|p| p.col).max()?;
+    Some(Frame {
+        step_rows: (min_row..=max_row).collect(),
+        labelled: false,
+        branch_cols: (min_col..=max_col).collect(),
+    })
+}
+
+/// The most frequent value; the smallest one on a tie.
+fn most_common(values: impl Iterator<Item = u32>) -> Option<u32> {
+    let mut counts: BTreeMap<u32, usize> = BTreeMap::new();
+    for v in values {
+        *counts.entry(v).or_default() += 1;
+    }
+    let best = counts.values().copied().max()?;
+    counts.into_iter().find(|(_, n)| *n == best).map(|(v, _)| v)
+}
+
+/// Resolves positions and checks the rules of DESIGN §2.
+fn check(
+    grid: &Grid,
+    frame: &Frame,
+    parsed: Vec<Vec<(CellMove, CellPos, usize)>>,
+    diags: &mut Diagnostics,
+) -> Option<StepTable> {
+    // pmax(i): the highest position written for Ci; at least 1.
+    let mut max_position: BTreeMap<u32, u32> = BTreeMap::new();
+    for (m, _, _) in parsed.iter().flatten() {
+        let entry = max_position.entry(m.actuator).or_insert(1);
+        if let Some(p) = m.position {
+            *entry = (*entry).max(p);
+        }
+    }
+
+    let location = |pos: CellPos| -> Location { grid.location(pos) };
+    let mut current: BTreeMap<u32, (u32, Option<CellPos>)> =
+        max_position.keys().map(|a| (*a, (0, None))).collect();
+    let mut steps = Vec::with_capacity(parsed.len());
+    for (index, row) in parsed.into_iter().enumerate() {
+        let number = index + 1;
+        let mut seen: BTreeMap<u32, CellPos> = BTreeMap::new();
+        let mut moves = Vec::with_capacity(row.len());
+        for (m, pos, branch) in row {
+            let pmax = max_position.get(&m.actuator).copied().unwrap_or(1);
+            let to = m.position.unwrap_or(match m.sign {
+                Sign::Plus => pmax,
+                Sign::Minus => 0,
+            });
+            let written = m.to_string();
+            if let Some(first) = seen.get(&m.actuator) {
+                diags.error(
+                    Code::E021TwiceInStep,
+                    location(pos),
+                    format!(
+                        "\"{written}\": C{} already moves in STEP {number} (cell {}); an actuator moves at most once per step",
+                        m.actuator,
+                        first.a1_or_csv(grid)
+                    ),
+                );
+                continue;
+            }
+            seen.insert(m.actuator, pos);
+            let (from, _) = current.get(&m.actuator).copied().unwrap_or((0, None));
+            let ok = match m.sign {
+                Sign::Plus => to > from,
+                Sign::Minus => to < from,
+            };
+            if !ok {
+                let (need, verb) = match m.sign {
+                    Sign::Plus => ("higher", "a + move extends"),
+                    Sign::Minus => ("lower", "a - move retracts"),
+                };
+                diags.error(
+                    Code::E020WrongDirection,
+                    location(pos),
+                    format!(
+                        "\"{written}\": C{} stands at position {from} before STEP {number}; {verb}, so it must go to a {need} position than {from}",
+                        m.actuator
+                    ),
+                );
+            }
+            current.insert(m.actuator, (to, Some(pos)));
+            moves.push(Move {
+                actuator: m.actuator,
+                sign: m.sign,
+                from,
+                to,
+                branch,
+                cell: pos,
+            });
+        }
+        steps.push(Step { number, moves });
+    }
+
+    for (actuator, (position, last_cell)) in &current {
+        if *position != 0 {
+            let loc = match last_cell {
+                Some(pos) => location(*pos),
+                None => grid.sheet_location(),
+            };
+            diags.error(
+                Code::E022NotHome,
+                loc,
+                format!(
+                    "C{actuator} ends the cycle at position {position}, not at home; every actuator must be back at position 0 after the last step (add C{actuator}-0)"
+                ),
+            );
+        }
+    }
+
+    Some(StepTable {
+        file: grid.file.clone(),
+        sheet: grid.sheet.clone(),
+        branches: frame.branch_cols.len(),
+        steps,
+        actuators: max_position
+            .into_iter()
+            .map(|(number, max_position)| Actuator {
+                number,
+                max_position,
+            })
+            .collect(),
+    })
+}
+
+trait CellName {
+    fn a1_or_csv(self, grid: &Grid) -> String;
+}
+
+impl CellName for CellPos {
+    /// `D7` on a sheet, `7:4` in a CSV file.
+    fn a1_or_csv(self, grid: &Grid) -> String {
+        if grid.sheet.is_some() {
+            self.a1()
+        } else {
+            format!("{}:{}", self.row + 1, self.col + 1)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::read::GridCell;
+
+    /// A grid from rows of text, top-left at A1; "" is an empty cell.
+    pub(crate) fn grid(rows: &[&[&str]]) -> Grid {
+        let mut cells = Vec::new();
+        for (r, row) in rows.iter().enumerate() {
+            for (c, text) in row.iter().enumerate() {
+                if !text.is_empty() {
+                    cells.push(GridCell {
+                        pos: CellPos::new(r as u32, c as u32),
+                        value: CellValue::Text(text.to_string()),
+                    });
+                }
+            }
+        }
+        Grid {
+            file: "t.xlsx".into(),
+            sheet: Some("S".into()),
+            cells,
+        }
+    }
+
+    fn errors(rows: &[&[&str]]) -> Vec<String> {
+        let mut diags = Diagnostics::new();
+        assert!(build(&grid(rows), &mut diags).is_none());
+        diags
+            .into_sorted()
+            .into_iter()
+            .map(|d| d.to_string())
+            .collect()
+    }
+
+    #[test]
+    fn finds_the_table_by_its_headers_anywhere() {
+        let rows: &[&[&str]] = &[
+            &["", "My machine", "", ""],
+            &["", "", "BRANCH 1", "BRANCH 2"],
+            &["", "STEP 1", "C1+1", ""],
+            &["", "STEP 2", "C2+", "C1-0"],
+            &["", "STEP 3", "", "C2-"],
+            &["", "STEP 4", "", ""],
+            &["", "note: C-sensors are reed switches", "", ""],
+        ];
+        let mut diags = Diagnostics::new();
+        let table = build(&grid(rows), &mut diags).expect("valid");
+        assert_eq!(table.branches, 2);
+        assert_eq!(table.steps.len(), 3);
+        assert_eq!(table.steps[1].moves[0].notation(), "C2+1");
+        assert_eq!(table.steps[1].moves[1].branch, 1);
+        assert_eq!(table.actuators.len(), 2);
+    }
+
+    #[test]
+    fn reads_a_bare_grid() {
+        let rows: &[&[&str]] = &[&["Title"], &["C1+1", ""], &["C2+1", "C1-"], &["C2-0", ""]];
+        let mut diags = Diagnostics::new();
+        let table = build(&grid(rows), &mut diags).expect("valid");
+        assert_eq!(table.steps.len(), 3);
+        assert_eq!(table.branches, 2);
+    }
+
+    #[test]
+    fn reports_every_error_with_its_cell() {
+        let errs = errors(&[
+            &["", "BRANCH 1", "BRANCH 2"],
+            &["STEP 1", "C1+1", "C2+x"],
+            &["STEP 2", "C1+1", ""],
+            &["STEP 3", "C2+1", "C2-0"],
+            &["STEP 4", "", ""],
+            &["STEP 5", "C1-0", ""],
+        ]);
+        let joined = errs.join("\n");
+        assert!(
+            joined.contains("S!C2: error[E010]: \"C2+x\" is not a move"),
+            "{joined}"
+        );
+        assert!(joined.contains("S!B3: error[E020]"), "{joined}");
+        assert!(joined.contains("S!C4: error[E021]"), "{joined}");
+        assert!(
+            joined.contains("S!B5: error[E023]: STEP 4 has no move"),
+            "{joined}"
+        );
+        assert!(
+            joined.contains("error[E022]: C2 ends the cycle at position 1"),
+            "{joined}"
+        );
+    }
+
+    #[test]
+    fn moves_beside_the_table_are_not_ignored() {
+        let errs = errors(&[
+            &["", "BRANCH 1", ""],
+            &["STEP 1", "C1+1", "C2+1"],
+            &["STEP 2", "C1-0", "C2-0"],
+        ]);
+        assert!(
+            errs[0].contains("S!C2") && errs[0].contains("outside the table"),
+            "{errs:?}"
+        );
+    }
+
+    #[test]
+    fn plain_signs_resolve_to_the_ends() {
+        let mut diags = Diagnostics::new();
+        let table = build(&grid(&[&["C1+"], &["C1-"]]), &mut diags).expect("valid");
+        assert_eq!(table.actuators[0].max_position, 1);
+        assert_eq!(table.steps[0].moves[0].to, 1);
+        // C1+ goes to pmax = 3, the highest position written for C1.
+        let table = build(
+            &grid(&[&["C1+"], &["C1-1"], &["C1+3"], &["C1-"]]),
+            &mut diags,
+        )
+        .expect("valid");
+        assert_eq!(table.actuators[0].max_position, 3);
+        let tos: Vec<u32> = table.steps.iter().map(|s| s.moves[0].to).collect();
+        assert_eq!(tos, [3, 1, 3, 0]);
+    }
+
+    #[test]
+    fn empty_and_headerless_sheets_are_errors() {
+        assert!(errors(&[&["just a note"]])[0].contains("E003"));
+        assert!(errors(&[&["", "BRANCH 1"], &["STEP 1", ""]])[0].contains("no moves"));
+    }
+}

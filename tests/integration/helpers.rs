@@ -1,0 +1,86 @@
+//! Helpers: run the binary, make workbooks, read workbooks back.
+
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+use calamine::{Data, Reader, open_workbook_auto};
+use rust_xlsxwriter::Workbook;
+
+/// The repository root (where `samples/` is).
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+pub fn sample(name: &str) -> PathBuf {
+    root().join("samples").join(name)
+}
+
+/// Every bundled sample.
+pub fn samples() -> Vec<PathBuf> {
+    let mut list: Vec<PathBuf> = std::fs::read_dir(root().join("samples"))
+        .expect("samples folder")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            matches!(
+                p.extension().and_then(|e| e.to_str()),
+                Some("xlsx" | "xls" | "ods" | "csv")
+            )
+        })
+        .collect();
+    list.sort();
+    list
+}
+
+pub fn steptable() -> Command {
+    Command::cargo_bin("steptable").expect("binary built")
+}
+
+/// Writes an .xlsx with one sheet holding `rows` from A1 (empty strings skipped).
+pub fn write_xlsx(path: &Path, sheet: &str, rows: &[&[&str]]) {
+    let mut workbook = Workbook::new();
+    let ws = workbook.add_worksheet();
+    ws.set_name(sheet).expect("sheet name");
+    for (r, row) in rows.iter().enumerate() {
+        for (c, text) in row.iter().enumerate() {
+            if !text.is_empty() {
+                ws.write_string(r as u32, c as u16, *text).expect("write");
+            }
+        }
+    }
+    workbook.save(path).expect("save");
+}
+
+/// A sheet as rows of text (numbers printed as calamine prints them).
+pub fn read_sheet(path: &Path, sheet: &str) -> Vec<Vec<String>> {
+    let mut workbook = open_workbook_auto(path).expect("open workbook");
+    let range = workbook.worksheet_range(sheet).expect("sheet");
+    let (r0, c0) = range.start().unwrap_or((0, 0));
+    let (r1, c1) = range.end().unwrap_or((0, 0));
+    let mut rows = vec![vec![String::new(); c1 as usize + 1]; r1 as usize + 1];
+    for (r, c, v) in range.used_cells() {
+        let text = match v {
+            Data::String(s) => s.clone(),
+            Data::Empty => String::new(),
+            other => other.to_string(),
+        };
+        rows[r0 as usize + r][c0 as usize + c] = text;
+    }
+    rows
+}
+
+/// All files below a folder (empty if it does not exist).
+pub fn files_below(dir: &Path) -> Vec<PathBuf> {
+    let mut found = Vec::new();
+    if let Ok(entries) = std::fs::read_dir(dir) {
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                found.extend(files_below(&path));
+            } else {
+                found.push(path);
+            }
+        }
+    }
+    found.sort();
+    found
+}

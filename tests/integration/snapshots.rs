@@ -1,0 +1,46 @@
+//! Snapshots of every generated text file, for every sample and target. A
+//! change to any output shows up as a reviewable diff (`cargo insta review`).
+
+use steptable::address::{Mnemonic, Target};
+use steptable::convert::{Settings, convert_path};
+
+use crate::helpers::samples;
+
+#[test]
+fn every_sample_and_target() {
+    for path in samples() {
+        for (target, mnemonic, label) in [
+            (Target::Festo, Mnemonic::En, "festo"),
+            (Target::Iec, Mnemonic::En, "iec"),
+            (Target::Siemens, Mnemonic::En, "siemens"),
+            (Target::Siemens, Mnemonic::De, "siemens-de"),
+        ] {
+            let mut settings = Settings::new();
+            settings.target = target;
+            settings.mnemonic = mnemonic;
+            let conversion = match convert_path(&path, &settings) {
+                Ok(c) => c,
+                Err(e) => panic!("{}: {e:?}", path.display()),
+            };
+            let file = path
+                .file_name()
+                .unwrap()
+                .to_string_lossy()
+                .replace('.', "_");
+            for output in &conversion.files {
+                let Some(ext) = [".st", ".fst.txt", ".io.csv"]
+                    .into_iter()
+                    .find(|e| output.name.ends_with(e))
+                else {
+                    continue;
+                };
+                // The FST program always uses Festo operands: one snapshot is enough.
+                if ext == ".fst.txt" && label != "festo" {
+                    continue;
+                }
+                let text = String::from_utf8(output.bytes.clone()).expect("text output");
+                insta::assert_snapshot!(format!("{file}-{label}{ext}"), text);
+            }
+        }
+    }
+}
