@@ -242,3 +242,35 @@ fn csv_sample_gives_the_same_program_as_the_workbook() {
         assert_eq!(strip_source(a), strip_source(b), "{ext}");
     }
 }
+
+/// The same table as legacy `.xls` (offset on a second sheet) and as an `.ods`
+/// bare grid without headers gives the same allocation list and PLC PROGRAM.
+#[test]
+fn xls_and_ods_read_the_same_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let reference = convert_paper(&dir.path().join("ref"));
+    let expected_csv = std::fs::read(reference.join("paper_example.io.csv")).unwrap();
+    let expected_program = read_sheet(&reference.join("paper_example.xlsx"), "PLC PROGRAM");
+    for fixture in ["paper_example.xls", "paper_example_grid.ods"] {
+        let input = crate::helpers::root().join("tests/fixtures").join(fixture);
+        steptable()
+            .arg("convert")
+            .arg(&input)
+            .arg("-o")
+            .arg(dir.path())
+            .assert()
+            .success();
+        let stem = fixture.split('.').next().unwrap();
+        let out = dir.path().join(stem);
+        assert_eq!(
+            std::fs::read(out.join(format!("{stem}.io.csv"))).unwrap(),
+            expected_csv,
+            "{fixture}"
+        );
+        assert_eq!(
+            read_sheet(&out.join(format!("{stem}.xlsx")), "PLC PROGRAM"),
+            expected_program,
+            "{fixture}"
+        );
+    }
+}
