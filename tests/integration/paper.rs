@@ -274,3 +274,24 @@ fn xls_and_ods_read_the_same_table() {
         );
     }
 }
+
+#[test]
+fn the_binary_converts_every_sample_for_every_target() {
+    for target in ["festo", "iec", "siemens"] {
+        let dir = tempfile::tempdir().unwrap();
+        steptable()
+            .arg("convert")
+            .args(crate::helpers::samples())
+            .args(["--target", target, "-o"])
+            .arg(dir.path())
+            .assert()
+            .success();
+        // paper_example.csv and paper_example.xlsx share a stem: two folders.
+        let files = crate::helpers::files_below(dir.path());
+        assert_eq!(
+            files.len(),
+            4 * crate::helpers::samples().len(),
+            "{target}: {files:?}"
+        );
+    }
+}
