@@ -326,27 +326,9 @@ impl fmt::Display for Target {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diag::{CellPos, Diagnostics};
-    use crate::read::{CellValue, Grid, GridCell};
 
     fn table(rows: &[&[&str]]) -> StepTable {
-        let mut cells = Vec::new();
-        for (r, row) in rows.iter().enumerate() {
-            for (c, text) in row.iter().enumerate() {
-                if !text.is_empty() {
-                    cells.push(GridCell {
-                        pos: CellPos::new(r as u32, c as u32),
-                        value: CellValue::Text(text.to_string()),
-                    });
-                }
-            }
-        }
-        let grid = Grid {
-            file: "t.csv".into(),
-            sheet: None,
-            cells,
-        };
-        crate::table::build(&grid, &mut Diagnostics::new()).expect("valid table")
+        crate::table::from_rows("t.csv", rows).expect("valid table")
     }
 
     #[test]

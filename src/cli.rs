@@ -34,6 +34,54 @@ enum Command {
     Convert(ConvertArgs),
     /// Read and check step tables without writing anything.
     Check(CheckArgs),
+    /// Simulate the generated program against a model of the pneumatics.
+    Simulate(SimulateArgs),
+}
+
+#[derive(Args)]
+struct SimulateArgs {
+    /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+    /// Generate the program without middle stops, as the published method
+    /// does, to see why they matter.
+    #[arg(long)]
+    no_middle_stop: bool,
+    #[command(flatten)]
+    common: CommonArgs,
+    #[command(flatten)]
+    sim: SimArgs,
+}
+
+#[derive(Args)]
+struct SimArgs {
+    /// Stroke times per actuator, extend/retract: C2=1.5s/0.8s,C3=2s (default 1s/1s).
+    #[arg(long, value_name = "LIST", value_parser = parse_strokes)]
+    stroke: Option<StrokeMap>,
+    /// PLC scan time of the simulation and of the generated task.
+    #[arg(long, value_name = "TIME", default_value = "10ms", value_parser = parse_scan)]
+    scan: u32,
+}
+
+type StrokeMap = std::collections::BTreeMap<u32, steptable::simulate::plant::Stroke>;
+
+fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
+    steptable::simulate::parse_strokes(text)
+}
+
+fn parse_scan(text: &str) -> Result<u32, String> {
+    steptable::cell::parse_duration_ms(text)
+        .filter(|ms| *ms <= 1000)
+        .ok_or_else(|| format!("\"{text}\" is not a scan time from 1ms to 1s, such as 10ms"))
+}
+
+impl SimArgs {
+    fn apply(&self, settings: &mut Settings) {
+        settings.simulation.scan_ms = self.scan;
+        if let Some(strokes) = &self.stroke {
+            settings.simulation.strokes = strokes.clone();
+        }
+    }
 }
 
 #[derive(Args)]
@@ -46,6 +94,8 @@ struct ConvertArgs {
     output: PathBuf,
     #[command(flatten)]
     common: CommonArgs,
+    #[command(flatten)]
+    sim: SimArgs,
 }
 
 #[derive(Args)]
@@ -116,6 +166,7 @@ pub fn run() -> i32 {
     match cli.command {
         Command::Convert(args) => run_convert(&args),
         Command::Check(args) => run_check(&args),
+        Command::Simulate(args) => run_simulate(&args),
     }
 }
 
@@ -180,8 +231,38 @@ fn run_check(args: &CheckArgs) -> i32 {
     code
 }
 
+fn run_simulate(args: &SimulateArgs) -> i32 {
+    let mut settings = args.common.settings();
+    args.sim.apply(&mut settings);
+    settings.program.middle_stops = !args.no_middle_stop;
+    let mut code = EXIT_OK;
+    for input in &args.inputs {
+        let checked = match convert::check_path(input, &settings) {
+            Ok(c) => c,
+            Err(diagnostics) => {
+                print_diagnostics(&diagnostics);
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+        };
+        print_diagnostics(&checked.warnings);
+        let table = checked.table;
+        let allocation =
+            steptable::address::Allocation::new(&table, settings.target, settings.mnemonic);
+        let program = steptable::program::build(&table, &allocation, settings.program);
+        let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
+        out(&format!("{}: {}", display_name(input), report.verdict()));
+        out(&steptable::simulate::report::step_table(&report));
+        if !report.passed {
+            code = code.max(EXIT_BAD_INPUT);
+        }
+    }
+    code
+}
+
 fn run_convert(args: &ConvertArgs) -> i32 {
-    let settings = args.common.settings();
+    let mut settings = args.common.settings();
+    args.sim.apply(&mut settings);
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
     for (input, name) in args.inputs.iter().zip(&names) {

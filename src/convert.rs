@@ -8,27 +8,25 @@ use crate::diag::{Diagnostic, Diagnostics};
 use crate::emit::{self, EmitInput};
 use crate::program::{self, ProgramOptions, StepProgram};
 use crate::read::{self, Format, Grid};
+use crate::simulate::{self, SimReport, SimSettings};
 use crate::table::{self, StepTable};
 
 /// Validated settings of one run (raw command-line values are turned into this
 /// before any work starts).
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Settings {
     pub target: Target,
     pub mnemonic: Mnemonic,
     /// Sheet to read instead of the default choice.
     pub sheet: Option<String>,
     pub program: ProgramOptions,
-    /// PLC scan time for the generated task, in milliseconds.
-    pub scan_millis: u32,
+    /// Simulation settings; `simulation.scan_ms` is also the generated task's cycle.
+    pub simulation: SimSettings,
 }
 
 impl Settings {
     pub fn new() -> Self {
-        Settings {
-            scan_millis: 10,
-            ..Settings::default()
-        }
+        Settings::default()
     }
 }
 
@@ -55,6 +53,8 @@ pub struct Conversion {
     pub table: StepTable,
     pub allocation: Allocation,
     pub program: StepProgram,
+    /// The simulation that proved the program.
+    pub simulation: SimReport,
     pub files: Vec<OutputFile>,
     pub warnings: Vec<Diagnostic>,
 }
@@ -152,11 +152,19 @@ pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Con
     let table = checked.table;
     let allocation = Allocation::new(&table, settings.target, settings.mnemonic);
     let program = program::build(&table, &allocation, settings.program);
+    let simulation = simulate::simulate(&table, &program, &settings.simulation);
+    if !simulation.passed {
+        return Err(Failure::Internal(format!(
+            "the generated program fails its simulation ({}); the table is valid, so this is a bug in steptable: please report it with this file",
+            simulation.reason()
+        )));
+    }
     let input = EmitInput {
         name,
         table: &table,
         allocation: &allocation,
         program: &program,
+        simulation: Some(&simulation),
     };
     let internal =
         |what: &str, e: &dyn std::fmt::Display| Failure::Internal(format!("{what}: {e}"));
@@ -167,7 +175,7 @@ pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Con
         },
         OutputFile {
             name: format!("{name}.st"),
-            bytes: emit::st::render(&input, settings.scan_millis)
+            bytes: emit::st::render(&input, settings.simulation.scan_ms)
                 .map_err(|e| internal("structured text", &e))?
                 .into_bytes(),
         },
@@ -187,6 +195,7 @@ pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Con
         table,
         allocation,
         program,
+        simulation,
         files,
         warnings: checked.warnings,
     })

@@ -17,4 +17,5 @@ pub mod emit;
 pub mod output;
 pub mod program;
 pub mod read;
+pub mod simulate;
 pub mod table;

@@ -240,8 +240,6 @@ pub fn condition_text(
 mod tests {
     use super::*;
     use crate::address::{Mnemonic, Target};
-    use crate::diag::{CellPos, Diagnostics};
-    use crate::read::{CellValue, Grid, GridCell};
 
     /// The paper's example table (DESIGN §4), as a bare grid.
     pub(crate) fn paper_table() -> StepTable {
@@ -255,23 +253,7 @@ mod tests {
             ["C3-0", "C2-0", "C4-0"],
             ["C1-0", "", ""],
         ];
-        let mut cells = Vec::new();
-        for (r, row) in rows.iter().enumerate() {
-            for (c, text) in row.iter().enumerate() {
-                if !text.is_empty() {
-                    cells.push(GridCell {
-                        pos: CellPos::new(r as u32, c as u32),
-                        value: CellValue::Text(text.to_string()),
-                    });
-                }
-            }
-        }
-        let grid = Grid {
-            file: "paper.csv".into(),
-            sheet: None,
-            cells,
-        };
-        crate::table::build(&grid, &mut Diagnostics::new()).expect("paper table is valid")
+        crate::table::from_rows("paper.csv", &rows).expect("paper table is valid")
     }
 
     #[test]

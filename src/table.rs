@@ -537,6 +537,38 @@ fn check(
     })
 }
 
+/// Builds and checks a table from rows of cell text laid out as a bare grid
+/// from A1 (empty strings are empty cells), as if read from the CSV file
+/// `file`. For tests, benchmarks and generated tables.
+pub fn from_rows<R, S>(file: &str, rows: &[R]) -> Result<StepTable, Vec<crate::diag::Diagnostic>>
+where
+    R: AsRef<[S]>,
+    S: AsRef<str>,
+{
+    let mut cells = Vec::new();
+    for (r, row) in rows.iter().enumerate() {
+        for (c, text) in row.as_ref().iter().enumerate() {
+            let text = text.as_ref();
+            if !text.trim().is_empty() {
+                cells.push(crate::read::GridCell {
+                    pos: CellPos::new(r as u32, c as u32),
+                    value: CellValue::Text(text.to_string()),
+                });
+            }
+        }
+    }
+    let grid = Grid {
+        file: file.to_string(),
+        sheet: None,
+        cells,
+    };
+    let mut diags = Diagnostics::new();
+    match build(&grid, &mut diags) {
+        Some(table) => Ok(table),
+        None => Err(diags.into_sorted()),
+    }
+}
+
 trait CellName {
     fn a1_or_csv(self, grid: &Grid) -> String;
 }

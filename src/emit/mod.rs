@@ -11,6 +11,7 @@ pub mod workbook;
 use crate::address::{Allocation, Signal};
 use crate::cell::Sign;
 use crate::program::{Action, StepProgram};
+use crate::simulate::SimReport;
 use crate::table::{Move, StepTable};
 
 /// Everything an emitter may read.
@@ -21,6 +22,8 @@ pub struct EmitInput<'a> {
     pub table: &'a StepTable,
     pub allocation: &'a Allocation,
     pub program: &'a StepProgram,
+    /// The simulation of the program, for the SIMULATION sheet.
+    pub simulation: Option<&'a SimReport>,
 }
 
 impl EmitInput<'_> {

@@ -9,10 +9,12 @@ use super::EmitInput;
 use crate::address::{Assigned, Signal};
 use crate::program::{Action, paper_sentence};
 use crate::read::TABLE_SHEET;
+use crate::simulate::SimReport;
 
 pub const INPUT_SHEET: &str = "INPUT ADDRESSES";
 pub const OUTPUT_SHEET: &str = "OUTPUT ADDRESSES";
 pub const PROGRAM_SHEET: &str = "PLC PROGRAM";
+pub const SIMULATION_SHEET: &str = "SIMULATION";
 
 /// The rows of the PLC PROGRAM sheet: `[label, sentence, stop requests]`.
 /// The sentence holds the step's condition and its coil actions in the
@@ -115,7 +117,52 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     sheet.set_column_width(2, 24)?;
     sheet.set_freeze_panes(1, 0)?;
 
+    if let Some(report) = input.simulation {
+        simulation_sheet(workbook.add_worksheet(), report, &bold, &title)?;
+    }
+
     workbook.save_to_buffer()
+}
+
+fn simulation_sheet(
+    sheet: &mut Worksheet,
+    report: &SimReport,
+    bold: &Format,
+    title: &Format,
+) -> Result<(), XlsxError> {
+    sheet.set_name(SIMULATION_SHEET)?;
+    sheet.write_string_with_format(0, 0, "SIMULATION", title)?;
+    sheet.write_string(1, 0, report.verdict())?;
+    sheet.write_string(
+        2,
+        0,
+        format!(
+            "{} cycle(s) from START; step timing of the first cycle:",
+            report.cycles.len()
+        ),
+    )?;
+    let header = 4;
+    for (col, text) in ["STEP", "START (s)", "DURATION (s)", "MOVES"]
+        .iter()
+        .enumerate()
+    {
+        sheet.write_string_with_format(header, col as u16, *text, bold)?;
+    }
+    if let Some(cycle) = report.cycles.first() {
+        for (i, step) in cycle.steps.iter().enumerate() {
+            let row = header + 1 + i as u32;
+            sheet.write_string(row, 0, format!("STEP {}", step.step))?;
+            sheet.write_number(row, 1, step.start_ms as f64 / 1000.0)?;
+            sheet.write_number(row, 2, step.duration_ms as f64 / 1000.0)?;
+            sheet.write_string(row, 3, &step.moves)?;
+        }
+    }
+    sheet.set_column_width(0, 12)?;
+    sheet.set_column_width(1, 12)?;
+    sheet.set_column_width(2, 14)?;
+    sheet.set_column_width(3, 30)?;
+    sheet.set_freeze_panes(header + 1, 0)?;
+    Ok(())
 }
 
 fn address_sheet(

@@ -4,4 +4,5 @@
 mod broken;
 mod helpers;
 mod paper;
+mod properties;
 mod snapshots;

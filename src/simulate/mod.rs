@@ -1,0 +1,745 @@
+//! Simulation: proof that a generated program runs the machine (DESIGN §5).
+//!
+//! A cyclic PLC scan (read inputs, execute the step program, write outputs)
+//! runs against the plant model. An operator presses START, the program must
+//! drive every step in order, every move must end at its target sensor without
+//! running through it, nothing may move outside its step, no valve may see both
+//! coils, everything must be home at the end, and a second START must run an
+//! identical second cycle.
+
+pub mod plant;
+pub mod plc;
+pub mod report;
+
+use std::collections::BTreeMap;
+
+use crate::address::Signal;
+use crate::cell::Sign;
+use crate::program::{Literal, StepProgram};
+use crate::table::{Move, StepTable};
+use plant::{Piston, Stroke};
+use plc::{PlcState, scan};
+
+/// How long the operator holds START.
+const START_PRESS_MS: u32 = 100;
+/// Idle time before the first press and between cycles.
+const IDLE_MS: u32 = 500;
+
+/// A sensor or push-button circuit fault: the input reads `stuck_at` always.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Fault {
+    pub signal: Signal,
+    pub stuck_at: bool,
+}
+
+impl Fault {
+    /// `x11 short circuit (stuck at 1)` / `x11 open circuit (stuck at 0)`.
+    pub fn describe(&self) -> String {
+        if self.stuck_at {
+            format!("{} short circuit (stuck at 1)", self.signal.symbol())
+        } else {
+            format!("{} open circuit (stuck at 0)", self.signal.symbol())
+        }
+    }
+}
+
+/// Simulation settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimSettings {
+    /// PLC scan time in milliseconds.
+    pub scan_ms: u32,
+    /// Stroke times of actuators not listed in `strokes`.
+    pub default_stroke: Stroke,
+    /// Stroke times per actuator number.
+    pub strokes: BTreeMap<u32, Stroke>,
+    /// Half-width of a sensor's detection window, as a fraction of the stroke.
+    pub window: f64,
+    /// Number of START presses (cycles) to run.
+    pub cycles: usize,
+    /// Input faults present from the start of the run.
+    pub faults: Vec<Fault>,
+    /// Record every actuator's position at every scan (for the time diagram).
+    pub record_trace: bool,
+}
+
+impl Default for SimSettings {
+    fn default() -> Self {
+        SimSettings {
+            scan_ms: 10,
+            default_stroke: Stroke::default(),
+            strokes: BTreeMap::new(),
+            window: 0.02,
+            cycles: 2,
+            faults: Vec::new(),
+            record_trace: false,
+        }
+    }
+}
+
+impl SimSettings {
+    pub fn stroke(&self, actuator: u32) -> Stroke {
+        self.strokes
+            .get(&actuator)
+            .copied()
+            .unwrap_or(self.default_stroke)
+    }
+}
+
+/// What went wrong in a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum ProblemKind {
+    /// The sequence waits for ever (a safe stall unless something else happened).
+    Stall,
+    /// A move passed its target sensor.
+    RanThrough,
+    /// An actuator moved although no step was moving it (or the wrong way).
+    OutsideStep,
+    /// A valve saw both coils.
+    CoilConflict,
+    /// A step fired before the previous step's moves physically finished.
+    Premature,
+    /// A cycle started without a START press.
+    UnexpectedStart,
+    /// The cycle ended with an actuator away from home.
+    NotHome,
+    /// The second cycle differs from the first.
+    CycleDiffers,
+}
+
+impl ProblemKind {
+    /// Whether this problem can hurt someone or something (DESIGN §6).
+    pub fn is_hazard(self) -> bool {
+        !matches!(self, ProblemKind::Stall | ProblemKind::CycleDiffers)
+    }
+}
+
+/// One problem, when it happened and in which step.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Problem {
+    pub kind: ProblemKind,
+    pub time_ms: u64,
+    /// The step the problem concerns (one-based).
+    pub step: usize,
+    pub message: String,
+}
+
+/// Timing of one step in one cycle.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StepTiming {
+    pub step: usize,
+    /// When the step fired, from the START press of its cycle.
+    pub start_ms: u64,
+    /// Until the next step fired (or, for the last step, until its moves ended).
+    pub duration_ms: u64,
+    pub moves: String,
+}
+
+/// One complete or interrupted cycle.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CycleReport {
+    /// Absolute time of the START press.
+    pub press_ms: u64,
+    pub steps: Vec<StepTiming>,
+    /// From the START press to the end of the last move, when the cycle completed.
+    pub cycle_ms: Option<u64>,
+}
+
+/// The result of a simulation run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimReport {
+    pub passed: bool,
+    pub cycles: Vec<CycleReport>,
+    pub problems: Vec<Problem>,
+    /// Step the sequence waited at when the run ended (one-based), if stalled.
+    pub stalled_at: Option<usize>,
+    /// Positions in sensor units of every actuator (table order) at each step
+    /// boundary of the first cycle: before step 1, …, after the last step.
+    pub step_positions: Vec<Vec<f64>>,
+    /// Actuator numbers, in the order of every position vector.
+    pub actuators: Vec<(u32, u32)>,
+    /// `(time_ms, positions)` at every scan, when recorded.
+    pub trace: Vec<(u64, Vec<f64>)>,
+}
+
+impl SimReport {
+    /// One line: `passed: cycle 8.46 s` or the reason it failed.
+    pub fn verdict(&self) -> String {
+        if self.passed {
+            let ms = self
+                .cycles
+                .first()
+                .and_then(|c| c.cycle_ms)
+                .unwrap_or_default();
+            format!("passed: cycle time {}", seconds(ms))
+        } else {
+            format!("FAILED: {}", self.reason())
+        }
+    }
+
+    /// Why the run failed: a stall with the run-throughs that explain it, or
+    /// else the first problem.
+    pub fn reason(&self) -> String {
+        let stall = self.problems.iter().find(|p| p.kind == ProblemKind::Stall);
+        let Some(first) = stall.or(self.problems.first()) else {
+            return "no problem recorded".to_string();
+        };
+        let mut text = first.message.clone();
+        if first.kind == ProblemKind::Stall {
+            for p in self
+                .problems
+                .iter()
+                .filter(|p| p.kind == ProblemKind::RanThrough)
+            {
+                text.push_str("; ");
+                text.push_str(&p.message);
+            }
+        }
+        text
+    }
+
+    /// Whether any hazard happened.
+    pub fn hazard(&self) -> Option<&Problem> {
+        self.problems.iter().find(|p| p.kind.is_hazard())
+    }
+}
+
+/// Parses `--stroke` values: `C2=1.5s/0.8s,C3=2s` (extend/retract, or one
+/// time for both). Returns the map or a message saying what is wrong.
+pub fn parse_strokes(text: &str) -> Result<BTreeMap<u32, Stroke>, String> {
+    let mut strokes = BTreeMap::new();
+    for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+        let (name, times) = item.split_once('=').ok_or_else(|| {
+            format!("\"{item}\": expected C<number>=<extend>/<retract>, e.g. C2=1.5s/0.8s")
+        })?;
+        let name = crate::cell::normalize(name);
+        let actuator: u32 = name
+            .strip_prefix('C')
+            .and_then(|n| n.parse().ok())
+            .filter(|n| (1..=crate::cell::MAX_ACTUATOR).contains(n))
+            .ok_or_else(|| format!("\"{item}\": expected an actuator such as C2 before ="))?;
+        let (extend, retract) = times.split_once('/').unwrap_or((times, times));
+        let parse = |t: &str| {
+            crate::cell::parse_duration_ms(t).ok_or_else(|| {
+                format!("\"{item}\": \"{t}\" is not a stroke time such as 1.5s or 800ms")
+            })
+        };
+        strokes.insert(
+            actuator,
+            Stroke {
+                extend_ms: parse(extend)?,
+                retract_ms: parse(retract)?,
+            },
+        );
+    }
+    Ok(strokes)
+}
+
+/// `1.23 s`.
+pub fn seconds(ms: u64) -> String {
+    format!("{:.2} s", ms as f64 / 1000.0)
+}
+
+/// A move in progress: set when its step fires.
+#[derive(Debug, Clone)]
+struct ActiveMove {
+    piston: usize,
+    mv: Move,
+    step: usize,
+    reached: bool,
+    ran_through: bool,
+}
+
+struct Run<'a> {
+    program: &'a StepProgram,
+    settings: &'a SimSettings,
+    pistons: Vec<Piston>,
+    index_of: BTreeMap<u32, usize>,
+    plc: PlcState,
+    time_ms: u64,
+    problems: Vec<Problem>,
+    /// The moves of the step that fired last.
+    active: Vec<ActiveMove>,
+    /// Per piston, the last move commanded: it may finish settling into its
+    /// target window after the next step has fired.
+    last_move: Vec<Option<ActiveMove>>,
+    start_pressed: bool,
+    trace: Vec<(u64, Vec<f64>)>,
+    last_literals_false: Vec<Literal>,
+}
+
+impl Run<'_> {
+    fn problem(&mut self, kind: ProblemKind, step: usize, message: String) {
+        // One report per kind and step is enough to explain what happened.
+        if self
+            .problems
+            .iter()
+            .any(|p| p.kind == kind && p.step == step && p.message == message)
+        {
+            return;
+        }
+        self.problems.push(Problem {
+            kind,
+            time_ms: self.time_ms,
+            step,
+            message,
+        });
+    }
+
+    /// One PLC scan plus one scan period of the plant. Returns the index of the
+    /// step that fired, if any.
+    fn tick(&mut self) -> Option<usize> {
+        let awaited = self.plc.awaited;
+        // Inputs are read from the plant as it stands at the start of the
+        // scan; the plant does not move while the program runs.
+        let (settings, pistons, index_of, start) = (
+            self.settings,
+            &self.pistons,
+            &self.index_of,
+            self.start_pressed,
+        );
+        let read = |s: Signal| read_input(s, settings, pistons, index_of, start);
+        let result = scan(self.program, &mut self.plc, &read);
+        if result.fired.is_none()
+            && let Some(step) = self.program.steps.get(awaited)
+        {
+            let plc = &self.plc;
+            self.last_literals_false = step
+                .condition
+                .iter()
+                .copied()
+                .filter(|l| {
+                    let raw = match l.signal {
+                        Signal::Start | Signal::Sensor { .. } => read(l.signal),
+                        other => plc.bit(other),
+                    };
+                    raw == l.negated
+                })
+                .collect();
+        }
+        if let Some(fired) = result.fired {
+            self.on_fire(fired);
+        }
+
+        // Outputs to valves, then the plant moves for one scan period.
+        for i in 0..self.pistons.len() {
+            let number = self.pistons[i].number;
+            let plus = self.plc.bit(Signal::Coil {
+                actuator: number,
+                sign: Sign::Plus,
+            });
+            let minus = self.plc.bit(Signal::Coil {
+                actuator: number,
+                sign: Sign::Minus,
+            });
+            if self.pistons[i].drive(plus, minus) {
+                let step = self.current_step();
+                self.problem(
+                    ProblemKind::CoilConflict,
+                    step,
+                    format!("the valve of C{number} sees both coils y{number}+ and y{number}- in step {step}"),
+                );
+            }
+            if let Some(direction) = self.pistons[i].advance() {
+                self.check_motion(i, direction);
+            }
+        }
+        self.time_ms += self.settings.scan_ms as u64;
+        self.update_reached();
+        if self.settings.record_trace {
+            let positions = self.pistons.iter().map(Piston::position_units).collect();
+            self.trace.push((self.time_ms, positions));
+        }
+        result.fired
+    }
+
+    /// The one-based number of the step whose moves are under way.
+    fn current_step(&self) -> usize {
+        let n = self.program.steps.len();
+        let last_fired = (self.plc.awaited + n - 1) % n;
+        self.program.steps[last_fired].number
+    }
+
+    fn on_fire(&mut self, fired: usize) {
+        let step = &self.program.steps[fired];
+        if fired == 0 && !self.start_pressed {
+            self.problem(
+                ProblemKind::UnexpectedStart,
+                step.number,
+                "the cycle started without a START press".to_string(),
+            );
+        }
+        let unfinished: Vec<String> = self
+            .active
+            .iter()
+            .filter(|a| !a.reached)
+            .map(|a| {
+                format!(
+                    "C{} had not reached {}",
+                    a.mv.actuator,
+                    sensor_symbol(&a.mv)
+                )
+            })
+            .collect();
+        if !unfinished.is_empty() {
+            self.problem(
+                ProblemKind::Premature,
+                step.number,
+                format!(
+                    "step {} started before step {} finished ({})",
+                    step.number,
+                    self.active[0].step,
+                    unfinished.join(", ")
+                ),
+            );
+        }
+        self.active = step
+            .moves
+            .iter()
+            .filter_map(|m| {
+                self.index_of.get(&m.actuator).map(|&piston| ActiveMove {
+                    piston,
+                    mv: *m,
+                    step: step.number,
+                    reached: false,
+                    ran_through: false,
+                })
+            })
+            .collect();
+        for a in &self.active {
+            self.last_move[a.piston] = Some(a.clone());
+        }
+    }
+
+    fn check_motion(&mut self, piston: usize, direction: Sign) {
+        let window = self.settings.window;
+        let p = &self.pistons[piston];
+        let number = p.number;
+        let s = p.s;
+        let commanded = self.last_move[piston]
+            .as_ref()
+            .filter(|a| a.mv.sign == direction)
+            .cloned();
+        let Some(a) = commanded else {
+            let step = self.current_step();
+            self.problem(
+                ProblemKind::OutsideStep,
+                step,
+                format!(
+                    "C{number} moves {} although no step moves it that way (during step {step})",
+                    if direction == Sign::Plus { "+" } else { "-" }
+                ),
+            );
+            return;
+        };
+        let target = p.sensor_point(a.mv.to);
+        let beyond = match direction {
+            Sign::Plus => s > target + window,
+            Sign::Minus => s < target - window,
+        };
+        if beyond && !a.ran_through {
+            for m in self.last_move[piston]
+                .iter_mut()
+                .chain(self.active.iter_mut().filter(|m| m.piston == piston))
+            {
+                m.ran_through = true;
+            }
+            self.problem(
+                ProblemKind::RanThrough,
+                a.step,
+                format!(
+                    "C{number} ran through {} in step {}",
+                    sensor_symbol(&a.mv),
+                    a.step
+                ),
+            );
+        }
+    }
+
+    fn update_reached(&mut self) {
+        let window = self.settings.window;
+        for a in &mut self.active {
+            if !a.reached && !a.ran_through && self.pistons[a.piston].sensor(a.mv.to, window) {
+                a.reached = true;
+            }
+        }
+    }
+
+    /// Every move under way has reached its target sensor and come to rest
+    /// (against the end stop, or held by a closed centre).
+    fn all_moves_ended(&self) -> bool {
+        self.active.iter().all(|a| {
+            let p = &self.pistons[a.piston];
+            let at_rest = match p.spool {
+                plant::Spool::Centre => true,
+                plant::Spool::Plus => p.s >= 1.0,
+                plant::Spool::Minus => p.s <= 0.0,
+            };
+            a.reached && at_rest && p.sensor(a.mv.to, self.settings.window)
+        })
+    }
+
+    fn positions(&self) -> Vec<f64> {
+        self.pistons.iter().map(Piston::position_units).collect()
+    }
+}
+
+/// The value an input reads: a fault overrides the plant.
+fn read_input(
+    signal: Signal,
+    settings: &SimSettings,
+    pistons: &[Piston],
+    index_of: &BTreeMap<u32, usize>,
+    start_pressed: bool,
+) -> bool {
+    if let Some(f) = settings.faults.iter().find(|f| f.signal == signal) {
+        return f.stuck_at;
+    }
+    match signal {
+        Signal::Start => start_pressed,
+        Signal::Sensor { actuator, position } => index_of
+            .get(&actuator)
+            .is_some_and(|i| pistons[*i].sensor(position, settings.window)),
+        _ => false,
+    }
+}
+
+fn sensor_symbol(m: &Move) -> String {
+    Signal::Sensor {
+        actuator: m.actuator,
+        position: m.to,
+    }
+    .symbol()
+}
+
+fn literal_text(l: &Literal) -> String {
+    if l.negated {
+        format!("NOT {}", l.signal.symbol())
+    } else {
+        l.signal.symbol()
+    }
+}
+
+/// The longest a step may take before the run counts as stalled.
+fn step_timeout_ms(table: &StepTable, settings: &SimSettings) -> u64 {
+    let longest = table
+        .actuators
+        .iter()
+        .map(|a| {
+            let s = settings.stroke(a.number);
+            s.extend_ms.max(s.retract_ms)
+        })
+        .max()
+        .unwrap_or(1000) as u64;
+    2 * longest + 500
+}
+
+/// Simulates `program` (built from `table`) against the plant.
+pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings) -> SimReport {
+    let scan_ms = settings.scan_ms.max(1);
+    let pistons: Vec<Piston> = table
+        .actuators
+        .iter()
+        .map(|a| Piston::new(a.number, a.max_position, settings.stroke(a.number), scan_ms))
+        .collect();
+    let index_of = pistons
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (p.number, i))
+        .collect();
+    let settings_scan = SimSettings {
+        scan_ms,
+        ..settings.clone()
+    };
+    let mut run = Run {
+        program,
+        settings: &settings_scan,
+        pistons,
+        index_of,
+        plc: PlcState::new(),
+        time_ms: 0,
+        problems: Vec::new(),
+        active: Vec::new(),
+        last_move: vec![None; table.actuators.len()],
+        start_pressed: false,
+        trace: Vec::new(),
+        last_literals_false: Vec::new(),
+    };
+    let timeout = step_timeout_ms(table, settings);
+    let step_count = program.steps.len();
+    let mut cycles: Vec<CycleReport> = Vec::new();
+    let mut step_positions = vec![run.positions()];
+    let mut stalled_at = None;
+
+    // Idle before the first press: nothing may happen.
+    let mut press_at = IDLE_MS as u64;
+    'cycles: for cycle in 0..settings.cycles.max(1) {
+        while run.time_ms < press_at {
+            run.tick();
+        }
+        let mut report = CycleReport {
+            press_ms: press_at,
+            steps: Vec::new(),
+            cycle_ms: None,
+        };
+        let mut fire_times: Vec<u64> = Vec::new();
+        let mut last_event = run.time_ms;
+        loop {
+            run.start_pressed = run.time_ms < press_at + START_PRESS_MS as u64;
+            let before = run.time_ms;
+            let fired = run.tick();
+            if let Some(index) = fired {
+                if cycle == 0 && index > 0 {
+                    step_positions.push(run.positions());
+                }
+                if index == 0 && !fire_times.is_empty() {
+                    // Step 1 again before the cycle was seen to end.
+                    break;
+                }
+                fire_times.push(before);
+                last_event = run.time_ms;
+            }
+            let done =
+                fire_times.len() == step_count && run.plc.awaited == 0 && run.all_moves_ended();
+            if done {
+                if cycle == 0 {
+                    step_positions.push(run.positions());
+                }
+                report.cycle_ms = Some(run.time_ms - press_at);
+                break;
+            }
+            if run.time_ms - last_event > timeout {
+                let waiting = &program.steps[run.plc.awaited];
+                let missing: Vec<String> =
+                    run.last_literals_false.iter().map(literal_text).collect();
+                let message = if fire_times.len() == step_count {
+                    format!(
+                        "the cycle never ends: the moves of step {} do not finish",
+                        program.steps[step_count - 1].number
+                    )
+                } else {
+                    format!(
+                        "step {} never fires: waiting for {}",
+                        waiting.number,
+                        if missing.is_empty() {
+                            "its condition".to_string()
+                        } else {
+                            missing.join(" AND ")
+                        }
+                    )
+                };
+                run.problem(ProblemKind::Stall, waiting.number, message);
+                stalled_at = Some(waiting.number);
+                report.steps = timings(program, &fire_times, run.time_ms, press_at);
+                cycles.push(report);
+                break 'cycles;
+            }
+        }
+        report.steps = timings(program, &fire_times, run.time_ms, press_at);
+        // Every actuator home at the end of the cycle.
+        if report.cycle_ms.is_some() {
+            for p in &run.pistons {
+                if !p.sensor(0, settings.window) {
+                    let step = program.steps[step_count - 1].number;
+                    run.problems.push(Problem {
+                        kind: ProblemKind::NotHome,
+                        time_ms: run.time_ms,
+                        step,
+                        message: format!("C{} is not home at the end of the cycle", p.number),
+                    });
+                }
+            }
+        }
+        let complete = report.cycle_ms.is_some();
+        cycles.push(report);
+        if !complete {
+            break;
+        }
+        press_at = run.time_ms + IDLE_MS as u64;
+    }
+    // A short idle after the last cycle: nothing may move on its own.
+    if stalled_at.is_none() {
+        let until = run.time_ms + IDLE_MS as u64;
+        run.start_pressed = false;
+        while run.time_ms < until {
+            run.tick();
+        }
+    }
+
+    if let (Some(first), Some(second)) = (cycles.first(), cycles.get(1))
+        && first.cycle_ms.is_some()
+        && second.cycle_ms.is_some()
+    {
+        let durations = |c: &CycleReport| c.steps.iter().map(|s| s.duration_ms).collect::<Vec<_>>();
+        if durations(first) != durations(second) {
+            run.problems.push(Problem {
+                kind: ProblemKind::CycleDiffers,
+                time_ms: run.time_ms,
+                step: 1,
+                message: "the second cycle's step timing differs from the first".to_string(),
+            });
+        }
+    }
+    // Say where each run-through ended: "C2 ran through x22 to x23".
+    for problem in &mut run.problems {
+        if problem.kind != ProblemKind::RanThrough {
+            continue;
+        }
+        if let Some(piston) = problem
+            .message
+            .strip_prefix('C')
+            .and_then(|rest| rest.split(' ').next())
+            .and_then(|n| n.parse::<u32>().ok())
+            .and_then(|n| run.index_of.get(&n))
+            .map(|i| &run.pistons[*i])
+        {
+            let end = match piston.sensor_on(settings.window) {
+                Some(position) => Signal::Sensor {
+                    actuator: piston.number,
+                    position,
+                }
+                .symbol(),
+                None => format!("position {:.2}", piston.position_units()),
+            };
+            problem.message =
+                problem
+                    .message
+                    .replacen(" in step", &format!(" to {end} in step"), 1);
+        }
+    }
+    let all_cycles_done =
+        cycles.len() == settings.cycles.max(1) && cycles.iter().all(|c| c.cycle_ms.is_some());
+    run.problems.sort_by_key(|p| p.time_ms);
+    SimReport {
+        passed: run.problems.is_empty() && all_cycles_done,
+        cycles,
+        problems: run.problems,
+        stalled_at,
+        step_positions,
+        actuators: table
+            .actuators
+            .iter()
+            .map(|a| (a.number, a.max_position))
+            .collect(),
+        trace: run.trace,
+    }
+}
+
+fn timings(program: &StepProgram, fire_times: &[u64], end: u64, press_at: u64) -> Vec<StepTiming> {
+    fire_times
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            let next = fire_times.get(i + 1).copied().unwrap_or(end);
+            let step = &program.steps[i];
+            StepTiming {
+                step: step.number,
+                start_ms: t - press_at,
+                duration_ms: next - t,
+                moves: crate::emit::moves_text(&step.moves),
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,134 @@
+use super::*;
+use crate::address::{Allocation, Mnemonic, Target};
+use crate::program::{self, ProgramOptions};
+
+fn run(rows: &[&[&str]], options: ProgramOptions, settings: &SimSettings) -> SimReport {
+    let table = crate::table::from_rows("t.csv", rows).expect("valid table");
+    let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
+    let program = program::build(&table, &alloc, options);
+    simulate(&table, &program, settings)
+}
+
+const PAPER: &[&[&str]] = &[
+    &["C1+1", "", ""],
+    &["C2+3", "", ""],
+    &["C2-1", "", ""],
+    &["C3+2", "C2+2", ""],
+    &["C3-0", "C2-1", ""],
+    &["C3+1", "C2+2", "C4+1"],
+    &["C3-0", "C2-0", "C4-0"],
+    &["C1-0", "", ""],
+];
+
+#[test]
+fn the_papers_program_runs_two_identical_cycles() {
+    let report = run(PAPER, ProgramOptions::default(), &SimSettings::default());
+    assert!(report.passed, "{}: {:?}", report.verdict(), report.problems);
+    assert_eq!(report.cycles.len(), 2);
+    assert_eq!(report.cycles[0].steps.len(), 8);
+    let ms = report.cycles[0].cycle_ms.unwrap();
+    // 8 steps: C1 1 s, C2 1 s, C2 2/3 s, C3 1 s, C3 1 s, C3 0.5 s, C2 2/3 s and C3 0.5 s … ≈ 7–8 s
+    assert!((6_000..10_000).contains(&ms), "{ms}");
+    // Positions at the step boundaries: C2 stands at 2 after step 4.
+    let c2 = report.actuators.iter().position(|a| a.0 == 2).unwrap();
+    assert!(
+        (report.step_positions[4][c2] - 2.0).abs() < 0.1,
+        "{:?}",
+        report.step_positions[4]
+    );
+}
+
+#[test]
+fn without_middle_stops_the_paper_hangs_in_step_5() {
+    let report = run(
+        PAPER,
+        ProgramOptions {
+            middle_stops: false,
+        },
+        &SimSettings::default(),
+    );
+    assert!(!report.passed);
+    assert_eq!(report.stalled_at, Some(5));
+    assert_eq!(
+        report.reason(),
+        "step 5 never fires: waiting for x22; C2 ran through x22 to x23 in step 4"
+    );
+}
+
+#[test]
+fn a_stuck_sensor_stalls_or_endangers() {
+    let open = SimSettings {
+        faults: vec![Fault {
+            signal: Signal::Sensor {
+                actuator: 1,
+                position: 1,
+            },
+            stuck_at: false,
+        }],
+        ..SimSettings::default()
+    };
+    let report = run(PAPER, ProgramOptions::default(), &open);
+    assert_eq!(report.stalled_at, Some(2));
+    assert!(report.hazard().is_none(), "{:?}", report.problems);
+
+    let short = SimSettings {
+        faults: vec![Fault {
+            signal: Signal::Sensor {
+                actuator: 1,
+                position: 1,
+            },
+            stuck_at: true,
+        }],
+        ..SimSettings::default()
+    };
+    let report = run(PAPER, ProgramOptions::default(), &short);
+    let hazard = report.hazard().expect("a hazard");
+    assert_eq!(hazard.kind, ProblemKind::Premature, "{:?}", report.problems);
+}
+
+#[test]
+fn slow_strokes_change_the_cycle_time() {
+    let mut slow = SimSettings::default();
+    slow.strokes.insert(
+        1,
+        Stroke {
+            extend_ms: 3000,
+            retract_ms: 500,
+        },
+    );
+    let fast = run(PAPER, ProgramOptions::default(), &SimSettings::default());
+    let report = run(PAPER, ProgramOptions::default(), &slow);
+    assert!(report.passed, "{:?}", report.problems);
+    let delta = report.cycles[0].cycle_ms.unwrap() as i64 - fast.cycles[0].cycle_ms.unwrap() as i64;
+    assert!((1400..=1600).contains(&delta), "{delta}");
+}
+
+#[test]
+fn stroke_options_parse() {
+    let strokes = parse_strokes("C2=1.5s/0.8s, c3 = 2s").unwrap();
+    assert_eq!(
+        strokes[&2],
+        Stroke {
+            extend_ms: 1500,
+            retract_ms: 800
+        }
+    );
+    assert_eq!(
+        strokes[&3],
+        Stroke {
+            extend_ms: 2000,
+            retract_ms: 2000
+        }
+    );
+    assert!(
+        parse_strokes("C2")
+            .unwrap_err()
+            .contains("expected C<number>=")
+    );
+    assert!(parse_strokes("X2=1s").unwrap_err().contains("actuator"));
+    assert!(
+        parse_strokes("C2=quick")
+            .unwrap_err()
+            .contains("not a stroke time")
+    );
+}
