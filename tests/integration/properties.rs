@@ -6,9 +6,14 @@ use steptable::program::{self, ProgramOptions};
 use steptable::simulate::plant::Stroke;
 use steptable::simulate::{SimSettings, simulate};
 
+/// Per actuator: pmax, extend ms, retract ms.
+type Actuators = Vec<(u32, u32, u32)>;
+/// Per step: (actuator index, wished target position).
+type Wishes = Vec<Vec<(usize, u32)>>;
+
 /// Raw material for a table: actuator count, each one's pmax and stroke
 /// times, and up to 37 steps of (actuator, target) wishes.
-fn raw_table() -> impl Strategy<Value = (Vec<(u32, u32, u32)>, Vec<Vec<(usize, u32)>>)> {
+fn raw_table() -> impl Strategy<Value = (Actuators, Wishes)> {
     let actuators = prop::collection::vec((1u32..=4, 800u32..=3000, 800u32..=3000), 1..=12);
     actuators.prop_flat_map(|acts| {
         let n = acts.len();
