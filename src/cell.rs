@@ -148,26 +148,6 @@ pub fn looks_like_move(text: &str) -> bool {
     chars.next() == Some('C') && chars.next().is_some_and(|c| c.is_ascii_digit())
 }
 
-/// Parses a duration such as `1.5s`, `800ms` or `2 s` into milliseconds.
-/// A bare number means seconds.
-pub fn parse_duration_ms(text: &str) -> Option<u32> {
-    let t: String = text
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .collect::<String>()
-        .to_ascii_lowercase();
-    let (number, scale) = if let Some(n) = t.strip_suffix("ms") {
-        (n, 1.0)
-    } else if let Some(n) = t.strip_suffix('s') {
-        (n, 1000.0)
-    } else {
-        (t.as_str(), 1000.0)
-    };
-    let value: f64 = number.replace(',', ".").parse().ok()?;
-    let ms = (value * scale).round();
-    (value.is_finite() && (1.0..=3_600_000.0).contains(&ms)).then_some(ms as u32)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -230,18 +210,6 @@ mod tests {
             mv(3, Sign::Plus, None),
         ] {
             assert_eq!(parse_move(&m.to_string()), Ok(m));
-        }
-    }
-
-    #[test]
-    fn durations_in_engineering_units() {
-        assert_eq!(parse_duration_ms("1.5s"), Some(1500));
-        assert_eq!(parse_duration_ms("800ms"), Some(800));
-        assert_eq!(parse_duration_ms("2 S"), Some(2000));
-        assert_eq!(parse_duration_ms("0,5s"), Some(500));
-        assert_eq!(parse_duration_ms("2"), Some(2000));
-        for bad in ["", "s", "-1s", "0ms", "fast", "nan", "inf s"] {
-            assert_eq!(parse_duration_ms(bad), None, "{bad}");
         }
     }
 

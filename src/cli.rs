@@ -36,6 +36,25 @@ enum Command {
     Check(CheckArgs),
     /// Simulate the generated program against a model of the pneumatics.
     Simulate(SimulateArgs),
+    /// Tabulate what every sensor fault (stuck at 1 or 0) does to the machine.
+    Faults(FaultsArgs),
+}
+
+#[derive(Args)]
+struct FaultsArgs {
+    /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+    /// Also every pair of faults.
+    #[arg(long)]
+    pairs: bool,
+    /// Output folder for NAME/NAME.faults.csv.
+    #[arg(short, long, value_name = "DIR", default_value = "steptable-out")]
+    output: PathBuf,
+    #[command(flatten)]
+    common: CommonArgs,
+    #[command(flatten)]
+    sim: SimArgs,
 }
 
 #[derive(Args)]
@@ -63,14 +82,14 @@ struct SimArgs {
     scan: u32,
 }
 
-type StrokeMap = std::collections::BTreeMap<u32, steptable::simulate::plant::Stroke>;
+type StrokeMap = std::collections::BTreeMap<u32, steptable::timing::Stroke>;
 
 fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
-    steptable::simulate::parse_strokes(text)
+    steptable::timing::parse_strokes(text)
 }
 
 fn parse_scan(text: &str) -> Result<u32, String> {
-    steptable::cell::parse_duration_ms(text)
+    steptable::timing::parse_duration_ms(text)
         .filter(|ms| *ms <= 1000)
         .ok_or_else(|| format!("\"{text}\" is not a scan time from 1ms to 1s, such as 10ms"))
 }
@@ -79,7 +98,7 @@ impl SimArgs {
     fn apply(&self, settings: &mut Settings) {
         settings.simulation.scan_ms = self.scan;
         if let Some(strokes) = &self.stroke {
-            settings.simulation.strokes = strokes.clone();
+            settings.simulation.strokes.per_actuator = strokes.clone();
         }
     }
 }
@@ -167,6 +186,7 @@ pub fn run() -> i32 {
         Command::Convert(args) => run_convert(&args),
         Command::Check(args) => run_check(&args),
         Command::Simulate(args) => run_simulate(&args),
+        Command::Faults(args) => run_faults(&args),
     }
 }
 
@@ -255,6 +275,63 @@ fn run_simulate(args: &SimulateArgs) -> i32 {
         out(&steptable::simulate::report::step_table(&report));
         if !report.passed {
             code = code.max(EXIT_BAD_INPUT);
+        }
+    }
+    code
+}
+
+fn run_faults(args: &FaultsArgs) -> i32 {
+    let mut settings = args.common.settings();
+    args.sim.apply(&mut settings);
+    let mut code = EXIT_OK;
+    let names = convert::output_names(&args.inputs);
+    for (input, name) in args.inputs.iter().zip(&names) {
+        let checked = match convert::check_path(input, &settings) {
+            Ok(c) => c,
+            Err(diagnostics) => {
+                print_diagnostics(&diagnostics);
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+        };
+        let table = checked.table;
+        let allocation =
+            steptable::address::Allocation::new(&table, settings.target, settings.mnemonic);
+        let program = steptable::program::build(&table, &allocation, settings.program);
+        let result = steptable::faults::analyse(
+            &table,
+            &program,
+            &allocation,
+            &settings.simulation,
+            args.pairs,
+        );
+        out(&format!("{}: {}", display_name(input), result.summary()));
+        let rows = steptable::faults::rows(&result);
+        let width = rows.iter().map(|r| r[0].len()).max().unwrap_or(5).max(5);
+        out(&format!(
+            "  {:<width$}  {:<10}  {:>4}  explanation",
+            "fault", "outcome", "step"
+        ));
+        for r in &rows {
+            out(&format!(
+                "  {:<width$}  {:<10}  {:>4}  {}",
+                r[0], r[1], r[2], r[3]
+            ));
+        }
+        let file = convert::OutputFile {
+            name: format!("{name}.faults.csv"),
+            bytes: match steptable::faults::render_csv(&result) {
+                Ok(b) => b,
+                Err(e) => {
+                    eprintln!("internal error: {e}");
+                    code = EXIT_INTERNAL;
+                    continue;
+                }
+            },
+        };
+        if let Err(err) = output::write_files(&args.output.join(name), &[file], &args.inputs) {
+            eprintln!("error: {err}");
+            code = EXIT_INTERNAL;
         }
     }
     code

@@ -6,6 +6,7 @@ use std::path::Path;
 use crate::address::{Allocation, Mnemonic, Target};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::emit::{self, EmitInput};
+use crate::faults::{self, FaultTable};
 use crate::program::{self, ProgramOptions, StepProgram};
 use crate::read::{self, Format, Grid};
 use crate::simulate::{self, SimReport, SimSettings};
@@ -55,6 +56,8 @@ pub struct Conversion {
     pub program: StepProgram,
     /// The simulation that proved the program.
     pub simulation: SimReport,
+    /// Every single input fault, simulated and classified.
+    pub faults: FaultTable,
     pub files: Vec<OutputFile>,
     pub warnings: Vec<Diagnostic>,
 }
@@ -159,12 +162,14 @@ pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Con
             simulation.reason()
         )));
     }
+    let fault_table = faults::analyse(&table, &program, &allocation, &settings.simulation, false);
     let input = EmitInput {
         name,
         table: &table,
         allocation: &allocation,
         program: &program,
         simulation: Some(&simulation),
+        faults: Some(&fault_table),
     };
     let internal =
         |what: &str, e: &dyn std::fmt::Display| Failure::Internal(format!("{what}: {e}"));
@@ -189,6 +194,10 @@ pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Con
             name: format!("{name}.io.csv"),
             bytes: emit::io_csv::render(&input).map_err(|e| internal("allocation list", &e))?,
         },
+        OutputFile {
+            name: format!("{name}.faults.csv"),
+            bytes: faults::render_csv(&fault_table).map_err(|e| internal("fault table", &e))?,
+        },
     ];
     Ok(Conversion {
         name: name.to_string(),
@@ -196,6 +205,7 @@ pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Con
         allocation,
         program,
         simulation,
+        faults: fault_table,
         files,
         warnings: checked.warnings,
     })

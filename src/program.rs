@@ -237,7 +237,7 @@ pub fn condition_text(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::address::{Mnemonic, Target};
 

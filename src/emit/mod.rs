@@ -10,6 +10,7 @@ pub mod workbook;
 
 use crate::address::{Allocation, Signal};
 use crate::cell::Sign;
+use crate::faults::FaultTable;
 use crate::program::{Action, StepProgram};
 use crate::simulate::SimReport;
 use crate::table::{Move, StepTable};
@@ -24,6 +25,8 @@ pub struct EmitInput<'a> {
     pub program: &'a StepProgram,
     /// The simulation of the program, for the SIMULATION sheet.
     pub simulation: Option<&'a SimReport>,
+    /// The fault table, for the FAULTS sheet.
+    pub faults: Option<&'a FaultTable>,
 }
 
 impl EmitInput<'_> {

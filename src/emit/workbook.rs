@@ -7,6 +7,7 @@ use rust_xlsxwriter::{DocProperties, ExcelDateTime, Format, Workbook, Worksheet,
 
 use super::EmitInput;
 use crate::address::{Assigned, Signal};
+use crate::faults::FaultTable;
 use crate::program::{Action, paper_sentence};
 use crate::read::TABLE_SHEET;
 use crate::simulate::SimReport;
@@ -15,6 +16,7 @@ pub const INPUT_SHEET: &str = "INPUT ADDRESSES";
 pub const OUTPUT_SHEET: &str = "OUTPUT ADDRESSES";
 pub const PROGRAM_SHEET: &str = "PLC PROGRAM";
 pub const SIMULATION_SHEET: &str = "SIMULATION";
+pub const FAULTS_SHEET: &str = "FAULTS";
 
 /// The rows of the PLC PROGRAM sheet: `[label, sentence, stop requests]`.
 /// The sentence holds the step's condition and its coil actions in the
@@ -120,6 +122,9 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     if let Some(report) = input.simulation {
         simulation_sheet(workbook.add_worksheet(), report, &bold, &title)?;
     }
+    if let Some(faults) = input.faults {
+        faults_sheet(workbook.add_worksheet(), faults, &bold, &title)?;
+    }
 
     workbook.save_to_buffer()
 }
@@ -186,5 +191,36 @@ fn address_sheet(
     sheet.set_column_width(1, 10)?;
     sheet.set_column_width(2, 36)?;
     sheet.set_freeze_panes(1, 0)?;
+    Ok(())
+}
+
+fn faults_sheet(
+    sheet: &mut Worksheet,
+    faults: &FaultTable,
+    bold: &Format,
+    title: &Format,
+) -> Result<(), XlsxError> {
+    sheet.set_name(FAULTS_SHEET)?;
+    sheet.write_string_with_format(0, 0, "SENSOR FAULTS", title)?;
+    sheet.write_string(1, 0, faults.summary())?;
+    let header = 3;
+    for (col, text) in ["FAULT", "OUTCOME", "STEP", "EXPLANATION"]
+        .iter()
+        .enumerate()
+    {
+        sheet.write_string_with_format(header, col as u16, *text, bold)?;
+    }
+    for (i, row) in crate::faults::rows(faults).iter().enumerate() {
+        for (col, text) in row.iter().enumerate() {
+            if !text.is_empty() {
+                sheet.write_string(header + 1 + i as u32, col as u16, text)?;
+            }
+        }
+    }
+    sheet.set_column_width(0, 38)?;
+    sheet.set_column_width(1, 11)?;
+    sheet.set_column_width(2, 6)?;
+    sheet.set_column_width(3, 90)?;
+    sheet.set_freeze_panes(header + 1, 0)?;
     Ok(())
 }

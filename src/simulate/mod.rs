@@ -17,7 +17,8 @@ use crate::address::Signal;
 use crate::cell::Sign;
 use crate::program::{Literal, StepProgram};
 use crate::table::{Move, StepTable};
-use plant::{Piston, Stroke};
+use crate::timing::{Stroke, Strokes};
+use plant::Piston;
 use plc::{PlcState, scan};
 
 /// How long the operator holds START.
@@ -48,10 +49,8 @@ impl Fault {
 pub struct SimSettings {
     /// PLC scan time in milliseconds.
     pub scan_ms: u32,
-    /// Stroke times of actuators not listed in `strokes`.
-    pub default_stroke: Stroke,
-    /// Stroke times per actuator number.
-    pub strokes: BTreeMap<u32, Stroke>,
+    /// Stroke times of every actuator.
+    pub strokes: Strokes,
     /// Half-width of a sensor's detection window, as a fraction of the stroke.
     pub window: f64,
     /// Number of START presses (cycles) to run.
@@ -66,8 +65,7 @@ impl Default for SimSettings {
     fn default() -> Self {
         SimSettings {
             scan_ms: 10,
-            default_stroke: Stroke::default(),
-            strokes: BTreeMap::new(),
+            strokes: Strokes::default(),
             window: 0.02,
             cycles: 2,
             faults: Vec::new(),
@@ -78,10 +76,7 @@ impl Default for SimSettings {
 
 impl SimSettings {
     pub fn stroke(&self, actuator: u32) -> Stroke {
-        self.strokes
-            .get(&actuator)
-            .copied()
-            .unwrap_or(self.default_stroke)
+        self.strokes.of(actuator)
     }
 }
 
@@ -201,37 +196,6 @@ impl SimReport {
     pub fn hazard(&self) -> Option<&Problem> {
         self.problems.iter().find(|p| p.kind.is_hazard())
     }
-}
-
-/// Parses `--stroke` values: `C2=1.5s/0.8s,C3=2s` (extend/retract, or one
-/// time for both). Returns the map or a message saying what is wrong.
-pub fn parse_strokes(text: &str) -> Result<BTreeMap<u32, Stroke>, String> {
-    let mut strokes = BTreeMap::new();
-    for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
-        let (name, times) = item.split_once('=').ok_or_else(|| {
-            format!("\"{item}\": expected C<number>=<extend>/<retract>, e.g. C2=1.5s/0.8s")
-        })?;
-        let name = crate::cell::normalize(name);
-        let actuator: u32 = name
-            .strip_prefix('C')
-            .and_then(|n| n.parse().ok())
-            .filter(|n| (1..=crate::cell::MAX_ACTUATOR).contains(n))
-            .ok_or_else(|| format!("\"{item}\": expected an actuator such as C2 before ="))?;
-        let (extend, retract) = times.split_once('/').unwrap_or((times, times));
-        let parse = |t: &str| {
-            crate::cell::parse_duration_ms(t).ok_or_else(|| {
-                format!("\"{item}\": \"{t}\" is not a stroke time such as 1.5s or 800ms")
-            })
-        };
-        strokes.insert(
-            actuator,
-            Stroke {
-                extend_ms: parse(extend)?,
-                retract_ms: parse(retract)?,
-            },
-        );
-    }
-    Ok(strokes)
 }
 
 /// `1.23 s`.

@@ -2,22 +2,7 @@
 //! detection window, and the valve each actuator sits on (DESIGN §5).
 
 use crate::cell::Sign;
-
-/// Extend and retract stroke times of one actuator, in milliseconds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Stroke {
-    pub extend_ms: u32,
-    pub retract_ms: u32,
-}
-
-impl Default for Stroke {
-    fn default() -> Self {
-        Stroke {
-            extend_ms: 1000,
-            retract_ms: 1000,
-        }
-    }
-}
+use crate::timing::Stroke;
 
 /// Where the valve's spool is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

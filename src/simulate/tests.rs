@@ -1,6 +1,7 @@
 use super::*;
 use crate::address::{Allocation, Mnemonic, Target};
 use crate::program::{self, ProgramOptions};
+use crate::timing::Stroke;
 
 fn run(rows: &[&[&str]], options: ProgramOptions, settings: &SimSettings) -> SimReport {
     let table = crate::table::from_rows("t.csv", rows).expect("valid table");
@@ -89,7 +90,7 @@ fn a_stuck_sensor_stalls_or_endangers() {
 #[test]
 fn slow_strokes_change_the_cycle_time() {
     let mut slow = SimSettings::default();
-    slow.strokes.insert(
+    slow.strokes.per_actuator.insert(
         1,
         Stroke {
             extend_ms: 3000,
@@ -101,34 +102,4 @@ fn slow_strokes_change_the_cycle_time() {
     assert!(report.passed, "{:?}", report.problems);
     let delta = report.cycles[0].cycle_ms.unwrap() as i64 - fast.cycles[0].cycle_ms.unwrap() as i64;
     assert!((1400..=1600).contains(&delta), "{delta}");
-}
-
-#[test]
-fn stroke_options_parse() {
-    let strokes = parse_strokes("C2=1.5s/0.8s, c3 = 2s").unwrap();
-    assert_eq!(
-        strokes[&2],
-        Stroke {
-            extend_ms: 1500,
-            retract_ms: 800
-        }
-    );
-    assert_eq!(
-        strokes[&3],
-        Stroke {
-            extend_ms: 2000,
-            retract_ms: 2000
-        }
-    );
-    assert!(
-        parse_strokes("C2")
-            .unwrap_err()
-            .contains("expected C<number>=")
-    );
-    assert!(parse_strokes("X2=1s").unwrap_err().contains("actuator"));
-    assert!(
-        parse_strokes("C2=quick")
-            .unwrap_err()
-            .contains("not a stroke time")
-    );
 }

@@ -202,7 +202,7 @@ fn outputs_are_byte_stable_and_reruns_replace_them() {
         .iter()
         .map(|p| std::fs::read(p).unwrap())
         .collect();
-    assert_eq!(first.len(), 4);
+    assert_eq!(first.len(), 5);
     assert_eq!(first, second);
 }
 

@@ -3,8 +3,8 @@
 use proptest::prelude::*;
 use steptable::address::{Allocation, Mnemonic, Target};
 use steptable::program::{self, ProgramOptions};
-use steptable::simulate::plant::Stroke;
 use steptable::simulate::{SimSettings, simulate};
+use steptable::timing::Stroke;
 
 /// Per actuator: pmax, extend ms, retract ms.
 type Actuators = Vec<(u32, u32, u32)>;
@@ -54,7 +54,7 @@ fn valid_rows(
     }
     let mut settings = SimSettings::default();
     for (i, (_, extend, retract)) in acts.iter().enumerate() {
-        settings.strokes.insert(
+        settings.strokes.per_actuator.insert(
             i as u32 + 1,
             Stroke {
                 extend_ms: *extend,

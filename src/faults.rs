@@ -1,0 +1,241 @@
+//! Sensor faults (Quezada et al. 2016; DESIGN §6): every input stuck at 1
+//! (short circuit) or at 0 (open circuit), alone or in pairs, simulated from
+//! the start of the run and classified as no effect, safe stall or hazard.
+
+use crate::address::Allocation;
+use crate::program::StepProgram;
+use crate::simulate::{Fault, ProblemKind, SimSettings, simulate};
+use crate::table::StepTable;
+
+/// What a fault does to the machine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Outcome {
+    /// The machine runs its cycles as without the fault.
+    NoEffect,
+    /// The sequence waits at a step and nothing moves.
+    SafeStall,
+    /// Something moves that should not, too early, or a valve sees both coils.
+    Hazard,
+}
+
+impl Outcome {
+    pub fn label(self) -> &'static str {
+        match self {
+            Outcome::NoEffect => "no effect",
+            Outcome::SafeStall => "safe stall",
+            Outcome::Hazard => "hazard",
+        }
+    }
+}
+
+/// One simulated fault case.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FaultCase {
+    pub faults: Vec<Fault>,
+    pub outcome: Outcome,
+    /// The step concerned (where it stalls or where the hazard happens).
+    pub step: Option<usize>,
+    pub explanation: String,
+}
+
+impl FaultCase {
+    /// `x11 short circuit (stuck at 1) + x20 open circuit (stuck at 0)`.
+    pub fn fault_text(&self) -> String {
+        self.faults
+            .iter()
+            .map(Fault::describe)
+            .collect::<Vec<_>>()
+            .join(" + ")
+    }
+}
+
+/// All fault cases of one program.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FaultTable {
+    pub cases: Vec<FaultCase>,
+}
+
+impl FaultTable {
+    /// How many cases have each outcome.
+    pub fn count(&self, outcome: Outcome) -> usize {
+        self.cases.iter().filter(|c| c.outcome == outcome).count()
+    }
+
+    /// `24 faults: 10 no effect, 8 safe stall, 6 hazard`.
+    pub fn summary(&self) -> String {
+        format!(
+            "{} fault case(s): {} no effect, {} safe stall, {} hazard",
+            self.cases.len(),
+            self.count(Outcome::NoEffect),
+            self.count(Outcome::SafeStall),
+            self.count(Outcome::Hazard)
+        )
+    }
+}
+
+/// Every single fault of every input (START and each sensor), in address order.
+pub fn single_faults(allocation: &Allocation) -> Vec<Fault> {
+    allocation
+        .inputs
+        .iter()
+        .flat_map(|a| {
+            [true, false].map(|stuck_at| Fault {
+                signal: a.signal,
+                stuck_at,
+            })
+        })
+        .collect()
+}
+
+/// Simulates each fault set and classifies it.
+pub fn analyse(
+    table: &StepTable,
+    program: &StepProgram,
+    allocation: &Allocation,
+    settings: &SimSettings,
+    pairs: bool,
+) -> FaultTable {
+    let singles = single_faults(allocation);
+    let mut sets: Vec<Vec<Fault>> = singles.iter().map(|f| vec![*f]).collect();
+    if pairs {
+        for (i, a) in singles.iter().enumerate() {
+            for b in &singles[i + 1..] {
+                if a.signal != b.signal {
+                    sets.push(vec![*a, *b]);
+                }
+            }
+        }
+    }
+    let cases = sets
+        .into_iter()
+        .map(|faults| classify(table, program, settings, faults))
+        .collect();
+    FaultTable { cases }
+}
+
+fn classify(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    faults: Vec<Fault>,
+) -> FaultCase {
+    let run = SimSettings {
+        faults: faults.clone(),
+        record_trace: false,
+        ..settings.clone()
+    };
+    let report = simulate(table, program, &run);
+    if let Some(hazard) = report.hazard() {
+        return FaultCase {
+            faults,
+            outcome: Outcome::Hazard,
+            step: Some(hazard.step),
+            explanation: hazard.message.clone(),
+        };
+    }
+    if let Some(step) = report.stalled_at {
+        return FaultCase {
+            faults,
+            outcome: Outcome::SafeStall,
+            step: Some(step),
+            explanation: report.reason(),
+        };
+    }
+    let explanation = match report
+        .problems
+        .iter()
+        .find(|p| p.kind == ProblemKind::CycleDiffers)
+    {
+        Some(p) => format!("runs, but {}", p.message),
+        None => "the cycle runs as without the fault".to_string(),
+    };
+    FaultCase {
+        faults,
+        outcome: Outcome::NoEffect,
+        step: None,
+        explanation,
+    }
+}
+
+/// The rows of the fault table: fault, outcome, step, explanation.
+pub fn rows(table: &FaultTable) -> Vec<[String; 4]> {
+    table
+        .cases
+        .iter()
+        .map(|c| {
+            [
+                c.fault_text(),
+                c.outcome.label().to_string(),
+                c.step.map(|s| s.to_string()).unwrap_or_default(),
+                c.explanation.clone(),
+            ]
+        })
+        .collect()
+}
+
+/// `NAME.faults.csv`: `fault,signal,stuck_at,outcome,step,explanation`, one row
+/// per case (pairs have both signals joined with `+`).
+pub fn render_csv(table: &FaultTable) -> Result<Vec<u8>, csv::Error> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record([
+        "fault",
+        "signals",
+        "stuck_at",
+        "outcome",
+        "step",
+        "explanation",
+    ])?;
+    for c in &table.cases {
+        let signals: Vec<String> = c.faults.iter().map(|f| f.signal.symbol()).collect();
+        let stuck: Vec<&str> = c
+            .faults
+            .iter()
+            .map(|f| if f.stuck_at { "1" } else { "0" })
+            .collect();
+        writer.write_record([
+            c.fault_text(),
+            signals.join("+"),
+            stuck.join("+"),
+            c.outcome.label().to_string(),
+            c.step.map(|s| s.to_string()).unwrap_or_default(),
+            c.explanation.clone(),
+        ])?;
+    }
+    writer
+        .into_inner()
+        .map_err(|e| csv::Error::from(std::io::Error::other(e.to_string())))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::address::{Mnemonic, Target};
+    use crate::program::{self, ProgramOptions};
+
+    #[test]
+    fn paper_single_faults_are_classified() {
+        let table = crate::program::tests::paper_table();
+        let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
+        let program = program::build(&table, &alloc, ProgramOptions::default());
+        let result = analyse(&table, &program, &alloc, &SimSettings::default(), false);
+        assert_eq!(result.cases.len(), 24);
+        let case = |symbol: &str, stuck: bool| {
+            result
+                .cases
+                .iter()
+                .find(|c| c.faults[0].signal.symbol() == symbol && c.faults[0].stuck_at == stuck)
+                .unwrap()
+        };
+        // START stuck at 1: the machine starts by itself.
+        assert_eq!(case("START", true).outcome, Outcome::Hazard);
+        // START stuck at 0: nothing ever starts.
+        assert_eq!(case("START", false).outcome, Outcome::SafeStall);
+        // x11 open: step 2 waits for ever.
+        assert_eq!(case("x11", false).outcome, Outcome::SafeStall);
+        assert_eq!(case("x11", false).step, Some(2));
+        // x11 short: step 2 starts while C1 is still moving.
+        assert_eq!(case("x11", true).outcome, Outcome::Hazard);
+        assert!(result.summary().starts_with("24 fault case(s): "));
+    }
+}
