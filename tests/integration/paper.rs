@@ -290,7 +290,7 @@ fn the_binary_converts_every_sample_for_every_target() {
         let files = crate::helpers::files_below(dir.path());
         assert_eq!(
             files.len(),
-            4 * crate::helpers::samples().len(),
+            5 * crate::helpers::samples().len(),
             "{target}: {files:?}"
         );
     }
