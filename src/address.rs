@@ -45,12 +45,22 @@ pub enum Mnemonic {
     De,
 }
 
-/// Input, output or internal memory.
+/// Input, output, internal memory or timer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Area {
     Input,
     Output,
     Memory,
+    Timer,
+}
+
+/// Alarm outputs raised by the safety checks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Alarm {
+    /// Two sensors of one actuator on at once (plausibility check).
+    Sensor,
+    /// A step did not finish in time (watchdog).
+    Timeout,
 }
 
 /// Every signal the step program reads or writes.
@@ -64,14 +74,27 @@ pub enum Signal {
     Coil { actuator: u32, sign: Sign },
     /// Memory: actuator i must stop when it reaches middle position j.
     StopAt { actuator: u32, position: u32 },
+    /// Memory: START as read in the previous scan (rising-edge detection).
+    StartMemory,
+    /// Memory: a safety check stopped the sequence.
+    Halt,
+    /// Alarm output of a safety check.
+    Alarm(Alarm),
+    /// The step watchdog timer; as a condition, true while it runs.
+    Watchdog,
+    /// Memory: the watchdog is timing a step.
+    WatchdogArmed,
 }
 
 impl Signal {
     pub fn area(self) -> Area {
         match self {
             Signal::Start | Signal::Sensor { .. } => Area::Input,
-            Signal::Coil { .. } => Area::Output,
-            Signal::StopAt { .. } => Area::Memory,
+            Signal::Coil { .. } | Signal::Alarm(_) => Area::Output,
+            Signal::StopAt { .. } | Signal::StartMemory | Signal::Halt | Signal::WatchdogArmed => {
+                Area::Memory
+            }
+            Signal::Watchdog => Area::Timer,
         }
     }
 
@@ -82,6 +105,12 @@ impl Signal {
             Signal::Sensor { actuator, position } => format!("x{}", pair(actuator, position)),
             Signal::Coil { actuator, sign } => format!("y{actuator}{}", sign.symbol()),
             Signal::StopAt { actuator, position } => format!("m{actuator}_{position}"),
+            Signal::StartMemory => "start_prev".to_string(),
+            Signal::Halt => "halt".to_string(),
+            Signal::Alarm(Alarm::Sensor) => "alarm_sensor".to_string(),
+            Signal::Alarm(Alarm::Timeout) => "alarm_timeout".to_string(),
+            Signal::Watchdog => "watchdog".to_string(),
+            Signal::WatchdogArmed => "watchdog_armed".to_string(),
         }
     }
 
@@ -102,7 +131,11 @@ impl Signal {
             Signal::Start => "start",
             Signal::Sensor { .. } => "sensor",
             Signal::Coil { .. } => "coil",
-            Signal::StopAt { .. } => "memory",
+            Signal::Alarm(_) => "alarm",
+            Signal::StopAt { .. } | Signal::StartMemory | Signal::Halt | Signal::WatchdogArmed => {
+                "memory"
+            }
+            Signal::Watchdog => "timer",
         }
     }
 
@@ -128,6 +161,14 @@ impl Signal {
             Signal::StopAt { actuator, position } => {
                 format!("cylinder {actuator} stops at middle position {position}")
             }
+            Signal::StartMemory => "START in the previous scan (rising edge)".to_string(),
+            Signal::Halt => "sequence stopped by a safety check".to_string(),
+            Signal::Alarm(Alarm::Sensor) => {
+                "alarm: two sensors of one cylinder on at once".to_string()
+            }
+            Signal::Alarm(Alarm::Timeout) => "alarm: a step did not finish in time".to_string(),
+            Signal::Watchdog => "step watchdog timer".to_string(),
+            Signal::WatchdogArmed => "watchdog is timing a step".to_string(),
         }
     }
 }
@@ -176,7 +217,12 @@ impl Address {
             (Target::Siemens, Area::Output, Mnemonic::En) => "Q",
             (Target::Siemens, Area::Output, Mnemonic::De) => "A",
             (Target::Siemens, Area::Memory, _) => "M",
+            (Target::Iec, Area::Timer, _) => "%MW",
+            (Target::Festo | Target::Siemens, Area::Timer, _) => "T",
         };
+        if self.area == Area::Timer {
+            return format!("{letter}{}", self.unit);
+        }
         format!("{letter}{}.{}", self.unit, self.bit)
     }
 
@@ -191,9 +237,59 @@ impl Address {
         let prefix = match self.area {
             Area::Input => "%IX",
             Area::Output => "%QX",
-            Area::Memory => "%MX",
+            Area::Memory | Area::Timer => "%MX",
         };
         format!("{prefix}{byte}.{bit}")
+    }
+}
+
+/// The safety checks a generated program carries (`--safety`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Safety {
+    /// A cycle starts only on a rising edge of START.
+    pub edge: bool,
+    /// A move starts only while its target sensor is still off.
+    pub precheck: bool,
+    /// Two sensors of one actuator on at once stops the sequence.
+    pub plausibility: bool,
+    /// A step that does not finish in time raises an alarm and stops.
+    pub watchdog: bool,
+}
+
+impl Safety {
+    /// All four checks.
+    pub fn all() -> Self {
+        Safety {
+            edge: true,
+            precheck: true,
+            plausibility: true,
+            watchdog: true,
+        }
+    }
+
+    /// Parses `edge,precheck,plausibility,watchdog` (any subset; `all`, `none`).
+    pub fn parse(text: &str) -> Result<Safety, String> {
+        let mut safety = Safety::default();
+        for item in text.split(',').map(|s| s.trim().to_ascii_lowercase()) {
+            match item.as_str() {
+                "" | "none" => {}
+                "all" => safety = Safety::all(),
+                "edge" => safety.edge = true,
+                "precheck" => safety.precheck = true,
+                "plausibility" => safety.plausibility = true,
+                "watchdog" => safety.watchdog = true,
+                other => {
+                    return Err(format!(
+                        "\"{other}\" is not a safety check (expected edge, precheck, plausibility, watchdog, all or none)"
+                    ));
+                }
+            }
+        }
+        Ok(safety)
+    }
+
+    pub fn any(self) -> bool {
+        self.edge || self.precheck || self.plausibility || self.watchdog
     }
 }
 
@@ -213,8 +309,10 @@ pub struct Allocation {
     pub inputs: Vec<Assigned>,
     /// In address order.
     pub outputs: Vec<Assigned>,
-    /// Internal memory bits of the program (middle-stop requests).
+    /// Internal memory bits of the program (middle-stop requests, safety).
     pub memories: Vec<Assigned>,
+    /// Timers (the step watchdog).
+    pub timers: Vec<Assigned>,
 }
 
 impl Allocation {
@@ -226,6 +324,17 @@ impl Allocation {
     /// On IEC and Siemens targets each valve's two coils sit side by side
     /// (`+` then `-`), as they do on a valve terminal.
     pub fn new(table: &StepTable, target: Target, mnemonic: Mnemonic) -> Self {
+        Self::with_safety(table, target, mnemonic, Safety::default())
+    }
+
+    /// As [`Allocation::new`], plus the alarm outputs, memories and timer the
+    /// chosen safety checks need. Alarm outputs follow the coils.
+    pub fn with_safety(
+        table: &StepTable,
+        target: Target,
+        mnemonic: Mnemonic,
+        safety: Safety,
+    ) -> Self {
         let mut inputs = vec![Assigned {
             signal: Signal::Start,
             address: Address::from_index(Area::Input, target, 0),
@@ -267,6 +376,23 @@ impl Allocation {
             }
         }
         outputs.sort_by_key(|a| a.address);
+        let mut next_output = outputs
+            .last()
+            .map(|a| a.address.unit * target.bits_per_unit() + a.address.bit + 1)
+            .unwrap_or(0);
+        let alarms = [
+            (safety.plausibility, Alarm::Sensor),
+            (safety.watchdog, Alarm::Timeout),
+        ];
+        for (wanted, alarm) in alarms {
+            if wanted {
+                outputs.push(Assigned {
+                    signal: Signal::Alarm(alarm),
+                    address: Address::from_index(Area::Output, target, next_output),
+                });
+                next_output += 1;
+            }
+        }
 
         let mut memories = Vec::new();
         let mut stops: Vec<(u32, u32)> = table
@@ -282,12 +408,39 @@ impl Allocation {
             .collect();
         stops.sort_unstable();
         stops.dedup();
-        for (index, (actuator, position)) in stops.into_iter().enumerate() {
+        let mut extra = Vec::new();
+        if safety.edge {
+            extra.push(Signal::StartMemory);
+        }
+        if safety.plausibility || safety.watchdog {
+            extra.push(Signal::Halt);
+        }
+        if safety.watchdog {
+            extra.push(Signal::WatchdogArmed);
+        }
+        let signals = stops
+            .into_iter()
+            .map(|(actuator, position)| Signal::StopAt { actuator, position })
+            .chain(extra);
+        for (index, signal) in signals.enumerate() {
             memories.push(Assigned {
-                signal: Signal::StopAt { actuator, position },
+                signal,
                 address: Address::from_index(Area::Memory, target, index as u32),
             });
         }
+        let timers = if safety.watchdog {
+            vec![Assigned {
+                signal: Signal::Watchdog,
+                address: Address {
+                    area: Area::Timer,
+                    target,
+                    unit: 0,
+                    bit: 0,
+                },
+            }]
+        } else {
+            Vec::new()
+        };
 
         Allocation {
             target,
@@ -295,6 +448,7 @@ impl Allocation {
             inputs,
             outputs,
             memories,
+            timers,
         }
     }
 
@@ -304,6 +458,7 @@ impl Allocation {
             .iter()
             .chain(&self.outputs)
             .chain(&self.memories)
+            .chain(&self.timers)
             .find(|a| a.signal == signal)
             .map(|a| a.address)
     }

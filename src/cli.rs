@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use steptable::address::{Mnemonic, Target};
+use steptable::address::{Mnemonic, Safety, Target};
 use steptable::convert::{self, Failure, Settings};
 use steptable::diag::Diagnostic;
 use steptable::output;
@@ -137,6 +137,13 @@ struct CommonArgs {
     /// Read this sheet instead of "SEQUENTIAL CONTROL DESCRIPTION" or the first sheet with moves.
     #[arg(long, value_name = "NAME")]
     sheet: Option<String>,
+    /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all).
+    #[arg(long, value_name = "LIST", value_parser = parse_safety)]
+    safety: Option<Safety>,
+}
+
+fn parse_safety(text: &str) -> Result<Safety, String> {
+    Safety::parse(text)
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -165,6 +172,7 @@ impl CommonArgs {
             MnemonicArg::De => Mnemonic::De,
         };
         settings.sheet = self.sheet.clone();
+        settings.program.safety = self.safety.unwrap_or_default();
         settings
     }
 }
@@ -267,9 +275,7 @@ fn run_simulate(args: &SimulateArgs) -> i32 {
         };
         print_diagnostics(&checked.warnings);
         let table = checked.table;
-        let allocation =
-            steptable::address::Allocation::new(&table, settings.target, settings.mnemonic);
-        let program = steptable::program::build(&table, &allocation, settings.program);
+        let (_, program) = convert::build_program(&table, &settings);
         let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
         out(&format!("{}: {}", display_name(input), report.verdict()));
         out(&steptable::simulate::report::step_table(&report));
@@ -295,9 +301,7 @@ fn run_faults(args: &FaultsArgs) -> i32 {
             }
         };
         let table = checked.table;
-        let allocation =
-            steptable::address::Allocation::new(&table, settings.target, settings.mnemonic);
-        let program = steptable::program::build(&table, &allocation, settings.program);
+        let (allocation, program) = convert::build_program(&table, &settings);
         let result = steptable::faults::analyse(
             &table,
             &program,

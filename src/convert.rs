@@ -150,11 +150,27 @@ pub fn convert_path_as(
     generate(name, checked, settings)
 }
 
+/// The allocation and step program of a checked table under `settings`.
+pub fn build_program(table: &StepTable, settings: &Settings) -> (Allocation, StepProgram) {
+    let allocation = Allocation::with_safety(
+        table,
+        settings.target,
+        settings.mnemonic,
+        settings.program.safety,
+    );
+    let program = program::build(
+        table,
+        &allocation,
+        settings.program,
+        &settings.simulation.strokes,
+    );
+    (allocation, program)
+}
+
 /// Generates every output of a checked table.
 pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Conversion, Failure> {
     let table = checked.table;
-    let allocation = Allocation::new(&table, settings.target, settings.mnemonic);
-    let program = program::build(&table, &allocation, settings.program);
+    let (allocation, program) = build_program(&table, settings);
     let simulation = simulate::simulate(&table, &program, &settings.simulation);
     if !simulation.passed {
         return Err(Failure::Internal(format!(

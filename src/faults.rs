@@ -217,7 +217,12 @@ mod tests {
     fn paper_single_faults_are_classified() {
         let table = crate::program::tests::paper_table();
         let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
-        let program = program::build(&table, &alloc, ProgramOptions::default());
+        let program = program::build(
+            &table,
+            &alloc,
+            ProgramOptions::default(),
+            &crate::timing::Strokes::default(),
+        );
         let result = analyse(&table, &program, &alloc, &SimSettings::default(), false);
         assert_eq!(result.cases.len(), 24);
         let case = |symbol: &str, stuck: bool| {

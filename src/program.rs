@@ -14,9 +14,10 @@
 //! in common. Dwell timers, machine inputs and extra outputs become further
 //! signals; one-coil valves simply get different actions.
 
-use crate::address::{Allocation, Signal};
+use crate::address::{Alarm, Allocation, Safety, Signal};
 use crate::cell::Sign;
 use crate::table::{Move, StepTable};
+use crate::timing::Strokes;
 
 /// A signal in a condition, possibly negated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -32,24 +33,45 @@ impl Literal {
             negated: false,
         }
     }
+
+    pub fn not(signal: Signal) -> Self {
+        Literal {
+            signal,
+            negated: true,
+        }
+    }
 }
 
-/// What a step or rung does to an output or memory bit.
+/// What a step or rung does to an output, memory bit or timer.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Action {
     Set(Signal),
+    /// Resets a bit; on a timer, stops it.
     Reset(Signal),
+    /// (Re)starts a timer with a preset in milliseconds. As a condition a
+    /// timer is true while it runs; it stops by itself once the preset elapsed.
+    StartTimer(Signal, u32),
 }
 
 impl Action {
     pub fn signal(self) -> Signal {
         match self {
-            Action::Set(s) | Action::Reset(s) => s,
+            Action::Set(s) | Action::Reset(s) | Action::StartTimer(s, _) => s,
         }
     }
 
+    /// The value written: true for SET and for starting a timer.
     pub fn value(self) -> bool {
-        matches!(self, Action::Set(_))
+        matches!(self, Action::Set(_) | Action::StartTimer(..))
+    }
+
+    /// The verb of the paper's notation.
+    pub fn verb(self) -> &'static str {
+        match self {
+            Action::Set(_) => "SET",
+            Action::Reset(_) => "RESET",
+            Action::StartTimer(..) => "START",
+        }
     }
 }
 
@@ -81,19 +103,35 @@ pub struct ProgramOptions {
     /// Switch both coils off when an actuator reaches a middle target. Off only
     /// to show what the published method does without it (it hangs).
     pub middle_stops: bool,
+    /// Safety checks carried by the program.
+    pub safety: Safety,
 }
 
 impl Default for ProgramOptions {
     fn default() -> Self {
-        ProgramOptions { middle_stops: true }
+        ProgramOptions {
+            middle_stops: true,
+            safety: Safety::default(),
+        }
     }
 }
 
 /// The complete step program of one table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepProgram {
+    /// Run once at power-up, before the first scan.
+    pub init: Vec<Action>,
     pub steps: Vec<ProgramStep>,
     pub rungs: Vec<Rung>,
+    /// Timers, advanced at the start of every scan.
+    pub timers: Vec<Signal>,
+}
+
+impl StepProgram {
+    /// The steps that move something (all but a closing END step).
+    pub fn move_steps(&self) -> impl Iterator<Item = &ProgramStep> {
+        self.steps.iter().filter(|s| !s.moves.is_empty())
+    }
 }
 
 /// Builds the step program of a checked table.
@@ -103,18 +141,37 @@ pub struct StepProgram {
 /// opposite one. A move to a middle position also sets a stop request, and a
 /// rung switches both coils off the moment the middle sensor is reached: a
 /// 5/3 valve only holds the piston with both coils off (DESIGN §4, trap 2).
-pub fn build(table: &StepTable, allocation: &Allocation, options: ProgramOptions) -> StepProgram {
+pub fn build(
+    table: &StepTable,
+    allocation: &Allocation,
+    options: ProgramOptions,
+    strokes: &Strokes,
+) -> StepProgram {
     let is_middle = |actuator: u32, position: u32| {
         table
             .actuator(actuator)
             .is_some_and(|a| position > 0 && position < a.max_position)
     };
     let middle_stops = options.middle_stops;
+    let safety = options.safety;
+    let halts = safety.plausibility || safety.watchdog;
+    let targets = |moves: &[Move]| -> Vec<Literal> {
+        moves
+            .iter()
+            .map(|m| {
+                Literal::is(Signal::Sensor {
+                    actuator: m.actuator,
+                    position: m.to,
+                })
+            })
+            .collect()
+    };
 
-    let mut steps = Vec::with_capacity(table.steps.len());
+    let mut steps = Vec::with_capacity(table.steps.len() + 1);
     for (index, step) in table.steps.iter().enumerate() {
-        let condition = if index == 0 {
+        let mut condition: Vec<Literal> = if index == 0 {
             std::iter::once(Literal::is(Signal::Start))
+                .chain(safety.edge.then_some(Literal::not(Signal::StartMemory)))
                 .chain(table.actuators.iter().map(|a| {
                     Literal::is(Signal::Sensor {
                         actuator: a.number,
@@ -123,17 +180,19 @@ pub fn build(table: &StepTable, allocation: &Allocation, options: ProgramOptions
                 }))
                 .collect()
         } else {
-            table.steps[index - 1]
-                .moves
-                .iter()
-                .map(|m| {
-                    Literal::is(Signal::Sensor {
-                        actuator: m.actuator,
-                        position: m.to,
-                    })
-                })
-                .collect()
+            targets(&table.steps[index - 1].moves)
         };
+        if safety.precheck {
+            // A target sensor already on before the move starts is a lie.
+            condition.extend(
+                targets(&step.moves)
+                    .into_iter()
+                    .map(|l| Literal::not(l.signal)),
+            );
+        }
+        if halts {
+            condition.push(Literal::not(Signal::Halt));
+        }
 
         let mut actions = Vec::new();
         for m in &step.moves {
@@ -162,11 +221,35 @@ pub fn build(table: &StepTable, allocation: &Allocation, options: ProgramOptions
                 }
             }
         }
+        if safety.watchdog {
+            actions.push(Action::StartTimer(
+                Signal::Watchdog,
+                watchdog_preset_ms(table, &step.moves, strokes),
+            ));
+            actions.push(Action::Set(Signal::WatchdogArmed));
+        }
         steps.push(ProgramStep {
             number: step.number,
             moves: step.moves.clone(),
             condition,
             actions,
+        });
+    }
+    if safety.watchdog
+        && let Some(last) = table.steps.last()
+    {
+        // The end of the cycle is an event of its own: the watchdog must stop
+        // once the last moves have finished, not run on while the machine idles.
+        let mut condition = targets(&last.moves);
+        condition.push(Literal::not(Signal::Halt));
+        steps.push(ProgramStep {
+            number: last.number + 1,
+            moves: Vec::new(),
+            condition,
+            actions: vec![
+                Action::Reset(Signal::Watchdog),
+                Action::Reset(Signal::WatchdogArmed),
+            ],
         });
     }
 
@@ -197,7 +280,92 @@ pub fn build(table: &StepTable, allocation: &Allocation, options: ProgramOptions
             });
         }
     }
-    StepProgram { steps, rungs }
+    let mut init = Vec::new();
+    if safety.edge {
+        // START already pressed at power-up is no rising edge.
+        init.push(Action::Set(Signal::StartMemory));
+        rungs.push(Rung {
+            comment: "edge: remember START for the next scan".to_string(),
+            condition: vec![Literal::is(Signal::Start)],
+            actions: vec![Action::Set(Signal::StartMemory)],
+        });
+        rungs.push(Rung {
+            comment: "edge: START released".to_string(),
+            condition: vec![Literal::not(Signal::Start)],
+            actions: vec![Action::Reset(Signal::StartMemory)],
+        });
+    }
+    if safety.plausibility {
+        for a in &table.actuators {
+            for low in 0..a.max_position {
+                for high in low + 1..=a.max_position {
+                    let sensor = |position| Signal::Sensor {
+                        actuator: a.number,
+                        position,
+                    };
+                    rungs.push(Rung {
+                        comment: format!(
+                            "plausibility: C{} cannot be at {} and {} at once",
+                            a.number,
+                            sensor(low).symbol(),
+                            sensor(high).symbol()
+                        ),
+                        condition: vec![Literal::is(sensor(low)), Literal::is(sensor(high))],
+                        actions: vec![
+                            Action::Set(Signal::Halt),
+                            Action::Set(Signal::Alarm(Alarm::Sensor)),
+                        ],
+                    });
+                }
+            }
+        }
+    }
+    let mut timers = Vec::new();
+    if safety.watchdog {
+        timers.push(Signal::Watchdog);
+        rungs.push(Rung {
+            comment: "watchdog: the step did not finish in time".to_string(),
+            condition: vec![
+                Literal::is(Signal::WatchdogArmed),
+                Literal::not(Signal::Watchdog),
+            ],
+            actions: vec![
+                Action::Set(Signal::Halt),
+                Action::Set(Signal::Alarm(Alarm::Timeout)),
+                Action::Reset(Signal::WatchdogArmed),
+            ],
+        });
+    }
+    StepProgram {
+        init,
+        steps,
+        rungs,
+        timers,
+    }
+}
+
+/// Twice the longest move of the step plus one second, rounded up to 100 ms:
+/// generous enough for a sticky valve, short enough to catch a lost sensor.
+fn watchdog_preset_ms(table: &StepTable, moves: &[Move], strokes: &Strokes) -> u32 {
+    let longest = moves
+        .iter()
+        .map(|m| {
+            let pmax = table
+                .actuator(m.actuator)
+                .map(|a| a.max_position)
+                .unwrap_or(1)
+                .max(1);
+            let stroke = strokes.of(m.actuator);
+            let full = match m.sign {
+                Sign::Plus => stroke.extend_ms,
+                Sign::Minus => stroke.retract_ms,
+            };
+            (full as u64 * m.from.abs_diff(m.to) as u64).div_ceil(pmax as u64)
+        })
+        .max()
+        .unwrap_or(0);
+    let preset = 2 * longest + 1000;
+    (preset.div_ceil(100) * 100).min(u32::MAX as u64) as u32
 }
 
 /// `IF a AND b THEN SET y1+ RESET y1-` in the paper's notation, with symbols
@@ -210,8 +378,10 @@ pub fn paper_sentence(
     let mut text = format!("IF {}", condition_text(condition, &name, "AND", "NOT "));
     text.push_str(" THEN");
     for action in actions {
-        let verb = if action.value() { "SET" } else { "RESET" };
-        text.push_str(&format!(" {verb} {}", name(action.signal())));
+        text.push_str(&format!(" {} {}", action.verb(), name(action.signal())));
+        if let Action::StartTimer(_, ms) = action {
+            text.push_str(&format!(" ({ms} ms)"));
+        }
     }
     text
 }
@@ -260,7 +430,12 @@ pub(crate) mod tests {
     fn paper_program_matches_design_section_4() {
         let table = paper_table();
         let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
-        let program = build(&table, &alloc, ProgramOptions::default());
+        let program = build(
+            &table,
+            &alloc,
+            ProgramOptions::default(),
+            &Strokes::default(),
+        );
         let lines: Vec<String> = program
             .steps
             .iter()
@@ -293,7 +468,12 @@ pub(crate) mod tests {
     fn middle_targets_get_a_stop_rung() {
         let table = paper_table();
         let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
-        let program = build(&table, &alloc, ProgramOptions::default());
+        let program = build(
+            &table,
+            &alloc,
+            ProgramOptions::default(),
+            &Strokes::default(),
+        );
         // C2 stops at 1 and 2, C3 at 1 (C3's pmax is 2).
         let rungs: Vec<String> = program
             .rungs
@@ -322,7 +502,9 @@ pub(crate) mod tests {
             &alloc,
             ProgramOptions {
                 middle_stops: false,
+                ..ProgramOptions::default()
             },
+            &Strokes::default(),
         );
         assert!(plain.rungs.is_empty());
     }

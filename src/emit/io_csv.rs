@@ -36,7 +36,7 @@ pub fn rows(input: &EmitInput) -> Vec<[String; 7]> {
                 Signal::StopAt { actuator, position } => {
                     (actuator.to_string(), position.to_string(), String::new())
                 }
-                Signal::Start => (String::new(), String::new(), String::new()),
+                _ => (String::new(), String::new(), String::new()),
             };
             [
                 a.address.display(alloc.mnemonic),

@@ -13,7 +13,7 @@ pub mod report;
 
 use std::collections::BTreeMap;
 
-use crate::address::Signal;
+use crate::address::{Alarm, Signal};
 use crate::cell::Sign;
 use crate::program::{Literal, StepProgram};
 use crate::table::{Move, StepTable};
@@ -102,9 +102,20 @@ pub enum ProblemKind {
 }
 
 impl ProblemKind {
-    /// Whether this problem can hurt someone or something (DESIGN §6).
+    /// Whether this problem can hurt someone or something (DESIGN §6): a move
+    /// that starts too early, motion no step commands, both coils, a start
+    /// without START. A run-through is a move that goes on in the direction
+    /// its own step commanded to the cylinder's next sensor or end stop
+    /// because its target sensor is dead: it fails the run, and the sequence
+    /// then stalls, but it is not motion outside the step.
     pub fn is_hazard(self) -> bool {
-        !matches!(self, ProblemKind::Stall | ProblemKind::CycleDiffers)
+        !matches!(
+            self,
+            ProblemKind::Stall
+                | ProblemKind::CycleDiffers
+                | ProblemKind::RanThrough
+                | ProblemKind::NotHome
+        )
     }
 }
 
@@ -262,7 +273,7 @@ impl Run<'_> {
             self.start_pressed,
         );
         let read = |s: Signal| read_input(s, settings, pistons, index_of, start);
-        let result = scan(self.program, &mut self.plc, &read);
+        let result = scan(self.program, &mut self.plc, &read, settings.scan_ms as u64);
         if result.fired.is_none()
             && let Some(step) = self.program.steps.get(awaited)
         {
@@ -519,7 +530,7 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
         settings: &settings_scan,
         pistons,
         index_of,
-        plc: PlcState::new(),
+        plc: PlcState::new(program),
         time_ms: 0,
         problems: Vec::new(),
         active: Vec::new(),
@@ -573,9 +584,20 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
             }
             if run.time_ms - last_event > timeout {
                 let waiting = &program.steps[run.plc.awaited];
-                let missing: Vec<String> =
-                    run.last_literals_false.iter().map(literal_text).collect();
-                let message = if fire_times.len() == step_count {
+                // START was pressed and released; it only explains the wait
+                // when nothing else is missing.
+                let mut missing_literals = run.last_literals_false.clone();
+                if missing_literals.len() > 1 {
+                    missing_literals.retain(|l| l.signal != Signal::Start);
+                }
+                let missing: Vec<String> = missing_literals.iter().map(literal_text).collect();
+                let alarms: Vec<String> = [Alarm::Sensor, Alarm::Timeout]
+                    .into_iter()
+                    .map(Signal::Alarm)
+                    .filter(|a| run.plc.bit(*a))
+                    .map(|a| a.symbol())
+                    .collect();
+                let mut message = if fire_times.len() == step_count {
                     format!(
                         "the cycle never ends: the moves of step {} do not finish",
                         program.steps[step_count - 1].number
@@ -591,6 +613,9 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
                         }
                     )
                 };
+                if !alarms.is_empty() {
+                    message.push_str(&format!(" (alarm: {})", alarms.join(", ")));
+                }
                 run.problem(ProblemKind::Stall, waiting.number, message);
                 stalled_at = Some(waiting.number);
                 report.steps = timings(program, &fire_times, run.time_ms, press_at);

@@ -7,22 +7,28 @@ use std::collections::BTreeMap;
 use crate::address::Signal;
 use crate::program::{Action, Literal, StepProgram};
 
-/// The PLC's memory: the awaited step, outputs and internal bits.
+/// The PLC's memory: the awaited step, outputs, internal bits and timers.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct PlcState {
     /// Index into `program.steps` of the step the sequence waits to fire.
     pub awaited: usize,
-    /// Outputs and memories currently on (absent = off).
+    /// Outputs, memories and running timers currently on (absent = off).
     bits: BTreeMap<Signal, bool>,
+    /// Running timers: elapsed and preset milliseconds.
+    timers: BTreeMap<Signal, (u64, u64)>,
 }
 
 impl PlcState {
-    /// Power-up state: waiting at step 1, every output and memory off.
-    pub fn new() -> Self {
-        PlcState {
+    /// Power-up state: waiting at step 1, everything off, then the program's
+    /// initial actions.
+    pub fn new(program: &StepProgram) -> Self {
+        let mut state = PlcState {
             awaited: 0,
             bits: BTreeMap::new(),
-        }
+            timers: BTreeMap::new(),
+        };
+        state.apply(&program.init);
+        state
     }
 
     /// Whether an output or memory bit is on.
@@ -32,14 +38,33 @@ impl PlcState {
 
     fn apply(&mut self, actions: &[Action]) {
         for action in actions {
+            match *action {
+                Action::StartTimer(timer, preset) => {
+                    self.timers.insert(timer, (0, preset as u64));
+                }
+                Action::Reset(signal) => {
+                    self.timers.remove(&signal);
+                }
+                Action::Set(_) => {}
+            }
             self.bits.insert(action.signal(), action.value());
         }
     }
-}
 
-impl Default for PlcState {
-    fn default() -> Self {
-        Self::new()
+    /// Advances every running timer by one scan; a timer whose preset has
+    /// elapsed stops (its bit goes off).
+    fn advance_timers(&mut self, scan_ms: u64) {
+        let mut expired = Vec::new();
+        for (timer, (elapsed, preset)) in &mut self.timers {
+            *elapsed += scan_ms;
+            if *elapsed >= *preset {
+                expired.push(*timer);
+            }
+        }
+        for timer in expired {
+            self.timers.remove(&timer);
+            self.bits.insert(timer, false);
+        }
     }
 }
 
@@ -50,13 +75,15 @@ pub struct ScanResult {
     pub fired: Option<usize>,
 }
 
-/// Runs one PLC scan. `input` gives the value of an input signal as read at
-/// the start of the scan.
+/// Runs one PLC scan of `scan_ms` milliseconds. `input` gives the value of an
+/// input signal as read at the start of the scan.
 pub fn scan(
     program: &StepProgram,
     state: &mut PlcState,
     input: &dyn Fn(Signal) -> bool,
+    scan_ms: u64,
 ) -> ScanResult {
+    state.advance_timers(scan_ms);
     let value = |state: &PlcState, literal: &Literal| -> bool {
         let raw = match literal.signal {
             Signal::Start | Signal::Sensor { .. } => input(literal.signal),

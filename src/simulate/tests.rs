@@ -5,8 +5,8 @@ use crate::timing::Stroke;
 
 fn run(rows: &[&[&str]], options: ProgramOptions, settings: &SimSettings) -> SimReport {
     let table = crate::table::from_rows("t.csv", rows).expect("valid table");
-    let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
-    let program = program::build(&table, &alloc, options);
+    let alloc = Allocation::with_safety(&table, Target::Festo, Mnemonic::En, options.safety);
+    let program = program::build(&table, &alloc, options, &settings.strokes);
     simulate(&table, &program, settings)
 }
 
@@ -45,6 +45,7 @@ fn without_middle_stops_the_paper_hangs_in_step_5() {
         PAPER,
         ProgramOptions {
             middle_stops: false,
+            ..ProgramOptions::default()
         },
         &SimSettings::default(),
     );

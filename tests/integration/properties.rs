@@ -78,7 +78,7 @@ proptest! {
             .map_err(|d| TestCaseError::fail(format!("generator made an invalid table: {d:?}")))?;
         prop_assert!(table.steps.len() <= 40);
         let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
-        let program = program::build(&table, &alloc, ProgramOptions::default());
+        let program = program::build(&table, &alloc, ProgramOptions::default(), &settings.strokes);
         let report = simulate(&table, &program, &settings);
         prop_assert!(report.passed, "{}\n{:?}", report.verdict(), rows);
     }
