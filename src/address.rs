@@ -313,6 +313,8 @@ pub struct Allocation {
     pub memories: Vec<Assigned>,
     /// Timers (the step watchdog).
     pub timers: Vec<Assigned>,
+    /// The safety checks this allocation has room for.
+    pub safety: Safety,
 }
 
 impl Allocation {
@@ -449,6 +451,7 @@ impl Allocation {
             outputs,
             memories,
             timers,
+            safety,
         }
     }
 

@@ -213,19 +213,15 @@ fn print_diagnostics(diagnostics: &[Diagnostic]) {
     }
 }
 
-fn summary(table: &steptable::table::StepTable) -> String {
-    let inputs = 1 + table
-        .actuators
-        .iter()
-        .map(|a| a.max_position as usize + 1)
-        .sum::<usize>();
+fn summary(table: &steptable::table::StepTable, settings: &Settings) -> String {
+    let (allocation, _) = convert::build_program(table, settings);
     format!(
         "{} steps, {} branch(es), {} actuators, {} inputs, {} outputs",
         table.steps.len(),
         table.branches,
         table.actuators.len(),
-        inputs,
-        2 * table.actuators.len()
+        allocation.inputs.len(),
+        allocation.outputs.len()
     )
 }
 
@@ -239,7 +235,7 @@ fn run_check(args: &CheckArgs) -> i32 {
                 out(&format!(
                     "{}: ok: {}",
                     display_name(input),
-                    summary(&checked.table)
+                    summary(&checked.table, &settings)
                 ));
             }
             Err(diagnostics) => {
@@ -372,7 +368,7 @@ fn run_convert(args: &ConvertArgs) -> i32 {
                 out(&format!(
                     "{}: {} -> {}/ ({})",
                     display_name(input),
-                    summary(&conversion.table),
+                    summary(&conversion.table, &settings),
                     folder.display(),
                     names.join(", ")
                 ));

@@ -88,9 +88,31 @@ pub struct ProgramStep {
     pub actions: Vec<Action>,
 }
 
+/// What a rung is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RungKind {
+    MiddleStop,
+    Edge,
+    Plausibility,
+    Watchdog,
+}
+
+impl RungKind {
+    /// The label on the PLC PROGRAM sheet.
+    pub fn label(self) -> &'static str {
+        match self {
+            RungKind::MiddleStop => "MIDDLE STOP",
+            RungKind::Edge => "EDGE",
+            RungKind::Plausibility => "PLAUSIBILITY",
+            RungKind::Watchdog => "WATCHDOG",
+        }
+    }
+}
+
 /// Logic evaluated on every scan after the sequence.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rung {
+    pub kind: RungKind,
     /// What the rung is for, in words.
     pub comment: String,
     pub condition: Vec<Literal>,
@@ -261,6 +283,7 @@ pub fn build(
             };
             let sensor = Signal::Sensor { actuator, position };
             rungs.push(Rung {
+                kind: RungKind::MiddleStop,
                 comment: format!(
                     "middle stop: C{actuator} stops at {} (both coils off, the 5/3 valve holds it)",
                     sensor.symbol()
@@ -285,11 +308,13 @@ pub fn build(
         // START already pressed at power-up is no rising edge.
         init.push(Action::Set(Signal::StartMemory));
         rungs.push(Rung {
+            kind: RungKind::Edge,
             comment: "edge: remember START for the next scan".to_string(),
             condition: vec![Literal::is(Signal::Start)],
             actions: vec![Action::Set(Signal::StartMemory)],
         });
         rungs.push(Rung {
+            kind: RungKind::Edge,
             comment: "edge: START released".to_string(),
             condition: vec![Literal::not(Signal::Start)],
             actions: vec![Action::Reset(Signal::StartMemory)],
@@ -304,6 +329,7 @@ pub fn build(
                         position,
                     };
                     rungs.push(Rung {
+                        kind: RungKind::Plausibility,
                         comment: format!(
                             "plausibility: C{} cannot be at {} and {} at once",
                             a.number,
@@ -324,6 +350,7 @@ pub fn build(
     if safety.watchdog {
         timers.push(Signal::Watchdog);
         rungs.push(Rung {
+            kind: RungKind::Watchdog,
             comment: "watchdog: the step did not finish in time".to_string(),
             condition: vec![
                 Literal::is(Signal::WatchdogArmed),

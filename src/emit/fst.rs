@@ -48,6 +48,8 @@ struct Context {
     title: String,
     version: &'static str,
     source: String,
+    /// Actions of the INIT step (start P1, initial memory values).
+    init: Vec<ActionLine>,
     steps: Vec<StepContext>,
     rungs: Vec<RungContext>,
 }
@@ -77,20 +79,53 @@ fn actions(
     festo: &Allocation,
     comment: impl Fn(Action) -> String,
 ) -> Vec<ActionLine> {
-    list.iter()
+    let mut lines = Vec::new();
+    for action in list {
+        let operand = festo.display(action.signal());
+        let comment = one_line(&comment(*action));
+        match *action {
+            // FST timers count in hundredths of a second: load the preset
+            // into the timer's preset register, then start it.
+            Action::StartTimer(_, ms) => {
+                let number = operand.trim_start_matches('T');
+                lines.push(("LOAD", format!("V{}", ms.div_ceil(10)), comment));
+                lines.push(("TO", format!("TP{number}"), "preset in 1/100 s".to_string()));
+                lines.push(("SET", operand, "timer runs".to_string()));
+            }
+            Action::Set(_) => lines.push(("SET", operand, comment)),
+            Action::Reset(_) => lines.push(("RESET", operand, comment)),
+        }
+    }
+    lines
+        .into_iter()
         .enumerate()
-        .map(|(i, a)| ActionLine {
+        .map(|(i, (verb, operand, comment))| ActionLine {
             first: i == 0,
-            verb: if a.value() { "SET" } else { "RESET" },
-            operand: festo.display(a.signal()),
-            comment: one_line(&comment(*a)),
+            verb,
+            operand,
+            comment,
         })
         .collect()
 }
 
 /// Renders `NAME.fst.txt`.
 pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
-    let festo = Allocation::new(input.table, Target::Festo, Mnemonic::En);
+    let program = input.program;
+    let safety = input.allocation.safety;
+    let festo = Allocation::with_safety(input.table, Target::Festo, Mnemonic::En, safety);
+    let mut init = Vec::new();
+    if !program.rungs.is_empty() {
+        init.push(ActionLine {
+            first: false,
+            verb: "SET",
+            operand: "P1".to_string(),
+            comment: "start program P1 (logic that runs while P0 waits)".to_string(),
+        });
+    }
+    init.extend(actions(&program.init, &festo, |a| action_comment(a, &[])));
+    for (i, line) in init.iter_mut().enumerate() {
+        line.first = i == 0;
+    }
     let count = input.program.steps.len();
     let steps = input
         .program
@@ -99,7 +134,11 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         .enumerate()
         .map(|(i, s)| StepContext {
             number: s.number,
-            moves: moves_text(&s.moves),
+            moves: if s.moves.is_empty() {
+                "end of cycle".to_string()
+            } else {
+                moves_text(&s.moves)
+            },
             condition: condition(&s.condition, &festo),
             actions: actions(&s.actions, &festo, |a| action_comment(a, &s.moves)),
             last: i + 1 == count,
@@ -119,6 +158,7 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         title: one_line(input.name),
         version: env!("CARGO_PKG_VERSION"),
         source: one_line(&input.source()),
+        init,
         steps,
         rungs,
     };

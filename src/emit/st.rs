@@ -7,8 +7,8 @@ use minijinja::value::Serde;
 use serde::Serialize;
 
 use super::{EmitInput, action_comment, moves_text, templates};
-use crate::address::{Allocation, Assigned, Signal};
-use crate::program::{Action, condition_text};
+use crate::address::{Area, Assigned, Signal};
+use crate::program::{Action, Literal, condition_text};
 
 /// Identifiers of the program's own parts. `step` is an IEC keyword, so the
 /// step counter is called `active_step`.
@@ -24,18 +24,34 @@ struct Var {
 }
 
 #[derive(Serialize)]
-struct Assignment {
+struct Internal {
     ident: String,
-    value: &'static str,
+    data_type: &'static str,
+    initial: String,
+    comment: String,
+}
+
+/// A timer: a TON instance driven by a run flag and a preset variable, so
+/// that "start" and "running" mean what the step program says.
+#[derive(Serialize)]
+struct Timer {
+    ident: String,
+    run: String,
+    preset: String,
+}
+
+#[derive(Serialize)]
+struct Statement {
+    code: String,
     comment: String,
 }
 
 #[derive(Serialize)]
 struct StepContext {
     number: usize,
-    moves: String,
+    title: String,
     condition: String,
-    actions: Vec<Assignment>,
+    actions: Vec<Statement>,
     next: usize,
     last: bool,
 }
@@ -44,7 +60,7 @@ struct StepContext {
 struct RungContext {
     comment: String,
     condition: String,
-    actions: Vec<Assignment>,
+    actions: Vec<Statement>,
 }
 
 #[derive(Serialize)]
@@ -57,7 +73,8 @@ struct Context {
     step_var: &'static str,
     inputs: Vec<Var>,
     outputs: Vec<Var>,
-    memories: Vec<Var>,
+    internals: Vec<Internal>,
+    timers: Vec<Timer>,
     steps: Vec<StepContext>,
     rungs: Vec<RungContext>,
     configuration_name: &'static str,
@@ -67,28 +84,6 @@ struct Context {
     task_interval: String,
 }
 
-fn vars(list: &[Assigned], alloc: &Allocation, input: &EmitInput) -> Vec<Var> {
-    list.iter()
-        .map(|a| Var {
-            ident: a.signal.ident(),
-            iec_address: a.address.iec(),
-            address: a.address.display(alloc.mnemonic),
-            comment: comment_text(&a.signal.comment(input.table)),
-        })
-        .collect()
-}
-
-fn assignments(actions: &[Action], comment: impl Fn(Action) -> String) -> Vec<Assignment> {
-    actions
-        .iter()
-        .map(|a| Assignment {
-            ident: a.signal().ident(),
-            value: if a.value() { "TRUE" } else { "FALSE" },
-            comment: comment_text(&comment(*a)),
-        })
-        .collect()
-}
-
 /// Text made safe inside `(* … *)`: ST comments do not nest.
 fn comment_text(text: &str) -> String {
     super::one_line(text)
@@ -96,44 +91,141 @@ fn comment_text(text: &str) -> String {
         .replace("*)", "* )")
 }
 
+/// The run flag and preset variable of a timer.
+fn timer_run(timer: Signal) -> String {
+    format!("{}_run", timer.ident())
+}
+
+fn timer_preset(timer: Signal) -> String {
+    format!("{}_pt", timer.ident())
+}
+
+/// A signal as an ST operand: a timer reads as its run flag.
+fn operand(signal: Signal) -> String {
+    match signal.area() {
+        Area::Timer => timer_run(signal),
+        _ => signal.ident(),
+    }
+}
+
+fn condition(literals: &[Literal]) -> String {
+    condition_text(literals, operand, "AND", "NOT ")
+}
+
+fn statement(action: Action) -> String {
+    match action {
+        Action::StartTimer(timer, ms) => format!(
+            "{pt} := T#{ms}ms; {run} := TRUE; {t}(IN := FALSE, PT := {pt});",
+            pt = timer_preset(timer),
+            run = timer_run(timer),
+            t = timer.ident()
+        ),
+        Action::Set(s) | Action::Reset(s) => {
+            let value = if action.value() { "TRUE" } else { "FALSE" };
+            format!("{} := {value};", operand(s))
+        }
+    }
+}
+
+fn statements(actions: &[Action], comment: impl Fn(Action) -> String) -> Vec<Statement> {
+    actions
+        .iter()
+        .map(|a| Statement {
+            code: statement(*a),
+            comment: comment_text(&comment(*a)),
+        })
+        .collect()
+}
+
+fn located(list: &[Assigned], input: &EmitInput) -> Vec<Var> {
+    list.iter()
+        .map(|a| Var {
+            ident: a.signal.ident(),
+            iec_address: a.address.iec(),
+            address: a.address.display(input.allocation.mnemonic),
+            comment: comment_text(&a.signal.comment(input.table)),
+        })
+        .collect()
+}
+
 /// Renders `NAME.st`.
 pub fn render(input: &EmitInput, scan_millis: u32) -> Result<String, templates::TemplateError> {
     let alloc = input.allocation;
-    let count = input.program.steps.len();
-    let steps = input
-        .program
+    let program = input.program;
+    let count = program.steps.len();
+    let steps = program
         .steps
         .iter()
         .enumerate()
         .map(|(i, s)| StepContext {
             number: s.number,
-            moves: comment_text(&moves_text(&s.moves)),
-            condition: condition_text(&s.condition, Signal::ident, "AND", "NOT "),
-            actions: assignments(&s.actions, |a| action_comment(a, &s.moves)),
+            title: if s.moves.is_empty() {
+                "end of cycle".to_string()
+            } else {
+                comment_text(&moves_text(&s.moves))
+            },
+            condition: condition(&s.condition),
+            actions: statements(&s.actions, |a| action_comment(a, &s.moves)),
             next: if i + 1 == count { 1 } else { s.number + 1 },
             last: i + 1 == count,
         })
         .collect();
-    let rungs = input
-        .program
+    let rungs = program
         .rungs
         .iter()
         .map(|r| RungContext {
             comment: comment_text(&r.comment),
-            condition: condition_text(&r.condition, Signal::ident, "AND", "NOT "),
-            actions: assignments(&r.actions, |a| action_comment(a, &[])),
+            condition: condition(&r.condition),
+            actions: statements(&r.actions, |a| action_comment(a, &[])),
         })
         .collect();
+    let initially_on = |s: Signal| program.init.contains(&Action::Set(s));
+    let mut internals: Vec<Internal> = alloc
+        .memories
+        .iter()
+        .map(|m| Internal {
+            ident: m.signal.ident(),
+            data_type: "BOOL",
+            initial: if initially_on(m.signal) {
+                "TRUE"
+            } else {
+                "FALSE"
+            }
+            .to_string(),
+            comment: comment_text(&m.signal.comment(input.table)),
+        })
+        .collect();
+    let mut timers = Vec::new();
+    for &timer in &program.timers {
+        internals.push(Internal {
+            ident: timer_run(timer),
+            data_type: "BOOL",
+            initial: "FALSE".to_string(),
+            comment: comment_text(&format!("{} runs", timer.comment(input.table))),
+        });
+        internals.push(Internal {
+            ident: timer_preset(timer),
+            data_type: "TIME",
+            initial: "T#0ms".to_string(),
+            comment: comment_text(&format!("{} preset", timer.comment(input.table))),
+        });
+        timers.push(Timer {
+            ident: timer.ident(),
+            run: timer_run(timer),
+            preset: timer_preset(timer),
+        });
+    }
     let context = Context {
-        title: input.name.to_string(),
+        title: comment_text(input.name),
         version: env!("CARGO_PKG_VERSION"),
         source: comment_text(&input.source()),
         target: alloc.target.name().to_string(),
         program_name: PROGRAM_NAME,
         step_var: STEP_VAR,
-        inputs: vars(&alloc.inputs, alloc, input),
-        outputs: vars(&alloc.outputs, alloc, input),
-        memories: vars(&alloc.memories, alloc, input),
+        inputs: located(&alloc.inputs, input),
+        outputs: located(&alloc.outputs, input),
+        internals,
+        timers,
         steps,
         rungs,
         configuration_name: "config0",

@@ -6,7 +6,7 @@
 use rust_xlsxwriter::{DocProperties, ExcelDateTime, Format, Workbook, Worksheet, XlsxError};
 
 use super::EmitInput;
-use crate::address::{Assigned, Signal};
+use crate::address::{Area, Assigned, Signal};
 use crate::faults::FaultTable;
 use crate::program::{Action, paper_sentence};
 use crate::read::TABLE_SHEET;
@@ -18,25 +18,31 @@ pub const PROGRAM_SHEET: &str = "PLC PROGRAM";
 pub const SIMULATION_SHEET: &str = "SIMULATION";
 pub const FAULTS_SHEET: &str = "FAULTS";
 
-/// The rows of the PLC PROGRAM sheet: `[label, sentence, stop requests]`.
-/// The sentence holds the step's condition and its coil actions in the
-/// paper's notation; the third column holds the middle-stop requests it sets.
+/// The rows of the PLC PROGRAM sheet: `[label, sentence, memories and timers]`.
+/// The sentence holds the step's condition and its output actions in the
+/// paper's notation; the third column holds what it does to memories (the
+/// middle-stop requests) and timers.
 pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
-    let is_output = |a: &Action| matches!(a.signal(), Signal::Coil { .. });
+    let is_output = |a: &Action| a.signal().area() == Area::Output;
     let mut rows = Vec::new();
     for step in &input.program.steps {
         let (outputs, memories): (Vec<Action>, Vec<Action>) =
             step.actions.iter().partition(|a| is_output(a));
         let requests = memories
             .iter()
-            .map(|a| {
-                let verb = if a.value() { "SET" } else { "RESET" };
-                format!("{verb} {}", a.signal().symbol())
+            .map(|a| match a {
+                Action::StartTimer(s, ms) => format!("START {} ({ms} ms)", s.symbol()),
+                _ => format!("{} {}", a.verb(), a.signal().symbol()),
             })
             .collect::<Vec<_>>()
             .join(" ");
+        let label = if step.moves.is_empty() {
+            format!("STEP {} (END)", step.number)
+        } else {
+            format!("STEP {}", step.number)
+        };
         rows.push([
-            format!("STEP {}", step.number),
+            label,
             paper_sentence(&step.condition, &outputs, Signal::symbol),
             requests,
         ]);
@@ -44,7 +50,7 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
     rows.push([String::new(), "JMP TO STEP 1".to_string(), String::new()]);
     for rung in &input.program.rungs {
         rows.push([
-            "MIDDLE STOP".to_string(),
+            rung.kind.label().to_string(),
             paper_sentence(&rung.condition, &rung.actions, Signal::symbol),
             String::new(),
         ]);
@@ -102,7 +108,10 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
 
     let sheet = workbook.add_worksheet();
     sheet.set_name(PROGRAM_SHEET)?;
-    for (col, header) in ["STEP", "PROGRAM", "STOP REQUESTS"].iter().enumerate() {
+    for (col, header) in ["STEP", "PROGRAM", "MEMORIES AND TIMERS"]
+        .iter()
+        .enumerate()
+    {
         sheet.write_string_with_format(0, col as u16, *header, &bold)?;
     }
     let rows = program_rows(input);

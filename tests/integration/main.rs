@@ -5,4 +5,5 @@ mod broken;
 mod helpers;
 mod paper;
 mod properties;
+mod safety;
 mod snapshots;

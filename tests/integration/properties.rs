@@ -1,7 +1,7 @@
 //! Property tests: invariants over random valid tables.
 
 use proptest::prelude::*;
-use steptable::address::{Allocation, Mnemonic, Target};
+use steptable::address::{Allocation, Mnemonic, Safety, Target};
 use steptable::program::{self, ProgramOptions};
 use steptable::simulate::{SimSettings, simulate};
 use steptable::timing::Stroke;
@@ -77,9 +77,12 @@ proptest! {
         let table = steptable::table::from_rows("random.csv", &rows)
             .map_err(|d| TestCaseError::fail(format!("generator made an invalid table: {d:?}")))?;
         prop_assert!(table.steps.len() <= 40);
-        let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
-        let program = program::build(&table, &alloc, ProgramOptions::default(), &settings.strokes);
-        let report = simulate(&table, &program, &settings);
-        prop_assert!(report.passed, "{}\n{:?}", report.verdict(), rows);
+        for safety in [Safety::default(), Safety::all()] {
+            let alloc = Allocation::with_safety(&table, Target::Festo, Mnemonic::En, safety);
+            let options = ProgramOptions { safety, ..ProgramOptions::default() };
+            let program = program::build(&table, &alloc, options, &settings.strokes);
+            let report = simulate(&table, &program, &settings);
+            prop_assert!(report.passed, "{:?}: {}\n{:?}", safety, report.verdict(), rows);
+        }
     }
 }

@@ -44,3 +44,37 @@ fn every_sample_and_target() {
         }
     }
 }
+
+/// The programs with every safety check, for the Festo and IEC targets.
+#[test]
+fn every_sample_with_all_safety_checks() {
+    for path in samples() {
+        for (target, label) in [(Target::Festo, "festo"), (Target::Iec, "iec")] {
+            let mut settings = Settings::new();
+            settings.target = target;
+            settings.program.safety = steptable::address::Safety::all();
+            let conversion = match convert_path(&path, &settings) {
+                Ok(c) => c,
+                Err(e) => panic!("{}: {e:?}", path.display()),
+            };
+            let file = path
+                .file_name()
+                .unwrap()
+                .to_string_lossy()
+                .replace('.', "_");
+            for output in &conversion.files {
+                let Some(ext) = [".st", ".fst.txt", ".io.csv"]
+                    .into_iter()
+                    .find(|e| output.name.ends_with(e))
+                else {
+                    continue;
+                };
+                if ext == ".fst.txt" && label != "festo" {
+                    continue;
+                }
+                let text = String::from_utf8(output.bytes.clone()).expect("text output");
+                insta::assert_snapshot!(format!("{file}-{label}-safety{ext}"), text);
+            }
+        }
+    }
+}
