@@ -10,6 +10,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use steptable::address::{Mnemonic, Safety, Target};
 use steptable::convert::{self, Failure, Settings};
 use steptable::diag::Diagnostic;
+use steptable::emit::diagram::DiagramKind;
 use steptable::output;
 use steptable::read::display_name;
 
@@ -111,10 +112,19 @@ struct ConvertArgs {
     /// Output folder; each input gets a folder DIR/NAME/ in it.
     #[arg(short, long, value_name = "DIR", default_value = "steptable-out")]
     output: PathBuf,
+    /// Horizontal axis of NAME.diagram.svg: step (displacement-step) or time.
+    #[arg(long, value_enum, default_value_t = DiagramArg::Step)]
+    diagram: DiagramArg,
     #[command(flatten)]
     common: CommonArgs,
     #[command(flatten)]
     sim: SimArgs,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum DiagramArg {
+    Step,
+    Time,
 }
 
 #[derive(Args)]
@@ -340,6 +350,10 @@ fn run_faults(args: &FaultsArgs) -> i32 {
 fn run_convert(args: &ConvertArgs) -> i32 {
     let mut settings = args.common.settings();
     args.sim.apply(&mut settings);
+    settings.diagram = match args.diagram {
+        DiagramArg::Step => DiagramKind::Step,
+        DiagramArg::Time => DiagramKind::Time,
+    };
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
     for (input, name) in args.inputs.iter().zip(&names) {

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use crate::address::{Allocation, Mnemonic, Target};
 use crate::diag::{Diagnostic, Diagnostics};
+use crate::emit::diagram::DiagramKind;
 use crate::emit::{self, EmitInput};
 use crate::faults::{self, FaultTable};
 use crate::program::{self, ProgramOptions, StepProgram};
@@ -23,6 +24,8 @@ pub struct Settings {
     pub program: ProgramOptions,
     /// Simulation settings; `simulation.scan_ms` is also the generated task's cycle.
     pub simulation: SimSettings,
+    /// Horizontal axis of `NAME.diagram.svg`.
+    pub diagram: DiagramKind,
 }
 
 impl Settings {
@@ -171,7 +174,11 @@ pub fn build_program(table: &StepTable, settings: &Settings) -> (Allocation, Ste
 pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Conversion, Failure> {
     let table = checked.table;
     let (allocation, program) = build_program(&table, settings);
-    let simulation = simulate::simulate(&table, &program, &settings.simulation);
+    let sim_settings = SimSettings {
+        record_trace: settings.diagram == DiagramKind::Time,
+        ..settings.simulation.clone()
+    };
+    let simulation = simulate::simulate(&table, &program, &sim_settings);
     if !simulation.passed {
         return Err(Failure::Internal(format!(
             "the generated program fails its simulation ({}); the table is valid, so this is a bug in steptable: please report it with this file",
@@ -209,6 +216,10 @@ pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Con
         OutputFile {
             name: format!("{name}.io.csv"),
             bytes: emit::io_csv::render(&input).map_err(|e| internal("allocation list", &e))?,
+        },
+        OutputFile {
+            name: format!("{name}.diagram.svg"),
+            bytes: emit::diagram::render_svg(name, &simulation, settings.diagram).into_bytes(),
         },
         OutputFile {
             name: format!("{name}.faults.csv"),

@@ -52,9 +52,16 @@ pub fn write_files(
     let mut staged = Vec::with_capacity(files.len());
     for file in files {
         let target = folder.join(&file.name);
-        let mut temp = tempfile::Builder::new()
-            .prefix(".steptable-")
-            .suffix(".tmp")
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(".steptable-").suffix(".tmp");
+        // Temporary files are private (0600); outputs are ordinary files,
+        // readable as the umask allows.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            builder.permissions(std::fs::Permissions::from_mode(0o666));
+        }
+        let mut temp = builder
             .tempfile_in(folder)
             .map_err(|e| io_error(&target, e))?;
         temp.write_all(&file.bytes)

@@ -2,6 +2,7 @@
 //! the allocation) into the bytes of one file. What a name, an address or an
 //! operator is, is decided here in Rust; templates in `templates/` only lay out.
 
+pub mod diagram;
 pub mod fst;
 pub mod io_csv;
 pub mod st;

@@ -3,7 +3,9 @@
 //! program, each readable as it is. The file is byte-stable: its creation time
 //! is fixed, so the same input always gives the same bytes.
 
-use rust_xlsxwriter::{DocProperties, ExcelDateTime, Format, Workbook, Worksheet, XlsxError};
+use rust_xlsxwriter::{
+    Chart, ChartType, DocProperties, ExcelDateTime, Format, Workbook, Worksheet, XlsxError,
+};
 
 use super::EmitInput;
 use crate::address::{Area, Assigned, Signal};
@@ -17,6 +19,7 @@ pub const OUTPUT_SHEET: &str = "OUTPUT ADDRESSES";
 pub const PROGRAM_SHEET: &str = "PLC PROGRAM";
 pub const SIMULATION_SHEET: &str = "SIMULATION";
 pub const FAULTS_SHEET: &str = "FAULTS";
+pub const DIAGRAM_SHEET: &str = "DIAGRAM";
 
 /// The rows of the PLC PROGRAM sheet: `[label, sentence, memories and timers]`.
 /// The sentence holds the step's condition and its output actions in the
@@ -131,6 +134,9 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     if let Some(report) = input.simulation {
         simulation_sheet(workbook.add_worksheet(), report, &bold, &title)?;
     }
+    if let Some(report) = input.simulation {
+        diagram_sheet(workbook.add_worksheet(), report, &bold, &title)?;
+    }
     if let Some(faults) = input.faults {
         faults_sheet(workbook.add_worksheet(), faults, &bold, &title)?;
     }
@@ -231,5 +237,64 @@ fn faults_sheet(
     sheet.set_column_width(2, 6)?;
     sheet.set_column_width(3, 90)?;
     sheet.set_freeze_panes(header + 1, 0)?;
+    Ok(())
+}
+
+/// The displacement-step diagram as native Excel charts: the positions at the
+/// step boundaries in a small table, and one line chart per actuator, stacked
+/// like the lanes of the hand-drawn diagram.
+fn diagram_sheet(
+    sheet: &mut Worksheet,
+    report: &SimReport,
+    bold: &Format,
+    title: &Format,
+) -> Result<(), XlsxError> {
+    sheet.set_name(DIAGRAM_SHEET)?;
+    sheet.write_string_with_format(0, 0, "DISPLACEMENT-STEP DIAGRAM", title)?;
+    sheet.write_string(
+        1,
+        0,
+        "Position of each cylinder (0 = home) at the step boundaries, from the simulation.",
+    )?;
+    let header = 3u32;
+    sheet.write_string_with_format(header, 0, "STEP", bold)?;
+    let boundaries = report.step_positions.len();
+    for (k, positions) in report.step_positions.iter().enumerate() {
+        let row = header + 1 + k as u32;
+        sheet.write_number(row, 0, (k + 1) as f64)?;
+        for (i, p) in positions.iter().enumerate() {
+            sheet.write_number(row, i as u16 + 1, (p * 100.0).round() / 100.0)?;
+        }
+    }
+    let last_row = header + boundaries as u32;
+    let chart_col = report.actuators.len() as u16 + 2;
+    for (i, (number, pmax)) in report.actuators.iter().enumerate() {
+        let col = i as u16 + 1;
+        sheet.write_string_with_format(header, col, format!("C{number}"), bold)?;
+        let label = format!("C{number}");
+        let mut chart = Chart::new(ChartType::ScatterStraightWithMarkers);
+        chart
+            .add_series()
+            .set_name(label.as_str())
+            .set_categories((DIAGRAM_SHEET, header + 1, 0, last_row, 0))
+            .set_values((DIAGRAM_SHEET, header + 1, col, last_row, col));
+        chart.title().set_name(label.as_str());
+        chart.legend().set_hidden();
+        chart
+            .x_axis()
+            .set_name("step")
+            .set_min(1)
+            .set_max(boundaries.max(2) as f64)
+            .set_major_unit(1);
+        chart
+            .y_axis()
+            .set_name("position")
+            .set_min(0)
+            .set_max((*pmax).max(1) as f64)
+            .set_major_unit(1);
+        chart.set_width(560).set_height(90 + 45 * (*pmax).max(1));
+        let row = 1 + i as u32 * (8 + 2 * (*pmax).max(1));
+        sheet.insert_chart(row, chart_col, &chart)?;
+    }
     Ok(())
 }

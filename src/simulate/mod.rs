@@ -563,7 +563,9 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
             let before = run.time_ms;
             let fired = run.tick();
             if let Some(index) = fired {
-                if cycle == 0 && index > 0 {
+                // A boundary of the diagram: the previous step has ended.
+                // (A closing END step is not a boundary: the cycle end is.)
+                if cycle == 0 && index > 0 && !program.steps[index].moves.is_empty() {
                     step_positions.push(run.positions());
                 }
                 if index == 0 && !fire_times.is_empty() {

@@ -2,6 +2,7 @@
 //! executable on the bundled samples and on broken workbooks made by helpers.
 
 mod broken;
+mod diagram;
 mod helpers;
 mod paper;
 mod properties;

@@ -1,0 +1,221 @@
+//! The displacement-step diagram (VDI 3260 style) every pneumatics engineer
+//! draws by hand: one lane per actuator, its position 0…pmax over the step
+//! boundaries 1…m+1, from the simulation of the generated program. The
+//! `time` variant plots the same positions over simulated time.
+
+use std::fmt::Write;
+
+use crate::simulate::SimReport;
+
+/// Which horizontal axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DiagramKind {
+    /// Position over step boundaries (displacement-step diagram).
+    #[default]
+    Step,
+    /// Position over simulated time (displacement-time diagram).
+    Time,
+}
+
+const LEFT: f64 = 110.0;
+const RIGHT: f64 = 40.0;
+const TOP: f64 = 100.0;
+const LANE_UNIT: f64 = 28.0;
+const LANE_GAP: f64 = 34.0;
+const COLORS: [&str; 6] = [
+    "#1f5fa8", "#c0392b", "#1e8449", "#8e44ad", "#b9770e", "#117a65",
+];
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Lane geometry: top y and height of each actuator's lane.
+fn lanes(report: &SimReport) -> Vec<(f64, f64)> {
+    let mut y = TOP;
+    report
+        .actuators
+        .iter()
+        .map(|(_, pmax)| {
+            let height = LANE_UNIT * (*pmax).max(1) as f64;
+            let lane = (y, height);
+            y += height + LANE_GAP;
+            lane
+        })
+        .collect()
+}
+
+/// Renders the diagram as a standalone SVG document.
+pub fn render_svg(name: &str, report: &SimReport, kind: DiagramKind) -> String {
+    let lanes = lanes(report);
+    let bottom = lanes.last().map(|(y, h)| y + h).unwrap_or(TOP) + 50.0;
+    let (columns, x_label): (Vec<(f64, String)>, &str) = match kind {
+        DiagramKind::Step => {
+            let n = report.step_positions.len().max(2);
+            let labels = (0..n)
+                .map(|i| {
+                    let label = if i + 1 == n {
+                        format!("{}=1", i + 1)
+                    } else {
+                        (i + 1).to_string()
+                    };
+                    (i as f64, label)
+                })
+                .collect();
+            (labels, "step")
+        }
+        DiagramKind::Time => {
+            let end = report.trace.last().map(|(t, _)| *t).unwrap_or(1000);
+            let seconds = end.div_ceil(1000).max(1);
+            (
+                (0..=seconds)
+                    .map(|s| (s as f64, format!("{s} s")))
+                    .collect(),
+                "time",
+            )
+        }
+    };
+    let span = columns.last().map(|c| c.0).unwrap_or(1.0).max(1.0);
+    let column_width = match kind {
+        DiagramKind::Step => 72.0,
+        DiagramKind::Time => 60.0,
+    };
+    let width = (LEFT + RIGHT + span * column_width).max(720.0);
+    let x_of = |value: f64| LEFT + value * column_width;
+
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{bottom:.0}" viewBox="0 0 {width:.0} {bottom:.0}" font-family="Helvetica, Arial, sans-serif" font-size="13">"#
+    );
+    let _ = writeln!(svg, r#"<rect width="100%" height="100%" fill="white"/>"#);
+    let title = match kind {
+        DiagramKind::Step => "Displacement-step diagram",
+        DiagramKind::Time => "Displacement-time diagram",
+    };
+    let _ = writeln!(
+        svg,
+        r#"<text x="{LEFT}" y="28" font-size="17" font-weight="bold">{title}: {}</text>"#,
+        escape(name)
+    );
+    let _ = writeln!(
+        svg,
+        r##"<text x="{LEFT}" y="50" fill="#555">{}</text>"##,
+        escape(&format!("simulated program: {}", report.verdict()))
+    );
+    // Vertical grid with labels.
+    for (value, label) in &columns {
+        let x = x_of(*value);
+        let _ = writeln!(
+            svg,
+            r##"<line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="#bbb" stroke-width="1"/>"##,
+            TOP - 12.0,
+            bottom - 40.0
+        );
+        let _ = writeln!(
+            svg,
+            r#"<text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+            TOP - 28.0,
+            escape(label)
+        );
+    }
+    let _ = writeln!(
+        svg,
+        r##"<text x="{:.1}" y="{:.1}" text-anchor="end" fill="#555">{x_label}</text>"##,
+        LEFT - 14.0,
+        TOP - 28.0
+    );
+    if kind == DiagramKind::Time
+        && let Some(cycle) = report.cycles.first()
+    {
+        // Where each step fired, as dashed markers.
+        for step in &cycle.steps {
+            let x = x_of((cycle.press_ms + step.start_ms) as f64 / 1000.0);
+            let _ = writeln!(
+                svg,
+                r##"<line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="#e67e22" stroke-dasharray="4 3"/><text x="{x:.1}" y="{:.1}" fill="#e67e22" font-size="11" text-anchor="middle">{}</text>"##,
+                TOP - 6.0,
+                bottom - 40.0,
+                bottom - 26.0,
+                step.step
+            );
+        }
+    }
+    // Lanes: name, position levels, and the motion.
+    for (i, ((number, pmax), (top, height))) in report.actuators.iter().zip(&lanes).enumerate() {
+        let pmax = (*pmax).max(1);
+        let y_of = |position: f64| top + height - position / pmax as f64 * height;
+        let color = COLORS[i % COLORS.len()];
+        let _ = writeln!(
+            svg,
+            r#"<text x="12" y="{:.1}" font-size="15" font-weight="bold" fill="{color}">C{number}</text>"#,
+            top + height / 2.0 + 5.0
+        );
+        for level in 0..=pmax {
+            let y = y_of(level as f64);
+            let _ = writeln!(
+                svg,
+                r##"<line x1="{LEFT}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="{}" stroke-width="1"/><text x="{:.1}" y="{:.1}" text-anchor="end" fill="#555" font-size="11">{level}</text>"##,
+                width - RIGHT,
+                if level == 0 { "#888" } else { "#ddd" },
+                LEFT - 8.0,
+                y + 4.0
+            );
+        }
+        let points: Vec<String> = match kind {
+            DiagramKind::Step => report
+                .step_positions
+                .iter()
+                .enumerate()
+                .filter_map(|(k, positions)| {
+                    positions
+                        .get(i)
+                        .map(|p| format!("{:.1},{:.1}", x_of(k as f64), y_of(p.round_to_level())))
+                })
+                .collect(),
+            DiagramKind::Time => report
+                .trace
+                .iter()
+                .filter_map(|(t, positions)| {
+                    positions
+                        .get(i)
+                        .map(|p| format!("{:.1},{:.1}", x_of(*t as f64 / 1000.0), y_of(*p)))
+                })
+                .collect(),
+        };
+        let _ = writeln!(
+            svg,
+            r#"<polyline points="{}" fill="none" stroke="{color}" stroke-width="3" stroke-linejoin="round"/>"#,
+            points.join(" ")
+        );
+    }
+    // Legend.
+    let _ = writeln!(
+        svg,
+        r##"<text x="{LEFT}" y="{:.1}" fill="#555" font-size="12">one lane per cylinder, position 0 (home) to its end; rising = extends (+), falling = retracts (-)</text>"##,
+        bottom - 10.0
+    );
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// Positions at step boundaries are read at sensor level: snap to the level
+/// the sensor window reports, so a piston seen 2 % before its end stop is
+/// drawn at the end.
+trait RoundToLevel {
+    fn round_to_level(self) -> f64;
+}
+
+impl RoundToLevel for f64 {
+    fn round_to_level(self) -> f64 {
+        let nearest = self.round();
+        if (self - nearest).abs() < 0.15 {
+            nearest
+        } else {
+            self
+        }
+    }
+}

@@ -1,0 +1,69 @@
+//! The displacement-step diagram: as SVG beside the outputs and as the
+//! DIAGRAM sheet, both from the simulation of the generated program.
+
+use crate::helpers::{read_sheet, sample, steptable};
+
+fn convert(dir: &std::path::Path, extra: &[&str]) -> std::path::PathBuf {
+    steptable()
+        .arg("convert")
+        .arg(sample("paper_example.xlsx"))
+        .args(extra)
+        .arg("-o")
+        .arg(dir)
+        .assert()
+        .success();
+    dir.join("paper_example")
+}
+
+/// The lane of C2 climbs 0 → 3 → 1 → 2 → 1 → 2 → 0 over the step boundaries.
+#[test]
+fn the_papers_diagram_has_every_lane_and_position() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = convert(dir.path(), &[]);
+    let svg = std::fs::read_to_string(out.join("paper_example.diagram.svg")).unwrap();
+    assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""));
+    assert!(svg.contains("Displacement-step diagram: paper_example"));
+    for lane in ["C1", "C2", "C3", "C4"] {
+        assert!(svg.contains(&format!(">{lane}</text>")), "{lane}");
+    }
+    assert_eq!(svg.matches("<polyline").count(), 4);
+    assert!(
+        svg.contains(">9=1</text>"),
+        "nine boundaries, the last one is step 1 again"
+    );
+
+    let sheet = read_sheet(&out.join("paper_example.xlsx"), "DIAGRAM");
+    assert_eq!(sheet[3][..5], ["STEP", "C1", "C2", "C3", "C4"]);
+    let c2: Vec<&str> = sheet[4..13].iter().map(|r| r[2].as_str()).collect();
+    // calamine prints whole numbers without decimals; middle stops sit
+    // within the sensor window, so they are close to, not exactly, 1 or 2.
+    let levels: Vec<i64> = c2
+        .iter()
+        .map(|v| v.parse::<f64>().unwrap().round() as i64)
+        .collect();
+    assert_eq!(levels, [0, 0, 3, 1, 2, 1, 2, 0, 0]);
+}
+
+#[test]
+fn the_time_variant_plots_over_seconds() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = convert(dir.path(), &["--diagram", "time"]);
+    let svg = std::fs::read_to_string(out.join("paper_example.diagram.svg")).unwrap();
+    assert!(svg.contains("Displacement-time diagram: paper_example"));
+    assert!(svg.contains(">7 s</text>"));
+    assert_eq!(svg.matches("<polyline").count(), 4);
+}
+
+#[cfg(unix)]
+#[test]
+fn outputs_are_ordinary_readable_files() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let out = convert(dir.path(), &[]);
+    let mode = |p: &std::path::Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+    // The same mode as any file this process creates (whatever the umask),
+    // not the 0600 of a temporary file.
+    let ordinary = out.join("ordinary");
+    std::fs::write(&ordinary, "x").unwrap();
+    assert_eq!(mode(&out.join("paper_example.st")), mode(&ordinary));
+}
