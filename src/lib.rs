@@ -17,6 +17,7 @@ pub mod emit;
 pub mod faults;
 pub mod output;
 pub mod program;
+pub mod random_table;
 pub mod read;
 pub mod simulate;
 pub mod table;

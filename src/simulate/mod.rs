@@ -15,7 +15,7 @@ use std::collections::BTreeMap;
 
 use crate::address::{Alarm, Signal};
 use crate::cell::Sign;
-use crate::program::{Literal, StepProgram};
+use crate::program::{Action, Literal, StepProgram};
 use crate::table::{Move, StepTable};
 use crate::timing::{Stroke, Strokes};
 use plant::Piston;
@@ -494,8 +494,20 @@ fn literal_text(l: &Literal) -> String {
     }
 }
 
-/// The longest a step may take before the run counts as stalled.
-fn step_timeout_ms(table: &StepTable, settings: &SimSettings) -> u64 {
+/// The longest a step may take before the run counts as stalled: well past
+/// the slowest stroke, and past the program's own watchdog so that its alarm
+/// is seen.
+fn step_timeout_ms(table: &StepTable, program: &StepProgram, settings: &SimSettings) -> u64 {
+    let watchdog = program
+        .steps
+        .iter()
+        .flat_map(|s| &s.actions)
+        .filter_map(|a| match a {
+            Action::StartTimer(_, ms) => Some(*ms as u64 + 1000),
+            _ => None,
+        })
+        .max()
+        .unwrap_or(0);
     let longest = table
         .actuators
         .iter()
@@ -505,7 +517,7 @@ fn step_timeout_ms(table: &StepTable, settings: &SimSettings) -> u64 {
         })
         .max()
         .unwrap_or(1000) as u64;
-    2 * longest + 500
+    (2 * longest + 500).max(watchdog)
 }
 
 /// Simulates `program` (built from `table`) against the plant.
@@ -539,7 +551,7 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
         trace: Vec::new(),
         last_literals_false: Vec::new(),
     };
-    let timeout = step_timeout_ms(table, settings);
+    let timeout = step_timeout_ms(table, program, settings);
     let step_count = program.steps.len();
     let mut cycles: Vec<CycleReport> = Vec::new();
     let mut step_positions = vec![run.positions()];

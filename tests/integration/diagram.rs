@@ -67,3 +67,19 @@ fn outputs_are_ordinary_readable_files() {
     std::fs::write(&ordinary, "x").unwrap();
     assert_eq!(mode(&out.join("paper_example.st")), mode(&ordinary));
 }
+
+/// The README shows `docs/paper_example.diagram.svg`: it must be exactly what
+/// the tool draws today.
+#[test]
+fn the_readme_diagram_is_current() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = convert(dir.path(), &[]);
+    let drawn = std::fs::read_to_string(out.join("paper_example.diagram.svg")).unwrap();
+    let shown =
+        std::fs::read_to_string(crate::helpers::root().join("docs/paper_example.diagram.svg"))
+            .unwrap();
+    assert!(
+        drawn == shown,
+        "regenerate docs/paper_example.diagram.svg with `steptable convert samples/paper_example.xlsx`"
+    );
+}

@@ -1,0 +1,82 @@
+//! Benchmark (not a test): prints the median wall time of
+//! - `faults --pairs` on the paper's example (every pair of stuck inputs),
+//! - simulating a 100-actuator × 1,000-step table (two cycles),
+//! - converting the paper's sample in memory (read → every output).
+//!
+//! Run with `cargo bench --bench simulation`.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use steptable::convert::{self, Settings};
+use steptable::faults;
+use steptable::random_table::{Shape, random_rows};
+use steptable::simulate::{SimSettings, simulate};
+
+fn median(mut runs: Vec<Duration>) -> Duration {
+    runs.sort();
+    runs[runs.len() / 2]
+}
+
+fn time<T>(runs: usize, mut f: impl FnMut() -> T) -> (Duration, T) {
+    let mut times = Vec::with_capacity(runs);
+    let mut last = None;
+    for _ in 0..runs {
+        let start = Instant::now();
+        last = Some(f());
+        times.push(start.elapsed());
+    }
+    (median(times), last.expect("at least one run"))
+}
+
+fn main() {
+    let paper = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("samples/paper_example.xlsx");
+    let settings = Settings::new();
+    let checked = convert::check_path(&paper, &settings).expect("paper sample");
+    let (allocation, program) = convert::build_program(&checked.table, &settings);
+
+    let (t, table) = time(5, || {
+        faults::analyse(
+            &checked.table,
+            &program,
+            &allocation,
+            &settings.simulation,
+            true,
+        )
+    });
+    println!(
+        "faults --pairs, paper example: median {:.1} ms over 5 runs ({}; {} cases)",
+        t.as_secs_f64() * 1e3,
+        table.summary(),
+        table.cases.len()
+    );
+
+    let rows = random_rows(
+        2026,
+        Shape {
+            actuators: 100,
+            max_position: 3,
+            branches: 4,
+            steps: 1000,
+        },
+    );
+    let big = steptable::table::from_rows("big.csv", &rows).expect("valid generated table");
+    let (_, big_program) = convert::build_program(&big, &settings);
+    let (t, report) = time(5, || simulate(&big, &big_program, &SimSettings::default()));
+    let scans = report.cycles.iter().filter_map(|c| c.cycle_ms).sum::<u64>() / 10;
+    println!(
+        "simulate 100 actuators x {} steps: median {:.1} ms over 5 runs ({}; about {} scans)",
+        big.steps.len(),
+        t.as_secs_f64() * 1e3,
+        report.verdict(),
+        scans
+    );
+
+    let (t, _) = time(21, || {
+        convert::convert_path(&paper, &settings).expect("converts")
+    });
+    println!(
+        "convert paper example in memory (with simulation and single faults): median {:.2} ms over 21 runs",
+        t.as_secs_f64() * 1e3
+    );
+}

@@ -1,0 +1,136 @@
+//! Random valid step tables from a seed, for benchmarks and tests: realistic
+//! in shape (parallel branches, middle positions, everything back home at the
+//! end) and the same on every machine for the same seed.
+
+/// SplitMix64: tiny, fast, and fully specified, so a seed means the same
+/// table everywhere.
+#[derive(Debug, Clone)]
+pub struct SplitMix64(u64);
+
+impl SplitMix64 {
+    pub fn new(seed: u64) -> Self {
+        SplitMix64(seed)
+    }
+
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// A number in `low..=high`.
+    pub fn range(&mut self, low: u32, high: u32) -> u32 {
+        low + (self.next_u64() % (high - low + 1) as u64) as u32
+    }
+}
+
+/// The shape of the tables to generate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shape {
+    pub actuators: u32,
+    /// Highest position any actuator may have (1 = two-position cylinders only).
+    pub max_position: u32,
+    /// Most moves in one step.
+    pub branches: u32,
+    /// Number of steps, including the closing steps that bring everything home.
+    pub steps: u32,
+}
+
+/// Rows of move cells (a bare grid) for a valid table of the given shape.
+/// Every step moves at least one actuator; the last steps bring every
+/// actuator home, `branches` at a time.
+pub fn random_rows(seed: u64, shape: Shape) -> Vec<Vec<String>> {
+    let mut rng = SplitMix64::new(seed);
+    let n = shape.actuators.max(1) as usize;
+    let branches = shape.branches.max(1) as usize;
+    let pmax: Vec<u32> = (0..n)
+        .map(|_| rng.range(1, shape.max_position.max(1)))
+        .collect();
+    let mut at = vec![0u32; n];
+    let mut rows: Vec<Vec<String>> = Vec::new();
+    let closing = |at: &[u32]| at.iter().filter(|p| **p != 0).count().div_ceil(branches);
+    while rows.len() + closing(&at) < shape.steps as usize {
+        let wanted = rng.range(1, branches as u32) as usize;
+        let mut row = Vec::new();
+        let mut used = Vec::new();
+        for _ in 0..wanted * 8 {
+            if row.len() == wanted {
+                break;
+            }
+            let a = rng.range(0, n as u32 - 1) as usize;
+            if used.contains(&a) {
+                continue;
+            }
+            let target = rng.range(0, pmax[a]);
+            if target == at[a] {
+                continue;
+            }
+            // Keep the closing steps within the step budget.
+            let away_after = at
+                .iter()
+                .enumerate()
+                .filter(|(i, p)| if *i == a { target != 0 } else { **p != 0 })
+                .count();
+            if rows.len() + 1 + away_after.div_ceil(branches) > shape.steps as usize {
+                continue;
+            }
+            let sign = if target > at[a] { '+' } else { '-' };
+            row.push(format!("C{}{sign}{target}", a + 1));
+            used.push(a);
+            at[a] = target;
+        }
+        if row.is_empty() {
+            // Nothing fits the step budget (or the dice kept missing): close.
+            break;
+        }
+        rows.push(row);
+    }
+    let away: Vec<usize> = (0..n).filter(|a| at[*a] != 0).collect();
+    for chunk in away.chunks(branches) {
+        rows.push(chunk.iter().map(|a| format!("C{}-0", a + 1)).collect());
+    }
+    rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn generated_tables_are_valid_and_sized() {
+        for seed in 0..50 {
+            let shape = Shape {
+                actuators: 12,
+                max_position: 4,
+                branches: 4,
+                steps: 40,
+            };
+            let rows = random_rows(seed, shape);
+            assert!(rows.len() <= 40, "{}", rows.len());
+            let table = crate::table::from_rows("r.csv", &rows).expect("valid");
+            assert!(table.steps.iter().all(|s| s.moves.len() <= 4));
+        }
+        assert_eq!(
+            random_rows(
+                7,
+                Shape {
+                    actuators: 3,
+                    max_position: 2,
+                    branches: 2,
+                    steps: 10
+                }
+            ),
+            random_rows(
+                7,
+                Shape {
+                    actuators: 3,
+                    max_position: 2,
+                    branches: 2,
+                    steps: 10
+                }
+            )
+        );
+    }
+}
