@@ -7,4 +7,5 @@ mod helpers;
 mod paper;
 mod properties;
 mod safety;
+mod simulate;
 mod snapshots;

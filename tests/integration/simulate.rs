@@ -1,0 +1,72 @@
+//! The simulate and faults commands as a user runs them.
+
+use predicates::prelude::*;
+use predicates::str::contains;
+
+use crate::helpers::{sample, steptable};
+
+#[test]
+fn simulate_passes_the_paper_and_shows_the_hang_without_middle_stops() {
+    steptable()
+        .arg("simulate")
+        .arg(sample("paper_example.xlsx"))
+        .assert()
+        .success()
+        .stdout(contains("passed: cycle time 7.47 s"))
+        .stdout(contains("second START: identical cycle of 7.47 s"));
+    steptable()
+        .arg("simulate")
+        .arg(sample("paper_example.xlsx"))
+        .arg("--no-middle-stop")
+        .assert()
+        .code(1)
+        .stdout(contains(
+            "FAILED: step 5 never fires: waiting for x22; C2 ran through x22 to x23 in step 4",
+        ));
+}
+
+#[test]
+fn stroke_times_change_the_step_timing() {
+    steptable()
+        .arg("simulate")
+        .arg(sample("drilling_station.xlsx"))
+        .args(["--stroke", "C1=2s/0.5s"])
+        .assert()
+        .success()
+        .stdout(contains("1         0.00 s    1.96 s  C1+1"));
+    steptable()
+        .arg("simulate")
+        .arg(sample("drilling_station.xlsx"))
+        .args(["--stroke", "C1=fast"])
+        .assert()
+        .code(2)
+        .stderr(contains("\"fast\" is not a stroke time"));
+}
+
+#[test]
+fn faults_prints_the_table_and_writes_the_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("faults")
+        .arg(sample("paper_example.xlsx"))
+        .arg("-o")
+        .arg(dir.path())
+        .assert()
+        .success()
+        .stdout(contains("24 fault case(s): 2 no effect, 12 safe stall, 10 hazard"))
+        .stdout(contains("x11 short circuit (stuck at 1)    hazard         2  step 2 started before step 1 finished (C1 had not reached x11)"));
+    let csv =
+        std::fs::read_to_string(dir.path().join("paper_example/paper_example.faults.csv")).unwrap();
+    assert!(csv.starts_with("fault,signals,stuck_at,outcome,step,explanation\n"));
+    assert_eq!(csv.lines().count(), 25);
+    steptable()
+        .arg("faults")
+        .arg(sample("drilling_station.xlsx"))
+        .arg("--pairs")
+        .arg("-o")
+        .arg(dir.path())
+        .assert()
+        .success()
+        // 7 inputs: 14 single faults and 14·12/2 = 84 pairs of different inputs.
+        .stdout(contains("98 fault case(s)").and(contains(" + ")));
+}
