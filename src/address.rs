@@ -105,12 +105,13 @@ impl Signal {
             Signal::Sensor { actuator, position } => format!("x{}", pair(actuator, position)),
             Signal::Coil { actuator, sign } => format!("y{actuator}{}", sign.symbol()),
             Signal::StopAt { actuator, position } => format!("m{actuator}_{position}"),
-            Signal::StartMemory => "start_prev".to_string(),
+            // At most 9 characters: the shortest limit of any target (FST).
+            Signal::StartMemory => "start_mem".to_string(),
             Signal::Halt => "halt".to_string(),
-            Signal::Alarm(Alarm::Sensor) => "alarm_sensor".to_string(),
-            Signal::Alarm(Alarm::Timeout) => "alarm_timeout".to_string(),
+            Signal::Alarm(Alarm::Sensor) => "alarm_pl".to_string(),
+            Signal::Alarm(Alarm::Timeout) => "alarm_wd".to_string(),
             Signal::Watchdog => "watchdog".to_string(),
-            Signal::WatchdogArmed => "watchdog_armed".to_string(),
+            Signal::WatchdogArmed => "wd_armed".to_string(),
         }
     }
 
@@ -226,14 +227,20 @@ impl Address {
         format!("{letter}{}.{}", self.unit, self.bit)
     }
 
+    /// The physical byte and bit (a 16-bit Festo word is two bytes, low
+    /// byte first), as Siemens and IEC addresses count them.
+    pub fn byte_bit(self) -> (u32, u32) {
+        match self.target {
+            Target::Festo => (self.unit * 2 + self.bit / 8, self.bit % 8),
+            Target::Iec | Target::Siemens => (self.unit, self.bit),
+        }
+    }
+
     /// The same physical bit as an IEC direct address (`%IX1.2`), for the
     /// located variables of Structured Text. A 16-bit Festo word is two bytes,
     /// low byte first: `I0.10` is `%IX1.2`.
     pub fn iec(self) -> String {
-        let (byte, bit) = match self.target {
-            Target::Festo => (self.unit * 2 + self.bit / 8, self.bit % 8),
-            Target::Iec | Target::Siemens => (self.unit, self.bit),
-        };
+        let (byte, bit) = self.byte_bit();
         let prefix = match self.area {
             Area::Input => "%IX",
             Area::Output => "%QX",

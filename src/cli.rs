@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use steptable::address::{Mnemonic, Safety, Target};
-use steptable::convert::{self, Failure, Settings};
+use steptable::convert::{self, Failure, OutputKind, Settings};
 use steptable::diag::Diagnostic;
 use steptable::emit::diagram::DiagramKind;
 use steptable::output;
@@ -39,6 +39,18 @@ enum Command {
     Simulate(SimulateArgs),
     /// Tabulate what every sensor fault (stuck at 1 or 0) does to the machine.
     Faults(FaultsArgs),
+    /// Work with the output templates.
+    #[command(subcommand)]
+    Templates(TemplatesCommand),
+}
+
+#[derive(Subcommand)]
+enum TemplatesCommand {
+    /// Write the built-in templates into DIR, to edit and use with --templates.
+    Export {
+        /// Folder to write the templates into (created if missing).
+        dir: PathBuf,
+    },
 }
 
 #[derive(Args)]
@@ -115,6 +127,14 @@ struct ConvertArgs {
     /// Horizontal axis of NAME.diagram.svg: step (displacement-step) or time.
     #[arg(long, value_enum, default_value_t = DiagramArg::Step)]
     diagram: DiagramArg,
+    /// Files to write: xlsx, st, fst, io, diagram, faults, plcopen, codesys,
+    /// gvl, tia, awl, sdf, fst-alloc, rockwell (default all).
+    #[arg(long, value_name = "LIST", value_parser = parse_formats)]
+    formats: Option<std::collections::BTreeSet<OutputKind>>,
+    /// Folder of templates that replace the built-in ones by file name
+    /// (start from `steptable templates export DIR`).
+    #[arg(long, value_name = "DIR")]
+    templates: Option<PathBuf>,
     #[command(flatten)]
     common: CommonArgs,
     #[command(flatten)]
@@ -150,6 +170,10 @@ struct CommonArgs {
     /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all).
     #[arg(long, value_name = "LIST", value_parser = parse_safety)]
     safety: Option<Safety>,
+}
+
+fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<OutputKind>, String> {
+    OutputKind::parse_list(text)
 }
 
 fn parse_safety(text: &str) -> Result<Safety, String> {
@@ -205,6 +229,20 @@ pub fn run() -> i32 {
         Command::Check(args) => run_check(&args),
         Command::Simulate(args) => run_simulate(&args),
         Command::Faults(args) => run_faults(&args),
+        Command::Templates(TemplatesCommand::Export { dir }) => {
+            match steptable::emit::templates::export_defaults(&dir) {
+                Ok(written) => {
+                    for path in written {
+                        out(&path.display().to_string());
+                    }
+                    EXIT_OK
+                }
+                Err(err) => {
+                    eprintln!("error: {}: {err}", dir.display());
+                    EXIT_INTERNAL
+                }
+            }
+        }
     }
 }
 
@@ -354,6 +392,18 @@ fn run_convert(args: &ConvertArgs) -> i32 {
         DiagramArg::Step => DiagramKind::Step,
         DiagramArg::Time => DiagramKind::Time,
     };
+    if let Some(formats) = &args.formats {
+        settings.formats = formats.clone();
+    }
+    if let Some(dir) = &args.templates {
+        match steptable::emit::templates::Templates::load_dir(dir) {
+            Ok(templates) => settings.templates = templates,
+            Err(err) => {
+                eprintln!("{err}");
+                return EXIT_BAD_INPUT;
+            }
+        }
+    }
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
     for (input, name) in args.inputs.iter().zip(&names) {
@@ -368,6 +418,17 @@ fn run_convert(args: &ConvertArgs) -> i32 {
             Err(Failure::Internal(why)) => {
                 eprintln!("{}: internal error: {why}", display_name(input));
                 code = EXIT_INTERNAL;
+                continue;
+            }
+            Err(Failure::Template(err)) => {
+                eprintln!("{}: not converted, nothing written", display_name(input));
+                if err.user {
+                    eprintln!("{err}");
+                    code = code.max(EXIT_BAD_INPUT);
+                } else {
+                    eprintln!("internal error: {err}");
+                    code = EXIT_INTERNAL;
+                }
                 continue;
             }
         };

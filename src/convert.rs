@@ -1,11 +1,14 @@
 //! The pipeline, end to end and in memory: read → table → addresses → program
 //! → every output file. Writing to disk is [`crate::output`]'s job.
 
+use std::collections::BTreeSet;
 use std::path::Path;
 
 use crate::address::{Allocation, Mnemonic, Target};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::emit::diagram::DiagramKind;
+use crate::emit::st::IecFile;
+use crate::emit::templates::{TemplateError, Templates};
 use crate::emit::{self, EmitInput};
 use crate::faults::{self, FaultTable};
 use crate::program::{self, ProgramOptions, StepProgram};
@@ -26,11 +29,125 @@ pub struct Settings {
     pub simulation: SimSettings,
     /// Horizontal axis of `NAME.diagram.svg`.
     pub diagram: DiagramKind,
+    /// Which files to write.
+    pub formats: BTreeSet<OutputKind>,
+    /// The templates text outputs are laid out by.
+    pub templates: Templates,
+}
+
+/// One kind of output file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum OutputKind {
+    Workbook,
+    StructuredText,
+    Fst,
+    Allocation,
+    Diagram,
+    Faults,
+    PlcOpen,
+    Codesys,
+    Gvl,
+    TiaTags,
+    Awl,
+    SymbolTable,
+    FstAllocation,
+    Rockwell,
+}
+
+impl OutputKind {
+    /// Every kind, in the order files are listed.
+    pub const ALL: [OutputKind; 14] = [
+        OutputKind::Workbook,
+        OutputKind::StructuredText,
+        OutputKind::Fst,
+        OutputKind::Allocation,
+        OutputKind::Diagram,
+        OutputKind::Faults,
+        OutputKind::PlcOpen,
+        OutputKind::Codesys,
+        OutputKind::Gvl,
+        OutputKind::TiaTags,
+        OutputKind::Awl,
+        OutputKind::SymbolTable,
+        OutputKind::FstAllocation,
+        OutputKind::Rockwell,
+    ];
+
+    /// The name used with `--formats`.
+    pub fn name(self) -> &'static str {
+        match self {
+            OutputKind::Workbook => "xlsx",
+            OutputKind::StructuredText => "st",
+            OutputKind::Fst => "fst",
+            OutputKind::Allocation => "io",
+            OutputKind::Diagram => "diagram",
+            OutputKind::Faults => "faults",
+            OutputKind::PlcOpen => "plcopen",
+            OutputKind::Codesys => "codesys",
+            OutputKind::Gvl => "gvl",
+            OutputKind::TiaTags => "tia",
+            OutputKind::Awl => "awl",
+            OutputKind::SymbolTable => "sdf",
+            OutputKind::FstAllocation => "fst-alloc",
+            OutputKind::Rockwell => "rockwell",
+        }
+    }
+
+    /// The end of the file name, after `NAME`.
+    pub fn suffix(self) -> &'static str {
+        match self {
+            OutputKind::Workbook => ".xlsx",
+            OutputKind::StructuredText => ".st",
+            OutputKind::Fst => ".fst.txt",
+            OutputKind::Allocation => ".io.csv",
+            OutputKind::Diagram => ".diagram.svg",
+            OutputKind::Faults => ".faults.csv",
+            OutputKind::PlcOpen => ".plcopen.xml",
+            OutputKind::Codesys => ".codesys.xml",
+            OutputKind::Gvl => ".gvl.txt",
+            OutputKind::TiaTags => ".tags.xlsx",
+            OutputKind::Awl => ".awl",
+            OutputKind::SymbolTable => ".sdf",
+            OutputKind::FstAllocation => ".fst-alloc.csv",
+            OutputKind::Rockwell => ".rockwell.csv",
+        }
+    }
+
+    /// Parses `--formats st,plcopen,awl` (`all` for every kind).
+    pub fn parse_list(text: &str) -> Result<BTreeSet<OutputKind>, String> {
+        let mut kinds = BTreeSet::new();
+        for item in text.split(',').map(|s| s.trim().to_ascii_lowercase()) {
+            if item == "all" {
+                kinds.extend(OutputKind::ALL);
+                continue;
+            }
+            match OutputKind::ALL.iter().find(|k| k.name() == item) {
+                Some(kind) => {
+                    kinds.insert(*kind);
+                }
+                None => {
+                    let names: Vec<&str> = OutputKind::ALL.iter().map(|k| k.name()).collect();
+                    return Err(format!(
+                        "\"{item}\" is not an output format (expected some of: {}, or all)",
+                        names.join(", ")
+                    ));
+                }
+            }
+        }
+        if kinds.is_empty() {
+            return Err("no output format given".to_string());
+        }
+        Ok(kinds)
+    }
 }
 
 impl Settings {
+    /// Defaults: Festo addresses, middle stops, no safety checks, every format.
     pub fn new() -> Self {
-        Settings::default()
+        Settings {
+            formats: OutputKind::ALL.into_iter().collect(),
+            ..Settings::default()
+        }
     }
 }
 
@@ -70,8 +187,10 @@ pub struct Conversion {
 pub enum Failure {
     /// The input is wrong; every problem found is listed.
     Input(Vec<Diagnostic>),
-    /// A bug or an environment problem (a template failed to render, …).
+    /// A bug or an environment problem.
     Internal(String),
+    /// A template failed to render: the user's (fix it) or a default (a bug).
+    Template(TemplateError),
 }
 
 /// Reads and checks one file.
@@ -193,39 +312,52 @@ pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Con
         program: &program,
         simulation: Some(&simulation),
         faults: Some(&fault_table),
+        templates: &settings.templates,
     };
     let internal =
         |what: &str, e: &dyn std::fmt::Display| Failure::Internal(format!("{what}: {e}"));
-    let files = vec![
-        OutputFile {
-            name: format!("{name}.xlsx"),
-            bytes: emit::workbook::render(&input).map_err(|e| internal("workbook", &e))?,
-        },
-        OutputFile {
-            name: format!("{name}.st"),
-            bytes: emit::st::render(&input, settings.simulation.scan_ms)
-                .map_err(|e| internal("structured text", &e))?
-                .into_bytes(),
-        },
-        OutputFile {
-            name: format!("{name}.fst.txt"),
-            bytes: emit::fst::render(&input)
-                .map_err(|e| internal("FST statement list", &e))?
-                .into_bytes(),
-        },
-        OutputFile {
-            name: format!("{name}.io.csv"),
-            bytes: emit::io_csv::render(&input).map_err(|e| internal("allocation list", &e))?,
-        },
-        OutputFile {
-            name: format!("{name}.diagram.svg"),
-            bytes: emit::diagram::render_svg(name, &simulation, settings.diagram).into_bytes(),
-        },
-        OutputFile {
-            name: format!("{name}.faults.csv"),
-            bytes: faults::render_csv(&fault_table).map_err(|e| internal("fault table", &e))?,
-        },
-    ];
+    let scan = settings.simulation.scan_ms;
+    let mut files = Vec::new();
+    for kind in OutputKind::ALL {
+        if !settings.formats.contains(&kind) {
+            continue;
+        }
+        let text = |result: Result<String, TemplateError>| -> Result<Vec<u8>, Failure> {
+            result.map(String::into_bytes).map_err(Failure::Template)
+        };
+        let bytes = match kind {
+            OutputKind::Workbook => {
+                emit::workbook::render(&input).map_err(|e| internal("workbook", &e))?
+            }
+            OutputKind::StructuredText => {
+                text(emit::st::render(&input, IecFile::StructuredText, scan))?
+            }
+            OutputKind::Fst => text(emit::fst::render(&input))?,
+            OutputKind::Allocation => {
+                emit::io_csv::render(&input).map_err(|e| internal("allocation list", &e))?
+            }
+            OutputKind::Diagram => {
+                emit::diagram::render_svg(name, &simulation, settings.diagram).into_bytes()
+            }
+            OutputKind::Faults => {
+                faults::render_csv(&fault_table).map_err(|e| internal("fault table", &e))?
+            }
+            OutputKind::PlcOpen => text(emit::st::render(&input, IecFile::PlcOpen, scan))?,
+            OutputKind::Codesys => text(emit::st::render(&input, IecFile::Codesys, scan))?,
+            OutputKind::Gvl => text(emit::st::render(&input, IecFile::GlobalVariables, scan))?,
+            OutputKind::TiaTags => {
+                emit::tables::render_tia_tags(&input).map_err(|e| internal("TIA tag table", &e))?
+            }
+            OutputKind::Awl => text(emit::awl::render_awl(&input))?,
+            OutputKind::SymbolTable => text(emit::awl::render_sdf(&input))?,
+            OutputKind::FstAllocation => text(emit::tables::render_fst_alloc(&input))?,
+            OutputKind::Rockwell => text(emit::tables::render_rockwell(&input))?,
+        };
+        files.push(OutputFile {
+            name: format!("{name}{}", kind.suffix()),
+            bytes,
+        });
+    }
     Ok(Conversion {
         name: name.to_string(),
         table,

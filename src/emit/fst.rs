@@ -68,7 +68,8 @@ fn condition(literals: &[Literal], festo: &Allocation) -> Vec<ConditionLine> {
                 } else {
                     operand
                 },
-                comment: l.signal.symbol(),
+                // The FST allocation list's symbolic operand.
+                comment: l.signal.ident(),
             }
         })
         .collect()
@@ -162,5 +163,7 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         steps,
         rungs,
     };
-    templates::render("program.fst.txt.j2", Value::from(Serde(&context)))
+    input
+        .templates
+        .render("program.fst.txt.j2", Value::from(Serde(&context)))
 }

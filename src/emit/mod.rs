@@ -2,10 +2,12 @@
 //! the allocation) into the bytes of one file. What a name, an address or an
 //! operator is, is decided here in Rust; templates in `templates/` only lay out.
 
+pub mod awl;
 pub mod diagram;
 pub mod fst;
 pub mod io_csv;
 pub mod st;
+pub mod tables;
 pub mod templates;
 pub mod workbook;
 
@@ -15,6 +17,7 @@ use crate::faults::FaultTable;
 use crate::program::{Action, StepProgram};
 use crate::simulate::SimReport;
 use crate::table::{Move, StepTable};
+use templates::Templates;
 
 /// Everything an emitter may read.
 #[derive(Debug, Clone, Copy)]
@@ -28,6 +31,8 @@ pub struct EmitInput<'a> {
     pub simulation: Option<&'a SimReport>,
     /// The fault table, for the FAULTS sheet.
     pub faults: Option<&'a FaultTable>,
+    /// The templates text outputs are laid out by.
+    pub templates: &'a Templates,
 }
 
 impl EmitInput<'_> {

@@ -1,6 +1,9 @@
 //! IEC 61131-3 Structured Text (`NAME.st`) that matiec — the compiler behind
 //! OpenPLC and Beremiz — accepts as it is: located variables in their own VAR
 //! block, `(* *)` comments only, and a CONFIGURATION with a cyclic task.
+//!
+//! The same model (variables and the rendered ST body) feeds the PLCopen XML,
+//! the CODESYS XML and the CODESYS global variable list.
 
 use minijinja::Value;
 use minijinja::value::Serde;
@@ -27,7 +30,10 @@ struct Var {
 struct Internal {
     ident: String,
     data_type: &'static str,
-    initial: String,
+    /// A function block type (`TON`) rather than an elementary one.
+    derived: bool,
+    /// Initial value, if the declaration has one.
+    initial: Option<String>,
     comment: String,
 }
 
@@ -64,25 +70,37 @@ struct RungContext {
 }
 
 #[derive(Serialize)]
+struct BodyContext {
+    step_var: &'static str,
+    timers: Vec<Timer>,
+    steps: Vec<StepContext>,
+    rungs: Vec<RungContext>,
+}
+
+/// Everything the IEC templates (`.st`, PLCopen, CODESYS, GVL) lay out.
+#[derive(Serialize)]
 struct Context {
     title: String,
     version: &'static str,
     source: String,
     target: String,
+    timestamp: &'static str,
     program_name: &'static str,
-    step_var: &'static str,
-    inputs: Vec<Var>,
-    outputs: Vec<Var>,
+    /// Inputs and outputs, with addresses.
+    located: Vec<Var>,
+    /// Internal variables: step counter, memories, timer flags and instances.
     internals: Vec<Internal>,
-    timers: Vec<Timer>,
-    steps: Vec<StepContext>,
-    rungs: Vec<RungContext>,
+    /// The program body, rendered from `program_body.st.j2`.
+    body: String,
     configuration_name: &'static str,
     resource_name: &'static str,
     task_name: &'static str,
     instance_name: &'static str,
     task_interval: String,
 }
+
+/// The fixed creation time of generated files: outputs are byte-stable.
+pub const TIMESTAMP: &str = "2020-01-01T00:00:00";
 
 /// Text made safe inside `(* … *)`: ST comments do not nest.
 fn comment_text(text: &str) -> String {
@@ -91,13 +109,21 @@ fn comment_text(text: &str) -> String {
         .replace("*)", "* )")
 }
 
-/// The run flag and preset variable of a timer.
+/// The run flag and preset variable of a timer (`wd_run`, `wd_pt` for the
+/// watchdog: short enough for every target's symbol limit).
 fn timer_run(timer: Signal) -> String {
-    format!("{}_run", timer.ident())
+    format!("{}_run", timer_stem(timer))
 }
 
 fn timer_preset(timer: Signal) -> String {
-    format!("{}_pt", timer.ident())
+    format!("{}_pt", timer_stem(timer))
+}
+
+fn timer_stem(timer: Signal) -> String {
+    match timer {
+        Signal::Watchdog => "wd".to_string(),
+        other => other.ident(),
+    }
 }
 
 /// A signal as an ST operand: a timer reads as its run flag.
@@ -137,19 +163,17 @@ fn statements(actions: &[Action], comment: impl Fn(Action) -> String) -> Vec<Sta
         .collect()
 }
 
-fn located(list: &[Assigned], input: &EmitInput) -> Vec<Var> {
-    list.iter()
-        .map(|a| Var {
-            ident: a.signal.ident(),
-            iec_address: a.address.iec(),
-            address: a.address.display(input.allocation.mnemonic),
-            comment: comment_text(&a.signal.comment(input.table)),
-        })
-        .collect()
+fn located(a: &Assigned, input: &EmitInput) -> Var {
+    Var {
+        ident: a.signal.ident(),
+        iec_address: a.address.iec(),
+        address: a.address.display(input.allocation.mnemonic),
+        comment: comment_text(&a.signal.comment(input.table)),
+    }
 }
 
-/// Renders `NAME.st`.
-pub fn render(input: &EmitInput, scan_millis: u32) -> Result<String, templates::TemplateError> {
+/// Builds the context shared by every IEC output.
+fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::TemplateError> {
     let alloc = input.allocation;
     let program = input.program;
     let count = program.steps.len();
@@ -180,33 +204,43 @@ pub fn render(input: &EmitInput, scan_millis: u32) -> Result<String, templates::
         })
         .collect();
     let initially_on = |s: Signal| program.init.contains(&Action::Set(s));
-    let mut internals: Vec<Internal> = alloc
-        .memories
-        .iter()
-        .map(|m| Internal {
+    let mut internals = vec![Internal {
+        ident: STEP_VAR.to_string(),
+        data_type: "INT",
+        derived: false,
+        initial: Some("1".to_string()),
+        comment: "the step the sequence waits to fire".to_string(),
+    }];
+    internals.extend(alloc.memories.iter().map(|m| {
+        Internal {
             ident: m.signal.ident(),
             data_type: "BOOL",
-            initial: if initially_on(m.signal) {
-                "TRUE"
-            } else {
-                "FALSE"
-            }
-            .to_string(),
+            derived: false,
+            initial: Some(
+                if initially_on(m.signal) {
+                    "TRUE"
+                } else {
+                    "FALSE"
+                }
+                .to_string(),
+            ),
             comment: comment_text(&m.signal.comment(input.table)),
-        })
-        .collect();
+        }
+    }));
     let mut timers = Vec::new();
     for &timer in &program.timers {
         internals.push(Internal {
             ident: timer_run(timer),
             data_type: "BOOL",
-            initial: "FALSE".to_string(),
+            derived: false,
+            initial: Some("FALSE".to_string()),
             comment: comment_text(&format!("{} runs", timer.comment(input.table))),
         });
         internals.push(Internal {
             ident: timer_preset(timer),
             data_type: "TIME",
-            initial: "T#0ms".to_string(),
+            derived: false,
+            initial: Some("T#0ms".to_string()),
             comment: comment_text(&format!("{} preset", timer.comment(input.table))),
         });
         timers.push(Timer {
@@ -215,24 +249,72 @@ pub fn render(input: &EmitInput, scan_millis: u32) -> Result<String, templates::
             preset: timer_preset(timer),
         });
     }
-    let context = Context {
+    for timer in &timers {
+        internals.push(Internal {
+            ident: timer.ident.clone(),
+            data_type: "TON",
+            derived: true,
+            initial: None,
+            comment: String::new(),
+        });
+    }
+    let body = input.templates.render(
+        "program_body.st.j2",
+        Value::from(Serde(&BodyContext {
+            step_var: STEP_VAR,
+            timers,
+            steps,
+            rungs,
+        })),
+    )?;
+    Ok(Context {
         title: comment_text(input.name),
         version: env!("CARGO_PKG_VERSION"),
         source: comment_text(&input.source()),
         target: alloc.target.name().to_string(),
+        timestamp: TIMESTAMP,
         program_name: PROGRAM_NAME,
-        step_var: STEP_VAR,
-        inputs: located(&alloc.inputs, input),
-        outputs: located(&alloc.outputs, input),
+        located: alloc
+            .inputs
+            .iter()
+            .chain(&alloc.outputs)
+            .map(|a| located(a, input))
+            .collect(),
         internals,
-        timers,
-        steps,
-        rungs,
+        body,
         configuration_name: "config0",
         resource_name: "resource0",
         task_name: "cyclic_task",
         instance_name: "main_instance",
         task_interval: format!("T#{scan_millis}ms"),
+    })
+}
+
+/// Which IEC file to render.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IecFile {
+    /// `NAME.st` (program and configuration).
+    StructuredText,
+    /// `NAME.plcopen.xml`, PLCopen TC6 XML v2.01.
+    PlcOpen,
+    /// `NAME.codesys.xml`, PLCopen XML as CODESYS imports it.
+    Codesys,
+    /// `NAME.gvl.txt`, a CODESYS global variable list.
+    GlobalVariables,
+}
+
+/// Renders one IEC file.
+pub fn render(
+    input: &EmitInput,
+    file: IecFile,
+    scan_millis: u32,
+) -> Result<String, templates::TemplateError> {
+    let context = Value::from(Serde(&context(input, scan_millis)?));
+    let template = match file {
+        IecFile::StructuredText => "program.st.j2",
+        IecFile::PlcOpen => "plcopen.xml.j2",
+        IecFile::Codesys => "codesys.xml.j2",
+        IecFile::GlobalVariables => "gvl.txt.j2",
     };
-    templates::render("program.st.j2", Value::from(Serde(&context)))
+    input.templates.render(template, context)
 }

@@ -1,8 +1,14 @@
-//! The minijinja environment: default templates embedded in the binary, strict
-//! about undefined variables, with blocks trimmed so templates read naturally.
+//! The minijinja templates every text output is laid out by: the defaults in
+//! `templates/`, embedded in the binary, and any a user overrides by file name
+//! with `--templates DIR`. Strict about undefined variables, blocks trimmed.
+//! Templates only lay out: names, addresses and operators come from Rust.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::{Path, PathBuf};
 
 use minijinja::syntax::SyntaxConfig;
-use minijinja::{Environment, UndefinedBehavior, Value};
+use minijinja::{AutoEscape, Environment, UndefinedBehavior, Value};
 
 /// The default templates, by file name.
 pub const DEFAULTS: &[(&str, &str)] = &[
@@ -11,63 +17,297 @@ pub const DEFAULTS: &[(&str, &str)] = &[
         include_str!("../../templates/program.st.j2"),
     ),
     (
+        "program_body.st.j2",
+        include_str!("../../templates/program_body.st.j2"),
+    ),
+    (
         "program.fst.txt.j2",
         include_str!("../../templates/program.fst.txt.j2"),
     ),
+    (
+        "plcopen.xml.j2",
+        include_str!("../../templates/plcopen.xml.j2"),
+    ),
+    (
+        "codesys.xml.j2",
+        include_str!("../../templates/codesys.xml.j2"),
+    ),
+    ("gvl.txt.j2", include_str!("../../templates/gvl.txt.j2")),
+    (
+        "program.awl.j2",
+        include_str!("../../templates/program.awl.j2"),
+    ),
+    (
+        "symbols.sdf.j2",
+        include_str!("../../templates/symbols.sdf.j2"),
+    ),
+    (
+        "fst-alloc.csv.j2",
+        include_str!("../../templates/fst-alloc.csv.j2"),
+    ),
+    (
+        "rockwell.csv.j2",
+        include_str!("../../templates/rockwell.csv.j2"),
+    ),
 ];
 
-/// A template failed to render.
-#[derive(Debug, thiserror::Error)]
-#[error("template {name}: {detail}")]
+/// A template failed to load or render.
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct TemplateError {
-    pub name: String,
+    /// The template file (the user's path for an override).
+    pub file: String,
+    /// True when the template is the user's, so the user must fix it.
+    pub user: bool,
+    pub line: Option<usize>,
     pub detail: String,
 }
 
-/// Renders one of the default templates with `context`.
-pub fn render(name: &str, context: Value) -> Result<String, TemplateError> {
-    let source = DEFAULTS
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, s)| *s)
-        .ok_or_else(|| TemplateError {
-            name: name.to_string(),
-            detail: "no such template".to_string(),
-        })?;
+impl fmt::Display for TemplateError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(line) => write!(f, "{}:{line}: {}", self.file, self.detail),
+            None => write!(f, "{}: {}", self.file, self.detail),
+        }
+    }
+}
+
+impl std::error::Error for TemplateError {}
+
+/// The set of templates of one run: defaults plus the user's overrides.
+#[derive(Clone)]
+pub struct Templates {
+    env: Environment<'static>,
+    /// Overridden template name → the user's file.
+    overrides: BTreeMap<String, PathBuf>,
+}
+
+impl fmt::Debug for Templates {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Templates")
+            .field("overrides", &self.overrides)
+            .finish()
+    }
+}
+
+impl PartialEq for Templates {
+    fn eq(&self, other: &Self) -> bool {
+        self.overrides == other.overrides
+    }
+}
+
+impl Default for Templates {
+    fn default() -> Self {
+        Templates::with_overrides(BTreeMap::new()).unwrap_or_else(|_| Templates {
+            env: Environment::new(),
+            overrides: BTreeMap::new(),
+        })
+    }
+}
+
+fn environment() -> Result<Environment<'static>, minijinja::Error> {
     let mut env = Environment::new();
     env.set_undefined_behavior(UndefinedBehavior::Strict);
-    let syntax = SyntaxConfig::builder()
-        .trim_blocks(true)
-        .lstrip_blocks(true)
-        .keep_trailing_newline(true)
-        .build()
-        .map_err(|e| TemplateError {
-            name: name.to_string(),
+    env.set_syntax(
+        SyntaxConfig::builder()
+            .trim_blocks(true)
+            .lstrip_blocks(true)
+            .keep_trailing_newline(true)
+            .build()?,
+    );
+    // XML templates escape every value; the others write text as it is.
+    env.set_auto_escape_callback(|name| {
+        if name.contains(".xml") {
+            AutoEscape::Html
+        } else {
+            AutoEscape::None
+        }
+    });
+    env.add_filter("pad", pad);
+    env.add_filter("csv", csv_field);
+    Ok(env)
+}
+
+impl Templates {
+    /// The defaults with `overrides` (template name → (path, source)) in their place.
+    fn with_overrides(
+        overrides: BTreeMap<String, (PathBuf, String)>,
+    ) -> Result<Self, TemplateError> {
+        let mut env = environment().map_err(|e| TemplateError {
+            file: "templates".to_string(),
+            user: false,
+            line: None,
             detail: e.to_string(),
         })?;
-    env.set_syntax(syntax);
-    env.add_filter("pad", pad);
-    let to_error = |e: minijinja::Error| TemplateError {
-        name: name.to_string(),
-        detail: match e.line() {
-            Some(line) => format!("line {line}: {e}"),
-            None => e.to_string(),
-        },
-    };
-    env.add_template(name, source).map_err(to_error)?;
-    let template = env.get_template(name).map_err(to_error)?;
-    let text = template.render(context).map_err(to_error)?;
-    // Trailing spaces come from padded empty columns; no output language wants them.
-    let mut out: String = text
-        .lines()
-        .map(str::trim_end)
-        .collect::<Vec<_>>()
-        .join("\n");
-    out.push('\n');
-    Ok(out)
+        let mut paths = BTreeMap::new();
+        for (name, source) in DEFAULTS {
+            let (source, file, user) = match overrides.get(*name) {
+                Some((path, text)) => (text.clone(), path.display().to_string(), true),
+                None => (source.to_string(), format!("templates/{name}"), false),
+            };
+            env.add_template_owned(name.to_string(), source)
+                .map_err(|e| TemplateError {
+                    file: file.clone(),
+                    user,
+                    line: e.line(),
+                    detail: e.detail().unwrap_or("syntax error").to_string(),
+                })?;
+            if user {
+                paths.insert(name.to_string(), PathBuf::from(file));
+            }
+        }
+        Ok(Templates {
+            env,
+            overrides: paths,
+        })
+    }
+
+    /// The defaults, with every file of `dir` that has a template's name in
+    /// its place. A file in `dir` that is no template's name is an error, so
+    /// a typo does not silently keep the default.
+    pub fn load_dir(dir: &Path) -> Result<Self, TemplateError> {
+        let error = |file: String, detail: String| TemplateError {
+            file,
+            user: true,
+            line: None,
+            detail,
+        };
+        let entries = std::fs::read_dir(dir).map_err(|e| {
+            error(
+                dir.display().to_string(),
+                format!("cannot read the folder: {e}"),
+            )
+        })?;
+        let mut overrides = BTreeMap::new();
+        let mut names: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+        names.sort();
+        for path in names {
+            if path.is_dir() {
+                continue;
+            }
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().to_string())
+                .unwrap_or_default();
+            if !DEFAULTS.iter().any(|(n, _)| *n == name) {
+                let known: Vec<&str> = DEFAULTS.iter().map(|(n, _)| *n).collect();
+                return Err(error(
+                    path.display().to_string(),
+                    format!(
+                        "no template has this name (templates: {})",
+                        known.join(", ")
+                    ),
+                ));
+            }
+            let source = std::fs::read_to_string(&path)
+                .map_err(|e| error(path.display().to_string(), format!("cannot read: {e}")))?;
+            overrides.insert(name, (path, source));
+        }
+        Templates::with_overrides(overrides)
+    }
+
+    /// Renders template `name` with `context`.
+    pub fn render(&self, name: &str, context: Value) -> Result<String, TemplateError> {
+        let (file, user) = match self.overrides.get(name) {
+            Some(path) => (path.display().to_string(), true),
+            None => (format!("templates/{name}"), false),
+        };
+        let template = self.env.get_template(name).map_err(|e| TemplateError {
+            file: file.clone(),
+            user,
+            line: None,
+            detail: e.to_string(),
+        })?;
+        let text = template.render(context).map_err(|e| {
+            // Name what was undefined: the source text the error points at.
+            let source = template.source();
+            let detail = e
+                .detail()
+                .map(str::to_string)
+                .unwrap_or_else(|| e.kind().to_string());
+            let what = e
+                .range()
+                .and_then(|r| source.get(r))
+                .filter(|s| !detail.contains(*s))
+                .map(|s| format!(" (`{s}`)"))
+                .unwrap_or_default();
+            TemplateError {
+                file,
+                user,
+                line: e.line(),
+                detail: format!("{detail}{what}"),
+            }
+        })?;
+        // Trailing spaces come from padded empty columns; no output wants them.
+        let mut out: String = text
+            .lines()
+            .map(str::trim_end)
+            .collect::<Vec<_>>()
+            .join("\n");
+        out.push('\n');
+        Ok(out)
+    }
+}
+
+/// Writes the default templates into `dir` (created if missing), to start from.
+pub fn export_defaults(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let mut written = Vec::new();
+    for (name, source) in DEFAULTS {
+        let path = dir.join(name);
+        std::fs::write(&path, source)?;
+        written.push(path);
+    }
+    Ok(written)
 }
 
 /// `{{ text | pad(8) }}`: left-justify to a column width.
 fn pad(value: String, width: usize) -> String {
     format!("{value:<width$}")
+}
+
+/// `{{ text | csv }}`: one CSV field, quoted when it must be.
+fn csv_field(value: String) -> String {
+    if value.contains([',', '"', '\n', '\r', ';']) {
+        format!("\"{}\"", value.replace('"', "\"\""))
+    } else {
+        value
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn user_template_errors_name_file_line_and_variable() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(
+            dir.path().join("gvl.txt.j2"),
+            "VAR_GLOBAL\n{{ no_such_thing }}\nEND_VAR\n",
+        )
+        .unwrap();
+        let templates = Templates::load_dir(dir.path()).unwrap();
+        let err = templates
+            .render("gvl.txt.j2", Value::from(BTreeMap::<String, String>::new()))
+            .unwrap_err();
+        assert!(err.user);
+        assert_eq!(err.line, Some(2));
+        assert!(err.to_string().contains("gvl.txt.j2:2:"), "{err}");
+        assert!(err.to_string().contains("no_such_thing"), "{err}");
+    }
+
+    #[test]
+    fn unknown_template_names_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("progam.st.j2"), "typo").unwrap();
+        let err = Templates::load_dir(dir.path()).unwrap_err();
+        assert!(err.detail.contains("no template has this name"), "{err}");
+    }
+
+    #[test]
+    fn csv_fields_are_quoted_when_needed() {
+        assert_eq!(csv_field("x10".into()), "x10");
+        assert_eq!(csv_field("a, b".into()), "\"a, b\"");
+        assert_eq!(csv_field("say \"hi\"".into()), "\"say \"\"hi\"\"\"");
+    }
 }

@@ -3,6 +3,7 @@
 
 mod broken;
 mod diagram;
+mod exports;
 mod helpers;
 mod paper;
 mod properties;

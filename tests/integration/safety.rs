@@ -69,8 +69,8 @@ fn convert_with_safety_lists_alarms_and_passes_simulation() {
         .success();
     let out = dir.path().join("paper_example");
     let io = std::fs::read_to_string(out.join("paper_example.io.csv")).unwrap();
-    assert!(io.contains("O1.5,alarm_sensor,alarm,,,,"), "{io}");
-    assert!(io.contains("O1.6,alarm_timeout,alarm,,,,"), "{io}");
+    assert!(io.contains("O1.5,alarm_pl,alarm,,,,"), "{io}");
+    assert!(io.contains("O1.6,alarm_wd,alarm,,,,"), "{io}");
     let simulation = read_sheet(&out.join("paper_example.xlsx"), "SIMULATION");
     assert!(
         simulation[1][0].starts_with("passed"),

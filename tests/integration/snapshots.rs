@@ -6,6 +6,20 @@ use steptable::convert::{Settings, convert_path};
 
 use crate::helpers::samples;
 
+/// Every text output, by the end of its name.
+const TEXT_OUTPUTS: [&str; 10] = [
+    ".st",
+    ".fst.txt",
+    ".io.csv",
+    ".plcopen.xml",
+    ".codesys.xml",
+    ".gvl.txt",
+    ".awl",
+    ".sdf",
+    ".fst-alloc.csv",
+    ".rockwell.csv",
+];
+
 #[test]
 fn every_sample_and_target() {
     for path in samples() {
@@ -28,14 +42,16 @@ fn every_sample_and_target() {
                 .to_string_lossy()
                 .replace('.', "_");
             for output in &conversion.files {
-                let Some(ext) = [".st", ".fst.txt", ".io.csv"]
-                    .into_iter()
-                    .find(|e| output.name.ends_with(e))
-                else {
+                let Some(ext) = TEXT_OUTPUTS.into_iter().find(|e| output.name.ends_with(e)) else {
                     continue;
                 };
-                // The FST program always uses Festo operands: one snapshot is enough.
-                if ext == ".fst.txt" && label != "festo" {
+                // FST files always use Festo operands: one snapshot is enough.
+                // The exports for other tools: Festo and German Siemens.
+                let festo_only = [".fst.txt", ".fst-alloc.csv"].contains(&ext);
+                let export = ![".st", ".fst.txt", ".io.csv"].contains(&ext);
+                if (festo_only && label != "festo")
+                    || (export && !["festo", "siemens-de"].contains(&label))
+                {
                     continue;
                 }
                 let text = String::from_utf8(output.bytes.clone()).expect("text output");

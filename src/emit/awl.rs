@@ -1,0 +1,436 @@
+//! STEP 7 statement list source (`NAME.awl`, organisation block OB 1) and its
+//! symbol table (`NAME.sdf`). One NETWORK per step: a step flag marks the step
+//! the sequence waits to fire, and a `fired` flag lets at most one step fire
+//! per cycle, as the step program says. English (`A`, `AN`, `JCN`, `I`, `Q`)
+//! or German (`U`, `UN`, `SPBN`, `E`, `A`) mnemonics follow `--mnemonic`.
+
+use minijinja::Value;
+use minijinja::value::Serde;
+use serde::Serialize;
+
+use super::{EmitInput, action_comment, moves_text, one_line, templates};
+use crate::address::{Area, Mnemonic, Signal};
+use crate::program::{Action, Literal};
+
+/// The AWL words of one mnemonic set.
+struct Words {
+    and: &'static str,
+    and_not: &'static str,
+    jump_if_not: &'static str,
+    input: &'static str,
+    output: &'static str,
+}
+
+fn words(mnemonic: Mnemonic) -> Words {
+    match mnemonic {
+        Mnemonic::En => Words {
+            and: "A",
+            and_not: "AN",
+            jump_if_not: "JCN",
+            input: "I",
+            output: "Q",
+        },
+        Mnemonic::De => Words {
+            and: "U",
+            and_not: "UN",
+            jump_if_not: "SPBN",
+            input: "E",
+            output: "A",
+        },
+    }
+}
+
+#[derive(Serialize)]
+struct Line {
+    label: String,
+    op: String,
+    operand: String,
+    comment: String,
+}
+
+#[derive(Serialize)]
+struct Network {
+    title: String,
+    lines: Vec<Line>,
+}
+
+#[derive(Serialize, Clone)]
+struct Symbol {
+    symbol: String,
+    address: String,
+    data_type: &'static str,
+    comment: String,
+}
+
+#[derive(Serialize)]
+struct Context {
+    title: String,
+    version: &'static str,
+    source: String,
+    mnemonics: &'static str,
+    step_flags: String,
+    networks: Vec<Network>,
+    symbols: Vec<Symbol>,
+}
+
+/// Where everything lives in the CPU: I/O and the program's memories from the
+/// allocation, then the AWL-only bits (step flags, `fired`, watchdog flags)
+/// from the next free memory byte on.
+struct Layout {
+    words: Words,
+    step_flags: Vec<(u32, u32)>,
+    fired: (u32, u32),
+    wd_run: (u32, u32),
+    wd_restart: (u32, u32),
+    wd_preset_word: u32,
+}
+
+impl Layout {
+    fn new(input: &EmitInput) -> Self {
+        let memory_bytes = input
+            .allocation
+            .memories
+            .iter()
+            .map(|m| m.address.byte_bit().0 + 1)
+            .max()
+            .unwrap_or(0);
+        let mut next = memory_bytes * 8;
+        let mut take = || {
+            let bit = (next / 8, next % 8);
+            next += 1;
+            bit
+        };
+        let step_flags = input.program.steps.iter().map(|_| take()).collect();
+        let fired = take();
+        let wd_run = take();
+        let wd_restart = take();
+        let word = next.div_ceil(16) * 2;
+        Layout {
+            words: words(input.allocation.mnemonic),
+            step_flags,
+            fired,
+            wd_run,
+            wd_restart,
+            wd_preset_word: word,
+        }
+    }
+
+    fn m((byte, bit): (u32, u32)) -> String {
+        format!("M {byte}.{bit}")
+    }
+
+    /// The operand of a signal.
+    fn operand(&self, input: &EmitInput, signal: Signal) -> String {
+        if signal == Signal::Watchdog {
+            return Layout::m(self.wd_run);
+        }
+        match input.allocation.address_of(signal) {
+            Some(address) => {
+                let (byte, bit) = address.byte_bit();
+                match address.area {
+                    Area::Input => format!("{} {byte}.{bit}", self.words.input),
+                    Area::Output => format!("{} {byte}.{bit}", self.words.output),
+                    Area::Memory => format!("M {byte}.{bit}"),
+                    Area::Timer => format!("T {}", address.unit),
+                }
+            }
+            None => "?".to_string(),
+        }
+    }
+}
+
+/// Symbol names of the AWL-only bits.
+fn timer_operand(input: &EmitInput) -> String {
+    input
+        .allocation
+        .timers
+        .first()
+        .map(|t| format!("T {}", t.address.unit))
+        .unwrap_or_else(|| "T 0".to_string())
+}
+
+/// S5TIME literal for a duration (10 ms resolution, at most 2H46M30S).
+fn s5time(ms: u32) -> String {
+    let ms = ms.min(9_990_000);
+    let (h, rest) = (ms / 3_600_000, ms % 3_600_000);
+    let (m, rest) = (rest / 60_000, rest % 60_000);
+    let (s, rest) = (rest / 1000, rest % 1000);
+    let tens = rest / 10 * 10;
+    let mut text = "S5T#".to_string();
+    for (value, unit) in [(h, "H"), (m, "M"), (s, "S"), (tens, "MS")] {
+        if value > 0 {
+            text.push_str(&format!("{value}{unit}"));
+        }
+    }
+    if text.len() == 4 {
+        text.push_str("0MS");
+    }
+    text
+}
+
+/// Jump labels have at most four characters in STEP 7.
+fn label(n: usize) -> String {
+    const DIGITS: &[u8] = b"0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ";
+    let mut n = n;
+    let mut text = Vec::new();
+    for _ in 0..3 {
+        text.push(DIGITS[n % 36]);
+        n /= 36;
+    }
+    text.reverse();
+    format!("L{}", String::from_utf8(text).unwrap_or_default())
+}
+
+fn line(op: &str, operand: impl Into<String>, comment: impl Into<String>) -> Line {
+    Line {
+        label: String::new(),
+        op: op.to_string(),
+        operand: operand.into(),
+        comment: one_line(&comment.into()),
+    }
+}
+
+fn build(input: &EmitInput) -> Context {
+    let layout = Layout::new(input);
+    let w = &layout.words;
+    let program = input.program;
+    let condition = |lines: &mut Vec<Line>, literals: &[Literal]| {
+        for l in literals {
+            let op = if l.negated { w.and_not } else { w.and };
+            lines.push(line(op, layout.operand(input, l.signal), l.signal.ident()));
+        }
+    };
+    let actions = |lines: &mut Vec<Line>, list: &[Action], moves: &[crate::table::Move]| {
+        for a in list {
+            let comment = action_comment(*a, moves);
+            match *a {
+                Action::Set(s) => lines.push(line("S", layout.operand(input, s), comment)),
+                Action::Reset(s) => lines.push(line("R", layout.operand(input, s), comment)),
+                Action::StartTimer(_, ms) => {
+                    let word = format!("MW {}", layout.wd_preset_word);
+                    lines.push(line("L", s5time(ms), comment));
+                    lines.push(line("T", word, "wd_pt"));
+                    lines.push(line("S", Layout::m(layout.wd_run), "wd_run"));
+                    lines.push(line(
+                        "S",
+                        Layout::m(layout.wd_restart),
+                        "wd_restart: restart the timer",
+                    ));
+                }
+            }
+        }
+    };
+
+    let mut networks = Vec::new();
+    let mut labels = 0usize;
+
+    // With no step flag set (first cycle after a cold start) wait at STEP 1.
+    let mut init = Vec::new();
+    for (k, flag) in layout.step_flags.iter().enumerate() {
+        init.push(line(w.and_not, Layout::m(*flag), format!("step_{}", k + 1)));
+    }
+    init.push(line("S", Layout::m(layout.step_flags[0]), "step_1"));
+    actions(&mut init, &program.init, &[]);
+    networks.push(Network {
+        title: "start: no step flag set, so wait at STEP 1".to_string(),
+        lines: init,
+    });
+    networks.push(Network {
+        title: "no step has fired yet in this cycle".to_string(),
+        lines: vec![
+            line("SET", "", ""),
+            line("R", Layout::m(layout.fired), "fired"),
+        ],
+    });
+    if !program.timers.is_empty() {
+        let timer = timer_operand(input);
+        networks.push(Network {
+            title: "watchdog timer: on-delay while wd_run, restarted by wd_restart".to_string(),
+            lines: vec![
+                line(w.and, Layout::m(layout.wd_run), "wd_run"),
+                line(w.and_not, Layout::m(layout.wd_restart), "wd_restart"),
+                line("L", format!("MW {}", layout.wd_preset_word), "wd_pt"),
+                line("SE", timer.clone(), "watchdog"),
+                line(w.and, timer, "watchdog elapsed"),
+                line("R", Layout::m(layout.wd_run), "wd_run"),
+                line(w.and, Layout::m(layout.wd_restart), "wd_restart"),
+                line("R", Layout::m(layout.wd_restart), "wd_restart"),
+            ],
+        });
+    }
+    let count = program.steps.len();
+    for (k, step) in program.steps.iter().enumerate() {
+        let mut lines = vec![
+            line(
+                w.and,
+                Layout::m(layout.step_flags[k]),
+                format!("step_{}", k + 1),
+            ),
+            line(w.and_not, Layout::m(layout.fired), "fired"),
+        ];
+        condition(&mut lines, &step.condition);
+        let skip = label(labels);
+        labels += 1;
+        lines.push(line(w.jump_if_not, skip.clone(), "condition not met"));
+        lines.push(line("SET", "", ""));
+        actions(&mut lines, &step.actions, &step.moves);
+        let next = (k + 1) % count;
+        lines.push(line(
+            "R",
+            Layout::m(layout.step_flags[k]),
+            format!("step_{}", k + 1),
+        ));
+        lines.push(line(
+            "S",
+            Layout::m(layout.step_flags[next]),
+            format!("step_{}", next + 1),
+        ));
+        lines.push(line("S", Layout::m(layout.fired), "fired"));
+        lines.push(Line {
+            label: format!("{skip}:"),
+            op: "NOP".to_string(),
+            operand: "0".to_string(),
+            comment: String::new(),
+        });
+        let title = if step.moves.is_empty() {
+            format!("STEP {}: end of cycle", step.number)
+        } else {
+            format!("STEP {}: {}", step.number, moves_text(&step.moves))
+        };
+        networks.push(Network { title, lines });
+    }
+    for rung in &program.rungs {
+        let mut lines = Vec::new();
+        condition(&mut lines, &rung.condition);
+        let skip = label(labels);
+        labels += 1;
+        lines.push(line(w.jump_if_not, skip.clone(), ""));
+        lines.push(line("SET", "", ""));
+        actions(&mut lines, &rung.actions, &[]);
+        lines.push(Line {
+            label: format!("{skip}:"),
+            op: "NOP".to_string(),
+            operand: "0".to_string(),
+            comment: String::new(),
+        });
+        networks.push(Network {
+            title: one_line(&rung.comment),
+            lines,
+        });
+    }
+
+    // The symbol table: I/O, memories, timer, and the AWL-only bits.
+    let sdf_address = |operand: &str| -> String {
+        let (letter, number) = operand.split_once(' ').unwrap_or((operand, ""));
+        format!("{letter:<4}{number:>7}")
+    };
+    let mut symbols: Vec<Symbol> = input
+        .allocation
+        .inputs
+        .iter()
+        .chain(&input.allocation.outputs)
+        .chain(&input.allocation.memories)
+        .map(|a| Symbol {
+            symbol: a.signal.ident(),
+            address: sdf_address(&layout.operand(input, a.signal)),
+            data_type: "BOOL",
+            comment: one_line(&a.signal.comment(input.table)),
+        })
+        .collect();
+    for (k, flag) in layout.step_flags.iter().enumerate() {
+        symbols.push(Symbol {
+            symbol: format!("step_{}", k + 1),
+            address: sdf_address(&Layout::m(*flag)),
+            data_type: "BOOL",
+            comment: format!(
+                "the sequence waits to fire STEP {}",
+                program.steps[k].number
+            ),
+        });
+    }
+    symbols.push(Symbol {
+        symbol: "fired".to_string(),
+        address: sdf_address(&Layout::m(layout.fired)),
+        data_type: "BOOL",
+        comment: "a step fired in this cycle".to_string(),
+    });
+    if !program.timers.is_empty() {
+        for (name, bit, comment) in [
+            ("wd_run", layout.wd_run, "watchdog runs"),
+            (
+                "wd_restart",
+                layout.wd_restart,
+                "watchdog restarts in the next cycle",
+            ),
+        ] {
+            symbols.push(Symbol {
+                symbol: name.to_string(),
+                address: sdf_address(&Layout::m(bit)),
+                data_type: "BOOL",
+                comment: comment.to_string(),
+            });
+        }
+        symbols.push(Symbol {
+            symbol: "wd_pt".to_string(),
+            address: sdf_address(&format!("MW {}", layout.wd_preset_word)),
+            data_type: "S5TIME",
+            comment: "watchdog preset of the running step".to_string(),
+        });
+        symbols.push(Symbol {
+            symbol: "watchdog".to_string(),
+            address: sdf_address(&timer_operand(input)),
+            data_type: "TIMER",
+            comment: "step watchdog timer".to_string(),
+        });
+    }
+
+    let first_flag = layout.step_flags.first().copied().unwrap_or((0, 0));
+    let last_flag = layout.step_flags.last().copied().unwrap_or((0, 0));
+    Context {
+        title: one_line(input.name),
+        version: env!("CARGO_PKG_VERSION"),
+        source: one_line(&input.source()),
+        mnemonics: match input.allocation.mnemonic {
+            Mnemonic::En => "English (A, AN, JCN; I, Q)",
+            Mnemonic::De => "German (U, UN, SPBN; E, A)",
+        },
+        step_flags: format!("{} to {}", Layout::m(first_flag), Layout::m(last_flag)),
+        networks,
+        symbols,
+    }
+}
+
+/// Renders `NAME.awl`.
+pub fn render_awl(input: &EmitInput) -> Result<String, templates::TemplateError> {
+    input
+        .templates
+        .render("program.awl.j2", Value::from(Serde(&build(input))))
+}
+
+/// Renders `NAME.sdf`.
+pub fn render_sdf(input: &EmitInput) -> Result<String, templates::TemplateError> {
+    input
+        .templates
+        .render("symbols.sdf.j2", Value::from(Serde(&build(input))))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn s5time_literals() {
+        assert_eq!(s5time(3000), "S5T#3S");
+        assert_eq!(s5time(2400), "S5T#2S400MS");
+        assert_eq!(s5time(61_005), "S5T#1M1S");
+        assert_eq!(s5time(0), "S5T#0MS");
+        assert_eq!(s5time(u32::MAX), "S5T#2H46M30S");
+    }
+
+    #[test]
+    fn labels_fit_four_characters() {
+        assert_eq!(label(0), "L000");
+        assert_eq!(label(46655), "LZZZ");
+        assert!((0..5000).map(label).all(|l| l.len() == 4));
+    }
+}
