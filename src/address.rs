@@ -588,3 +588,52 @@ mod tests {
         assert_eq!(q.iec(), "%QX3.7");
     }
 }
+
+#[cfg(test)]
+mod identifier_tests {
+    use super::*;
+
+    /// IEC 61131-3 keywords (and the common vendor ones) no identifier may be.
+    const KEYWORDS: &[&str] = &[
+        "ABS", "ACTION", "AND", "ANY", "ARRAY", "AT", "BOOL", "BY", "BYTE", "CASE", "CONFIGURATION",
+        "CONSTANT", "DATE", "DINT", "DO", "DT", "DWORD", "ELSE", "ELSIF", "END_ACTION", "END_CASE",
+        "END_CONFIGURATION", "END_FOR", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_IF",
+        "END_PROGRAM", "END_REPEAT", "END_RESOURCE", "END_STEP", "END_STRUCT", "END_TRANSITION",
+        "END_TYPE", "END_VAR", "END_WHILE", "EN", "ENO", "EXIT", "FALSE", "FOR", "FROM",
+        "FUNCTION", "FUNCTION_BLOCK", "IF", "INITIAL_STEP", "INT", "INTERVAL", "LINT", "LREAL",
+        "MOD", "NOT", "OF", "ON", "OR", "PRIORITY", "PROGRAM", "READ_ONLY", "READ_WRITE", "REAL",
+        "REPEAT", "RESOURCE", "RETAIN", "RETURN", "SINT", "STEP", "STRING", "STRUCT", "TASK",
+        "THEN", "TIME", "TO", "TOD", "TRANSITION", "TRUE", "TYPE", "UDINT", "UINT", "ULINT",
+        "UNTIL", "USINT", "VAR", "VAR_ACCESS", "VAR_EXTERNAL", "VAR_GLOBAL", "VAR_INPUT",
+        "VAR_IN_OUT", "VAR_OUTPUT", "VAR_TEMP", "WHILE", "WITH", "WORD", "XOR", "NOP", "JMP",
+        "SET", "RESET", "THEN", "TON", "TOF", "TP",
+    ];
+
+    #[test]
+    fn every_identifier_is_legal_in_every_target_language() {
+        let signals = [
+            Signal::Start,
+            Signal::Sensor { actuator: 999, position: 63 },
+            Signal::Sensor { actuator: 9, position: 9 },
+            Signal::Coil { actuator: 999, sign: Sign::Plus },
+            Signal::Coil { actuator: 1, sign: Sign::Minus },
+            Signal::StopAt { actuator: 999, position: 62 },
+            Signal::StartMemory,
+            Signal::Halt,
+            Signal::Alarm(Alarm::Sensor),
+            Signal::Alarm(Alarm::Timeout),
+            Signal::Watchdog,
+            Signal::WatchdogArmed,
+        ];
+        for signal in signals {
+            let id = signal.ident();
+            let mut chars = id.chars();
+            assert!(chars.next().is_some_and(|c| c.is_ascii_alphabetic()), "{id}");
+            assert!(chars.all(|c| c.is_ascii_alphanumeric() || c == '_'), "{id}");
+            assert!(!id.contains("__") && !id.ends_with('_'), "{id}");
+            // 9 characters: FST's symbolic operands; STEP 7 allows 24.
+            assert!(id.len() <= 9, "{id} is longer than 9 characters");
+            assert!(!KEYWORDS.contains(&id.to_ascii_uppercase().as_str()), "{id} is a keyword");
+        }
+    }
+}
