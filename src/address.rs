@@ -594,6 +594,7 @@ mod identifier_tests {
     use super::*;
 
     /// IEC 61131-3 keywords (and the common vendor ones) no identifier may be.
+    #[rustfmt::skip]
     const KEYWORDS: &[&str] = &[
         "ABS", "ACTION", "AND", "ANY", "ARRAY", "AT", "BOOL", "BY", "BYTE", "CASE", "CONFIGURATION",
         "CONSTANT", "DATE", "DINT", "DO", "DT", "DWORD", "ELSE", "ELSIF", "END_ACTION", "END_CASE",
@@ -613,11 +614,26 @@ mod identifier_tests {
     fn every_identifier_is_legal_in_every_target_language() {
         let signals = [
             Signal::Start,
-            Signal::Sensor { actuator: 999, position: 63 },
-            Signal::Sensor { actuator: 9, position: 9 },
-            Signal::Coil { actuator: 999, sign: Sign::Plus },
-            Signal::Coil { actuator: 1, sign: Sign::Minus },
-            Signal::StopAt { actuator: 999, position: 62 },
+            Signal::Sensor {
+                actuator: 999,
+                position: 63,
+            },
+            Signal::Sensor {
+                actuator: 9,
+                position: 9,
+            },
+            Signal::Coil {
+                actuator: 999,
+                sign: Sign::Plus,
+            },
+            Signal::Coil {
+                actuator: 1,
+                sign: Sign::Minus,
+            },
+            Signal::StopAt {
+                actuator: 999,
+                position: 62,
+            },
             Signal::StartMemory,
             Signal::Halt,
             Signal::Alarm(Alarm::Sensor),
@@ -628,12 +644,18 @@ mod identifier_tests {
         for signal in signals {
             let id = signal.ident();
             let mut chars = id.chars();
-            assert!(chars.next().is_some_and(|c| c.is_ascii_alphabetic()), "{id}");
+            assert!(
+                chars.next().is_some_and(|c| c.is_ascii_alphabetic()),
+                "{id}"
+            );
             assert!(chars.all(|c| c.is_ascii_alphanumeric() || c == '_'), "{id}");
             assert!(!id.contains("__") && !id.ends_with('_'), "{id}");
             // 9 characters: FST's symbolic operands; STEP 7 allows 24.
             assert!(id.len() <= 9, "{id} is longer than 9 characters");
-            assert!(!KEYWORDS.contains(&id.to_ascii_uppercase().as_str()), "{id} is a keyword");
+            assert!(
+                !KEYWORDS.contains(&id.to_ascii_uppercase().as_str()),
+                "{id} is a keyword"
+            );
         }
     }
 }
