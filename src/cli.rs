@@ -91,8 +91,8 @@ struct SimArgs {
     #[arg(long, value_name = "LIST", value_parser = parse_strokes)]
     stroke: Option<StrokeMap>,
     /// PLC scan time of the simulation and of the generated task.
-    #[arg(long, value_name = "TIME", default_value = "10ms", value_parser = parse_scan)]
-    scan: u32,
+    #[arg(long, value_name = "TIME", value_parser = parse_scan)]
+    scan: Option<u32>,
 }
 
 type StrokeMap = std::collections::BTreeMap<u32, steptable::timing::Stroke>;
@@ -109,7 +109,10 @@ fn parse_scan(text: &str) -> Result<u32, String> {
 
 impl SimArgs {
     fn apply(&self, settings: &mut Settings) {
-        settings.simulation.scan_ms = self.scan;
+        if let Some(scan) = self.scan {
+            settings.simulation.scan_ms = scan;
+            settings.explicit.scan = true;
+        }
         if let Some(strokes) = &self.stroke {
             settings.simulation.strokes.per_actuator = strokes.clone();
         }
@@ -159,11 +162,11 @@ struct CheckArgs {
 #[derive(Args)]
 struct CommonArgs {
     /// Address dialect: festo (I0.0/O0.0, 16-bit words), iec (%IX0.0/%QX0.0), siemens (I0.0/Q0.0).
-    #[arg(long, value_enum, default_value_t = TargetArg::Festo)]
-    target: TargetArg,
+    #[arg(long, value_enum)]
+    target: Option<TargetArg>,
     /// Operand letters for siemens: en (I/Q) or de (E/A).
-    #[arg(long, value_enum, default_value_t = MnemonicArg::En)]
-    mnemonic: MnemonicArg,
+    #[arg(long, value_enum)]
+    mnemonic: Option<MnemonicArg>,
     /// Read this sheet instead of "SEQUENTIAL CONTROL DESCRIPTION" or the first sheet with moves.
     #[arg(long, value_name = "NAME")]
     sheet: Option<String>,
@@ -194,19 +197,30 @@ enum MnemonicArg {
 }
 
 impl CommonArgs {
+    /// Settings from the flags; those given explicitly are marked so that a
+    /// workbook's SETTINGS sheet does not change them.
     fn settings(&self) -> Settings {
         let mut settings = Settings::new();
-        settings.target = match self.target {
-            TargetArg::Festo => Target::Festo,
-            TargetArg::Iec => Target::Iec,
-            TargetArg::Siemens => Target::Siemens,
-        };
-        settings.mnemonic = match self.mnemonic {
-            MnemonicArg::En => Mnemonic::En,
-            MnemonicArg::De => Mnemonic::De,
-        };
+        if let Some(target) = self.target {
+            settings.target = match target {
+                TargetArg::Festo => Target::Festo,
+                TargetArg::Iec => Target::Iec,
+                TargetArg::Siemens => Target::Siemens,
+            };
+            settings.explicit.target = true;
+        }
+        if let Some(mnemonic) = self.mnemonic {
+            settings.mnemonic = match mnemonic {
+                MnemonicArg::En => Mnemonic::En,
+                MnemonicArg::De => Mnemonic::De,
+            };
+            settings.explicit.mnemonic = true;
+        }
+        if let Some(safety) = self.safety {
+            settings.program.safety = safety;
+            settings.explicit.safety = true;
+        }
         settings.sheet = self.sheet.clone();
-        settings.program.safety = self.safety.unwrap_or_default();
         settings
     }
 }
@@ -261,8 +275,10 @@ fn print_diagnostics(diagnostics: &[Diagnostic]) {
     }
 }
 
-fn summary(table: &steptable::table::StepTable, settings: &Settings) -> String {
-    let (allocation, _) = convert::build_program(table, settings);
+fn summary(
+    table: &steptable::table::StepTable,
+    allocation: &steptable::address::Allocation,
+) -> String {
     format!(
         "{} steps, {} branch(es), {} actuators, {} inputs, {} outputs",
         table.steps.len(),
@@ -283,7 +299,10 @@ fn run_check(args: &CheckArgs) -> i32 {
                 out(&format!(
                     "{}: ok: {}",
                     display_name(input),
-                    summary(&checked.table, &settings)
+                    summary(
+                        &checked.table,
+                        &convert::build_program(&checked.table, &checked.settings).0
+                    )
                 ));
             }
             Err(diagnostics) => {
@@ -318,7 +337,7 @@ fn run_simulate(args: &SimulateArgs) -> i32 {
             }
         };
         print_diagnostics(&checked.warnings);
-        let table = checked.table;
+        let (table, settings) = (checked.table, checked.settings);
         let (_, program) = convert::build_program(&table, &settings);
         let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
         out(&format!("{}: {}", display_name(input), report.verdict()));
@@ -344,7 +363,7 @@ fn run_faults(args: &FaultsArgs) -> i32 {
                 continue;
             }
         };
-        let table = checked.table;
+        let (table, settings) = (checked.table, checked.settings);
         let (allocation, program) = convert::build_program(&table, &settings);
         let result = steptable::faults::analyse(
             &table,
@@ -443,7 +462,7 @@ fn run_convert(args: &ConvertArgs) -> i32 {
                 out(&format!(
                     "{}: {} -> {}/ ({})",
                     display_name(input),
-                    summary(&conversion.table, &settings),
+                    summary(&conversion.table, &conversion.allocation),
                     folder.display(),
                     names.join(", ")
                 ));

@@ -12,7 +12,8 @@ use crate::emit::templates::{TemplateError, Templates};
 use crate::emit::{self, EmitInput};
 use crate::faults::{self, FaultTable};
 use crate::program::{self, ProgramOptions, StepProgram};
-use crate::read::{self, Format, Grid};
+use crate::read::{self, Format};
+use crate::settings::SheetSettings;
 use crate::simulate::{self, SimReport, SimSettings};
 use crate::table::{self, StepTable};
 
@@ -33,6 +34,18 @@ pub struct Settings {
     pub formats: BTreeSet<OutputKind>,
     /// The templates text outputs are laid out by.
     pub templates: Templates,
+    /// Which settings the command line gave explicitly; a workbook's
+    /// SETTINGS sheet decides the others.
+    pub explicit: Explicit,
+}
+
+/// Settings given on the command line, which a SETTINGS sheet must not change.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Explicit {
+    pub target: bool,
+    pub mnemonic: bool,
+    pub scan: bool,
+    pub safety: bool,
 }
 
 /// One kind of output file.
@@ -142,6 +155,33 @@ impl OutputKind {
 }
 
 impl Settings {
+    /// These settings with a SETTINGS sheet filling in what the command line
+    /// did not give. Stroke times given on the command line win per actuator.
+    pub fn with_sheet(&self, sheet: &SheetSettings) -> Settings {
+        let mut merged = self.clone();
+        if let (false, Some(target)) = (self.explicit.target, sheet.target) {
+            merged.target = target;
+        }
+        if let (false, Some(mnemonic)) = (self.explicit.mnemonic, sheet.mnemonic) {
+            merged.mnemonic = mnemonic;
+        }
+        if let (false, Some(scan)) = (self.explicit.scan, sheet.scan_ms) {
+            merged.simulation.scan_ms = scan;
+        }
+        if let (false, Some(safety)) = (self.explicit.safety, sheet.safety) {
+            merged.program.safety = safety;
+        }
+        for (actuator, stroke) in &sheet.strokes {
+            merged
+                .simulation
+                .strokes
+                .per_actuator
+                .entry(*actuator)
+                .or_insert(*stroke);
+        }
+        merged
+    }
+
     /// Defaults: Festo addresses, middle stops, no safety checks, every format.
     pub fn new() -> Self {
         Settings {
@@ -156,6 +196,8 @@ impl Settings {
 pub struct Checked {
     pub table: StepTable,
     pub warnings: Vec<Diagnostic>,
+    /// The settings in force for this file (command line over SETTINGS sheet).
+    pub settings: Settings,
 }
 
 /// One generated file, in memory.
@@ -193,11 +235,13 @@ pub enum Failure {
     Template(TemplateError),
 }
 
-/// Reads and checks one file.
+/// Reads and checks one file. The result carries the settings in force for
+/// it: `settings`, with the file's SETTINGS sheet filling in what the command
+/// line did not set explicitly.
 pub fn check_path(path: &Path, settings: &Settings) -> Result<Checked, Vec<Diagnostic>> {
     let mut diags = Diagnostics::new();
-    let grid = read::read_path(path, settings.sheet.as_deref(), &mut diags);
-    finish_check(grid, diags)
+    let input = read::read_path(path, settings.sheet.as_deref(), &mut diags);
+    finish_check(input, diags, settings)
 }
 
 /// Reads and checks an in-memory file of a known format.
@@ -208,16 +252,28 @@ pub fn check_bytes(
     settings: &Settings,
 ) -> Result<Checked, Vec<Diagnostic>> {
     let mut diags = Diagnostics::new();
-    let grid = read::read_bytes(file, format, bytes, settings.sheet.as_deref(), &mut diags);
-    finish_check(grid, diags)
+    let input = read::read_bytes(file, format, bytes, settings.sheet.as_deref(), &mut diags);
+    finish_check(input, diags, settings)
 }
 
-fn finish_check(grid: Option<Grid>, mut diags: Diagnostics) -> Result<Checked, Vec<Diagnostic>> {
-    let table = grid.and_then(|g| table::build(&g, &mut diags));
+fn finish_check(
+    input: Option<read::Input>,
+    mut diags: Diagnostics,
+    settings: &Settings,
+) -> Result<Checked, Vec<Diagnostic>> {
+    let Some(input) = input else {
+        return Err(diags.into_sorted());
+    };
+    let effective = match &input.settings {
+        Some(sheet) => settings.with_sheet(&crate::settings::parse(sheet, &mut diags)),
+        None => settings.clone(),
+    };
+    let table = table::build(&input.table, &mut diags);
     match table {
         Some(table) if !diags.has_errors() => Ok(Checked {
             table,
             warnings: diags.into_sorted(),
+            settings: effective,
         }),
         _ => Err(diags.into_sorted()),
     }
@@ -269,7 +325,7 @@ pub fn convert_path_as(
     settings: &Settings,
 ) -> Result<Conversion, Failure> {
     let checked = check_path(path, settings).map_err(Failure::Input)?;
-    generate(name, checked, settings)
+    generate(name, checked)
 }
 
 /// The allocation and step program of a checked table under `settings`.
@@ -290,8 +346,9 @@ pub fn build_program(table: &StepTable, settings: &Settings) -> (Allocation, Ste
 }
 
 /// Generates every output of a checked table.
-pub fn generate(name: &str, checked: Checked, settings: &Settings) -> Result<Conversion, Failure> {
-    let table = checked.table;
+pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
+    let settings = &checked.settings;
+    let table = checked.table.clone();
     let (allocation, program) = build_program(&table, settings);
     let sim_settings = SimSettings {
         record_trace: settings.diagram == DiagramKind::Time,

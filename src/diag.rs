@@ -40,6 +40,8 @@ pub enum Code {
     E023EmptyStep,
     /// The table is larger than the limits.
     E024TableTooLarge,
+    /// A value on the SETTINGS sheet is not valid.
+    E030BadSetting,
 }
 
 impl Code {
@@ -59,6 +61,7 @@ impl Code {
             Code::E022NotHome => "E022",
             Code::E023EmptyStep => "E023",
             Code::E024TableTooLarge => "E024",
+            Code::E030BadSetting => "E030",
         }
     }
 }

@@ -19,6 +19,7 @@ pub mod output;
 pub mod program;
 pub mod random_table;
 pub mod read;
+pub mod settings;
 pub mod simulate;
 pub mod table;
 pub mod timing;

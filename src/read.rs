@@ -74,6 +74,17 @@ impl Grid {
     }
 }
 
+/// The sheet name of the engineer's settings, when a workbook has one.
+pub const SETTINGS_SHEET: &str = "SETTINGS";
+
+/// What was read from one input file: the step table's sheet and, for a
+/// workbook that has one, its SETTINGS sheet.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Input {
+    pub table: Grid,
+    pub settings: Option<Grid>,
+}
+
 /// Which reader a file needs, decided by its extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
@@ -99,7 +110,7 @@ impl Format {
 
 /// Reads the file at `path` and returns the sheet holding the step table.
 /// Problems go to `diags`; `None` means nothing usable was read.
-pub fn read_path(path: &Path, sheet: Option<&str>, diags: &mut Diagnostics) -> Option<Grid> {
+pub fn read_path(path: &Path, sheet: Option<&str>, diags: &mut Diagnostics) -> Option<Input> {
     let file = display_name(path);
     let whole_file = Location {
         file: file.clone(),
@@ -159,9 +170,12 @@ pub fn read_bytes(
     bytes: Vec<u8>,
     sheet: Option<&str>,
     diags: &mut Diagnostics,
-) -> Option<Grid> {
+) -> Option<Input> {
     match format {
-        Format::Csv => read_csv(file, &bytes, diags),
+        Format::Csv => read_csv(file, &bytes, diags).map(|table| Input {
+            table,
+            settings: None,
+        }),
         _ => {
             // calamine is a large parser of untrusted zip and OLE data; a panic
             // deep inside it must become a diagnostic, not a crash.
@@ -198,7 +212,7 @@ fn read_workbook(
     bytes: Vec<u8>,
     wanted: Option<&str>,
     diags: &mut Diagnostics,
-) -> Option<Grid> {
+) -> Option<Input> {
     let whole_file = Location {
         file: file.to_string(),
         sheet: None,
@@ -248,6 +262,36 @@ fn read_workbook(
             }
         };
 
+    let settings = names
+        .iter()
+        .find(|n| n.trim().eq_ignore_ascii_case(SETTINGS_SHEET))
+        .cloned()
+        .and_then(|name| read_sheet(&mut workbook, &name, diags));
+    let table = pick_table(
+        &mut workbook,
+        &names,
+        wanted,
+        &whole_file,
+        diags,
+        &read_sheet,
+    )?;
+    Some(Input { table, settings })
+}
+
+type SheetReader<'a> =
+    dyn Fn(&mut Box<dyn SheetSource>, &str, &mut Diagnostics) -> Option<Grid> + 'a;
+
+/// The sheet holding the step table: the one asked for, else the one named
+/// SEQUENTIAL CONTROL DESCRIPTION, else the first that holds moves.
+fn pick_table(
+    workbook: &mut Box<dyn SheetSource>,
+    names: &[String],
+    wanted: Option<&str>,
+    whole_file: &Location,
+    diags: &mut Diagnostics,
+    read_sheet: &SheetReader,
+) -> Option<Grid> {
+    let whole_file = whole_file.clone();
     if let Some(wanted) = wanted {
         let Some(name) = names
             .iter()
@@ -263,17 +307,17 @@ fn read_workbook(
             );
             return None;
         };
-        return read_sheet(&mut workbook, name, diags);
+        return read_sheet(workbook, name, diags);
     }
     if let Some(name) = names
         .iter()
         .find(|n| n.trim().eq_ignore_ascii_case(TABLE_SHEET))
     {
-        return read_sheet(&mut workbook, name, diags);
+        return read_sheet(workbook, name, diags);
     }
-    for name in &names {
+    for name in names {
         let mut local = Diagnostics::new();
-        if let Some(grid) = read_sheet(&mut workbook, name, &mut local)
+        if let Some(grid) = read_sheet(workbook, name, &mut local)
             && grid.holds_table()
         {
             return Some(grid);
@@ -519,7 +563,9 @@ mod tests {
             (b"\tBRANCH 1\tBRANCH 2\nSTEP 1\tC1+1\t\n".to_vec(), '\t'),
         ] {
             let mut diags = Diagnostics::new();
-            let grid = read_bytes("t.csv", Format::Csv, bytes, None, &mut diags).unwrap();
+            let grid = read_bytes("t.csv", Format::Csv, bytes, None, &mut diags)
+                .unwrap()
+                .table;
             assert!(!diags.has_errors());
             assert_eq!(text_at(&grid, 0, 1), Some("BRANCH 1"));
             assert_eq!(text_at(&grid, 1, 1), Some("C1+1"));
@@ -533,7 +579,9 @@ mod tests {
             bytes.extend_from_slice(&unit.to_le_bytes());
         }
         let mut diags = Diagnostics::new();
-        let grid = read_bytes("t.csv", Format::Csv, bytes, None, &mut diags).unwrap();
+        let grid = read_bytes("t.csv", Format::Csv, bytes, None, &mut diags)
+            .unwrap()
+            .table;
         assert_eq!(text_at(&grid, 1, 0), Some("C1-0"));
     }
 
