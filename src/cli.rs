@@ -170,6 +170,9 @@ struct CommonArgs {
     /// Read this sheet instead of "SEQUENTIAL CONTROL DESCRIPTION" or the first sheet with moves.
     #[arg(long, value_name = "NAME")]
     sheet: Option<String>,
+    /// How to print problems: human (default) or json (one object per line on stdout).
+    #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
+    message_format: MessageFormat,
     /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all).
     #[arg(long, value_name = "LIST", value_parser = parse_safety)]
     safety: Option<Safety>,
@@ -188,6 +191,12 @@ enum TargetArg {
     Festo,
     Iec,
     Siemens,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum MessageFormat {
+    Human,
+    Json,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -268,10 +277,39 @@ fn out(line: &str) {
     }
 }
 
-fn print_diagnostics(diagnostics: &[Diagnostic]) {
-    let mut stderr = std::io::stderr().lock();
-    for d in diagnostics {
-        let _ = writeln!(stderr, "{d}");
+/// Where results and problems go: human text (results on stdout, problems
+/// on stderr), or JSON diagnostics on stdout with the human lines on stderr.
+struct Reporter {
+    json: bool,
+}
+
+impl Reporter {
+    fn new(common: &CommonArgs) -> Self {
+        Reporter {
+            json: common.message_format == MessageFormat::Json,
+        }
+    }
+
+    fn diagnostics(&self, diagnostics: &[Diagnostic]) {
+        if self.json {
+            for d in diagnostics {
+                out(&d.to_json());
+            }
+        } else {
+            let mut stderr = std::io::stderr().lock();
+            for d in diagnostics {
+                let _ = writeln!(stderr, "{d}");
+            }
+        }
+    }
+
+    /// A line for people.
+    fn say(&self, line: &str) {
+        if self.json {
+            eprintln!("{line}");
+        } else {
+            out(line);
+        }
     }
 }
 
@@ -291,12 +329,13 @@ fn summary(
 
 fn run_check(args: &CheckArgs) -> i32 {
     let settings = args.common.settings();
+    let report = Reporter::new(&args.common);
     let mut code = EXIT_OK;
     for input in &args.inputs {
         match convert::check_path(input, &settings) {
             Ok(checked) => {
-                print_diagnostics(&checked.warnings);
-                out(&format!(
+                report.diagnostics(&checked.warnings);
+                report.say(&format!(
                     "{}: ok: {}",
                     display_name(input),
                     summary(
@@ -306,8 +345,8 @@ fn run_check(args: &CheckArgs) -> i32 {
                 ));
             }
             Err(diagnostics) => {
-                print_diagnostics(&diagnostics);
-                out(&format!(
+                report.diagnostics(&diagnostics);
+                report.say(&format!(
                     "{}: {} error(s)",
                     display_name(input),
                     diagnostics
@@ -324,6 +363,7 @@ fn run_check(args: &CheckArgs) -> i32 {
 
 fn run_simulate(args: &SimulateArgs) -> i32 {
     let mut settings = args.common.settings();
+    let reporter = Reporter::new(&args.common);
     args.sim.apply(&mut settings);
     settings.program.middle_stops = !args.no_middle_stop;
     let mut code = EXIT_OK;
@@ -331,17 +371,17 @@ fn run_simulate(args: &SimulateArgs) -> i32 {
         let checked = match convert::check_path(input, &settings) {
             Ok(c) => c,
             Err(diagnostics) => {
-                print_diagnostics(&diagnostics);
+                reporter.diagnostics(&diagnostics);
                 code = code.max(EXIT_BAD_INPUT);
                 continue;
             }
         };
-        print_diagnostics(&checked.warnings);
+        reporter.diagnostics(&checked.warnings);
         let (table, settings) = (checked.table, checked.settings);
         let (_, program) = convert::build_program(&table, &settings);
         let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
-        out(&format!("{}: {}", display_name(input), report.verdict()));
-        out(&steptable::simulate::report::step_table(&report));
+        reporter.say(&format!("{}: {}", display_name(input), report.verdict()));
+        reporter.say(&steptable::simulate::report::step_table(&report));
         if !report.passed {
             code = code.max(EXIT_BAD_INPUT);
         }
@@ -351,6 +391,7 @@ fn run_simulate(args: &SimulateArgs) -> i32 {
 
 fn run_faults(args: &FaultsArgs) -> i32 {
     let mut settings = args.common.settings();
+    let report = Reporter::new(&args.common);
     args.sim.apply(&mut settings);
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
@@ -358,7 +399,7 @@ fn run_faults(args: &FaultsArgs) -> i32 {
         let checked = match convert::check_path(input, &settings) {
             Ok(c) => c,
             Err(diagnostics) => {
-                print_diagnostics(&diagnostics);
+                report.diagnostics(&diagnostics);
                 code = code.max(EXIT_BAD_INPUT);
                 continue;
             }
@@ -372,15 +413,15 @@ fn run_faults(args: &FaultsArgs) -> i32 {
             &settings.simulation,
             args.pairs,
         );
-        out(&format!("{}: {}", display_name(input), result.summary()));
+        report.say(&format!("{}: {}", display_name(input), result.summary()));
         let rows = steptable::faults::rows(&result);
         let width = rows.iter().map(|r| r[0].len()).max().unwrap_or(5).max(5);
-        out(&format!(
+        report.say(&format!(
             "  {:<width$}  {:<10}  {:>4}  explanation",
             "fault", "outcome", "step"
         ));
         for r in &rows {
-            out(&format!(
+            report.say(&format!(
                 "  {:<width$}  {:<10}  {:>4}  {}",
                 r[0], r[1], r[2], r[3]
             ));
@@ -406,6 +447,7 @@ fn run_faults(args: &FaultsArgs) -> i32 {
 
 fn run_convert(args: &ConvertArgs) -> i32 {
     let mut settings = args.common.settings();
+    let report = Reporter::new(&args.common);
     args.sim.apply(&mut settings);
     settings.diagram = match args.diagram {
         DiagramArg::Step => DiagramKind::Step,
@@ -429,7 +471,7 @@ fn run_convert(args: &ConvertArgs) -> i32 {
         let conversion = match convert::convert_path_as(input, name, &settings) {
             Ok(c) => c,
             Err(Failure::Input(diagnostics)) => {
-                print_diagnostics(&diagnostics);
+                report.diagnostics(&diagnostics);
                 eprintln!("{}: not converted, nothing written", display_name(input));
                 code = code.max(EXIT_BAD_INPUT);
                 continue;
@@ -451,7 +493,7 @@ fn run_convert(args: &ConvertArgs) -> i32 {
                 continue;
             }
         };
-        print_diagnostics(&conversion.warnings);
+        report.diagnostics(&conversion.warnings);
         let folder = args.output.join(&conversion.name);
         match output::write_files(&folder, &conversion.files, &args.inputs) {
             Ok(written) => {
@@ -459,7 +501,7 @@ fn run_convert(args: &ConvertArgs) -> i32 {
                     .iter()
                     .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().to_string()))
                     .collect();
-                out(&format!(
+                report.say(&format!(
                     "{}: {} -> {}/ ({})",
                     display_name(input),
                     summary(&conversion.table, &conversion.allocation),

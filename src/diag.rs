@@ -145,6 +145,25 @@ impl fmt::Display for Diagnostic {
     }
 }
 
+impl Diagnostic {
+    /// One JSON object: file, sheet, cell (A1), row and column (one-based),
+    /// severity, code and message; absent parts are null.
+    pub fn to_json(&self) -> String {
+        let cell = self.location.cell;
+        let value = serde_json::json!({
+            "file": self.location.file,
+            "sheet": self.location.sheet,
+            "cell": cell.map(|c| c.a1()),
+            "row": cell.map(|c| c.row + 1),
+            "column": cell.map(|c| c.col + 1),
+            "severity": self.severity,
+            "code": self.code.as_str(),
+            "message": self.message,
+        });
+        value.to_string()
+    }
+}
+
 /// Collects diagnostics for one input file.
 #[derive(Debug, Clone, Default)]
 pub struct Diagnostics {
@@ -224,6 +243,27 @@ mod tests {
         assert_eq!(column_letters(701), "ZZ");
         assert_eq!(column_letters(702), "AAA");
         assert_eq!(column_letters(16383), "XFD");
+    }
+
+    #[test]
+    fn json_diagnostics_carry_every_field() {
+        let d = Diagnostic {
+            severity: Severity::Error,
+            code: Code::E010NotAMove,
+            location: Location {
+                file: "line.xlsx".into(),
+                sheet: Some("S".into()),
+                cell: Some(CellPos::new(6, 3)),
+            },
+            message: "\"C2+x\" is not a move".into(),
+        };
+        let v: serde_json::Value = serde_json::from_str(&d.to_json()).unwrap();
+        assert_eq!(v["cell"], "D7");
+        assert_eq!(v["row"], 7);
+        assert_eq!(v["column"], 4);
+        assert_eq!(v["severity"], "error");
+        assert_eq!(v["code"], "E010");
+        assert_eq!(v["message"], "\"C2+x\" is not a move");
     }
 
     #[test]
