@@ -22,4 +22,5 @@ pub mod read;
 pub mod settings;
 pub mod simulate;
 pub mod table;
+pub mod template;
 pub mod timing;

@@ -30,7 +30,7 @@ fn tool(name: &str) -> Option<PathBuf> {
     (found.status.success() && !path.is_empty()).then(|| PathBuf::from(path))
 }
 
-fn require(name: &str) -> Option<PathBuf> {
+pub fn require(name: &str) -> Option<PathBuf> {
     let found = tool(name);
     if found.is_none() {
         assert!(

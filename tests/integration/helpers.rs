@@ -84,3 +84,31 @@ pub fn files_below(dir: &Path) -> Vec<PathBuf> {
     found.sort();
     found
 }
+
+/// Writes an .xlsx with several sheets, each holding rows from A1.
+pub fn write_xlsx_sheets(path: &Path, sheets: &[(&str, &[&[&str]])]) {
+    let mut workbook = Workbook::new();
+    for (name, rows) in sheets {
+        let ws = workbook.add_worksheet();
+        ws.set_name(*name).expect("sheet name");
+        for (r, row) in rows.iter().enumerate() {
+            for (c, text) in row.iter().enumerate() {
+                if !text.is_empty() {
+                    ws.write_string(r as u32, c as u16, *text).expect("write");
+                }
+            }
+        }
+    }
+    workbook.save(path).expect("save");
+}
+
+/// The text of one part of an .xlsx (a zip), such as `xl/worksheets/sheet1.xml`.
+pub fn xlsx_part(path: &Path, part: &str) -> String {
+    use std::io::Read;
+    let file = std::fs::File::open(path).expect("open");
+    let mut archive = zip::ZipArchive::new(file).expect("zip");
+    let mut entry = archive.by_name(part).expect("part");
+    let mut text = String::new();
+    entry.read_to_string(&mut text).expect("read part");
+    text
+}

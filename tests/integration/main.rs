@@ -10,3 +10,4 @@ mod properties;
 mod safety;
 mod simulate;
 mod snapshots;
+mod template;

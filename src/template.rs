@@ -1,0 +1,279 @@
+//! The engineer's template workbook: an empty step table laid out as the
+//! published method's Fig. 7 (only the move cells can be edited, and they
+//! reject text that is not a move), a SETTINGS sheet, a HELP sheet and the
+//! paper's example as a sheet to copy from.
+
+use rust_xlsxwriter::{
+    DataValidation, DataValidationErrorStyle, DocProperties, ExcelDateTime, Format, FormatBorder,
+    Formula, Note, Workbook, Worksheet, XlsxError,
+};
+
+use crate::cell::{MAX_ACTUATOR, MAX_POSITION};
+use crate::read::{SETTINGS_SHEET, TABLE_SHEET};
+use crate::table::{MAX_BRANCHES, MAX_STEPS};
+
+/// Sheet with the paper's example.
+pub const EXAMPLE_SHEET: &str = "EXAMPLE";
+/// Sheet with the cell grammar and the rules.
+pub const HELP_SHEET: &str = "HELP";
+
+/// The paper's example (Blagojević et al. 2019, Fig. 7).
+pub const PAPER_EXAMPLE: [[&str; 3]; 8] = [
+    ["C1+1", "", ""],
+    ["C2+3", "", ""],
+    ["C2-1", "", ""],
+    ["C3+2", "C2+2", ""],
+    ["C3-0", "C2-1", ""],
+    ["C3+1", "C2+2", "C4+1"],
+    ["C3-0", "C2-0", "C4-0"],
+    ["C1-0", "", ""],
+];
+
+/// Rows and columns of the table: the header row and the first step row.
+const HEADER_ROW: u32 = 2;
+const FIRST_STEP_ROW: u32 = 3;
+
+struct Formats {
+    title: Format,
+    header: Format,
+    label: Format,
+    input: Format,
+    wrap: Format,
+}
+
+fn formats() -> Formats {
+    Formats {
+        title: Format::new().set_bold().set_font_size(14),
+        header: Format::new()
+            .set_bold()
+            .set_border(FormatBorder::Thin)
+            .set_background_color("#D9E1F2"),
+        label: Format::new().set_bold().set_border(FormatBorder::Thin),
+        input: Format::new()
+            .set_unlocked()
+            .set_border(FormatBorder::Thin)
+            .set_background_color("#FFFFF0"),
+        wrap: Format::new().set_text_wrap(),
+    }
+}
+
+/// Writes the Fig. 7 layout: title, BRANCH headers, STEP labels.
+fn table_layout(
+    sheet: &mut Worksheet,
+    title: &str,
+    branches: u16,
+    steps: u32,
+    f: &Formats,
+) -> Result<(), XlsxError> {
+    sheet.write_string_with_format(0, 0, title, &f.title)?;
+    sheet.set_column_width(0, 12)?;
+    for b in 0..branches {
+        sheet.write_string_with_format(
+            HEADER_ROW,
+            b + 1,
+            format!("BRANCH {}", b + 1),
+            &f.header,
+        )?;
+        sheet.set_column_width(b + 1, 13)?;
+    }
+    for k in 0..steps {
+        sheet.write_string_with_format(
+            FIRST_STEP_ROW + k,
+            0,
+            format!("STEP {}", k + 1),
+            &f.label,
+        )?;
+    }
+    sheet.set_freeze_panes(FIRST_STEP_ROW, 1)?;
+    Ok(())
+}
+
+/// The custom validation rule of one move cell (relative to its top-left
+/// cell B4): empty, or `C` then a digit, with a + or - somewhere. The tool's
+/// own check is stricter; this catches typing slips while typing.
+fn move_rule() -> Formula {
+    Formula::new(
+        "=OR(TRIM(B4)=\"\",AND(LEFT(TRIM(B4),1)=\"C\",ISNUMBER(VALUE(MID(TRIM(B4),2,1))),\
+         OR(ISNUMBER(FIND(\"+\",B4)),ISNUMBER(FIND(\"-\",B4)),ISNUMBER(FIND(\"\u{2212}\",B4)))))",
+    )
+}
+
+/// Builds the template workbook with `branches` × `steps` move cells.
+pub fn template_workbook(branches: u16, steps: u32) -> Result<Vec<u8>, XlsxError> {
+    let branches = branches.clamp(1, MAX_BRANCHES as u16);
+    let steps = steps.clamp(1, MAX_STEPS as u32);
+    let f = formats();
+    let mut workbook = Workbook::new();
+    workbook.set_properties(
+        &DocProperties::new()
+            .set_title("steptable template")
+            .set_creation_datetime(&ExcelDateTime::from_ymd(2020, 1, 1)?),
+    );
+
+    // The table to fill in.
+    let sheet = workbook.add_worksheet();
+    sheet.set_name(TABLE_SHEET)?;
+    table_layout(sheet, TABLE_SHEET, branches, steps, &f)?;
+    let last_row = FIRST_STEP_ROW + steps - 1;
+    for k in 0..steps {
+        for b in 0..branches {
+            sheet.write_blank(FIRST_STEP_ROW + k, b + 1, &f.input)?;
+        }
+    }
+    let validation = DataValidation::new()
+        .allow_custom(move_rule())
+        .set_input_title("Move")?
+        .set_input_message(
+            "C<actuator>+<position> or C<actuator>-<position>, e.g. C2+1 (cylinder 2 out to \
+             position 1) or C1-0 (cylinder 1 home). Leave empty for no move in this branch.",
+        )?
+        .set_error_title("Not a move")?
+        .set_error_message("Expected C<number>+<position> or C<number>-<position>, e.g. C2+1.")?;
+    sheet.add_data_validation(FIRST_STEP_ROW, 1, last_row, branches, &validation)?;
+    sheet.write_string(
+        last_row + 2,
+        0,
+        "Fill the yellow cells: one row per step, one column per parallel branch. \
+         See the HELP sheet; the EXAMPLE sheet holds the paper's example.",
+    )?;
+    sheet.protect();
+
+    settings_sheet(workbook.add_worksheet(), &f)?;
+    help_sheet(workbook.add_worksheet(), &f)?;
+
+    // The paper's example, to look at or copy from.
+    let sheet = workbook.add_worksheet();
+    sheet.set_name(EXAMPLE_SHEET)?;
+    table_layout(
+        sheet,
+        "EXAMPLE: Blagojević et al. (2019), Fig. 7",
+        3,
+        PAPER_EXAMPLE.len() as u32,
+        &f,
+    )?;
+    for (k, row) in PAPER_EXAMPLE.iter().enumerate() {
+        for (b, text) in row.iter().enumerate() {
+            if !text.is_empty() {
+                sheet.write_string(FIRST_STEP_ROW + k as u32, b as u16 + 1, *text)?;
+            }
+        }
+    }
+    workbook.save_to_buffer()
+}
+
+fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
+    sheet.set_name(SETTINGS_SHEET)?;
+    sheet.write_string_with_format(0, 0, "SETTINGS", &f.title)?;
+    sheet.write_string(
+        1,
+        0,
+        "Used by steptable convert for this workbook; command-line options override them.",
+    )?;
+    for (col, header) in ["SETTING", "VALUE", "WHAT IT MEANS"].iter().enumerate() {
+        sheet.write_string_with_format(3, col as u16, *header, &f.header)?;
+    }
+    let rows: [(&str, &str, &str, Option<&[&str]>); 4] = [
+        (
+            "target",
+            "festo",
+            "Address style: festo (I0.0 / O0.0, 16-bit words, the paper's layout), iec (%IX0.0 / %QX0.0, CODESYS and OpenPLC) or siemens (I0.0 / Q0.0).",
+            Some(&["festo", "iec", "siemens"]),
+        ),
+        (
+            "mnemonic",
+            "en",
+            "Operand letters for Siemens and STEP 7: en (I, Q; A, AN) or de (E, A; U, UN).",
+            Some(&["en", "de"]),
+        ),
+        (
+            "scan time",
+            "10ms",
+            "PLC cycle of the generated task and of the simulation, from 1ms to 1s.",
+            None,
+        ),
+        (
+            "safety",
+            "none",
+            "Safety checks built into the program: none, all, or a list of edge, precheck, plausibility, watchdog (e.g. edge, watchdog).",
+            Some(&[
+                "none",
+                "all",
+                "edge",
+                "precheck",
+                "plausibility",
+                "watchdog",
+            ]),
+        ),
+    ];
+    for (i, (label, value, meaning, choices)) in rows.iter().enumerate() {
+        let row = 4 + i as u32;
+        sheet.write_string_with_format(row, 0, *label, &f.label)?;
+        sheet.write_string_with_format(row, 1, *value, &f.input)?;
+        sheet.write_string_with_format(row, 2, *meaning, &f.wrap)?;
+        sheet.insert_note(row, 1, &Note::new(*meaning).set_author("steptable"))?;
+        if let Some(choices) = choices {
+            let mut validation = DataValidation::new()
+                .allow_list_strings(choices)?
+                .set_input_title(*label)?;
+            // A safety list may combine checks: warn, but accept other text.
+            if *label == "safety" {
+                validation = validation.set_error_style(DataValidationErrorStyle::Information);
+            }
+            sheet.add_data_validation(row, 1, row, 1, &validation)?;
+        }
+    }
+    let header = 10;
+    sheet.write_string(
+        header - 1,
+        0,
+        "Stroke times per actuator (extend / retract); actuators not listed take 1s / 1s.",
+    )?;
+    for (col, text) in ["actuator", "extend", "retract"].iter().enumerate() {
+        sheet.write_string_with_format(header, col as u16, *text, &f.header)?;
+    }
+    for i in 0..8u32 {
+        let row = header + 1 + i;
+        sheet.write_string_with_format(row, 0, format!("C{}", i + 1), &f.input)?;
+        sheet.write_string_with_format(row, 1, "1s", &f.input)?;
+        sheet.write_string_with_format(row, 2, "1s", &f.input)?;
+    }
+    sheet.set_column_width(0, 14)?;
+    sheet.set_column_width(1, 14)?;
+    sheet.set_column_width(2, 90)?;
+    sheet.protect();
+    Ok(())
+}
+
+fn help_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
+    sheet.set_name(HELP_SHEET)?;
+    sheet.write_string_with_format(0, 0, "HOW TO FILL THE STEP TABLE", &f.title)?;
+    let limits = format!(
+        "Actuators C1 to C{MAX_ACTUATOR} (need not be contiguous), positions 0 to {MAX_POSITION}, \
+         up to {MAX_STEPS} steps and {MAX_BRANCHES} branches."
+    );
+    let lines: Vec<(&str, String)> = vec![
+        ("Rows", "One row per step, top to bottom in the order they run. All moves of a step start together.".into()),
+        ("Columns", "One column per branch: a step with moves in three branches moves three actuators at once.".into()),
+        ("C2+1", "Cylinder 2 moves in the + direction (extends) to its position 1.".into()),
+        ("C1-0", "Cylinder 1 moves in the - direction (retracts) to position 0, its home.".into()),
+        ("C3+", "Without a position: + goes to the cylinder's end (its highest position in the table), - goes home.".into()),
+        ("Spelling", "Any case, spaces, the Unicode minus or a dash are all accepted: c2 + 1, C2−1, C2–1.".into()),
+        ("Empty", "An empty cell means no move in that branch; empty STEP rows after the last move are ignored.".into()),
+        ("Rule", "Every actuator starts at position 0 and is back at 0 after the last step.".into()),
+        ("Rule", "A + move goes to a higher position than the actuator stands at, a - move to a lower one.".into()),
+        ("Rule", "An actuator moves at most once per step; a step between two steps needs at least one move.".into()),
+        ("Limits", limits),
+        ("Middle stops", "An actuator with positions between 0 and its end gets a 5/3 valve; the program switches both coils off at a middle target.".into()),
+        ("Convert", "steptable convert this-file.xlsx writes the address lists, the programs, the simulation and the fault table.".into()),
+    ];
+    sheet.write_string_with_format(2, 0, "WRITE", &f.header)?;
+    sheet.write_string_with_format(2, 1, "MEANING", &f.header)?;
+    for (i, (what, meaning)) in lines.iter().enumerate() {
+        let row = 3 + i as u32;
+        sheet.write_string_with_format(row, 0, *what, &f.label)?;
+        sheet.write_string_with_format(row, 1, meaning, &f.wrap)?;
+    }
+    sheet.set_column_width(0, 14)?;
+    sheet.set_column_width(1, 100)?;
+    Ok(())
+}

@@ -1,0 +1,235 @@
+//! The template workbook and the SETTINGS sheet.
+
+use predicates::prelude::*;
+use predicates::str::contains;
+
+use crate::helpers::{read_sheet, sample, steptable, write_xlsx_sheets, xlsx_part};
+
+#[test]
+fn the_template_has_its_sheets_headers_validation_and_protection() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("plant.xlsx");
+    steptable()
+        .args(["template", "--branches", "3", "--steps", "12", "-o"])
+        .arg(&path)
+        .assert()
+        .success()
+        .stdout(contains("3 branches x 12 steps"));
+    let mut workbook = calamine::open_workbook_auto(&path).unwrap();
+    use calamine::Reader;
+    assert_eq!(
+        workbook.sheet_names(),
+        [
+            "SEQUENTIAL CONTROL DESCRIPTION",
+            "SETTINGS",
+            "HELP",
+            "EXAMPLE"
+        ]
+    );
+    let table = read_sheet(&path, "SEQUENTIAL CONTROL DESCRIPTION");
+    assert_eq!(table[0][0], "SEQUENTIAL CONTROL DESCRIPTION");
+    assert_eq!(table[2][1..4], ["BRANCH 1", "BRANCH 2", "BRANCH 3"]);
+    assert_eq!(table[3][0], "STEP 1");
+    assert_eq!(table[14][0], "STEP 12");
+
+    let sheet1 = xlsx_part(&path, "xl/worksheets/sheet1.xml");
+    assert!(sheet1.contains("<sheetProtection"), "protected");
+    assert!(!sheet1.contains("password"), "without a password");
+    assert!(sheet1.contains(r#"type="custom""#), "custom validation");
+    assert!(
+        sheet1.contains(r#"sqref="B4:D15""#),
+        "on exactly the move cells"
+    );
+    assert!(
+        sheet1.contains("promptTitle=\"Move\""),
+        "with an input message"
+    );
+    let styles = xlsx_part(&path, "xl/styles.xml");
+    assert!(styles.contains(r#"locked="0""#), "move cells unlocked");
+
+    let settings = read_sheet(&path, "SETTINGS");
+    let labels: Vec<&str> = settings.iter().map(|r| r[0].as_str()).collect();
+    for label in ["target", "mnemonic", "scan time", "safety", "actuator"] {
+        assert!(labels.contains(&label), "{label}");
+    }
+    let sheet2 = xlsx_part(&path, "xl/worksheets/sheet2.xml");
+    assert!(
+        sheet2.contains(r#"type="list""#),
+        "choices as validation lists"
+    );
+
+    // The empty template says what to do; its EXAMPLE converts.
+    steptable()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(contains("the step table has no moves"));
+    steptable()
+        .arg("check")
+        .arg(&path)
+        .args(["--sheet", "EXAMPLE"])
+        .assert()
+        .success();
+    // A second run does not overwrite a table someone may have filled in.
+    steptable()
+        .arg("template")
+        .arg("-o")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(contains("exists"));
+}
+
+/// The EXAMPLE sheet converts to the same files as the bundled sample: the
+/// template as written, and after LibreOffice opened and saved it (when
+/// LibreOffice is installed; .ci/run installs it).
+#[test]
+fn the_templates_example_converts_like_the_sample_also_after_libreoffice() {
+    let dir = tempfile::tempdir().unwrap();
+    let template = dir.path().join("paper_example.xlsx");
+    steptable()
+        .arg("template")
+        .arg("-o")
+        .arg(&template)
+        .assert()
+        .success();
+    let mut candidates = vec![template.clone()];
+    if let Some(soffice) = crate::exports::require("soffice") {
+        let saved = dir.path().join("libreoffice");
+        let status = std::process::Command::new(soffice)
+            .args(["--headless", "--convert-to", "xlsx", "--outdir"])
+            .arg(&saved)
+            .arg(&template)
+            .env("HOME", dir.path())
+            .output()
+            .unwrap();
+        assert!(
+            status.status.success(),
+            "{}",
+            String::from_utf8_lossy(&status.stderr)
+        );
+        candidates.push(saved.join("paper_example.xlsx"));
+    }
+    let convert = |input: &std::path::Path, out: &std::path::Path, sheet: Option<&str>| {
+        let mut cmd = steptable();
+        cmd.arg("convert")
+            .arg(input)
+            .args(["--formats", "st,fst,io,awl,plcopen"]);
+        if let Some(sheet) = sheet {
+            cmd.args(["--sheet", sheet]);
+        }
+        cmd.arg("-o").arg(out).assert().success();
+        crate::helpers::files_below(&out.join("paper_example"))
+            .iter()
+            .map(|p| {
+                let text = std::fs::read_to_string(p).unwrap();
+                // Only the line naming the source may differ.
+                text.lines()
+                    .filter(|l| !l.contains("Source:") && !l.contains("from paper_example"))
+                    .collect::<Vec<_>>()
+                    .join("\n")
+            })
+            .collect::<Vec<_>>()
+    };
+    let expected = convert(
+        &sample("paper_example.xlsx"),
+        &dir.path().join("sample"),
+        None,
+    );
+    for (i, candidate) in candidates.iter().enumerate() {
+        let got = convert(
+            candidate,
+            &dir.path().join(format!("t{i}")),
+            Some("EXAMPLE"),
+        );
+        assert_eq!(got, expected, "{}", candidate.display());
+    }
+}
+
+const PAPER_ROWS: &[&[&str]] = &[
+    &["C1+1", "", ""],
+    &["C2+3", "", ""],
+    &["C2-1", "", ""],
+    &["C3+2", "C2+2", ""],
+    &["C3-0", "C2-1", ""],
+    &["C3+1", "C2+2", "C4+1"],
+    &["C3-0", "C2-0", "C4-0"],
+    &["C1-0", "", ""],
+];
+
+#[test]
+fn settings_in_the_workbook_apply_and_flags_override_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("line.xlsx");
+    write_xlsx_sheets(
+        &path,
+        &[
+            ("SEQUENTIAL CONTROL DESCRIPTION", PAPER_ROWS),
+            (
+                "SETTINGS",
+                &[
+                    &["target", "iec"],
+                    &["safety", "watchdog"],
+                    &["actuator", "extend", "retract"],
+                    &["C1", "2s", "2s"],
+                ],
+            ),
+        ],
+    );
+    let io = |extra: &[&str]| {
+        let out = dir.path().join(format!("out{}", extra.len()));
+        steptable()
+            .arg("convert")
+            .arg(&path)
+            .args(extra)
+            .args(["--formats", "io,xlsx", "-o"])
+            .arg(&out)
+            .assert()
+            .success();
+        let csv = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
+        let simulation = read_sheet(&out.join("line/line.xlsx"), "SIMULATION");
+        (csv, simulation)
+    };
+    let (csv, simulation) = io(&[]);
+    assert!(csv.contains("%IX0.0,START"), "the sheet's target: {csv}");
+    assert!(csv.contains(",alarm_wd,alarm"), "the sheet's safety: {csv}");
+    // C1's 2 s stroke: step 1 takes about 2 s.
+    assert_eq!(simulation[5][0], "STEP 1");
+    assert!(
+        simulation[5][2].parse::<f64>().unwrap() > 1.9,
+        "{:?}",
+        simulation[5]
+    );
+    let (csv, _) = io(&["--target", "siemens", "--safety", "none"]);
+    assert!(csv.contains("I0.0,START"), "flags win: {csv}");
+    assert!(!csv.contains("alarm"), "flags win: {csv}");
+}
+
+#[test]
+fn an_invalid_setting_names_its_cell() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("line.xlsx");
+    write_xlsx_sheets(
+        &path,
+        &[
+            ("SEQUENTIAL CONTROL DESCRIPTION", PAPER_ROWS),
+            (
+                "SETTINGS",
+                &[&["target", "beckhoff"], &["scan time", "fast"]],
+            ),
+        ],
+    );
+    steptable()
+        .arg("convert")
+        .arg(&path)
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .assert()
+        .code(1)
+        .stderr(contains(
+            "line.xlsx: SETTINGS!B1: error[E030]: target: \"beckhoff\" is not valid",
+        ))
+        .stderr(contains("SETTINGS!B2").and(contains("nothing written")));
+    assert!(crate::helpers::files_below(&dir.path().join("out")).is_empty());
+}
