@@ -15,7 +15,7 @@ fn the_template_has_its_sheets_headers_validation_and_protection() {
         .assert()
         .success()
         .stdout(contains("3 branches x 12 steps"));
-    let mut workbook = calamine::open_workbook_auto(&path).unwrap();
+    let workbook = calamine::open_workbook_auto(&path).unwrap();
     use calamine::Reader;
     assert_eq!(
         workbook.sheet_names(),
