@@ -9,7 +9,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use steptable::address::{Mnemonic, Safety, Target};
 use steptable::convert::{self, Failure, OutputKind, Settings};
-use steptable::diag::Diagnostic;
+use steptable::diag::{Diagnostic, Severity};
 use steptable::emit::diagram::DiagramKind;
 use steptable::output;
 use steptable::read::display_name;
@@ -44,6 +44,30 @@ enum Command {
     Templates(TemplatesCommand),
     /// Write an empty step-table workbook to fill in Excel or LibreOffice.
     Template(TemplateArgs),
+    /// Convert many workbooks at once, in parallel, with a summary.
+    Batch(BatchArgs),
+}
+
+#[derive(Args)]
+struct BatchArgs {
+    /// Files, folders (searched recursively for .xlsx .xlsm .xls .ods .csv) or glob patterns.
+    #[arg(required = true)]
+    paths: Vec<PathBuf>,
+    /// Output folder: one folder per input, and summary.csv.
+    #[arg(short, long, value_name = "DIR")]
+    output: PathBuf,
+    /// Conversions at once (default: all cores).
+    #[arg(short, long, value_name = "N")]
+    jobs: Option<usize>,
+    /// No progress bar.
+    #[arg(short, long)]
+    quiet: bool,
+    #[command(flatten)]
+    files: FileArgs,
+    #[command(flatten)]
+    common: CommonArgs,
+    #[command(flatten)]
+    sim: SimArgs,
 }
 
 #[derive(Args)]
@@ -150,6 +174,17 @@ struct ConvertArgs {
     /// Output folder; each input gets a folder DIR/NAME/ in it.
     #[arg(short, long, value_name = "DIR", default_value = "steptable-out")]
     output: PathBuf,
+    #[command(flatten)]
+    files: FileArgs,
+    #[command(flatten)]
+    common: CommonArgs,
+    #[command(flatten)]
+    sim: SimArgs,
+}
+
+/// What files to write and how they look.
+#[derive(Args)]
+struct FileArgs {
     /// Horizontal axis of NAME.diagram.svg: step (displacement-step) or time.
     #[arg(long, value_enum, default_value_t = DiagramArg::Step)]
     diagram: DiagramArg,
@@ -161,10 +196,24 @@ struct ConvertArgs {
     /// (start from `steptable templates export DIR`).
     #[arg(long, value_name = "DIR")]
     templates: Option<PathBuf>,
-    #[command(flatten)]
-    common: CommonArgs,
-    #[command(flatten)]
-    sim: SimArgs,
+}
+
+impl FileArgs {
+    /// Applies the options; a broken template folder is the user's error.
+    fn apply(&self, settings: &mut Settings) -> Result<(), String> {
+        settings.diagram = match self.diagram {
+            DiagramArg::Step => DiagramKind::Step,
+            DiagramArg::Time => DiagramKind::Time,
+        };
+        if let Some(formats) = &self.formats {
+            settings.formats = formats.clone();
+        }
+        if let Some(dir) = &self.templates {
+            settings.templates =
+                steptable::emit::templates::Templates::load_dir(dir).map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    }
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -276,6 +325,7 @@ pub fn run() -> i32 {
         Command::Simulate(args) => run_simulate(&args),
         Command::Faults(args) => run_faults(&args),
         Command::Template(args) => run_template(&args),
+        Command::Batch(args) => run_batch(&args),
         Command::Templates(TemplatesCommand::Export { dir }) => {
             match steptable::emit::templates::export_defaults(&dir) {
                 Ok(written) => {
@@ -469,6 +519,107 @@ fn run_faults(args: &FaultsArgs) -> i32 {
     code
 }
 
+fn run_batch(args: &BatchArgs) -> i32 {
+    use std::io::IsTerminal;
+    use steptable::batch::{self, Status};
+
+    let mut settings = args.common.settings();
+    let report = Reporter::new(&args.common);
+    args.sim.apply(&mut settings);
+    if let Err(err) = args.files.apply(&mut settings) {
+        eprintln!("{err}");
+        return EXIT_BAD_INPUT;
+    }
+    let started = std::time::Instant::now();
+    let (inputs, missing) = batch::expand_inputs(&args.paths, &args.output);
+    for path in &missing {
+        eprintln!(
+            "{}: error: no such file or folder, and no file matches it as a pattern",
+            path.display()
+        );
+    }
+    let jobs = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let bar = if !args.quiet && std::io::stderr().is_terminal() {
+        let bar = indicatif::ProgressBar::new(inputs.len() as u64);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{bar:30} {pos}/{len} workbooks, {per_sec}, {elapsed} {msg}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        Some(bar)
+    } else {
+        None
+    };
+    let on_done = |outcome: &batch::Outcome| {
+        if let Some(bar) = &bar {
+            bar.set_message(display_name(&outcome.input));
+            bar.inc(1);
+        }
+    };
+    let outcomes = batch::run(&inputs, &args.output, &settings, jobs, &on_done);
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+
+    let mut code = if missing.is_empty() {
+        EXIT_OK
+    } else {
+        EXIT_BAD_INPUT
+    };
+    for o in &outcomes {
+        report.diagnostics(&o.diagnostics);
+        match o.status {
+            Status::Converted => {}
+            Status::Failed => code = code.max(EXIT_BAD_INPUT),
+            Status::Internal => code = EXIT_INTERNAL,
+        }
+    }
+    let failed: Vec<&batch::Outcome> = outcomes
+        .iter()
+        .filter(|o| o.status != Status::Converted)
+        .collect();
+    let seconds = started.elapsed().as_secs_f64();
+    report.say(&format!(
+        "{} converted, {} failed, in {:.2} s ({:.1} workbooks/s, {} jobs) -> {}",
+        outcomes.len() - failed.len(),
+        failed.len() + missing.len(),
+        seconds,
+        outcomes.len() as f64 / seconds.max(1e-9),
+        jobs,
+        args.output.display()
+    ));
+    for o in &failed {
+        // A diagnostic names its file; other failures need the name added.
+        let first = match o.diagnostics.iter().find(|d| d.severity == Severity::Error) {
+            Some(d) => d.to_string(),
+            None => format!(
+                "{}: {}",
+                display_name(&o.input),
+                o.message
+                    .clone()
+                    .unwrap_or_else(|| o.status.label().to_string())
+            ),
+        };
+        report.say(&format!("  failed: {first}"));
+    }
+    match batch::summary_csv(&outcomes) {
+        Ok(file) => {
+            if let Err(err) = output::write_files(&args.output, &[file], &inputs) {
+                eprintln!("error: {err}");
+                code = EXIT_INTERNAL;
+            }
+        }
+        Err(err) => {
+            eprintln!("internal error: summary: {err}");
+            code = EXIT_INTERNAL;
+        }
+    }
+    code
+}
+
 fn run_template(args: &TemplateArgs) -> i32 {
     if args.output.exists() && !args.force {
         eprintln!(
@@ -515,21 +666,9 @@ fn run_convert(args: &ConvertArgs) -> i32 {
     let mut settings = args.common.settings();
     let report = Reporter::new(&args.common);
     args.sim.apply(&mut settings);
-    settings.diagram = match args.diagram {
-        DiagramArg::Step => DiagramKind::Step,
-        DiagramArg::Time => DiagramKind::Time,
-    };
-    if let Some(formats) = &args.formats {
-        settings.formats = formats.clone();
-    }
-    if let Some(dir) = &args.templates {
-        match steptable::emit::templates::Templates::load_dir(dir) {
-            Ok(templates) => settings.templates = templates,
-            Err(err) => {
-                eprintln!("{err}");
-                return EXIT_BAD_INPUT;
-            }
-        }
+    if let Err(err) = args.files.apply(&mut settings) {
+        eprintln!("{err}");
+        return EXIT_BAD_INPUT;
     }
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);

@@ -10,6 +10,7 @@
 //! writes the result atomically.
 
 pub mod address;
+pub mod batch;
 pub mod cell;
 pub mod convert;
 pub mod diag;

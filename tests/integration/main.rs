@@ -1,6 +1,7 @@
 //! One integration test binary (faster to link than one per file): the real
 //! executable on the bundled samples and on broken workbooks made by helpers.
 
+mod batch;
 mod broken;
 mod diagram;
 mod exports;

@@ -1,0 +1,246 @@
+//! Batch conversion: many inputs (files, folders walked recursively, glob
+//! patterns) converted in parallel, each into its own folder; a failing file
+//! never stops the others, and `summary.csv` lists what happened to each.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use crate::convert::{self, Failure, OutputFile, Settings};
+use crate::diag::{Diagnostic, Severity};
+use crate::output;
+use crate::read::Format;
+
+/// What happened to one input.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    Converted,
+    /// The input is wrong (diagnostics say why); nothing written for it.
+    Failed,
+    /// A bug, a template that is not the user's, or an I/O failure.
+    Internal,
+}
+
+impl Status {
+    pub fn label(self) -> &'static str {
+        match self {
+            Status::Converted => "converted",
+            Status::Failed => "failed",
+            Status::Internal => "internal error",
+        }
+    }
+}
+
+/// The outcome of one input.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    pub input: PathBuf,
+    /// Output folder name (distinct for colliding input names).
+    pub name: String,
+    pub status: Status,
+    pub diagnostics: Vec<Diagnostic>,
+    /// For internal failures and problems that are no cell's: what went wrong.
+    pub message: Option<String>,
+    pub steps: Option<usize>,
+    pub actuators: Option<usize>,
+    pub millis: u128,
+}
+
+impl Outcome {
+    pub fn error_count(&self) -> usize {
+        let cells = self
+            .diagnostics
+            .iter()
+            .filter(|d| d.severity == Severity::Error)
+            .count();
+        cells + usize::from(self.message.is_some() && self.status != Status::Converted)
+    }
+
+    /// The first error, as one line.
+    pub fn first_error(&self) -> Option<String> {
+        self.diagnostics
+            .iter()
+            .find(|d| d.severity == Severity::Error)
+            .map(|d| d.to_string())
+            .or_else(|| self.message.clone())
+    }
+}
+
+/// The files and patterns to convert, expanded. Folders are walked
+/// recursively for `.xlsx .xlsm .xls .ods .csv`, skipping hidden files, Excel
+/// lock files (`~$…`) and anything inside `exclude` (the output folder, so a
+/// rerun does not convert its own outputs). A path that is neither a file, a
+/// folder nor a pattern matching something is returned in the second list.
+pub fn expand_inputs(paths: &[PathBuf], exclude: &Path) -> (Vec<PathBuf>, Vec<PathBuf>) {
+    let exclude = std::fs::canonicalize(exclude).ok();
+    let excluded = |p: &Path| {
+        exclude
+            .as_ref()
+            .is_some_and(|ex| std::fs::canonicalize(p).is_ok_and(|c| c.starts_with(ex)))
+    };
+    let mut found = Vec::new();
+    let mut missing = Vec::new();
+    for path in paths {
+        if path.is_dir() {
+            let mut files = Vec::new();
+            walk(path, &mut files);
+            files.sort();
+            found.extend(files.into_iter().filter(|f| !excluded(f)));
+        } else if path.is_file() {
+            found.push(path.clone());
+        } else {
+            let pattern = path.to_string_lossy();
+            let matches: Vec<PathBuf> = glob::glob(&pattern)
+                .map(|paths| {
+                    paths
+                        .filter_map(Result::ok)
+                        .filter(|p| p.is_file())
+                        .collect()
+                })
+                .unwrap_or_default();
+            if matches.is_empty() {
+                missing.push(path.clone());
+            }
+            found.extend(matches.into_iter().filter(|f| !excluded(f)));
+        }
+    }
+    // The same file named twice (a folder and a pattern) is converted once.
+    let mut seen = std::collections::BTreeSet::new();
+    found.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
+    (found, missing)
+}
+
+fn walk(dir: &Path, files: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        let name = entry.file_name().to_string_lossy().to_string();
+        if name.starts_with('.') || name.starts_with("~$") {
+            continue;
+        }
+        if path.is_dir() {
+            walk(&path, files);
+        } else if Format::from_path(&path)
+            .is_some_and(|f| f != Format::Csv || has_csv_extension(&path))
+        {
+            files.push(path);
+        }
+    }
+}
+
+/// Folders hold many `.txt` files that are not tables: only `.csv` counts there.
+fn has_csv_extension(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case("csv"))
+}
+
+/// Converts every input into `out/NAME/`, `jobs` at a time, calling
+/// `on_done` as each finishes. Outcomes come back in input order.
+pub fn run(
+    inputs: &[PathBuf],
+    out: &Path,
+    settings: &Settings,
+    jobs: usize,
+    on_done: &(dyn Fn(&Outcome) + Sync),
+) -> Vec<Outcome> {
+    let names = convert::output_names(inputs);
+    let convert_one = |(input, name): (&PathBuf, &String)| {
+        let outcome = convert_one(input, name, out, settings, inputs);
+        on_done(&outcome);
+        outcome
+    };
+    let work: Vec<(&PathBuf, &String)> = inputs.iter().zip(&names).collect();
+    match rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.max(1))
+        .build()
+    {
+        Ok(pool) => pool.install(|| work.into_par_iter().map(convert_one).collect()),
+        // No thread pool (an exotic platform): one at a time still works.
+        Err(_) => work.into_iter().map(convert_one).collect(),
+    }
+}
+
+fn convert_one(
+    input: &Path,
+    name: &str,
+    out: &Path,
+    settings: &Settings,
+    all_inputs: &[PathBuf],
+) -> Outcome {
+    let start = Instant::now();
+    let mut outcome = Outcome {
+        input: input.to_path_buf(),
+        name: name.to_string(),
+        status: Status::Converted,
+        diagnostics: Vec::new(),
+        message: None,
+        steps: None,
+        actuators: None,
+        millis: 0,
+    };
+    match convert::convert_path_as(input, name, settings) {
+        Ok(conversion) => {
+            outcome.steps = Some(conversion.table.steps.len());
+            outcome.actuators = Some(conversion.table.actuators.len());
+            outcome.diagnostics = conversion.warnings;
+            if let Err(err) = output::write_files(&out.join(name), &conversion.files, all_inputs) {
+                outcome.status = Status::Internal;
+                outcome.message = Some(err.to_string());
+            }
+        }
+        Err(Failure::Input(diagnostics)) => {
+            outcome.status = Status::Failed;
+            outcome.diagnostics = diagnostics;
+        }
+        Err(Failure::Template(err)) => {
+            outcome.status = if err.user {
+                Status::Failed
+            } else {
+                Status::Internal
+            };
+            outcome.message = Some(err.to_string());
+        }
+        Err(Failure::Internal(why)) => {
+            outcome.status = Status::Internal;
+            outcome.message = Some(why);
+        }
+    }
+    outcome.millis = start.elapsed().as_millis();
+    outcome
+}
+
+/// `summary.csv`: file, status, error count, first error, steps, actuators,
+/// milliseconds — one row per input, in input order.
+pub fn summary_csv(outcomes: &[Outcome]) -> Result<OutputFile, csv::Error> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record([
+        "file",
+        "status",
+        "errors",
+        "first error",
+        "steps",
+        "actuators",
+        "milliseconds",
+    ])?;
+    for o in outcomes {
+        writer.write_record([
+            o.input.display().to_string(),
+            o.status.label().to_string(),
+            o.error_count().to_string(),
+            o.first_error().unwrap_or_default(),
+            o.steps.map(|s| s.to_string()).unwrap_or_default(),
+            o.actuators.map(|s| s.to_string()).unwrap_or_default(),
+            o.millis.to_string(),
+        ])?;
+    }
+    let bytes = writer
+        .into_inner()
+        .map_err(|e| csv::Error::from(std::io::Error::other(e.to_string())))?;
+    Ok(OutputFile {
+        name: "summary.csv".to_string(),
+        bytes,
+    })
+}
