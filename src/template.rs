@@ -133,8 +133,12 @@ pub fn template_workbook(branches: u16, steps: u32) -> Result<Vec<u8>, XlsxError
     sheet.write_string(
         last_row + 2,
         0,
-        "Fill the yellow cells: one row per step, one column per parallel branch. \
-         See the HELP sheet; the EXAMPLE sheet holds the paper's example.",
+        "Fill the yellow cells: one row per step, one column per parallel branch.",
+    )?;
+    sheet.write_string(
+        last_row + 3,
+        0,
+        "See the HELP sheet; the EXAMPLE sheet holds the paper's example.",
     )?;
     sheet.protect();
 
@@ -169,8 +173,8 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         0,
         "Used by steptable convert for this workbook; command-line options override them.",
     )?;
-    for (col, header) in ["SETTING", "VALUE", "WHAT IT MEANS"].iter().enumerate() {
-        sheet.write_string_with_format(3, col as u16, *header, &f.header)?;
+    for (col, header) in [(0, "SETTING"), (1, "VALUE"), (3, "WHAT IT MEANS")] {
+        sheet.write_string_with_format(3, col, header, &f.header)?;
     }
     let rows: [(&str, &str, &str, Option<&[&str]>); 4] = [
         (
@@ -209,7 +213,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         let row = 4 + i as u32;
         sheet.write_string_with_format(row, 0, *label, &f.label)?;
         sheet.write_string_with_format(row, 1, *value, &f.input)?;
-        sheet.write_string_with_format(row, 2, *meaning, &f.wrap)?;
+        sheet.write_string_with_format(row, 3, *meaning, &f.wrap)?;
         sheet.insert_note(row, 1, &Note::new(*meaning).set_author("steptable"))?;
         if let Some(choices) = choices {
             let mut validation = DataValidation::new()
@@ -239,7 +243,8 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     }
     sheet.set_column_width(0, 14)?;
     sheet.set_column_width(1, 14)?;
-    sheet.set_column_width(2, 90)?;
+    sheet.set_column_width(2, 14)?;
+    sheet.set_column_width(3, 80)?;
     sheet.protect();
     Ok(())
 }

@@ -1,0 +1,161 @@
+//! Benchmark (not a test): generates 1,000 realistic workbooks (2–12
+//! actuators, up to 60 steps, up to 4 branches, some middle positions) and
+//! prints the batch throughput for 1 and 2 jobs, and where the time of one
+//! conversion goes (read, check, generate, write).
+//!
+//! Run with `cargo bench --bench batch` (set STEPTABLE_BENCH_WORKBOOKS to
+//! change the count).
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use rust_xlsxwriter::Workbook;
+use steptable::batch;
+use steptable::convert::{self, Settings};
+use steptable::diag::Diagnostics;
+use steptable::random_table::{Shape, SplitMix64, random_rows};
+
+fn write_workbook(path: &Path, rows: &[Vec<String>]) {
+    let mut workbook = Workbook::new();
+    let sheet = workbook.add_worksheet();
+    sheet.set_name("SEQUENTIAL CONTROL DESCRIPTION").unwrap();
+    sheet
+        .write_string(0, 0, "SEQUENTIAL CONTROL DESCRIPTION")
+        .unwrap();
+    let branches = rows.iter().map(Vec::len).max().unwrap_or(1);
+    for b in 0..branches {
+        sheet
+            .write_string(2, b as u16 + 1, format!("BRANCH {}", b + 1))
+            .unwrap();
+    }
+    for (k, row) in rows.iter().enumerate() {
+        sheet
+            .write_string(3 + k as u32, 0, format!("STEP {}", k + 1))
+            .unwrap();
+        for (b, cell) in row.iter().enumerate() {
+            sheet
+                .write_string(3 + k as u32, b as u16 + 1, cell)
+                .unwrap();
+        }
+    }
+    workbook.save(path).unwrap();
+}
+
+fn generate(dir: &Path, count: usize) -> Vec<PathBuf> {
+    let mut rng = SplitMix64::new(5);
+    (0..count)
+        .map(|i| {
+            let shape = Shape {
+                actuators: rng.range(2, 12),
+                max_position: if rng.range(0, 3) == 0 { 3 } else { 1 },
+                branches: rng.range(1, 4),
+                steps: rng.range(4, 60),
+            };
+            let rows = random_rows(i as u64, shape);
+            let path = dir.join(format!("line_{i:04}.xlsx"));
+            write_workbook(&path, &rows);
+            path
+        })
+        .collect()
+}
+
+fn median(mut runs: Vec<Duration>) -> Duration {
+    runs.sort();
+    runs[runs.len() / 2]
+}
+
+fn main() {
+    let count: usize = std::env::var("STEPTABLE_BENCH_WORKBOOKS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1000);
+    let dir = tempfile::tempdir().unwrap();
+    let inputs = generate(dir.path(), count);
+    let settings = Settings::new();
+
+    for jobs in [1, 2] {
+        let out = dir.path().join(format!("out{jobs}"));
+        let start = Instant::now();
+        let outcomes = batch::run(&inputs, &out, &settings, jobs, &|_| {});
+        let seconds = start.elapsed().as_secs_f64();
+        let failed = outcomes
+            .iter()
+            .filter(|o| o.status != batch::Status::Converted)
+            .count();
+        println!(
+            "batch -j {jobs}: {count} workbooks in {seconds:.2} s = {:.1} workbooks/s ({failed} failed)",
+            count as f64 / seconds
+        );
+    }
+
+    // One typical workbook, stage by stage (median of 31 runs).
+    std::fs::create_dir_all(dir.path().join("one")).unwrap();
+    let one = dir.path().join("one/line.xlsx");
+    write_workbook(
+        &one,
+        &random_rows(
+            99,
+            Shape {
+                actuators: 6,
+                max_position: 3,
+                branches: 3,
+                steps: 30,
+            },
+        ),
+    );
+    let (mut read, mut check, mut generate_t, mut write) = (vec![], vec![], vec![], vec![]);
+    for i in 0..31 {
+        let t = Instant::now();
+        let mut diags = Diagnostics::new();
+        let input = steptable::read::read_path(&one, None, &mut diags).unwrap();
+        read.push(t.elapsed());
+        let t = Instant::now();
+        let table = steptable::table::build(&input.table, &mut diags).unwrap();
+        check.push(t.elapsed());
+        let t = Instant::now();
+        let checked = convert::Checked {
+            table,
+            warnings: Vec::new(),
+            settings: settings.clone(),
+        };
+        let conversion = convert::generate("line", checked).ok().unwrap();
+        generate_t.push(t.elapsed());
+        let t = Instant::now();
+        steptable::output::write_files(&dir.path().join(format!("w{i}")), &conversion.files, &[])
+            .unwrap();
+        write.push(t.elapsed());
+    }
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    let (r, c, g, w) = (
+        median(read),
+        median(check),
+        median(generate_t),
+        median(write),
+    );
+    println!(
+        "one workbook (6 actuators, 30 steps, all outputs), median of 31: read {:.2} ms, check {:.2} ms, generate {:.2} ms, write {:.2} ms",
+        ms(r),
+        ms(c),
+        ms(g),
+        ms(w)
+    );
+    // Where generate's time goes.
+    let mut diags = Diagnostics::new();
+    let input = steptable::read::read_path(&one, None, &mut diags).unwrap();
+    let table = steptable::table::build(&input.table, &mut diags).unwrap();
+    let (allocation, program) = convert::build_program(&table, &settings);
+    let t = Instant::now();
+    let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
+    let sim = t.elapsed();
+    let t = Instant::now();
+    let faults =
+        steptable::faults::analyse(&table, &program, &allocation, &settings.simulation, false);
+    let fault_time = t.elapsed();
+    println!(
+        "  of generate: simulation {:.2} ms ({}), single-fault table {:.2} ms ({} cases)",
+        ms(sim),
+        report.verdict(),
+        ms(fault_time),
+        faults.cases.len()
+    );
+}
