@@ -46,6 +46,24 @@ enum Command {
     Template(TemplateArgs),
     /// Convert many workbooks at once, in parallel, with a summary.
     Batch(BatchArgs),
+    /// Synthesise minimal logic equations for a single-branch sequence.
+    Synth(SynthArgs),
+}
+
+#[derive(Args)]
+struct SynthArgs {
+    /// A single-branch step table of two-position actuators (any format convert reads).
+    #[arg(required_unless_present = "sequence", conflicts_with = "sequence")]
+    input: Option<PathBuf>,
+    /// The sequence itself: "A1 A0 B1 B0", "A+ A- B+ B-" or "C1+1 C1-0 C2+1 C2-0".
+    #[arg(long, value_name = "TEXT")]
+    sequence: Option<String>,
+    /// Output folder; the results go to DIR/NAME/.
+    #[arg(short, long, value_name = "DIR", default_value = "steptable-out")]
+    output: PathBuf,
+    /// Read this sheet instead of the default choice.
+    #[arg(long, value_name = "NAME")]
+    sheet: Option<String>,
 }
 
 #[derive(Args)]
@@ -326,6 +344,7 @@ pub fn run() -> i32 {
         Command::Faults(args) => run_faults(&args),
         Command::Template(args) => run_template(&args),
         Command::Batch(args) => run_batch(&args),
+        Command::Synth(args) => run_synth(&args),
         Command::Templates(TemplatesCommand::Export { dir }) => {
             match steptable::emit::templates::export_defaults(&dir) {
                 Ok(written) => {
@@ -618,6 +637,99 @@ fn run_batch(args: &BatchArgs) -> i32 {
         }
     }
     code
+}
+
+fn run_synth(args: &SynthArgs) -> i32 {
+    use steptable::synth::{self, SynthError, output as synth_out};
+
+    let (sequence, name, inputs) = match (&args.input, &args.sequence) {
+        (_, Some(text)) => match synth::sequence::parse(text) {
+            Ok(s) => (s, "sequence".to_string(), Vec::new()),
+            Err(why) => {
+                eprintln!("--sequence: error: {why}");
+                return EXIT_BAD_INPUT;
+            }
+        },
+        (Some(input), None) => {
+            let mut settings = Settings::new();
+            settings.sheet = args.sheet.clone();
+            let checked = match convert::check_path(input, &settings) {
+                Ok(c) => c,
+                Err(diagnostics) => {
+                    for d in diagnostics {
+                        eprintln!("{d}");
+                    }
+                    return EXIT_BAD_INPUT;
+                }
+            };
+            match synth::from_table(&checked.table) {
+                Ok(s) => (s, convert::output_name(input), vec![input.clone()]),
+                Err(why) => {
+                    eprintln!("{}: error: {why}", display_name(input));
+                    return EXIT_BAD_INPUT;
+                }
+            }
+        }
+        (None, None) => {
+            eprintln!("error: give a step table or --sequence");
+            return EXIT_BAD_INPUT;
+        }
+    };
+    let synthesis = match synth::synthesize(&sequence) {
+        Ok(s) => s,
+        Err(err @ SynthError::Unsuitable(_)) => {
+            eprintln!("error: {err}");
+            return EXIT_BAD_INPUT;
+        }
+        Err(err) => {
+            eprintln!("error: {err}");
+            return EXIT_BAD_INPUT;
+        }
+    };
+    let verification = synth::verify::verify(&synthesis, 2);
+    let report = synth_out::report_text(&synthesis, &verification);
+    out(&report);
+    let workbook = match synth_out::workbook(&synthesis, &verification) {
+        Ok(b) => b,
+        Err(err) => {
+            eprintln!("internal error: workbook: {err}");
+            return EXIT_INTERNAL;
+        }
+    };
+    let files = vec![
+        convert::OutputFile {
+            name: format!("{name}.synth.txt"),
+            bytes: report.into_bytes(),
+        },
+        convert::OutputFile {
+            name: format!("{name}.synth.json"),
+            bytes: synth_out::report_json(&synthesis, &verification).into_bytes(),
+        },
+        convert::OutputFile {
+            name: format!("{name}.equations.st"),
+            bytes: synth_out::structured_text(&synthesis, &name).into_bytes(),
+        },
+        convert::OutputFile {
+            name: format!("{name}.equations.il"),
+            bytes: synth_out::instruction_list(&synthesis, &name).into_bytes(),
+        },
+        convert::OutputFile {
+            name: format!("{name}.xlsx"),
+            bytes: workbook,
+        },
+    ];
+    if let Err(err) = output::write_files(&args.output.join(&name), &files, &inputs) {
+        eprintln!("error: {err}");
+        return EXIT_INTERNAL;
+    }
+    if !verification.passed {
+        eprintln!(
+            "internal error: the synthesised controller fails its simulation ({}); please report this sequence",
+            verification.problem.unwrap_or_default()
+        );
+        return EXIT_INTERNAL;
+    }
+    EXIT_OK
 }
 
 fn run_template(args: &TemplateArgs) -> i32 {

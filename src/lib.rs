@@ -22,6 +22,7 @@ pub mod random_table;
 pub mod read;
 pub mod settings;
 pub mod simulate;
+pub mod synth;
 pub mod table;
 pub mod template;
 pub mod timing;

@@ -184,7 +184,14 @@ fn structured_text_parses_with_blark() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    let files = convert_all(dir.path(), &["--formats", "st"]);
+    let mut files = convert_all(dir.path(), &["--formats", "st"]);
+    // The synthesised equations' program too.
+    steptable()
+        .args(["synth", "--sequence", "A1 A0 A1 A0 A1 A0 B1 B0 C1 C0", "-o"])
+        .arg(dir.path().join("synth"))
+        .assert()
+        .success();
+    files.push(dir.path().join("synth/sequence/sequence.equations.st"));
     for file in files {
         // blark knows POUs, not CONFIGURATION: cut the file there.
         let text = std::fs::read_to_string(&file).unwrap();

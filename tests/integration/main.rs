@@ -11,4 +11,5 @@ mod properties;
 mod safety;
 mod simulate;
 mod snapshots;
+mod synth;
 mod template;

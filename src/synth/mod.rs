@@ -1,0 +1,443 @@
+//! Logic synthesis for single-branch sequences of two-position actuators
+//! (Ganesh & Gurunathan 2017; DESIGN §7): find where auxiliary memories must
+//! be set and reset so that the sensor state alone decides the next action,
+//! fill the truth table, and find the smallest equation for every valve coil
+//! and memory. This route is exact: the number of inserted operations, the
+//! number of memories and every equation's size are proven minimal by
+//! exhaustive search; the controller is then proven by simulation.
+//!
+//! The paper's genetic algorithm and genetic programming are not part of this
+//! module yet; the exact results are what they would be compared against.
+
+pub mod equations;
+pub mod output;
+pub mod search;
+pub mod sequence;
+pub mod verify;
+
+use std::time::Instant;
+
+use equations::{Expr, SearchLimits};
+use sequence::{Action, Clash, Sequence};
+
+/// One cell of the truth table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Cell {
+    One,
+    Zero,
+    DontCare,
+}
+
+impl Cell {
+    pub fn symbol(self) -> char {
+        match self {
+            Cell::One => '1',
+            Cell::Zero => '0',
+            Cell::DontCare => 'x',
+        }
+    }
+}
+
+/// The truth table: one row per visited state in sequence order (the state
+/// before each action), one column per action. Unvisited states are
+/// don't-cares and have no row.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TruthTable {
+    pub rows: Vec<u32>,
+    pub columns: Vec<Action>,
+    /// `cells[row][column]`.
+    pub cells: Vec<Vec<Cell>>,
+}
+
+impl TruthTable {
+    /// Fills the table by the rules of DESIGN §7: where an action is next its
+    /// column is 1 and its complement's 0; below a 0 (cyclically, in sequence
+    /// order) 0 until the next 1; below a 1 don't-care until the next 0.
+    pub fn of(sequence: &Sequence) -> TruthTable {
+        let rows = sequence.pre_states();
+        let mut columns: Vec<Action> = Vec::new();
+        for a in &sequence.actions {
+            if !columns.contains(a) {
+                columns.push(*a);
+            }
+        }
+        let n = rows.len();
+        let mut cells = vec![vec![Cell::DontCare; columns.len()]; n];
+        for (c, column) in columns.iter().enumerate() {
+            let defined: Vec<Option<Cell>> = sequence
+                .actions
+                .iter()
+                .map(|a| {
+                    if a == column {
+                        Some(Cell::One)
+                    } else if a.var == column.var {
+                        Some(Cell::Zero)
+                    } else {
+                        None
+                    }
+                })
+                .collect();
+            for k in 0..n {
+                cells[k][c] = match defined[k] {
+                    Some(cell) => cell,
+                    None => {
+                        // The nearest defined row above, cyclically.
+                        let above = (1..n).map(|d| defined[(k + n - d) % n]).find_map(|x| x);
+                        match above {
+                            Some(Cell::Zero) => Cell::Zero,
+                            _ => Cell::DontCare,
+                        }
+                    }
+                };
+            }
+        }
+        TruthTable {
+            rows,
+            columns,
+            cells,
+        }
+    }
+
+    /// States where column `c` must be 1, and where it must be 0.
+    pub fn on_off(&self, c: usize) -> (Vec<u32>, Vec<u32>) {
+        let pick = |want: Cell| {
+            self.rows
+                .iter()
+                .zip(&self.cells)
+                .filter(|(_, cells)| cells[c] == want)
+                .map(|(s, _)| *s)
+                .collect()
+        };
+        (pick(Cell::One), pick(Cell::Zero))
+    }
+}
+
+/// One action's equation.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Equation {
+    pub action: Action,
+    /// The proven smallest tree.
+    pub expr: Expr,
+    /// The Quine–McCluskey two-level form over the full table, if computed.
+    pub qm: Option<Expr>,
+}
+
+/// Everything the synthesis found.
+#[derive(Debug, Clone)]
+pub struct Synthesis {
+    pub original: Sequence,
+    pub clashes: Vec<Clash>,
+    /// The modified sequence with the memory operations inserted.
+    pub modified: Sequence,
+    /// Minimal numbers of inserted operations and memories (proven).
+    pub insertions: usize,
+    /// Minimal modified sequences examined for the smallest equations.
+    pub candidates: usize,
+    /// True when there were more minimal sequences than were examined.
+    pub candidates_truncated: bool,
+    pub table: TruthTable,
+    pub equations: Vec<Equation>,
+    pub millis: u128,
+}
+
+impl Synthesis {
+    /// Sum of equation tree nodes.
+    pub fn total_nodes(&self) -> usize {
+        self.equations.iter().map(|e| e.expr.nodes()).sum()
+    }
+
+    /// Nodes of the largest equation.
+    pub fn largest(&self) -> usize {
+        self.equations
+            .iter()
+            .map(|e| e.expr.nodes())
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// Sum of QM two-level sizes (same node convention), if all were computed.
+    pub fn qm_nodes(&self) -> Option<usize> {
+        self.equations
+            .iter()
+            .map(|e| e.qm.as_ref().map(Expr::nodes))
+            .sum()
+    }
+}
+
+/// Why synthesis could not be done.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum SynthError {
+    /// The input is not a single-branch two-position sequence, or similar.
+    Unsuitable(String),
+    /// No valid modified sequence within the search limits.
+    NotFound(String),
+}
+
+impl std::fmt::Display for SynthError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SynthError::Unsuitable(why) | SynthError::NotFound(why) => f.write_str(why),
+        }
+    }
+}
+
+/// The smallest equations of a valid sequence, or `None` if an exact search
+/// hit its limits or their total would exceed `bound` nodes.
+fn equations_of(
+    sequence: &Sequence,
+    with_qm: bool,
+    bound: usize,
+) -> Option<(TruthTable, Vec<Equation>)> {
+    let table = TruthTable::of(sequence);
+    let mut equations = Vec::new();
+    let mut total = 0;
+    for (c, action) in table.columns.iter().enumerate() {
+        let (on, off) = table.on_off(c);
+        // Every later column needs at least one node.
+        let left = table.columns.len() - c - 1;
+        let limits = SearchLimits {
+            max_nodes: SearchLimits::default()
+                .max_nodes
+                .min(bound.saturating_sub(total + left)),
+            ..SearchLimits::default()
+        };
+        let expr = equations::minimal(&on, &off, sequence.variables(), limits)?;
+        total += expr.nodes();
+        let qm = if with_qm {
+            equations::quine_mccluskey(&on, &off, sequence.variables())
+        } else {
+            None
+        };
+        equations.push(Equation {
+            action: *action,
+            expr,
+            qm,
+        });
+    }
+    Some((table, equations))
+}
+
+/// The sequence with every combination of memories inverted (2^memories).
+fn polarities(sequence: &Sequence) -> Vec<Sequence> {
+    (0..1u32 << sequence.memories)
+        .map(|flip| {
+            let mut s = sequence.clone();
+            for a in &mut s.actions {
+                if a.var >= s.actuators && (flip >> (a.var - s.actuators)) & 1 == 1 {
+                    a.value = !a.value;
+                }
+            }
+            s
+        })
+        .collect()
+}
+
+/// The letter sequence of a checked step table: C1 becomes A, C2 B, and so
+/// on. Refused, with the reason, for parallel branches or middle positions.
+pub fn from_table(table: &crate::table::StepTable) -> Result<Sequence, SynthError> {
+    if let Some(step) = table.steps.iter().find(|s| s.moves.len() > 1) {
+        return Err(SynthError::Unsuitable(format!(
+            "STEP {} moves {} actuators at once: synthesis handles single-branch sequences only; use convert for parallel branches",
+            step.number,
+            step.moves.len()
+        )));
+    }
+    if let Some(a) = table.actuators.iter().find(|a| a.max_position > 1) {
+        return Err(SynthError::Unsuitable(format!(
+            "C{} has middle positions: synthesis handles two-position actuators only; use convert for middle stops",
+            a.number
+        )));
+    }
+    let text: Vec<String> = table
+        .steps
+        .iter()
+        .flat_map(|s| &s.moves)
+        .map(|m| format!("C{}{}{}", m.actuator, m.sign.symbol(), m.to))
+        .collect();
+    sequence::parse(&text.join(" ")).map_err(SynthError::Unsuitable)
+}
+
+/// Synthesises a controller for `original` (a sequence without memories).
+pub fn synthesize(original: &Sequence) -> Result<Synthesis, SynthError> {
+    let start = Instant::now();
+    if original.memories > 0 {
+        return Err(SynthError::Unsuitable(
+            "give the original sequence without memories (W, X, Y, Z): they are what synthesis finds".to_string(),
+        ));
+    }
+    let mut problems = Vec::new();
+    let mut state = original.initial_state();
+    for (i, a) in original.actions.iter().enumerate() {
+        if (state >> a.var) & 1 == u32::from(a.value) {
+            problems.push(format!(
+                "action {} ({}) changes nothing",
+                i + 1,
+                original.token(*a)
+            ));
+        }
+        state = sequence::apply(state, *a);
+    }
+    if state != original.initial_state() {
+        problems.push("the cycle does not end with every actuator where it started".to_string());
+    }
+    if !problems.is_empty() {
+        return Err(SynthError::Unsuitable(problems.join("; ")));
+    }
+    let clashes = original.clashes();
+    let minimal = search::minimal(original, search::Limits::default()).ok_or_else(|| {
+        SynthError::NotFound(
+            "no valid sequence with up to 4 memories and 12 inserted operations".to_string(),
+        )
+    })?;
+    // Among the minimal sequences, the one with the smallest equations: sum
+    // of nodes, then the largest equation, then the text (for determinism).
+    type Key = (usize, usize, usize, String);
+    let mut best: Option<(Key, Sequence)> = None;
+    // The search sets every memory first; a memory that is reset first is
+    // the same sequence with that memory inverted, but its equations differ
+    // in size (x becomes NOT x): try every polarity.
+    let variants: Vec<Sequence> = minimal.solutions.iter().flat_map(polarities).collect();
+    for candidate in &variants {
+        // Only a candidate at most as large as the best so far can win.
+        let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
+        let Some((table, eqs)) = equations_of(candidate, false, bound) else {
+            continue;
+        };
+        let _ = table;
+        // Smallest sum, then smallest largest equation, then memories set
+        // first where possible (the usual reading), then the text.
+        let resets_first = (candidate.actuators..candidate.variables())
+            .filter(|v| {
+                candidate
+                    .actions
+                    .iter()
+                    .find(|a| a.var == *v)
+                    .is_some_and(|a| !a.value)
+            })
+            .count();
+        let key = (
+            eqs.iter().map(|e| e.expr.nodes()).sum(),
+            eqs.iter().map(|e| e.expr.nodes()).max().unwrap_or(0),
+            resets_first,
+            candidate.text(),
+        );
+        if best.as_ref().is_none_or(|(k, _)| key < *k) {
+            best = Some((key, candidate.clone()));
+        }
+    }
+    let (_, modified) = best.ok_or_else(|| {
+        SynthError::NotFound(
+            "the equation search reached its limits on every minimal sequence".to_string(),
+        )
+    })?;
+    let (table, equations) = equations_of(&modified, true, usize::MAX).ok_or_else(|| {
+        SynthError::NotFound("the equation search reached its limits".to_string())
+    })?;
+    Ok(Synthesis {
+        original: original.clone(),
+        clashes,
+        modified,
+        insertions: minimal.insertions,
+        candidates: variants.len(),
+        candidates_truncated: minimal.truncated,
+        table,
+        equations,
+        millis: start.elapsed().as_millis(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_papers_first_sequence_and_its_equations() {
+        let s = synthesize(&sequence::parse("A1 A0 B1 B0").unwrap()).unwrap();
+        assert_eq!(s.modified.text(), "A1 X1 A0 B1 X0 B0");
+        let name = |v: usize| s.modified.signal_name(v).to_string();
+        // The paper's equations, up to operand order.
+        let paper = sequence::parse("A1 X1 A0 B1 X0 B0").unwrap();
+        let expected = [
+            ("A1", "NOT(OR(b,x))"),
+            ("A0", "x"),
+            ("B1", "AND(NOT(a),x)"),
+            ("B0", "NOT(x)"),
+            ("X1", "a"),
+            ("X0", "b"),
+        ];
+        for (token, canonical) in expected {
+            let e = s
+                .equations
+                .iter()
+                .find(|e| s.modified.token(e.action) == token)
+                .unwrap();
+            assert_eq!(
+                e.expr.canonical(&name),
+                canonical,
+                "{token}: {}",
+                e.expr.text(&name)
+            );
+        }
+        assert_eq!(paper, s.modified);
+        assert_eq!(s.total_nodes(), 13);
+    }
+}
+
+#[cfg(test)]
+mod table5 {
+    use super::*;
+
+    /// DESIGN §7 / the paper's Table 5: (sequence, inserted operations,
+    /// memories, bound on the sum of equation nodes, bound on the largest).
+    pub(crate) const TABLE5: [(&str, usize, usize, usize, usize); 4] = [
+        ("A1 A0 B1 B0", 2, 1, 13, 4),
+        ("A0 A1 C1 C0 B1 B0", 4, 2, 23, 5),
+        ("A1 A0 A1 A0 A1 A0 B1 B0 C1 C0", 8, 3, 50, 8),
+        ("A1 A0 B1 B0 C1 C0 D1 D0 E1 E0 F1 F0", 6, 3, 50, 6),
+    ];
+
+    #[test]
+    fn pick_and_place_and_memoryless_sequences_run() {
+        for (text, memories) in [
+            ("B1 D1 B0 C1 B1 D0 B0 C0", None),
+            ("B1 D1 B0 A1 D0 A0", None),
+            ("A1 B1 A0 B0", Some(0)),
+        ] {
+            let s = synthesize(&sequence::parse(text).unwrap()).unwrap();
+            assert!(s.modified.is_valid(), "{text}");
+            if let Some(m) = memories {
+                assert_eq!(s.modified.memories, m, "{text}");
+                assert_eq!(s.modified.text(), text);
+            }
+            let v = verify::verify(&s, 2);
+            assert!(v.passed, "{text}: {:?}", v.problem);
+            assert_eq!(v.observed.len(), 2 * s.modified.actions.len());
+        }
+    }
+
+    #[test]
+    fn table5_sequences_reach_the_proven_minimum() {
+        for (text, insertions, memories, total, largest) in TABLE5 {
+            let start = std::time::Instant::now();
+            let s = synthesize(&sequence::parse(text).unwrap()).unwrap();
+            eprintln!(
+                "{text}: {} | +{} ops, {} memories, {} nodes (largest {}), qm {:?}, {} candidates, {} ms",
+                s.modified.text(),
+                s.insertions,
+                s.modified.memories,
+                s.total_nodes(),
+                s.largest(),
+                s.qm_nodes(),
+                s.candidates,
+                start.elapsed().as_millis()
+            );
+            assert!(s.modified.is_valid(), "{text}");
+            assert_eq!(s.insertions, insertions, "{text}");
+            assert_eq!(s.modified.memories, memories, "{text}");
+            assert!(s.total_nodes() <= total, "{text}: {}", s.total_nodes());
+            assert!(s.largest() <= largest, "{text}: {}", s.largest());
+            let v = verify::verify(&s, 2);
+            assert!(v.passed, "{text}: {:?}", v.problem);
+        }
+    }
+}

@@ -1,0 +1,423 @@
+//! The synthesis report (`NAME.synth.txt`, `NAME.synth.json`), the equations
+//! as an IEC program (`NAME.equations.st`, `NAME.equations.il`) and the
+//! EQUATIONS sheet of `NAME.xlsx`.
+
+use rust_xlsxwriter::{DocProperties, ExcelDateTime, Format, Workbook, XlsxError};
+use serde_json::json;
+
+use super::verify::Verification;
+use super::{Equation, Synthesis};
+
+/// The size convention, stated next to every number.
+pub const CONVENTION: &str =
+    "nodes = tree nodes: every leaf, every NOT and every binary operator (NOT (b OR x) = 4)";
+
+fn name_of(s: &Synthesis) -> impl Fn(usize) -> String + '_ {
+    move |v| s.modified.signal_name(v).to_string()
+}
+
+fn equation_line(s: &Synthesis, e: &Equation) -> String {
+    format!(
+        "{:<3} = {}",
+        s.modified.token(e.action),
+        e.expr.text(&name_of(s))
+    )
+}
+
+/// The report as text.
+pub fn report_text(s: &Synthesis, v: &Verification) -> String {
+    let mut out = String::new();
+    let seq = &s.modified;
+    out.push_str(&format!("sequence:          {}\n", s.original.text()));
+    if s.clashes.is_empty() {
+        out.push_str("signal clashes:    none (no memory needed)\n");
+    } else {
+        for c in &s.clashes {
+            out.push_str(&format!("{c}\n"));
+        }
+    }
+    out.push_str(&format!(
+        "modified sequence: {}\n  {} inserted operation(s), {} memory(ies): the proven minimum (exhaustive search; {} minimal sequence(s) compared{} for the smallest equations)\n",
+        seq.text(),
+        s.insertions,
+        seq.memories,
+        s.candidates,
+        if s.candidates_truncated { ", list cut at the search limit" } else { "" }
+    ));
+    out.push_str("\ntruth table (rows: the state before each action, in sequence order; 1, 0, x = don't care):\n");
+    let vars: Vec<String> = (0..seq.variables())
+        .map(|v| seq.signal_name(v).to_string())
+        .collect();
+    let cols: Vec<String> = s.table.columns.iter().map(|a| seq.token(*a)).collect();
+    out.push_str(&format!(
+        "  {}  | {}   next\n",
+        vars.join(" "),
+        cols.join(" ")
+    ));
+    for (k, (state, cells)) in s.table.rows.iter().zip(&s.table.cells).enumerate() {
+        let bits: Vec<String> = (0..seq.variables())
+            .map(|v| ((state >> v) & 1).to_string())
+            .collect();
+        let row: Vec<String> = cells
+            .iter()
+            .zip(&cols)
+            .map(|(c, name)| format!("{:<width$}", c.symbol(), width = name.len()))
+            .collect();
+        out.push_str(&format!(
+            "  {}  | {}   {}\n",
+            bits.join(" "),
+            row.join(" "),
+            seq.token(seq.actions[k])
+        ));
+    }
+    out.push_str(&format!(
+        "\nequations (each the proven smallest tree; {CONVENTION}):\n"
+    ));
+    for e in &s.equations {
+        out.push_str(&format!(
+            "  {:<40} {:>2} nodes   QM: {}\n",
+            equation_line(s, e),
+            e.expr.nodes(),
+            e.qm.as_ref()
+                .map(|q| format!("{} ({} nodes)", q.text(&name_of(s)), q.nodes()))
+                .unwrap_or_else(|| "not computed".to_string())
+        ));
+    }
+    out.push_str(&format!(
+        "  total {} nodes, largest equation {} nodes; Quine-McCluskey two-level: {}\n",
+        s.total_nodes(),
+        s.largest(),
+        s.qm_nodes()
+            .map(|n| format!("{n} nodes"))
+            .unwrap_or_else(|| "not computed".to_string())
+    ));
+    out.push_str(&format!(
+        "\nsimulation: {} ({} actions in {:.2} s of simulated time{})\n",
+        if v.passed { "passed" } else { "FAILED" },
+        v.observed.len(),
+        v.millis as f64 / 1000.0,
+        v.problem
+            .as_ref()
+            .map(|p| format!("; {p}"))
+            .unwrap_or_default()
+    ));
+    out.push_str(&format!("time: {} ms (exact route)\n", s.millis));
+    out
+}
+
+/// The report as JSON.
+pub fn report_json(s: &Synthesis, v: &Verification) -> String {
+    let seq = &s.modified;
+    let memories: Vec<String> = seq.memory_names.iter().map(|c| c.to_string()).collect();
+    let columns: Vec<String> = s.table.columns.iter().map(|a| seq.token(*a)).collect();
+    let variables: Vec<String> = (0..seq.variables())
+        .map(|v| seq.signal_name(v).to_string())
+        .collect();
+    let rows: Vec<serde_json::Value> = s
+        .table
+        .rows
+        .iter()
+        .zip(&s.table.cells)
+        .enumerate()
+        .map(|(k, (state, cells))| {
+            json!({
+                "state": (0..seq.variables()).map(|v| (state >> v) & 1).collect::<Vec<_>>(),
+                "next": seq.token(seq.actions[k]),
+                "cells": cells.iter().map(|c| c.symbol().to_string()).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let equations: serde_json::Map<String, serde_json::Value> = s
+        .equations
+        .iter()
+        .map(|e| (seq.token(e.action), json!(e.expr.text(&name_of(s)))))
+        .collect();
+    let nodes: serde_json::Map<String, serde_json::Value> = s
+        .equations
+        .iter()
+        .map(|e| (seq.token(e.action), json!(e.expr.nodes())))
+        .collect();
+    let value = json!({
+        "sequence": s.original.actions.iter().map(|a| s.original.token(*a)).collect::<Vec<_>>(),
+        "clashes": s.clashes.iter().map(|c| json!({
+            "state": c.state_text,
+            "actions": c.actions.iter().map(|(_, t)| t.clone()).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+        "modified_sequence": seq.actions.iter().map(|a| seq.token(*a)).collect::<Vec<_>>(),
+        "inserted_operations": s.insertions,
+        "memories": memories,
+        "truth_table": {"variables": variables, "columns": columns, "rows": rows},
+        "equations": equations,
+        "nodes": {"per_equation": nodes, "total": s.total_nodes(), "largest": s.largest(),
+                  "qm_total": s.qm_nodes(), "convention": CONVENTION},
+        "method": "exact",
+        "seed": serde_json::Value::Null,
+        "millis": s.millis,
+        "simulation": {"passed": v.passed, "problem": v.problem},
+    });
+    serde_json::to_string_pretty(&value).unwrap_or_default() + "\n"
+}
+
+/// IEC identifiers of the program: sensors `a_home`/`a_end`, state `a`,
+/// coils `ya_p`/`ya_m`, memories `x`, … (IEC is case-insensitive, so coils
+/// cannot be called `A1`).
+struct Names<'a> {
+    s: &'a Synthesis,
+}
+
+impl Names<'_> {
+    fn state(&self, v: usize) -> String {
+        self.s.modified.signal_name(v).to_string()
+    }
+    fn output(&self, e: &Equation) -> String {
+        let seq = &self.s.modified;
+        let v = e.action.var;
+        if seq.is_memory(v) {
+            format!(
+                "{}_{}",
+                self.state(v),
+                if e.action.value { "set" } else { "reset" }
+            )
+        } else {
+            format!(
+                "y{}_{}",
+                self.state(v),
+                if e.action.value { "p" } else { "m" }
+            )
+        }
+    }
+}
+
+/// `NAME.equations.st`: a complete program with a configuration, that reads
+/// the end sensors, evaluates every equation on the scan's state, drives the
+/// coils and sets/resets the memories.
+pub fn structured_text(s: &Synthesis, title: &str) -> String {
+    let seq = &s.modified;
+    let names = Names { s };
+    let mut out = String::new();
+    out.push_str(&format!(
+        "(* {title}: equations synthesised by steptable {} for {}\n   modified sequence: {}\n   {} *)\n",
+        env!("CARGO_PKG_VERSION"),
+        s.original.text(),
+        seq.text(),
+        CONVENTION
+    ));
+    out.push_str("PROGRAM synth_main\n  VAR\n");
+    let mut input = 0;
+    for v in 0..seq.actuators {
+        let n = names.state(v);
+        out.push_str(&format!(
+            "    {n}_home AT %IX{}.{} : BOOL; (* {} retracted *)\n",
+            input / 8,
+            input % 8,
+            seq.var_name(v)
+        ));
+        input += 1;
+        out.push_str(&format!(
+            "    {n}_end AT %IX{}.{} : BOOL; (* {} extended *)\n",
+            input / 8,
+            input % 8,
+            seq.var_name(v)
+        ));
+        input += 1;
+    }
+    for (output, e) in s
+        .equations
+        .iter()
+        .filter(|e| !seq.is_memory(e.action.var))
+        .enumerate()
+    {
+        out.push_str(&format!(
+            "    {} AT %QX{}.{} : BOOL; (* coil {} *)\n",
+            names.output(e),
+            output / 8,
+            output % 8,
+            seq.token(e.action)
+        ));
+    }
+    out.push_str("  END_VAR\n  VAR\n");
+    let initial = seq.initial_state();
+    for v in 0..seq.variables() {
+        out.push_str(&format!(
+            "    {} : BOOL := {}; (* {} *)\n",
+            names.state(v),
+            if (initial >> v) & 1 == 1 {
+                "TRUE"
+            } else {
+                "FALSE"
+            },
+            if seq.is_memory(v) {
+                "memory"
+            } else {
+                "sensor state"
+            }
+        ));
+    }
+    for e in s.equations.iter().filter(|e| seq.is_memory(e.action.var)) {
+        out.push_str(&format!("    {} : BOOL := FALSE;\n", names.output(e)));
+    }
+    out.push_str("  END_VAR\n\n");
+    out.push_str("  (* sensor states: 1 from the extended end until the retracted end *)\n");
+    for v in 0..seq.actuators {
+        let n = names.state(v);
+        out.push_str(&format!(
+            "  IF {n}_end THEN {n} := TRUE; END_IF;\n  IF {n}_home THEN {n} := FALSE; END_IF;\n"
+        ));
+    }
+    out.push_str("\n  (* the equations, on this scan's state *)\n");
+    for e in &s.equations {
+        out.push_str(&format!(
+            "  {} := {}; (* {} *)\n",
+            names.output(e),
+            e.expr.text(&|v| names.state(v)),
+            seq.token(e.action)
+        ));
+    }
+    out.push_str("\n  (* memories: reset wins *)\n");
+    for v in seq.actuators..seq.variables() {
+        let n = names.state(v);
+        out.push_str(&format!(
+            "  IF {n}_reset THEN {n} := FALSE; ELSIF {n}_set THEN {n} := TRUE; END_IF;\n"
+        ));
+    }
+    out.push_str(
+        "END_PROGRAM\n\nCONFIGURATION config0\n  RESOURCE resource0 ON PLC\n    TASK cyclic_task(INTERVAL := T#10ms, PRIORITY := 0);\n    PROGRAM main_instance WITH cyclic_task : synth_main;\n  END_RESOURCE\nEND_CONFIGURATION\n",
+    );
+    out
+}
+
+/// `NAME.equations.il`: the same equations in IEC instruction list, one
+/// block per output, with temporaries for nested operands.
+pub fn instruction_list(s: &Synthesis, title: &str) -> String {
+    use super::equations::Expr;
+    let seq = &s.modified;
+    let names = Names { s };
+    let mut out = format!(
+        "(* {title}: equations synthesised by steptable {} - {} *)\n(* declare the same variables as in the .equations.st program, plus t1, t2, ... : BOOL *)\n",
+        env!("CARGO_PKG_VERSION"),
+        seq.text()
+    );
+    fn emit(e: &Expr, names: &Names, code: &mut Vec<String>, temps: &mut usize) {
+        match e {
+            Expr::Var(v) => code.push(format!("LD {}", names.state(*v))),
+            Expr::Not(inner) => {
+                emit(inner, names, code, temps);
+                code.push("NOT".to_string());
+            }
+            Expr::And(a, b) | Expr::Or(a, b) | Expr::Xor(a, b) => {
+                let op = match e {
+                    Expr::And(..) => "AND",
+                    Expr::Or(..) => "OR",
+                    _ => "XOR",
+                };
+                match &**b {
+                    Expr::Var(v) => {
+                        emit(a, names, code, temps);
+                        code.push(format!("{op} {}", names.state(*v)));
+                    }
+                    Expr::Not(n) if matches!(**n, Expr::Var(_)) => {
+                        emit(a, names, code, temps);
+                        if let Expr::Var(v) = **n {
+                            code.push(format!("{op}N {}", names.state(v)));
+                        }
+                    }
+                    _ => {
+                        *temps += 1;
+                        let t = format!("t{temps}");
+                        emit(b, names, code, temps);
+                        code.push(format!("ST {t}"));
+                        emit(a, names, code, temps);
+                        code.push(format!("{op} {t}"));
+                    }
+                }
+            }
+        }
+    }
+    for e in &s.equations {
+        let mut code = Vec::new();
+        let mut temps = 0;
+        emit(&e.expr, &names, &mut code, &mut temps);
+        out.push_str(&format!("(* {} *)\n", equation_line(s, e)));
+        for line in code {
+            out.push_str(&format!("  {line}\n"));
+        }
+        out.push_str(&format!("  ST {}\n", names.output(e)));
+    }
+    out
+}
+
+/// `NAME.xlsx` with the EQUATIONS sheet and the truth table.
+pub fn workbook(s: &Synthesis, v: &Verification) -> Result<Vec<u8>, XlsxError> {
+    let seq = &s.modified;
+    let mut workbook = Workbook::new();
+    workbook.set_properties(
+        &DocProperties::new().set_creation_datetime(&ExcelDateTime::from_ymd(2020, 1, 1)?),
+    );
+    let bold = Format::new().set_bold();
+    let sheet = workbook.add_worksheet();
+    sheet.set_name("EQUATIONS")?;
+    sheet.write_string_with_format(0, 0, "EQUATIONS", &bold)?;
+    sheet.write_string(
+        1,
+        0,
+        format!("sequence {} -> {}", s.original.text(), seq.text()),
+    )?;
+    sheet.write_string(2, 0, CONVENTION)?;
+    for (col, h) in ["ACTION", "EQUATION", "NODES", "QM (two-level)", "QM NODES"]
+        .iter()
+        .enumerate()
+    {
+        sheet.write_string_with_format(4, col as u16, *h, &bold)?;
+    }
+    for (i, e) in s.equations.iter().enumerate() {
+        let row = 5 + i as u32;
+        sheet.write_string(row, 0, seq.token(e.action))?;
+        sheet.write_string(row, 1, e.expr.text(&name_of(s)))?;
+        sheet.write_number(row, 2, e.expr.nodes() as f64)?;
+        if let Some(q) = &e.qm {
+            sheet.write_string(row, 3, q.text(&name_of(s)))?;
+            sheet.write_number(row, 4, q.nodes() as f64)?;
+        }
+    }
+    let row = 6 + s.equations.len() as u32;
+    sheet.write_string(row, 0, "TOTAL")?;
+    sheet.write_number(row, 2, s.total_nodes() as f64)?;
+    if let Some(q) = s.qm_nodes() {
+        sheet.write_number(row, 4, q as f64)?;
+    }
+    sheet.write_string(
+        row + 1,
+        0,
+        format!("simulation: {}", if v.passed { "passed" } else { "FAILED" }),
+    )?;
+    sheet.set_column_width(0, 10)?;
+    sheet.set_column_width(1, 36)?;
+    sheet.set_column_width(3, 36)?;
+
+    let sheet = workbook.add_worksheet();
+    sheet.set_name("TRUTH TABLE")?;
+    let mut col = 0u16;
+    for v in 0..seq.variables() {
+        sheet.write_string_with_format(0, col, seq.signal_name(v).to_string(), &bold)?;
+        col += 1;
+    }
+    for a in &s.table.columns {
+        sheet.write_string_with_format(0, col, seq.token(*a), &bold)?;
+        col += 1;
+    }
+    sheet.write_string_with_format(0, col, "next", &bold)?;
+    for (k, (state, cells)) in s.table.rows.iter().zip(&s.table.cells).enumerate() {
+        let row = 1 + k as u32;
+        let mut col = 0u16;
+        for v in 0..seq.variables() {
+            sheet.write_number(row, col, ((state >> v) & 1) as f64)?;
+            col += 1;
+        }
+        for c in cells {
+            sheet.write_string(row, col, c.symbol().to_string())?;
+            col += 1;
+        }
+        sheet.write_string(row, col, seq.token(seq.actions[k]))?;
+    }
+    workbook.save_to_buffer()
+}

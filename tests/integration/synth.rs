@@ -1,0 +1,88 @@
+//! The synth command: from a sequence or a single-branch table to proven
+//! minimal equations, an IEC program and a report.
+
+use predicates::str::contains;
+
+use crate::helpers::{sample, steptable, write_xlsx};
+
+#[test]
+fn the_classic_sequence_gives_the_papers_equations_and_every_file() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .args(["synth", "--sequence", "A+ A- B+ B-", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success()
+        .stdout(contains(
+            "signal clash: a=0 b=0 comes before A1 (action 1) and B1 (action 3)",
+        ))
+        .stdout(contains("modified sequence: A1 X1 A0 B1 X0 B0"))
+        .stdout(contains("A1  = NOT (b OR x)"))
+        .stdout(contains("total 13 nodes, largest equation 4 nodes"))
+        .stdout(contains("simulation: passed"));
+    let out = dir.path().join("sequence");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("sequence.synth.json")).unwrap())
+            .unwrap();
+    assert_eq!(
+        json["modified_sequence"],
+        serde_json::json!(["A1", "X1", "A0", "B1", "X0", "B0"])
+    );
+    assert_eq!(json["memories"], serde_json::json!(["X"]));
+    assert_eq!(json["equations"]["A0"], "x");
+    assert_eq!(json["nodes"]["total"], 13);
+    assert_eq!(json["method"], "exact");
+    assert_eq!(json["truth_table"]["rows"][0]["cells"][0], "1");
+    let st = std::fs::read_to_string(out.join("sequence.equations.st")).unwrap();
+    assert!(st.contains("ya_p := NOT (b OR x); (* A1 *)"));
+    assert!(st.contains("CONFIGURATION config0"));
+    let il = std::fs::read_to_string(out.join("sequence.equations.il")).unwrap();
+    assert!(il.contains("  LD x\n  ST ya_m\n"), "{il}");
+    let sheet = crate::helpers::read_sheet(&out.join("sequence.xlsx"), "EQUATIONS");
+    assert_eq!(sheet[4][..3], ["ACTION", "EQUATION", "NODES"]);
+    assert!(
+        sheet
+            .iter()
+            .any(|r| r[0] == "A1" && r[1] == "NOT (b OR x)" && r[2] == "4")
+    );
+}
+
+#[test]
+fn a_single_branch_table_synthesises_and_a_parallel_one_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("synth")
+        .arg(sample("drilling_station.xlsx"))
+        .arg("-o")
+        .arg(dir.path())
+        .assert()
+        .success()
+        .stdout(contains("sequence:          A1 B1 B0 A0 C1 C0"))
+        .stdout(contains("simulation: passed"));
+    assert!(
+        dir.path()
+            .join("drilling_station/drilling_station.equations.st")
+            .exists()
+    );
+    steptable()
+        .arg("synth")
+        .arg(sample("paper_example.xlsx"))
+        .arg("-o")
+        .arg(dir.path())
+        .assert()
+        .code(1)
+        .stderr(contains("moves 2 actuators at once: synthesis handles single-branch sequences only; use convert"));
+    let middle = dir.path().join("middle.xlsx");
+    write_xlsx(&middle, "S", &[&["C1+2"], &["C1-1"], &["C1-0"]]);
+    steptable()
+        .arg("synth")
+        .arg(&middle)
+        .assert()
+        .code(1)
+        .stderr(contains("C1 has middle positions"));
+    steptable()
+        .args(["synth", "--sequence", "A1 A1 A0"])
+        .assert()
+        .code(1)
+        .stderr(contains("changes nothing"));
+}
