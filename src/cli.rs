@@ -64,6 +64,29 @@ struct SynthArgs {
     /// Read this sheet instead of the default choice.
     #[arg(long, value_name = "NAME")]
     sheet: Option<String>,
+    /// Memory insertion: exact (proven minimal), ga (the paper's GA, with GP
+    /// for the equations) or both (default; the better is kept).
+    #[arg(long, value_enum, default_value_t = MethodArg::Both)]
+    method: MethodArg,
+    /// Seed of the GA and GP (PCG: the same answer on every machine).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Population size μ of the GA and GP.
+    #[arg(long, default_value_t = 500)]
+    mu: usize,
+    /// (μ+λ)/μ of the GA and GP.
+    #[arg(long, default_value_t = 4)]
+    ratio: usize,
+    /// Generations of the GA.
+    #[arg(long, default_value_t = 400)]
+    generations: usize,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum MethodArg {
+    Exact,
+    Ga,
+    Both,
 }
 
 #[derive(Args)]
@@ -675,7 +698,27 @@ fn run_synth(args: &SynthArgs) -> i32 {
             return EXIT_BAD_INPUT;
         }
     };
-    let synthesis = match synth::synthesize(&sequence) {
+    let options = synth::Options {
+        method: match args.method {
+            MethodArg::Exact => synth::Method::Exact,
+            MethodArg::Ga => synth::Method::Ga,
+            MethodArg::Both => synth::Method::Both,
+        },
+        ga: synth::ga::GaParams {
+            mu: args.mu,
+            ratio: args.ratio,
+            generations: args.generations,
+            seed: args.seed,
+            ..synth::ga::GaParams::default()
+        },
+        gp: synth::gp::GpParams {
+            mu: args.mu,
+            ratio: args.ratio,
+            seed: args.seed,
+            ..synth::gp::GpParams::default()
+        },
+    };
+    let synthesis = match synth::synthesize_with(&sequence, options) {
         Ok(s) => s,
         Err(err @ SynthError::Unsuitable(_)) => {
             eprintln!("error: {err}");
@@ -703,7 +746,7 @@ fn run_synth(args: &SynthArgs) -> i32 {
         },
         convert::OutputFile {
             name: format!("{name}.synth.json"),
-            bytes: synth_out::report_json(&synthesis, &verification).into_bytes(),
+            bytes: synth_out::report_json(&synthesis, &verification, args.seed).into_bytes(),
         },
         convert::OutputFile {
             name: format!("{name}.equations.st"),

@@ -6,10 +6,13 @@
 //! number of memories and every equation's size are proven minimal by
 //! exhaustive search; the controller is then proven by simulation.
 //!
-//! The paper's genetic algorithm and genetic programming are not part of this
-//! module yet; the exact results are what they would be compared against.
+//! The paper's own route — a genetic algorithm for the memories, genetic
+//! programming for the equations — runs beside it and is reported against
+//! the proven minimum.
 
 pub mod equations;
+pub mod ga;
+pub mod gp;
 pub mod output;
 pub mod search;
 pub mod sequence;
@@ -120,6 +123,45 @@ pub struct Equation {
     pub expr: Expr,
     /// The Quine–McCluskey two-level form over the full table, if computed.
     pub qm: Option<Expr>,
+    /// The genetic programming's tree, when the GP ran and found one.
+    pub gp: Option<Expr>,
+}
+
+/// Which route inserts the memories.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// The exhaustive search only.
+    Exact,
+    /// The paper's GA only (and GP for the equations).
+    Ga,
+    /// Both; the better (the exact one, or a GA answer as good) is kept.
+    Both,
+}
+
+/// Synthesis options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    pub method: Method,
+    pub ga: ga::GaParams,
+    pub gp: gp::GpParams,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            method: Method::Both,
+            ga: ga::GaParams::default(),
+            gp: gp::GpParams::default(),
+        }
+    }
+}
+
+/// What the GA found, for the report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GaSummary {
+    pub sequence: Option<Sequence>,
+    pub generations: usize,
+    pub millis: u128,
 }
 
 /// Everything the synthesis found.
@@ -137,7 +179,14 @@ pub struct Synthesis {
     pub candidates_truncated: bool,
     pub table: TruthTable,
     pub equations: Vec<Equation>,
+    /// Time of the exact route (search and equations).
     pub millis: u128,
+    /// The method used.
+    pub method: Method,
+    /// The GA's answer, when it ran.
+    pub ga: Option<GaSummary>,
+    /// Time of the GA and GP, when they ran.
+    pub ga_gp_millis: Option<u128>,
 }
 
 impl Synthesis {
@@ -212,6 +261,7 @@ fn equations_of(
             action: *action,
             expr,
             qm,
+            gp: None,
         });
     }
     Some((table, equations))
@@ -257,9 +307,14 @@ pub fn from_table(table: &crate::table::StepTable) -> Result<Sequence, SynthErro
     sequence::parse(&text.join(" ")).map_err(SynthError::Unsuitable)
 }
 
-/// Synthesises a controller for `original` (a sequence without memories).
+/// Synthesises a controller for `original` with the default options (both
+/// routes, the paper's parameters, seed 1).
 pub fn synthesize(original: &Sequence) -> Result<Synthesis, SynthError> {
-    let start = Instant::now();
+    synthesize_with(original, Options::default())
+}
+
+/// Synthesises a controller for `original` (a sequence without memories).
+pub fn synthesize_with(original: &Sequence, options: Options) -> Result<Synthesis, SynthError> {
     if original.memories > 0 {
         return Err(SynthError::Unsuitable(
             "give the original sequence without memories (W, X, Y, Z): they are what synthesis finds".to_string(),
@@ -284,6 +339,73 @@ pub fn synthesize(original: &Sequence) -> Result<Synthesis, SynthError> {
         return Err(SynthError::Unsuitable(problems.join("; ")));
     }
     let clashes = original.clashes();
+    let ga_start = Instant::now();
+    let ga_summary = (options.method != Method::Exact).then(|| {
+        let result = ga::run(original, options.ga);
+        GaSummary {
+            sequence: result.sequence,
+            generations: result.generations,
+            millis: 0,
+        }
+    });
+    let ga_millis = ga_start.elapsed().as_millis();
+    let exact_start = Instant::now();
+    let (modified, insertions, candidates, truncated) = if options.method == Method::Ga {
+        let Some(s) = ga_summary.as_ref().and_then(|g| g.sequence.clone()) else {
+            return Err(SynthError::NotFound(format!(
+                "the GA found no valid sequence in {} generations (try more, another --seed, or --method exact)",
+                options.ga.generations
+            )));
+        };
+        let insertions = s.actions.len() - original.actions.len();
+        (s, insertions, 1, false)
+    } else {
+        let (s, insertions, candidates, truncated) = exact_sequence(original)?;
+        (s, insertions, candidates, truncated)
+    };
+    let (table, mut equations) = equations_of(&modified, true, usize::MAX).ok_or_else(|| {
+        SynthError::NotFound("the equation search reached its limits".to_string())
+    })?;
+    let millis = exact_start.elapsed().as_millis();
+    let mut ga_gp_millis = None;
+    if options.method != Method::Exact {
+        let gp_start = Instant::now();
+        for (c, equation) in equations.iter_mut().enumerate() {
+            let (on, off) = table.on_off(c);
+            let params = gp::GpParams {
+                seed: options.gp.seed.wrapping_add(c as u64),
+                ..options.gp
+            };
+            equation.gp = gp::run(&on, &off, modified.variables(), params);
+        }
+        ga_gp_millis = Some(ga_millis + gp_start.elapsed().as_millis());
+    }
+    Ok(Synthesis {
+        original: original.clone(),
+        clashes,
+        modified,
+        insertions,
+        candidates,
+        candidates_truncated: truncated,
+        table,
+        equations,
+        millis: if options.method == Method::Ga {
+            0
+        } else {
+            millis
+        },
+        method: options.method,
+        ga: ga_summary.map(|g| GaSummary {
+            millis: ga_millis,
+            ..g
+        }),
+        ga_gp_millis,
+    })
+}
+
+/// The exhaustive route: the minimal modified sequence whose equations are
+/// smallest; with the number of insertions and of candidates compared.
+fn exact_sequence(original: &Sequence) -> Result<(Sequence, usize, usize, bool), SynthError> {
     let minimal = search::minimal(original, search::Limits::default()).ok_or_else(|| {
         SynthError::NotFound(
             "no valid sequence with up to 4 memories and 12 inserted operations".to_string(),
@@ -300,10 +422,9 @@ pub fn synthesize(original: &Sequence) -> Result<Synthesis, SynthError> {
     for candidate in &variants {
         // Only a candidate at most as large as the best so far can win.
         let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
-        let Some((table, eqs)) = equations_of(candidate, false, bound) else {
+        let Some((_, eqs)) = equations_of(candidate, false, bound) else {
             continue;
         };
-        let _ = table;
         // Smallest sum, then smallest largest equation, then memories set
         // first where possible (the usual reading), then the text.
         let resets_first = (candidate.actuators..candidate.variables())
@@ -330,20 +451,12 @@ pub fn synthesize(original: &Sequence) -> Result<Synthesis, SynthError> {
             "the equation search reached its limits on every minimal sequence".to_string(),
         )
     })?;
-    let (table, equations) = equations_of(&modified, true, usize::MAX).ok_or_else(|| {
-        SynthError::NotFound("the equation search reached its limits".to_string())
-    })?;
-    Ok(Synthesis {
-        original: original.clone(),
-        clashes,
+    Ok((
         modified,
-        insertions: minimal.insertions,
-        candidates: variants.len(),
-        candidates_truncated: minimal.truncated,
-        table,
-        equations,
-        millis: start.elapsed().as_millis(),
-    })
+        minimal.insertions,
+        variants.len(),
+        minimal.truncated,
+    ))
 }
 
 #[cfg(test)]
@@ -416,6 +529,19 @@ mod table5 {
     }
 
     #[test]
+    fn gp_reaches_the_proven_minimum_on_the_first_two() {
+        for (text, ..) in &TABLE5[..2] {
+            let s = synthesize(&sequence::parse(text).unwrap()).unwrap();
+            let gp: usize = s
+                .equations
+                .iter()
+                .map(|e| e.gp.as_ref().unwrap().nodes())
+                .sum();
+            assert_eq!(gp, s.total_nodes(), "{text}");
+        }
+    }
+
+    #[test]
     fn table5_sequences_reach_the_proven_minimum() {
         for (text, insertions, memories, total, largest) in TABLE5 {
             let start = std::time::Instant::now();
@@ -438,6 +564,41 @@ mod table5 {
             assert!(s.largest() <= largest, "{text}: {}", s.largest());
             let v = verify::verify(&s, 2);
             assert!(v.passed, "{text}: {:?}", v.problem);
+        }
+    }
+}
+
+#[cfg(test)]
+mod ga_table5 {
+    use super::*;
+
+    #[test]
+    fn the_ga_alone_reaches_a_minimal_valid_sequence_with_five_seeds() {
+        for (text, insertions, ..) in table5::TABLE5 {
+            let original = sequence::parse(text).unwrap();
+            for seed in 1..=5 {
+                let t = std::time::Instant::now();
+                let r = ga::run(
+                    &original,
+                    ga::GaParams {
+                        seed,
+                        ..ga::GaParams::default()
+                    },
+                );
+                let s = r.sequence.expect("valid");
+                eprintln!(
+                    "{text} seed {seed}: {} ({} gens, {} ms)",
+                    s.text(),
+                    r.generations,
+                    t.elapsed().as_millis()
+                );
+                assert_eq!(
+                    s.actions.len(),
+                    original.actions.len() + insertions,
+                    "{text} seed {seed}: {}",
+                    s.text()
+                );
+            }
         }
     }
 }

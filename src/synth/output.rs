@@ -36,14 +36,44 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
             out.push_str(&format!("{c}\n"));
         }
     }
-    out.push_str(&format!(
-        "modified sequence: {}\n  {} inserted operation(s), {} memory(ies): the proven minimum (exhaustive search; {} minimal sequence(s) compared{} for the smallest equations)\n",
-        seq.text(),
-        s.insertions,
-        seq.memories,
-        s.candidates,
-        if s.candidates_truncated { ", list cut at the search limit" } else { "" }
-    ));
+    if s.method == super::Method::Ga {
+        out.push_str(&format!(
+            "modified sequence: {}\n  {} inserted operation(s), {} memory(ies), found by the GA (not proven minimal: run --method exact or both)\n",
+            seq.text(),
+            s.insertions,
+            seq.memories
+        ));
+    } else {
+        out.push_str(&format!(
+            "modified sequence: {}\n  {} inserted operation(s), {} memory(ies): the proven minimum (exhaustive search; {} minimal sequence(s) compared{} for the smallest equations)\n",
+            seq.text(),
+            s.insertions,
+            seq.memories,
+            s.candidates,
+            if s.candidates_truncated { ", list cut at the search limit" } else { "" }
+        ));
+    }
+    if let Some(ga) = &s.ga {
+        match &ga.sequence {
+            Some(found) => out.push_str(&format!(
+                "  the paper's GA: {} ({} inserted operation(s), {} memory(ies), {} generations, {} ms){}\n",
+                found.text(),
+                found.actions.len() - s.original.actions.len(),
+                found.memories,
+                ga.generations,
+                ga.millis,
+                if found.actions.len() - s.original.actions.len() == s.insertions {
+                    ": as short as the minimum"
+                } else {
+                    ""
+                }
+            )),
+            None => out.push_str(&format!(
+                "  the paper's GA: no valid sequence in {} generations\n",
+                ga.generations
+            )),
+        }
+    }
     out.push_str("\ntruth table (rows: the state before each action, in sequence order; 1, 0, x = don't care):\n");
     let vars: Vec<String> = (0..seq.variables())
         .map(|v| seq.signal_name(v).to_string())
@@ -75,12 +105,18 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
     ));
     for e in &s.equations {
         out.push_str(&format!(
-            "  {:<40} {:>2} nodes   QM: {}\n",
+            "  {:<40} {:>2} nodes   QM: {}{}\n",
             equation_line(s, e),
             e.expr.nodes(),
             e.qm.as_ref()
                 .map(|q| format!("{} ({} nodes)", q.text(&name_of(s)), q.nodes()))
-                .unwrap_or_else(|| "not computed".to_string())
+                .unwrap_or_else(|| "not computed".to_string()),
+            match (&s.ga, &e.gp) {
+                (None, _) => String::new(),
+                (Some(_), Some(gp)) =>
+                    format!("   GP: {} ({} nodes)", gp.text(&name_of(s)), gp.nodes()),
+                (Some(_), None) => "   GP: no fitting tree".to_string(),
+            }
         ));
     }
     out.push_str(&format!(
@@ -101,12 +137,33 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
             .map(|p| format!("; {p}"))
             .unwrap_or_default()
     ));
-    out.push_str(&format!("time: {} ms (exact route)\n", s.millis));
+    let gp_total: Option<usize> = s.ga.as_ref().and_then(|_| {
+        s.equations
+            .iter()
+            .map(|e| e.gp.as_ref().map(|g| g.nodes()))
+            .sum()
+    });
+    if let Some(gp) = gp_total {
+        out.push_str(&format!(
+            "GP total: {gp} nodes ({} the proven minimum of {})\n",
+            if gp == s.total_nodes() {
+                "equal to"
+            } else {
+                "above"
+            },
+            s.total_nodes()
+        ));
+    }
+    out.push_str(&format!("time: exact route {} ms", s.millis));
+    if let Some(ms) = s.ga_gp_millis {
+        out.push_str(&format!(", GA + GP {ms} ms"));
+    }
+    out.push('\n');
     out
 }
 
 /// The report as JSON.
-pub fn report_json(s: &Synthesis, v: &Verification) -> String {
+pub fn report_json(s: &Synthesis, v: &Verification, seed: u64) -> String {
     let seq = &s.modified;
     let memories: Vec<String> = seq.memory_names.iter().map(|c| c.to_string()).collect();
     let columns: Vec<String> = s.table.columns.iter().map(|a| seq.token(*a)).collect();
@@ -150,9 +207,19 @@ pub fn report_json(s: &Synthesis, v: &Verification) -> String {
         "equations": equations,
         "nodes": {"per_equation": nodes, "total": s.total_nodes(), "largest": s.largest(),
                   "qm_total": s.qm_nodes(), "convention": CONVENTION},
-        "method": "exact",
-        "seed": serde_json::Value::Null,
-        "millis": s.millis,
+        "method": match s.method {
+            super::Method::Exact => "exact",
+            super::Method::Ga => "ga",
+            super::Method::Both => "both",
+        },
+        "seed": s.ga.as_ref().map(|_| seed),
+        "millis": s.millis + s.ga_gp_millis.unwrap_or(0),
+        "ga": s.ga.as_ref().map(|g| json!({
+            "modified_sequence": g.sequence.as_ref().map(|q| q.actions.iter().map(|a| q.token(*a)).collect::<Vec<_>>()),
+            "generations": g.generations,
+            "millis": g.millis,
+        })),
+        "gp_equations": s.ga.as_ref().map(|_| s.equations.iter().map(|e| (seq.token(e.action), json!(e.gp.as_ref().map(|g| g.text(&name_of(s)))))).collect::<serde_json::Map<_, _>>()),
         "simulation": {"passed": v.passed, "problem": v.problem},
     });
     serde_json::to_string_pretty(&value).unwrap_or_default() + "\n"

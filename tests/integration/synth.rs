@@ -31,7 +31,8 @@ fn the_classic_sequence_gives_the_papers_equations_and_every_file() {
     assert_eq!(json["memories"], serde_json::json!(["X"]));
     assert_eq!(json["equations"]["A0"], "x");
     assert_eq!(json["nodes"]["total"], 13);
-    assert_eq!(json["method"], "exact");
+    assert_eq!(json["method"], "both");
+    assert_eq!(json["seed"], 1);
     assert_eq!(json["truth_table"]["rows"][0]["cells"][0], "1");
     let st = std::fs::read_to_string(out.join("sequence.equations.st")).unwrap();
     assert!(st.contains("ya_p := NOT (b OR x); (* A1 *)"));
