@@ -255,21 +255,13 @@ impl Names<'_> {
     }
 }
 
-/// `NAME.equations.st`: a complete program with a configuration, that reads
-/// the end sensors, evaluates every equation on the scan's state, drives the
-/// coils and sets/resets the memories.
-pub fn structured_text(s: &Synthesis, title: &str) -> String {
+/// The variable declarations shared by the ST and IL programs, with
+/// `temporaries` extra BOOL variables t1, t2, … for the IL.
+fn declarations(s: &Synthesis, program: &str, temporaries: usize) -> String {
     let seq = &s.modified;
     let names = Names { s };
     let mut out = String::new();
-    out.push_str(&format!(
-        "(* {title}: equations synthesised by steptable {} for {}\n   modified sequence: {}\n   {} *)\n",
-        env!("CARGO_PKG_VERSION"),
-        s.original.text(),
-        seq.text(),
-        CONVENTION
-    ));
-    out.push_str("PROGRAM synth_main\n  VAR\n");
+    out.push_str(&format!("PROGRAM {program}\n  VAR\n"));
     let mut input = 0;
     for v in 0..seq.actuators {
         let n = names.state(v);
@@ -323,7 +315,29 @@ pub fn structured_text(s: &Synthesis, title: &str) -> String {
     for e in s.equations.iter().filter(|e| seq.is_memory(e.action.var)) {
         out.push_str(&format!("    {} : BOOL := FALSE;\n", names.output(e)));
     }
+    for t in 1..=temporaries {
+        out.push_str(&format!("    t{t} : BOOL;\n"));
+    }
     out.push_str("  END_VAR\n\n");
+    out
+}
+
+/// `NAME.equations.st`: a complete program with a configuration, that reads
+/// the end sensors, evaluates every equation on the scan's state, drives the
+/// coils and sets/resets the memories.
+pub fn structured_text(s: &Synthesis, title: &str) -> String {
+    let seq = &s.modified;
+    let names = Names { s };
+    let mut out = String::new();
+    out.push_str(&format!(
+        "(* {title}: equations synthesised by steptable {} for {}\n   modified sequence: {}\n   {} *)\n",
+        env!("CARGO_PKG_VERSION"),
+        s.original.text(),
+        seq.text(),
+        CONVENTION
+    ));
+    out.push_str(&declarations(s, "synth_main", 0));
+
     out.push_str("  (* sensor states: 1 from the extended end until the retracted end *)\n");
     for v in 0..seq.actuators {
         let n = names.state(v);
@@ -359,11 +373,8 @@ pub fn instruction_list(s: &Synthesis, title: &str) -> String {
     use super::equations::Expr;
     let seq = &s.modified;
     let names = Names { s };
-    let mut out = format!(
-        "(* {title}: equations synthesised by steptable {} - {} *)\n(* declare the same variables as in the .equations.st program, plus t1, t2, ... : BOOL *)\n",
-        env!("CARGO_PKG_VERSION"),
-        seq.text()
-    );
+    let mut body = String::new();
+    let mut most_temps = 0;
     fn emit(e: &Expr, names: &Names, code: &mut Vec<String>, temps: &mut usize) {
         match e {
             Expr::Var(v) => code.push(format!("LD {}", names.state(*v))),
@@ -404,12 +415,32 @@ pub fn instruction_list(s: &Synthesis, title: &str) -> String {
         let mut code = Vec::new();
         let mut temps = 0;
         emit(&e.expr, &names, &mut code, &mut temps);
-        out.push_str(&format!("(* {} *)\n", equation_line(s, e)));
+        most_temps = most_temps.max(temps);
+        body.push_str(&format!("  (* {} *)\n", equation_line(s, e)));
         for line in code {
-            out.push_str(&format!("  {line}\n"));
+            body.push_str(&format!("  {line}\n"));
         }
-        out.push_str(&format!("  ST {}\n", names.output(e)));
+        body.push_str(&format!("  ST {}\n", names.output(e)));
     }
+    let mut out = format!(
+        "(* {title}: equations synthesised by steptable {} in instruction list: {} *)\n",
+        env!("CARGO_PKG_VERSION"),
+        seq.text()
+    );
+    out.push_str(&declarations(s, "synth_il", most_temps));
+    out.push_str("  (* sensor states: 1 from the extended end until the retracted end *)\n");
+    for v in 0..seq.actuators {
+        let n = names.state(v);
+        out.push_str(&format!("  LD {n}_end\n  S {n}\n  LD {n}_home\n  R {n}\n"));
+    }
+    out.push_str("  (* the equations, on this scan's state *)\n");
+    out.push_str(&body);
+    out.push_str("  (* memories: reset wins *)\n");
+    for v in seq.actuators..seq.variables() {
+        let n = names.state(v);
+        out.push_str(&format!("  LD {n}_set\n  S {n}\n  LD {n}_reset\n  R {n}\n"));
+    }
+    out.push_str("END_PROGRAM\n\nCONFIGURATION config0\n  RESOURCE resource0 ON PLC\n    TASK cyclic_task(INTERVAL := T#10ms, PRIORITY := 0);\n    PROGRAM main_instance WITH cyclic_task : synth_il;\n  END_RESOURCE\nEND_CONFIGURATION\n");
     out
 }
 
