@@ -5,6 +5,7 @@ use std::fmt;
 
 use crate::cell::Sign;
 use crate::table::StepTable;
+use crate::valve::{ValveType, Valves};
 
 /// The PLC dialect whose address notation is used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, serde::Serialize)]
@@ -72,6 +73,8 @@ pub enum Signal {
     Sensor { actuator: u32, position: u32 },
     /// Valve coil `yi+` / `yi-`.
     Coil { actuator: u32, sign: Sign },
+    /// The one coil `yi` of a single-solenoid valve (on = extend).
+    SingleCoil { actuator: u32 },
     /// Memory: actuator i must stop when it reaches middle position j.
     StopAt { actuator: u32, position: u32 },
     /// Memory: START as read in the previous scan (rising-edge detection).
@@ -90,7 +93,7 @@ impl Signal {
     pub fn area(self) -> Area {
         match self {
             Signal::Start | Signal::Sensor { .. } => Area::Input,
-            Signal::Coil { .. } | Signal::Alarm(_) => Area::Output,
+            Signal::Coil { .. } | Signal::SingleCoil { .. } | Signal::Alarm(_) => Area::Output,
             Signal::StopAt { .. } | Signal::StartMemory | Signal::Halt | Signal::WatchdogArmed => {
                 Area::Memory
             }
@@ -104,6 +107,7 @@ impl Signal {
             Signal::Start => "START".to_string(),
             Signal::Sensor { actuator, position } => format!("x{}", pair(actuator, position)),
             Signal::Coil { actuator, sign } => format!("y{actuator}{}", sign.symbol()),
+            Signal::SingleCoil { actuator } => format!("y{actuator}"),
             Signal::StopAt { actuator, position } => format!("m{actuator}_{position}"),
             // At most 9 characters: the shortest limit of any target (FST).
             Signal::StartMemory => "start_mem".to_string(),
@@ -131,7 +135,7 @@ impl Signal {
         match self {
             Signal::Start => "start",
             Signal::Sensor { .. } => "sensor",
-            Signal::Coil { .. } => "coil",
+            Signal::Coil { .. } | Signal::SingleCoil { .. } => "coil",
             Signal::Alarm(_) => "alarm",
             Signal::StopAt { .. } | Signal::StartMemory | Signal::Halt | Signal::WatchdogArmed => {
                 "memory"
@@ -159,6 +163,9 @@ impl Signal {
                 Sign::Plus => format!("cylinder {actuator}, coil + (extend)"),
                 Sign::Minus => format!("cylinder {actuator}, coil - (retract)"),
             },
+            Signal::SingleCoil { actuator } => {
+                format!("cylinder {actuator}, coil (on: extend; off: the spring retracts)")
+            }
             Signal::StopAt { actuator, position } => {
                 format!("cylinder {actuator} stops at middle position {position}")
             }
@@ -322,6 +329,8 @@ pub struct Allocation {
     pub timers: Vec<Assigned>,
     /// The safety checks this allocation has room for.
     pub safety: Safety,
+    /// The valve types given explicitly.
+    pub valves: Valves,
 }
 
 impl Allocation {
@@ -343,6 +352,25 @@ impl Allocation {
         target: Target,
         mnemonic: Mnemonic,
         safety: Safety,
+    ) -> Self {
+        Self::with_options(table, target, mnemonic, safety, &Valves::default())
+    }
+
+    /// The same signals allocated for another target (the FST files always
+    /// use Festo operands).
+    pub fn for_target(&self, table: &StepTable, target: Target, mnemonic: Mnemonic) -> Self {
+        Self::with_options(table, target, mnemonic, self.safety, &self.valves)
+    }
+
+    /// The full allocation. A single-solenoid (`52mono`) actuator gets one
+    /// output, in the place its `+` coil would have; its `-` place stays free,
+    /// so no other address moves when a valve type changes.
+    pub fn with_options(
+        table: &StepTable,
+        target: Target,
+        mnemonic: Mnemonic,
+        safety: Safety,
+        valves: &Valves,
     ) -> Self {
         let mut inputs = vec![Assigned {
             signal: Signal::Start,
@@ -374,6 +402,15 @@ impl Allocation {
                 }
                 Target::Iec | Target::Siemens => (2 * rank, 2 * rank + 1),
             };
+            if valves.of(actuator.number, actuator.max_position) == ValveType::Mono52 {
+                outputs.push(Assigned {
+                    signal: Signal::SingleCoil {
+                        actuator: actuator.number,
+                    },
+                    address: Address::from_index(Area::Output, target, plus),
+                });
+                continue;
+            }
             for (sign, index) in [(Sign::Plus, plus), (Sign::Minus, minus)] {
                 outputs.push(Assigned {
                     signal: Signal::Coil {
@@ -459,6 +496,7 @@ impl Allocation {
             memories,
             timers,
             safety,
+            valves: valves.clone(),
         }
     }
 

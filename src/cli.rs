@@ -178,6 +178,10 @@ struct SimArgs {
     /// Stroke times per actuator, extend/retract: C2=1.5s/0.8s,C3=2s (default 1s/1s).
     #[arg(long, value_name = "LIST", value_parser = parse_strokes)]
     stroke: Option<StrokeMap>,
+    /// Drift of a 5/3 piston with no coil on, stroke per second: C2=0.1 (the load
+    /// on an exhausted centre, the creep of a pressurised one; default 0.05).
+    #[arg(long, value_name = "LIST", value_parser = parse_loads)]
+    load: Option<std::collections::BTreeMap<u32, f64>>,
     /// PLC scan time of the simulation and of the generated task.
     #[arg(long, value_name = "TIME", value_parser = parse_scan)]
     scan: Option<u32>,
@@ -200,6 +204,9 @@ impl SimArgs {
         if let Some(scan) = self.scan {
             settings.simulation.scan_ms = scan;
             settings.explicit.scan = true;
+        }
+        if let Some(loads) = &self.load {
+            settings.simulation.loads = loads.clone();
         }
         if let Some(strokes) = &self.stroke {
             settings.simulation.strokes.per_actuator = strokes.clone();
@@ -286,6 +293,9 @@ struct CommonArgs {
     /// How to print problems: human (default) or json (one object per line on stdout).
     #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
     message_format: MessageFormat,
+    /// Valve per actuator: C1=52mono,C2=53closed (52bi, 52mono, 53closed, 53exhaust, 53pressure).
+    #[arg(long, value_name = "LIST", value_parser = parse_valves)]
+    valve: Option<std::collections::BTreeMap<u32, steptable::valve::ValveType>>,
     /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all).
     #[arg(long, value_name = "LIST", value_parser = parse_safety)]
     safety: Option<Safety>,
@@ -293,6 +303,35 @@ struct CommonArgs {
 
 fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<OutputKind>, String> {
     OutputKind::parse_list(text)
+}
+
+fn parse_valves(
+    text: &str,
+) -> Result<std::collections::BTreeMap<u32, steptable::valve::ValveType>, String> {
+    steptable::valve::parse_valves(text)
+}
+
+fn parse_loads(text: &str) -> Result<std::collections::BTreeMap<u32, f64>, String> {
+    let mut loads = std::collections::BTreeMap::new();
+    for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+        let (name, value) = item.split_once('=').ok_or_else(|| {
+            format!("\"{item}\": expected C<number>=<stroke per second>, e.g. C2=0.1")
+        })?;
+        let actuator = steptable::cell::normalize(name)
+            .strip_prefix('C')
+            .and_then(|n| n.parse::<u32>().ok())
+            .ok_or_else(|| format!("\"{item}\": expected an actuator such as C2 before ="))?;
+        let load: f64 = value
+            .trim()
+            .parse()
+            .ok()
+            .filter(|l: &f64| (0.0..=10.0).contains(l))
+            .ok_or_else(|| {
+                format!("\"{item}\": expected a drift from 0 to 10 stroke per second")
+            })?;
+        loads.insert(actuator, load);
+    }
+    Ok(loads)
 }
 
 fn parse_safety(text: &str) -> Result<Safety, String> {
@@ -341,6 +380,9 @@ impl CommonArgs {
         if let Some(safety) = self.safety {
             settings.program.safety = safety;
             settings.explicit.safety = true;
+        }
+        if let Some(valves) = &self.valve {
+            settings.simulation.valves.per_actuator = valves.clone();
         }
         settings.sheet = self.sheet.clone();
         settings

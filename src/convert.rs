@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 use std::path::Path;
 
 use crate::address::{Allocation, Mnemonic, Target};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::emit::diagram::DiagramKind;
 use crate::emit::st::IecFile;
 use crate::emit::templates::{TemplateError, Templates};
@@ -179,6 +179,17 @@ impl Settings {
                 .entry(*actuator)
                 .or_insert(*stroke);
         }
+        for (actuator, valve) in &sheet.valves {
+            merged
+                .simulation
+                .valves
+                .per_actuator
+                .entry(*actuator)
+                .or_insert(*valve);
+        }
+        for (actuator, load) in &sheet.loads {
+            merged.simulation.loads.entry(*actuator).or_insert(*load);
+        }
         merged
     }
 
@@ -269,6 +280,9 @@ fn finish_check(
         None => settings.clone(),
     };
     let table = table::build(&input.table, &mut diags);
+    if let Some(table) = &table {
+        check_valves(table, &effective, &input.table, &mut diags);
+    }
     match table {
         Some(table) if !diags.has_errors() => Ok(Checked {
             table,
@@ -276,6 +290,42 @@ fn finish_check(
             settings: effective,
         }),
         _ => Err(diags.into_sorted()),
+    }
+}
+
+/// A middle position needs a valve with a centre: a 5/2 valve cannot stop a
+/// piston between its ends. Names the cell of the first move that asks for it.
+fn check_valves(
+    table: &StepTable,
+    settings: &Settings,
+    grid: &read::Grid,
+    diags: &mut Diagnostics,
+) {
+    for actuator in table.actuators.iter().filter(|a| a.has_middle_positions()) {
+        let valve = settings
+            .simulation
+            .valves
+            .of(actuator.number, actuator.max_position);
+        if valve.has_centre() {
+            continue;
+        }
+        let Some(m) =
+            table.steps.iter().flat_map(|s| &s.moves).find(|m| {
+                m.actuator == actuator.number && m.to > 0 && m.to < actuator.max_position
+            })
+        else {
+            continue;
+        };
+        diags.error(
+            Code::E031ValveCannotStop,
+            grid.location(m.cell),
+            format!(
+                "\"{}\" stops C{} at middle position {}, but its valve is {valve}, which cannot stop a piston between its ends (use 53closed, 53exhaust or 53pressure)",
+                m.notation(),
+                actuator.number,
+                m.to
+            ),
+        );
     }
 }
 
@@ -330,11 +380,12 @@ pub fn convert_path_as(
 
 /// The allocation and step program of a checked table under `settings`.
 pub fn build_program(table: &StepTable, settings: &Settings) -> (Allocation, StepProgram) {
-    let allocation = Allocation::with_safety(
+    let allocation = Allocation::with_options(
         table,
         settings.target,
         settings.mnemonic,
         settings.program.safety,
+        &settings.simulation.valves,
     );
     let program = program::build(
         table,

@@ -42,6 +42,8 @@ pub enum Code {
     E024TableTooLarge,
     /// A value on the SETTINGS sheet is not valid.
     E030BadSetting,
+    /// A valve that cannot do what the table asks (a middle stop on a 5/2 valve).
+    E031ValveCannotStop,
 }
 
 impl Code {
@@ -62,6 +64,7 @@ impl Code {
             Code::E023EmptyStep => "E023",
             Code::E024TableTooLarge => "E024",
             Code::E030BadSetting => "E030",
+            Code::E031ValveCannotStop => "E031",
         }
     }
 }

@@ -26,3 +26,4 @@ pub mod synth;
 pub mod table;
 pub mod template;
 pub mod timing;
+pub mod valve;

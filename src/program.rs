@@ -18,6 +18,7 @@ use crate::address::{Alarm, Allocation, Safety, Signal};
 use crate::cell::Sign;
 use crate::table::{Move, StepTable};
 use crate::timing::Strokes;
+use crate::valve::ValveType;
 
 /// A signal in a condition, possibly negated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -218,6 +219,21 @@ pub fn build(
 
         let mut actions = Vec::new();
         for m in &step.moves {
+            let pmax = table.actuator(m.actuator).map_or(1, |a| a.max_position);
+            if allocation.valves.of(m.actuator, pmax) == ValveType::Mono52 {
+                // One coil, held for as long as the cylinder must stay out;
+                // switching it off lets the spring retract.
+                let coil = Signal::SingleCoil {
+                    actuator: m.actuator,
+                };
+                actions.push(match m.sign {
+                    Sign::Plus => Action::Set(coil),
+                    Sign::Minus => Action::Reset(coil),
+                });
+                continue;
+            }
+            // Two coils: the move's coil is set and held (it is the valve's
+            // only memory across a power dip), the opposite one reset.
             actions.push(Action::Set(Signal::Coil {
                 actuator: m.actuator,
                 sign: m.sign,

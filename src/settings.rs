@@ -12,15 +12,20 @@ use crate::address::{Mnemonic, Safety, Target};
 use crate::diag::{CellPos, Code, Diagnostics};
 use crate::read::{CellValue, Grid};
 use crate::timing::{Stroke, parse_duration_ms};
+use crate::valve::ValveType;
 
 /// What a SETTINGS sheet says; `None` where it says nothing.
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct SheetSettings {
     pub target: Option<Target>,
     pub mnemonic: Option<Mnemonic>,
     pub scan_ms: Option<u32>,
     pub safety: Option<Safety>,
     pub strokes: BTreeMap<u32, Stroke>,
+    /// Valve types from the table's `valve` column.
+    pub valves: BTreeMap<u32, ValveType>,
+    /// Drift rates from the table's `load` column (stroke per second).
+    pub loads: BTreeMap<u32, f64>,
 }
 
 /// The labels of the settings, as written on the sheet.
@@ -51,7 +56,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
             .filter(|c| c.pos.row == pos.row && c.pos.col > pos.col)
             .min_by_key(|c| c.pos.col)
     };
-    let mut stroke_header: Option<(CellPos, u32, u32)> = None;
+    let mut stroke_header: Option<(CellPos, u32, u32, Option<u32>, Option<u32>)> = None;
     for cell in &grid.cells {
         let Some(label) = label_of(&cell.value) else {
             continue;
@@ -66,7 +71,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
                     .map(|c| c.pos.col)
             };
             if let (Some(extend), Some(retract)) = (column("extend"), column("retract")) {
-                stroke_header = Some((cell.pos, extend, retract));
+                stroke_header = Some((cell.pos, extend, retract, column("valve"), column("load")));
             }
             continue;
         }
@@ -108,7 +113,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
             _ => {}
         }
     }
-    if let Some((header, extend_col, retract_col)) = stroke_header {
+    if let Some((header, extend_col, retract_col, valve_col, load_col)) = stroke_header {
         let mut rows: Vec<u32> = grid
             .cells
             .iter()
@@ -134,6 +139,32 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
             else {
                 break;
             };
+            if let Some(cell) = valve_col.and_then(|c| at(c)) {
+                let text = text_of(&cell.value);
+                match ValveType::parse(&text) {
+                    Some(valve) => {
+                        settings.valves.insert(actuator, valve);
+                    }
+                    None => diags.error(
+                        Code::E030BadSetting,
+                        grid.location(cell.pos),
+                        format!("valve of C{actuator}: \"{text}\" is not a valve type (expected 52bi, 52mono, 53closed, 53exhaust or 53pressure)"),
+                    ),
+                }
+            }
+            if let Some(cell) = load_col.and_then(|c| at(c)) {
+                let text = text_of(&cell.value);
+                match text.replace(',', ".").parse::<f64>() {
+                    Ok(load) if (0.0..=10.0).contains(&load) => {
+                        settings.loads.insert(actuator, load);
+                    }
+                    _ => diags.error(
+                        Code::E030BadSetting,
+                        grid.location(cell.pos),
+                        format!("load of C{actuator}: \"{text}\" is not a drift in stroke per second from 0 to 10, such as 0.05"),
+                    ),
+                }
+            }
             let mut time = |col: u32| -> Option<u32> {
                 let cell = at(col)?;
                 let text = text_of(&cell.value);
@@ -147,7 +178,10 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
                 }
                 ms
             };
-            let (extend, retract) = (time(extend_col), time(retract_col));
+            let (extend, retract) = (
+                at(extend_col).and_then(|_| time(extend_col)),
+                at(retract_col).and_then(|_| time(retract_col)),
+            );
             if extend.is_none() && retract.is_none() {
                 continue;
             }

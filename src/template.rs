@@ -230,9 +230,12 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     sheet.write_string(
         header - 1,
         0,
-        "Stroke times per actuator (extend / retract); actuators not listed take 1s / 1s.",
+        "Stroke times (extend / retract; not listed: 1s / 1s) and valve type per actuator.",
     )?;
-    for (col, text) in ["actuator", "extend", "retract"].iter().enumerate() {
+    for (col, text) in ["actuator", "extend", "retract", "valve"]
+        .iter()
+        .enumerate()
+    {
         sheet.write_string_with_format(header, col as u16, *text, &f.header)?;
     }
     for i in 0..8u32 {
@@ -240,7 +243,24 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         sheet.write_string_with_format(row, 0, format!("C{}", i + 1), &f.input)?;
         sheet.write_string_with_format(row, 1, "1s", &f.input)?;
         sheet.write_string_with_format(row, 2, "1s", &f.input)?;
+        sheet.write_blank(row, 3, &f.input)?;
     }
+    let valves: Vec<&str> = crate::valve::ValveType::ALL
+        .iter()
+        .map(|v| v.name())
+        .collect();
+    sheet.add_data_validation(
+        header + 1,
+        3,
+        header + 8,
+        3,
+        &DataValidation::new()
+            .allow_list_strings(&valves)?
+            .set_input_title("valve")?
+            .set_input_message(
+                "Empty: 52bi (two positions) or 53closed (middle positions). 52mono: one coil, spring return.",
+            )?,
+    )?;
     sheet.set_column_width(0, 14)?;
     sheet.set_column_width(1, 14)?;
     sheet.set_column_width(2, 14)?;

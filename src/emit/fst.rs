@@ -112,8 +112,9 @@ fn actions(
 /// Renders `NAME.fst.txt`.
 pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
     let program = input.program;
-    let safety = input.allocation.safety;
-    let festo = Allocation::with_safety(input.table, Target::Festo, Mnemonic::En, safety);
+    let festo = input
+        .allocation
+        .for_target(input.table, Target::Festo, Mnemonic::En);
     let mut init = Vec::new();
     if !program.rungs.is_empty() {
         init.push(ActionLine {

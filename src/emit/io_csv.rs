@@ -36,6 +36,9 @@ pub fn rows(input: &EmitInput) -> Vec<[String; 7]> {
                 Signal::StopAt { actuator, position } => {
                     (actuator.to_string(), position.to_string(), String::new())
                 }
+                Signal::SingleCoil { actuator } => {
+                    (actuator.to_string(), String::new(), "+".to_string())
+                }
                 _ => (String::new(), String::new(), String::new()),
             };
             [

@@ -84,6 +84,22 @@ pub fn action_comment(action: Action, moves: &[Move]) -> String {
             format!("{symbol} on: {verb} C{actuator}{target}")
         }
         Action::Reset(Signal::Coil { .. }) => format!("{symbol} off"),
+        Action::Set(Signal::SingleCoil { actuator }) => {
+            let target = moves
+                .iter()
+                .find(|m| m.actuator == actuator)
+                .map(|m| format!(", {}", m.notation()))
+                .unwrap_or_default();
+            format!("{symbol} on: extend C{actuator}{target}")
+        }
+        Action::Reset(Signal::SingleCoil { actuator }) => {
+            let target = moves
+                .iter()
+                .find(|m| m.actuator == actuator)
+                .map(|m| format!(", {}", m.notation()))
+                .unwrap_or_default();
+            format!("{symbol} off: the spring retracts C{actuator}{target}")
+        }
         Action::Set(Signal::StopAt { actuator, position }) => {
             format!(
                 "{symbol}: stop C{actuator} at {}",

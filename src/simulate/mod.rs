@@ -18,8 +18,13 @@ use crate::cell::Sign;
 use crate::program::{Action, Literal, StepProgram};
 use crate::table::{Move, StepTable};
 use crate::timing::{Stroke, Strokes};
+use crate::valve::Valves;
 use plant::Piston;
 use plc::{PlcState, scan};
+
+/// Stroke fraction per second a 5/3 piston drifts with no coil on, unless
+/// `--load` says otherwise.
+pub const DEFAULT_DRIFT: f64 = 0.05;
 
 /// How long the operator holds START.
 const START_PRESS_MS: u32 = 100;
@@ -51,6 +56,12 @@ pub struct SimSettings {
     pub scan_ms: u32,
     /// Stroke times of every actuator.
     pub strokes: Strokes,
+    /// Valve types given explicitly (the others get the default for their positions).
+    pub valves: Valves,
+    /// Drift, in stroke per second, of a piston on a 5/3 valve with no coil
+    /// on: the load on an exhausted centre (towards home), the creep of a
+    /// pressurised centre (outwards). Per actuator; default 0.05.
+    pub loads: BTreeMap<u32, f64>,
     /// Half-width of a sensor's detection window, as a fraction of the stroke.
     pub window: f64,
     /// Number of START presses (cycles) to run.
@@ -66,6 +77,8 @@ impl Default for SimSettings {
         SimSettings {
             scan_ms: 10,
             strokes: Strokes::default(),
+            valves: Valves::default(),
+            loads: BTreeMap::new(),
             window: 0.02,
             cycles: 2,
             faults: Vec::new(),
@@ -301,7 +314,7 @@ impl Run<'_> {
             let plus = self.plc.bit(Signal::Coil {
                 actuator: number,
                 sign: Sign::Plus,
-            });
+            }) || self.plc.bit(Signal::SingleCoil { actuator: number });
             let minus = self.plc.bit(Signal::Coil {
                 actuator: number,
                 sign: Sign::Minus,
@@ -526,7 +539,20 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
     let pistons: Vec<Piston> = table
         .actuators
         .iter()
-        .map(|a| Piston::new(a.number, a.max_position, settings.stroke(a.number), scan_ms))
+        .map(|a| {
+            Piston::with_valve(
+                a.number,
+                a.max_position,
+                settings.stroke(a.number),
+                scan_ms,
+                settings.valves.of(a.number, a.max_position),
+                settings
+                    .loads
+                    .get(&a.number)
+                    .copied()
+                    .unwrap_or(DEFAULT_DRIFT),
+            )
+        })
         .collect();
     let index_of = pistons
         .iter()

@@ -3,6 +3,7 @@
 
 use crate::cell::Sign;
 use crate::timing::Stroke;
+use crate::valve::ValveType;
 
 /// Where the valve's spool is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -15,20 +16,16 @@ pub enum Spool {
     Centre,
 }
 
-/// The valve type. Two-position actuators get a bistable 5/2 valve (keeps the
-/// last coil's position); actuators with middle stops a 5/3 closed-centre valve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Valve {
-    Bistable52,
-    ClosedCentre53,
-}
-
 /// One actuator of the plant.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Piston {
     pub number: u32,
     pub max_position: u32,
-    pub valve: Valve,
+    pub valve: ValveType,
+    /// Stroke fraction per scan the piston moves with no coil on: towards
+    /// home under the load for an exhausted centre, outwards for a
+    /// pressurised centre; zero otherwise.
+    drift_per_scan: f64,
     /// Piston position as a fraction of the stroke, 0 (home) … 1 (end).
     pub s: f64,
     pub spool: Spool,
@@ -38,20 +35,45 @@ pub struct Piston {
 }
 
 impl Piston {
+    /// A piston with the default valve for its positions.
     pub fn new(number: u32, max_position: u32, stroke: Stroke, scan_ms: u32) -> Self {
+        Self::with_valve(
+            number,
+            max_position,
+            stroke,
+            scan_ms,
+            ValveType::default_for(max_position),
+            0.0,
+        )
+    }
+
+    /// A piston on `valve`; `drift` is the stroke fraction per second it moves
+    /// with no coil on (the load on an exhausted centre, the creep of a
+    /// pressurised one; ignored by other valves).
+    pub fn with_valve(
+        number: u32,
+        max_position: u32,
+        stroke: Stroke,
+        scan_ms: u32,
+        valve: ValveType,
+        drift: f64,
+    ) -> Self {
         let per_scan = |ms: u32| scan_ms as f64 / ms.max(1) as f64;
+        let drift_per_scan = match valve {
+            ValveType::Exhaust53 => -drift.abs() * scan_ms as f64 / 1000.0,
+            ValveType::Pressure53 => drift.abs() * scan_ms as f64 / 1000.0,
+            _ => 0.0,
+        };
         Piston {
             number,
             max_position,
-            valve: if max_position > 1 {
-                Valve::ClosedCentre53
-            } else {
-                Valve::Bistable52
-            },
+            valve,
+            drift_per_scan,
             s: 0.0,
-            spool: match max_position {
-                0 | 1 => Spool::Minus,
-                _ => Spool::Centre,
+            spool: if valve.has_centre() {
+                Spool::Centre
+            } else {
+                Spool::Minus
             },
             extend_per_scan: per_scan(stroke.extend_ms),
             retract_per_scan: per_scan(stroke.retract_ms),
@@ -80,16 +102,25 @@ impl Piston {
 
     /// Applies the two coils to the valve. Returns `true` when both are on,
     /// which no valve may see.
+    /// For a single-solenoid valve only `plus` is wired: on extends, off lets
+    /// the spring retract.
     pub fn drive(&mut self, plus: bool, minus: bool) -> bool {
-        match (plus, minus, self.valve) {
-            (true, false, _) => self.spool = Spool::Plus,
-            (false, true, _) => self.spool = Spool::Minus,
-            (false, false, Valve::Bistable52) => {}
-            (false, false, Valve::ClosedCentre53) => self.spool = Spool::Centre,
-            // Both coils: a 5/2 spool stays where it was; a spring-centred 5/3
-            // spool is pushed from both sides and stays centred.
-            (true, true, Valve::Bistable52) => {}
-            (true, true, Valve::ClosedCentre53) => self.spool = Spool::Centre,
+        if self.valve == ValveType::Mono52 {
+            self.spool = if plus { Spool::Plus } else { Spool::Minus };
+            return false;
+        }
+        let centre = self.valve.has_centre();
+        match (plus, minus) {
+            (true, false) => self.spool = Spool::Plus,
+            (false, true) => self.spool = Spool::Minus,
+            // No coil: a bistable spool stays, a spring-centred one centres.
+            // Both coils: a 5/2 spool stays where it was; a 5/3 spool is
+            // pushed from both sides and stays centred.
+            (false, false) | (true, true) => {
+                if centre {
+                    self.spool = Spool::Centre;
+                }
+            }
         }
         plus && minus
     }
@@ -100,7 +131,7 @@ impl Piston {
         match self.spool {
             Spool::Plus => self.s = (self.s + self.extend_per_scan).min(1.0),
             Spool::Minus => self.s = (self.s - self.retract_per_scan).max(0.0),
-            Spool::Centre => {}
+            Spool::Centre => self.s = (self.s + self.drift_per_scan).clamp(0.0, 1.0),
         }
         if self.s > before {
             Some(Sign::Plus)
@@ -126,6 +157,47 @@ mod tests {
         }
         assert_eq!(p.s, 1.0);
         assert!(p.sensor(1, 0.02));
+    }
+
+    /// Drives to the middle sensor of a 3-position piston, switches every
+    /// coil off and lets 2 s pass: where does the piston end?
+    fn middle_then_off(valve: ValveType, drift: f64) -> (f64, f64) {
+        let mut p = Piston::with_valve(1, 2, Stroke::default(), 10, valve, drift);
+        p.drive(true, false);
+        while !p.sensor(1, 0.02) {
+            p.advance();
+        }
+        p.drive(false, false);
+        let stopped = p.s;
+        for _ in 0..200 {
+            p.advance();
+        }
+        (stopped, p.s)
+    }
+
+    #[test]
+    fn each_valve_type_at_a_middle_stop_and_with_every_coil_off() {
+        // Closed centre: holds at the middle sensor.
+        let (stopped, after) = middle_then_off(ValveType::Closed53, 0.2);
+        assert!((stopped - 0.5).abs() < 0.03 && after == stopped);
+        // Exhausted centre: the load drifts it home (0.2 stroke/s for 2 s = 0.4).
+        let (stopped, after) = middle_then_off(ValveType::Exhaust53, 0.2);
+        assert!(
+            (after - (stopped - 0.4)).abs() < 0.01,
+            "{stopped} -> {after}"
+        );
+        // Pressurised centre: creeps out towards the end.
+        let (stopped, after) = middle_then_off(ValveType::Pressure53, 0.2);
+        assert!(
+            (after - (stopped + 0.4)).abs() < 0.01,
+            "{stopped} -> {after}"
+        );
+        // 5/2 bistable: no centre, keeps moving to the end with no coil on.
+        let (_, after) = middle_then_off(ValveType::Bistable52, 0.2);
+        assert_eq!(after, 1.0);
+        // 5/2 single solenoid: coil off means the spring drives it home.
+        let (_, after) = middle_then_off(ValveType::Mono52, 0.2);
+        assert_eq!(after, 0.0);
     }
 
     #[test]

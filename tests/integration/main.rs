@@ -13,3 +13,4 @@ mod simulate;
 mod snapshots;
 mod synth;
 mod template;
+mod valves;
