@@ -28,6 +28,16 @@ pub struct SheetSettings {
     pub loads: BTreeMap<u32, f64>,
 }
 
+/// Where the actuator table's columns are: its header cell and the columns
+/// of extend and retract times, and of the optional valve and load.
+struct ActuatorColumns {
+    header: CellPos,
+    extend: u32,
+    retract: u32,
+    valve: Option<u32>,
+    load: Option<u32>,
+}
+
 /// The labels of the settings, as written on the sheet.
 pub const LABELS: [&str; 4] = ["target", "mnemonic", "scan time", "safety"];
 
@@ -56,7 +66,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
             .filter(|c| c.pos.row == pos.row && c.pos.col > pos.col)
             .min_by_key(|c| c.pos.col)
     };
-    let mut stroke_header: Option<(CellPos, u32, u32, Option<u32>, Option<u32>)> = None;
+    let mut stroke_header: Option<ActuatorColumns> = None;
     for cell in &grid.cells {
         let Some(label) = label_of(&cell.value) else {
             continue;
@@ -71,7 +81,13 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
                     .map(|c| c.pos.col)
             };
             if let (Some(extend), Some(retract)) = (column("extend"), column("retract")) {
-                stroke_header = Some((cell.pos, extend, retract, column("valve"), column("load")));
+                stroke_header = Some(ActuatorColumns {
+                    header: cell.pos,
+                    extend,
+                    retract,
+                    valve: column("valve"),
+                    load: column("load"),
+                });
             }
             continue;
         }
@@ -113,7 +129,14 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
             _ => {}
         }
     }
-    if let Some((header, extend_col, retract_col, valve_col, load_col)) = stroke_header {
+    if let Some(ActuatorColumns {
+        header,
+        extend: extend_col,
+        retract: retract_col,
+        valve: valve_col,
+        load: load_col,
+    }) = stroke_header
+    {
         let mut rows: Vec<u32> = grid
             .cells
             .iter()
@@ -139,7 +162,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
             else {
                 break;
             };
-            if let Some(cell) = valve_col.and_then(|c| at(c)) {
+            if let Some(cell) = valve_col.and_then(&at) {
                 let text = text_of(&cell.value);
                 match ValveType::parse(&text) {
                     Some(valve) => {
@@ -152,7 +175,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
                     ),
                 }
             }
-            if let Some(cell) = load_col.and_then(|c| at(c)) {
+            if let Some(cell) = load_col.and_then(&at) {
                 let text = text_of(&cell.value);
                 match text.replace(',', ".").parse::<f64>() {
                     Ok(load) if (0.0..=10.0).contains(&load) => {
