@@ -246,6 +246,21 @@ struct FileArgs {
     templates: Option<PathBuf>,
 }
 
+/// The settings of a command that writes files: common flags, simulation
+/// flags and file options. `None` (the problem printed) for a broken
+/// template folder.
+fn output_settings(common: &CommonArgs, sim: &SimArgs, files: &FileArgs) -> Option<Settings> {
+    let mut settings = common.settings();
+    sim.apply(&mut settings);
+    match files.apply(&mut settings) {
+        Ok(()) => Some(settings),
+        Err(err) => {
+            eprintln!("{err}");
+            None
+        }
+    }
+}
+
 impl FileArgs {
     /// Applies the options; a broken template folder is the user's error.
     fn apply(&self, settings: &mut Settings) -> Result<(), String> {
@@ -607,13 +622,10 @@ fn run_batch(args: &BatchArgs) -> i32 {
     use std::io::IsTerminal;
     use steptable::batch::{self, Status};
 
-    let mut settings = args.common.settings();
     let report = Reporter::new(&args.common);
-    args.sim.apply(&mut settings);
-    if let Err(err) = args.files.apply(&mut settings) {
-        eprintln!("{err}");
+    let Some(settings) = output_settings(&args.common, &args.sim, &args.files) else {
         return EXIT_BAD_INPUT;
-    }
+    };
     let started = std::time::Instant::now();
     let (inputs, missing) = batch::expand_inputs(&args.paths, &args.output);
     for path in &missing {
@@ -860,13 +872,10 @@ fn run_template(args: &TemplateArgs) -> i32 {
 }
 
 fn run_convert(args: &ConvertArgs) -> i32 {
-    let mut settings = args.common.settings();
     let report = Reporter::new(&args.common);
-    args.sim.apply(&mut settings);
-    if let Err(err) = args.files.apply(&mut settings) {
-        eprintln!("{err}");
+    let Some(settings) = output_settings(&args.common, &args.sim, &args.files) else {
         return EXIT_BAD_INPUT;
-    }
+    };
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
     for (input, name) in args.inputs.iter().zip(&names) {

@@ -456,17 +456,8 @@ pub(crate) mod tests {
 
     /// The paper's example table (DESIGN §4), as a bare grid.
     pub(crate) fn paper_table() -> StepTable {
-        let rows: [[&str; 3]; 8] = [
-            ["C1+1", "", ""],
-            ["C2+3", "", ""],
-            ["C2-1", "", ""],
-            ["C3+2", "C2+2", ""],
-            ["C3-0", "C2-1", ""],
-            ["C3+1", "C2+2", "C4+1"],
-            ["C3-0", "C2-0", "C4-0"],
-            ["C1-0", "", ""],
-        ];
-        crate::table::from_rows("paper.csv", &rows).expect("paper table is valid")
+        crate::table::from_rows("paper.csv", &crate::template::PAPER_EXAMPLE)
+            .expect("paper table is valid")
     }
 
     #[test]

@@ -3,27 +3,24 @@ use crate::address::{Allocation, Mnemonic, Target};
 use crate::program::{self, ProgramOptions};
 use crate::timing::Stroke;
 
-fn run(rows: &[&[&str]], options: ProgramOptions, settings: &SimSettings) -> SimReport {
+fn run(rows: &[Vec<&str>], options: ProgramOptions, settings: &SimSettings) -> SimReport {
     let table = crate::table::from_rows("t.csv", rows).expect("valid table");
     let alloc = Allocation::with_safety(&table, Target::Festo, Mnemonic::En, options.safety);
     let program = program::build(&table, &alloc, options, &settings.strokes);
     simulate(&table, &program, settings)
 }
 
-const PAPER: &[&[&str]] = &[
-    &["C1+1", "", ""],
-    &["C2+3", "", ""],
-    &["C2-1", "", ""],
-    &["C3+2", "C2+2", ""],
-    &["C3-0", "C2-1", ""],
-    &["C3+1", "C2+2", "C4+1"],
-    &["C3-0", "C2-0", "C4-0"],
-    &["C1-0", "", ""],
-];
+/// The paper's example, as rows of cells.
+fn paper() -> Vec<Vec<&'static str>> {
+    crate::template::PAPER_EXAMPLE
+        .iter()
+        .map(|r| r.to_vec())
+        .collect()
+}
 
 #[test]
 fn the_papers_program_runs_two_identical_cycles() {
-    let report = run(PAPER, ProgramOptions::default(), &SimSettings::default());
+    let report = run(&paper(), ProgramOptions::default(), &SimSettings::default());
     assert!(report.passed, "{}: {:?}", report.verdict(), report.problems);
     assert_eq!(report.cycles.len(), 2);
     assert_eq!(report.cycles[0].steps.len(), 8);
@@ -42,7 +39,7 @@ fn the_papers_program_runs_two_identical_cycles() {
 #[test]
 fn without_middle_stops_the_paper_hangs_in_step_5() {
     let report = run(
-        PAPER,
+        &paper(),
         ProgramOptions {
             middle_stops: false,
             ..ProgramOptions::default()
@@ -69,7 +66,7 @@ fn a_stuck_sensor_stalls_or_endangers() {
         }],
         ..SimSettings::default()
     };
-    let report = run(PAPER, ProgramOptions::default(), &open);
+    let report = run(&paper(), ProgramOptions::default(), &open);
     assert_eq!(report.stalled_at, Some(2));
     assert!(report.hazard().is_none(), "{:?}", report.problems);
 
@@ -83,7 +80,7 @@ fn a_stuck_sensor_stalls_or_endangers() {
         }],
         ..SimSettings::default()
     };
-    let report = run(PAPER, ProgramOptions::default(), &short);
+    let report = run(&paper(), ProgramOptions::default(), &short);
     let hazard = report.hazard().expect("a hazard");
     assert_eq!(hazard.kind, ProblemKind::Premature, "{:?}", report.problems);
 }
@@ -98,8 +95,8 @@ fn slow_strokes_change_the_cycle_time() {
             retract_ms: 500,
         },
     );
-    let fast = run(PAPER, ProgramOptions::default(), &SimSettings::default());
-    let report = run(PAPER, ProgramOptions::default(), &slow);
+    let fast = run(&paper(), ProgramOptions::default(), &SimSettings::default());
+    let report = run(&paper(), ProgramOptions::default(), &slow);
     assert!(report.passed, "{:?}", report.problems);
     let delta = report.cycles[0].cycle_ms.unwrap() as i64 - fast.cycles[0].cycle_ms.unwrap() as i64;
     assert!((1400..=1600).contains(&delta), "{delta}");
