@@ -1,0 +1,213 @@
+//! Options shared by several commands, and their parsers.
+
+use super::*;
+
+#[derive(Args)]
+pub(crate) struct SimArgs {
+    /// Stroke times per actuator, extend/retract: C2=1.5s/0.8s,C3=2s (default 1s/1s).
+    #[arg(long, value_name = "LIST", value_parser = parse_strokes)]
+    pub(crate) stroke: Option<StrokeMap>,
+    /// Drift of a 5/3 piston with no coil on, stroke per second: C2=0.1 (the load
+    /// on an exhausted centre, the creep of a pressurised one; default 0.05).
+    #[arg(long, value_name = "LIST", value_parser = parse_loads)]
+    pub(crate) load: Option<std::collections::BTreeMap<u32, f64>>,
+    /// PLC scan time of the simulation and of the generated task.
+    #[arg(long, value_name = "TIME", value_parser = parse_scan)]
+    pub(crate) scan: Option<u32>,
+}
+
+pub(crate) type StrokeMap = std::collections::BTreeMap<u32, steptable::timing::Stroke>;
+
+pub(crate) fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
+    steptable::timing::parse_strokes(text)
+}
+
+pub(crate) fn parse_scan(text: &str) -> Result<u32, String> {
+    steptable::timing::parse_duration_ms(text)
+        .filter(|ms| *ms <= 1000)
+        .ok_or_else(|| format!("\"{text}\" is not a scan time from 1ms to 1s, such as 10ms"))
+}
+
+impl SimArgs {
+    pub(crate) fn apply(&self, settings: &mut Settings) {
+        if let Some(scan) = self.scan {
+            settings.simulation.scan_ms = scan;
+            settings.explicit.scan = true;
+        }
+        if let Some(loads) = &self.load {
+            settings.simulation.loads = loads.clone();
+        }
+        if let Some(strokes) = &self.stroke {
+            settings.simulation.strokes.per_actuator = strokes.clone();
+        }
+    }
+}
+
+/// What files to write and how they look.
+#[derive(Args)]
+pub(crate) struct FileArgs {
+    /// Horizontal axis of NAME.diagram.svg: step (displacement-step) or time.
+    #[arg(long, value_enum, default_value_t = DiagramArg::Step)]
+    pub(crate) diagram: DiagramArg,
+    /// Files to write: xlsx, st, fst, io, diagram, faults, plcopen, codesys,
+    /// gvl, tia, awl, sdf, fst-alloc, rockwell (default all).
+    #[arg(long, value_name = "LIST", value_parser = parse_formats)]
+    pub(crate) formats: Option<std::collections::BTreeSet<OutputKind>>,
+    /// Folder of templates that replace the built-in ones by file name
+    /// (start from `steptable templates export DIR`).
+    #[arg(long, value_name = "DIR")]
+    pub(crate) templates: Option<PathBuf>,
+}
+
+/// The settings of a command that writes files: common flags, simulation
+/// flags and file options. `None` (the problem printed) for a broken
+/// template folder.
+pub(crate) fn output_settings(
+    common: &CommonArgs,
+    sim: &SimArgs,
+    files: &FileArgs,
+) -> Option<Settings> {
+    let mut settings = common.settings();
+    sim.apply(&mut settings);
+    match files.apply(&mut settings) {
+        Ok(()) => Some(settings),
+        Err(err) => {
+            eprintln!("{err}");
+            None
+        }
+    }
+}
+
+impl FileArgs {
+    /// Applies the options; a broken template folder is the user's error.
+    pub(crate) fn apply(&self, settings: &mut Settings) -> Result<(), String> {
+        settings.diagram = match self.diagram {
+            DiagramArg::Step => DiagramKind::Step,
+            DiagramArg::Time => DiagramKind::Time,
+        };
+        if let Some(formats) = &self.formats {
+            settings.formats = formats.clone();
+        }
+        if let Some(dir) = &self.templates {
+            settings.templates =
+                steptable::emit::templates::Templates::load_dir(dir).map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum DiagramArg {
+    Step,
+    Time,
+}
+
+#[derive(Args)]
+pub(crate) struct CommonArgs {
+    /// Address dialect: festo (I0.0/O0.0, 16-bit words), iec (%IX0.0/%QX0.0), siemens (I0.0/Q0.0).
+    #[arg(long, value_enum)]
+    pub(crate) target: Option<TargetArg>,
+    /// Operand letters for siemens: en (I/Q) or de (E/A).
+    #[arg(long, value_enum)]
+    pub(crate) mnemonic: Option<MnemonicArg>,
+    /// Read this sheet instead of "SEQUENTIAL CONTROL DESCRIPTION" or the first sheet with moves.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) sheet: Option<String>,
+    /// How to print problems: human (default) or json (one object per line on stdout).
+    #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
+    pub(crate) message_format: MessageFormat,
+    /// Valve per actuator: C1=52mono,C2=53closed (52bi, 52mono, 53closed, 53exhaust, 53pressure).
+    #[arg(long, value_name = "LIST", value_parser = parse_valves)]
+    pub(crate) valve: Option<std::collections::BTreeMap<u32, steptable::valve::ValveType>>,
+    /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all).
+    #[arg(long, value_name = "LIST", value_parser = parse_safety)]
+    pub(crate) safety: Option<Safety>,
+}
+
+pub(crate) fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<OutputKind>, String> {
+    OutputKind::parse_list(text)
+}
+
+pub(crate) fn parse_valves(
+    text: &str,
+) -> Result<std::collections::BTreeMap<u32, steptable::valve::ValveType>, String> {
+    steptable::valve::parse_valves(text)
+}
+
+pub(crate) fn parse_loads(text: &str) -> Result<std::collections::BTreeMap<u32, f64>, String> {
+    let mut loads = std::collections::BTreeMap::new();
+    for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+        let (name, value) = item.split_once('=').ok_or_else(|| {
+            format!("\"{item}\": expected C<number>=<stroke per second>, e.g. C2=0.1")
+        })?;
+        let actuator = steptable::cell::normalize(name)
+            .strip_prefix('C')
+            .and_then(|n| n.parse::<u32>().ok())
+            .ok_or_else(|| format!("\"{item}\": expected an actuator such as C2 before ="))?;
+        let load: f64 = value
+            .trim()
+            .parse()
+            .ok()
+            .filter(|l: &f64| (0.0..=10.0).contains(l))
+            .ok_or_else(|| {
+                format!("\"{item}\": expected a drift from 0 to 10 stroke per second")
+            })?;
+        loads.insert(actuator, load);
+    }
+    Ok(loads)
+}
+
+pub(crate) fn parse_safety(text: &str) -> Result<Safety, String> {
+    Safety::parse(text)
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum TargetArg {
+    Festo,
+    Iec,
+    Siemens,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum MessageFormat {
+    Human,
+    Json,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum MnemonicArg {
+    En,
+    De,
+}
+
+impl CommonArgs {
+    /// Settings from the flags; those given explicitly are marked so that a
+    /// workbook's SETTINGS sheet does not change them.
+    pub(crate) fn settings(&self) -> Settings {
+        let mut settings = Settings::new();
+        if let Some(target) = self.target {
+            settings.target = match target {
+                TargetArg::Festo => Target::Festo,
+                TargetArg::Iec => Target::Iec,
+                TargetArg::Siemens => Target::Siemens,
+            };
+            settings.explicit.target = true;
+        }
+        if let Some(mnemonic) = self.mnemonic {
+            settings.mnemonic = match mnemonic {
+                MnemonicArg::En => Mnemonic::En,
+                MnemonicArg::De => Mnemonic::De,
+            };
+            settings.explicit.mnemonic = true;
+        }
+        if let Some(safety) = self.safety {
+            settings.program.safety = safety;
+            settings.explicit.safety = true;
+        }
+        if let Some(valves) = &self.valve {
+            settings.simulation.valves.per_actuator = valves.clone();
+        }
+        settings.sheet = self.sheet.clone();
+        settings
+    }
+}

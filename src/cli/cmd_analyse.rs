@@ -1,0 +1,119 @@
+//! `steptable simulate` and `steptable faults`.
+
+use super::*;
+
+#[derive(Args)]
+pub(crate) struct FaultsArgs {
+    /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
+    #[arg(required = true)]
+    pub(crate) inputs: Vec<PathBuf>,
+    /// Also every pair of faults.
+    #[arg(long)]
+    pub(crate) pairs: bool,
+    /// Output folder for NAME/NAME.faults.csv.
+    #[arg(short, long, value_name = "DIR", default_value = "steptable-out")]
+    pub(crate) output: PathBuf,
+    #[command(flatten)]
+    pub(crate) common: CommonArgs,
+    #[command(flatten)]
+    pub(crate) sim: SimArgs,
+}
+
+#[derive(Args)]
+pub(crate) struct SimulateArgs {
+    /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
+    #[arg(required = true)]
+    pub(crate) inputs: Vec<PathBuf>,
+    /// Generate the program without middle stops, as the published method
+    /// does, to see why they matter.
+    #[arg(long)]
+    pub(crate) no_middle_stop: bool,
+    #[command(flatten)]
+    pub(crate) common: CommonArgs,
+    #[command(flatten)]
+    pub(crate) sim: SimArgs,
+}
+
+pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
+    let mut settings = args.common.settings();
+    let reporter = Reporter::new(&args.common);
+    args.sim.apply(&mut settings);
+    settings.program.middle_stops = !args.no_middle_stop;
+    let mut code = EXIT_OK;
+    for input in &args.inputs {
+        let checked = match convert::check_path(input, &settings) {
+            Ok(c) => c,
+            Err(diagnostics) => {
+                reporter.diagnostics(&diagnostics);
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+        };
+        reporter.diagnostics(&checked.warnings);
+        let (table, settings) = (checked.table, checked.settings);
+        let (_, program) = convert::build_program(&table, &settings);
+        let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
+        reporter.say(&format!("{}: {}", display_name(input), report.verdict()));
+        reporter.say(&steptable::simulate::report::step_table(&report));
+        if !report.passed {
+            code = code.max(EXIT_BAD_INPUT);
+        }
+    }
+    code
+}
+
+pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
+    let mut settings = args.common.settings();
+    let report = Reporter::new(&args.common);
+    args.sim.apply(&mut settings);
+    let mut code = EXIT_OK;
+    let names = convert::output_names(&args.inputs);
+    for (input, name) in args.inputs.iter().zip(&names) {
+        let checked = match convert::check_path(input, &settings) {
+            Ok(c) => c,
+            Err(diagnostics) => {
+                report.diagnostics(&diagnostics);
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+        };
+        let (table, settings) = (checked.table, checked.settings);
+        let (allocation, program) = convert::build_program(&table, &settings);
+        let result = steptable::faults::analyse(
+            &table,
+            &program,
+            &allocation,
+            &settings.simulation,
+            args.pairs,
+        );
+        report.say(&format!("{}: {}", display_name(input), result.summary()));
+        let rows = steptable::faults::rows(&result);
+        let width = rows.iter().map(|r| r[0].len()).max().unwrap_or(5).max(5);
+        report.say(&format!(
+            "  {:<width$}  {:<10}  {:>4}  explanation",
+            "fault", "outcome", "step"
+        ));
+        for r in &rows {
+            report.say(&format!(
+                "  {:<width$}  {:<10}  {:>4}  {}",
+                r[0], r[1], r[2], r[3]
+            ));
+        }
+        let file = convert::OutputFile {
+            name: format!("{name}.faults.csv"),
+            bytes: match steptable::faults::render_csv(&result) {
+                Ok(b) => b,
+                Err(e) => {
+                    eprintln!("internal error: {e}");
+                    code = EXIT_INTERNAL;
+                    continue;
+                }
+            },
+        };
+        if let Err(err) = output::write_files(&args.output.join(name), &[file], &args.inputs) {
+            eprintln!("error: {err}");
+            code = EXIT_INTERNAL;
+        }
+    }
+    code
+}

@@ -1,0 +1,123 @@
+//! `steptable batch`: many inputs in parallel, with a progress bar and a summary.
+
+use super::*;
+
+#[derive(Args)]
+pub(crate) struct BatchArgs {
+    /// Files, folders (searched recursively for .xlsx .xlsm .xls .ods .csv) or glob patterns.
+    #[arg(required = true)]
+    pub(crate) paths: Vec<PathBuf>,
+    /// Output folder: one folder per input, and summary.csv.
+    #[arg(short, long, value_name = "DIR")]
+    pub(crate) output: PathBuf,
+    /// Conversions at once (default: all cores).
+    #[arg(short, long, value_name = "N")]
+    pub(crate) jobs: Option<usize>,
+    /// No progress bar.
+    #[arg(short, long)]
+    pub(crate) quiet: bool,
+    #[command(flatten)]
+    pub(crate) files: FileArgs,
+    #[command(flatten)]
+    pub(crate) common: CommonArgs,
+    #[command(flatten)]
+    pub(crate) sim: SimArgs,
+}
+
+pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
+    use std::io::IsTerminal;
+    use steptable::batch::{self, Status};
+
+    let report = Reporter::new(&args.common);
+    let Some(settings) = output_settings(&args.common, &args.sim, &args.files) else {
+        return EXIT_BAD_INPUT;
+    };
+    let started = std::time::Instant::now();
+    let (inputs, missing) = batch::expand_inputs(&args.paths, &args.output);
+    for path in &missing {
+        eprintln!(
+            "{}: error: no such file or folder, and no file matches it as a pattern",
+            path.display()
+        );
+    }
+    let jobs = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let bar = if !args.quiet && std::io::stderr().is_terminal() {
+        let bar = indicatif::ProgressBar::new(inputs.len() as u64);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{bar:30} {pos}/{len} workbooks, {per_sec}, {elapsed} {msg}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        Some(bar)
+    } else {
+        None
+    };
+    let on_done = |outcome: &batch::Outcome| {
+        if let Some(bar) = &bar {
+            bar.set_message(display_name(&outcome.input));
+            bar.inc(1);
+        }
+    };
+    let outcomes = batch::run(&inputs, &args.output, &settings, jobs, &on_done);
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+
+    let mut code = if missing.is_empty() {
+        EXIT_OK
+    } else {
+        EXIT_BAD_INPUT
+    };
+    for o in &outcomes {
+        report.diagnostics(&o.diagnostics);
+        match o.status {
+            Status::Converted => {}
+            Status::Failed => code = code.max(EXIT_BAD_INPUT),
+            Status::Internal => code = EXIT_INTERNAL,
+        }
+    }
+    let failed: Vec<&batch::Outcome> = outcomes
+        .iter()
+        .filter(|o| o.status != Status::Converted)
+        .collect();
+    let seconds = started.elapsed().as_secs_f64();
+    report.say(&format!(
+        "{} converted, {} failed, in {:.2} s ({:.1} workbooks/s, {} jobs) -> {}",
+        outcomes.len() - failed.len(),
+        failed.len() + missing.len(),
+        seconds,
+        outcomes.len() as f64 / seconds.max(1e-9),
+        jobs,
+        args.output.display()
+    ));
+    for o in &failed {
+        // A diagnostic names its file; other failures need the name added.
+        let first = match o.diagnostics.iter().find(|d| d.severity == Severity::Error) {
+            Some(d) => d.to_string(),
+            None => format!(
+                "{}: {}",
+                display_name(&o.input),
+                o.message
+                    .clone()
+                    .unwrap_or_else(|| o.status.label().to_string())
+            ),
+        };
+        report.say(&format!("  failed: {first}"));
+    }
+    match batch::summary_csv(&outcomes) {
+        Ok(file) => {
+            if let Err(err) = output::write_files(&args.output, &[file], &inputs) {
+                eprintln!("error: {err}");
+                code = EXIT_INTERNAL;
+            }
+        }
+        Err(err) => {
+            eprintln!("internal error: summary: {err}");
+            code = EXIT_INTERNAL;
+        }
+    }
+    code
+}

@@ -1,0 +1,120 @@
+//! `steptable convert` and `steptable check`.
+
+use super::*;
+
+#[derive(Args)]
+pub(crate) struct ConvertArgs {
+    /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
+    #[arg(required = true)]
+    pub(crate) inputs: Vec<PathBuf>,
+    /// Output folder; each input gets a folder DIR/NAME/ in it.
+    #[arg(short, long, value_name = "DIR", default_value = "steptable-out")]
+    pub(crate) output: PathBuf,
+    #[command(flatten)]
+    pub(crate) files: FileArgs,
+    #[command(flatten)]
+    pub(crate) common: CommonArgs,
+    #[command(flatten)]
+    pub(crate) sim: SimArgs,
+}
+
+#[derive(Args)]
+pub(crate) struct CheckArgs {
+    /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
+    #[arg(required = true)]
+    pub(crate) inputs: Vec<PathBuf>,
+    #[command(flatten)]
+    pub(crate) common: CommonArgs,
+}
+
+pub(crate) fn run_check(args: &CheckArgs) -> i32 {
+    let settings = args.common.settings();
+    let report = Reporter::new(&args.common);
+    let mut code = EXIT_OK;
+    for input in &args.inputs {
+        match convert::check_path(input, &settings) {
+            Ok(checked) => {
+                report.diagnostics(&checked.warnings);
+                report.say(&format!(
+                    "{}: ok: {}",
+                    display_name(input),
+                    summary(
+                        &checked.table,
+                        &convert::build_program(&checked.table, &checked.settings).0
+                    )
+                ));
+            }
+            Err(diagnostics) => {
+                report.diagnostics(&diagnostics);
+                report.say(&format!(
+                    "{}: {} error(s)",
+                    display_name(input),
+                    diagnostics
+                        .iter()
+                        .filter(|d| d.severity == steptable::diag::Severity::Error)
+                        .count()
+                ));
+                code = code.max(EXIT_BAD_INPUT);
+            }
+        }
+    }
+    code
+}
+
+pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
+    let report = Reporter::new(&args.common);
+    let Some(settings) = output_settings(&args.common, &args.sim, &args.files) else {
+        return EXIT_BAD_INPUT;
+    };
+    let mut code = EXIT_OK;
+    let names = convert::output_names(&args.inputs);
+    for (input, name) in args.inputs.iter().zip(&names) {
+        let conversion = match convert::convert_path_as(input, name, &settings) {
+            Ok(c) => c,
+            Err(Failure::Input(diagnostics)) => {
+                report.diagnostics(&diagnostics);
+                eprintln!("{}: not converted, nothing written", display_name(input));
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+            Err(Failure::Internal(why)) => {
+                eprintln!("{}: internal error: {why}", display_name(input));
+                code = EXIT_INTERNAL;
+                continue;
+            }
+            Err(Failure::Template(err)) => {
+                eprintln!("{}: not converted, nothing written", display_name(input));
+                if err.user {
+                    eprintln!("{err}");
+                    code = code.max(EXIT_BAD_INPUT);
+                } else {
+                    eprintln!("internal error: {err}");
+                    code = EXIT_INTERNAL;
+                }
+                continue;
+            }
+        };
+        report.diagnostics(&conversion.warnings);
+        let folder = args.output.join(&conversion.name);
+        match output::write_files(&folder, &conversion.files, &args.inputs) {
+            Ok(written) => {
+                let names: Vec<String> = written
+                    .iter()
+                    .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().to_string()))
+                    .collect();
+                report.say(&format!(
+                    "{}: {} -> {}/ ({})",
+                    display_name(input),
+                    summary(&conversion.table, &conversion.allocation),
+                    folder.display(),
+                    names.join(", ")
+                ));
+            }
+            Err(err) => {
+                eprintln!("error: {err}");
+                code = EXIT_INTERNAL;
+            }
+        }
+    }
+    code
+}

@@ -1,0 +1,155 @@
+//! `steptable synth`: logic synthesis for single-branch sequences.
+
+use super::*;
+
+#[derive(Args)]
+pub(crate) struct SynthArgs {
+    /// A single-branch step table of two-position actuators (any format convert reads).
+    #[arg(required_unless_present = "sequence", conflicts_with = "sequence")]
+    pub(crate) input: Option<PathBuf>,
+    /// The sequence itself: "A1 A0 B1 B0", "A+ A- B+ B-" or "C1+1 C1-0 C2+1 C2-0".
+    #[arg(long, value_name = "TEXT")]
+    pub(crate) sequence: Option<String>,
+    /// Output folder; the results go to DIR/NAME/.
+    #[arg(short, long, value_name = "DIR", default_value = "steptable-out")]
+    pub(crate) output: PathBuf,
+    /// Read this sheet instead of the default choice.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) sheet: Option<String>,
+    /// Memory insertion: exact (proven minimal), ga (the paper's GA, with GP
+    /// for the equations) or both (default; the better is kept).
+    #[arg(long, value_enum, default_value_t = MethodArg::Both)]
+    pub(crate) method: MethodArg,
+    /// Seed of the GA and GP (PCG: the same answer on every machine).
+    #[arg(long, default_value_t = 1)]
+    pub(crate) seed: u64,
+    /// Population size μ of the GA and GP.
+    #[arg(long, default_value_t = 500)]
+    pub(crate) mu: usize,
+    /// (μ+λ)/μ of the GA and GP.
+    #[arg(long, default_value_t = 4)]
+    pub(crate) ratio: usize,
+    /// Generations of the GA.
+    #[arg(long, default_value_t = 400)]
+    pub(crate) generations: usize,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum MethodArg {
+    Exact,
+    Ga,
+    Both,
+}
+
+pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
+    use steptable::synth::{self, SynthError, output as synth_out};
+
+    let (sequence, name, inputs) = match (&args.input, &args.sequence) {
+        (_, Some(text)) => match synth::sequence::parse(text) {
+            Ok(s) => (s, "sequence".to_string(), Vec::new()),
+            Err(why) => {
+                eprintln!("--sequence: error: {why}");
+                return EXIT_BAD_INPUT;
+            }
+        },
+        (Some(input), None) => {
+            let mut settings = Settings::new();
+            settings.sheet = args.sheet.clone();
+            let checked = match convert::check_path(input, &settings) {
+                Ok(c) => c,
+                Err(diagnostics) => {
+                    for d in diagnostics {
+                        eprintln!("{d}");
+                    }
+                    return EXIT_BAD_INPUT;
+                }
+            };
+            match synth::from_table(&checked.table) {
+                Ok(s) => (s, convert::output_name(input), vec![input.clone()]),
+                Err(why) => {
+                    eprintln!("{}: error: {why}", display_name(input));
+                    return EXIT_BAD_INPUT;
+                }
+            }
+        }
+        (None, None) => {
+            eprintln!("error: give a step table or --sequence");
+            return EXIT_BAD_INPUT;
+        }
+    };
+    let options = synth::Options {
+        method: match args.method {
+            MethodArg::Exact => synth::Method::Exact,
+            MethodArg::Ga => synth::Method::Ga,
+            MethodArg::Both => synth::Method::Both,
+        },
+        ga: synth::ga::GaParams {
+            mu: args.mu,
+            ratio: args.ratio,
+            generations: args.generations,
+            seed: args.seed,
+            ..synth::ga::GaParams::default()
+        },
+        gp: synth::gp::GpParams {
+            mu: args.mu,
+            ratio: args.ratio,
+            seed: args.seed,
+            ..synth::gp::GpParams::default()
+        },
+    };
+    let synthesis = match synth::synthesize_with(&sequence, options) {
+        Ok(s) => s,
+        Err(err @ SynthError::Unsuitable(_)) => {
+            eprintln!("error: {err}");
+            return EXIT_BAD_INPUT;
+        }
+        Err(err) => {
+            eprintln!("error: {err}");
+            return EXIT_BAD_INPUT;
+        }
+    };
+    let verification = synth::verify::verify(&synthesis, 2);
+    let report = synth_out::report_text(&synthesis, &verification);
+    out(&report);
+    let workbook = match synth_out::workbook(&synthesis, &verification) {
+        Ok(b) => b,
+        Err(err) => {
+            eprintln!("internal error: workbook: {err}");
+            return EXIT_INTERNAL;
+        }
+    };
+    let files = vec![
+        convert::OutputFile {
+            name: format!("{name}.synth.txt"),
+            bytes: report.into_bytes(),
+        },
+        convert::OutputFile {
+            name: format!("{name}.synth.json"),
+            bytes: synth_out::report_json(&synthesis, &verification, args.seed).into_bytes(),
+        },
+        convert::OutputFile {
+            name: format!("{name}.equations.st"),
+            bytes: synth_out::structured_text(&synthesis, &name).into_bytes(),
+        },
+        convert::OutputFile {
+            name: format!("{name}.equations.il"),
+            bytes: synth_out::instruction_list(&synthesis, &name).into_bytes(),
+        },
+        convert::OutputFile {
+            name: format!("{name}.xlsx"),
+            bytes: workbook,
+        },
+    ];
+    if let Err(err) = output::write_files(&args.output.join(&name), &files, &inputs) {
+        eprintln!("error: {err}");
+        return EXIT_INTERNAL;
+    }
+    if !verification.passed {
+        eprintln!(
+            "internal error: the synthesised controller fails its simulation ({}); please report this sequence",
+            verification.problem.unwrap_or_default()
+        );
+        return EXIT_INTERNAL;
+    }
+    EXIT_OK
+}

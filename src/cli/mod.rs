@@ -1,0 +1,161 @@
+//! Command-line parsing (clap) and the commands. Raw arguments become
+//! validated [`Settings`] before any work starts; exit codes are 0 (ok),
+//! 1 (bad input, diagnostics printed) and 2 (internal or I/O failure).
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+use steptable::address::{Mnemonic, Safety, Target};
+use steptable::convert::{self, Failure, OutputKind, Settings};
+use steptable::diag::{Diagnostic, Severity};
+use steptable::emit::diagram::DiagramKind;
+use steptable::output;
+use steptable::read::display_name;
+
+mod args;
+mod cmd_analyse;
+mod cmd_batch;
+mod cmd_convert;
+mod cmd_synth;
+mod cmd_template;
+
+use args::*;
+use cmd_analyse::*;
+use cmd_batch::*;
+use cmd_convert::*;
+use cmd_synth::*;
+use cmd_template::*;
+
+pub(crate) const EXIT_OK: i32 = 0;
+pub(crate) const EXIT_BAD_INPUT: i32 = 1;
+pub(crate) const EXIT_INTERNAL: i32 = 2;
+
+#[derive(Parser)]
+#[command(
+    name = "steptable",
+    version,
+    about = "Turn a step table of pneumatic cylinder moves into I/O address lists and PLC programs"
+)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    pub(crate) command: Command,
+}
+
+#[derive(Subcommand)]
+pub(crate) enum Command {
+    /// Convert step tables into address sheets and PLC programs.
+    Convert(ConvertArgs),
+    /// Read and check step tables without writing anything.
+    Check(CheckArgs),
+    /// Simulate the generated program against a model of the pneumatics.
+    Simulate(SimulateArgs),
+    /// Tabulate what every sensor fault (stuck at 1 or 0) does to the machine.
+    Faults(FaultsArgs),
+    /// Work with the output templates.
+    #[command(subcommand)]
+    Templates(TemplatesCommand),
+    /// Write an empty step-table workbook to fill in Excel or LibreOffice.
+    Template(TemplateArgs),
+    /// Convert many workbooks at once, in parallel, with a summary.
+    Batch(BatchArgs),
+    /// Synthesise minimal logic equations for a single-branch sequence.
+    Synth(SynthArgs),
+}
+
+/// Runs the command line and returns the process exit code.
+pub fn run() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(err) => {
+            let _ = err.print();
+            return if err.use_stderr() {
+                EXIT_INTERNAL
+            } else {
+                EXIT_OK
+            };
+        }
+    };
+    match cli.command {
+        Command::Convert(args) => run_convert(&args),
+        Command::Check(args) => run_check(&args),
+        Command::Simulate(args) => run_simulate(&args),
+        Command::Faults(args) => run_faults(&args),
+        Command::Template(args) => run_template(&args),
+        Command::Batch(args) => run_batch(&args),
+        Command::Synth(args) => run_synth(&args),
+        Command::Templates(TemplatesCommand::Export { dir }) => {
+            match steptable::emit::templates::export_defaults(&dir) {
+                Ok(written) => {
+                    for path in written {
+                        out(&path.display().to_string());
+                    }
+                    EXIT_OK
+                }
+                Err(err) => {
+                    eprintln!("error: {}: {err}", dir.display());
+                    EXIT_INTERNAL
+                }
+            }
+        }
+    }
+}
+
+/// Prints to stdout; a closed pipe (`steptable check … | head`) is not an error.
+pub(crate) fn out(line: &str) {
+    let mut stdout = std::io::stdout().lock();
+    if writeln!(stdout, "{line}").is_err() {
+        std::process::exit(EXIT_OK);
+    }
+}
+
+/// Where results and problems go: human text (results on stdout, problems
+/// on stderr), or JSON diagnostics on stdout with the human lines on stderr.
+pub(crate) struct Reporter {
+    pub(crate) json: bool,
+}
+
+impl Reporter {
+    pub(crate) fn new(common: &CommonArgs) -> Self {
+        Reporter {
+            json: common.message_format == MessageFormat::Json,
+        }
+    }
+
+    pub(crate) fn diagnostics(&self, diagnostics: &[Diagnostic]) {
+        if self.json {
+            for d in diagnostics {
+                out(&d.to_json());
+            }
+        } else {
+            let mut stderr = std::io::stderr().lock();
+            for d in diagnostics {
+                let _ = writeln!(stderr, "{d}");
+            }
+        }
+    }
+
+    /// A line for people.
+    pub(crate) fn say(&self, line: &str) {
+        if self.json {
+            eprintln!("{line}");
+        } else {
+            out(line);
+        }
+    }
+}
+
+pub(crate) fn summary(
+    table: &steptable::table::StepTable,
+    allocation: &steptable::address::Allocation,
+) -> String {
+    format!(
+        "{} steps, {} branch(es), {} actuators, {} inputs, {} outputs",
+        table.steps.len(),
+        table.branches,
+        table.actuators.len(),
+        allocation.inputs.len(),
+        allocation.outputs.len()
+    )
+}
