@@ -44,6 +44,10 @@ pub enum Code {
     E030BadSetting,
     /// A valve that cannot do what the table asks (a middle stop on a 5/2 valve).
     E031ValveCannotStop,
+    /// A cell's text is longer than any move could be.
+    E013CellTooLong,
+    /// The file was read in an encoding other than UTF-8.
+    W001Encoding,
 }
 
 impl Code {
@@ -65,6 +69,8 @@ impl Code {
             Code::E024TableTooLarge => "E024",
             Code::E030BadSetting => "E030",
             Code::E031ValveCannotStop => "E031",
+            Code::E013CellTooLong => "E013",
+            Code::W001Encoding => "W001",
         }
     }
 }

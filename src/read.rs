@@ -13,6 +13,8 @@ use crate::table::header_kind;
 
 /// Largest input file read, in bytes.
 pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
+/// Largest size a zipped workbook (.xlsx, .xlsm, .ods) may unpack to.
+pub const MAX_UNPACKED_BYTES: u64 = 256 * 1024 * 1024;
 
 /// The sheet name of the published method's table.
 pub const TABLE_SHEET: &str = "SEQUENTIAL CONTROL DESCRIPTION";
@@ -218,6 +220,21 @@ fn read_workbook(
         sheet: None,
         cell: None,
     };
+    if matches!(format, Format::Xlsx | Format::Ods)
+        && let Some(unpacked) = unpacked_size(&bytes)
+        && unpacked > MAX_UNPACKED_BYTES
+    {
+        diags.error(
+            Code::E005TooLarge,
+            whole_file,
+            format!(
+                "the workbook unpacks to {} MiB; the limit is {} MiB",
+                unpacked / (1024 * 1024),
+                MAX_UNPACKED_BYTES / (1024 * 1024)
+            ),
+        );
+        return None;
+    }
     let cursor = Cursor::new(bytes);
     let opened: Result<Box<dyn SheetSource>, String> = match format {
         Format::Xlsx => open_workbook_from_rs::<Xlsx<_>, _>(cursor)
@@ -333,6 +350,13 @@ fn pick_table(
     None
 }
 
+/// The total unpacked size a zip archive declares, if it is one. A zip bomb
+/// declares its size honestly or fails its checks while being unpacked.
+fn unpacked_size(bytes: &[u8]) -> Option<u64> {
+    let archive = zip::ZipArchive::new(Cursor::new(bytes)).ok()?;
+    Some(archive.decompressed_size()?.min(u64::MAX as u128) as u64)
+}
+
 fn format_name(format: Format) -> &'static str {
     match format {
         Format::Xlsx => ".xlsx",
@@ -400,7 +424,16 @@ fn read_csv(file: &str, bytes: &[u8], diags: &mut Diagnostics) -> Option<Grid> {
         cell: None,
     };
     let text = match decode_text(bytes) {
-        Ok(text) => text,
+        Ok((text, encoding)) => {
+            if let Some(encoding) = encoding {
+                diags.warning(
+                    Code::W001Encoding,
+                    whole_file.clone(),
+                    format!("read as {encoding} text, not UTF-8"),
+                );
+            }
+            text
+        }
         Err(why) => {
             diags.error(Code::E002NotAWorkbook, whole_file, why);
             return None;
@@ -479,13 +512,17 @@ fn count_line_breaks(bytes: &[u8]) -> u64 {
     count
 }
 
-/// Decodes CSV bytes: UTF-8 (BOM optional) or UTF-16 with a BOM.
-fn decode_text(bytes: &[u8]) -> Result<String, String> {
+/// Decodes CSV bytes: UTF-8 (BOM optional), UTF-16 with a BOM (what Excel's
+/// "Unicode text" writes), or else Windows-1252 (what older Excel writes in
+/// Europe), which is reported. Returns the text and, if it was not UTF-8, the
+/// encoding found.
+fn decode_text(bytes: &[u8]) -> Result<(String, Option<&'static str>), String> {
     if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]) {
         return String::from_utf8(rest.to_vec())
+            .map(|t| (t, None))
             .map_err(|_| "starts with a UTF-8 byte order mark but is not valid UTF-8".to_string());
     }
-    let utf16 = |rest: &[u8], little: bool| -> Result<String, String> {
+    let utf16 = |rest: &[u8], little: bool| -> Result<(String, Option<&'static str>), String> {
         let units: Vec<u16> = rest
             .chunks_exact(2)
             .map(|p| {
@@ -496,7 +533,9 @@ fn decode_text(bytes: &[u8]) -> Result<String, String> {
                 }
             })
             .collect();
-        String::from_utf16(&units).map_err(|_| "UTF-16 text with invalid characters".to_string())
+        String::from_utf16(&units)
+            .map(|t| (t, Some("UTF-16")))
+            .map_err(|_| "UTF-16 text with invalid characters".to_string())
     };
     if let Some(rest) = bytes.strip_prefix(&[0xFF, 0xFE]) {
         return utf16(rest, true);
@@ -507,12 +546,20 @@ fn decode_text(bytes: &[u8]) -> Result<String, String> {
     if bytes.contains(&0) {
         return Err("binary data, not a CSV text file".to_string());
     }
-    String::from_utf8(bytes.to_vec()).map_err(|e| {
-        format!(
-            "not UTF-8 text (invalid byte at offset {}); save the CSV as \"CSV UTF-8\"",
-            e.utf8_error().valid_up_to()
-        )
-    })
+    match String::from_utf8(bytes.to_vec()) {
+        Ok(text) => Ok((text, None)),
+        Err(e) => {
+            let offset = e.utf8_error().valid_up_to();
+            encoding_rs::WINDOWS_1252
+                .decode_without_bom_handling_and_without_replacement(bytes)
+                .map(|text| (text.into_owned(), Some("Windows-1252")))
+                .ok_or_else(|| {
+                    format!(
+                        "neither UTF-8 nor Windows-1252 text (invalid byte at offset {offset}); save the CSV as \"CSV UTF-8\""
+                    )
+                })
+        }
+    }
 }
 
 /// Picks `,`, `;` or tab: whichever occurs most often outside quotes in the

@@ -12,6 +12,8 @@ use crate::read::{CellValue, Grid};
 pub const MAX_STEPS: usize = 10_000;
 /// Largest number of branches accepted.
 pub const MAX_BRANCHES: usize = 256;
+/// Longest text accepted in a cell of the table (a move has a dozen characters).
+pub const MAX_CELL_CHARS: usize = 200;
 
 /// A header cell of the published layout.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -282,6 +284,15 @@ fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Option<Cel
             return None;
         }
     };
+    let chars = text.chars().count();
+    if chars > MAX_CELL_CHARS {
+        diags.error(
+            Code::E013CellTooLong,
+            location,
+            format!("the cell holds {chars} characters; a move has at most {MAX_CELL_CHARS}"),
+        );
+        return None;
+    }
     match parse_move(text) {
         Ok(m) => Some(m),
         Err(CellError::NotAMove) => {

@@ -6,6 +6,7 @@ mod broken;
 mod diagram;
 mod exports;
 mod helpers;
+mod hostile;
 mod paper;
 mod properties;
 mod safety;
