@@ -86,3 +86,145 @@ proptest! {
         }
     }
 }
+
+/// A random move as the table writes it.
+fn any_move() -> impl Strategy<Value = steptable::cell::CellMove> {
+    (1u32..=999, any::<bool>(), prop::option::of(0u32..=63)).prop_map(
+        |(actuator, plus, position)| steptable::cell::CellMove {
+            actuator,
+            sign: if plus {
+                steptable::cell::Sign::Plus
+            } else {
+                steptable::cell::Sign::Minus
+            },
+            position,
+        },
+    )
+}
+
+/// Text that can never be a move: no `C` followed by a digit, or no sign.
+fn garbage() -> impl Strategy<Value = String> {
+    prop_oneof![
+        "[A-BD-Za-bd-z!?#*/ ]{1,12}",
+        "C[0-9]{1,3}",
+        "C[0-9]{1,2}[xyz*/]{1,3}",
+        "[+\\-][0-9]{1,3}",
+    ]
+    .prop_filter("must not read as a move", |t| {
+        steptable::cell::parse_move(t).is_err() && !t.trim().is_empty()
+    })
+}
+
+/// A table in the template's layout: a header row `BRANCH 1 …`, then a
+/// `STEP k` label before each step's cells. Cell (r, c) of `rows` sits at
+/// row r+1, column c+1.
+fn with_headers(rows: &[Vec<String>]) -> Vec<Vec<String>> {
+    let branches = rows.iter().map(Vec::len).max().unwrap_or(1);
+    let mut out = vec![
+        std::iter::once(String::new())
+            .chain((1..=branches).map(|b| format!("BRANCH {b}")))
+            .collect::<Vec<_>>(),
+    ];
+    for (k, row) in rows.iter().enumerate() {
+        out.push(
+            std::iter::once(format!("STEP {}", k + 1))
+                .chain(row.iter().cloned())
+                .collect(),
+        );
+    }
+    out
+}
+
+fn random_table() -> impl Strategy<Value = Vec<Vec<String>>> {
+    (any::<u64>(), 1u32..=8, 1u32..=3, 1u32..=4, 4u32..=30).prop_map(
+        |(seed, actuators, max_position, branches, steps)| {
+            steptable::random_table::random_rows(
+                seed,
+                steptable::random_table::Shape {
+                    actuators,
+                    max_position,
+                    branches,
+                    steps,
+                },
+            )
+        },
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    /// Every move the parser prints, it reads back (also in other spellings).
+    #[test]
+    fn the_cell_parser_round_trips(m in any_move()) {
+        let printed = m.to_string();
+        prop_assert_eq!(steptable::cell::parse_move(&printed), Ok(m));
+        let spaced = printed.to_lowercase().replace('-', " \u{2212} ").replace('+', " + ");
+        prop_assert_eq!(steptable::cell::parse_move(&spaced), Ok(m));
+    }
+
+    /// A cell of a valid table changed to garbage is reported at that cell.
+    #[test]
+    fn garbage_is_reported_at_its_cell(rows in random_table(), pick in any::<prop::sample::Index>(), text in garbage()) {
+        let mut rows = rows;
+        let cells: Vec<(usize, usize)> = rows
+            .iter()
+            .enumerate()
+            .flat_map(|(r, row)| (0..row.len()).map(move |c| (r, c)))
+            .collect();
+        let (r, c) = cells[pick.index(cells.len())];
+        rows[r][c] = text.clone();
+        let errors = steptable::table::from_rows("edit.csv", &with_headers(&rows)).expect_err("garbage cannot be valid");
+        let here = errors.iter().any(|d| {
+            d.location.cell.map(|p| (p.row as usize, p.col as usize)) == Some((r + 1, c + 1))
+                && d.code.as_str() == "E010"
+        });
+        prop_assert!(here, "{text:?} at {r},{c}: {:?}", errors.iter().map(|d| d.to_string()).collect::<Vec<_>>());
+    }
+
+    /// A step row written twice: every move of the copy goes nowhere, and
+    /// each is reported at its own cell.
+    #[test]
+    fn a_duplicated_row_is_reported_cell_by_cell(rows in random_table(), pick in any::<prop::sample::Index>()) {
+        let mut rows = rows;
+        let k = pick.index(rows.len());
+        let copy = rows[k].clone();
+        rows.insert(k + 1, copy.clone());
+        let errors = steptable::table::from_rows("dup.csv", &with_headers(&rows)).expect_err("a repeated step is invalid");
+        for c in 0..copy.len() {
+            let reported = errors.iter().any(|d| {
+                d.location.cell.map(|p| (p.row as usize, p.col as usize)) == Some((k + 2, c + 1))
+                    && d.code.as_str() == "E020"
+            });
+            prop_assert!(reported, "row {} col {c}: {:?}", k + 1, errors.iter().map(|d| d.to_string()).collect::<Vec<_>>());
+        }
+    }
+
+    /// A deleted move never panics; if the table becomes invalid, a problem
+    /// is reported at a move of the same actuator.
+    #[test]
+    fn a_deleted_move_is_reported_at_its_actuator(rows in random_table(), pick in any::<prop::sample::Index>()) {
+        let mut rows = rows;
+        let cells: Vec<(usize, usize)> = rows
+            .iter()
+            .enumerate()
+            .flat_map(|(r, row)| (0..row.len()).map(move |c| (r, c)))
+            .collect();
+        let (r, c) = cells[pick.index(cells.len())];
+        let removed = std::mem::take(&mut rows[r][c]);
+        let actuator = steptable::cell::parse_move(&removed).unwrap().actuator;
+        let framed = with_headers(&rows);
+        if let Err(errors) = steptable::table::from_rows("del.csv", &framed) {
+            let own = errors.iter().any(|d| match d.location.cell {
+                Some(p) => framed
+                    .get(p.row as usize)
+                    .and_then(|row| row.get(p.col as usize))
+                    .and_then(|t| steptable::cell::parse_move(t).ok())
+                    .is_some_and(|m| m.actuator == actuator)
+                    || d.code.as_str() == "E023",
+                None => false,
+            });
+            prop_assert!(own, "C{actuator} removed at {r},{c}: {:?}", errors.iter().map(|d| d.to_string()).collect::<Vec<_>>());
+        }
+    }
+}
