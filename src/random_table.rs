@@ -87,6 +87,11 @@ pub fn random_rows(seed: u64, shape: Shape) -> Vec<Vec<String>> {
         }
         rows.push(row);
     }
+    if rows.is_empty() {
+        // Every table has at least one step: move the first actuator out.
+        rows.push(vec![format!("C1+{}", pmax[0])]);
+        at[0] = pmax[0];
+    }
     let away: Vec<usize> = (0..n).filter(|a| at[*a] != 0).collect();
     for chunk in away.chunks(branches) {
         rows.push(chunk.iter().map(|a| format!("C{}-0", a + 1)).collect());
@@ -97,6 +102,22 @@ pub fn random_rows(seed: u64, shape: Shape) -> Vec<Vec<String>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn even_a_one_step_budget_gives_a_table() {
+        for seed in 0..20 {
+            let rows = random_rows(
+                seed,
+                Shape {
+                    actuators: 1,
+                    max_position: 1,
+                    branches: 1,
+                    steps: 1,
+                },
+            );
+            assert!(crate::table::from_rows("r.csv", &rows).is_ok(), "{rows:?}");
+        }
+    }
 
     #[test]
     fn generated_tables_are_valid_and_sized() {
