@@ -76,7 +76,8 @@ fn main() {
     for jobs in [1, 2] {
         let out = dir.path().join(format!("out{jobs}"));
         let start = Instant::now();
-        let outcomes = batch::run(&inputs, &out, &settings, jobs, &|_| {});
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        let outcomes = batch::run(&inputs, &out, &settings, jobs, &stop, &|_| {});
         let seconds = start.elapsed().as_secs_f64();
         let failed = outcomes
             .iter()

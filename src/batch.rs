@@ -3,6 +3,7 @@
 //! never stops the others, and `summary.csv` lists what happened to each.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -20,6 +21,8 @@ pub enum Status {
     Failed,
     /// A bug, a template that is not the user's, or an I/O failure.
     Internal,
+    /// Not started: the run was interrupted (Ctrl-C) first.
+    Skipped,
 }
 
 impl Status {
@@ -28,6 +31,7 @@ impl Status {
             Status::Converted => "converted",
             Status::Failed => "failed",
             Status::Internal => "internal error",
+            Status::Skipped => "skipped (interrupted)",
         }
     }
 }
@@ -138,17 +142,33 @@ fn has_csv_extension(path: &Path) -> bool {
 }
 
 /// Converts every input into `out/NAME/`, `jobs` at a time, calling
-/// `on_done` as each finishes. Outcomes come back in input order.
+/// `on_done` as each finishes. Once `stop` is set, inputs not yet started are
+/// skipped; those under way finish (their files land whole). Outcomes come
+/// back in input order.
 pub fn run(
     inputs: &[PathBuf],
     out: &Path,
     settings: &Settings,
     jobs: usize,
+    stop: &AtomicBool,
     on_done: &(dyn Fn(&Outcome) + Sync),
 ) -> Vec<Outcome> {
     let names = convert::output_names(inputs);
     let convert_one = |(input, name): (&PathBuf, &String)| {
-        let outcome = convert_one(input, name, out, settings, inputs);
+        let outcome = if stop.load(Ordering::SeqCst) {
+            Outcome {
+                input: input.clone(),
+                name: name.clone(),
+                status: Status::Skipped,
+                diagnostics: Vec::new(),
+                message: None,
+                steps: None,
+                actuators: None,
+                millis: 0,
+            }
+        } else {
+            convert_one(input, name, out, settings, inputs)
+        };
         on_done(&outcome);
         outcome
     };

@@ -61,7 +61,12 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
             bar.inc(1);
         }
     };
-    let outcomes = batch::run(&inputs, &args.output, &settings, jobs, &on_done);
+    // Ctrl-C: let the conversions under way finish (their files land whole),
+    // skip the rest, and still write the summary.
+    static STOP: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    let _ = ctrlc::set_handler(|| STOP.store(true, std::sync::atomic::Ordering::SeqCst));
+    let outcomes = batch::run(&inputs, &args.output, &settings, jobs, &STOP, &on_done);
+    let interrupted = STOP.load(std::sync::atomic::Ordering::SeqCst);
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -77,16 +82,26 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
             Status::Converted => {}
             Status::Failed => code = code.max(EXIT_BAD_INPUT),
             Status::Internal => code = EXIT_INTERNAL,
+            Status::Skipped => {}
         }
     }
     let failed: Vec<&batch::Outcome> = outcomes
         .iter()
-        .filter(|o| o.status != Status::Converted)
+        .filter(|o| !matches!(o.status, Status::Converted | Status::Skipped))
         .collect();
+    let skipped = outcomes
+        .iter()
+        .filter(|o| o.status == Status::Skipped)
+        .count();
+    if interrupted {
+        report.say(&format!(
+            "interrupted: {skipped} input(s) not started; everything written is complete"
+        ));
+    }
     let seconds = started.elapsed().as_secs_f64();
     report.say(&format!(
         "{} converted, {} failed, in {:.2} s ({:.1} workbooks/s, {} jobs) -> {}",
-        outcomes.len() - failed.len(),
+        outcomes.len() - failed.len() - skipped,
         failed.len() + missing.len(),
         seconds,
         outcomes.len() as f64 / seconds.max(1e-9),
@@ -118,6 +133,10 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
             eprintln!("internal error: summary: {err}");
             code = EXIT_INTERNAL;
         }
+    }
+    if interrupted {
+        // The shell's convention for a run ended by Ctrl-C.
+        return EXIT_INTERRUPTED;
     }
     code
 }

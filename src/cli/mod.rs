@@ -31,6 +31,8 @@ use cmd_template::*;
 pub(crate) const EXIT_OK: i32 = 0;
 pub(crate) const EXIT_BAD_INPUT: i32 = 1;
 pub(crate) const EXIT_INTERNAL: i32 = 2;
+/// `batch` interrupted by Ctrl-C (128 + SIGINT, as shells report it).
+pub(crate) const EXIT_INTERRUPTED: i32 = 130;
 
 #[derive(Parser)]
 #[command(

@@ -150,3 +150,110 @@ fn check_and_convert_speak_json_too() {
         assert_eq!(first["sheet"], serde_json::Value::Null);
     }
 }
+
+/// Ctrl-C during a batch: conversions under way finish, the rest are skipped,
+/// every folder written is complete, and the summary says what was done.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_leaves_only_complete_outputs_and_a_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in");
+    std::fs::create_dir(&input).unwrap();
+    for i in 0..80 {
+        std::fs::copy(
+            sample("paper_example.xlsx"),
+            input.join(format!("line{i:02}.xlsx")),
+        )
+        .unwrap();
+    }
+    let out = dir.path().join("out");
+    let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("steptable"))
+        .arg("batch")
+        .arg(&input)
+        .arg("-o")
+        .arg(&out)
+        .args(["-j", "1", "--quiet"])
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Wait until some outputs exist, then interrupt.
+    let start = std::time::Instant::now();
+    while files_below(&out).len() < 14 && start.elapsed() < std::time::Duration::from_secs(20) {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let output = child.wait_with_output().unwrap();
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let rows = summary.lines().count() - 1;
+    assert_eq!(rows, 80, "every input is listed");
+    let converted = summary.matches(",converted,").count();
+    let skipped = summary.matches(",skipped (interrupted),").count();
+    if output.status.code() == Some(130) {
+        assert!(skipped > 0, "{stdout}");
+        assert!(stdout.contains("interrupted:"), "{stdout}");
+    }
+    assert_eq!(converted + skipped, 80, "{summary}");
+    // Each folder is complete: all 14 files, no temporary file left.
+    let kinds = steptable::convert::OutputKind::ALL.len();
+    for entry in std::fs::read_dir(&out).unwrap().flatten() {
+        if entry.path().is_dir() {
+            let files = files_below(&entry.path());
+            assert_eq!(files.len(), kinds, "{}", entry.path().display());
+            assert!(
+                files
+                    .iter()
+                    .all(|f| !f.to_string_lossy().contains(".steptable-"))
+            );
+        }
+    }
+    assert_eq!(
+        std::fs::read_dir(&out)
+            .unwrap()
+            .flatten()
+            .filter(|e| e.path().is_dir())
+            .count(),
+        converted
+    );
+}
+
+/// Two batch runs into the same folder at once leave every output complete.
+#[test]
+fn two_runs_into_one_folder_leave_complete_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in");
+    std::fs::create_dir(&input).unwrap();
+    for i in 0..6 {
+        std::fs::copy(
+            sample("paper_example.xlsx"),
+            input.join(format!("line{i}.xlsx")),
+        )
+        .unwrap();
+    }
+    let out = dir.path().join("out");
+    let spawn = || {
+        std::process::Command::new(assert_cmd::cargo::cargo_bin("steptable"))
+            .arg("batch")
+            .arg(&input)
+            .arg("-o")
+            .arg(&out)
+            .arg("--quiet")
+            .stdout(std::process::Stdio::null())
+            .spawn()
+            .unwrap()
+    };
+    let (mut a, mut b) = (spawn(), spawn());
+    assert!(a.wait().unwrap().success());
+    assert!(b.wait().unwrap().success());
+    let expected = std::fs::read(out.join("line0/line0.st")).unwrap();
+    for i in 0..6 {
+        let folder = out.join(format!("line{i}"));
+        let files = files_below(&folder);
+        assert_eq!(files.len(), steptable::convert::OutputKind::ALL.len());
+        let st = std::fs::read(folder.join(format!("line{i}.st"))).unwrap();
+        assert_eq!(st.len(), expected.len());
+    }
+}
