@@ -252,7 +252,34 @@ struct Run<'a> {
     last_move: Vec<Option<ActiveMove>>,
     start_pressed: bool,
     trace: Vec<(u64, Vec<f64>)>,
-    last_literals_false: Vec<Literal>,
+    /// Per piston, the PLC indices of its `+`, `-` and single coil.
+    coils: Vec<(Option<usize>, Option<usize>, Option<usize>)>,
+}
+
+impl Run<'_> {
+    /// The literals of step `index`'s condition that do not hold now.
+    fn missing(&self, index: usize) -> Vec<Literal> {
+        let Some(step) = self.program.steps.get(index) else {
+            return Vec::new();
+        };
+        step.condition
+            .iter()
+            .copied()
+            .filter(|l| {
+                let raw = match l.signal {
+                    Signal::Start | Signal::Sensor { .. } => read_input(
+                        l.signal,
+                        self.settings,
+                        &self.pistons,
+                        &self.index_of,
+                        self.start_pressed,
+                    ),
+                    other => self.plc.bit(other),
+                };
+                raw == l.negated
+            })
+            .collect()
+    }
 }
 
 impl Run<'_> {
@@ -287,23 +314,6 @@ impl Run<'_> {
         );
         let read = |s: Signal| read_input(s, settings, pistons, index_of, start);
         let result = scan(self.program, &mut self.plc, &read, settings.scan_ms as u64);
-        if result.fired.is_none()
-            && let Some(step) = self.program.steps.get(awaited)
-        {
-            let plc = &self.plc;
-            self.last_literals_false = step
-                .condition
-                .iter()
-                .copied()
-                .filter(|l| {
-                    let raw = match l.signal {
-                        Signal::Start | Signal::Sensor { .. } => read(l.signal),
-                        other => plc.bit(other),
-                    };
-                    raw == l.negated
-                })
-                .collect();
-        }
         if let Some(fired) = result.fired {
             self.on_fire(fired);
         }
@@ -311,14 +321,10 @@ impl Run<'_> {
         // Outputs to valves, then the plant moves for one scan period.
         for i in 0..self.pistons.len() {
             let number = self.pistons[i].number;
-            let plus = self.plc.bit(Signal::Coil {
-                actuator: number,
-                sign: Sign::Plus,
-            }) || self.plc.bit(Signal::SingleCoil { actuator: number });
-            let minus = self.plc.bit(Signal::Coil {
-                actuator: number,
-                sign: Sign::Minus,
-            });
+            let (plus_at, minus_at, single_at) = self.coils[i];
+            let on = |at: Option<usize>| at.is_some_and(|i| self.plc.bit_at(i));
+            let plus = on(plus_at) || on(single_at);
+            let minus = on(minus_at);
             if self.pistons[i].drive(plus, minus) {
                 let step = self.current_step();
                 self.problem(
@@ -575,8 +581,26 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
         last_move: vec![None; table.actuators.len()],
         start_pressed: false,
         trace: Vec::new(),
-        last_literals_false: Vec::new(),
+        coils: Vec::new(),
     };
+    run.coils = table
+        .actuators
+        .iter()
+        .map(|a| {
+            let at = |s: Signal| run.plc.index_of(s);
+            (
+                at(Signal::Coil {
+                    actuator: a.number,
+                    sign: Sign::Plus,
+                }),
+                at(Signal::Coil {
+                    actuator: a.number,
+                    sign: Sign::Minus,
+                }),
+                at(Signal::SingleCoil { actuator: a.number }),
+            )
+        })
+        .collect();
     let timeout = step_timeout_ms(table, program, settings);
     let step_count = program.steps.len();
     let mut cycles: Vec<CycleReport> = Vec::new();
@@ -626,7 +650,9 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
                 let waiting = &program.steps[run.plc.awaited];
                 // START was pressed and released; it only explains the wait
                 // when nothing else is missing.
-                let mut missing_literals = run.last_literals_false.clone();
+                // The plant stands still while the sequence waits: what is
+                // missing now is what was missing.
+                let mut missing_literals = run.missing(run.plc.awaited);
                 if missing_literals.len() > 1 {
                     missing_literals.retain(|l| l.signal != Signal::Start);
                 }
