@@ -303,7 +303,6 @@ impl Run<'_> {
     /// One PLC scan plus one scan period of the plant. Returns the index of the
     /// step that fired, if any.
     fn tick(&mut self) -> Option<usize> {
-        let awaited = self.plc.awaited;
         // Inputs are read from the plant as it stands at the start of the
         // scan; the plant does not move while the program runs.
         let (settings, pistons, index_of, start) = (
