@@ -50,6 +50,33 @@ pub struct Grid {
 }
 
 impl Grid {
+    /// A grid of text cells laid out from A1 (blank strings are empty
+    /// cells), as if read from `sheet` of `file` — for tests and generated
+    /// tables.
+    pub fn from_text_rows<R, S>(file: &str, sheet: Option<&str>, rows: &[R]) -> Grid
+    where
+        R: AsRef<[S]>,
+        S: AsRef<str>,
+    {
+        let mut cells = Vec::new();
+        for (r, row) in rows.iter().enumerate() {
+            for (c, text) in row.as_ref().iter().enumerate() {
+                let text = text.as_ref();
+                if !text.trim().is_empty() {
+                    cells.push(GridCell {
+                        pos: CellPos::new(r as u32, c as u32),
+                        value: CellValue::Text(text.to_string()),
+                    });
+                }
+            }
+        }
+        Grid {
+            file: file.to_string(),
+            sheet: sheet.map(str::to_string),
+            cells,
+        }
+    }
+
     /// The location of a cell of this grid, for diagnostics.
     pub fn location(&self, pos: CellPos) -> Location {
         Location {

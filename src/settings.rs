@@ -224,25 +224,9 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::read::GridCell;
 
     fn grid(rows: &[&[&str]]) -> Grid {
-        let mut cells = Vec::new();
-        for (r, row) in rows.iter().enumerate() {
-            for (c, text) in row.iter().enumerate() {
-                if !text.is_empty() {
-                    cells.push(GridCell {
-                        pos: CellPos::new(r as u32, c as u32),
-                        value: CellValue::Text(text.to_string()),
-                    });
-                }
-            }
-        }
-        Grid {
-            file: "t.xlsx".into(),
-            sheet: Some("SETTINGS".into()),
-            cells,
-        }
+        Grid::from_text_rows("t.xlsx", Some("SETTINGS"), rows)
     }
 
     #[test]

@@ -556,23 +556,7 @@ where
     R: AsRef<[S]>,
     S: AsRef<str>,
 {
-    let mut cells = Vec::new();
-    for (r, row) in rows.iter().enumerate() {
-        for (c, text) in row.as_ref().iter().enumerate() {
-            let text = text.as_ref();
-            if !text.trim().is_empty() {
-                cells.push(crate::read::GridCell {
-                    pos: CellPos::new(r as u32, c as u32),
-                    value: CellValue::Text(text.to_string()),
-                });
-            }
-        }
-    }
-    let grid = Grid {
-        file: file.to_string(),
-        sheet: None,
-        cells,
-    };
+    let grid = Grid::from_text_rows(file, None, rows);
     let mut diags = Diagnostics::new();
     match build(&grid, &mut diags) {
         Some(table) => Ok(table),
@@ -598,26 +582,10 @@ impl CellName for CellPos {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::read::GridCell;
 
     /// A grid from rows of text, top-left at A1; "" is an empty cell.
     pub(crate) fn grid(rows: &[&[&str]]) -> Grid {
-        let mut cells = Vec::new();
-        for (r, row) in rows.iter().enumerate() {
-            for (c, text) in row.iter().enumerate() {
-                if !text.is_empty() {
-                    cells.push(GridCell {
-                        pos: CellPos::new(r as u32, c as u32),
-                        value: CellValue::Text(text.to_string()),
-                    });
-                }
-            }
-        }
-        Grid {
-            file: "t.xlsx".into(),
-            sheet: Some("S".into()),
-            cells,
-        }
+        Grid::from_text_rows("t.xlsx", Some("S"), rows)
     }
 
     fn errors(rows: &[&[&str]]) -> Vec<String> {
