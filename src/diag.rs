@@ -48,6 +48,8 @@ pub enum Code {
     E013CellTooLong,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
+    /// A `STEP n` label does not match the row's place in the table.
+    W002StepNumber,
 }
 
 impl Code {
@@ -71,6 +73,7 @@ impl Code {
             Code::E031ValveCannotStop => "E031",
             Code::E013CellTooLong => "E013",
             Code::W001Encoding => "W001",
+            Code::W002StepNumber => "W002",
         }
     }
 }

@@ -363,13 +363,14 @@ fn find_frame(grid: &Grid, diags: &mut Diagnostics) -> Option<Frame> {
             .filter(|p| p.row > header_row && p.col < first_branch)
             .collect();
         if let Some(label_col) = most_common(labels.iter().map(|p| p.col)) {
-            let step_rows = labels
+            let step_rows: Vec<u32> = labels
                 .iter()
                 .filter(|p| p.col == label_col)
                 .map(|p| p.row)
                 .collect::<BTreeSet<_>>()
                 .into_iter()
                 .collect();
+            warn_on_label_numbers(grid, label_col, &step_rows, diags);
             return Some(Frame {
                 step_rows,
                 labelled: true,
@@ -429,6 +430,40 @@ fn find_frame(grid: &Grid, diags: &mut Diagnostics) -> Option<Frame> {
         labelled: false,
         branch_cols: (min_col..=max_col).collect(),
     })
+}
+
+/// Steps are numbered by their order on the sheet; a `STEP n` label that
+/// says otherwise (a copied row, a skipped number) is worth a warning, since
+/// every output uses the row order.
+fn warn_on_label_numbers(grid: &Grid, label_col: u32, step_rows: &[u32], diags: &mut Diagnostics) {
+    for (k, row) in step_rows.iter().enumerate() {
+        let pos = CellPos::new(*row, label_col);
+        let number = grid
+            .cells
+            .iter()
+            .find(|c| c.pos == pos)
+            .and_then(|c| match &c.value {
+                CellValue::Text(t) => match header_kind(t) {
+                    Some(Header::Step(n)) => Some(n),
+                    _ => None,
+                },
+                _ => None,
+            });
+        if let Some(n) = number
+            && n as usize != k + 1
+        {
+            diags.warning(
+                Code::W002StepNumber,
+                grid.location(pos),
+                format!(
+                    "this row is labelled STEP {n} but is step {} of the table; steps are numbered by their order",
+                    k + 1
+                ),
+            );
+            // One warning tells the story; the rows below are shifted alike.
+            return;
+        }
+    }
 }
 
 /// The most frequent value; the smallest one on a tie.
@@ -616,6 +651,20 @@ mod tests {
         assert_eq!(table.steps[1].moves[0].notation(), "C2+1");
         assert_eq!(table.steps[1].moves[1].branch, 1);
         assert_eq!(table.actuators.len(), 2);
+    }
+
+    #[test]
+    fn a_misnumbered_step_label_is_a_warning() {
+        let mut diags = Diagnostics::new();
+        let rows: &[&[&str]] = &[&["", "BRANCH 1"], &["STEP 1", "C1+1"], &["STEP 3", "C1-0"]];
+        assert!(build(&grid(rows), &mut diags).is_some());
+        let all = diags.into_sorted();
+        assert_eq!(all.len(), 1);
+        assert!(
+            all[0]
+                .to_string()
+                .contains("S!A3: warning[W002]: this row is labelled STEP 3 but is step 2")
+        );
     }
 
     #[test]
