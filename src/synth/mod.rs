@@ -267,6 +267,10 @@ fn equations_of(
     Some((table, equations))
 }
 
+/// Most minimal sequences (with their polarities) compared for the smallest
+/// equations.
+const MAX_COMPARED: usize = 1500;
+
 /// The sequence with every combination of memories inverted (2^memories).
 fn polarities(sequence: &Sequence) -> Vec<Sequence> {
     (0..1u32 << sequence.memories)
@@ -418,7 +422,11 @@ fn exact_sequence(original: &Sequence) -> Result<(Sequence, usize, usize, bool),
     // The search sets every memory first; a memory that is reset first is
     // the same sequence with that memory inverted, but its equations differ
     // in size (x becomes NOT x): try every polarity.
-    let variants: Vec<Sequence> = minimal.solutions.iter().flat_map(polarities).collect();
+    let mut variants: Vec<Sequence> = minimal.solutions.iter().flat_map(polarities).collect();
+    // Long sequences have thousands of minimal placements: compare a bounded
+    // number for the smallest equations (the report says when it was cut).
+    let truncated = minimal.truncated || variants.len() > MAX_COMPARED;
+    variants.truncate(MAX_COMPARED);
     for candidate in &variants {
         // Only a candidate at most as large as the best so far can win.
         let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
@@ -451,12 +459,7 @@ fn exact_sequence(original: &Sequence) -> Result<(Sequence, usize, usize, bool),
             "the equation search reached its limits on every minimal sequence".to_string(),
         )
     })?;
-    Ok((
-        modified,
-        minimal.insertions,
-        variants.len(),
-        minimal.truncated,
-    ))
+    Ok((modified, minimal.insertions, variants.len(), truncated))
 }
 
 #[cfg(test)]
