@@ -398,8 +398,12 @@ pub fn build_program(table: &StepTable, settings: &Settings) -> (Allocation, Ste
 
 /// Generates every output of a checked table.
 pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
-    let settings = &checked.settings;
-    let table = checked.table.clone();
+    let Checked {
+        table,
+        warnings,
+        settings,
+    } = checked;
+    let settings = &settings;
     let (allocation, program) = build_program(&table, settings);
     let sim_settings = SimSettings {
         record_trace: settings.diagram == DiagramKind::Time,
@@ -425,6 +429,10 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
     let internal =
         |what: &str, e: &dyn std::fmt::Display| Failure::Internal(format!("{what}: {e}"));
     let scan = settings.simulation.scan_ms;
+    // The IEC files share one model (with the ST body), the STEP 7 files
+    // another: each is built on first use and reused.
+    let mut iec_model: Option<minijinja::Value> = None;
+    let mut awl_model: Option<minijinja::Value> = None;
     let mut files = Vec::new();
     for kind in OutputKind::ALL {
         if !settings.formats.contains(&kind) {
@@ -437,9 +445,6 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
             OutputKind::Workbook => {
                 emit::workbook::render(&input).map_err(|e| internal("workbook", &e))?
             }
-            OutputKind::StructuredText => {
-                text(emit::st::render(&input, IecFile::StructuredText, scan))?
-            }
             OutputKind::Fst => text(emit::fst::render(&input))?,
             OutputKind::Allocation => {
                 emit::io_csv::render(&input).map_err(|e| internal("allocation list", &e))?
@@ -450,14 +455,37 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
             OutputKind::Faults => {
                 faults::render_csv(&fault_table).map_err(|e| internal("fault table", &e))?
             }
-            OutputKind::PlcOpen => text(emit::st::render(&input, IecFile::PlcOpen, scan))?,
-            OutputKind::Codesys => text(emit::st::render(&input, IecFile::Codesys, scan))?,
-            OutputKind::Gvl => text(emit::st::render(&input, IecFile::GlobalVariables, scan))?,
+            OutputKind::StructuredText
+            | OutputKind::PlcOpen
+            | OutputKind::Codesys
+            | OutputKind::Gvl => {
+                let file = match kind {
+                    OutputKind::StructuredText => IecFile::StructuredText,
+                    OutputKind::PlcOpen => IecFile::PlcOpen,
+                    OutputKind::Codesys => IecFile::Codesys,
+                    _ => IecFile::GlobalVariables,
+                };
+                let model = match &iec_model {
+                    Some(model) => model.clone(),
+                    None => {
+                        let model = emit::st::model(&input, scan).map_err(Failure::Template)?;
+                        iec_model.insert(model).clone()
+                    }
+                };
+                text(emit::st::render(&input, &model, file))?
+            }
             OutputKind::TiaTags => {
                 emit::tables::render_tia_tags(&input).map_err(|e| internal("TIA tag table", &e))?
             }
-            OutputKind::Awl => text(emit::awl::render_awl(&input))?,
-            OutputKind::SymbolTable => text(emit::awl::render_sdf(&input))?,
+            OutputKind::Awl | OutputKind::SymbolTable => {
+                let model = awl_model
+                    .get_or_insert_with(|| emit::awl::model(&input))
+                    .clone();
+                match kind {
+                    OutputKind::Awl => text(emit::awl::render_awl(&input, &model))?,
+                    _ => text(emit::awl::render_sdf(&input, &model))?,
+                }
+            }
             OutputKind::FstAllocation => text(emit::tables::render_fst_alloc(&input))?,
             OutputKind::Rockwell => text(emit::tables::render_rockwell(&input))?,
         };
@@ -474,7 +502,7 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
         simulation,
         faults: fault_table,
         files,
-        warnings: checked.warnings,
+        warnings,
     })
 }
 

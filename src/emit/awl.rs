@@ -400,18 +400,20 @@ fn build(input: &EmitInput) -> Context {
     }
 }
 
-/// Renders `NAME.awl`.
-pub fn render_awl(input: &EmitInput) -> Result<String, templates::TemplateError> {
-    input
-        .templates
-        .render("program.awl.j2", Value::from(Serde(&build(input))))
+/// The networks and symbols both STEP 7 files lay out: build it once per
+/// conversion and hand it to [`render_awl`] and [`render_sdf`].
+pub fn model(input: &EmitInput) -> Value {
+    Value::from(Serde(&build(input)))
 }
 
-/// Renders `NAME.sdf`.
-pub fn render_sdf(input: &EmitInput) -> Result<String, templates::TemplateError> {
-    input
-        .templates
-        .render("symbols.sdf.j2", Value::from(Serde(&build(input))))
+/// Renders `NAME.awl` from the [`model`].
+pub fn render_awl(input: &EmitInput, model: &Value) -> Result<String, templates::TemplateError> {
+    input.templates.render("program.awl.j2", model.clone())
+}
+
+/// Renders `NAME.sdf` from the [`model`].
+pub fn render_sdf(input: &EmitInput, model: &Value) -> Result<String, templates::TemplateError> {
+    input.templates.render("symbols.sdf.j2", model.clone())
 }
 
 #[cfg(test)]

@@ -303,18 +303,23 @@ pub enum IecFile {
     GlobalVariables,
 }
 
-/// Renders one IEC file.
+/// The data every IEC template lays out, with the program body rendered once:
+/// build it once per conversion and hand it to [`render`] for each file.
+pub fn model(input: &EmitInput, scan_millis: u32) -> Result<Value, templates::TemplateError> {
+    Ok(Value::from(Serde(&context(input, scan_millis)?)))
+}
+
+/// Renders one IEC file from the [`model`].
 pub fn render(
     input: &EmitInput,
+    model: &Value,
     file: IecFile,
-    scan_millis: u32,
 ) -> Result<String, templates::TemplateError> {
-    let context = Value::from(Serde(&context(input, scan_millis)?));
     let template = match file {
         IecFile::StructuredText => "program.st.j2",
         IecFile::PlcOpen => "plcopen.xml.j2",
         IecFile::Codesys => "codesys.xml.j2",
         IecFile::GlobalVariables => "gvl.txt.j2",
     };
-    input.templates.render(template, context)
+    input.templates.render(template, model.clone())
 }
