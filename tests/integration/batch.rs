@@ -5,6 +5,20 @@ use predicates::str::contains;
 
 use crate::helpers::{files_below, sample, steptable};
 
+/// A folder `dir/in` holding `count` copies of the paper sample, `line{i}.xlsx`.
+fn copies_of_the_paper(dir: &std::path::Path, count: usize) -> std::path::PathBuf {
+    let input = dir.join("in");
+    std::fs::create_dir(&input).unwrap();
+    for i in 0..count {
+        std::fs::copy(
+            sample("paper_example.xlsx"),
+            input.join(format!("line{i:02}.xlsx")),
+        )
+        .unwrap();
+    }
+    input
+}
+
 fn folder_of_inputs(dir: &std::path::Path) -> std::path::PathBuf {
     let input = dir.join("in");
     std::fs::create_dir_all(input.join("a")).unwrap();
@@ -157,15 +171,7 @@ fn check_and_convert_speak_json_too() {
 #[test]
 fn ctrl_c_leaves_only_complete_outputs_and_a_summary() {
     let dir = tempfile::tempdir().unwrap();
-    let input = dir.path().join("in");
-    std::fs::create_dir(&input).unwrap();
-    for i in 0..80 {
-        std::fs::copy(
-            sample("paper_example.xlsx"),
-            input.join(format!("line{i:02}.xlsx")),
-        )
-        .unwrap();
-    }
+    let input = copies_of_the_paper(dir.path(), 80);
     let out = dir.path().join("out");
     let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("steptable"))
         .arg("batch")
@@ -224,15 +230,7 @@ fn ctrl_c_leaves_only_complete_outputs_and_a_summary() {
 #[test]
 fn two_runs_into_one_folder_leave_complete_outputs() {
     let dir = tempfile::tempdir().unwrap();
-    let input = dir.path().join("in");
-    std::fs::create_dir(&input).unwrap();
-    for i in 0..6 {
-        std::fs::copy(
-            sample("paper_example.xlsx"),
-            input.join(format!("line{i}.xlsx")),
-        )
-        .unwrap();
-    }
+    let input = copies_of_the_paper(dir.path(), 6);
     let out = dir.path().join("out");
     let spawn = || {
         std::process::Command::new(assert_cmd::cargo::cargo_bin("steptable"))
@@ -248,12 +246,12 @@ fn two_runs_into_one_folder_leave_complete_outputs() {
     let (mut a, mut b) = (spawn(), spawn());
     assert!(a.wait().unwrap().success());
     assert!(b.wait().unwrap().success());
-    let expected = std::fs::read(out.join("line0/line0.st")).unwrap();
+    let expected = std::fs::read(out.join("line00/line00.st")).unwrap();
     for i in 0..6 {
-        let folder = out.join(format!("line{i}"));
+        let folder = out.join(format!("line{i:02}"));
         let files = files_below(&folder);
         assert_eq!(files.len(), steptable::convert::OutputKind::ALL.len());
-        let st = std::fs::read(folder.join(format!("line{i}.st"))).unwrap();
+        let st = std::fs::read(folder.join(format!("line{i:02}.st"))).unwrap();
         assert_eq!(st.len(), expected.len());
     }
 }

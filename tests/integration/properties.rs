@@ -135,6 +135,14 @@ fn with_headers(rows: &[Vec<String>]) -> Vec<Vec<String>> {
     out
 }
 
+/// Every (row, column) that holds a cell.
+fn cells_of(rows: &[Vec<String>]) -> Vec<(usize, usize)> {
+    rows.iter()
+        .enumerate()
+        .flat_map(|(r, row)| (0..row.len()).map(move |c| (r, c)))
+        .collect()
+}
+
 fn random_table() -> impl Strategy<Value = Vec<Vec<String>>> {
     (any::<u64>(), 1u32..=8, 1u32..=3, 1u32..=4, 4u32..=30).prop_map(
         |(seed, actuators, max_position, branches, steps)| {
@@ -167,11 +175,7 @@ proptest! {
     #[test]
     fn garbage_is_reported_at_its_cell(rows in random_table(), pick in any::<prop::sample::Index>(), text in garbage()) {
         let mut rows = rows;
-        let cells: Vec<(usize, usize)> = rows
-            .iter()
-            .enumerate()
-            .flat_map(|(r, row)| (0..row.len()).map(move |c| (r, c)))
-            .collect();
+        let cells = cells_of(&rows);
         let (r, c) = cells[pick.index(cells.len())];
         rows[r][c] = text.clone();
         let errors = steptable::table::from_rows("edit.csv", &with_headers(&rows)).expect_err("garbage cannot be valid");
@@ -205,11 +209,7 @@ proptest! {
     #[test]
     fn a_deleted_move_is_reported_at_its_actuator(rows in random_table(), pick in any::<prop::sample::Index>()) {
         let mut rows = rows;
-        let cells: Vec<(usize, usize)> = rows
-            .iter()
-            .enumerate()
-            .flat_map(|(r, row)| (0..row.len()).map(move |c| (r, c)))
-            .collect();
+        let cells = cells_of(&rows);
         let (r, c) = cells[pick.index(cells.len())];
         let removed = std::mem::take(&mut rows[r][c]);
         let actuator = steptable::cell::parse_move(&removed).unwrap().actuator;

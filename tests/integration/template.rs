@@ -147,16 +147,13 @@ fn the_templates_example_converts_like_the_sample_also_after_libreoffice() {
     }
 }
 
-const PAPER_ROWS: &[&[&str]] = &[
-    &["C1+1", "", ""],
-    &["C2+3", "", ""],
-    &["C2-1", "", ""],
-    &["C3+2", "C2+2", ""],
-    &["C3-0", "C2-1", ""],
-    &["C3+1", "C2+2", "C4+1"],
-    &["C3-0", "C2-0", "C4-0"],
-    &["C1-0", "", ""],
-];
+/// The paper's example, as the library holds it.
+fn paper_rows() -> Vec<&'static [&'static str]> {
+    steptable::template::PAPER_EXAMPLE
+        .iter()
+        .map(|r| r.as_slice())
+        .collect()
+}
 
 #[test]
 fn settings_in_the_workbook_apply_and_flags_override_them() {
@@ -165,7 +162,7 @@ fn settings_in_the_workbook_apply_and_flags_override_them() {
     write_xlsx_sheets(
         &path,
         &[
-            ("SEQUENTIAL CONTROL DESCRIPTION", PAPER_ROWS),
+            ("SEQUENTIAL CONTROL DESCRIPTION", &paper_rows()),
             (
                 "SETTINGS",
                 &[
@@ -213,7 +210,7 @@ fn an_invalid_setting_names_its_cell() {
     write_xlsx_sheets(
         &path,
         &[
-            ("SEQUENTIAL CONTROL DESCRIPTION", PAPER_ROWS),
+            ("SEQUENTIAL CONTROL DESCRIPTION", &paper_rows()),
             (
                 "SETTINGS",
                 &[&["target", "beckhoff"], &["scan time", "fast"]],
