@@ -1,9 +1,10 @@
 //! Addresses: which input, output and memory bit each signal gets, for each PLC
 //! dialect, and the symbol names every output language uses for them (DESIGN §3).
 
+use std::collections::BTreeMap;
 use std::fmt;
 
-use crate::cell::Sign;
+use crate::cell::{Name, Sign};
 use crate::table::StepTable;
 use crate::valve::{ValveType, Valves};
 
@@ -70,13 +71,24 @@ pub enum Signal {
     /// The START push-button.
     Start,
     /// Sensor `xij`: actuator i stands at position j.
-    Sensor { actuator: u32, position: u32 },
+    Sensor {
+        actuator: u32,
+        position: u32,
+    },
     /// Valve coil `yi+` / `yi-`.
-    Coil { actuator: u32, sign: Sign },
+    Coil {
+        actuator: u32,
+        sign: Sign,
+    },
     /// The one coil `yi` of a single-solenoid valve (on = extend).
-    SingleCoil { actuator: u32 },
+    SingleCoil {
+        actuator: u32,
+    },
     /// Memory: actuator i must stop when it reaches middle position j.
-    StopAt { actuator: u32, position: u32 },
+    StopAt {
+        actuator: u32,
+        position: u32,
+    },
     /// Memory: START as read in the previous scan (rising-edge detection).
     StartMemory,
     /// Memory: a safety check stopped the sequence.
@@ -87,18 +99,67 @@ pub enum Signal {
     Watchdog,
     /// Memory: the watchdog is timing a step.
     WatchdogArmed,
+    /// A machine input a step waits for (`I:part_present`).
+    MachineInput(Name),
+    /// A machine output a step switches (`Y:vacuum+`).
+    MachineOutput(Name),
+    /// Dwell timer n (`T=2s`); as a condition, true while it runs.
+    Dwell(u16),
+    /// Memory: dwell n waits for its branch to finish before its timer starts.
+    DwellArmed(u16),
+    /// Operating-mode inputs: the CONTINUOUS switch, the STOP and EMERGENCY
+    /// STOP buttons (normally closed: 1 = not pressed), the RESET button.
+    Continuous,
+    Stop,
+    EStop,
+    Reset,
+    /// Memory: a cycle was asked for (START, or CONTINUOUS at a cycle's end).
+    CycleRequest,
+    /// Memory: a cycle is under way (from STEP 1 to the end of the cycle).
+    Busy,
+    /// Memory: continuous operation was started and not stopped.
+    AutoRun,
+    /// Memory: the homing sequence runs.
+    Homing,
+    /// Memory: homing stage n runs.
+    HomeStage(u16),
+    /// Not a bit: the sequence itself. `Reset(Sequence)` sends it back to
+    /// STEP 1 (each language has its own statement for that).
+    Sequence,
 }
 
 impl Signal {
     pub fn area(self) -> Area {
         match self {
-            Signal::Start | Signal::Sensor { .. } => Area::Input,
-            Signal::Coil { .. } | Signal::SingleCoil { .. } | Signal::Alarm(_) => Area::Output,
-            Signal::StopAt { .. } | Signal::StartMemory | Signal::Halt | Signal::WatchdogArmed => {
-                Area::Memory
-            }
-            Signal::Watchdog => Area::Timer,
+            Signal::Start
+            | Signal::Sensor { .. }
+            | Signal::MachineInput(_)
+            | Signal::Continuous
+            | Signal::Stop
+            | Signal::EStop
+            | Signal::Reset => Area::Input,
+            Signal::Coil { .. }
+            | Signal::SingleCoil { .. }
+            | Signal::Alarm(_)
+            | Signal::MachineOutput(_) => Area::Output,
+            Signal::StopAt { .. }
+            | Signal::StartMemory
+            | Signal::Halt
+            | Signal::WatchdogArmed
+            | Signal::DwellArmed(_)
+            | Signal::CycleRequest
+            | Signal::Busy
+            | Signal::AutoRun
+            | Signal::Homing
+            | Signal::HomeStage(_)
+            | Signal::Sequence => Area::Memory,
+            Signal::Watchdog | Signal::Dwell(_) => Area::Timer,
         }
+    }
+
+    /// Whether the plant (not the program) gives this signal's value.
+    pub fn is_input(self) -> bool {
+        self.area() == Area::Input
     }
 
     /// The symbol of the published method, as on the address sheets (`x21`, `y2+`).
@@ -116,6 +177,20 @@ impl Signal {
             Signal::Alarm(Alarm::Timeout) => "alarm_wd".to_string(),
             Signal::Watchdog => "watchdog".to_string(),
             Signal::WatchdogArmed => "wd_armed".to_string(),
+            Signal::MachineInput(name) | Signal::MachineOutput(name) => name.to_string(),
+            Signal::Dwell(n) => format!("dwell{n}"),
+            Signal::DwellArmed(n) => format!("dw{n}_arm"),
+            Signal::Continuous => "CONT".to_string(),
+            Signal::Stop => "STOP".to_string(),
+            Signal::EStop => "ESTOP".to_string(),
+            // RESET is an FST and IL keyword.
+            Signal::Reset => "RESET_PB".to_string(),
+            Signal::CycleRequest => "cycle_req".to_string(),
+            Signal::Busy => "busy".to_string(),
+            Signal::AutoRun => "auto_run".to_string(),
+            Signal::Homing => "homing".to_string(),
+            Signal::HomeStage(n) => format!("home{n}"),
+            Signal::Sequence => "sequence".to_string(),
         }
     }
 
@@ -137,10 +212,24 @@ impl Signal {
             Signal::Sensor { .. } => "sensor",
             Signal::Coil { .. } | Signal::SingleCoil { .. } => "coil",
             Signal::Alarm(_) => "alarm",
-            Signal::StopAt { .. } | Signal::StartMemory | Signal::Halt | Signal::WatchdogArmed => {
-                "memory"
-            }
-            Signal::Watchdog => "timer",
+            Signal::MachineInput(_) => "input",
+            Signal::MachineOutput(_) => "output",
+            Signal::Continuous => "continuous",
+            Signal::Stop => "stop",
+            Signal::EStop => "estop",
+            Signal::Reset => "reset",
+            Signal::StopAt { .. }
+            | Signal::StartMemory
+            | Signal::Halt
+            | Signal::WatchdogArmed
+            | Signal::DwellArmed(_)
+            | Signal::CycleRequest
+            | Signal::Busy
+            | Signal::AutoRun
+            | Signal::Homing
+            | Signal::HomeStage(_)
+            | Signal::Sequence => "memory",
+            Signal::Watchdog | Signal::Dwell(_) => "timer",
         }
     }
 
@@ -177,8 +266,129 @@ impl Signal {
             Signal::Alarm(Alarm::Timeout) => "alarm: a step did not finish in time".to_string(),
             Signal::Watchdog => "step watchdog timer".to_string(),
             Signal::WatchdogArmed => "watchdog is timing a step".to_string(),
+            Signal::MachineInput(name) => {
+                let steps = steps_where(table, |s| s.waits.iter().any(|w| w.input == name));
+                format!("machine input {name}, waited for in {steps}")
+            }
+            Signal::MachineOutput(name) => {
+                let steps = steps_where(table, |s| s.switches.iter().any(|w| w.output == name));
+                format!("machine output {name}, switched in {steps}")
+            }
+            Signal::Dwell(n) | Signal::DwellArmed(n) => {
+                let what = table
+                    .steps
+                    .iter()
+                    .find_map(|s| {
+                        s.dwells.iter().find(|d| d.number == n).map(|d| {
+                            format!(
+                                "STEP {}, branch {}, {}",
+                                s.number,
+                                d.branch + 1,
+                                crate::cell::dwell_text(d.ms)
+                            )
+                        })
+                    })
+                    .unwrap_or_default();
+                if matches!(self, Signal::Dwell(_)) {
+                    format!("dwell timer {n} ({what})")
+                } else {
+                    format!("dwell {n} waits for its branch to finish ({what})")
+                }
+            }
+            Signal::Continuous => "CONTINUOUS switch (on: repeat cycles)".to_string(),
+            Signal::Stop => {
+                "STOP push-button, normally closed (0: finish the cycle, then halt)".to_string()
+            }
+            Signal::EStop => {
+                "EMERGENCY STOP, normally closed (0: every coil off at once)".to_string()
+            }
+            Signal::Reset => "RESET push-button (home every actuator)".to_string(),
+            Signal::CycleRequest => "a cycle was asked for".to_string(),
+            Signal::Busy => "a cycle is under way".to_string(),
+            Signal::AutoRun => "continuous operation runs".to_string(),
+            Signal::Homing => "the homing sequence runs".to_string(),
+            Signal::HomeStage(n) => format!("homing stage {n} runs"),
+            Signal::Sequence => "the step sequence".to_string(),
         }
     }
+}
+
+/// `STEP 2` or `STEPS 2, 5`.
+fn steps_where(table: &StepTable, test: impl Fn(&crate::table::Step) -> bool) -> String {
+    let numbers: Vec<String> = table
+        .steps
+        .iter()
+        .filter(|s| test(s))
+        .map(|s| s.number.to_string())
+        .collect();
+    match numbers.len() {
+        1 => format!("STEP {}", numbers[0]),
+        _ => format!("STEPS {}", numbers.join(", ")),
+    }
+}
+
+/// IEC 61131-3 keywords (and the common vendor ones) no identifier may be.
+#[rustfmt::skip]
+pub const KEYWORDS: &[&str] = &[
+    "ABS", "ACTION", "AND", "ANY", "ARRAY", "AT", "BOOL", "BY", "BYTE", "CASE", "CONFIGURATION",
+    "CONSTANT", "DATE", "DINT", "DO", "DT", "DWORD", "ELSE", "ELSIF", "END_ACTION", "END_CASE",
+    "END_CONFIGURATION", "END_FOR", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_IF",
+    "END_PROGRAM", "END_REPEAT", "END_RESOURCE", "END_STEP", "END_STRUCT", "END_TRANSITION",
+    "END_TYPE", "END_VAR", "END_WHILE", "EN", "ENO", "EXIT", "FALSE", "FOR", "FROM",
+    "FUNCTION", "FUNCTION_BLOCK", "IF", "INITIAL_STEP", "INT", "INTERVAL", "LINT", "LREAL",
+    "MOD", "NOT", "OF", "ON", "OR", "PRIORITY", "PROGRAM", "READ_ONLY", "READ_WRITE", "REAL",
+    "REPEAT", "RESOURCE", "RETAIN", "RETURN", "SINT", "STEP", "STRING", "STRUCT", "TASK",
+    "THEN", "TIME", "TO", "TOD", "TRANSITION", "TRUE", "TYPE", "UDINT", "UINT", "ULINT",
+    "UNTIL", "USINT", "VAR", "VAR_ACCESS", "VAR_EXTERNAL", "VAR_GLOBAL", "VAR_INPUT",
+    "VAR_IN_OUT", "VAR_OUTPUT", "VAR_TEMP", "WHILE", "WITH", "WORD", "XOR", "NOP", "JMP",
+    "SET", "RESET", "THEN", "TON", "TOF", "TP", "LOAD", "ELSE", "OTHRW", "CMP", "PSE",
+];
+
+/// Why a machine input or output may not have this (lower-case) name, if
+/// it may not: a keyword of a target language, or a name of the generated
+/// program's own (sensors `x…`, coils `y…`, memories, timers, steps).
+pub fn reserved_name(name: &str) -> Option<String> {
+    if KEYWORDS.contains(&name.to_ascii_uppercase().as_str()) {
+        return Some("it is a keyword of a PLC language".to_string());
+    }
+    const OWN: &[&str] = &[
+        "start",
+        "stop",
+        "estop",
+        "reset_pb",
+        "cont",
+        "start_mem",
+        "halt",
+        "alarm_pl",
+        "alarm_wd",
+        "watchdog",
+        "wd_armed",
+        "wd_run",
+        "wd_pt",
+        "wd_restart",
+        "cycle_req",
+        "busy",
+        "auto_run",
+        "homing",
+        "fired",
+        "active_step",
+        "sequence",
+    ];
+    let numbered = [
+        "x", "y", "m", "t", "dwell", "dw", "home", "step_", "p", "f", "i", "o", "q", "e", "a", "l",
+    ];
+    let after_prefix_is_number = |prefix: &str| {
+        name.strip_prefix(prefix)
+            .and_then(|rest| rest.chars().next())
+            .is_some_and(|c| c.is_ascii_digit())
+    };
+    if OWN.contains(&name) || numbered.iter().any(|p| after_prefix_is_number(p)) {
+        return Some(
+            "the generated program uses it (sensors x…, coils y…, memories, timers, steps and addresses such as I0 or T1)"
+                .to_string(),
+        );
+    }
+    None
 }
 
 /// `21` for actuator 2 position 1; `12_3` once either number has two digits,
@@ -307,6 +517,124 @@ impl Safety {
     }
 }
 
+/// The operating modes a generated program carries (`--modes`).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Modes {
+    /// A CONTINUOUS switch repeats cycles while it is on.
+    pub continuous: bool,
+    /// A STOP button lets the cycle finish, then halts.
+    pub stop: bool,
+    /// An EMERGENCY STOP switches every coil off and blocks START until RESET.
+    pub estop: bool,
+    /// A RESET button homes every actuator.
+    pub reset: bool,
+    /// Homing stages, each a set of actuators homed together; `None` is the
+    /// default (reverse order of the last moves).
+    pub home_order: Option<Vec<Vec<u32>>>,
+}
+
+impl Modes {
+    /// Parses `continuous,stop,estop,reset` (any subset; `all`, `none`). An
+    /// emergency stop needs RESET as its way out, so `estop` brings `reset`.
+    pub fn parse(text: &str) -> Result<Modes, String> {
+        let mut modes = Modes::default();
+        for item in text.split(',').map(|s| s.trim().to_ascii_lowercase()) {
+            match item.as_str() {
+                "" | "none" => {}
+                "all" => {
+                    modes.continuous = true;
+                    modes.stop = true;
+                    modes.estop = true;
+                    modes.reset = true;
+                }
+                "continuous" => modes.continuous = true,
+                "stop" => modes.stop = true,
+                "estop" => modes.estop = true,
+                "reset" => modes.reset = true,
+                other => {
+                    return Err(format!(
+                        "\"{other}\" is not an operating mode (expected continuous, stop, estop, reset, all or none)"
+                    ));
+                }
+            }
+        }
+        if modes.estop {
+            modes.reset = true;
+        }
+        Ok(modes)
+    }
+
+    /// Parses `--home-order`: stages separated by `,`, actuators homed
+    /// together joined by `&` or spaces: `C3&C4, C2, C1`.
+    pub fn parse_home_order(text: &str) -> Result<Vec<Vec<u32>>, String> {
+        let mut stages = Vec::new();
+        for stage in text.split([',', ';']) {
+            let mut actuators = Vec::new();
+            for item in stage.split(|c: char| c == '&' || c.is_whitespace()) {
+                if item.is_empty() {
+                    continue;
+                }
+                let number = item
+                    .strip_prefix(['C', 'c'])
+                    .and_then(|n| n.parse::<u32>().ok())
+                    .filter(|n| (1..=crate::cell::MAX_ACTUATOR).contains(n))
+                    .ok_or_else(|| format!("\"{item}\" is not an actuator (expected C1, C2, …)"))?;
+                actuators.push(number);
+            }
+            if !actuators.is_empty() {
+                stages.push(actuators);
+            }
+        }
+        if stages.is_empty() {
+            return Err("the home order names no actuator (expected e.g. C3&C4,C2,C1)".to_string());
+        }
+        Ok(stages)
+    }
+
+    pub fn any(&self) -> bool {
+        self.continuous || self.stop || self.estop || self.reset
+    }
+
+    /// The homing stages for a table: the given order, checked to name every
+    /// actuator once, or by default the reverse order of the last moves
+    /// (actuators whose last move is in the same step go home together).
+    pub fn home_stages(&self, table: &StepTable) -> Result<Vec<Vec<u32>>, String> {
+        if let Some(order) = &self.home_order {
+            let mut named: Vec<u32> = order.iter().flatten().copied().collect();
+            named.sort_unstable();
+            let before = named.len();
+            named.dedup();
+            if named.len() != before {
+                return Err("the home order names an actuator twice".to_string());
+            }
+            let all: Vec<u32> = table.actuators.iter().map(|a| a.number).collect();
+            if let Some(extra) = named.iter().find(|n| !all.contains(n)) {
+                return Err(format!(
+                    "the home order names C{extra}, which the table does not move"
+                ));
+            }
+            if let Some(missing) = all.iter().find(|n| !named.contains(n)) {
+                return Err(format!("the home order leaves out C{missing}"));
+            }
+            return Ok(order.clone());
+        }
+        let mut last: BTreeMap<u32, usize> = BTreeMap::new();
+        for step in &table.steps {
+            for m in &step.moves {
+                last.insert(m.actuator, step.number);
+            }
+        }
+        let mut stages: BTreeMap<std::cmp::Reverse<usize>, Vec<u32>> = BTreeMap::new();
+        for (actuator, step) in last {
+            stages
+                .entry(std::cmp::Reverse(step))
+                .or_default()
+                .push(actuator);
+        }
+        Ok(stages.into_values().collect())
+    }
+}
+
 /// One signal with its address.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Assigned {
@@ -329,6 +657,8 @@ pub struct Allocation {
     pub timers: Vec<Assigned>,
     /// The safety checks this allocation has room for.
     pub safety: Safety,
+    /// The operating modes this allocation has room for.
+    pub modes: Modes,
     /// The valve types given explicitly.
     pub valves: Valves,
 }
@@ -353,13 +683,27 @@ impl Allocation {
         mnemonic: Mnemonic,
         safety: Safety,
     ) -> Self {
-        Self::with_options(table, target, mnemonic, safety, &Valves::default())
+        Self::with_options(
+            table,
+            target,
+            mnemonic,
+            safety,
+            &Modes::default(),
+            &Valves::default(),
+        )
     }
 
     /// The same signals allocated for another target (the FST files always
     /// use Festo operands).
     pub fn for_target(&self, table: &StepTable, target: Target, mnemonic: Mnemonic) -> Self {
-        Self::with_options(table, target, mnemonic, self.safety, &self.valves)
+        Self::with_options(
+            table,
+            target,
+            mnemonic,
+            self.safety,
+            &self.modes,
+            &self.valves,
+        )
     }
 
     /// The full allocation. A single-solenoid (`52mono`) actuator gets one
@@ -370,25 +714,34 @@ impl Allocation {
         target: Target,
         mnemonic: Mnemonic,
         safety: Safety,
+        modes: &Modes,
         valves: &Valves,
     ) -> Self {
-        let mut inputs = vec![Assigned {
-            signal: Signal::Start,
-            address: Address::from_index(Area::Input, target, 0),
-        }];
-        let mut index = 1;
-        for actuator in &table.actuators {
-            for position in 0..=actuator.max_position {
-                inputs.push(Assigned {
-                    signal: Signal::Sensor {
-                        actuator: actuator.number,
-                        position,
-                    },
-                    address: Address::from_index(Area::Input, target, index),
-                });
-                index += 1;
-            }
-        }
+        let sensors = table.actuators.iter().flat_map(|actuator| {
+            (0..=actuator.max_position).map(|position| Signal::Sensor {
+                actuator: actuator.number,
+                position,
+            })
+        });
+        // Machine inputs after the sensors, then the operating-mode buttons.
+        let mode_inputs = [
+            (modes.continuous, Signal::Continuous),
+            (modes.stop, Signal::Stop),
+            (modes.estop, Signal::EStop),
+            (modes.reset, Signal::Reset),
+        ]
+        .into_iter()
+        .filter_map(|(wanted, signal)| wanted.then_some(signal));
+        let inputs: Vec<Assigned> = std::iter::once(Signal::Start)
+            .chain(sensors)
+            .chain(table.inputs.iter().map(|n| Signal::MachineInput(*n)))
+            .chain(mode_inputs)
+            .enumerate()
+            .map(|(index, signal)| Assigned {
+                signal,
+                address: Address::from_index(Area::Input, target, index as u32),
+            })
+            .collect();
 
         let count = table.actuators.len() as u32;
         let mut outputs = Vec::with_capacity(2 * table.actuators.len());
@@ -426,6 +779,13 @@ impl Allocation {
             .last()
             .map(|a| a.address.unit * target.bits_per_unit() + a.address.bit + 1)
             .unwrap_or(0);
+        for name in &table.outputs {
+            outputs.push(Assigned {
+                signal: Signal::MachineOutput(*name),
+                address: Address::from_index(Area::Output, target, next_output),
+            });
+            next_output += 1;
+        }
         let alarms = [
             (safety.plausibility, Alarm::Sensor),
             (safety.watchdog, Alarm::Timeout),
@@ -458,11 +818,24 @@ impl Allocation {
         if safety.edge {
             extra.push(Signal::StartMemory);
         }
-        if safety.plausibility || safety.watchdog {
+        if safety.plausibility || safety.watchdog || modes.estop {
             extra.push(Signal::Halt);
         }
         if safety.watchdog {
             extra.push(Signal::WatchdogArmed);
+        }
+        extra.extend(table.dwells().map(|d| Signal::DwellArmed(d.number)));
+        if modes.any() {
+            extra.push(Signal::CycleRequest);
+            extra.push(Signal::Busy);
+        }
+        if modes.continuous {
+            extra.push(Signal::AutoRun);
+        }
+        if modes.reset {
+            extra.push(Signal::Homing);
+            let stages = modes.home_stages(table).map(|s| s.len()).unwrap_or(0);
+            extra.extend((1..=stages).map(|n| Signal::HomeStage(n as u16)));
         }
         let signals = stops
             .into_iter()
@@ -474,19 +847,26 @@ impl Allocation {
                 address: Address::from_index(Area::Memory, target, index as u32),
             });
         }
-        let timers = if safety.watchdog {
-            vec![Assigned {
-                signal: Signal::Watchdog,
-                address: Address {
-                    area: Area::Timer,
-                    target,
-                    unit: 0,
-                    bit: 0,
-                },
-            }]
-        } else {
-            Vec::new()
+        // T0 is the watchdog's; dwell n gets timer n.
+        let timer = |signal, unit| Assigned {
+            signal,
+            address: Address {
+                area: Area::Timer,
+                target,
+                unit,
+                bit: 0,
+            },
         };
+        let timers = safety
+            .watchdog
+            .then(|| timer(Signal::Watchdog, 0))
+            .into_iter()
+            .chain(
+                table
+                    .dwells()
+                    .map(|d| timer(Signal::Dwell(d.number), d.number as u32)),
+            )
+            .collect();
 
         Allocation {
             target,
@@ -496,6 +876,7 @@ impl Allocation {
             memories,
             timers,
             safety,
+            modes: modes.clone(),
             valves: valves.clone(),
         }
     }
@@ -630,23 +1011,6 @@ mod tests {
 #[cfg(test)]
 mod identifier_tests {
     use super::*;
-
-    /// IEC 61131-3 keywords (and the common vendor ones) no identifier may be.
-    #[rustfmt::skip]
-    const KEYWORDS: &[&str] = &[
-        "ABS", "ACTION", "AND", "ANY", "ARRAY", "AT", "BOOL", "BY", "BYTE", "CASE", "CONFIGURATION",
-        "CONSTANT", "DATE", "DINT", "DO", "DT", "DWORD", "ELSE", "ELSIF", "END_ACTION", "END_CASE",
-        "END_CONFIGURATION", "END_FOR", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_IF",
-        "END_PROGRAM", "END_REPEAT", "END_RESOURCE", "END_STEP", "END_STRUCT", "END_TRANSITION",
-        "END_TYPE", "END_VAR", "END_WHILE", "EN", "ENO", "EXIT", "FALSE", "FOR", "FROM",
-        "FUNCTION", "FUNCTION_BLOCK", "IF", "INITIAL_STEP", "INT", "INTERVAL", "LINT", "LREAL",
-        "MOD", "NOT", "OF", "ON", "OR", "PRIORITY", "PROGRAM", "READ_ONLY", "READ_WRITE", "REAL",
-        "REPEAT", "RESOURCE", "RETAIN", "RETURN", "SINT", "STEP", "STRING", "STRUCT", "TASK",
-        "THEN", "TIME", "TO", "TOD", "TRANSITION", "TRUE", "TYPE", "UDINT", "UINT", "ULINT",
-        "UNTIL", "USINT", "VAR", "VAR_ACCESS", "VAR_EXTERNAL", "VAR_GLOBAL", "VAR_INPUT",
-        "VAR_IN_OUT", "VAR_OUTPUT", "VAR_TEMP", "WHILE", "WITH", "WORD", "XOR", "NOP", "JMP",
-        "SET", "RESET", "THEN", "TON", "TOF", "TP",
-    ];
 
     #[test]
     fn every_identifier_is_legal_in_every_target_language() {

@@ -140,12 +140,246 @@ pub fn parse_move(text: &str) -> Result<CellMove, CellError> {
     })
 }
 
+/// Longest name of a machine input or output (`I:part_present`).
+pub const MAX_NAME_CHARS: usize = 16;
+/// Shortest and longest dwell accepted: FST counts timers in hundredths of a
+/// second in a 16-bit word, so 655.35 s is the most every target can hold.
+pub const MIN_DWELL_MS: u32 = 10;
+pub const MAX_DWELL_MS: u32 = 655_350;
+
+/// The name of a machine input or output: lower-case ASCII letters, digits
+/// and `_`, starting with a letter, at most [`MAX_NAME_CHARS`]. Stored inline
+/// so that signals stay `Copy`.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Name {
+    len: u8,
+    bytes: [u8; MAX_NAME_CHARS],
+}
+
+impl Name {
+    /// Checks and stores a name (already lower case).
+    pub fn new(text: &str) -> Result<Name, String> {
+        let valid_chars = text
+            .bytes()
+            .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'_');
+        if text.is_empty() {
+            return Err("the name is missing".to_string());
+        }
+        if !valid_chars || !text.as_bytes()[0].is_ascii_lowercase() {
+            return Err(format!(
+                "\"{text}\" is not a name: use letters, digits and _, starting with a letter"
+            ));
+        }
+        if text.contains("__") || text.ends_with('_') {
+            return Err(format!(
+                "\"{text}\" is not a name: IEC 61131-3 forbids a double or trailing _"
+            ));
+        }
+        if text.len() > MAX_NAME_CHARS {
+            return Err(format!(
+                "\"{text}\" is longer than {MAX_NAME_CHARS} characters"
+            ));
+        }
+        let mut bytes = [0u8; MAX_NAME_CHARS];
+        bytes[..text.len()].copy_from_slice(text.as_bytes());
+        Ok(Name {
+            len: text.len() as u8,
+            bytes,
+        })
+    }
+
+    pub fn as_str(&self) -> &str {
+        // Only ASCII is ever stored.
+        std::str::from_utf8(&self.bytes[..self.len as usize]).unwrap_or("")
+    }
+}
+
+impl fmt::Display for Name {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl fmt::Debug for Name {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:?}", self.as_str())
+    }
+}
+
+/// One thing a branch cell asks for; a cell holds one or more, split by `;`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CellItem {
+    /// `C2+1`.
+    Move(CellMove),
+    /// `T=2s`: the branch waits this long after its other items.
+    Dwell { ms: u32 },
+    /// `I:part_present` / `I:name=0`: the step completes only when the
+    /// machine input has this value.
+    Wait { input: Name, value: bool },
+    /// `Y:vacuum+` / `Y:vacuum-`: switch a machine output on or off.
+    Switch { output: Name, on: bool },
+}
+
+impl fmt::Display for CellItem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CellItem::Move(m) => write!(f, "{m}"),
+            CellItem::Dwell { ms } => f.write_str(&dwell_text(*ms)),
+            CellItem::Wait { input, value } => {
+                if *value {
+                    write!(f, "I:{input}")
+                } else {
+                    write!(f, "I:{input}=0")
+                }
+            }
+            CellItem::Switch { output, on } => {
+                write!(f, "Y:{output}{}", if *on { '+' } else { '-' })
+            }
+        }
+    }
+}
+
+/// `T=2s`, `T=500ms`, `T=1.25s`: the shortest exact spelling.
+pub fn dwell_text(ms: u32) -> String {
+    if ms.is_multiple_of(1000) {
+        format!("T={}s", ms / 1000)
+    } else if ms < 1000 {
+        format!("T={ms}ms")
+    } else {
+        let text = format!("{:.3}", ms as f64 / 1000.0);
+        format!("T={}s", text.trim_end_matches('0'))
+    }
+}
+
+/// Why an item of a cell is not valid.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum ItemError {
+    Move(CellError),
+    /// `T=` with a duration that is malformed or out of range.
+    BadDwell(String),
+    /// `I:` / `Y:` with a bad name or value.
+    BadName(String),
+}
+
+/// Parses one `;`-separated item.
+pub fn parse_item(text: &str) -> Result<CellItem, ItemError> {
+    let norm = normalize(text);
+    if let Some(rest) = norm.strip_prefix("T=") {
+        let ms = parse_dwell(rest).ok_or_else(|| {
+            ItemError::BadDwell(format!(
+                "\"{}\" is not a dwell (expected T=2s or T=500ms, from {MIN_DWELL_MS} ms to {} s)",
+                text.trim(),
+                MAX_DWELL_MS / 1000
+            ))
+        })?;
+        return Ok(CellItem::Dwell { ms });
+    }
+    if let Some(rest) = norm.strip_prefix("I:") {
+        let rest = rest.to_ascii_lowercase();
+        let (name, value) = match rest.split_once('=') {
+            None => (rest.as_str(), true),
+            Some((name, "1")) => (name, true),
+            Some((name, "0")) => (name, false),
+            Some(_) => {
+                return Err(ItemError::BadName(format!(
+                    "\"{}\": a wait is I:name, I:name=1 or I:name=0",
+                    text.trim()
+                )));
+            }
+        };
+        let input =
+            Name::new(name).map_err(|e| ItemError::BadName(format!("\"{}\": {e}", text.trim())))?;
+        return Ok(CellItem::Wait { input, value });
+    }
+    if let Some(rest) = norm.strip_prefix("Y:") {
+        let rest = rest.to_ascii_lowercase();
+        let (name, on) = if let Some(name) = rest.strip_suffix('+') {
+            (name, true)
+        } else if let Some(name) = rest.strip_suffix('-') {
+            (name, false)
+        } else {
+            return Err(ItemError::BadName(format!(
+                "\"{}\": an output is switched with Y:name+ (on) or Y:name- (off)",
+                text.trim()
+            )));
+        };
+        let output =
+            Name::new(name).map_err(|e| ItemError::BadName(format!("\"{}\": {e}", text.trim())))?;
+        return Ok(CellItem::Switch { output, on });
+    }
+    parse_move(text)
+        .map(CellItem::Move)
+        .map_err(ItemError::Move)
+}
+
+/// `2s`, `500ms`, `1.5s`, `1,5s` (a bare number is seconds).
+fn parse_dwell(text: &str) -> Option<u32> {
+    let lower = text.to_ascii_lowercase();
+    let (number, scale) = if let Some(n) = lower.strip_suffix("ms") {
+        (n, 1u64)
+    } else if let Some(n) = lower.strip_suffix('s') {
+        (n, 1000)
+    } else {
+        (lower.as_str(), 1000)
+    };
+    let number = number.replace(',', ".");
+    let (whole, fraction) = number.split_once('.').unwrap_or((&number, ""));
+    if whole.is_empty() && fraction.is_empty() {
+        return None;
+    }
+    if !whole
+        .chars()
+        .chain(fraction.chars())
+        .all(|c| c.is_ascii_digit())
+        || whole.len() > 7
+        || fraction.len() > 3
+    {
+        return None;
+    }
+    // Exact decimal arithmetic: 0.1 s is 100 ms, not 99.
+    let whole: u64 = if whole.is_empty() {
+        0
+    } else {
+        whole.parse().ok()?
+    };
+    let padded = format!("{fraction:0<3}");
+    let thousandths: u64 = padded.parse().ok()?;
+    let ms = (whole * 1000 + thousandths) * scale;
+    if !ms.is_multiple_of(1000) && scale == 1 && !fraction.is_empty() {
+        // `1.5ms`: below the timers' resolution.
+        return None;
+    }
+    let ms = ms / 1000;
+    (MIN_DWELL_MS as u64..=MAX_DWELL_MS as u64)
+        .contains(&ms)
+        .then_some(ms as u32)
+}
+
+/// Splits a cell on `;` (also the full-width `；`) and parses each part.
+/// Empty parts (a trailing `;`) are ignored.
+pub fn parse_items(text: &str) -> Vec<Result<CellItem, ItemError>> {
+    text.split([';', '\u{FF1B}'])
+        .filter(|part| !normalize(part).is_empty())
+        .map(parse_item)
+        .collect()
+}
+
 /// True when the text looks like an attempt at a move (`C` followed by a digit
 /// after normalisation). Used to find a bare grid of moves without headers.
 pub fn looks_like_move(text: &str) -> bool {
     let norm = normalize(text);
     let mut chars = norm.chars();
     chars.next() == Some('C') && chars.next().is_some_and(|c| c.is_ascii_digit())
+}
+
+/// True when the text looks like an attempt at any cell item: a move, or
+/// `T=`, `I:`, `Y:` (possibly after other items and a `;`).
+pub fn looks_like_item(text: &str) -> bool {
+    let norm = normalize(text);
+    looks_like_move(text)
+        || norm.starts_with("T=")
+        || norm.starts_with("I:")
+        || norm.starts_with("Y:")
 }
 
 #[cfg(test)]
@@ -210,6 +444,90 @@ mod tests {
             mv(3, Sign::Plus, None),
         ] {
             assert_eq!(parse_move(&m.to_string()), Ok(m));
+        }
+    }
+
+    fn name(text: &str) -> Name {
+        Name::new(text).expect("valid name")
+    }
+
+    #[test]
+    fn parses_dwells_waits_and_outputs() {
+        let dwell = |ms| Ok(CellItem::Dwell { ms });
+        assert_eq!(parse_item("T=2s"), dwell(2000));
+        assert_eq!(parse_item("t = 500 ms"), dwell(500));
+        assert_eq!(parse_item("T=1.5s"), dwell(1500));
+        assert_eq!(parse_item("T=0,1s"), dwell(100));
+        assert_eq!(parse_item("T=3"), dwell(3000));
+        for bad in [
+            "T=",
+            "T=0s",
+            "T=5ms",
+            "T=656s",
+            "T=1.5ms",
+            "T=2h",
+            "T=-1s",
+            "T=1.2345s",
+        ] {
+            assert!(
+                matches!(parse_item(bad), Err(ItemError::BadDwell(_))),
+                "{bad}"
+            );
+        }
+        assert_eq!(
+            parse_item("I:Part_Present"),
+            Ok(CellItem::Wait {
+                input: name("part_present"),
+                value: true
+            })
+        );
+        assert_eq!(
+            parse_item("i: door = 0"),
+            Ok(CellItem::Wait {
+                input: name("door"),
+                value: false
+            })
+        );
+        assert_eq!(
+            parse_item("Y:vacuum\u{2212}"),
+            Ok(CellItem::Switch {
+                output: name("vacuum"),
+                on: false
+            })
+        );
+        for bad in [
+            "I:",
+            "I:2door",
+            "I:a__b",
+            "I:door=2",
+            "Y:vacuum",
+            "Y:+",
+            "I:seventeen_chars_x",
+        ] {
+            assert!(
+                matches!(parse_item(bad), Err(ItemError::BadName(_))),
+                "{bad}"
+            );
+        }
+        let items: Vec<_> = parse_items("C1+1; Y:vacuum+ ;T=2s;").into_iter().collect();
+        assert_eq!(items.len(), 3);
+        assert!(items.iter().all(Result::is_ok));
+    }
+
+    #[test]
+    fn items_print_as_they_parse() {
+        for text in [
+            "T=2s",
+            "T=500ms",
+            "T=1.25s",
+            "I:part_present",
+            "I:door=0",
+            "Y:vacuum+",
+            "Y:motor-",
+            "C2+1",
+        ] {
+            let item = parse_item(text).expect(text);
+            assert_eq!(item.to_string(), text);
         }
     }
 

@@ -46,6 +46,8 @@ pub struct Explicit {
     pub mnemonic: bool,
     pub scan: bool,
     pub safety: bool,
+    pub modes: bool,
+    pub home_order: bool,
 }
 
 /// One kind of output file.
@@ -171,6 +173,14 @@ impl Settings {
         if let (false, Some(safety)) = (self.explicit.safety, sheet.safety) {
             merged.program.safety = safety;
         }
+        if let (false, Some(modes)) = (self.explicit.modes, &sheet.modes) {
+            let order = merged.program.modes.home_order.take();
+            merged.program.modes = modes.clone();
+            merged.program.modes.home_order = order;
+        }
+        if let (false, Some(order)) = (self.explicit.home_order, &sheet.home_order) {
+            merged.program.modes.home_order = Some(order.clone());
+        }
         for (actuator, stroke) in &sheet.strokes {
             merged
                 .simulation
@@ -282,6 +292,11 @@ fn finish_check(
     let table = table::build(&input.table, &mut diags);
     if let Some(table) = &table {
         check_valves(table, &effective, &input.table, &mut diags);
+        if effective.program.modes.reset
+            && let Err(message) = effective.program.modes.home_stages(table)
+        {
+            diags.error(Code::E030BadSetting, input.table.sheet_location(), message);
+        }
     }
     match table {
         Some(table) if !diags.has_errors() => Ok(Checked {
@@ -385,12 +400,13 @@ pub fn build_program(table: &StepTable, settings: &Settings) -> (Allocation, Ste
         settings.target,
         settings.mnemonic,
         settings.program.safety,
+        &settings.program.modes,
         &settings.simulation.valves,
     );
     let program = program::build(
         table,
         &allocation,
-        settings.program,
+        settings.program.clone(),
         &settings.simulation.strokes,
     );
     (allocation, program)

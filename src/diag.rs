@@ -46,6 +46,14 @@ pub enum Code {
     E031ValveCannotStop,
     /// A cell's text is longer than any move could be.
     E013CellTooLong,
+    /// `T=` with a malformed or out-of-range duration.
+    E014BadDwell,
+    /// `I:` / `Y:` with a malformed or reserved name.
+    E015BadName,
+    /// One name used for an input and an output, or two names FST cannot tell apart.
+    E025NameClash,
+    /// More dwells than the PLCs have timers.
+    E026TooManyDwells,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -72,6 +80,10 @@ impl Code {
             Code::E030BadSetting => "E030",
             Code::E031ValveCannotStop => "E031",
             Code::E013CellTooLong => "E013",
+            Code::E014BadDwell => "E014",
+            Code::E015BadName => "E015",
+            Code::E025NameClash => "E025",
+            Code::E026TooManyDwells => "E026",
             Code::W001Encoding => "W001",
             Code::W002StepNumber => "W002",
         }

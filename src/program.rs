@@ -14,9 +14,9 @@
 //! in common. Dwell timers, machine inputs and extra outputs become further
 //! signals; one-coil valves simply get different actions.
 
-use crate::address::{Alarm, Allocation, Safety, Signal};
+use crate::address::{Alarm, Allocation, Modes, Safety, Signal};
 use crate::cell::Sign;
-use crate::table::{Move, StepTable};
+use crate::table::{Move, Step, StepTable};
 use crate::timing::Strokes;
 use crate::valve::ValveType;
 
@@ -76,11 +76,24 @@ impl Action {
     }
 }
 
+/// Where a step of the program comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepKind {
+    /// A row of the table.
+    Table,
+    /// The closing step that notices the end of the cycle (watchdog, modes).
+    EndOfCycle,
+}
+
 /// One step of the sequence.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ProgramStep {
     /// One-based step number, as in the table.
     pub number: usize,
+    pub kind: StepKind,
+    /// What the step does in the table's notation (`C1+1, C2+1; T=2s`), or
+    /// `end of cycle`.
+    pub title: String,
     /// The table's moves of this step (for comments).
     pub moves: Vec<Move>,
     /// All literals must hold for the step to fire.
@@ -96,6 +109,10 @@ pub enum RungKind {
     Edge,
     Plausibility,
     Watchdog,
+    Dwell,
+    Mode,
+    Homing,
+    EmergencyStop,
 }
 
 impl RungKind {
@@ -106,6 +123,10 @@ impl RungKind {
             RungKind::Edge => "EDGE",
             RungKind::Plausibility => "PLAUSIBILITY",
             RungKind::Watchdog => "WATCHDOG",
+            RungKind::Dwell => "DWELL",
+            RungKind::Mode => "MODE",
+            RungKind::Homing => "HOMING",
+            RungKind::EmergencyStop => "EMERGENCY STOP",
         }
     }
 }
@@ -121,13 +142,15 @@ pub struct Rung {
 }
 
 /// Choices that change the generated program.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ProgramOptions {
     /// Switch both coils off when an actuator reaches a middle target. Off only
     /// to show what the published method does without it (it hangs).
     pub middle_stops: bool,
     /// Safety checks carried by the program.
     pub safety: Safety,
+    /// Operating modes carried by the program.
+    pub modes: Modes,
 }
 
 impl Default for ProgramOptions {
@@ -135,6 +158,7 @@ impl Default for ProgramOptions {
         ProgramOptions {
             middle_stops: true,
             safety: Safety::default(),
+            modes: Modes::default(),
         }
     }
 }
@@ -151,67 +175,161 @@ pub struct StepProgram {
 }
 
 impl StepProgram {
-    /// The steps that move something (all but a closing END step).
-    pub fn move_steps(&self) -> impl Iterator<Item = &ProgramStep> {
-        self.steps.iter().filter(|s| !s.moves.is_empty())
+    /// The steps of the table (all but a closing END step).
+    pub fn table_steps(&self) -> impl Iterator<Item = &ProgramStep> {
+        self.steps.iter().filter(|s| s.kind == StepKind::Table)
+    }
+}
+
+/// What must hold for a step of the table to be complete: every move at its
+/// target sensor, every wait met, every dwell run out (its arming memory
+/// cleared when its timer started, and the timer stopped).
+fn completion(step: &Step) -> Vec<Literal> {
+    let mut literals: Vec<Literal> = step
+        .moves
+        .iter()
+        .map(|m| {
+            Literal::is(Signal::Sensor {
+                actuator: m.actuator,
+                position: m.to,
+            })
+        })
+        .collect();
+    literals.extend(step.waits.iter().map(wait_literal));
+    for d in &step.dwells {
+        literals.push(Literal::not(Signal::DwellArmed(d.number)));
+        literals.push(Literal::not(Signal::Dwell(d.number)));
+    }
+    literals
+}
+
+fn wait_literal(w: &crate::table::Wait) -> Literal {
+    Literal {
+        signal: Signal::MachineInput(w.input),
+        negated: !w.value,
+    }
+}
+
+/// The actions that move actuator `m` (its coils, and its middle-stop request).
+fn move_actions(
+    table: &StepTable,
+    allocation: &Allocation,
+    middle_stops: bool,
+    m: &Move,
+    actions: &mut Vec<Action>,
+) {
+    let is_middle = |actuator: u32, position: u32| {
+        table
+            .actuator(actuator)
+            .is_some_and(|a| position > 0 && position < a.max_position)
+    };
+    let pmax = table.actuator(m.actuator).map_or(1, |a| a.max_position);
+    if allocation.valves.of(m.actuator, pmax) == ValveType::Mono52 {
+        // One coil, held for as long as the cylinder must stay out;
+        // switching it off lets the spring retract.
+        let coil = Signal::SingleCoil {
+            actuator: m.actuator,
+        };
+        actions.push(match m.sign {
+            Sign::Plus => Action::Set(coil),
+            Sign::Minus => Action::Reset(coil),
+        });
+        return;
+    }
+    // Two coils: the move's coil is set and held (it is the valve's
+    // only memory across a power dip), the opposite one reset.
+    actions.push(Action::Set(Signal::Coil {
+        actuator: m.actuator,
+        sign: m.sign,
+    }));
+    actions.push(Action::Reset(Signal::Coil {
+        actuator: m.actuator,
+        sign: m.sign.opposite(),
+    }));
+    if middle_stops {
+        // A stop request left from reaching the previous middle target
+        // must not cut this new move.
+        if is_middle(m.actuator, m.from) {
+            actions.push(Action::Reset(Signal::StopAt {
+                actuator: m.actuator,
+                position: m.from,
+            }));
+        }
+        if is_middle(m.actuator, m.to) {
+            actions.push(Action::Set(Signal::StopAt {
+                actuator: m.actuator,
+                position: m.to,
+            }));
+        }
     }
 }
 
 /// Builds the step program of a checked table.
 ///
-/// Step k fires when every sensor reached at the end of step k−1 is on; step 1
-/// fires on START and every home sensor. Each move sets its coil and resets the
-/// opposite one. A move to a middle position also sets a stop request, and a
-/// rung switches both coils off the moment the middle sensor is reached: a
-/// 5/3 valve only holds the piston with both coils off (DESIGN §4, trap 2).
+/// Step k fires when step k−1 is complete (its moves at their sensors, its
+/// waits met, its dwells run out); step 1 fires on START and every home
+/// sensor. Each move sets its coil and resets the opposite one. A move to a
+/// middle position also sets a stop request, and a rung switches both coils
+/// off the moment the middle sensor is reached: a 5/3 valve only holds the
+/// piston with both coils off (DESIGN §4, trap 2). A dwell is armed when its
+/// step fires and a rung starts its timer once the other items of its branch
+/// are done. Operating modes (`options.modes`) add rungs for the buttons and
+/// a homing sequence.
 pub fn build(
     table: &StepTable,
     allocation: &Allocation,
     options: ProgramOptions,
     strokes: &Strokes,
 ) -> StepProgram {
-    let is_middle = |actuator: u32, position: u32| {
-        table
-            .actuator(actuator)
-            .is_some_and(|a| position > 0 && position < a.max_position)
-    };
     let middle_stops = options.middle_stops;
     let safety = options.safety;
-    let halts = safety.plausibility || safety.watchdog;
-    let targets = |moves: &[Move]| -> Vec<Literal> {
-        moves
-            .iter()
-            .map(|m| {
-                Literal::is(Signal::Sensor {
-                    actuator: m.actuator,
-                    position: m.to,
-                })
+    let modes = &options.modes;
+    let halts = safety.plausibility || safety.watchdog || modes.estop;
+    let homes: Vec<Literal> = table
+        .actuators
+        .iter()
+        .map(|a| {
+            Literal::is(Signal::Sensor {
+                actuator: a.number,
+                position: 0,
             })
-            .collect()
-    };
+        })
+        .collect();
+    let end_step = safety.watchdog || modes.any();
 
     let mut steps = Vec::with_capacity(table.steps.len() + 1);
     for (index, step) in table.steps.iter().enumerate() {
         let mut condition: Vec<Literal> = if index == 0 {
-            std::iter::once(Literal::is(Signal::Start))
-                .chain(safety.edge.then_some(Literal::not(Signal::StartMemory)))
-                .chain(table.actuators.iter().map(|a| {
-                    Literal::is(Signal::Sensor {
-                        actuator: a.number,
-                        position: 0,
-                    })
-                }))
-                .collect()
+            let mut first = if modes.any() {
+                // The buttons' rungs turn START and CONTINUOUS into a request.
+                vec![Literal::is(Signal::CycleRequest)]
+            } else {
+                std::iter::once(Literal::is(Signal::Start))
+                    .chain(safety.edge.then_some(Literal::not(Signal::StartMemory)))
+                    .collect()
+            };
+            first.extend(homes.iter().copied());
+            if !end_step && let Some(last) = table.steps.last() {
+                // The cycle ends when the last step's waits and dwells are done
+                // (its moves end at home, which the home sensors say).
+                first.extend(
+                    completion(last)
+                        .into_iter()
+                        .filter(|l| !matches!(l.signal, Signal::Sensor { .. })),
+                );
+            }
+            first
         } else {
-            targets(&table.steps[index - 1].moves)
+            completion(&table.steps[index - 1])
         };
         if safety.precheck {
             // A target sensor already on before the move starts is a lie.
-            condition.extend(
-                targets(&step.moves)
-                    .into_iter()
-                    .map(|l| Literal::not(l.signal)),
-            );
+            condition.extend(step.moves.iter().map(|m| {
+                Literal::not(Signal::Sensor {
+                    actuator: m.actuator,
+                    position: m.to,
+                })
+            }));
         }
         if halts {
             condition.push(Literal::not(Signal::Halt));
@@ -219,75 +337,71 @@ pub fn build(
 
         let mut actions = Vec::new();
         for m in &step.moves {
-            let pmax = table.actuator(m.actuator).map_or(1, |a| a.max_position);
-            if allocation.valves.of(m.actuator, pmax) == ValveType::Mono52 {
-                // One coil, held for as long as the cylinder must stay out;
-                // switching it off lets the spring retract.
-                let coil = Signal::SingleCoil {
-                    actuator: m.actuator,
-                };
-                actions.push(match m.sign {
-                    Sign::Plus => Action::Set(coil),
-                    Sign::Minus => Action::Reset(coil),
-                });
-                continue;
-            }
-            // Two coils: the move's coil is set and held (it is the valve's
-            // only memory across a power dip), the opposite one reset.
-            actions.push(Action::Set(Signal::Coil {
-                actuator: m.actuator,
-                sign: m.sign,
-            }));
-            actions.push(Action::Reset(Signal::Coil {
-                actuator: m.actuator,
-                sign: m.sign.opposite(),
-            }));
-            if middle_stops {
-                // A stop request left from reaching the previous middle target
-                // must not cut this new move.
-                if is_middle(m.actuator, m.from) {
-                    actions.push(Action::Reset(Signal::StopAt {
-                        actuator: m.actuator,
-                        position: m.from,
-                    }));
-                }
-                if is_middle(m.actuator, m.to) {
-                    actions.push(Action::Set(Signal::StopAt {
-                        actuator: m.actuator,
-                        position: m.to,
-                    }));
-                }
-            }
+            move_actions(table, allocation, middle_stops, m, &mut actions);
+        }
+        for switch in &step.switches {
+            let output = Signal::MachineOutput(switch.output);
+            actions.push(if switch.on {
+                Action::Set(output)
+            } else {
+                Action::Reset(output)
+            });
+        }
+        actions.extend(
+            step.dwells
+                .iter()
+                .map(|d| Action::Set(Signal::DwellArmed(d.number))),
+        );
+        if index == 0 && modes.any() {
+            actions.push(Action::Reset(Signal::CycleRequest));
+            actions.push(Action::Set(Signal::Busy));
         }
         if safety.watchdog {
-            actions.push(Action::StartTimer(
-                Signal::Watchdog,
-                watchdog_preset_ms(table, &step.moves, strokes),
-            ));
-            actions.push(Action::Set(Signal::WatchdogArmed));
+            if step.waits.is_empty() {
+                actions.push(Action::StartTimer(
+                    Signal::Watchdog,
+                    watchdog_preset_ms(table, step, strokes),
+                ));
+                actions.push(Action::Set(Signal::WatchdogArmed));
+            } else {
+                // Waiting for a part may take as long as it takes: a step
+                // that waits on a machine input is not timed.
+                actions.push(Action::Reset(Signal::Watchdog));
+                actions.push(Action::Reset(Signal::WatchdogArmed));
+            }
         }
         steps.push(ProgramStep {
             number: step.number,
+            kind: StepKind::Table,
+            title: step.text(),
             moves: step.moves.clone(),
             condition,
             actions,
         });
     }
-    if safety.watchdog
-        && let Some(last) = table.steps.last()
-    {
+    if end_step && let Some(last) = table.steps.last() {
         // The end of the cycle is an event of its own: the watchdog must stop
-        // once the last moves have finished, not run on while the machine idles.
-        let mut condition = targets(&last.moves);
-        condition.push(Literal::not(Signal::Halt));
+        // once the last moves have finished, not run on while the machine
+        // idles, and a new cycle may be asked for only now.
+        let mut condition = completion(last);
+        if halts {
+            condition.push(Literal::not(Signal::Halt));
+        }
+        let mut actions = Vec::new();
+        if safety.watchdog {
+            actions.push(Action::Reset(Signal::Watchdog));
+            actions.push(Action::Reset(Signal::WatchdogArmed));
+        }
+        if modes.any() {
+            actions.push(Action::Reset(Signal::Busy));
+        }
         steps.push(ProgramStep {
             number: last.number + 1,
+            kind: StepKind::EndOfCycle,
+            title: "end of cycle".to_string(),
             moves: Vec::new(),
             condition,
-            actions: vec![
-                Action::Reset(Signal::Watchdog),
-                Action::Reset(Signal::WatchdogArmed),
-            ],
+            actions,
         });
     }
 
@@ -318,6 +432,42 @@ pub fn build(
                 ],
             });
         }
+    }
+    for step in &table.steps {
+        for d in &step.dwells {
+            // The dwell starts once the other items of its branch are done.
+            let mut condition = vec![Literal::is(Signal::DwellArmed(d.number))];
+            condition.extend(step.branch_moves(d.branch).map(|m| {
+                Literal::is(Signal::Sensor {
+                    actuator: m.actuator,
+                    position: m.to,
+                })
+            }));
+            condition.extend(
+                step.waits
+                    .iter()
+                    .filter(|w| w.branch == d.branch)
+                    .map(wait_literal),
+            );
+            rungs.push(Rung {
+                kind: RungKind::Dwell,
+                comment: format!(
+                    "dwell {}: STEP {}, branch {} waits {} once its other items are done",
+                    d.number,
+                    step.number,
+                    d.branch + 1,
+                    crate::cell::dwell_text(d.ms)
+                ),
+                condition,
+                actions: vec![
+                    Action::StartTimer(Signal::Dwell(d.number), d.ms),
+                    Action::Reset(Signal::DwellArmed(d.number)),
+                ],
+            });
+        }
+    }
+    if modes.any() {
+        mode_rungs(table, allocation, safety, modes, &homes, &mut rungs);
     }
     let mut init = Vec::new();
     if safety.edge {
@@ -379,6 +529,10 @@ pub fn build(
             ],
         });
     }
+    timers.extend(table.dwells().map(|d| Signal::Dwell(d.number)));
+    if modes.any() {
+        homing_rungs(table, allocation, safety, modes, &mut rungs);
+    }
     StepProgram {
         init,
         steps,
@@ -387,10 +541,239 @@ pub fn build(
     }
 }
 
-/// Twice the longest move of the step plus one second, rounded up to 100 ms:
-/// generous enough for a sticky valve, short enough to catch a lost sensor.
-fn watchdog_preset_ms(table: &StepTable, moves: &[Move], strokes: &Strokes) -> u32 {
-    let longest = moves
+/// Every output the program drives: coils, single coils and machine outputs.
+fn driven_outputs(allocation: &Allocation) -> Vec<Signal> {
+    allocation
+        .outputs
+        .iter()
+        .map(|a| a.signal)
+        .filter(|s| {
+            matches!(
+                s,
+                Signal::Coil { .. } | Signal::SingleCoil { .. } | Signal::MachineOutput(_)
+            )
+        })
+        .collect()
+}
+
+/// START, CONTINUOUS and STOP turn into a cycle request; STEP 1 consumes it.
+fn mode_rungs(
+    _table: &StepTable,
+    _allocation: &Allocation,
+    safety: Safety,
+    modes: &Modes,
+    homes: &[Literal],
+    rungs: &mut Vec<Rung>,
+) {
+    let halts = safety.plausibility || safety.watchdog || modes.estop;
+    // Ready for a new cycle: none under way, no halt, not homing, all home.
+    let mut ready = vec![Literal::not(Signal::Busy)];
+    if halts {
+        ready.push(Literal::not(Signal::Halt));
+    }
+    if modes.reset {
+        ready.push(Literal::not(Signal::Homing));
+    }
+    ready.extend(homes.iter().copied());
+
+    let mut start = vec![Literal::is(Signal::Start)];
+    if safety.edge {
+        start.push(Literal::not(Signal::StartMemory));
+    }
+    if modes.stop {
+        start.push(Literal::is(Signal::Stop));
+    }
+    start.extend(ready.iter().copied());
+    let mut start_actions = vec![Action::Set(Signal::CycleRequest)];
+    if modes.continuous {
+        start_actions.push(Action::Set(Signal::AutoRun));
+    }
+    rungs.push(Rung {
+        kind: RungKind::Mode,
+        comment: "START: one cycle (machine home and ready)".to_string(),
+        condition: start,
+        actions: start_actions,
+    });
+    if modes.continuous {
+        let mut again = vec![
+            Literal::is(Signal::Continuous),
+            Literal::is(Signal::AutoRun),
+        ];
+        again.extend(ready.iter().copied());
+        rungs.push(Rung {
+            kind: RungKind::Mode,
+            comment: "CONTINUOUS: the next cycle once this one has ended".to_string(),
+            condition: again,
+            actions: vec![Action::Set(Signal::CycleRequest)],
+        });
+        rungs.push(Rung {
+            kind: RungKind::Mode,
+            comment: "CONTINUOUS off: no further cycles".to_string(),
+            condition: vec![Literal::not(Signal::Continuous)],
+            actions: vec![Action::Reset(Signal::AutoRun)],
+        });
+    }
+    if modes.stop {
+        let mut actions = vec![Action::Reset(Signal::CycleRequest)];
+        if modes.continuous {
+            actions.push(Action::Reset(Signal::AutoRun));
+        }
+        rungs.push(Rung {
+            kind: RungKind::Mode,
+            comment: "STOP (normally closed): finish this cycle, start no other".to_string(),
+            condition: vec![Literal::not(Signal::Stop)],
+            actions,
+        });
+    }
+}
+
+/// RESET, the homing stages and the emergency stop, which comes last so
+/// that nothing after it can switch a coil back on in the same scan.
+fn homing_rungs(
+    table: &StepTable,
+    allocation: &Allocation,
+    safety: Safety,
+    modes: &Modes,
+    rungs: &mut Vec<Rung>,
+) {
+    let outputs = driven_outputs(allocation);
+    let memories: Vec<Signal> = allocation.memories.iter().map(|m| m.signal).collect();
+    if modes.reset {
+        let stages = modes.home_stages(table).unwrap_or_default();
+        let mut condition = vec![Literal::is(Signal::Reset)];
+        if modes.estop {
+            condition.push(Literal::is(Signal::EStop));
+        }
+        let mut actions: Vec<Action> = outputs.iter().map(|s| Action::Reset(*s)).collect();
+        // Forget the interrupted cycle: requests, stops, dwells, alarms.
+        actions.extend(
+            memories
+                .iter()
+                .filter(|m| {
+                    matches!(
+                        m,
+                        Signal::Halt
+                            | Signal::CycleRequest
+                            | Signal::Busy
+                            | Signal::AutoRun
+                            | Signal::StopAt { .. }
+                            | Signal::DwellArmed(_)
+                            | Signal::WatchdogArmed
+                    )
+                })
+                .map(|m| Action::Reset(*m)),
+        );
+        actions.extend(
+            allocation
+                .outputs
+                .iter()
+                .filter(|a| matches!(a.signal, Signal::Alarm(_)))
+                .map(|a| Action::Reset(a.signal)),
+        );
+        actions.extend(allocation.timers.iter().map(|t| Action::Reset(t.signal)));
+        actions.push(Action::Set(Signal::Homing));
+        for n in 1..=stages.len() {
+            let stage = Signal::HomeStage(n as u16);
+            actions.push(if n == 1 {
+                Action::Set(stage)
+            } else {
+                Action::Reset(stage)
+            });
+        }
+        actions.push(Action::Reset(Signal::Sequence));
+        rungs.push(Rung {
+            kind: RungKind::Homing,
+            comment: "RESET: abandon the cycle, every output off, home stage by stage".to_string(),
+            condition,
+            actions,
+        });
+        let _ = safety;
+        for (i, stage) in stages.iter().enumerate() {
+            let memory = Signal::HomeStage(i as u16 + 1);
+            let names: Vec<String> = stage.iter().map(|a| format!("C{a}")).collect();
+            let mut drive = Vec::new();
+            let mut home = vec![Literal::is(memory)];
+            for &actuator in stage {
+                let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
+                if allocation.valves.of(actuator, pmax) == crate::valve::ValveType::Mono52 {
+                    drive.push(Action::Reset(Signal::SingleCoil { actuator }));
+                } else {
+                    drive.push(Action::Set(Signal::Coil {
+                        actuator,
+                        sign: Sign::Minus,
+                    }));
+                    drive.push(Action::Reset(Signal::Coil {
+                        actuator,
+                        sign: Sign::Plus,
+                    }));
+                }
+                home.push(Literal::is(Signal::Sensor {
+                    actuator,
+                    position: 0,
+                }));
+            }
+            rungs.push(Rung {
+                kind: RungKind::Homing,
+                comment: format!("homing stage {}: {} home", i + 1, names.join(", ")),
+                condition: vec![Literal::is(memory)],
+                actions: drive,
+            });
+            let mut done = vec![Action::Reset(memory)];
+            done.push(if i + 1 < stages.len() {
+                Action::Set(Signal::HomeStage(i as u16 + 2))
+            } else {
+                Action::Reset(Signal::Homing)
+            });
+            rungs.push(Rung {
+                kind: RungKind::Homing,
+                comment: format!(
+                    "homing stage {} done: {}",
+                    i + 1,
+                    if i + 1 < stages.len() {
+                        "next stage"
+                    } else {
+                        "the machine is home and ready"
+                    }
+                ),
+                condition: home,
+                actions: done,
+            });
+        }
+    }
+    if modes.estop {
+        let mut actions: Vec<Action> = outputs.iter().map(|s| Action::Reset(*s)).collect();
+        actions.push(Action::Set(Signal::Halt));
+        actions.extend(
+            memories
+                .iter()
+                .filter(|m| {
+                    matches!(
+                        m,
+                        Signal::CycleRequest
+                            | Signal::Busy
+                            | Signal::AutoRun
+                            | Signal::Homing
+                            | Signal::HomeStage(_)
+                    )
+                })
+                .map(|m| Action::Reset(*m)),
+        );
+        rungs.push(Rung {
+            kind: RungKind::EmergencyStop,
+            comment: "EMERGENCY STOP (normally closed): every coil and output off, START blocked until RESET".to_string(),
+            condition: vec![Literal::not(Signal::EStop)],
+            actions,
+        });
+    }
+}
+
+/// Twice the longest move of the step plus its longest dwell plus one
+/// second, rounded up to 100 ms: generous enough for a sticky valve, short
+/// enough to catch a lost sensor.
+fn watchdog_preset_ms(table: &StepTable, step: &Step, strokes: &Strokes) -> u32 {
+    let dwell = step.dwells.iter().map(|d| d.ms as u64).max().unwrap_or(0);
+    let longest = step
+        .moves
         .iter()
         .map(|m| {
             let pmax = table
@@ -407,7 +790,7 @@ fn watchdog_preset_ms(table: &StepTable, moves: &[Move], strokes: &Strokes) -> u
         })
         .max()
         .unwrap_or(0);
-    let preset = 2 * longest + 1000;
+    let preset = 2 * longest + dwell + 1000;
     (preset.div_ceil(100) * 100).min(u32::MAX as u64) as u32
 }
 
@@ -421,6 +804,10 @@ pub fn paper_sentence(
     let mut text = format!("IF {}", condition_text(condition, &name, "AND", "NOT "));
     text.push_str(" THEN");
     for action in actions {
+        if *action == Action::Reset(Signal::Sequence) {
+            text.push_str(" GOTO STEP 1");
+            continue;
+        }
         text.push_str(&format!(" {} {}", action.verb(), name(action.signal())));
         if let Action::StartTimer(_, ms) = action {
             text.push_str(&format!(" ({ms} ms)"));

@@ -8,7 +8,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::address::{Mnemonic, Safety, Target};
+use crate::address::{Mnemonic, Modes, Safety, Target};
 use crate::diag::{CellPos, Code, Diagnostics};
 use crate::read::{CellValue, Grid};
 use crate::timing::{Stroke, parse_duration_ms};
@@ -21,6 +21,10 @@ pub struct SheetSettings {
     pub mnemonic: Option<Mnemonic>,
     pub scan_ms: Option<u32>,
     pub safety: Option<Safety>,
+    /// Operating modes (`continuous, stop, estop, reset`).
+    pub modes: Option<Modes>,
+    /// Homing stages (`C3&C4, C2, C1`).
+    pub home_order: Option<Vec<Vec<u32>>>,
     pub strokes: BTreeMap<u32, Stroke>,
     /// Valve types from the table's `valve` column.
     pub valves: BTreeMap<u32, ValveType>,
@@ -39,7 +43,14 @@ struct ActuatorColumns {
 }
 
 /// The labels of the settings, as written on the sheet.
-pub const LABELS: [&str; 4] = ["target", "mnemonic", "scan time", "safety"];
+pub const LABELS: [&str; 6] = [
+    "target",
+    "mnemonic",
+    "scan time",
+    "safety",
+    "modes",
+    "home order",
+];
 
 fn text_of(value: &CellValue) -> String {
     match value {
@@ -125,6 +136,14 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
             "safety" => match Safety::parse(&value) {
                 Ok(safety) => settings.safety = Some(safety),
                 Err(_) => bad("none, all, or some of edge, precheck, plausibility, watchdog"),
+            },
+            "modes" => match Modes::parse(&value) {
+                Ok(modes) => settings.modes = Some(modes),
+                Err(_) => bad("none, all, or some of continuous, stop, estop, reset"),
+            },
+            "home order" => match Modes::parse_home_order(&value) {
+                Ok(order) => settings.home_order = Some(order),
+                Err(_) => bad("stages of actuators such as C3&C4, C2, C1"),
             },
             _ => {}
         }

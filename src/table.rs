@@ -4,7 +4,9 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use crate::cell::{CellError, CellMove, MAX_ACTUATOR, MAX_POSITION, Sign, parse_move};
+use crate::cell::{
+    CellError, CellItem, ItemError, MAX_ACTUATOR, MAX_POSITION, Name, Sign, parse_items,
+};
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 use crate::read::{CellValue, Grid};
 
@@ -66,13 +68,121 @@ impl Move {
     }
 }
 
-/// One step: all of its moves start together.
+/// Most dwells a table may have: PLCs have 256 timers, one is the watchdog.
+pub const MAX_DWELLS: usize = 255;
+
+/// `T=2s` in a branch: once the branch's other items of the step are done,
+/// it waits this long.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Dwell {
+    /// One-based number of the dwell in the table (its timer's number).
+    pub number: u16,
+    pub ms: u32,
+    pub branch: usize,
+    pub cell: CellPos,
+}
+
+/// `I:name` / `I:name=0`: the step completes only when the input has `value`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Wait {
+    pub input: Name,
+    pub value: bool,
+    pub branch: usize,
+    pub cell: CellPos,
+}
+
+/// `Y:name+` / `Y:name-`: a machine output switched on or off when the step starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Switch {
+    pub output: Name,
+    pub on: bool,
+    pub branch: usize,
+    pub cell: CellPos,
+}
+
+/// One step: all of its moves and switches start together; it completes
+/// when every move reached its sensor, every wait holds and every dwell ran.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Step {
     /// One-based step number.
     pub number: usize,
     /// Moves in branch order.
     pub moves: Vec<Move>,
+    pub dwells: Vec<Dwell>,
+    pub waits: Vec<Wait>,
+    pub switches: Vec<Switch>,
+}
+
+impl Step {
+    /// The step as the table writes it: `C3+2, C2+2` for moves only (as the
+    /// paper does), then `; T=2s; I:part_present; Y:vacuum+` for the rest.
+    pub fn text(&self) -> String {
+        let mut parts = vec![
+            self.moves
+                .iter()
+                .map(Move::notation)
+                .collect::<Vec<_>>()
+                .join(", "),
+        ];
+        parts.extend(self.switches.iter().map(|s| {
+            CellItem::Switch {
+                output: s.output,
+                on: s.on,
+            }
+            .to_string()
+        }));
+        parts.extend(self.waits.iter().map(|w| {
+            CellItem::Wait {
+                input: w.input,
+                value: w.value,
+            }
+            .to_string()
+        }));
+        parts.extend(self.dwells.iter().map(|d| crate::cell::dwell_text(d.ms)));
+        parts.retain(|p| !p.is_empty());
+        parts.join("; ")
+    }
+
+    /// Everything written in one branch's cell, as the table writes it.
+    pub fn cell_text(&self, branch: usize) -> String {
+        let mut parts: Vec<String> = self
+            .moves
+            .iter()
+            .filter(|m| m.branch == branch)
+            .map(Move::notation)
+            .collect();
+        parts.extend(
+            self.switches
+                .iter()
+                .filter(|s| s.branch == branch)
+                .map(|s| {
+                    CellItem::Switch {
+                        output: s.output,
+                        on: s.on,
+                    }
+                    .to_string()
+                }),
+        );
+        parts.extend(self.waits.iter().filter(|w| w.branch == branch).map(|w| {
+            CellItem::Wait {
+                input: w.input,
+                value: w.value,
+            }
+            .to_string()
+        }));
+        parts.extend(
+            self.dwells
+                .iter()
+                .filter(|d| d.branch == branch)
+                .map(|d| crate::cell::dwell_text(d.ms)),
+        );
+        parts.join("; ")
+    }
+
+    /// The moves of one branch (what its dwell waits for).
+    pub fn branch_moves(&self, branch: usize) -> impl Iterator<Item = &Move> {
+        self.moves.iter().filter(move |m| m.branch == branch)
+    }
 }
 
 /// What the table says about one actuator.
@@ -102,9 +212,18 @@ pub struct StepTable {
     pub steps: Vec<Step>,
     /// Actuators in ascending number.
     pub actuators: Vec<Actuator>,
+    /// Machine inputs waited on (`I:name`), in order of first use.
+    pub inputs: Vec<Name>,
+    /// Machine outputs switched (`Y:name+`), in order of first use.
+    pub outputs: Vec<Name>,
 }
 
 impl StepTable {
+    /// Every dwell of the table, in step order.
+    pub fn dwells(&self) -> impl Iterator<Item = &Dwell> {
+        self.steps.iter().flat_map(|s| &s.dwells)
+    }
+
     pub fn actuator(&self, number: u32) -> Option<&Actuator> {
         self.actuators.iter().find(|a| a.number == number)
     }
@@ -179,7 +298,7 @@ pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
             None => {
                 // A move written beside the table would silently be lost.
                 if let CellValue::Text(t) = &cell.value
-                    && crate::cell::looks_like_move(t)
+                    && crate::cell::looks_like_item(t)
                     && cell.pos.col > frame.branch_cols.first().copied().unwrap_or(0)
                 {
                     diags.error(
@@ -196,15 +315,15 @@ pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
     }
 
     // Parse every cell.
-    let mut parsed: Vec<Vec<(CellMove, CellPos, usize)>> = Vec::with_capacity(rows.len());
+    let mut parsed: Vec<Vec<(CellItem, CellPos, usize)>> = Vec::with_capacity(rows.len());
     for row in &rows {
-        let mut moves = Vec::new();
+        let mut items = Vec::new();
         for raw in row {
-            if let Some(m) = parse_cell(grid, raw, diags) {
-                moves.push((m, raw.pos, raw.branch));
+            for item in parse_cell(grid, raw, diags) {
+                items.push((item, raw.pos, raw.branch));
             }
         }
-        parsed.push(moves);
+        parsed.push(items);
     }
 
     // Steps without moves: trailing labelled rows are unused template rows;
@@ -244,7 +363,7 @@ pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
     }
 }
 
-fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Option<CellMove> {
+fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Vec<CellItem> {
     let location = grid.location(raw.pos);
     let text = match &raw.value {
         CellValue::Text(t) => t,
@@ -254,7 +373,7 @@ fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Option<Cel
                 location,
                 format!("the number {n} is not a move (expected text such as C2+1)"),
             );
-            return None;
+            return Vec::new();
         }
         CellValue::Bool(b) => {
             diags.error(
@@ -265,7 +384,7 @@ fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Option<Cel
                     if *b { "TRUE" } else { "FALSE" }
                 ),
             );
-            return None;
+            return Vec::new();
         }
         CellValue::Date(d) => {
             diags.error(
@@ -273,7 +392,7 @@ fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Option<Cel
                 location,
                 format!("the date {d} is not a move (expected text such as C2+1; format the cell as text)"),
             );
-            return None;
+            return Vec::new();
         }
         CellValue::Error(e) => {
             diags.error(
@@ -281,7 +400,7 @@ fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Option<Cel
                 location,
                 format!("the cell shows the error {e}, not a move"),
             );
-            return None;
+            return Vec::new();
         }
     };
     let chars = text.chars().count();
@@ -291,43 +410,58 @@ fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Option<Cel
             location,
             format!("the cell holds {chars} characters; a move has at most {MAX_CELL_CHARS}"),
         );
-        return None;
+        return Vec::new();
     }
-    match parse_move(text) {
-        Ok(m) => Some(m),
-        Err(CellError::NotAMove) => {
-            diags.error(
-                Code::E010NotAMove,
-                location,
-                format!(
-                    "\"{}\" is not a move (expected C<number>+<position>, e.g. C2+1)",
-                    text.trim()
-                ),
-            );
-            None
+    let results = parse_items(text);
+    if results.is_empty() {
+        diags.error(
+            Code::E010NotAMove,
+            location.clone(),
+            format!(
+                "\"{}\" is not a move (expected C<number>+<position>, e.g. C2+1)",
+                text.trim()
+            ),
+        );
+    }
+    let mut items = Vec::with_capacity(results.len());
+    for result in results {
+        match result {
+            Ok(item) => items.push(item),
+            Err(error) => report_item_error(error, text, &location, diags),
         }
-        Err(CellError::BadActuator(n)) => {
-            diags.error(
-                Code::E011BadActuator,
-                location,
-                format!(
-                    "\"{}\": actuator number {n} is out of range (expected 1 to {MAX_ACTUATOR})",
-                    text.trim()
-                ),
-            );
-            None
-        }
-        Err(CellError::BadPosition(n)) => {
-            diags.error(
-                Code::E012BadPosition,
-                location,
-                format!(
-                    "\"{}\": position {n} is out of range (expected 0 to {MAX_POSITION})",
-                    text.trim()
-                ),
-            );
-            None
-        }
+    }
+    items
+}
+
+fn report_item_error(error: ItemError, text: &str, location: &Location, diags: &mut Diagnostics) {
+    let location = location.clone();
+    match error {
+        ItemError::Move(CellError::NotAMove) => diags.error(
+            Code::E010NotAMove,
+            location,
+            format!(
+                "\"{}\" is not a move (expected C<number>+<position>, e.g. C2+1)",
+                text.trim()
+            ),
+        ),
+        ItemError::Move(CellError::BadActuator(n)) => diags.error(
+            Code::E011BadActuator,
+            location,
+            format!(
+                "\"{}\": actuator number {n} is out of range (expected 1 to {MAX_ACTUATOR})",
+                text.trim()
+            ),
+        ),
+        ItemError::Move(CellError::BadPosition(n)) => diags.error(
+            Code::E012BadPosition,
+            location,
+            format!(
+                "\"{}\": position {n} is out of range (expected 0 to {MAX_POSITION})",
+                text.trim()
+            ),
+        ),
+        ItemError::BadDwell(message) => diags.error(Code::E014BadDwell, location, message),
+        ItemError::BadName(message) => diags.error(Code::E015BadName, location, message),
     }
 }
 
@@ -382,7 +516,7 @@ fn find_frame(grid: &Grid, diags: &mut Diagnostics) -> Option<Frame> {
             .cells
             .iter()
             .filter(|c| c.pos.row > header_row && (first_branch..=last_branch).contains(&c.pos.col))
-            .filter(|c| matches!(&c.value, CellValue::Text(t) if crate::cell::looks_like_move(t)))
+            .filter(|c| matches!(&c.value, CellValue::Text(t) if crate::cell::looks_like_item(t)))
             .map(|c| c.pos.row)
             .max()?;
         return Some(Frame {
@@ -395,7 +529,7 @@ fn find_frame(grid: &Grid, diags: &mut Diagnostics) -> Option<Frame> {
     let move_cells: Vec<CellPos> = grid
         .cells
         .iter()
-        .filter(|c| matches!(&c.value, CellValue::Text(t) if crate::cell::looks_like_move(t)))
+        .filter(|c| matches!(&c.value, CellValue::Text(t) if crate::cell::looks_like_item(t)))
         .map(|c| c.pos)
         .collect();
 
@@ -480,27 +614,103 @@ fn most_common(values: impl Iterator<Item = u32>) -> Option<u32> {
 fn check(
     grid: &Grid,
     frame: &Frame,
-    parsed: Vec<Vec<(CellMove, CellPos, usize)>>,
+    parsed: Vec<Vec<(CellItem, CellPos, usize)>>,
     diags: &mut Diagnostics,
 ) -> Option<StepTable> {
     // pmax(i): the highest position written for Ci; at least 1.
     let mut max_position: BTreeMap<u32, u32> = BTreeMap::new();
-    for (m, _, _) in parsed.iter().flatten() {
-        let entry = max_position.entry(m.actuator).or_insert(1);
-        if let Some(p) = m.position {
-            *entry = (*entry).max(p);
+    for (item, _, _) in parsed.iter().flatten() {
+        if let CellItem::Move(m) = item {
+            let entry = max_position.entry(m.actuator).or_insert(1);
+            if let Some(p) = m.position {
+                *entry = (*entry).max(p);
+            }
         }
     }
 
     let location = |pos: CellPos| -> Location { grid.location(pos) };
     let mut current: BTreeMap<u32, (u32, Option<CellPos>)> =
         max_position.keys().map(|a| (*a, (0, None))).collect();
+    let mut names = Names::default();
+    let mut dwell_count = 0usize;
     let mut steps = Vec::with_capacity(parsed.len());
     for (index, row) in parsed.into_iter().enumerate() {
         let number = index + 1;
+        let mut step = Step {
+            number,
+            moves: Vec::with_capacity(row.len()),
+            dwells: Vec::new(),
+            waits: Vec::new(),
+            switches: Vec::new(),
+        };
         let mut seen: BTreeMap<u32, CellPos> = BTreeMap::new();
-        let mut moves = Vec::with_capacity(row.len());
-        for (m, pos, branch) in row {
+        for (item, pos, branch) in row {
+            let m = match item {
+                CellItem::Move(m) => m,
+                CellItem::Dwell { ms } => {
+                    if step.dwells.iter().any(|d| d.cell == pos) {
+                        diags.error(
+                            Code::E021TwiceInStep,
+                            location(pos),
+                            "a cell holds at most one dwell (T=…); add the times up",
+                        );
+                        continue;
+                    }
+                    dwell_count += 1;
+                    if dwell_count == MAX_DWELLS + 1 {
+                        diags.error(
+                            Code::E026TooManyDwells,
+                            location(pos),
+                            format!(
+                                "this is dwell number {dwell_count}; a table has at most {MAX_DWELLS} (PLCs have 256 timers)"
+                            ),
+                        );
+                    }
+                    step.dwells.push(Dwell {
+                        number: dwell_count.min(u16::MAX as usize) as u16,
+                        ms,
+                        branch,
+                        cell: pos,
+                    });
+                    continue;
+                }
+                CellItem::Wait { input, value } => {
+                    if step.waits.iter().any(|w| w.input == input) {
+                        diags.error(
+                            Code::E021TwiceInStep,
+                            location(pos),
+                            format!("STEP {number} already waits for I:{input}; a step waits for an input once"),
+                        );
+                        continue;
+                    }
+                    names.use_name(input, NameKind::Input, pos, grid, diags);
+                    step.waits.push(Wait {
+                        input,
+                        value,
+                        branch,
+                        cell: pos,
+                    });
+                    continue;
+                }
+                CellItem::Switch { output, on } => {
+                    if step.switches.iter().any(|w| w.output == output) {
+                        diags.error(
+                            Code::E021TwiceInStep,
+                            location(pos),
+                            format!("STEP {number} already switches Y:{output}; a step switches an output once"),
+                        );
+                        continue;
+                    }
+                    names.use_name(output, NameKind::Output, pos, grid, diags);
+                    step.switches.push(Switch {
+                        output,
+                        on,
+                        branch,
+                        cell: pos,
+                    });
+                    continue;
+                }
+            };
             let pmax = max_position.get(&m.actuator).copied().unwrap_or(1);
             let to = m.position.unwrap_or(match m.sign {
                 Sign::Plus => pmax,
@@ -540,7 +750,7 @@ fn check(
                 );
             }
             current.insert(m.actuator, (to, Some(pos)));
-            moves.push(Move {
+            step.moves.push(Move {
                 actuator: m.actuator,
                 sign: m.sign,
                 from,
@@ -549,7 +759,7 @@ fn check(
                 cell: pos,
             });
         }
-        steps.push(Step { number, moves });
+        steps.push(step);
     }
 
     for (actuator, (position, last_cell)) in &current {
@@ -580,7 +790,80 @@ fn check(
                 max_position,
             })
             .collect(),
+        inputs: names.inputs,
+        outputs: names.outputs,
     })
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum NameKind {
+    Input,
+    Output,
+}
+
+/// The machine inputs and outputs named so far, with where each was first used.
+#[derive(Default)]
+struct Names {
+    inputs: Vec<Name>,
+    outputs: Vec<Name>,
+    first: BTreeMap<Name, (NameKind, CellPos)>,
+}
+
+impl Names {
+    /// Records a use of a name; a name is an input or an output, not both,
+    /// may not be one the program uses for itself, and must differ from every
+    /// other name in its first 9 characters (all Festo FST keeps).
+    fn use_name(
+        &mut self,
+        name: Name,
+        kind: NameKind,
+        pos: CellPos,
+        grid: &Grid,
+        diags: &mut Diagnostics,
+    ) {
+        if let Some((first_kind, first_pos)) = self.first.get(&name) {
+            if *first_kind != kind {
+                let (was, is) = match first_kind {
+                    NameKind::Input => ("an input (I:)", "an output (Y:)"),
+                    NameKind::Output => ("an output (Y:)", "an input (I:)"),
+                };
+                diags.error(
+                    Code::E025NameClash,
+                    grid.location(pos),
+                    format!(
+                        "{name} is used as {is} here but as {was} in cell {}; give them different names",
+                        first_pos.a1_or_csv(grid)
+                    ),
+                );
+            }
+            return;
+        }
+        if let Some(reason) = crate::address::reserved_name(name.as_str()) {
+            diags.error(
+                Code::E015BadName,
+                grid.location(pos),
+                format!("\"{name}\" cannot name a machine signal: {reason}"),
+            );
+        }
+        let stem = |n: &Name| n.as_str().chars().take(9).collect::<String>();
+        if let Some((other, (_, other_pos))) =
+            self.first.iter().find(|(n, _)| stem(n) == stem(&name))
+        {
+            diags.error(
+                Code::E025NameClash,
+                grid.location(pos),
+                format!(
+                    "{name} and {other} (cell {}) begin with the same 9 characters, which is all Festo FST keeps of a symbol",
+                    other_pos.a1_or_csv(grid)
+                ),
+            );
+        }
+        self.first.insert(name, (kind, pos));
+        match kind {
+            NameKind::Input => self.inputs.push(name),
+            NameKind::Output => self.outputs.push(name),
+        }
+    }
 }
 
 /// Builds and checks a table from rows of cell text laid out as a bare grid

@@ -8,7 +8,7 @@ use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
-use super::{EmitInput, action_comment, moves_text, one_line, templates};
+use super::{EmitInput, action_comment, one_line, templates};
 use crate::address::{Area, Mnemonic, Signal};
 use crate::program::{Action, Literal};
 
@@ -80,9 +80,18 @@ struct Layout {
     words: Words,
     step_flags: Vec<(u32, u32)>,
     fired: (u32, u32),
-    wd_run: (u32, u32),
-    wd_restart: (u32, u32),
-    wd_preset_word: u32,
+    timers: Vec<TimerBits>,
+}
+
+/// An S5 on-delay timer driven the way the step program means a timer: it
+/// runs while `run` is set, `restart` restarts it, `preset` holds its time.
+struct TimerBits {
+    signal: Signal,
+    /// `wd` for the watchdog, `dw3` for dwell 3: the stem of the symbols.
+    stem: String,
+    run: (u32, u32),
+    restart: (u32, u32),
+    preset_word: u32,
 }
 
 impl Layout {
@@ -102,17 +111,40 @@ impl Layout {
         };
         let step_flags = input.program.steps.iter().map(|_| take()).collect();
         let fired = take();
-        let wd_run = take();
-        let wd_restart = take();
-        let word = next.div_ceil(16) * 2;
+        let bits: Vec<((u32, u32), (u32, u32))> = input
+            .program
+            .timers
+            .iter()
+            .map(|_| (take(), take()))
+            .collect();
+        let first_word = next.div_ceil(16) * 2;
+        let timers = input
+            .program
+            .timers
+            .iter()
+            .zip(bits)
+            .enumerate()
+            .map(|(i, (&signal, (run, restart)))| TimerBits {
+                signal,
+                stem: match signal {
+                    Signal::Dwell(n) => format!("dw{n}"),
+                    _ => "wd".to_string(),
+                },
+                run,
+                restart,
+                preset_word: first_word + 2 * i as u32,
+            })
+            .collect();
         Layout {
             words: words(input.allocation.mnemonic),
             step_flags,
             fired,
-            wd_run,
-            wd_restart,
-            wd_preset_word: word,
+            timers,
         }
+    }
+
+    fn timer(&self, signal: Signal) -> Option<&TimerBits> {
+        self.timers.iter().find(|t| t.signal == signal)
     }
 
     fn m((byte, bit): (u32, u32)) -> String {
@@ -121,8 +153,8 @@ impl Layout {
 
     /// The operand of a signal.
     fn operand(&self, input: &EmitInput, signal: Signal) -> String {
-        if signal == Signal::Watchdog {
-            return Layout::m(self.wd_run);
+        if let Some(timer) = self.timer(signal) {
+            return Layout::m(timer.run);
         }
         match input.allocation.address_of(signal) {
             Some(address) => {
@@ -139,12 +171,13 @@ impl Layout {
     }
 }
 
-/// Symbol names of the AWL-only bits.
-fn timer_operand(input: &EmitInput) -> String {
+/// The S5 timer of a timer signal.
+fn timer_operand(input: &EmitInput, signal: Signal) -> String {
     input
         .allocation
         .timers
-        .first()
+        .iter()
+        .find(|t| t.signal == signal)
         .map(|t| format!("T {}", t.address.unit))
         .unwrap_or_else(|| "T 0".to_string())
 }
@@ -204,17 +237,29 @@ fn build(input: &EmitInput) -> Context {
         for a in list {
             let comment = action_comment(*a, moves);
             match *a {
-                Action::Set(s) => lines.push(line("S", layout.operand(input, s), comment)),
-                Action::Reset(s) => lines.push(line("R", layout.operand(input, s), comment)),
-                Action::StartTimer(_, ms) => {
-                    let word = format!("MW {}", layout.wd_preset_word);
-                    lines.push(line("L", s5time(ms), comment));
-                    lines.push(line("T", word, "wd_pt"));
-                    lines.push(line("S", Layout::m(layout.wd_run), "wd_run"));
+                Action::Reset(Signal::Sequence) => {
+                    // Back to STEP 1: every step flag off, the first on.
+                    for (k, flag) in layout.step_flags.iter().enumerate() {
+                        lines.push(line("R", Layout::m(*flag), format!("step_{}", k + 1)));
+                    }
                     lines.push(line(
                         "S",
-                        Layout::m(layout.wd_restart),
-                        "wd_restart: restart the timer",
+                        Layout::m(layout.step_flags[0]),
+                        "step_1: back to STEP 1",
+                    ));
+                }
+                Action::Set(s) => lines.push(line("S", layout.operand(input, s), comment)),
+                Action::Reset(s) => lines.push(line("R", layout.operand(input, s), comment)),
+                Action::StartTimer(s, ms) => {
+                    let Some(t) = layout.timer(s) else { continue };
+                    let word = format!("MW {}", t.preset_word);
+                    lines.push(line("L", s5time(ms), comment));
+                    lines.push(line("T", word, format!("{}_pt", t.stem)));
+                    lines.push(line("S", Layout::m(t.run), format!("{}_run", t.stem)));
+                    lines.push(line(
+                        "S",
+                        Layout::m(t.restart),
+                        format!("{}_restart: restart the timer", t.stem),
                     ));
                 }
             }
@@ -242,19 +287,28 @@ fn build(input: &EmitInput) -> Context {
             line("R", Layout::m(layout.fired), "fired"),
         ],
     });
-    if !program.timers.is_empty() {
-        let timer = timer_operand(input);
+    for t in &layout.timers {
+        let timer = timer_operand(input, t.signal);
+        let stem = &t.stem;
+        let name = t.signal.ident();
         networks.push(Network {
-            title: "watchdog timer: on-delay while wd_run, restarted by wd_restart".to_string(),
+            title: format!(
+                "{} timer: on-delay while {stem}_run, restarted by {stem}_restart",
+                if t.signal == Signal::Watchdog {
+                    "watchdog".to_string()
+                } else {
+                    name.clone()
+                }
+            ),
             lines: vec![
-                line(w.and, Layout::m(layout.wd_run), "wd_run"),
-                line(w.and_not, Layout::m(layout.wd_restart), "wd_restart"),
-                line("L", format!("MW {}", layout.wd_preset_word), "wd_pt"),
-                line("SE", timer.clone(), "watchdog"),
-                line(w.and, timer, "watchdog elapsed"),
-                line("R", Layout::m(layout.wd_run), "wd_run"),
-                line(w.and, Layout::m(layout.wd_restart), "wd_restart"),
-                line("R", Layout::m(layout.wd_restart), "wd_restart"),
+                line(w.and, Layout::m(t.run), format!("{stem}_run")),
+                line(w.and_not, Layout::m(t.restart), format!("{stem}_restart")),
+                line("L", format!("MW {}", t.preset_word), format!("{stem}_pt")),
+                line("SE", timer.clone(), name.clone()),
+                line(w.and, timer, format!("{name} elapsed")),
+                line("R", Layout::m(t.run), format!("{stem}_run")),
+                line(w.and, Layout::m(t.restart), format!("{stem}_restart")),
+                line("R", Layout::m(t.restart), format!("{stem}_restart")),
             ],
         });
     }
@@ -292,11 +346,7 @@ fn build(input: &EmitInput) -> Context {
             operand: "0".to_string(),
             comment: String::new(),
         });
-        let title = if step.moves.is_empty() {
-            format!("STEP {}: end of cycle", step.number)
-        } else {
-            format!("STEP {}: {}", step.number, moves_text(&step.moves))
-        };
+        let title = format!("STEP {}: {}", step.number, one_line(&step.title));
         networks.push(Network { title, lines });
     }
     for rung in &program.rungs {
@@ -354,33 +404,43 @@ fn build(input: &EmitInput) -> Context {
         data_type: "BOOL",
         comment: "a step fired in this cycle".to_string(),
     });
-    if !program.timers.is_empty() {
-        for (name, bit, comment) in [
-            ("wd_run", layout.wd_run, "watchdog runs"),
+    for t in &layout.timers {
+        let (what, preset) = if t.signal == Signal::Watchdog {
             (
-                "wd_restart",
-                layout.wd_restart,
-                "watchdog restarts in the next cycle",
+                "watchdog".to_string(),
+                "watchdog preset of the running step".to_string(),
+            )
+        } else {
+            let what = t.signal.ident();
+            let preset = format!("{what} preset");
+            (what, preset)
+        };
+        for (name, bit, comment) in [
+            (format!("{}_run", t.stem), t.run, format!("{what} runs")),
+            (
+                format!("{}_restart", t.stem),
+                t.restart,
+                format!("{what} restarts in the next cycle"),
             ),
         ] {
             symbols.push(Symbol {
-                symbol: name.to_string(),
+                symbol: name,
                 address: sdf_address(&Layout::m(bit)),
                 data_type: "BOOL",
-                comment: comment.to_string(),
+                comment,
             });
         }
         symbols.push(Symbol {
-            symbol: "wd_pt".to_string(),
-            address: sdf_address(&format!("MW {}", layout.wd_preset_word)),
+            symbol: format!("{}_pt", t.stem),
+            address: sdf_address(&format!("MW {}", t.preset_word)),
             data_type: "S5TIME",
-            comment: "watchdog preset of the running step".to_string(),
+            comment: preset,
         });
         symbols.push(Symbol {
-            symbol: "watchdog".to_string(),
-            address: sdf_address(&timer_operand(input)),
+            symbol: t.signal.ident(),
+            address: sdf_address(&timer_operand(input, t.signal)),
             data_type: "TIMER",
-            comment: "step watchdog timer".to_string(),
+            comment: one_line(&t.signal.comment(input.table)),
         });
     }
 

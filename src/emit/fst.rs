@@ -8,8 +8,8 @@ use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
-use super::{EmitInput, action_comment, moves_text, one_line, templates};
-use crate::address::{Allocation, Mnemonic, Target};
+use super::{EmitInput, action_comment, one_line, templates};
+use crate::address::{Allocation, Mnemonic, Signal, Target};
 use crate::program::{Action, Literal};
 
 #[derive(Serialize)]
@@ -93,6 +93,19 @@ fn actions(
                 lines.push(("TO", format!("TP{number}"), "preset in 1/100 s".to_string()));
                 lines.push(("SET", operand, "timer runs".to_string()));
             }
+            // P1 sends the sequence back to its start: stop P0, start it again.
+            Action::Reset(Signal::Sequence) => {
+                lines.push((
+                    "RESET",
+                    "P0".to_string(),
+                    "stop the step sequence".to_string(),
+                ));
+                lines.push((
+                    "SET",
+                    "P0".to_string(),
+                    "and start it again at STEP 1".to_string(),
+                ));
+            }
             Action::Set(_) => lines.push(("SET", operand, comment)),
             Action::Reset(_) => lines.push(("RESET", operand, comment)),
         }
@@ -136,11 +149,7 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         .enumerate()
         .map(|(i, s)| StepContext {
             number: s.number,
-            moves: if s.moves.is_empty() {
-                "end of cycle".to_string()
-            } else {
-                moves_text(&s.moves)
-            },
+            moves: one_line(&s.title),
             condition: condition(&s.condition, &festo),
             actions: actions(&s.actions, &festo, |a| action_comment(a, &s.moves)),
             last: i + 1 == count,

@@ -108,6 +108,7 @@ pub fn action_comment(action: Action, moves: &[Move]) -> String {
         }
         Action::Reset(Signal::StopAt { .. }) => format!("{symbol} off: stop request cleared"),
         Action::StartTimer(s, ms) => format!("start {} for {ms} ms", s.symbol()),
+        Action::Reset(Signal::Sequence) => "the sequence goes back to STEP 1".to_string(),
         Action::Set(s) => format!("{} on", s.symbol()),
         Action::Reset(s) => format!("{} off", s.symbol()),
     }

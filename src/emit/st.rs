@@ -9,7 +9,7 @@ use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
-use super::{EmitInput, action_comment, moves_text, templates};
+use super::{EmitInput, action_comment, templates};
 use crate::address::{Area, Assigned, Signal};
 use crate::program::{Action, Literal, condition_text};
 
@@ -140,6 +140,7 @@ fn condition(literals: &[Literal]) -> String {
 
 fn statement(action: Action) -> String {
     match action {
+        Action::Reset(Signal::Sequence) => format!("{STEP_VAR} := 1;"),
         Action::StartTimer(timer, ms) => format!(
             "{pt} := T#{ms}ms; {run} := TRUE; {t}(IN := FALSE, PT := {pt});",
             pt = timer_preset(timer),
@@ -183,11 +184,7 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
         .enumerate()
         .map(|(i, s)| StepContext {
             number: s.number,
-            title: if s.moves.is_empty() {
-                "end of cycle".to_string()
-            } else {
-                comment_text(&moves_text(&s.moves))
-            },
+            title: comment_text(&s.title),
             condition: condition(&s.condition),
             actions: statements(&s.actions, |a| action_comment(a, &s.moves)),
             next: if i + 1 == count { 1 } else { s.number + 1 },

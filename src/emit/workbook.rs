@@ -39,7 +39,7 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
             })
             .collect::<Vec<_>>()
             .join(" ");
-        let label = if step.moves.is_empty() {
+        let label = if step.kind == crate::program::StepKind::EndOfCycle {
             format!("STEP {} (END)", step.number)
         } else {
             format!("STEP {}", step.number)
@@ -88,8 +88,11 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     for (i, step) in input.table.steps.iter().enumerate() {
         let row = header_row + 1 + i as u32;
         sheet.write_string_with_format(row, 0, format!("STEP {}", step.number), &bold)?;
-        for m in &step.moves {
-            sheet.write_string(row, m.branch as u16 + 1, m.notation())?;
+        for branch in 0..input.table.branches {
+            let text = step.cell_text(branch);
+            if !text.is_empty() {
+                sheet.write_string(row, branch as u16 + 1, text)?;
+            }
         }
     }
     sheet.set_freeze_panes(header_row + 1, 1)?;

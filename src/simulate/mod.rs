@@ -14,8 +14,8 @@ pub mod report;
 use std::collections::BTreeMap;
 
 use crate::address::{Alarm, Signal};
-use crate::cell::Sign;
-use crate::program::{Action, Literal, StepProgram};
+use crate::cell::{Name, Sign};
+use crate::program::{Action, Literal, StepKind, StepProgram};
 use crate::table::{Move, StepTable};
 use crate::timing::{Stroke, Strokes};
 use crate::valve::Valves;
@@ -30,6 +30,9 @@ pub const DEFAULT_DRIFT: f64 = 0.05;
 const START_PRESS_MS: u32 = 100;
 /// Idle time before the first press and between cycles.
 const IDLE_MS: u32 = 500;
+/// How long the machine takes to give an input a step waits for, unless
+/// `SimSettings::input_delays` says otherwise.
+pub const DEFAULT_INPUT_DELAY_MS: u32 = 500;
 
 /// A sensor or push-button circuit fault: the input reads `stuck_at` always.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -70,6 +73,9 @@ pub struct SimSettings {
     pub faults: Vec<Fault>,
     /// Record every actuator's position at every scan (for the time diagram).
     pub record_trace: bool,
+    /// Per machine input, how long after its step starts the machine gives
+    /// the value the step waits for (default [`DEFAULT_INPUT_DELAY_MS`]).
+    pub input_delays: BTreeMap<Name, u32>,
 }
 
 impl Default for SimSettings {
@@ -83,6 +89,7 @@ impl Default for SimSettings {
             cycles: 2,
             faults: Vec::new(),
             record_trace: false,
+            input_delays: BTreeMap::new(),
         }
     }
 }
@@ -150,7 +157,32 @@ pub struct StepTiming {
     pub start_ms: u64,
     /// Until the next step fired (or, for the last step, until its moves ended).
     pub duration_ms: u64,
+    /// What the step does, in the table's notation.
     pub moves: String,
+    /// Dwells and waits of the step, as they happened: `T=2s from 1.21 s`,
+    /// `I:part_present after 0.50 s`.
+    pub notes: String,
+}
+
+/// A span of time in the run (absolute milliseconds) with a label: a dwell
+/// running or a step waiting for a machine input. Drawn on the time diagram.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Span {
+    pub from_ms: u64,
+    pub to_ms: u64,
+    pub label: String,
+}
+
+/// The operator's buttons and switches at one moment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Operator {
+    pub start: bool,
+    pub continuous: bool,
+    /// STOP pressed (the normally closed input reads 0).
+    pub stop: bool,
+    /// EMERGENCY STOP pressed (the normally closed input reads 0).
+    pub estop: bool,
+    pub reset: bool,
 }
 
 /// One complete or interrupted cycle.
@@ -178,6 +210,8 @@ pub struct SimReport {
     pub actuators: Vec<(u32, u32)>,
     /// `(time_ms, positions)` at every scan, when recorded.
     pub trace: Vec<(u64, Vec<f64>)>,
+    /// Dwells and waits of the first cycle, in absolute time.
+    pub spans: Vec<Span>,
 }
 
 impl SimReport {
@@ -251,9 +285,28 @@ struct Run<'a> {
     /// target window after the next step has fired.
     last_move: Vec<Option<ActiveMove>>,
     start_pressed: bool,
+    /// Buttons other than START (the standard proof leaves them alone).
+    operator: Operator,
+    /// Machine inputs as the machine gives them, and changes to come.
+    machine: BTreeMap<Name, bool>,
+    pending: Vec<(u64, Name, bool)>,
+    table: &'a StepTable,
+    /// Dwell timers: PLC index, dwell number, when it started (if running).
+    dwells: Vec<(usize, u16, Option<u64>)>,
+    spans: Vec<Span>,
     trace: Vec<(u64, Vec<f64>)>,
     /// Per piston, the PLC indices of its `+`, `-` and single coil.
     coils: Vec<(Option<usize>, Option<usize>, Option<usize>)>,
+}
+
+/// What the plant and the operator give the PLC's inputs.
+struct Env<'a> {
+    settings: &'a SimSettings,
+    pistons: &'a [Piston],
+    index_of: &'a BTreeMap<u32, usize>,
+    start: bool,
+    operator: Operator,
+    machine: &'a BTreeMap<Name, bool>,
 }
 
 impl Run<'_> {
@@ -266,15 +319,10 @@ impl Run<'_> {
             .iter()
             .copied()
             .filter(|l| {
-                let raw = match l.signal {
-                    Signal::Start | Signal::Sensor { .. } => read_input(
-                        l.signal,
-                        self.settings,
-                        &self.pistons,
-                        &self.index_of,
-                        self.start_pressed,
-                    ),
-                    other => self.plc.bit(other),
+                let raw = if l.signal.is_input() {
+                    read_input(l.signal, &self.env())
+                } else {
+                    self.plc.bit(l.signal)
                 };
                 raw == l.negated
             })
@@ -283,6 +331,27 @@ impl Run<'_> {
 }
 
 impl Run<'_> {
+    fn env(&self) -> Env<'_> {
+        Env {
+            settings: self.settings,
+            pistons: &self.pistons,
+            index_of: &self.index_of,
+            start: self.start_pressed,
+            operator: self.operator,
+            machine: &self.machine,
+        }
+    }
+
+    /// Whether the cycle has ended: STEP 1 waits for nothing but a start.
+    fn cycle_complete(&self) -> bool {
+        self.missing(0).iter().all(|l| {
+            matches!(
+                l.signal,
+                Signal::Start | Signal::StartMemory | Signal::CycleRequest
+            )
+        })
+    }
+
     fn problem(&mut self, kind: ProblemKind, step: usize, message: String) {
         // One report per kind and step is enough to explain what happened.
         if self
@@ -305,16 +374,54 @@ impl Run<'_> {
     fn tick(&mut self) -> Option<usize> {
         // Inputs are read from the plant as it stands at the start of the
         // scan; the plant does not move while the program runs.
-        let (settings, pistons, index_of, start) = (
-            self.settings,
-            &self.pistons,
-            &self.index_of,
-            self.start_pressed,
+        // The machine gives the inputs its steps wait for.
+        let now = self.time_ms;
+        let machine = &mut self.machine;
+        self.pending.retain(|(at, name, value)| {
+            if *at <= now {
+                machine.insert(*name, *value);
+                false
+            } else {
+                true
+            }
+        });
+        let env = Env {
+            settings: self.settings,
+            pistons: &self.pistons,
+            index_of: &self.index_of,
+            start: self.start_pressed,
+            operator: self.operator,
+            machine: &self.machine,
+        };
+        let read = |s: Signal| read_input(s, &env);
+        let result = scan(
+            self.program,
+            &mut self.plc,
+            &read,
+            self.settings.scan_ms as u64,
         );
-        let read = |s: Signal| read_input(s, settings, pistons, index_of, start);
-        let result = scan(self.program, &mut self.plc, &read, settings.scan_ms as u64);
         if let Some(fired) = result.fired {
             self.on_fire(fired);
+        }
+        for i in 0..self.dwells.len() {
+            let (at, number, started) = self.dwells[i];
+            match (self.plc.bit_at(at), started) {
+                (true, None) => self.dwells[i].2 = Some(now),
+                (false, Some(from)) => {
+                    self.dwells[i].2 = None;
+                    let ms = self
+                        .table
+                        .dwells()
+                        .find(|d| d.number == number)
+                        .map_or(0, |d| d.ms);
+                    self.spans.push(Span {
+                        from_ms: from,
+                        to_ms: now,
+                        label: crate::cell::dwell_text(ms),
+                    });
+                }
+                _ => {}
+            }
         }
 
         // Outputs to valves, then the plant moves for one scan period.
@@ -354,6 +461,27 @@ impl Run<'_> {
 
     fn on_fire(&mut self, fired: usize) {
         let step = &self.program.steps[fired];
+        if step.kind == StepKind::Table
+            && let Some(table_step) = self.table.steps.get(fired)
+        {
+            for wait in &table_step.waits {
+                let delay = self
+                    .settings
+                    .input_delays
+                    .get(&wait.input)
+                    .copied()
+                    .unwrap_or(DEFAULT_INPUT_DELAY_MS) as u64;
+                let now = self.time_ms;
+                if self.machine.get(&wait.input).copied().unwrap_or(false) != wait.value {
+                    self.pending.push((now + delay, wait.input, wait.value));
+                    self.spans.push(Span {
+                        from_ms: now,
+                        to_ms: now + delay,
+                        label: format!("I:{}", wait.input),
+                    });
+                }
+            }
+        }
         if fired == 0 && !self.start_pressed {
             self.problem(
                 ProblemKind::UnexpectedStart,
@@ -476,22 +604,23 @@ impl Run<'_> {
     }
 }
 
-/// The value an input reads: a fault overrides the plant.
-fn read_input(
-    signal: Signal,
-    settings: &SimSettings,
-    pistons: &[Piston],
-    index_of: &BTreeMap<u32, usize>,
-    start_pressed: bool,
-) -> bool {
-    if let Some(f) = settings.faults.iter().find(|f| f.signal == signal) {
+/// The value an input reads: a fault overrides the plant. STOP and
+/// EMERGENCY STOP are normally closed: they read 1 until pressed.
+fn read_input(signal: Signal, env: &Env) -> bool {
+    if let Some(f) = env.settings.faults.iter().find(|f| f.signal == signal) {
         return f.stuck_at;
     }
     match signal {
-        Signal::Start => start_pressed,
-        Signal::Sensor { actuator, position } => index_of
+        Signal::Start => env.start || env.operator.start,
+        Signal::Sensor { actuator, position } => env
+            .index_of
             .get(&actuator)
-            .is_some_and(|i| pistons[*i].sensor(position, settings.window)),
+            .is_some_and(|i| env.pistons[*i].sensor(position, env.settings.window)),
+        Signal::MachineInput(name) => env.machine.get(&name).copied().unwrap_or(false),
+        Signal::Continuous => env.operator.continuous,
+        Signal::Stop => !env.operator.stop,
+        Signal::EStop => !env.operator.estop,
+        Signal::Reset => env.operator.reset,
         _ => false,
     }
 }
@@ -579,9 +708,23 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
         active: Vec::new(),
         last_move: vec![None; table.actuators.len()],
         start_pressed: false,
+        operator: Operator::default(),
+        machine: BTreeMap::new(),
+        pending: Vec::new(),
+        table,
+        dwells: Vec::new(),
+        spans: Vec::new(),
         trace: Vec::new(),
         coils: Vec::new(),
     };
+    run.dwells = table
+        .dwells()
+        .filter_map(|d| {
+            run.plc
+                .index_of(Signal::Dwell(d.number))
+                .map(|at| (at, d.number, None))
+        })
+        .collect();
     run.coils = table
         .actuators
         .iter()
@@ -605,6 +748,7 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
     let mut cycles: Vec<CycleReport> = Vec::new();
     let mut step_positions = vec![run.positions()];
     let mut stalled_at = None;
+    let mut first_cycle_end = u64::MAX;
 
     // Idle before the first press: nothing may happen.
     let mut press_at = IDLE_MS as u64;
@@ -626,7 +770,7 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
             if let Some(index) = fired {
                 // A boundary of the diagram: the previous step has ended.
                 // (A closing END step is not a boundary: the cycle end is.)
-                if cycle == 0 && index > 0 && !program.steps[index].moves.is_empty() {
+                if cycle == 0 && index > 0 && program.steps[index].kind == StepKind::Table {
                     step_positions.push(run.positions());
                 }
                 if index == 0 && !fire_times.is_empty() {
@@ -636,8 +780,10 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
                 fire_times.push(before);
                 last_event = run.time_ms;
             }
-            let done =
-                fire_times.len() == step_count && run.plc.awaited == 0 && run.all_moves_ended();
+            let done = fire_times.len() == step_count
+                && run.plc.awaited == 0
+                && run.all_moves_ended()
+                && run.cycle_complete();
             if done {
                 if cycle == 0 {
                     step_positions.push(run.positions());
@@ -683,12 +829,15 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
                 }
                 run.problem(ProblemKind::Stall, waiting.number, message);
                 stalled_at = Some(waiting.number);
-                report.steps = timings(program, &fire_times, run.time_ms, press_at);
+                report.steps = timings(program, &fire_times, run.time_ms, press_at, &run.spans);
                 cycles.push(report);
                 break 'cycles;
             }
         }
-        report.steps = timings(program, &fire_times, run.time_ms, press_at);
+        report.steps = timings(program, &fire_times, run.time_ms, press_at, &run.spans);
+        if cycle == 0 {
+            first_cycle_end = run.time_ms;
+        }
         // Every actuator home at the end of the cycle.
         if report.cycle_ms.is_some() {
             for p in &run.pistons {
@@ -775,21 +924,49 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
             .map(|a| (a.number, a.max_position))
             .collect(),
         trace: run.trace,
+        spans: run
+            .spans
+            .into_iter()
+            .filter(|s| s.from_ms < first_cycle_end)
+            .collect(),
     }
 }
 
-fn timings(program: &StepProgram, fire_times: &[u64], end: u64, press_at: u64) -> Vec<StepTiming> {
+fn timings(
+    program: &StepProgram,
+    fire_times: &[u64],
+    end: u64,
+    press_at: u64,
+    spans: &[Span],
+) -> Vec<StepTiming> {
     fire_times
         .iter()
         .enumerate()
         .map(|(i, t)| {
             let next = fire_times.get(i + 1).copied().unwrap_or(end);
             let step = &program.steps[i];
+            let notes: Vec<String> = spans
+                .iter()
+                .filter(|s| s.from_ms >= *t && s.from_ms < next)
+                .map(|s| {
+                    if s.label.starts_with("I:") {
+                        format!("{} came after {}", s.label, seconds(s.to_ms - t))
+                    } else {
+                        format!(
+                            "{} ran {:.2}–{}",
+                            s.label,
+                            (s.from_ms - t) as f64 / 1000.0,
+                            seconds(s.to_ms - t)
+                        )
+                    }
+                })
+                .collect();
             StepTiming {
                 step: step.number,
                 start_ms: t - press_at,
                 duration_ms: next - t,
-                moves: crate::emit::moves_text(&step.moves),
+                moves: step.title.clone(),
+                notes: notes.join("; "),
             }
         })
         .collect()

@@ -22,6 +22,8 @@ enum Op {
     Set(usize),
     Reset(usize),
     Start(usize, u64),
+    /// The sequence goes back to STEP 1.
+    Restart,
 }
 
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -125,6 +127,7 @@ impl PlcState {
                     self.bits[i] = true;
                     self.timers[i] = Some((0, preset));
                 }
+                Op::Restart => self.awaited = 0,
             }
         }
     }
@@ -163,12 +166,13 @@ fn compile(index: &BTreeMap<Signal, usize>, condition: &[Literal], actions: &[Ac
             .map(|l| Lit {
                 index: at(l.signal),
                 negated: l.negated,
-                input: matches!(l.signal, Signal::Start | Signal::Sensor { .. }),
+                input: l.signal.is_input(),
             })
             .collect(),
         actions: actions
             .iter()
             .map(|a| match *a {
+                Action::Reset(Signal::Sequence) => Op::Restart,
                 Action::Set(s) => Op::Set(at(s)),
                 Action::Reset(s) => Op::Reset(at(s)),
                 Action::StartTimer(s, ms) => Op::Start(at(s), ms as u64),

@@ -139,9 +139,9 @@ fn cases() -> Vec<Case> {
             "\"=C1+1\" is not a move",
         ),
         case(
-            "two moves in a cell",
+            "two moves in a cell without a ;",
             "two.csv",
-            csv(",BRANCH 1\nSTEP 1,C1+1;C2+1\nSTEP 2,C1-0\n"),
+            csv(",BRANCH 1\nSTEP 1,C1+1 C2+1\nSTEP 2,C1-0\n"),
             1,
             "is not a move",
         ),
