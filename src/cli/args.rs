@@ -14,6 +14,26 @@ pub(crate) struct SimArgs {
     /// PLC scan time of the simulation and of the generated task.
     #[arg(long, value_name = "TIME", value_parser = parse_scan)]
     pub(crate) scan: Option<u32>,
+    /// How long the machine takes to give a waited-for input: part_present=2s (default 0.5s).
+    #[arg(long, value_name = "LIST", value_parser = parse_input_delays)]
+    pub(crate) input_delay: Option<InputDelays>,
+}
+
+pub(crate) type InputDelays = std::collections::BTreeMap<steptable::cell::Name, u32>;
+
+pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
+    let mut delays = InputDelays::new();
+    for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+        let (name, value) = item
+            .split_once('=')
+            .ok_or_else(|| format!("\"{item}\": expected <input>=<time>, e.g. part_present=2s"))?;
+        let name = steptable::cell::Name::new(&name.trim().to_ascii_lowercase())
+            .map_err(|e| format!("\"{item}\": {e}"))?;
+        let ms = steptable::timing::parse_duration_ms(value)
+            .ok_or_else(|| format!("\"{item}\": expected a time such as 2s or 300ms"))?;
+        delays.insert(name, ms);
+    }
+    Ok(delays)
 }
 
 pub(crate) type StrokeMap = std::collections::BTreeMap<u32, steptable::timing::Stroke>;
@@ -39,6 +59,9 @@ impl SimArgs {
         }
         if let Some(strokes) = &self.stroke {
             settings.simulation.strokes.per_actuator = strokes.clone();
+        }
+        if let Some(delays) = &self.input_delay {
+            settings.simulation.input_delays = delays.clone();
         }
     }
 }
@@ -122,6 +145,20 @@ pub(crate) struct CommonArgs {
     /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all).
     #[arg(long, value_name = "LIST", value_parser = parse_safety)]
     pub(crate) safety: Option<Safety>,
+    /// Operating modes in the generated program: continuous, stop, estop, reset (or all).
+    #[arg(long, value_name = "LIST", value_parser = parse_modes)]
+    pub(crate) modes: Option<Modes>,
+    /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: reverse order of the last moves).
+    #[arg(long, value_name = "ORDER", value_parser = parse_home_order)]
+    pub(crate) home_order: Option<Vec<Vec<u32>>>,
+}
+
+pub(crate) fn parse_modes(text: &str) -> Result<Modes, String> {
+    Modes::parse(text)
+}
+
+pub(crate) fn parse_home_order(text: &str) -> Result<Vec<Vec<u32>>, String> {
+    Modes::parse_home_order(text)
 }
 
 pub(crate) fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<OutputKind>, String> {
@@ -203,6 +240,14 @@ impl CommonArgs {
         if let Some(safety) = self.safety {
             settings.program.safety = safety;
             settings.explicit.safety = true;
+        }
+        if let Some(modes) = &self.modes {
+            settings.program.modes = modes.clone();
+            settings.explicit.modes = true;
+        }
+        if let Some(order) = &self.home_order {
+            settings.program.modes.home_order = Some(order.clone());
+            settings.explicit.home_order = true;
         }
         if let Some(valves) = &self.valve {
             settings.simulation.valves.per_actuator = valves.clone();

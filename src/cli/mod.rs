@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use steptable::address::{Mnemonic, Safety, Target};
+use steptable::address::{Mnemonic, Modes, Safety, Target};
 use steptable::convert::{self, Failure, OutputKind, Settings};
 use steptable::diag::{Diagnostic, Severity};
 use steptable::emit::diagram::DiagramKind;

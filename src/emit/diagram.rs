@@ -144,6 +144,30 @@ pub fn render_svg(name: &str, report: &SimReport, kind: DiagramKind) -> String {
             );
         }
     }
+    if kind == DiagramKind::Time {
+        // Dwells and waits on machine inputs, as shaded bands over every lane.
+        for span in &report.spans {
+            let (x1, x2) = (
+                x_of(span.from_ms as f64 / 1000.0),
+                x_of(span.to_ms as f64 / 1000.0),
+            );
+            let color = if span.label.starts_with("I:") {
+                "#8e44ad"
+            } else {
+                "#1e8449"
+            };
+            let _ = writeln!(
+                svg,
+                r#"<rect x="{x1:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="{color}" fill-opacity="0.12"/><text x="{:.1}" y="{:.1}" fill="{color}" font-size="11" text-anchor="middle">{}</text>"#,
+                TOP - 10.0,
+                (x2 - x1).max(1.0),
+                bottom - 50.0 - TOP,
+                (x1 + x2) / 2.0,
+                TOP - 13.0,
+                escape(&span.label)
+            );
+        }
+    }
     // Lanes: name, position levels, and the motion.
     for (i, ((number, pmax), (top, height))) in report.actuators.iter().zip(&lanes).enumerate() {
         let pmax = (*pmax).max(1);

@@ -178,6 +178,13 @@ fn simulation_sheet(
             sheet.write_number(row, 1, step.start_ms as f64 / 1000.0)?;
             sheet.write_number(row, 2, step.duration_ms as f64 / 1000.0)?;
             sheet.write_string(row, 3, &step.moves)?;
+            if !step.notes.is_empty() {
+                sheet.write_string(row, 4, &step.notes)?;
+            }
+        }
+        if cycle.steps.iter().any(|s| !s.notes.is_empty()) {
+            sheet.write_string_with_format(header, 4, "DWELLS AND WAITS", bold)?;
+            sheet.set_column_width(4, 40)?;
         }
     }
     sheet.set_column_width(0, 12)?;

@@ -10,6 +10,7 @@
 pub mod plant;
 pub mod plc;
 pub mod report;
+pub mod scenario;
 
 use std::collections::BTreeMap;
 
@@ -273,7 +274,7 @@ struct ActiveMove {
 
 struct Run<'a> {
     program: &'a StepProgram,
-    settings: &'a SimSettings,
+    settings: SimSettings,
     pistons: Vec<Piston>,
     index_of: BTreeMap<u32, usize>,
     plc: PlcState,
@@ -333,7 +334,7 @@ impl Run<'_> {
 impl Run<'_> {
     fn env(&self) -> Env<'_> {
         Env {
-            settings: self.settings,
+            settings: &self.settings,
             pistons: &self.pistons,
             index_of: &self.index_of,
             start: self.start_pressed,
@@ -386,7 +387,7 @@ impl Run<'_> {
             }
         });
         let env = Env {
-            settings: self.settings,
+            settings: &self.settings,
             pistons: &self.pistons,
             index_of: &self.index_of,
             start: self.start_pressed,
@@ -461,6 +462,15 @@ impl Run<'_> {
 
     fn on_fire(&mut self, fired: usize) {
         let step = &self.program.steps[fired];
+        if fired == 0 {
+            // Every cycle the machine starts afresh: each input reads the
+            // opposite of what its first wait asks for (no part yet).
+            self.pending.clear();
+            self.machine.clear();
+            for wait in self.table.steps.iter().flat_map(|s| &s.waits) {
+                self.machine.entry(wait.input).or_insert(!wait.value);
+            }
+        }
         if step.kind == StepKind::Table
             && let Some(table_step) = self.table.steps.get(fired)
         {
@@ -482,7 +492,7 @@ impl Run<'_> {
                 }
             }
         }
-        if fired == 0 && !self.start_pressed {
+        if fired == 0 && !(self.start_pressed || self.operator.start || self.operator.continuous) {
             self.problem(
                 ProblemKind::UnexpectedStart,
                 step.number,
@@ -667,82 +677,90 @@ fn step_timeout_ms(table: &StepTable, program: &StepProgram, settings: &SimSetti
     (2 * longest + 500).max(watchdog)
 }
 
+impl<'a> Run<'a> {
+    /// Power-up: every piston home, the PLC in its initial state.
+    fn new(table: &'a StepTable, program: &'a StepProgram, settings: &SimSettings) -> Run<'a> {
+        let scan_ms = settings.scan_ms.max(1);
+        let pistons: Vec<Piston> = table
+            .actuators
+            .iter()
+            .map(|a| {
+                Piston::with_valve(
+                    a.number,
+                    a.max_position,
+                    settings.stroke(a.number),
+                    scan_ms,
+                    settings.valves.of(a.number, a.max_position),
+                    settings
+                        .loads
+                        .get(&a.number)
+                        .copied()
+                        .unwrap_or(DEFAULT_DRIFT),
+                )
+            })
+            .collect();
+        let index_of = pistons
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (p.number, i))
+            .collect();
+        let settings_scan = SimSettings {
+            scan_ms,
+            ..settings.clone()
+        };
+        let mut run = Run {
+            program,
+            settings: settings_scan,
+            pistons,
+            index_of,
+            plc: PlcState::new(program),
+            time_ms: 0,
+            problems: Vec::new(),
+            active: Vec::new(),
+            last_move: vec![None; table.actuators.len()],
+            start_pressed: false,
+            operator: Operator::default(),
+            machine: BTreeMap::new(),
+            pending: Vec::new(),
+            table,
+            dwells: Vec::new(),
+            spans: Vec::new(),
+            trace: Vec::new(),
+            coils: Vec::new(),
+        };
+        run.dwells = table
+            .dwells()
+            .filter_map(|d| {
+                run.plc
+                    .index_of(Signal::Dwell(d.number))
+                    .map(|at| (at, d.number, None))
+            })
+            .collect();
+        run.coils = table
+            .actuators
+            .iter()
+            .map(|a| {
+                let at = |s: Signal| run.plc.index_of(s);
+                (
+                    at(Signal::Coil {
+                        actuator: a.number,
+                        sign: Sign::Plus,
+                    }),
+                    at(Signal::Coil {
+                        actuator: a.number,
+                        sign: Sign::Minus,
+                    }),
+                    at(Signal::SingleCoil { actuator: a.number }),
+                )
+            })
+            .collect();
+        run
+    }
+}
+
 /// Simulates `program` (built from `table`) against the plant.
 pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings) -> SimReport {
-    let scan_ms = settings.scan_ms.max(1);
-    let pistons: Vec<Piston> = table
-        .actuators
-        .iter()
-        .map(|a| {
-            Piston::with_valve(
-                a.number,
-                a.max_position,
-                settings.stroke(a.number),
-                scan_ms,
-                settings.valves.of(a.number, a.max_position),
-                settings
-                    .loads
-                    .get(&a.number)
-                    .copied()
-                    .unwrap_or(DEFAULT_DRIFT),
-            )
-        })
-        .collect();
-    let index_of = pistons
-        .iter()
-        .enumerate()
-        .map(|(i, p)| (p.number, i))
-        .collect();
-    let settings_scan = SimSettings {
-        scan_ms,
-        ..settings.clone()
-    };
-    let mut run = Run {
-        program,
-        settings: &settings_scan,
-        pistons,
-        index_of,
-        plc: PlcState::new(program),
-        time_ms: 0,
-        problems: Vec::new(),
-        active: Vec::new(),
-        last_move: vec![None; table.actuators.len()],
-        start_pressed: false,
-        operator: Operator::default(),
-        machine: BTreeMap::new(),
-        pending: Vec::new(),
-        table,
-        dwells: Vec::new(),
-        spans: Vec::new(),
-        trace: Vec::new(),
-        coils: Vec::new(),
-    };
-    run.dwells = table
-        .dwells()
-        .filter_map(|d| {
-            run.plc
-                .index_of(Signal::Dwell(d.number))
-                .map(|at| (at, d.number, None))
-        })
-        .collect();
-    run.coils = table
-        .actuators
-        .iter()
-        .map(|a| {
-            let at = |s: Signal| run.plc.index_of(s);
-            (
-                at(Signal::Coil {
-                    actuator: a.number,
-                    sign: Sign::Plus,
-                }),
-                at(Signal::Coil {
-                    actuator: a.number,
-                    sign: Sign::Minus,
-                }),
-                at(Signal::SingleCoil { actuator: a.number }),
-            )
-        })
-        .collect();
+    let mut run = Run::new(table, program, settings);
     let timeout = step_timeout_ms(table, program, settings);
     let step_count = program.steps.len();
     let mut cycles: Vec<CycleReport> = Vec::new();

@@ -11,13 +11,17 @@ pub fn step_table(report: &SimReport) -> String {
     )];
     if let Some(cycle) = report.cycles.first() {
         for s in &cycle.steps {
-            lines.push(format!(
+            let mut line = format!(
                 "  {:<6} {:>9} {:>9}  {}",
                 s.step,
                 seconds(s.start_ms),
                 seconds(s.duration_ms),
                 s.moves
-            ));
+            );
+            if !s.notes.is_empty() {
+                line.push_str(&format!("  ({})", s.notes));
+            }
+            lines.push(line);
         }
     }
     match (report.cycles.first(), report.cycles.get(1)) {

@@ -61,6 +61,16 @@ fn convert_all(dir: &Path, extra: &[&str]) -> Vec<PathBuf> {
         .arg(dir.join("safety"))
         .assert()
         .success();
+    // Every operating mode, with dwells, waits and machine outputs.
+    steptable()
+        .arg("convert")
+        .arg(sample("paper_example.xlsx"))
+        .arg(sample("press_station.xlsx"))
+        .args(extra)
+        .args(["--modes", "all", "--safety", "all", "-o"])
+        .arg(dir.join("modes"))
+        .assert()
+        .success();
     files_below(dir)
 }
 
@@ -106,7 +116,7 @@ fn plcopen_and_codesys_xml_validate_against_the_official_schema() {
         );
         checked += 1;
     }
-    assert_eq!(checked, 2 * (samples().len() + 1));
+    assert_eq!(checked, 2 * (samples().len() + 3));
 }
 
 #[test]

@@ -43,7 +43,8 @@ fn table_inputs(path: &std::path::Path) -> usize {
         .actuators
         .iter()
         .map(|a| a.max_position as usize + 1)
-        .sum()
+        .sum::<usize>()
+        + checked.table.inputs.len()
 }
 
 #[test]

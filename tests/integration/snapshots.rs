@@ -94,3 +94,29 @@ fn every_sample_with_all_safety_checks() {
         }
     }
 }
+
+/// The programs with every operating mode (STOP, EMERGENCY STOP, RESET with
+/// homing, continuous operation), in every language that carries them.
+#[test]
+fn paper_and_press_station_with_every_operating_mode() {
+    for name in ["paper_example.xlsx", "press_station.xlsx"] {
+        let path = crate::helpers::sample(name);
+        let mut settings = Settings::new();
+        settings.program.modes = steptable::address::Modes::parse("all").unwrap();
+        let conversion = match convert_path(&path, &settings) {
+            Ok(c) => c,
+            Err(e) => panic!("{}: {e:?}", path.display()),
+        };
+        let file = name.replace('.', "_");
+        for output in &conversion.files {
+            let Some(ext) = [".st", ".fst.txt", ".awl", ".io.csv"]
+                .into_iter()
+                .find(|e| output.name.ends_with(e))
+            else {
+                continue;
+            };
+            let text = String::from_utf8(output.bytes.clone()).expect("text output");
+            insta::assert_snapshot!(format!("{file}-modes{ext}"), text);
+        }
+    }
+}

@@ -1,0 +1,302 @@
+//! Operating modes in simulation: STOP, EMERGENCY STOP, RESET and continuous
+//! operation, run as scripts of button presses against the paper's example.
+
+use steptable::address::{Allocation, Mnemonic, Modes, Signal, Target};
+use steptable::program::{self, ProgramOptions, StepProgram};
+use steptable::simulate::scenario::{ScenarioReport, scenario};
+use steptable::simulate::{Operator, SimSettings};
+use steptable::table::{StepTable, from_rows};
+use steptable::timing::Strokes;
+
+fn paper() -> StepTable {
+    from_rows("paper.csv", &steptable::template::PAPER_EXAMPLE).expect("valid table")
+}
+
+fn program_with(table: &StepTable, modes: &str) -> StepProgram {
+    let modes = Modes::parse(modes).expect("valid modes");
+    let allocation = Allocation::with_options(
+        table,
+        Target::Festo,
+        Mnemonic::En,
+        Default::default(),
+        &modes,
+        &Default::default(),
+    );
+    program::build(
+        table,
+        &allocation,
+        ProgramOptions {
+            modes,
+            ..ProgramOptions::default()
+        },
+        &Strokes::default(),
+    )
+}
+
+const IDLE: Operator = Operator {
+    start: false,
+    continuous: false,
+    stop: false,
+    estop: false,
+    reset: false,
+};
+
+fn press(at: u64, button: Operator) -> Vec<(u64, Operator)> {
+    vec![(at, button), (at + 100, IDLE)]
+}
+
+fn start() -> Operator {
+    Operator {
+        start: true,
+        ..IDLE
+    }
+}
+
+fn all_home(report: &ScenarioReport, time_ms: u64) -> bool {
+    report
+        .at(time_ms)
+        .expect("sampled")
+        .positions
+        .iter()
+        .all(|p| p.abs() < 0.05)
+}
+
+fn coils_on(report: &ScenarioReport, time_ms: u64) -> Vec<Signal> {
+    report
+        .at(time_ms)
+        .expect("sampled")
+        .outputs_on
+        .iter()
+        .copied()
+        .filter(|s| matches!(s, Signal::Coil { .. } | Signal::SingleCoil { .. }))
+        .collect()
+}
+
+/// The last step of the paper's example fires at the end of a cycle.
+fn last_step_times(report: &ScenarioReport) -> Vec<u64> {
+    report
+        .fired
+        .iter()
+        .filter(|(_, step)| *step == 8)
+        .map(|(t, _)| *t)
+        .collect()
+}
+
+#[test]
+fn continuous_operation_repeats_identical_cycles_until_switched_off() {
+    let table = paper();
+    let program = program_with(&table, "continuous,stop");
+    let on = Operator {
+        continuous: true,
+        ..IDLE
+    };
+    // CONTINUOUS on alone starts nothing: START does.
+    let script = vec![
+        (0, on),
+        (2_000, Operator { start: true, ..on }),
+        (2_100, on),
+        (33_000, IDLE),
+    ];
+    let report = scenario(&table, &program, &SimSettings::default(), &script, 45_000);
+    let starts = report.cycle_starts();
+    assert!(starts[0] >= 2_000, "no cycle before START: {starts:?}");
+    assert!(starts.len() >= 3, "cycles repeat: {starts:?}");
+    let periods: Vec<u64> = starts.windows(2).map(|w| w[1] - w[0]).collect();
+    // The first cycle starts from rest; every later one starts the scan its
+    // predecessor ended, with the last piston just settling on its end stop,
+    // and from then on the cycles repeat to the scan.
+    assert!(
+        periods[1..].iter().all(|p| *p == periods[1]),
+        "every cycle takes the same time: {periods:?}"
+    );
+    assert!(periods[0].abs_diff(periods[1]) <= 10, "{periods:?}");
+    let offsets = |from: u64, to: u64| -> Vec<(u64, usize)> {
+        report
+            .fired
+            .iter()
+            .filter(|(t, _)| *t >= from && *t < to)
+            .map(|(t, s)| (t - from, *s))
+            .collect()
+    };
+    assert_eq!(
+        offsets(starts[1], starts[2]),
+        offsets(starts[2], starts[3]),
+        "the same steps at the same times in every cycle"
+    );
+    // Switched off at 33 s: the cycle under way ends, no other starts.
+    let last = *starts.last().unwrap();
+    assert!(last < 33_000, "{starts:?}");
+    assert!(all_home(&report, 44_000));
+    assert_eq!(
+        last_step_times(&report).len(),
+        starts.len(),
+        "every cycle started was finished"
+    );
+}
+
+#[test]
+fn stop_mid_cycle_finishes_the_cycle_and_halts() {
+    let table = paper();
+    let program = program_with(&table, "continuous,stop");
+    let on = Operator {
+        continuous: true,
+        ..IDLE
+    };
+    let mut script = vec![(0, on), (500, Operator { start: true, ..on }), (600, on)];
+    // STOP pressed for 0.2 s in the middle of the first cycle.
+    script.push((3_000, Operator { stop: true, ..on }));
+    script.push((3_200, on));
+    let report = scenario(&table, &program, &SimSettings::default(), &script, 20_000);
+    assert_eq!(report.cycle_starts().len(), 1, "{:?}", report.fired);
+    let ends = last_step_times(&report);
+    assert_eq!(ends.len(), 1, "the cycle finished: {:?}", report.fired);
+    assert!(ends[0] > 3_200);
+    assert!(all_home(&report, 19_000));
+    // START again: one more cycle, and continuous operation resumes.
+    script.push((20_000, Operator { start: true, ..on }));
+    script.push((20_100, on));
+    let report = scenario(&table, &program, &SimSettings::default(), &script, 40_000);
+    assert!(
+        report.cycle_starts().len() >= 3,
+        "{:?}",
+        report.cycle_starts()
+    );
+}
+
+#[test]
+fn emergency_stop_cuts_every_coil_within_one_scan_and_blocks_start_until_reset() {
+    let table = paper();
+    let program = program_with(&table, "estop,reset");
+    let settings = SimSettings::default();
+    let mut script = press(500, start());
+    // ESTOP at 1.0 s, while C1 extends (step 1), held for 0.5 s.
+    script.push((
+        1_000,
+        Operator {
+            estop: true,
+            ..IDLE
+        },
+    ));
+    script.push((1_500, IDLE));
+    // START is refused while the emergency stop is latched.
+    script.extend(press(3_000, start()));
+    // RESET homes everything; then START runs a full cycle again.
+    script.extend(press(
+        5_000,
+        Operator {
+            reset: true,
+            ..IDLE
+        },
+    ));
+    script.extend(press(9_000, start()));
+    let report = scenario(&table, &program, &settings, &script, 20_000);
+
+    assert!(
+        !coils_on(&report, 990).is_empty(),
+        "C1 was moving before the stop"
+    );
+    let scan = settings.scan_ms as u64;
+    assert_eq!(
+        coils_on(&report, 1_000 + scan),
+        Vec::<Signal>::new(),
+        "every coil off one scan after ESTOP"
+    );
+    assert!(
+        report.fired.iter().all(|(t, _)| *t < 1_000 || *t >= 5_000),
+        "nothing fires between ESTOP and RESET: {:?}",
+        report.fired
+    );
+    assert!(report.at(5_000 + 3_000).is_some_and(|s| !s.homing));
+    assert!(
+        all_home(&report, 8_000),
+        "RESET brought every actuator home"
+    );
+    let starts = report.cycle_starts();
+    assert_eq!(starts.len(), 2, "{starts:?}");
+    assert!(starts[1] >= 9_000);
+    assert_eq!(
+        last_step_times(&report).len(),
+        1,
+        "the cycle after RESET completes"
+    );
+}
+
+#[test]
+fn reset_brings_every_actuator_home_from_any_step() {
+    let table = paper();
+    let program = program_with(&table, "estop,reset");
+    let settings = SimSettings::default();
+    // When each step fires in an undisturbed cycle started at 0.5 s.
+    let plain = scenario(&table, &program, &settings, &press(500, start()), 10_000);
+    for step in 1..=8usize {
+        let fired_at = plain
+            .fired
+            .iter()
+            .find(|(_, s)| *s == step)
+            .map(|(t, _)| *t)
+            .expect("the step fires");
+        // Stop half-way through the step's moves, then RESET.
+        let stop_at = fired_at + 300;
+        let mut script = press(500, start());
+        script.push((
+            stop_at,
+            Operator {
+                estop: true,
+                ..IDLE
+            },
+        ));
+        script.push((stop_at + 200, IDLE));
+        script.extend(press(
+            stop_at + 1_000,
+            Operator {
+                reset: true,
+                ..IDLE
+            },
+        ));
+        script.extend(press(stop_at + 8_000, start()));
+        let report = scenario(&table, &program, &settings, &script, stop_at + 18_000);
+        assert!(
+            all_home(&report, stop_at + 7_900),
+            "home after RESET from step {step}: {:?}",
+            report.at(stop_at + 7_900)
+        );
+        assert!(report.at(stop_at + 7_900).is_some_and(|s| !s.homing));
+        assert_eq!(
+            last_step_times(&report)
+                .iter()
+                .filter(|t| **t > stop_at + 8_000)
+                .count(),
+            1,
+            "a full cycle after homing from step {step}"
+        );
+    }
+}
+
+#[test]
+fn default_home_order_is_the_reverse_of_the_last_moves() {
+    let table = paper();
+    let modes = Modes::parse("reset").unwrap();
+    // C1's last move is in step 8, C2, C3 and C4's in step 7.
+    assert_eq!(
+        modes.home_stages(&table).unwrap(),
+        vec![vec![1], vec![2, 3, 4]]
+    );
+    let custom = Modes {
+        home_order: Some(Modes::parse_home_order("C3&C4, C2, C1").unwrap()),
+        ..modes.clone()
+    };
+    assert_eq!(
+        custom.home_stages(&table).unwrap(),
+        vec![vec![3, 4], vec![2], vec![1]]
+    );
+    let missing = Modes {
+        home_order: Some(Modes::parse_home_order("C1,C2").unwrap()),
+        ..modes
+    };
+    assert!(
+        missing
+            .home_stages(&table)
+            .unwrap_err()
+            .contains("leaves out C3")
+    );
+}
