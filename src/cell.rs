@@ -264,6 +264,12 @@ pub enum ItemError {
 /// Parses one `;`-separated item.
 pub fn parse_item(text: &str) -> Result<CellItem, ItemError> {
     let norm = normalize(text);
+    if (norm.starts_with("I:") || norm.starts_with("Y:")) && name_has_space(text) {
+        return Err(ItemError::BadName(format!(
+            "\"{}\": a name has no spaces (write part_present, not part present)",
+            text.trim()
+        )));
+    }
     if let Some(rest) = norm.strip_prefix("T=") {
         let ms = parse_dwell(rest).ok_or_else(|| {
             ItemError::BadDwell(format!(
@@ -310,6 +316,17 @@ pub fn parse_item(text: &str) -> Result<CellItem, ItemError> {
     parse_move(text)
         .map(CellItem::Move)
         .map_err(ItemError::Move)
+}
+
+/// Whether the name in `I:name=0` / `Y:name+` has white space inside it,
+/// which normalising would otherwise silently close up.
+fn name_has_space(text: &str) -> bool {
+    let after_colon = text.split_once(':').map_or("", |(_, rest)| rest);
+    let name = after_colon.split('=').next().unwrap_or("");
+    let name = name
+        .trim()
+        .trim_end_matches(|c: char| !c.is_alphanumeric() && c != '_');
+    name.trim().contains(char::is_whitespace)
 }
 
 /// `2s`, `500ms`, `1.5s`, `1,5s` (a bare number is seconds).

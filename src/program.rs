@@ -295,7 +295,15 @@ pub fn build(
             })
         })
         .collect();
-    let end_step = safety.watchdog || modes.any();
+    // The end of the cycle is a step of its own when something must notice
+    // it (the watchdog, the modes) or when the last step ends on more than
+    // its moves: STEP 1 cannot wait for the last step's machine inputs,
+    // which nothing gives at power-up.
+    let last_waits = table
+        .steps
+        .last()
+        .is_some_and(|s| !s.waits.is_empty() || !s.dwells.is_empty());
+    let end_step = safety.watchdog || modes.any() || last_waits;
 
     let mut steps = Vec::with_capacity(table.steps.len() + 1);
     for (index, step) in table.steps.iter().enumerate() {
@@ -309,15 +317,6 @@ pub fn build(
                     .collect()
             };
             first.extend(homes.iter().copied());
-            if !end_step && let Some(last) = table.steps.last() {
-                // The cycle ends when the last step's waits and dwells are done
-                // (its moves end at home, which the home sensors say).
-                first.extend(
-                    completion(last)
-                        .into_iter()
-                        .filter(|l| !matches!(l.signal, Signal::Sensor { .. })),
-                );
-            }
             first
         } else {
             completion(&table.steps[index - 1])

@@ -291,6 +291,8 @@ struct Run<'a> {
     /// Machine inputs as the machine gives them, and changes to come.
     machine: BTreeMap<Name, bool>,
     pending: Vec<(u64, Name, bool)>,
+    /// Inputs the machine gave for the step that fired last.
+    answered: Vec<Name>,
     table: &'a StepTable,
     /// Dwell timers: PLC index, dwell number, when it started (if running).
     dwells: Vec<(usize, u16, Option<u64>)>,
@@ -462,13 +464,13 @@ impl Run<'_> {
 
     fn on_fire(&mut self, fired: usize) {
         let step = &self.program.steps[fired];
-        if fired == 0 {
-            // Every cycle the machine starts afresh: each input reads the
-            // opposite of what its first wait asks for (no part yet).
-            self.pending.clear();
-            self.machine.clear();
-            for wait in self.table.steps.iter().flat_map(|s| &s.waits) {
-                self.machine.entry(wait.input).or_insert(!wait.value);
+        // The machine withdraws its answers once the sequence has moved on
+        // (the part was taken, the door closed again): each input goes back
+        // to its rest value.
+        for name in std::mem::take(&mut self.answered) {
+            self.pending.retain(|(_, n, _)| *n != name);
+            if let Some(rest) = rest_value(self.table, name) {
+                self.machine.insert(name, rest);
             }
         }
         if step.kind == StepKind::Table
@@ -482,6 +484,7 @@ impl Run<'_> {
                     .copied()
                     .unwrap_or(DEFAULT_INPUT_DELAY_MS) as u64;
                 let now = self.time_ms;
+                self.answered.push(wait.input);
                 if self.machine.get(&wait.input).copied().unwrap_or(false) != wait.value {
                     self.pending.push((now + delay, wait.input, wait.value));
                     self.spans.push(Span {
@@ -614,6 +617,17 @@ impl Run<'_> {
     }
 }
 
+/// What a machine input reads while no step waits for it: the opposite of
+/// what its first wait asks for (no part yet, door not yet open).
+fn rest_value(table: &StepTable, input: Name) -> Option<bool> {
+    table
+        .steps
+        .iter()
+        .flat_map(|s| &s.waits)
+        .find(|w| w.input == input)
+        .map(|w| !w.value)
+}
+
 /// The value an input reads: a fault overrides the plant. STOP and
 /// EMERGENCY STOP are normally closed: they read 1 until pressed.
 fn read_input(signal: Signal, env: &Env) -> bool {
@@ -674,7 +688,25 @@ fn step_timeout_ms(table: &StepTable, program: &StepProgram, settings: &SimSetti
         })
         .max()
         .unwrap_or(1000) as u64;
-    (2 * longest + 500).max(watchdog)
+    // A step may also dwell and wait for the machine before it completes.
+    let dwell = table.dwells().map(|d| d.ms).max().unwrap_or(0) as u64;
+    let wait = if table.inputs.is_empty() {
+        0
+    } else {
+        table
+            .inputs
+            .iter()
+            .map(|n| {
+                settings
+                    .input_delays
+                    .get(n)
+                    .copied()
+                    .unwrap_or(DEFAULT_INPUT_DELAY_MS)
+            })
+            .max()
+            .unwrap_or(0) as u64
+    };
+    (2 * longest + 500 + dwell + wait).max(watchdog)
 }
 
 impl<'a> Run<'a> {
@@ -720,8 +752,13 @@ impl<'a> Run<'a> {
             last_move: vec![None; table.actuators.len()],
             start_pressed: false,
             operator: Operator::default(),
-            machine: BTreeMap::new(),
+            machine: table
+                .inputs
+                .iter()
+                .filter_map(|n| rest_value(table, *n).map(|v| (*n, v)))
+                .collect(),
             pending: Vec::new(),
+            answered: Vec::new(),
             table,
             dwells: Vec::new(),
             spans: Vec::new(),

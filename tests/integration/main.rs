@@ -7,6 +7,7 @@ mod diagram;
 mod exports;
 mod helpers;
 mod hostile;
+mod machine;
 mod modes;
 mod paper;
 mod properties;

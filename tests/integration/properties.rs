@@ -87,6 +87,92 @@ proptest! {
     }
 }
 
+/// Per step: optionally a dwell, a wait and an output switch, each with the
+/// branch (cell) it goes in.
+type Extras = Vec<(
+    Option<(usize, u32)>,
+    Option<(usize, u8, bool)>,
+    Option<(usize, u8, bool)>,
+)>;
+
+fn extras() -> impl Strategy<Value = Extras> {
+    prop::collection::vec(
+        (
+            prop::option::of((0usize..4, 1u32..=300)),
+            prop::option::of((0usize..4, 0u8..3, any::<bool>())),
+            prop::option::of((0usize..4, 0u8..3, any::<bool>())),
+        ),
+        40,
+    )
+}
+
+/// Adds dwells, waits and output switches to the cells of a table (`;`
+/// after the cell's move, or alone in an empty cell).
+fn with_extras(rows: &[Vec<String>], extras: &Extras) -> Vec<Vec<String>> {
+    let mut rows = rows.to_vec();
+    for (row, (dwell, wait, switch)) in rows.iter_mut().zip(extras) {
+        let mut add = |branch: usize, item: String| {
+            while row.len() <= branch {
+                row.push(String::new());
+            }
+            if row[branch].is_empty() {
+                row[branch] = item;
+            } else {
+                row[branch] = format!("{}; {item}", row[branch]);
+            }
+        };
+        if let Some((branch, tens)) = dwell {
+            add(*branch, format!("T={}ms", tens * 10));
+        }
+        if let Some((branch, k, value)) = wait {
+            add(*branch, format!("I:part{k}={}", u8::from(*value)));
+        }
+        if let Some((branch, k, on)) = switch {
+            add(*branch, format!("Y:lamp{k}{}", if *on { '+' } else { '-' }));
+        }
+    }
+    rows
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    /// Dwells, waits and output switches anywhere in a valid table, with and
+    /// without the operating modes and the safety checks: the program still completes two
+    /// identical cycles, and each dwell lengthens its step by at least its time.
+    #[test]
+    fn dwells_waits_and_outputs_keep_every_table_running(
+        (acts, raw) in raw_table(),
+        extras in extras(),
+        modes in prop_oneof![Just("none"), Just("all"), Just("continuous,stop")],
+        safety in prop_oneof![Just(Safety::default()), Just(Safety::all())],
+    ) {
+        let (rows, settings) = valid_rows(&acts, &raw);
+        prop_assume!(!rows.is_empty());
+        let rows = with_extras(&rows, &extras);
+        let table = steptable::table::from_rows("random.csv", &rows)
+            .map_err(|d| TestCaseError::fail(format!("invalid table: {d:?}\n{rows:?}")))?;
+        let modes = steptable::address::Modes::parse(modes).unwrap();
+        let alloc = Allocation::with_options(
+            &table,
+            Target::Festo,
+            Mnemonic::En,
+            safety,
+            &modes,
+            &Default::default(),
+        );
+        let options = ProgramOptions { modes, safety, ..ProgramOptions::default() };
+        let program = program::build(&table, &alloc, options, &settings.strokes);
+        let report = simulate(&table, &program, &settings);
+        prop_assert!(report.passed, "{}\n{:?}", report.verdict(), rows);
+        let cycle = &report.cycles[0];
+        for (timing, step) in cycle.steps.iter().zip(&table.steps) {
+            let longest = step.dwells.iter().map(|d| d.ms as u64).max().unwrap_or(0);
+            prop_assert!(timing.duration_ms >= longest, "{timing:?}");
+        }
+    }
+}
+
 /// A random move as the table writes it.
 fn any_move() -> impl Strategy<Value = steptable::cell::CellMove> {
     (1u32..=999, any::<bool>(), prop::option::of(0u32..=63)).prop_map(

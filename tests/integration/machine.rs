@@ -1,0 +1,122 @@
+//! Dwells, waits on machine inputs, machine outputs and several items in a
+//! cell, as a user meets them: the press station sample, and the errors a
+//! mistyped item gets.
+
+use predicates::str::contains;
+
+use crate::helpers::{files_below, read_sheet, sample, steptable, write_xlsx};
+
+const SHEET: &str = "SEQUENTIAL CONTROL DESCRIPTION";
+
+#[test]
+fn the_press_station_shows_its_dwell_and_wait_in_the_step_timing() {
+    steptable()
+        .arg("simulate")
+        .arg(sample("press_station.xlsx"))
+        .assert()
+        .success()
+        .stdout(contains(
+            "1         0.00 s    0.50 s  I:part_present  (I:part_present came after 0.50 s)",
+        ))
+        // The press dwell starts when C3 reaches x31 (1.47 s into its 1.5 s stroke) and runs 2 s.
+        .stdout(contains("C1-0, C3+1; T=2s  (T=2s ran 1.47–3.47 s)"))
+        .stdout(contains("second START: identical cycle"));
+    // A slower part supply lengthens step 1 and nothing else.
+    steptable()
+        .arg("simulate")
+        .arg(sample("press_station.xlsx"))
+        .args(["--input-delay", "part_present=2s"])
+        .assert()
+        .success()
+        .stdout(contains("1         0.00 s    2.00 s  I:part_present"));
+}
+
+#[test]
+fn the_press_station_converts_with_its_machine_signals_everywhere() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("convert")
+        .arg(sample("press_station.xlsx"))
+        .args(["--diagram", "time", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let out = dir.path().join("press_station");
+    let read =
+        |ext: &str| std::fs::read_to_string(out.join(format!("press_station.{ext}"))).unwrap();
+    // Machine input after the sensors, machine output after the coils.
+    let io = read("io.csv");
+    assert!(io.contains("I0.7,part_present,input,"), "{io}");
+    assert!(io.contains("O1.4,vacuum,output,"), "{io}");
+    let st = read("st");
+    assert!(st.contains("part_present AT %IX0.7 : BOOL;"));
+    assert!(st.contains("dwell3_pt := T#2000ms; dwell3_run := TRUE;"));
+    assert!(
+        st.contains("IF dw3_arm AND x31 THEN"),
+        "the dwell waits for C3+1"
+    );
+    let fst = read("fst.txt");
+    assert!(fst.contains("LOAD    V200"), "2 s in 1/100 s: {fst}");
+    assert!(fst.contains("SET     O1.4    \" vacuum on"), "{fst}");
+    let awl = read("awl");
+    assert!(awl.contains("S5T#2S"), "{awl}");
+    assert!(awl.contains("SE    T 3"), "{awl}");
+    let svg = read("diagram.svg");
+    assert!(svg.contains(">T=2s</text>") && svg.contains(">I:part_present</text>"));
+    // The normalised table in the workbook keeps every item of a cell.
+    let table = read_sheet(
+        &out.join("press_station.xlsx"),
+        "SEQUENTIAL CONTROL DESCRIPTION",
+    );
+    assert!(
+        table.iter().flatten().any(|c| c == "Y:vacuum+; T=500ms"),
+        "{table:?}"
+    );
+    let timing = read_sheet(&out.join("press_station.xlsx"), "SIMULATION");
+    assert!(
+        timing
+            .iter()
+            .flatten()
+            .any(|c| c.starts_with("I:part_present came after")),
+        "{timing:?}"
+    );
+}
+
+#[test]
+fn malformed_items_are_reported_at_their_cells() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("items.xlsx");
+    write_xlsx(
+        &path,
+        SHEET,
+        &[
+            &["", "BRANCH 1", "BRANCH 2"],
+            &["STEP 1", "C1+1; T=2", "I:part present"],
+            &["STEP 2", "T=0.001s", "Y:vacuum"],
+            &["STEP 3", "C1-0; Y:x11+", "I:lamp"],
+            &["STEP 4", "Y:lamp+", "T=1s; T=2s"],
+        ],
+    );
+    let out = dir.path().join("out");
+    steptable()
+        .arg("convert")
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(contains("!C2: error[E015]: \"I:part present\""))
+        .stderr(contains("!B3: error[E014]: \"T=0.001s\" is not a dwell"))
+        .stderr(contains(
+            "!C3: error[E015]: \"Y:vacuum\": an output is switched with Y:name+",
+        ))
+        .stderr(contains(
+            "!B4: error[E015]: \"x11\" cannot name a machine signal",
+        ))
+        .stderr(contains(
+            "!B5: error[E025]: lamp is used as an output (Y:) here but as an input (I:)",
+        ))
+        .stderr(contains("!C5: error[E021]: a cell holds at most one dwell"))
+        .stderr(contains("nothing written").count(1));
+    assert!(files_below(&out).is_empty());
+}
