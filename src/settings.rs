@@ -141,6 +141,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
                 Ok(modes) => settings.modes = Some(modes),
                 Err(_) => bad("none, all, or some of continuous, stop, estop, reset"),
             },
+            "home order" if lower == "default" => {}
             "home order" => match Modes::parse_home_order(&value) {
                 Ok(order) => settings.home_order = Some(order),
                 Err(_) => bad("stages of actuators such as C3&C4, C2, C1"),

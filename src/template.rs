@@ -89,12 +89,14 @@ fn table_layout(
 }
 
 /// The custom validation rule of one move cell (relative to its top-left
-/// cell B4): empty, or `C` then a digit, with a + or - somewhere. The tool's
-/// own check is stricter; this catches typing slips while typing.
+/// cell B4): empty, or `C` then a digit, with a + or - somewhere, or a cell
+/// starting with a dwell `T=`, a wait `I:` or an output `Y:`. The tool's own
+/// check is stricter; this catches typing slips while typing.
 fn move_rule() -> Formula {
     Formula::new(
         "=OR(TRIM(B4)=\"\",AND(LEFT(TRIM(B4),1)=\"C\",ISNUMBER(VALUE(MID(TRIM(B4),2,1))),\
-         OR(ISNUMBER(FIND(\"+\",B4)),ISNUMBER(FIND(\"-\",B4)),ISNUMBER(FIND(\"\u{2212}\",B4)))))",
+         OR(ISNUMBER(FIND(\"+\",B4)),ISNUMBER(FIND(\"-\",B4)),ISNUMBER(FIND(\"\u{2212}\",B4)))),\
+         LEFT(UPPER(TRIM(B4)),2)=\"T=\",LEFT(UPPER(TRIM(B4)),2)=\"I:\",LEFT(UPPER(TRIM(B4)),2)=\"Y:\")",
     )
 }
 
@@ -124,11 +126,14 @@ pub fn template_workbook(branches: u16, steps: u32) -> Result<Vec<u8>, XlsxError
         .allow_custom(move_rule())
         .set_input_title("Move")?
         .set_input_message(
-            "C<actuator>+<position> or C<actuator>-<position>, e.g. C2+1 (cylinder 2 out to \
-             position 1) or C1-0 (cylinder 1 home). Leave empty for no move in this branch.",
+            "C2+1: cylinder 2 out to position 1; C1-0: cylinder 1 home. T=2s: dwell; \
+             I:name: wait for an input; Y:name+ / Y:name-: output on / off. Several joined \
+             by ; (C3+1; T=2s). Empty: nothing in this branch.",
         )?
         .set_error_title("Not a move")?
-        .set_error_message("Expected C<number>+<position> or C<number>-<position>, e.g. C2+1.")?;
+        .set_error_message(
+            "Expected C<number>+<position> or C<number>-<position>, e.g. C2+1, or T=2s, I:name, Y:name+.",
+        )?;
     sheet.add_data_validation(FIRST_STEP_ROW, 1, last_row, branches, &validation)?;
     sheet.write_string(
         last_row + 2,
@@ -176,7 +181,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     for (col, header) in [(0, "SETTING"), (1, "VALUE"), (3, "WHAT IT MEANS")] {
         sheet.write_string_with_format(3, col, header, &f.header)?;
     }
-    let rows: [(&str, &str, &str, Option<&[&str]>); 4] = [
+    let rows: [(&str, &str, &str, Option<&[&str]>); 6] = [
         (
             "target",
             "festo",
@@ -208,6 +213,18 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
                 "watchdog",
             ]),
         ),
+        (
+            "modes",
+            "none",
+            "Operating modes in the program: none, all, or a list of continuous, stop, estop, reset (estop brings reset).",
+            Some(&["none", "all", "continuous", "stop", "estop", "reset"]),
+        ),
+        (
+            "home order",
+            "default",
+            "Homing stages for RESET, first to last, e.g. C3&C4, C2, C1. default: the reverse order of the last moves.",
+            None,
+        ),
     ];
     for (i, (label, value, meaning, choices)) in rows.iter().enumerate() {
         let row = 4 + i as u32;
@@ -219,14 +236,14 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             let mut validation = DataValidation::new()
                 .allow_list_strings(choices)?
                 .set_input_title(*label)?;
-            // A safety list may combine checks: warn, but accept other text.
-            if *label == "safety" {
+            // A list may combine choices: warn, but accept other text.
+            if *label == "safety" || *label == "modes" {
                 validation = validation.set_error_style(DataValidationErrorStyle::Information);
             }
             sheet.add_data_validation(row, 1, row, 1, &validation)?;
         }
     }
-    let header = 10;
+    let header = 12;
     sheet.write_string(
         header - 1,
         0,
@@ -288,6 +305,12 @@ fn help_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         ("Rule", "A + move goes to a higher position than the actuator stands at, a - move to a lower one.".into()),
         ("Rule", "An actuator moves at most once per step; a step between two steps needs at least one move.".into()),
         ("Limits", limits),
+        ("T=2s", "A dwell: once the cell's other items are done (C3+1; T=2s: once C3 is at position 1) the branch waits 2 s. T=500ms, T=1.5s; 10 ms to 655 s.".into()),
+        ("I:name", "Wait until the machine input name (part_present, door_closed) is 1; I:name=0 waits for 0. It gets an address after the sensors.".into()),
+        ("Y:name+", "Switch the machine output name (vacuum, conveyor) on; Y:name- switches it off. It stays until switched. It gets an address after the coils.".into()),
+        ("A; B", "Several items in one cell, separated by ;, e.g. Y:vacuum+; T=500ms. A step may hold only a wait or a dwell.".into()),
+        ("Names", "Letters, digits and _, starting with a letter, up to 16 characters, no spaces; the first 9 characters must differ (Festo FST keeps 9).".into()),
+        ("Modes", "SETTINGS modes adds START/STOP/EMERGENCY STOP/RESET/CONTINUOUS handling and a homing sequence (home order) to every program.".into()),
         ("Middle stops", "An actuator with positions between 0 and its end gets a 5/3 valve; the program switches both coils off at a middle target.".into()),
         ("Convert", "steptable convert this-file.xlsx writes the address lists, the programs, the simulation and the fault table.".into()),
     ];

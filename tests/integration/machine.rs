@@ -120,3 +120,63 @@ fn malformed_items_are_reported_at_their_cells() {
         .stderr(contains("nothing written").count(1));
     assert!(files_below(&out).is_empty());
 }
+
+#[test]
+fn modes_and_home_order_come_from_the_settings_sheet_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let table: &[&[&str]] = &[
+        &["", "BRANCH 1"],
+        &["STEP 1", "C1+1"],
+        &["STEP 2", "C2+1"],
+        &["STEP 3", "C2-0"],
+        &["STEP 4", "C1-0"],
+    ];
+    let good = dir.path().join("good.xlsx");
+    crate::helpers::write_xlsx_sheets(
+        &good,
+        &[
+            (SHEET, table),
+            (
+                "SETTINGS",
+                &[&["modes", "estop"], &["home order", "C2, C1"]],
+            ),
+        ],
+    );
+    steptable()
+        .arg("convert")
+        .arg(&good)
+        .args(["--formats", "io", "-o"])
+        .arg(dir.path().join("out"))
+        .assert()
+        .success();
+    let io = std::fs::read_to_string(dir.path().join("out/good/good.io.csv")).unwrap();
+    assert!(io.contains(",ESTOP,estop,"), "{io}");
+    assert!(io.contains(",RESET_PB,reset,"), "estop brings reset: {io}");
+    // The flag wins over the sheet.
+    steptable()
+        .arg("convert")
+        .arg(&good)
+        .args(["--modes", "none", "--formats", "io", "-o"])
+        .arg(dir.path().join("plain"))
+        .assert()
+        .success();
+    let io = std::fs::read_to_string(dir.path().join("plain/good/good.io.csv")).unwrap();
+    assert!(!io.contains("ESTOP"), "{io}");
+
+    let bad = dir.path().join("bad.xlsx");
+    crate::helpers::write_xlsx_sheets(
+        &bad,
+        &[
+            (SHEET, table),
+            ("SETTINGS", &[&["modes", "reset"], &["home order", "C1"]]),
+        ],
+    );
+    steptable()
+        .arg("convert")
+        .arg(&bad)
+        .arg("-o")
+        .arg(dir.path().join("bad"))
+        .assert()
+        .code(1)
+        .stderr(contains("error[E030]: the home order leaves out C2"));
+}
