@@ -207,12 +207,13 @@ pub fn read_bytes(
         }),
         _ => {
             // calamine is a large parser of untrusted zip and OLE data; a panic
-            // deep inside it must become a diagnostic, not a crash.
-            let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            // deep inside it (fuzzing found one in its OLE reader) must become
+            // a diagnostic, not a crash, and not a backtrace on the terminal.
+            let result = quietly(|| {
                 let mut local = Diagnostics::new();
                 let grid = read_workbook(file, format, bytes, sheet, &mut local);
                 (grid, local)
-            }));
+            });
             match result {
                 Ok((grid, local)) => {
                     diags.extend(local);
@@ -233,6 +234,30 @@ pub fn read_bytes(
             }
         }
     }
+}
+
+thread_local! {
+    /// Set while this thread decodes a workbook: its panics are caught and
+    /// reported as E002, so the panic hook stays silent about them.
+    static DECODING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `work`, turning a panic into `Err` without printing it. The panic
+/// hook is wrapped once per process; panics outside `quietly` still print.
+fn quietly<T>(work: impl FnOnce() -> T) -> std::thread::Result<T> {
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !DECODING.with(|d| d.get()) {
+                previous(info);
+            }
+        }));
+    });
+    DECODING.with(|d| d.set(true));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(work));
+    DECODING.with(|d| d.set(false));
+    result
 }
 
 fn read_workbook(

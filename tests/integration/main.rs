@@ -5,6 +5,7 @@ mod batch;
 mod broken;
 mod diagram;
 mod exports;
+mod fuzz_regressions;
 mod helpers;
 mod hostile;
 mod machine;

@@ -1,0 +1,55 @@
+//! Every input a fuzz target found a problem with (tests/fuzz-regressions/)
+//! is checked and converted: a clean error or a clean conversion, never a
+//! crash, a printed panic or a half-written output.
+
+use crate::helpers::{files_below, root, steptable};
+
+#[test]
+fn fuzz_findings_end_in_a_clean_error() {
+    let dir = root().join("tests/fuzz-regressions");
+    let inputs: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e != "md"))
+        .collect();
+    assert!(!inputs.is_empty());
+    for input in inputs {
+        let out = tempfile::tempdir().unwrap();
+        for command in ["check", "convert"] {
+            let mut run = steptable();
+            run.arg(command).arg(&input);
+            if command == "convert" {
+                run.arg("-o").arg(out.path());
+            }
+            let output = run.output().unwrap();
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            let code = output.status.code();
+            assert!(
+                matches!(code, Some(0) | Some(1)),
+                "{} {command}: exit {code:?}\n{stderr}",
+                input.display()
+            );
+            assert!(
+                !stderr.contains("panicked") && !stderr.contains("backtrace"),
+                "{} {command}: {stderr}",
+                input.display()
+            );
+            if code == Some(1) {
+                assert!(stderr.contains("error["), "{stderr}");
+                assert!(files_below(out.path()).is_empty());
+            }
+        }
+    }
+}
+
+#[test]
+fn the_ole_sector_table_finding_is_a_damaged_workbook() {
+    steptable()
+        .arg("check")
+        .arg(root().join("tests/fuzz-regressions/workbook-ole-sector-size.xls"))
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "error[E002]: the workbook is damaged and could not be decoded",
+        ));
+}
