@@ -300,3 +300,71 @@ fn default_home_order_is_the_reverse_of_the_last_moves() {
             .contains("leaves out C3")
     );
 }
+
+/// What an EMERGENCY STOP in the middle of a stroke does, per valve type:
+/// every coil goes off, and the valve decides what the piston does then.
+#[test]
+fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
+    use steptable::valve::ValveType;
+    let table = from_rows("one.csv", &[["C1+1"], ["C1-0"]]).unwrap();
+    let mut seen = Vec::new();
+    for valve in ValveType::ALL {
+        let modes = Modes::parse("estop").unwrap();
+        let mut settings = SimSettings::default();
+        settings.valves.per_actuator.insert(1, valve);
+        // A light load: a centre valve drifts 1 % of the stroke per second.
+        settings.loads.insert(1, 0.01);
+        settings.strokes.per_actuator.insert(
+            1,
+            steptable::timing::Stroke {
+                extend_ms: 2000,
+                retract_ms: 2000,
+            },
+        );
+        let allocation = Allocation::with_options(
+            &table,
+            Target::Festo,
+            Mnemonic::En,
+            Default::default(),
+            &modes,
+            &settings.valves,
+        );
+        let program = program::build(
+            &table,
+            &allocation,
+            ProgramOptions {
+                modes,
+                ..ProgramOptions::default()
+            },
+            &settings.strokes,
+        );
+        // START at 0.5 s; ESTOP at 1.5 s, half-way out; held from then on.
+        let mut script = press(500, start());
+        script.push((
+            1_500,
+            Operator {
+                estop: true,
+                ..IDLE
+            },
+        ));
+        let report = scenario(&table, &program, &settings, &script, 5_000);
+        let at_stop = report.at(1_500).unwrap().positions[0];
+        let later = report.at(4_900).unwrap().positions[0];
+        assert!((0.4..0.6).contains(&at_stop), "{valve}: {at_stop}");
+        seen.push((valve, at_stop, later));
+    }
+    let after = |v: ValveType| seen.iter().find(|(t, ..)| *t == v).unwrap().2;
+    // The bistable valve keeps its last position: the stroke goes on to the end.
+    assert!(after(ValveType::Bistable52) > 0.99, "{seen:?}");
+    // The spring returns the single-solenoid valve: the piston goes home.
+    assert!(after(ValveType::Mono52) < 0.01, "{seen:?}");
+    // A closed centre locks the air in: the piston stays where it was.
+    let closed = seen
+        .iter()
+        .find(|(t, ..)| *t == ValveType::Closed53)
+        .unwrap();
+    assert!((closed.2 - closed.1).abs() < 0.01, "{seen:?}");
+    // An exhausted centre lets the load pull it home; a pressurised one creeps out.
+    assert!(after(ValveType::Exhaust53) < closed.2, "{seen:?}");
+    assert!(after(ValveType::Pressure53) > closed.2, "{seen:?}");
+}
