@@ -368,3 +368,48 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
     assert!(after(ValveType::Exhaust53) < closed.2, "{seen:?}");
     assert!(after(ValveType::Pressure53) > closed.2, "{seen:?}");
 }
+
+/// The fault table treats the mode inputs like sensors: a broken STOP or
+/// EMERGENCY STOP wire stops the machine safely, it never starts it.
+#[test]
+fn broken_stop_and_emergency_stop_wires_are_safe_stalls() {
+    use steptable::faults::{self, Outcome};
+    let table = paper();
+    let modes = Modes::parse("all").unwrap();
+    let allocation = Allocation::with_options(
+        &table,
+        Target::Festo,
+        Mnemonic::En,
+        Default::default(),
+        &modes,
+        &Default::default(),
+    );
+    let program = program_with(&table, "all");
+    let fault_table = faults::analyse(
+        &table,
+        &program,
+        &allocation,
+        &SimSettings::default(),
+        false,
+    );
+    let outcome = |signal: Signal, stuck_at: bool| {
+        fault_table
+            .cases
+            .iter()
+            .find(|c| c.faults[0].signal == signal && c.faults[0].stuck_at == stuck_at)
+            .map(|c| c.outcome)
+            .expect("every mode input is in the fault table")
+    };
+    assert_eq!(outcome(Signal::Stop, false), Outcome::SafeStall);
+    assert_eq!(outcome(Signal::EStop, false), Outcome::SafeStall);
+    assert_eq!(outcome(Signal::Reset, true), Outcome::SafeStall);
+    for (signal, stuck_at) in [
+        (Signal::Stop, true),
+        (Signal::EStop, true),
+        (Signal::Reset, false),
+    ] {
+        assert_eq!(outcome(signal, stuck_at), Outcome::NoEffect, "{signal:?}");
+    }
+    // A CONTINUOUS switch stuck on restarts the machine by itself.
+    assert_eq!(outcome(Signal::Continuous, true), Outcome::Hazard);
+}
