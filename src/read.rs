@@ -314,9 +314,9 @@ fn read_workbook(
     let names = workbook.names();
     let read_sheet =
         |workbook: &mut Box<dyn SheetSource>, name: &str, diags: &mut Diagnostics| match workbook
-            .range(name)
+            .grid(file, name)
         {
-            Ok(range) => Some(grid_from_range(file, name, &range)),
+            Ok(grid) => Some(grid),
             Err(err) => {
                 diags.error(
                     Code::E002NotAWorkbook,
@@ -421,20 +421,86 @@ fn format_name(format: Format) -> &'static str {
 /// The two things we need from any calamine reader, object-safe.
 trait SheetSource {
     fn names(&self) -> Vec<String>;
-    fn range(&mut self, name: &str) -> Result<Range<Data>, String>;
+    /// The filled cells of one sheet.
+    fn grid(&mut self, file: &str, name: &str) -> Result<Grid, String>;
 }
 
-impl<R: Reader<Cursor<Vec<u8>>>> SheetSource for R
-where
-    R::Error: std::fmt::Display,
-{
+/// `.xlsx` is read cell by cell as the sheet's XML streams past: memory
+/// follows the filled cells, not the rectangle around them (a sheet with
+/// cells at A1 and XFD1048576 would otherwise need 17 billion empty cells).
+impl SheetSource for Xlsx<Cursor<Vec<u8>>> {
     fn names(&self) -> Vec<String> {
         self.sheet_names()
     }
 
-    fn range(&mut self, name: &str) -> Result<Range<Data>, String> {
-        self.worksheet_range(name).map_err(|e| e.to_string())
+    fn grid(&mut self, file: &str, name: &str) -> Result<Grid, String> {
+        let mut reader = self
+            .worksheet_cells_reader(name)
+            .map_err(|e| e.to_string())?;
+        let mut cells = Vec::new();
+        while let Some(cell) = reader.next_cell().map_err(|e| e.to_string())? {
+            let (row, col) = cell.get_position();
+            let data: Data = cell.get_value().clone().into();
+            if let Some(value) = cell_value(&data) {
+                if cells.len() == MAX_FILLED_CELLS {
+                    return Err(format!(
+                        "the sheet has more than {MAX_FILLED_CELLS} filled cells"
+                    ));
+                }
+                cells.push(GridCell {
+                    pos: CellPos::new(row, col),
+                    value,
+                });
+            }
+        }
+        Ok(Grid {
+            file: file.to_string(),
+            sheet: Some(name.to_string()),
+            cells,
+        })
     }
+}
+
+/// `.xls` and `.ods`: calamine decodes these whole; their grids are small
+/// (65,536 × 256 for `.xls`).
+macro_rules! whole_sheet_source {
+    ($reader:ty) => {
+        impl SheetSource for $reader {
+            fn names(&self) -> Vec<String> {
+                self.sheet_names()
+            }
+
+            fn grid(&mut self, file: &str, name: &str) -> Result<Grid, String> {
+                let range = self.worksheet_range(name).map_err(|e| e.to_string())?;
+                Ok(grid_from_range(file, name, &range))
+            }
+        }
+    };
+}
+whole_sheet_source!(Xls<Cursor<Vec<u8>>>);
+whole_sheet_source!(Ods<Cursor<Vec<u8>>>);
+
+/// Most filled cells read from one sheet: a full table (10,000 steps × 256
+/// branches) with its labels fits; a sheet of millions of cells is refused.
+pub const MAX_FILLED_CELLS: usize = 3_000_000;
+
+/// What a filled cell holds; `None` for an empty or blank one.
+fn cell_value(data: &Data) -> Option<CellValue> {
+    Some(match data {
+        Data::Empty => return None,
+        Data::String(s) => {
+            if s.trim().is_empty() {
+                return None;
+            }
+            CellValue::Text(s.clone())
+        }
+        Data::Int(i) => CellValue::Number(*i as f64),
+        Data::Float(f) => CellValue::Number(*f),
+        Data::Bool(b) => CellValue::Bool(*b),
+        Data::DateTime(dt) => CellValue::Date(dt.to_string()),
+        Data::DateTimeIso(s) | Data::DurationIso(s) => CellValue::Date(s.clone()),
+        Data::Error(e) => CellValue::Error(e.to_string()),
+    })
 }
 
 fn grid_from_range(file: &str, sheet: &str, range: &Range<Data>) -> Grid {
@@ -442,20 +508,8 @@ fn grid_from_range(file: &str, sheet: &str, range: &Range<Data>) -> Grid {
     let (row0, col0) = range.start().unwrap_or((0, 0));
     let mut cells = Vec::new();
     for (r, c, data) in range.used_cells() {
-        let value = match data {
-            Data::Empty => continue,
-            Data::String(s) => {
-                if s.trim().is_empty() {
-                    continue;
-                }
-                CellValue::Text(s.clone())
-            }
-            Data::Int(i) => CellValue::Number(*i as f64),
-            Data::Float(f) => CellValue::Number(*f),
-            Data::Bool(b) => CellValue::Bool(*b),
-            Data::DateTime(dt) => CellValue::Date(dt.to_string()),
-            Data::DateTimeIso(s) | Data::DurationIso(s) => CellValue::Date(s.clone()),
-            Data::Error(e) => CellValue::Error(e.to_string()),
+        let Some(value) = cell_value(data) else {
+            continue;
         };
         cells.push(GridCell {
             pos: CellPos::new(row0 + r as u32, col0 + c as u32),

@@ -284,6 +284,18 @@ fn cases() -> Vec<Case> {
         ),
         case("an empty workbook", "empty.xlsx", xlsx(|_| {}), 1, "E003"),
         case(
+            // Found while measuring #7: read as one dense rectangle this
+            // needed 17 billion cells and the process aborted.
+            "moves at A1 and XFD1048576",
+            "corners.xlsx",
+            xlsx(|s| {
+                s.write_string(0, 0, "C1+1").unwrap();
+                s.write_string(1_048_575, 16_383, "C1-0").unwrap();
+            }),
+            1,
+            "table has 1048576 steps × 16384 branches",
+        ),
+        case(
             "a number cell",
             "num.xlsx",
             xlsx(|s| {
