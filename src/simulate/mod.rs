@@ -1020,7 +1020,11 @@ fn timings(
                 step: step.number,
                 start_ms: t - press_at,
                 duration_ms: next - t,
-                moves: step.title.clone(),
+                // The closing step moves nothing (its row stays blank, as it always has).
+                moves: match step.kind {
+                    StepKind::Table => step.title.clone(),
+                    StepKind::EndOfCycle => String::new(),
+                },
                 notes: notes.join("; "),
             }
         })
