@@ -296,6 +296,15 @@ pub fn from_table(table: &crate::table::StepTable) -> Result<Sequence, SynthErro
             step.moves.len()
         )));
     }
+    if let Some(step) = table.steps.iter().find(|s| {
+        s.moves.len() != 1 || !s.dwells.is_empty() || !s.waits.is_empty() || !s.switches.is_empty()
+    }) {
+        return Err(SynthError::Unsuitable(format!(
+            "STEP {} ({}) is not one cylinder move: synthesis handles sequences of moves only, without dwells, waits or machine outputs; use convert for those",
+            step.number,
+            step.text()
+        )));
+    }
     if let Some(a) = table.actuators.iter().find(|a| a.max_position > 1) {
         return Err(SynthError::Unsuitable(format!(
             "C{} has middle positions: synthesis handles two-position actuators only; use convert for middle stops",

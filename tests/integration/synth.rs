@@ -87,3 +87,18 @@ fn a_single_branch_table_synthesises_and_a_parallel_one_is_refused() {
         .code(1)
         .stderr(contains("changes nothing"));
 }
+
+#[test]
+fn a_sequence_with_a_dwell_is_refused_with_its_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("dwell.csv");
+    std::fs::write(&path, "C1+1; T=2s\nC2+1\nC1-0\nC2-0\n").unwrap();
+    steptable()
+        .arg("synth")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "STEP 1 (C1+1; T=2s) is not one cylinder move: synthesis handles sequences of moves only",
+        ));
+}
