@@ -53,3 +53,16 @@ fn the_ole_sector_table_finding_is_a_damaged_workbook() {
             "error[E002]: the workbook is damaged and could not be decoded",
         ));
 }
+
+#[test]
+fn a_looping_sector_chain_is_refused_at_once() {
+    steptable()
+        .arg("check")
+        .arg(root().join("tests/fuzz-regressions/workbook-ole-fat-loop.xls"))
+        .timeout(std::time::Duration::from_secs(20))
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "the workbook is damaged and could not be decoded (the sector chain through sector",
+        ));
+}

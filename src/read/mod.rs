@@ -2,6 +2,7 @@
 //! Workbooks (`.xlsx`, `.xlsm`, `.xls`, `.ods`) go through calamine; CSV is
 //! decoded here (UTF-8 with or without BOM, UTF-16 with BOM; `,` `;` or tab).
 
+mod ole;
 use std::io::Cursor;
 use std::path::Path;
 
@@ -284,6 +285,16 @@ fn read_workbook(
                 unpacked / (1024 * 1024),
                 MAX_UNPACKED_BYTES / (1024 * 1024)
             ),
+        );
+        return None;
+    }
+    if format == Format::Xls
+        && let Some(why) = ole::looping_chain(&bytes)
+    {
+        diags.error(
+            Code::E002NotAWorkbook,
+            whole_file,
+            format!("the workbook is damaged and could not be decoded ({why})"),
         );
         return None;
     }
