@@ -323,24 +323,32 @@ fn read_workbook(
         }
     };
     let names = workbook.names();
-    let read_sheet =
-        |workbook: &mut Box<dyn SheetSource>, name: &str, diags: &mut Diagnostics| match workbook
-            .grid(file, name)
-        {
+    let read_sheet = |workbook: &mut Box<dyn SheetSource>, name: &str, diags: &mut Diagnostics| {
+        match workbook.grid(file, name) {
             Ok(grid) => Some(grid),
             Err(err) => {
-                diags.error(
-                    Code::E002NotAWorkbook,
-                    Location {
-                        file: file.to_string(),
-                        sheet: Some(name.to_string()),
-                        cell: None,
-                    },
-                    format!("sheet could not be read ({err})"),
-                );
+                let (code, message) = match err {
+                    SheetError::Unreadable(why) => (
+                        Code::E002NotAWorkbook,
+                        format!("sheet could not be read ({why})"),
+                    ),
+                    SheetError::TooManyCells => (
+                        Code::E024TableTooLarge,
+                        format!(
+                            "the sheet has more than {MAX_FILLED_CELLS} filled cells; a table of 10,000 steps × 256 branches has fewer"
+                        ),
+                    ),
+                };
+                let sheet = Location {
+                    file: file.to_string(),
+                    sheet: Some(name.to_string()),
+                    cell: None,
+                };
+                diags.error(code, sheet, message);
                 None
             }
-        };
+        }
+    };
 
     let settings = names
         .iter()
@@ -395,14 +403,17 @@ fn pick_table(
     {
         return read_sheet(workbook, name, diags);
     }
+    // A sheet that could not be read may be the one with the table: say why.
+    let mut unread = Diagnostics::new();
     for name in names {
         let mut local = Diagnostics::new();
-        if let Some(grid) = read_sheet(workbook, name, &mut local)
-            && grid.holds_table()
-        {
-            return Some(grid);
+        match read_sheet(workbook, name, &mut local) {
+            Some(grid) if grid.holds_table() => return Some(grid),
+            Some(_) => {}
+            None => unread.extend(local),
         }
     }
+    diags.extend(unread);
     diags.error(
         Code::E003NoTable,
         whole_file,
@@ -433,7 +444,15 @@ fn format_name(format: Format) -> &'static str {
 trait SheetSource {
     fn names(&self) -> Vec<String>;
     /// The filled cells of one sheet.
-    fn grid(&mut self, file: &str, name: &str) -> Result<Grid, String>;
+    fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError>;
+}
+
+/// Why a sheet could not be read.
+enum SheetError {
+    /// calamine could not decode it.
+    Unreadable(String),
+    /// More than [`MAX_FILLED_CELLS`] filled cells.
+    TooManyCells,
 }
 
 /// `.xlsx` is read cell by cell as the sheet's XML streams past: memory
@@ -444,19 +463,16 @@ impl SheetSource for Xlsx<Cursor<Vec<u8>>> {
         self.sheet_names()
     }
 
-    fn grid(&mut self, file: &str, name: &str) -> Result<Grid, String> {
-        let mut reader = self
-            .worksheet_cells_reader(name)
-            .map_err(|e| e.to_string())?;
+    fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError> {
+        let unreadable = |e: calamine::XlsxError| SheetError::Unreadable(e.to_string());
+        let mut reader = self.worksheet_cells_reader(name).map_err(unreadable)?;
         let mut cells = Vec::new();
-        while let Some(cell) = reader.next_cell().map_err(|e| e.to_string())? {
+        while let Some(cell) = reader.next_cell().map_err(unreadable)? {
             let (row, col) = cell.get_position();
             let data: Data = cell.get_value().clone().into();
             if let Some(value) = cell_value(&data) {
                 if cells.len() == MAX_FILLED_CELLS {
-                    return Err(format!(
-                        "the sheet has more than {MAX_FILLED_CELLS} filled cells"
-                    ));
+                    return Err(SheetError::TooManyCells);
                 }
                 cells.push(GridCell {
                     pos: CellPos::new(row, col),
@@ -481,8 +497,10 @@ macro_rules! whole_sheet_source {
                 self.sheet_names()
             }
 
-            fn grid(&mut self, file: &str, name: &str) -> Result<Grid, String> {
-                let range = self.worksheet_range(name).map_err(|e| e.to_string())?;
+            fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError> {
+                let range = self
+                    .worksheet_range(name)
+                    .map_err(|e| SheetError::Unreadable(e.to_string()))?;
                 Ok(grid_from_range(file, name, &range))
             }
         }

@@ -65,6 +65,48 @@ fn zip_of_zeros(name: &str, size: usize) -> Vec<u8> {
     buffer.into_inner()
 }
 
+/// A minimal `.xlsx` whose one sheet holds `rows` rows of `per_row` cells
+/// with the number 1, written straight as XML (rust_xlsxwriter would take
+/// far longer for millions of cells).
+fn xlsx_of_numbers(rows: usize, per_row: usize) -> Vec<u8> {
+    let mut buffer = std::io::Cursor::new(Vec::new());
+    let mut zip = zip::ZipWriter::new(&mut buffer);
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated)
+        .large_file(true);
+    let parts = [
+        (
+            "[Content_Types].xml",
+            r#"<?xml version="1.0" encoding="UTF-8"?><Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types"><Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/><Default Extension="xml" ContentType="application/xml"/><Override PartName="/xl/workbook.xml" ContentType="application/vnd.openxmlformats-officedocument.spreadsheetml.sheet.main+xml"/><Override PartName="/xl/worksheets/sheet1.xml" ContentType="application/vnd.openxmlformats-officedocument.spreadsheetml.worksheet+xml"/></Types>"#,
+        ),
+        (
+            "_rels/.rels",
+            r#"<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Id="rId1" Type="http://schemas.openxmlformats.org/officeDocument/2006/relationships/officeDocument" Target="xl/workbook.xml"/></Relationships>"#,
+        ),
+        (
+            "xl/workbook.xml",
+            r#"<?xml version="1.0" encoding="UTF-8"?><workbook xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main" xmlns:r="http://schemas.openxmlformats.org/officeDocument/2006/relationships"><sheets><sheet name="Sheet1" sheetId="1" r:id="rId1"/></sheets></workbook>"#,
+        ),
+        (
+            "xl/_rels/workbook.xml.rels",
+            r#"<?xml version="1.0" encoding="UTF-8"?><Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Id="rId1" Type="http://schemas.openxmlformats.org/officeDocument/2006/relationships/worksheet" Target="worksheets/sheet1.xml"/></Relationships>"#,
+        ),
+    ];
+    for (name, text) in parts {
+        zip.start_file(name, options).unwrap();
+        zip.write_all(text.as_bytes()).unwrap();
+    }
+    zip.start_file("xl/worksheets/sheet1.xml", options).unwrap();
+    zip.write_all(br#"<?xml version="1.0" encoding="UTF-8"?><worksheet xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main"><sheetData>"#).unwrap();
+    let row: String = format!("<row>{}</row>", "<c><v>1</v></c>".repeat(per_row));
+    for _ in 0..rows {
+        zip.write_all(row.as_bytes()).unwrap();
+    }
+    zip.write_all(b"</sheetData></worksheet>").unwrap();
+    zip.finish().unwrap();
+    buffer.into_inner()
+}
+
 fn cases() -> Vec<Case> {
     let paper_xlsx = std::fs::read(sample("paper_example.xlsx")).unwrap();
     let paper_ods =
@@ -283,6 +325,13 @@ fn cases() -> Vec<Case> {
             "unpacks to 300 MiB",
         ),
         case("an empty workbook", "empty.xlsx", xlsx(|_| {}), 1, "E003"),
+        case(
+            "3,000,100 filled cells",
+            "dense.xlsx",
+            xlsx_of_numbers(30_001, 100),
+            1,
+            "the sheet has more than 3000000 filled cells",
+        ),
         case(
             // Found while measuring #7: read as one dense rectangle this
             // needed 17 billion cells and the process aborted.
