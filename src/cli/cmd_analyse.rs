@@ -28,6 +28,10 @@ pub(crate) struct SimulateArgs {
     /// does, to see why they matter.
     #[arg(long)]
     pub(crate) no_middle_stop: bool,
+    /// Also write the run's displacement-time diagram (dwells and waits
+    /// shaded) to DIR/NAME/NAME.time.svg.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) diagram: Option<PathBuf>,
     #[command(flatten)]
     pub(crate) common: CommonArgs,
     #[command(flatten)]
@@ -40,7 +44,8 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
     args.sim.apply(&mut settings);
     settings.program.middle_stops = !args.no_middle_stop;
     let mut code = EXIT_OK;
-    for input in &args.inputs {
+    let names = convert::output_names(&args.inputs);
+    for (input, name) in args.inputs.iter().zip(&names) {
         let checked = match convert::check_path(input, &settings) {
             Ok(c) => c,
             Err(diagnostics) => {
@@ -50,13 +55,36 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
             }
         };
         reporter.diagnostics(&checked.warnings);
-        let (table, settings) = (checked.table, checked.settings);
+        let (table, mut settings) = (checked.table, checked.settings);
+        settings.simulation.record_trace = args.diagram.is_some();
         let (_, program) = convert::build_program(&table, &settings);
         let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
         reporter.say(&format!("{}: {}", display_name(input), report.verdict()));
         reporter.say(&steptable::simulate::report::step_table(&report));
         if !report.passed {
             code = code.max(EXIT_BAD_INPUT);
+        }
+        if let Some(dir) = &args.diagram {
+            let svg = steptable::emit::diagram::render_svg(
+                name,
+                &report,
+                steptable::emit::diagram::DiagramKind::Time,
+            );
+            let file = convert::OutputFile {
+                name: format!("{name}.time.svg"),
+                bytes: svg.into_bytes(),
+            };
+            match output::write_files(&dir.join(name), &[file], &args.inputs) {
+                Ok(paths) => {
+                    for path in paths {
+                        reporter.say(&format!("  diagram: {}", path.display()));
+                    }
+                }
+                Err(err) => {
+                    eprintln!("error: {err}");
+                    code = EXIT_INTERNAL;
+                }
+            }
         }
     }
     code

@@ -21,6 +21,22 @@ fn the_press_station_shows_its_dwell_and_wait_in_the_step_timing() {
         // The press dwell starts when C3 reaches x31 (1.47 s into its 1.5 s stroke) and runs 2 s.
         .stdout(contains("C1-0, C3+1; T=2s  (T=2s ran 1.47–3.47 s)"))
         .stdout(contains("second START: identical cycle"));
+    // The run's displacement-time diagram shades the dwells and the wait.
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("simulate")
+        .arg(sample("press_station.xlsx"))
+        .arg("--diagram")
+        .arg(dir.path())
+        .assert()
+        .success()
+        .stdout(contains("press_station.time.svg"));
+    let svg =
+        std::fs::read_to_string(dir.path().join("press_station/press_station.time.svg")).unwrap();
+    assert!(svg.contains("Displacement-time diagram"));
+    for label in [">T=2s<", ">T=500ms<", ">T=300ms<", ">I:part_present<"] {
+        assert!(svg.contains(label), "{label}");
+    }
     // A slower part supply lengthens step 1 and nothing else.
     steptable()
         .arg("simulate")
