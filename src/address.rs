@@ -218,18 +218,10 @@ impl Signal {
             Signal::Stop => "stop",
             Signal::EStop => "estop",
             Signal::Reset => "reset",
-            Signal::StopAt { .. }
-            | Signal::StartMemory
-            | Signal::Halt
-            | Signal::WatchdogArmed
-            | Signal::DwellArmed(_)
-            | Signal::CycleRequest
-            | Signal::Busy
-            | Signal::AutoRun
-            | Signal::Homing
-            | Signal::HomeStage(_)
-            | Signal::Sequence => "memory",
-            Signal::Watchdog | Signal::Dwell(_) => "timer",
+            other => match other.area() {
+                Area::Timer => "timer",
+                _ => "memory",
+            },
         }
     }
 
