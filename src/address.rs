@@ -205,6 +205,13 @@ impl Signal {
         }
     }
 
+    /// The symbolic operand in Festo FST, which keeps 9 characters: the
+    /// identifier, with a long machine signal name cut to its first 9 (the
+    /// table check makes sure those tell every name apart).
+    pub fn fst_symbol(self) -> String {
+        self.ident().chars().take(9).collect()
+    }
+
     /// The `kind` column of the allocation list.
     pub fn kind(self) -> &'static str {
         match self {
@@ -1034,6 +1041,17 @@ mod identifier_tests {
             Signal::Alarm(Alarm::Timeout),
             Signal::Watchdog,
             Signal::WatchdogArmed,
+            Signal::Dwell(255),
+            Signal::DwellArmed(255),
+            Signal::Continuous,
+            Signal::Stop,
+            Signal::EStop,
+            Signal::Reset,
+            Signal::CycleRequest,
+            Signal::Busy,
+            Signal::AutoRun,
+            Signal::Homing,
+            Signal::HomeStage(999),
         ];
         for signal in signals {
             let id = signal.ident();
@@ -1051,5 +1069,15 @@ mod identifier_tests {
                 "{id} is a keyword"
             );
         }
+    }
+
+    #[test]
+    fn long_machine_names_keep_nine_characters_in_fst() {
+        let name = crate::cell::Name::new("part_present").unwrap();
+        assert_eq!(Signal::MachineInput(name).ident(), "part_present");
+        assert_eq!(Signal::MachineInput(name).fst_symbol(), "part_pres");
+        assert_eq!(reserved_name("x11").is_some(), true);
+        assert_eq!(reserved_name("reset").is_some(), true);
+        assert_eq!(reserved_name("vacuum"), None);
     }
 }

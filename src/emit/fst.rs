@@ -69,7 +69,7 @@ fn condition(literals: &[Literal], festo: &Allocation) -> Vec<ConditionLine> {
                     operand
                 },
                 // The FST allocation list's symbolic operand.
-                comment: l.signal.ident(),
+                comment: l.signal.fst_symbol(),
             }
         })
         .collect()

@@ -36,7 +36,7 @@ pub fn render_fst_alloc(input: &EmitInput) -> Result<String, templates::Template
         .chain(&festo.timers)
         .map(|a| Entry {
             address: a.address.display(Mnemonic::En),
-            symbol: a.signal.ident(),
+            symbol: a.signal.fst_symbol(),
             comment: one_line(&a.signal.comment(input.table)),
         })
         .collect();
