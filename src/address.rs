@@ -1076,8 +1076,8 @@ mod identifier_tests {
         let name = crate::cell::Name::new("part_present").unwrap();
         assert_eq!(Signal::MachineInput(name).ident(), "part_present");
         assert_eq!(Signal::MachineInput(name).fst_symbol(), "part_pres");
-        assert_eq!(reserved_name("x11").is_some(), true);
-        assert_eq!(reserved_name("reset").is_some(), true);
+        assert!(reserved_name("x11").is_some());
+        assert!(reserved_name("reset").is_some());
         assert_eq!(reserved_name("vacuum"), None);
     }
 }
