@@ -274,9 +274,8 @@ struct ActiveMove {
 
 struct Run<'a> {
     program: &'a StepProgram,
-    settings: SimSettings,
-    pistons: Vec<Piston>,
-    index_of: BTreeMap<u32, usize>,
+    /// What the PLC's inputs read from: the plant, the operator, the machine.
+    world: World,
     plc: PlcState,
     time_ms: u64,
     problems: Vec<Problem>,
@@ -285,11 +284,6 @@ struct Run<'a> {
     /// Per piston, the last move commanded: it may finish settling into its
     /// target window after the next step has fired.
     last_move: Vec<Option<ActiveMove>>,
-    start_pressed: bool,
-    /// Buttons other than START (the standard proof leaves them alone).
-    operator: Operator,
-    /// Machine inputs as the machine gives them, and changes to come.
-    machine: BTreeMap<Name, bool>,
     pending: Vec<(u64, Name, bool)>,
     /// Inputs the machine gave for the step that fired last.
     answered: Vec<Name>,
@@ -302,14 +296,16 @@ struct Run<'a> {
     coils: Vec<(Option<usize>, Option<usize>, Option<usize>)>,
 }
 
-/// What the plant and the operator give the PLC's inputs.
-struct Env<'a> {
-    settings: &'a SimSettings,
-    pistons: &'a [Piston],
-    index_of: &'a BTreeMap<u32, usize>,
-    start: bool,
+/// Everything the PLC's inputs are read from.
+struct World {
+    settings: SimSettings,
+    pistons: Vec<Piston>,
+    index_of: BTreeMap<u32, usize>,
+    start_pressed: bool,
+    /// Buttons other than START (the standard proof leaves them alone).
     operator: Operator,
-    machine: &'a BTreeMap<Name, bool>,
+    /// Machine inputs as the machine gives them.
+    machine: BTreeMap<Name, bool>,
 }
 
 impl Run<'_> {
@@ -323,7 +319,7 @@ impl Run<'_> {
             .copied()
             .filter(|l| {
                 let raw = if l.signal.is_input() {
-                    read_input(l.signal, &self.env())
+                    read_input(l.signal, &self.world)
                 } else {
                     self.plc.bit(l.signal)
                 };
@@ -334,17 +330,6 @@ impl Run<'_> {
 }
 
 impl Run<'_> {
-    fn env(&self) -> Env<'_> {
-        Env {
-            settings: &self.settings,
-            pistons: &self.pistons,
-            index_of: &self.index_of,
-            start: self.start_pressed,
-            operator: self.operator,
-            machine: &self.machine,
-        }
-    }
-
     /// Whether the cycle has ended: STEP 1 waits for nothing but a start.
     fn cycle_complete(&self) -> bool {
         self.missing(0).iter().all(|l| {
@@ -379,7 +364,7 @@ impl Run<'_> {
         // scan; the plant does not move while the program runs.
         // The machine gives the inputs its steps wait for.
         let now = self.time_ms;
-        let machine = &mut self.machine;
+        let machine = &mut self.world.machine;
         self.pending.retain(|(at, name, value)| {
             if *at <= now {
                 machine.insert(*name, *value);
@@ -388,20 +373,13 @@ impl Run<'_> {
                 true
             }
         });
-        let env = Env {
-            settings: &self.settings,
-            pistons: &self.pistons,
-            index_of: &self.index_of,
-            start: self.start_pressed,
-            operator: self.operator,
-            machine: &self.machine,
-        };
-        let read = |s: Signal| read_input(s, &env);
+        let world = &self.world;
+        let read = |s: Signal| read_input(s, world);
         let result = scan(
             self.program,
             &mut self.plc,
             &read,
-            self.settings.scan_ms as u64,
+            self.world.settings.scan_ms as u64,
         );
         if let Some(fired) = result.fired {
             self.on_fire(fired);
@@ -428,13 +406,13 @@ impl Run<'_> {
         }
 
         // Outputs to valves, then the plant moves for one scan period.
-        for i in 0..self.pistons.len() {
-            let number = self.pistons[i].number;
+        for i in 0..self.world.pistons.len() {
+            let number = self.world.pistons[i].number;
             let (plus_at, minus_at, single_at) = self.coils[i];
             let on = |at: Option<usize>| at.is_some_and(|i| self.plc.bit_at(i));
             let plus = on(plus_at) || on(single_at);
             let minus = on(minus_at);
-            if self.pistons[i].drive(plus, minus) {
+            if self.world.pistons[i].drive(plus, minus) {
                 let step = self.current_step();
                 self.problem(
                     ProblemKind::CoilConflict,
@@ -442,14 +420,19 @@ impl Run<'_> {
                     format!("the valve of C{number} sees both coils y{number}+ and y{number}- in step {step}"),
                 );
             }
-            if let Some(direction) = self.pistons[i].advance() {
+            if let Some(direction) = self.world.pistons[i].advance() {
                 self.check_motion(i, direction);
             }
         }
-        self.time_ms += self.settings.scan_ms as u64;
+        self.time_ms += self.world.settings.scan_ms as u64;
         self.update_reached();
-        if self.settings.record_trace {
-            let positions = self.pistons.iter().map(Piston::position_units).collect();
+        if self.world.settings.record_trace {
+            let positions = self
+                .world
+                .pistons
+                .iter()
+                .map(Piston::position_units)
+                .collect();
             self.trace.push((self.time_ms, positions));
         }
         result.fired
@@ -470,7 +453,7 @@ impl Run<'_> {
         for name in std::mem::take(&mut self.answered) {
             self.pending.retain(|(_, n, _)| *n != name);
             if let Some(rest) = rest_value(self.table, name) {
-                self.machine.insert(name, rest);
+                self.world.machine.insert(name, rest);
             }
         }
         if step.kind == StepKind::Table
@@ -478,6 +461,7 @@ impl Run<'_> {
         {
             for wait in &table_step.waits {
                 let delay = self
+                    .world
                     .settings
                     .input_delays
                     .get(&wait.input)
@@ -485,7 +469,14 @@ impl Run<'_> {
                     .unwrap_or(DEFAULT_INPUT_DELAY_MS) as u64;
                 let now = self.time_ms;
                 self.answered.push(wait.input);
-                if self.machine.get(&wait.input).copied().unwrap_or(false) != wait.value {
+                if self
+                    .world
+                    .machine
+                    .get(&wait.input)
+                    .copied()
+                    .unwrap_or(false)
+                    != wait.value
+                {
                     self.pending.push((now + delay, wait.input, wait.value));
                     self.spans.push(Span {
                         from_ms: now,
@@ -495,7 +486,11 @@ impl Run<'_> {
                 }
             }
         }
-        if fired == 0 && !(self.start_pressed || self.operator.start || self.operator.continuous) {
+        if fired == 0
+            && !(self.world.start_pressed
+                || self.world.operator.start
+                || self.world.operator.continuous)
+        {
             self.problem(
                 ProblemKind::UnexpectedStart,
                 step.number,
@@ -530,13 +525,16 @@ impl Run<'_> {
             .moves
             .iter()
             .filter_map(|m| {
-                self.index_of.get(&m.actuator).map(|&piston| ActiveMove {
-                    piston,
-                    mv: *m,
-                    step: step.number,
-                    reached: false,
-                    ran_through: false,
-                })
+                self.world
+                    .index_of
+                    .get(&m.actuator)
+                    .map(|&piston| ActiveMove {
+                        piston,
+                        mv: *m,
+                        step: step.number,
+                        reached: false,
+                        ran_through: false,
+                    })
             })
             .collect();
         for a in &self.active {
@@ -545,8 +543,8 @@ impl Run<'_> {
     }
 
     fn check_motion(&mut self, piston: usize, direction: Sign) {
-        let window = self.settings.window;
-        let p = &self.pistons[piston];
+        let window = self.world.settings.window;
+        let p = &self.world.pistons[piston];
         let number = p.number;
         let s = p.s;
         let commanded = self.last_move[piston]
@@ -590,9 +588,10 @@ impl Run<'_> {
     }
 
     fn update_reached(&mut self) {
-        let window = self.settings.window;
+        let window = self.world.settings.window;
         for a in &mut self.active {
-            if !a.reached && !a.ran_through && self.pistons[a.piston].sensor(a.mv.to, window) {
+            if !a.reached && !a.ran_through && self.world.pistons[a.piston].sensor(a.mv.to, window)
+            {
                 a.reached = true;
             }
         }
@@ -602,18 +601,22 @@ impl Run<'_> {
     /// (against the end stop, or held by a closed centre).
     fn all_moves_ended(&self) -> bool {
         self.active.iter().all(|a| {
-            let p = &self.pistons[a.piston];
+            let p = &self.world.pistons[a.piston];
             let at_rest = match p.spool {
                 plant::Spool::Centre => true,
                 plant::Spool::Plus => p.s >= 1.0,
                 plant::Spool::Minus => p.s <= 0.0,
             };
-            a.reached && at_rest && p.sensor(a.mv.to, self.settings.window)
+            a.reached && at_rest && p.sensor(a.mv.to, self.world.settings.window)
         })
     }
 
     fn positions(&self) -> Vec<f64> {
-        self.pistons.iter().map(Piston::position_units).collect()
+        self.world
+            .pistons
+            .iter()
+            .map(Piston::position_units)
+            .collect()
     }
 }
 
@@ -630,21 +633,22 @@ fn rest_value(table: &StepTable, input: Name) -> Option<bool> {
 
 /// The value an input reads: a fault overrides the plant. STOP and
 /// EMERGENCY STOP are normally closed: they read 1 until pressed.
-fn read_input(signal: Signal, env: &Env) -> bool {
-    if let Some(f) = env.settings.faults.iter().find(|f| f.signal == signal) {
+fn read_input(signal: Signal, world: &World) -> bool {
+    if let Some(f) = world.settings.faults.iter().find(|f| f.signal == signal) {
         return f.stuck_at;
     }
+    let operator = world.operator;
     match signal {
-        Signal::Start => env.start || env.operator.start,
-        Signal::Sensor { actuator, position } => env
+        Signal::Start => world.start_pressed || operator.start,
+        Signal::Sensor { actuator, position } => world
             .index_of
             .get(&actuator)
-            .is_some_and(|i| env.pistons[*i].sensor(position, env.settings.window)),
-        Signal::MachineInput(name) => env.machine.get(&name).copied().unwrap_or(false),
-        Signal::Continuous => env.operator.continuous,
-        Signal::Stop => !env.operator.stop,
-        Signal::EStop => !env.operator.estop,
-        Signal::Reset => env.operator.reset,
+            .is_some_and(|i| world.pistons[*i].sensor(position, world.settings.window)),
+        Signal::MachineInput(name) => world.machine.get(&name).copied().unwrap_or(false),
+        Signal::Continuous => operator.continuous,
+        Signal::Stop => !operator.stop,
+        Signal::EStop => !operator.estop,
+        Signal::Reset => operator.reset,
         _ => false,
     }
 }
@@ -742,21 +746,23 @@ impl<'a> Run<'a> {
         };
         let mut run = Run {
             program,
-            settings: settings_scan,
-            pistons,
-            index_of,
+            world: World {
+                settings: settings_scan,
+                pistons,
+                index_of,
+                start_pressed: false,
+                operator: Operator::default(),
+                machine: table
+                    .inputs
+                    .iter()
+                    .filter_map(|n| rest_value(table, *n).map(|v| (*n, v)))
+                    .collect(),
+            },
             plc: PlcState::new(program),
             time_ms: 0,
             problems: Vec::new(),
             active: Vec::new(),
             last_move: vec![None; table.actuators.len()],
-            start_pressed: false,
-            operator: Operator::default(),
-            machine: table
-                .inputs
-                .iter()
-                .filter_map(|n| rest_value(table, *n).map(|v| (*n, v)))
-                .collect(),
             pending: Vec::new(),
             answered: Vec::new(),
             table,
@@ -819,7 +825,7 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
         let mut fire_times: Vec<u64> = Vec::new();
         let mut last_event = run.time_ms;
         loop {
-            run.start_pressed = run.time_ms < press_at + START_PRESS_MS as u64;
+            run.world.start_pressed = run.time_ms < press_at + START_PRESS_MS as u64;
             let before = run.time_ms;
             let fired = run.tick();
             if let Some(index) = fired {
@@ -895,7 +901,7 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
         }
         // Every actuator home at the end of the cycle.
         if report.cycle_ms.is_some() {
-            for p in &run.pistons {
+            for p in &run.world.pistons {
                 if !p.sensor(0, settings.window) {
                     let step = program.steps[step_count - 1].number;
                     run.problems.push(Problem {
@@ -917,7 +923,7 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
     // A short idle after the last cycle: nothing may move on its own.
     if stalled_at.is_none() {
         let until = run.time_ms + IDLE_MS as u64;
-        run.start_pressed = false;
+        run.world.start_pressed = false;
         while run.time_ms < until {
             run.tick();
         }
@@ -947,8 +953,8 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
             .strip_prefix('C')
             .and_then(|rest| rest.split(' ').next())
             .and_then(|n| n.parse::<u32>().ok())
-            .and_then(|n| run.index_of.get(&n))
-            .map(|i| &run.pistons[*i])
+            .and_then(|n| run.world.index_of.get(&n))
+            .map(|i| &run.world.pistons[*i])
         {
             let end = match piston.sensor_on(settings.window) {
                 Some(position) => Signal::Sensor {

@@ -77,7 +77,7 @@ pub fn scenario(
     let mut samples = Vec::new();
     while run.time_ms < until_ms {
         if let Some((_, operator)) = script.iter().rev().find(|(t, _)| *t <= run.time_ms) {
-            run.operator = *operator;
+            run.world.operator = *operator;
         }
         let before = run.time_ms;
         if let Some(index) = run.tick() {
@@ -85,7 +85,12 @@ pub fn scenario(
         }
         samples.push(Sample {
             time_ms: run.time_ms,
-            positions: run.pistons.iter().map(Piston::position_units).collect(),
+            positions: run
+                .world
+                .pistons
+                .iter()
+                .map(Piston::position_units)
+                .collect(),
             outputs_on: outputs
                 .iter()
                 .filter(|(i, _)| run.plc.bit_at(*i))
