@@ -196,3 +196,24 @@ fn modes_and_home_order_come_from_the_settings_sheet_too() {
         .code(1)
         .stderr(contains("error[E030]: the home order leaves out C2"));
 }
+
+#[test]
+fn faults_that_cut_a_dwell_or_skip_a_wait_are_hazards() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("faults")
+        .arg(sample("press_station.xlsx"))
+        .arg("-o")
+        .arg(dir.path())
+        .assert()
+        .success()
+        // x31 shorted: the press dwell starts with the stroke, not at its end.
+        .stdout(contains(
+            "dwell 3 (T=2s) of step 9 started before C3 reached x31",
+        ))
+        // The part sensor shorted: the gripper goes down for a part that is not there.
+        .stdout(contains(
+            "step 2 started before the machine gave part_present=1",
+        ))
+        .stdout(contains("step 2 never fires: waiting for part_present"));
+}
