@@ -289,7 +289,7 @@ fn read_workbook(
         return None;
     }
     if format == Format::Xls
-        && let Some(why) = ole::looping_chain(&bytes)
+        && let Some(why) = ole::unsafe_to_decode(&bytes)
     {
         diags.error(
             Code::E002NotAWorkbook,

@@ -66,3 +66,15 @@ fn a_looping_sector_chain_is_refused_at_once() {
             "the workbook is damaged and could not be decoded (the sector chain through sector",
         ));
 }
+
+#[test]
+fn an_xls_whose_dimensions_wrap_is_refused_not_aborted() {
+    steptable()
+        .arg("check")
+        .arg(root().join("tests/fuzz-regressions/workbook-xls-dimensions.xls"))
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "the workbook is damaged and could not be decoded (a sheet's dimensions end before they start)",
+        ));
+}
