@@ -289,13 +289,16 @@ fn read_workbook(
         return None;
     }
     if format == Format::Xls
-        && let Some(why) = ole::unsafe_to_decode(&bytes)
+        && let Some(refusal) = ole::unsafe_to_decode(&bytes)
     {
-        diags.error(
-            Code::E002NotAWorkbook,
-            whole_file,
-            format!("the workbook is damaged and could not be decoded ({why})"),
-        );
+        let (code, message) = match refusal {
+            ole::Refusal::Damaged(why) => (
+                Code::E002NotAWorkbook,
+                format!("the workbook is damaged and could not be decoded ({why})"),
+            ),
+            ole::Refusal::TooLarge(why) => (Code::E024TableTooLarge, why),
+        };
+        diags.error(code, whole_file, message);
         return None;
     }
     let cursor = Cursor::new(bytes);

@@ -22,15 +22,24 @@ const DIFAT_SECTOR: u32 = 0xFFFF_FFFC;
 /// 65,536 rows × 256 columns.
 pub const MAX_SPAN: i64 = 65_536 * 256;
 
+/// Why an `.xls` file is not decoded.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Refusal {
+    /// Its structure is impossible (a looping chain, wrapped dimensions).
+    Damaged(String),
+    /// A sheet's cells spread over more than [`MAX_CELL_SPAN`] cells.
+    TooLarge(String),
+}
+
 /// Why the `.xls` file is unsafe to decode, if it is. Files that are not
 /// compound files at all pass: calamine reports those itself.
-pub fn unsafe_to_decode(bytes: &[u8]) -> Option<String> {
+pub fn unsafe_to_decode(bytes: &[u8]) -> Option<Refusal> {
     let (sector_size, fat) = match read_fat(bytes)? {
         Ok(found) => found,
-        Err(why) => return Some(why),
+        Err(why) => return Some(Refusal::Damaged(why)),
     };
     if let Some(why) = find_loop(&fat) {
-        return Some(why);
+        return Some(Refusal::Damaged(why));
     }
     let file = Compound {
         bytes,
@@ -139,7 +148,7 @@ fn records(stream: &[u8], mut at: usize) -> impl Iterator<Item = (u16, &[u8])> {
 /// whose last row or column comes before its first, as calamine reads it:
 /// the sheets at the offsets the workbook globals give, nested substreams
 /// (charts) skipped.
-fn oversized_sheet(stream: &[u8]) -> Option<String> {
+fn oversized_sheet(stream: &[u8]) -> Option<Refusal> {
     let sheets: Vec<usize> = records(stream, 0)
         .take_while(|(typ, _)| *typ != 0x000A)
         .filter(|(typ, _)| *typ == 0x0085)
@@ -148,6 +157,7 @@ fn oversized_sheet(stream: &[u8]) -> Option<String> {
     for start in sheets {
         let mut seen_bof = false;
         let mut depth = 0usize;
+        let mut cells = BoundingBox::default();
         for (typ, data) in records(stream, start) {
             if depth > 0 {
                 match typ {
@@ -160,22 +170,74 @@ fn oversized_sheet(stream: &[u8]) -> Option<String> {
             match typ {
                 0x0809 if seen_bof => depth += 1,
                 0x0809 => seen_bof = true,
+                0x000A => break,
+                // Cell records: row and column first.
+                0x0203 | 0x0204 | 0x00D6 | 0x0205 | 0x027E | 0x00FD | 0x0006 => {
+                    if let (Some(row), Some(col)) = (u16_at(data, 0), u16_at(data, 2)) {
+                        cells.add(row, col);
+                    }
+                }
+                // MulRk: a run of cells in one row, its last column at the end.
+                0x00BD if data.len() >= 6 => {
+                    if let (Some(row), Some(first), Some(last)) = (
+                        u16_at(data, 0),
+                        u16_at(data, 2),
+                        u16_at(data, data.len() - 2),
+                    ) {
+                        cells.add(row, first);
+                        cells.add(row, last);
+                    }
+                }
                 0x0200 => match dimensions_span(data) {
                     Some(span) if span < 1 => {
-                        return Some("a sheet's dimensions end before they start".to_string());
+                        return Some(Refusal::Damaged(
+                            "a sheet's dimensions end before they start".to_string(),
+                        ));
                     }
                     Some(span) if span > MAX_SPAN => {
-                        return Some(format!(
+                        return Some(Refusal::Damaged(format!(
                             "a sheet claims to span {span} cells; an .xls sheet has at most {MAX_SPAN}"
-                        ));
+                        )));
                     }
                     _ => {}
                 },
                 _ => {}
             }
         }
+        // calamine lays a sheet's cells out as one dense rectangle.
+        let span = cells.span();
+        if span > MAX_CELL_SPAN {
+            return Some(Refusal::TooLarge(format!(
+                "a sheet's cells spread over a rectangle of {span} cells; at most {MAX_CELL_SPAN} are read"
+            )));
+        }
     }
     None
+}
+
+/// Most cells the rectangle around a sheet's filled cells may hold (what
+/// calamine allocates for it), as for every other format.
+pub const MAX_CELL_SPAN: u64 = super::MAX_FILLED_CELLS as u64;
+
+/// The rectangle around the cells seen so far.
+#[derive(Default)]
+struct BoundingBox {
+    corners: Option<((u16, u16), (u16, u16))>,
+}
+
+impl BoundingBox {
+    fn add(&mut self, row: u16, col: u16) {
+        self.corners = Some(match self.corners {
+            None => ((row, col), (row, col)),
+            Some(((r0, c0), (r1, c1))) => ((r0.min(row), c0.min(col)), (r1.max(row), c1.max(col))),
+        });
+    }
+
+    fn span(&self) -> u64 {
+        self.corners.map_or(0, |((r0, c0), (r1, c1))| {
+            ((r1 - r0) as u64 + 1).saturating_mul((c1 - c0) as u64 + 1)
+        })
+    }
 }
 
 /// The cells a DIMENSIONS record spans, computed as calamine does (a
@@ -309,7 +371,7 @@ mod tests {
         );
         // 1 → 2 → 1.
         let looping = unsafe_to_decode(&compound(&[0xFFFF_FFFD, 2, 1]));
-        assert!(looping.is_some_and(|why| why.contains("loops")));
+        assert!(matches!(looping, Some(Refusal::Damaged(why)) if why.contains("loops")));
         // Not a compound file at all: calamine's to judge.
         assert_eq!(unsafe_to_decode(b"PK\x03\x04 not ole"), None);
     }
@@ -347,6 +409,8 @@ mod tests {
         assert_eq!(stream.len(), sheet_at);
         stream.extend(record(0x0809, &[0; 4]));
         stream.extend(record(0x0200, &dims(0, 70_000, 0, 256)));
-        assert!(oversized_sheet(&stream).is_some_and(|why| why.contains("17920000 cells")));
+        assert!(
+            matches!(oversized_sheet(&stream), Some(Refusal::Damaged(why)) if why.contains("17920000 cells"))
+        );
     }
 }

@@ -78,3 +78,16 @@ fn an_xls_whose_dimensions_wrap_is_refused_not_aborted() {
             "the workbook is damaged and could not be decoded (a sheet's dimensions end before they start)",
         ));
 }
+
+#[test]
+fn an_xls_with_cells_far_apart_is_refused_before_it_is_laid_out() {
+    steptable()
+        .arg("check")
+        .arg(root().join("tests/fuzz-regressions/workbook-xls-cell-spread.xls"))
+        .timeout(std::time::Duration::from_secs(20))
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "error[E024]: a sheet's cells spread over a rectangle of 142857507 cells; at most 3000000 are read",
+        ));
+}
