@@ -2,6 +2,7 @@
 //! Workbooks (`.xlsx`, `.xlsm`, `.xls`, `.ods`) go through calamine; CSV is
 //! decoded here (UTF-8 with or without BOM, UTF-16 with BOM; `,` `;` or tab).
 
+mod ods;
 mod ole;
 use std::io::Cursor;
 use std::path::Path;
@@ -286,6 +287,12 @@ fn read_workbook(
                 MAX_UNPACKED_BYTES / (1024 * 1024)
             ),
         );
+        return None;
+    }
+    if format == Format::Ods
+        && let Some(why) = ods::oversized_sheet(&bytes, MAX_FILLED_CELLS as u64)
+    {
+        diags.error(Code::E024TableTooLarge, whole_file, why);
         return None;
     }
     if format == Format::Xls

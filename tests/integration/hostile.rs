@@ -107,6 +107,26 @@ fn xlsx_of_numbers(rows: usize, per_row: usize) -> Vec<u8> {
     buffer.into_inner()
 }
 
+/// A minimal `.ods` whose one sheet is `table` (rows of ODF XML).
+fn ods_of(table: &str) -> Vec<u8> {
+    let mut buffer = std::io::Cursor::new(Vec::new());
+    let mut zip = zip::ZipWriter::new(&mut buffer);
+    let stored =
+        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+    zip.start_file("mimetype", stored).unwrap();
+    zip.write_all(b"application/vnd.oasis.opendocument.spreadsheet")
+        .unwrap();
+    zip.start_file("content.xml", zip::write::SimpleFileOptions::default())
+        .unwrap();
+    write!(
+        zip,
+        r#"<?xml version="1.0" encoding="UTF-8"?><office:document-content xmlns:office="urn:oasis:names:tc:opendocument:xmlns:office:1.0" xmlns:table="urn:oasis:names:tc:opendocument:xmlns:table:1.0" xmlns:text="urn:oasis:names:tc:opendocument:xmlns:text:1.0" office:version="1.2"><office:body><office:spreadsheet><table:table table:name="Sheet1">{table}</table:table></office:spreadsheet></office:body></office:document-content>"#
+    )
+    .unwrap();
+    zip.finish().unwrap();
+    buffer.into_inner()
+}
+
 fn cases() -> Vec<Case> {
     let paper_xlsx = std::fs::read(sample("paper_example.xlsx")).unwrap();
     let paper_ods =
@@ -325,6 +345,18 @@ fn cases() -> Vec<Case> {
             "unpacks to 300 MiB",
         ),
         case("an empty workbook", "empty.xlsx", xlsx(|_| {}), 1, "E003"),
+        case(
+            // 6.2 GB and 4.4 s in calamine before the .ods guard.
+            "ods cells a million repeated rows apart",
+            "spread.ods",
+            ods_of(concat!(
+                r#"<table:table-row><table:table-cell office:value-type="string"><text:p>C1+1</text:p></table:table-cell></table:table-row>"#,
+                r#"<table:table-row table:number-rows-repeated="999998"><table:table-cell table:number-columns-repeated="99"/></table:table-row>"#,
+                r#"<table:table-row><table:table-cell table:number-columns-repeated="98"/><table:table-cell office:value-type="string"><text:p>C1-0</text:p></table:table-cell></table:table-row>"#,
+            )),
+            1,
+            "its cells spread over a rectangle of 99000000 cells",
+        ),
         case(
             "3,000,100 filled cells",
             "dense.xlsx",
