@@ -4,6 +4,7 @@
 
 mod ods;
 mod ole;
+mod xlsx;
 use std::io::Cursor;
 use std::path::Path;
 
@@ -286,6 +287,16 @@ fn read_workbook(
                 unpacked / (1024 * 1024),
                 MAX_UNPACKED_BYTES / (1024 * 1024)
             ),
+        );
+        return None;
+    }
+    if format == Format::Xlsx
+        && let Some(why) = xlsx::impossible_string_count(&bytes)
+    {
+        diags.error(
+            Code::E002NotAWorkbook,
+            whole_file.clone(),
+            format!("the workbook is damaged and could not be decoded ({why})"),
         );
         return None;
     }

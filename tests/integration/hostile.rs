@@ -65,10 +65,10 @@ fn zip_of_zeros(name: &str, size: usize) -> Vec<u8> {
     buffer.into_inner()
 }
 
-/// A minimal `.xlsx` whose one sheet holds `rows` rows of `per_row` cells
-/// with the number 1, written straight as XML (rust_xlsxwriter would take
-/// far longer for millions of cells).
-fn xlsx_of_numbers(rows: usize, per_row: usize) -> Vec<u8> {
+/// A minimal `.xlsx` written straight as XML: one sheet whose rows come
+/// from `rows` (called once per row, so millions of cells stay cheap), and
+/// a shared string table if given.
+fn raw_xlsx(rows: usize, row: &str, shared_strings: Option<&str>) -> Vec<u8> {
     let mut buffer = std::io::Cursor::new(Vec::new());
     let mut zip = zip::ZipWriter::new(&mut buffer);
     let options = zip::write::SimpleFileOptions::default()
@@ -96,9 +96,12 @@ fn xlsx_of_numbers(rows: usize, per_row: usize) -> Vec<u8> {
         zip.start_file(name, options).unwrap();
         zip.write_all(text.as_bytes()).unwrap();
     }
+    if let Some(strings) = shared_strings {
+        zip.start_file("xl/sharedStrings.xml", options).unwrap();
+        zip.write_all(strings.as_bytes()).unwrap();
+    }
     zip.start_file("xl/worksheets/sheet1.xml", options).unwrap();
     zip.write_all(br#"<?xml version="1.0" encoding="UTF-8"?><worksheet xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main"><sheetData>"#).unwrap();
-    let row: String = format!("<row>{}</row>", "<c><v>1</v></c>".repeat(per_row));
     for _ in 0..rows {
         zip.write_all(row.as_bytes()).unwrap();
     }
@@ -358,9 +361,27 @@ fn cases() -> Vec<Case> {
             "its cells spread over a rectangle of 99000000 cells",
         ),
         case(
+            // calamine reserved room for 4 billion strings and aborted.
+            "a shared string table claiming 4 billion strings",
+            "strings.xlsx",
+            raw_xlsx(
+                1,
+                r#"<row r="1"><c r="A1" t="s"><v>0</v></c></row>"#,
+                Some(
+                    r#"<?xml version="1.0" encoding="UTF-8"?><sst xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main" count="4000000000" uniqueCount="4000000000"><si><t>C1+1</t></si></sst>"#,
+                ),
+            ),
+            1,
+            "claims 4000000000 shared strings",
+        ),
+        case(
             "3,000,100 filled cells",
             "dense.xlsx",
-            xlsx_of_numbers(30_001, 100),
+            raw_xlsx(
+                30_001,
+                &format!("<row>{}</row>", "<c><v>1</v></c>".repeat(100)),
+                None,
+            ),
             1,
             "the sheet has more than 3000000 filled cells",
         ),
