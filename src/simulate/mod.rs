@@ -636,8 +636,8 @@ impl Run<'_> {
     }
 
     fn check_motion(&mut self, piston: usize, direction: Sign) {
-        let window = self.world.settings.window;
         let p = &self.world.pistons[piston];
+        let window = p.window(self.world.settings.window);
         let number = p.number;
         let s = p.s;
         let commanded = self.last_move[piston]

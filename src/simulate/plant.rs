@@ -85,9 +85,16 @@ impl Piston {
         position as f64 / self.max_position.max(1) as f64
     }
 
+    /// The half-width a sensor of this actuator sees: `window`, narrowed on
+    /// an actuator with so many positions that neighbouring sensors would
+    /// otherwise overlap (real sensors are placed so that they do not).
+    pub fn window(&self, window: f64) -> f64 {
+        window.min(0.4 / self.max_position.max(1) as f64)
+    }
+
     /// Whether sensor `position` sees the piston (within `window` of its point).
     pub fn sensor(&self, position: u32, window: f64) -> bool {
-        (self.s - self.sensor_point(position)).abs() <= window + 1e-9
+        (self.s - self.sensor_point(position)).abs() <= self.window(window) + 1e-9
     }
 
     /// The sensor that currently sees the piston, if any.

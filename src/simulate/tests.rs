@@ -101,3 +101,16 @@ fn slow_strokes_change_the_cycle_time() {
     let delta = report.cycles[0].cycle_ms.unwrap() as i64 - fast.cycles[0].cycle_ms.unwrap() as i64;
     assert!((1400..=1600).contains(&delta), "{delta}");
 }
+
+#[test]
+fn sixty_three_positions_on_one_cylinder_pass_with_every_check() {
+    // Sensors 1/63 of the stroke apart: their windows must not overlap, or
+    // the plausibility check would see two at once.
+    let rows = vec![vec!["C1+63"], vec!["C1-31"], vec!["C1+32"], vec!["C1-0"]];
+    let options = ProgramOptions {
+        safety: crate::address::Safety::all(),
+        ..ProgramOptions::default()
+    };
+    let report = run(&rows, options, &SimSettings::default());
+    assert!(report.passed, "{}", report.verdict());
+}

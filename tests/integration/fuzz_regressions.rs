@@ -91,3 +91,15 @@ fn an_xls_with_cells_far_apart_is_refused_before_it_is_laid_out() {
             "error[E024]: a sheet's cells spread over a rectangle of 142857507 cells; at most 3000000 are read",
         ));
 }
+
+#[test]
+fn a_cylinder_with_35_positions_converts_with_every_check() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("convert")
+        .arg(root().join("tests/fuzz-regressions/pipeline-many-positions.csv"))
+        .args(["--safety", "all", "--modes", "all", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success();
+}
