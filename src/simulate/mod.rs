@@ -7,6 +7,7 @@
 //! coils, everything must be home at the end, and a second START must run an
 //! identical second cycle.
 
+mod machine;
 pub mod plant;
 pub mod plc;
 pub mod report;
@@ -384,29 +385,7 @@ impl Run<'_> {
         if let Some(fired) = result.fired {
             self.on_fire(fired);
         }
-        for i in 0..self.dwells.len() {
-            let (at, number, started) = self.dwells[i];
-            match (self.plc.bit_at(at), started) {
-                (true, None) => {
-                    self.dwells[i].2 = Some(now);
-                    self.check_dwell_start(number);
-                }
-                (false, Some(from)) => {
-                    self.dwells[i].2 = None;
-                    let ms = self
-                        .table
-                        .dwells()
-                        .find(|d| d.number == number)
-                        .map_or(0, |d| d.ms);
-                    self.spans.push(Span {
-                        from_ms: from,
-                        to_ms: now,
-                        label: crate::cell::dwell_text(ms),
-                    });
-                }
-                _ => {}
-            }
-        }
+        self.track_dwells(now);
 
         // Outputs to valves, then the plant moves for one scan period.
         for i in 0..self.world.pistons.len() {
@@ -448,137 +427,9 @@ impl Run<'_> {
         self.program.steps[last_fired].number
     }
 
-    /// A dwell must start only once its branch is really done: its moves at
-    /// their targets and its waits answered by the machine, not by a faulty
-    /// input.
-    fn check_dwell_start(&mut self, number: u16) {
-        let Some((step, dwell)) = self
-            .table
-            .steps
-            .iter()
-            .find_map(|s| s.dwells.iter().find(|d| d.number == number).map(|d| (s, d)))
-        else {
-            return;
-        };
-        let mut missing: Vec<String> = step
-            .branch_moves(dwell.branch)
-            .filter(|m| {
-                !self
-                    .active
-                    .iter()
-                    .any(|a| a.mv.actuator == m.actuator && a.reached)
-            })
-            .map(|m| format!("C{} reached {}", m.actuator, sensor_symbol(m)))
-            .collect();
-        missing.extend(
-            step.waits
-                .iter()
-                .filter(|w| w.branch == dwell.branch && !self.machine_gave(w))
-                .map(|w| format!("the machine gave {}", wait_text(w))),
-        );
-        if !missing.is_empty() {
-            self.problem(
-                ProblemKind::Premature,
-                step.number,
-                format!(
-                    "dwell {} ({}) of step {} started before {}",
-                    number,
-                    crate::cell::dwell_text(dwell.ms),
-                    step.number,
-                    missing.join(" and ")
-                ),
-            );
-        }
-    }
-
-    /// Whether the machine itself (not a faulty input) gives what `wait` asks.
-    fn machine_gave(&self, wait: &crate::table::Wait) -> bool {
-        self.world
-            .machine
-            .get(&wait.input)
-            .copied()
-            .unwrap_or(false)
-            == wait.value
-    }
-
     fn on_fire(&mut self, fired: usize) {
         let step = &self.program.steps[fired];
-        // The step that just ended must have had its waits answered by the
-        // machine: one that read true only through a fault let the sequence
-        // run on without the part.
-        if let Some(done) = fired.checked_sub(1).and_then(|i| self.table.steps.get(i)) {
-            let skipped: Vec<String> = done
-                .waits
-                .iter()
-                .filter(|w| !self.machine_gave(w))
-                .map(wait_text)
-                .collect();
-            if !skipped.is_empty() {
-                let number = step.number;
-                self.problem(
-                    ProblemKind::Premature,
-                    number,
-                    format!(
-                        "step {number} started before the machine gave {}",
-                        skipped.join(" and ")
-                    ),
-                );
-            }
-        }
-        // The machine withdraws its answers once the sequence has moved on
-        // (the part was taken, the door closed again): each input goes back
-        // to its rest value.
-        // An input the new step waits for with the same value stays as it is
-        // (the part is still there).
-        let still_wanted: Vec<(Name, bool)> = match step.kind {
-            StepKind::Table => self
-                .table
-                .steps
-                .get(fired)
-                .map(|s| s.waits.iter().map(|w| (w.input, w.value)).collect())
-                .unwrap_or_default(),
-            StepKind::EndOfCycle => Vec::new(),
-        };
-        for name in std::mem::take(&mut self.answered) {
-            let current = self.world.machine.get(&name).copied();
-            if current.is_some_and(|v| still_wanted.contains(&(name, v))) {
-                continue;
-            }
-            self.pending.retain(|(_, n, _)| *n != name);
-            if let Some(rest) = rest_value(self.table, name) {
-                self.world.machine.insert(name, rest);
-            }
-        }
-        if step.kind == StepKind::Table
-            && let Some(table_step) = self.table.steps.get(fired)
-        {
-            for wait in &table_step.waits {
-                let delay = self
-                    .world
-                    .settings
-                    .input_delays
-                    .get(&wait.input)
-                    .copied()
-                    .unwrap_or(DEFAULT_INPUT_DELAY_MS) as u64;
-                let now = self.time_ms;
-                self.answered.push(wait.input);
-                if self
-                    .world
-                    .machine
-                    .get(&wait.input)
-                    .copied()
-                    .unwrap_or(false)
-                    != wait.value
-                {
-                    self.pending.push((now + delay, wait.input, wait.value));
-                    self.spans.push(Span {
-                        from_ms: now,
-                        to_ms: now + delay,
-                        label: format!("I:{}", wait.input),
-                    });
-                }
-            }
-        }
+        self.machine_on_fire(fired);
         if fired == 0
             && !(self.world.start_pressed
                 || self.world.operator.start
@@ -713,17 +564,6 @@ impl Run<'_> {
     }
 }
 
-/// What a machine input reads while no step waits for it: the opposite of
-/// what its first wait asks for (no part yet, door not yet open).
-fn rest_value(table: &StepTable, input: Name) -> Option<bool> {
-    table
-        .steps
-        .iter()
-        .flat_map(|s| &s.waits)
-        .find(|w| w.input == input)
-        .map(|w| !w.value)
-}
-
 /// The value an input reads: a fault overrides the plant. STOP and
 /// EMERGENCY STOP are normally closed: they read 1 until pressed.
 fn read_input(signal: Signal, world: &World) -> bool {
@@ -744,11 +584,6 @@ fn read_input(signal: Signal, world: &World) -> bool {
         Signal::Reset => operator.reset,
         _ => false,
     }
-}
-
-/// `part_present=1`.
-fn wait_text(w: &crate::table::Wait) -> String {
-    format!("{}={}", w.input, u8::from(w.value))
 }
 
 fn sensor_symbol(m: &Move) -> String {
@@ -853,7 +688,7 @@ impl<'a> Run<'a> {
                 machine: table
                     .inputs
                     .iter()
-                    .filter_map(|n| rest_value(table, *n).map(|v| (*n, v)))
+                    .filter_map(|n| machine::rest_value(table, *n).map(|v| (*n, v)))
                     .collect(),
             },
             plc: PlcState::new(program),

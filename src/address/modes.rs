@@ -1,0 +1,123 @@
+//! The operating modes a program carries and the homing order RESET uses.
+
+use std::collections::BTreeMap;
+
+use crate::table::StepTable;
+
+/// The operating modes a generated program carries (`--modes`).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Modes {
+    /// A CONTINUOUS switch repeats cycles while it is on.
+    pub continuous: bool,
+    /// A STOP button lets the cycle finish, then halts.
+    pub stop: bool,
+    /// An EMERGENCY STOP switches every coil off and blocks START until RESET.
+    pub estop: bool,
+    /// A RESET button homes every actuator.
+    pub reset: bool,
+    /// Homing stages, each a set of actuators homed together; `None` is the
+    /// default (reverse order of the last moves).
+    pub home_order: Option<Vec<Vec<u32>>>,
+}
+
+impl Modes {
+    /// Parses `continuous,stop,estop,reset` (any subset; `all`, `none`). An
+    /// emergency stop needs RESET as its way out, so `estop` brings `reset`.
+    pub fn parse(text: &str) -> Result<Modes, String> {
+        let mut modes = Modes::default();
+        for item in text.split(',').map(|s| s.trim().to_ascii_lowercase()) {
+            match item.as_str() {
+                "" | "none" => {}
+                "all" => {
+                    modes.continuous = true;
+                    modes.stop = true;
+                    modes.estop = true;
+                    modes.reset = true;
+                }
+                "continuous" => modes.continuous = true,
+                "stop" => modes.stop = true,
+                "estop" => modes.estop = true,
+                "reset" => modes.reset = true,
+                other => {
+                    return Err(format!(
+                        "\"{other}\" is not an operating mode (expected continuous, stop, estop, reset, all or none)"
+                    ));
+                }
+            }
+        }
+        if modes.estop {
+            modes.reset = true;
+        }
+        Ok(modes)
+    }
+
+    /// Parses `--home-order`: stages separated by `,`, actuators homed
+    /// together joined by `&` or spaces: `C3&C4, C2, C1`.
+    pub fn parse_home_order(text: &str) -> Result<Vec<Vec<u32>>, String> {
+        let mut stages = Vec::new();
+        for stage in text.split([',', ';']) {
+            let mut actuators = Vec::new();
+            for item in stage.split(|c: char| c == '&' || c.is_whitespace()) {
+                if item.is_empty() {
+                    continue;
+                }
+                let number = item
+                    .strip_prefix(['C', 'c'])
+                    .and_then(|n| n.parse::<u32>().ok())
+                    .filter(|n| (1..=crate::cell::MAX_ACTUATOR).contains(n))
+                    .ok_or_else(|| format!("\"{item}\" is not an actuator (expected C1, C2, …)"))?;
+                actuators.push(number);
+            }
+            if !actuators.is_empty() {
+                stages.push(actuators);
+            }
+        }
+        if stages.is_empty() {
+            return Err("the home order names no actuator (expected e.g. C3&C4,C2,C1)".to_string());
+        }
+        Ok(stages)
+    }
+
+    pub fn any(&self) -> bool {
+        self.continuous || self.stop || self.estop || self.reset
+    }
+
+    /// The homing stages for a table: the given order, checked to name every
+    /// actuator once, or by default the reverse order of the last moves
+    /// (actuators whose last move is in the same step go home together).
+    pub fn home_stages(&self, table: &StepTable) -> Result<Vec<Vec<u32>>, String> {
+        if let Some(order) = &self.home_order {
+            let mut named: Vec<u32> = order.iter().flatten().copied().collect();
+            named.sort_unstable();
+            let before = named.len();
+            named.dedup();
+            if named.len() != before {
+                return Err("the home order names an actuator twice".to_string());
+            }
+            let all: Vec<u32> = table.actuators.iter().map(|a| a.number).collect();
+            if let Some(extra) = named.iter().find(|n| !all.contains(n)) {
+                return Err(format!(
+                    "the home order names C{extra}, which the table does not move"
+                ));
+            }
+            if let Some(missing) = all.iter().find(|n| !named.contains(n)) {
+                return Err(format!("the home order leaves out C{missing}"));
+            }
+            return Ok(order.clone());
+        }
+        let mut last: BTreeMap<u32, usize> = BTreeMap::new();
+        for step in &table.steps {
+            for m in &step.moves {
+                last.insert(m.actuator, step.number);
+            }
+        }
+        let mut stages: BTreeMap<std::cmp::Reverse<usize>, Vec<u32>> = BTreeMap::new();
+        for (actuator, step) in last {
+            stages
+                .entry(std::cmp::Reverse(step))
+                .or_default()
+                .push(actuator);
+        }
+        Ok(stages.into_values().collect())
+    }
+}

@@ -1,0 +1,235 @@
+//! The operating modes' logic (`--modes`): START, CONTINUOUS and STOP turn
+//! into a cycle request; RESET homes the actuators stage by stage; the
+//! EMERGENCY STOP switches everything off. All of it is rungs of the one
+//! step program, so every language and the simulator get it alike.
+
+use super::{Action, Literal, Rung, RungKind};
+use crate::address::{Allocation, Modes, Safety, Signal};
+use crate::cell::Sign;
+use crate::table::StepTable;
+
+/// Every output the program drives: coils, single coils and machine outputs.
+fn driven_outputs(allocation: &Allocation) -> Vec<Signal> {
+    allocation
+        .outputs
+        .iter()
+        .map(|a| a.signal)
+        .filter(|s| {
+            matches!(
+                s,
+                Signal::Coil { .. } | Signal::SingleCoil { .. } | Signal::MachineOutput(_)
+            )
+        })
+        .collect()
+}
+
+/// START, CONTINUOUS and STOP turn into a cycle request; STEP 1 consumes it.
+pub(super) fn mode_rungs(
+    _table: &StepTable,
+    _allocation: &Allocation,
+    safety: Safety,
+    modes: &Modes,
+    homes: &[Literal],
+    rungs: &mut Vec<Rung>,
+) {
+    let halts = safety.plausibility || safety.watchdog || modes.estop;
+    // Ready for a new cycle: none under way, no halt, not homing, all home.
+    let mut ready = vec![Literal::not(Signal::Busy)];
+    if halts {
+        ready.push(Literal::not(Signal::Halt));
+    }
+    if modes.reset {
+        ready.push(Literal::not(Signal::Homing));
+    }
+    ready.extend(homes.iter().copied());
+
+    let mut start = vec![Literal::is(Signal::Start)];
+    if safety.edge {
+        start.push(Literal::not(Signal::StartMemory));
+    }
+    if modes.stop {
+        start.push(Literal::is(Signal::Stop));
+    }
+    start.extend(ready.iter().copied());
+    let mut start_actions = vec![Action::Set(Signal::CycleRequest)];
+    if modes.continuous {
+        start_actions.push(Action::Set(Signal::AutoRun));
+    }
+    rungs.push(Rung {
+        kind: RungKind::Mode,
+        comment: "START: one cycle (machine home and ready)".to_string(),
+        condition: start,
+        actions: start_actions,
+    });
+    if modes.continuous {
+        let mut again = vec![
+            Literal::is(Signal::Continuous),
+            Literal::is(Signal::AutoRun),
+        ];
+        again.extend(ready.iter().copied());
+        rungs.push(Rung {
+            kind: RungKind::Mode,
+            comment: "CONTINUOUS: the next cycle once this one has ended".to_string(),
+            condition: again,
+            actions: vec![Action::Set(Signal::CycleRequest)],
+        });
+        rungs.push(Rung {
+            kind: RungKind::Mode,
+            comment: "CONTINUOUS off: no further cycles".to_string(),
+            condition: vec![Literal::not(Signal::Continuous)],
+            actions: vec![Action::Reset(Signal::AutoRun)],
+        });
+    }
+    if modes.stop {
+        let mut actions = vec![Action::Reset(Signal::CycleRequest)];
+        if modes.continuous {
+            actions.push(Action::Reset(Signal::AutoRun));
+        }
+        rungs.push(Rung {
+            kind: RungKind::Mode,
+            comment: "STOP (normally closed): finish this cycle, start no other".to_string(),
+            condition: vec![Literal::not(Signal::Stop)],
+            actions,
+        });
+    }
+}
+
+/// RESET, the homing stages and the emergency stop, which comes last so
+/// that nothing after it can switch a coil back on in the same scan.
+pub(super) fn homing_rungs(
+    table: &StepTable,
+    allocation: &Allocation,
+    safety: Safety,
+    modes: &Modes,
+    rungs: &mut Vec<Rung>,
+) {
+    let outputs = driven_outputs(allocation);
+    let memories: Vec<Signal> = allocation.memories.iter().map(|m| m.signal).collect();
+    if modes.reset {
+        let stages = modes.home_stages(table).unwrap_or_default();
+        let mut condition = vec![Literal::is(Signal::Reset)];
+        if modes.estop {
+            condition.push(Literal::is(Signal::EStop));
+        }
+        let mut actions: Vec<Action> = outputs.iter().map(|s| Action::Reset(*s)).collect();
+        // Forget the interrupted cycle: requests, stops, dwells, alarms.
+        actions.extend(
+            memories
+                .iter()
+                .filter(|m| {
+                    matches!(
+                        m,
+                        Signal::Halt
+                            | Signal::CycleRequest
+                            | Signal::Busy
+                            | Signal::AutoRun
+                            | Signal::StopAt { .. }
+                            | Signal::DwellArmed(_)
+                            | Signal::WatchdogArmed
+                    )
+                })
+                .map(|m| Action::Reset(*m)),
+        );
+        actions.extend(
+            allocation
+                .outputs
+                .iter()
+                .filter(|a| matches!(a.signal, Signal::Alarm(_)))
+                .map(|a| Action::Reset(a.signal)),
+        );
+        actions.extend(allocation.timers.iter().map(|t| Action::Reset(t.signal)));
+        actions.push(Action::Set(Signal::Homing));
+        for n in 1..=stages.len() {
+            let stage = Signal::HomeStage(n as u16);
+            actions.push(if n == 1 {
+                Action::Set(stage)
+            } else {
+                Action::Reset(stage)
+            });
+        }
+        actions.push(Action::Reset(Signal::Sequence));
+        rungs.push(Rung {
+            kind: RungKind::Homing,
+            comment: "RESET: abandon the cycle, every output off, home stage by stage".to_string(),
+            condition,
+            actions,
+        });
+        let _ = safety;
+        for (i, stage) in stages.iter().enumerate() {
+            let memory = Signal::HomeStage(i as u16 + 1);
+            let names: Vec<String> = stage.iter().map(|a| format!("C{a}")).collect();
+            let mut drive = Vec::new();
+            let mut home = vec![Literal::is(memory)];
+            for &actuator in stage {
+                let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
+                if allocation.valves.of(actuator, pmax) == crate::valve::ValveType::Mono52 {
+                    drive.push(Action::Reset(Signal::SingleCoil { actuator }));
+                } else {
+                    drive.push(Action::Set(Signal::Coil {
+                        actuator,
+                        sign: Sign::Minus,
+                    }));
+                    drive.push(Action::Reset(Signal::Coil {
+                        actuator,
+                        sign: Sign::Plus,
+                    }));
+                }
+                home.push(Literal::is(Signal::Sensor {
+                    actuator,
+                    position: 0,
+                }));
+            }
+            rungs.push(Rung {
+                kind: RungKind::Homing,
+                comment: format!("homing stage {}: {} home", i + 1, names.join(", ")),
+                condition: vec![Literal::is(memory)],
+                actions: drive,
+            });
+            let mut done = vec![Action::Reset(memory)];
+            done.push(if i + 1 < stages.len() {
+                Action::Set(Signal::HomeStage(i as u16 + 2))
+            } else {
+                Action::Reset(Signal::Homing)
+            });
+            rungs.push(Rung {
+                kind: RungKind::Homing,
+                comment: format!(
+                    "homing stage {} done: {}",
+                    i + 1,
+                    if i + 1 < stages.len() {
+                        "next stage"
+                    } else {
+                        "the machine is home and ready"
+                    }
+                ),
+                condition: home,
+                actions: done,
+            });
+        }
+    }
+    if modes.estop {
+        let mut actions: Vec<Action> = outputs.iter().map(|s| Action::Reset(*s)).collect();
+        actions.push(Action::Set(Signal::Halt));
+        actions.extend(
+            memories
+                .iter()
+                .filter(|m| {
+                    matches!(
+                        m,
+                        Signal::CycleRequest
+                            | Signal::Busy
+                            | Signal::AutoRun
+                            | Signal::Homing
+                            | Signal::HomeStage(_)
+                    )
+                })
+                .map(|m| Action::Reset(*m)),
+        );
+        rungs.push(Rung {
+            kind: RungKind::EmergencyStop,
+            comment: "EMERGENCY STOP (normally closed): every coil and output off, START blocked until RESET".to_string(),
+            condition: vec![Literal::not(Signal::EStop)],
+            actions,
+        });
+    }
+}
