@@ -117,66 +117,52 @@ impl Step {
     /// The step as the table writes it: `C3+2, C2+2` for moves only (as the
     /// paper does), then `; T=2s; I:part_present; Y:vacuum+` for the rest.
     pub fn text(&self) -> String {
-        let mut parts = vec![
-            self.moves
-                .iter()
-                .map(Move::notation)
-                .collect::<Vec<_>>()
-                .join(", "),
-        ];
-        parts.extend(self.switches.iter().map(|s| {
-            CellItem::Switch {
-                output: s.output,
-                on: s.on,
-            }
-            .to_string()
-        }));
-        parts.extend(self.waits.iter().map(|w| {
-            CellItem::Wait {
-                input: w.input,
-                value: w.value,
-            }
-            .to_string()
-        }));
-        parts.extend(self.dwells.iter().map(|d| crate::cell::dwell_text(d.ms)));
+        let moves = self
+            .moves
+            .iter()
+            .map(Move::notation)
+            .collect::<Vec<_>>()
+            .join(", ");
+        let mut parts = vec![moves];
+        parts.extend(self.other_items(|_| true));
         parts.retain(|p| !p.is_empty());
         parts.join("; ")
     }
 
     /// Everything written in one branch's cell, as the table writes it.
     pub fn cell_text(&self, branch: usize) -> String {
-        let mut parts: Vec<String> = self
-            .moves
+        let mut parts: Vec<String> = self.branch_moves(branch).map(Move::notation).collect();
+        parts.extend(self.other_items(|b| b == branch));
+        parts.join("; ")
+    }
+
+    /// The switches, waits and dwells of the branches `in_branch` picks, in
+    /// the table's notation and that order.
+    fn other_items(&self, in_branch: impl Fn(usize) -> bool) -> Vec<String> {
+        let switches = self
+            .switches
             .iter()
-            .filter(|m| m.branch == branch)
-            .map(Move::notation)
-            .collect();
-        parts.extend(
-            self.switches
-                .iter()
-                .filter(|s| s.branch == branch)
-                .map(|s| {
-                    CellItem::Switch {
-                        output: s.output,
-                        on: s.on,
-                    }
-                    .to_string()
-                }),
-        );
-        parts.extend(self.waits.iter().filter(|w| w.branch == branch).map(|w| {
+            .filter(|s| in_branch(s.branch))
+            .map(|s| {
+                CellItem::Switch {
+                    output: s.output,
+                    on: s.on,
+                }
+                .to_string()
+            });
+        let waits = self.waits.iter().filter(|w| in_branch(w.branch)).map(|w| {
             CellItem::Wait {
                 input: w.input,
                 value: w.value,
             }
             .to_string()
-        }));
-        parts.extend(
-            self.dwells
-                .iter()
-                .filter(|d| d.branch == branch)
-                .map(|d| crate::cell::dwell_text(d.ms)),
-        );
-        parts.join("; ")
+        });
+        let dwells = self
+            .dwells
+            .iter()
+            .filter(|d| in_branch(d.branch))
+            .map(|d| crate::cell::dwell_text(d.ms));
+        switches.chain(waits).chain(dwells).collect()
     }
 
     /// The moves of one branch (what its dwell waits for).

@@ -6,7 +6,7 @@
 //! sheet's filled cells is measured from `content.xml` as it streams past,
 //! before calamine sees the file.
 
-use std::io::{Cursor, Read};
+use std::io::{BufReader, Cursor};
 
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
@@ -16,10 +16,9 @@ use quick_xml::events::{BytesStart, Event};
 /// read (not a zip, no `content.xml`, bad XML) is left to calamine to report.
 pub fn oversized_sheet(bytes: &[u8], max_cells: u64) -> Option<String> {
     let mut archive = zip::ZipArchive::new(Cursor::new(bytes)).ok()?;
-    let mut content = archive.by_name("content.xml").ok()?;
-    let mut xml = Vec::new();
-    content.read_to_end(&mut xml).ok()?;
-    let mut reader = Reader::from_reader(xml.as_slice());
+    let content = archive.by_name("content.xml").ok()?;
+    // Streamed: the sheet XML is never held whole beside calamine's copy.
+    let mut reader = Reader::from_reader(BufReader::new(content));
     let mut buf = Vec::new();
     let mut sheet = Sheet::default();
     loop {

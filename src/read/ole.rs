@@ -59,9 +59,7 @@ struct Compound<'a> {
 
 impl<'a> Compound<'a> {
     fn sector(&self, id: u32) -> &'a [u8] {
-        let start = (id as usize + 1).saturating_mul(self.sector_size);
-        let end = start.saturating_add(self.sector_size).min(self.bytes.len());
-        self.bytes.get(start..end).unwrap_or(&[])
+        sector(self.bytes, self.sector_size, id)
     }
 
     /// The bytes of the chain from `start` (the FAT has no loop, so it ends).
@@ -274,6 +272,14 @@ fn dimensions_span(data: &[u8]) -> Option<i64> {
     Some(rows.saturating_mul(cols))
 }
 
+/// Sector `id` of a compound file (what of it the file holds). Sector n
+/// starts after the header, which fills sector -1.
+fn sector(bytes: &[u8], sector_size: usize, id: u32) -> &[u8] {
+    let start = (id as usize + 1).saturating_mul(sector_size);
+    let end = start.saturating_add(sector_size).min(bytes.len());
+    bytes.get(start..end).unwrap_or(&[])
+}
+
 /// The sector size and the FAT, or why the FAT cannot be trusted; `None`
 /// when the bytes are not a compound file at all.
 fn read_fat(bytes: &[u8]) -> Option<Result<(usize, Vec<u32>), String>> {
@@ -285,12 +291,7 @@ fn read_fat(bytes: &[u8]) -> Option<Result<(usize, Vec<u32>), String>> {
         12 => 4096,
         _ => return None,
     };
-    // Sector n starts after the header, which fills sector -1.
-    let sector = |id: u32| -> &[u8] {
-        let start = (id as usize + 1).saturating_mul(sector_size);
-        let end = start.saturating_add(sector_size).min(bytes.len());
-        bytes.get(start..end).unwrap_or(&[])
-    };
+    let sector = |id: u32| sector(bytes, sector_size, id);
     let max_sectors = bytes.len() / sector_size + 1;
 
     // The FAT's own sectors: 109 in the header, the rest in the DIFAT chain.

@@ -153,14 +153,7 @@ impl Run<'_> {
                     .unwrap_or(DEFAULT_INPUT_DELAY_MS) as u64;
                 let now = self.time_ms;
                 self.answered.push(wait.input);
-                if self
-                    .world
-                    .machine
-                    .get(&wait.input)
-                    .copied()
-                    .unwrap_or(false)
-                    != wait.value
-                {
+                if !self.machine_gave(wait) {
                     self.pending.push((now + delay, wait.input, wait.value));
                     self.spans.push(Span {
                         from_ms: now,

@@ -6,13 +6,14 @@ use steptable::program::{self, ProgramOptions, StepProgram};
 use steptable::simulate::scenario::{ScenarioReport, scenario};
 use steptable::simulate::{Operator, SimSettings};
 use steptable::table::{StepTable, from_rows};
-use steptable::timing::Strokes;
 
 fn paper() -> StepTable {
     from_rows("paper.csv", &steptable::template::PAPER_EXAMPLE).expect("valid table")
 }
 
-fn program_with(table: &StepTable, modes: &str) -> StepProgram {
+/// The allocation and program of `table` with `modes`, for the valves and
+/// strokes of `settings`.
+fn build_with(table: &StepTable, modes: &str, settings: &SimSettings) -> (Allocation, StepProgram) {
     let modes = Modes::parse(modes).expect("valid modes");
     let allocation = Allocation::with_options(
         table,
@@ -20,17 +21,22 @@ fn program_with(table: &StepTable, modes: &str) -> StepProgram {
         Mnemonic::En,
         Default::default(),
         &modes,
-        &Default::default(),
+        &settings.valves,
     );
-    program::build(
+    let program = program::build(
         table,
         &allocation,
         ProgramOptions {
             modes,
             ..ProgramOptions::default()
         },
-        &Strokes::default(),
-    )
+        &settings.strokes,
+    );
+    (allocation, program)
+}
+
+fn program_with(table: &StepTable, modes: &str) -> StepProgram {
+    build_with(table, modes, &SimSettings::default()).1
 }
 
 const IDLE: Operator = Operator {
@@ -309,7 +315,6 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
     let table = from_rows("one.csv", &[["C1+1"], ["C1-0"]]).unwrap();
     let mut seen = Vec::new();
     for valve in ValveType::ALL {
-        let modes = Modes::parse("estop").unwrap();
         let mut settings = SimSettings::default();
         settings.valves.per_actuator.insert(1, valve);
         // A light load: a centre valve drifts 1 % of the stroke per second.
@@ -321,23 +326,7 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
                 retract_ms: 2000,
             },
         );
-        let allocation = Allocation::with_options(
-            &table,
-            Target::Festo,
-            Mnemonic::En,
-            Default::default(),
-            &modes,
-            &settings.valves,
-        );
-        let program = program::build(
-            &table,
-            &allocation,
-            ProgramOptions {
-                modes,
-                ..ProgramOptions::default()
-            },
-            &settings.strokes,
-        );
+        let (_, program) = build_with(&table, "estop", &settings);
         // START at 0.5 s; ESTOP at 1.5 s, half-way out; held from then on.
         let mut script = press(500, start());
         script.push((
@@ -375,16 +364,7 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
 fn broken_stop_and_emergency_stop_wires_are_safe_stalls() {
     use steptable::faults::{self, Outcome};
     let table = paper();
-    let modes = Modes::parse("all").unwrap();
-    let allocation = Allocation::with_options(
-        &table,
-        Target::Festo,
-        Mnemonic::En,
-        Default::default(),
-        &modes,
-        &Default::default(),
-    );
-    let program = program_with(&table, "all");
+    let (allocation, program) = build_with(&table, "all", &SimSettings::default());
     let fault_table = faults::analyse(
         &table,
         &program,
