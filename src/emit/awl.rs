@@ -17,6 +17,9 @@ struct Words {
     and: &'static str,
     and_not: &'static str,
     jump_if_not: &'static str,
+    /// The on-delay timer: `SD` in English, `SE` in German (English `SE`
+    /// is the extended pulse, a different timer).
+    on_delay: &'static str,
     input: &'static str,
     output: &'static str,
 }
@@ -27,6 +30,7 @@ fn words(mnemonic: Mnemonic) -> Words {
             and: "A",
             and_not: "AN",
             jump_if_not: "JCN",
+            on_delay: "SD",
             input: "I",
             output: "Q",
         },
@@ -34,6 +38,7 @@ fn words(mnemonic: Mnemonic) -> Words {
             and: "U",
             and_not: "UN",
             jump_if_not: "SPBN",
+            on_delay: "SE",
             input: "E",
             output: "A",
         },
@@ -83,14 +88,15 @@ struct Layout {
     timers: Vec<TimerBits>,
 }
 
-/// An S5 on-delay timer driven the way the step program means a timer: it
-/// runs while `run` is set, `restart` restarts it, `preset` holds its time.
+/// An S5 on-delay timer driven the way the step program means a timer: the
+/// step that starts it restarts it in that very cycle (so its time runs from
+/// there, as the step program's does), it runs while `run` is set, and
+/// `preset` holds its time.
 struct TimerBits {
     signal: Signal,
     /// `wd` for the watchdog, `dw3` for dwell 3: the stem of the symbols.
     stem: String,
     run: (u32, u32),
-    restart: (u32, u32),
     preset_word: u32,
 }
 
@@ -111,12 +117,7 @@ impl Layout {
         };
         let step_flags = input.program.steps.iter().map(|_| take()).collect();
         let fired = take();
-        let bits: Vec<((u32, u32), (u32, u32))> = input
-            .program
-            .timers
-            .iter()
-            .map(|_| (take(), take()))
-            .collect();
+        let bits: Vec<(u32, u32)> = input.program.timers.iter().map(|_| take()).collect();
         let first_word = next.div_ceil(16) * 2;
         let timers = input
             .program
@@ -124,14 +125,13 @@ impl Layout {
             .iter()
             .zip(bits)
             .enumerate()
-            .map(|(i, (&signal, (run, restart)))| TimerBits {
+            .map(|(i, (&signal, run))| TimerBits {
                 signal,
                 stem: match signal {
                     Signal::Dwell(n) => format!("dw{n}"),
                     _ => "wd".to_string(),
                 },
                 run,
-                restart,
                 preset_word: first_word + 2 * i as u32,
             })
             .collect();
@@ -182,15 +182,20 @@ fn timer_operand(input: &EmitInput, signal: Signal) -> String {
         .unwrap_or_else(|| "T 0".to_string())
 }
 
-/// S5TIME literal for a duration (10 ms resolution, at most 2H46M30S).
+/// S5TIME literal for a duration, never shorter than asked: the finest time
+/// base (10 ms, 100 ms, 1 s, 10 s) whose 999 steps reach it, rounded up to
+/// a whole step (at most 2H46M30S).
 fn s5time(ms: u32) -> String {
     let ms = ms.min(9_990_000);
+    let ms = [10u32, 100, 1000, 10_000]
+        .into_iter()
+        .find(|base| ms.div_ceil(*base) <= 999)
+        .map_or(9_990_000, |base| ms.div_ceil(base) * base);
     let (h, rest) = (ms / 3_600_000, ms % 3_600_000);
     let (m, rest) = (rest / 60_000, rest % 60_000);
     let (s, rest) = (rest / 1000, rest % 1000);
-    let tens = rest / 10 * 10;
     let mut text = "S5T#".to_string();
-    for (value, unit) in [(h, "H"), (m, "M"), (s, "S"), (tens, "MS")] {
+    for (value, unit) in [(h, "H"), (m, "M"), (s, "S"), (rest, "MS")] {
         if value > 0 {
             text.push_str(&format!("{value}{unit}"));
         }
@@ -253,14 +258,17 @@ fn build(input: &EmitInput) -> Context {
                 Action::StartTimer(s, ms) => {
                     let Some(t) = layout.timer(s) else { continue };
                     let word = format!("MW {}", t.preset_word);
+                    let timer = timer_operand(input, s);
                     lines.push(line("L", s5time(ms), comment));
-                    lines.push(line("T", word, format!("{}_pt", t.stem)));
+                    lines.push(line("T", word.clone(), format!("{}_pt", t.stem)));
                     lines.push(line("S", Layout::m(t.run), format!("{}_run", t.stem)));
-                    lines.push(line(
-                        "S",
-                        Layout::m(t.restart),
-                        format!("{}_restart: restart the timer", t.stem),
-                    ));
+                    // A falling then a rising edge: the timer starts anew now.
+                    lines.push(line("CLR", "", ""));
+                    lines.push(line(w.on_delay, timer.clone(), "stop the timer"));
+                    lines.push(line("SET", "", ""));
+                    lines.push(line("L", word, format!("{}_pt", t.stem)));
+                    lines.push(line(w.on_delay, timer, "and start it from now"));
+                    lines.push(line("SET", "", ""));
                 }
             }
         }
@@ -293,7 +301,7 @@ fn build(input: &EmitInput) -> Context {
         let name = t.signal.ident();
         networks.push(Network {
             title: format!(
-                "{} timer: on-delay while {stem}_run, restarted by {stem}_restart",
+                "{} timer: on-delay while {stem}_run; when it has elapsed, {stem}_run goes off",
                 if t.signal == Signal::Watchdog {
                     "watchdog".to_string()
                 } else {
@@ -302,13 +310,10 @@ fn build(input: &EmitInput) -> Context {
             ),
             lines: vec![
                 line(w.and, Layout::m(t.run), format!("{stem}_run")),
-                line(w.and_not, Layout::m(t.restart), format!("{stem}_restart")),
                 line("L", format!("MW {}", t.preset_word), format!("{stem}_pt")),
-                line("SE", timer.clone(), name.clone()),
+                line(w.on_delay, timer.clone(), name.clone()),
                 line(w.and, timer, format!("{name} elapsed")),
                 line("R", Layout::m(t.run), format!("{stem}_run")),
-                line(w.and, Layout::m(t.restart), format!("{stem}_restart")),
-                line("R", Layout::m(t.restart), format!("{stem}_restart")),
             ],
         });
     }
@@ -351,6 +356,16 @@ fn build(input: &EmitInput) -> Context {
     }
     for rung in &program.rungs {
         let mut lines = Vec::new();
+        if rung.condition.is_empty() {
+            // Nothing to test: the actions always run.
+            lines.push(line("SET", "", ""));
+            actions(&mut lines, &rung.actions, &[]);
+            networks.push(Network {
+                title: one_line(&rung.comment),
+                lines,
+            });
+            continue;
+        }
         condition(&mut lines, &rung.condition);
         let skip = label(labels);
         labels += 1;
@@ -415,21 +430,12 @@ fn build(input: &EmitInput) -> Context {
             let preset = format!("{what} preset");
             (what, preset)
         };
-        for (name, bit, comment) in [
-            (format!("{}_run", t.stem), t.run, format!("{what} runs")),
-            (
-                format!("{}_restart", t.stem),
-                t.restart,
-                format!("{what} restarts in the next cycle"),
-            ),
-        ] {
-            symbols.push(Symbol {
-                symbol: name,
-                address: sdf_address(&Layout::m(bit)),
-                data_type: "BOOL",
-                comment,
-            });
-        }
+        symbols.push(Symbol {
+            symbol: format!("{}_run", t.stem),
+            address: sdf_address(&Layout::m(t.run)),
+            data_type: "BOOL",
+            comment: format!("{what} runs"),
+        });
         symbols.push(Symbol {
             symbol: format!("{}_pt", t.stem),
             address: sdf_address(&format!("MW {}", t.preset_word)),
@@ -480,13 +486,55 @@ pub fn render_sdf(input: &EmitInput, model: &Value) -> Result<String, templates:
 mod tests {
     use super::*;
 
+    /// The time base STEP 7 stores a duration with: the finest that holds it in
+    /// 999 steps.
+    fn base_of(ms: u32) -> u32 {
+        [10u32, 100, 1000]
+            .into_iter()
+            .find(|base| ms <= 999 * base)
+            .unwrap_or(10_000)
+    }
+
+    /// Milliseconds of an S5TIME literal, as STEP 7 reads it.
+    fn literal_ms(text: &str) -> u32 {
+        let mut rest = text.strip_prefix("S5T#").unwrap();
+        let mut total = 0;
+        for (unit, factor) in [("H", 3_600_000), ("M", 60_000), ("S", 1000), ("MS", 1)] {
+            let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
+            let after = &rest[digits.len()..];
+            if !digits.is_empty()
+                && after.starts_with(unit)
+                && !after[unit.len()..].starts_with('S')
+            {
+                total += digits.parse::<u32>().unwrap() * factor;
+                rest = &after[unit.len()..];
+            }
+        }
+        assert!(rest.is_empty(), "{text}");
+        total
+    }
+
     #[test]
     fn s5time_literals() {
         assert_eq!(s5time(3000), "S5T#3S");
         assert_eq!(s5time(2400), "S5T#2S400MS");
-        assert_eq!(s5time(61_005), "S5T#1M1S");
         assert_eq!(s5time(0), "S5T#0MS");
         assert_eq!(s5time(u32::MAX), "S5T#2H46M30S");
+        // Never shorter than asked, and no longer than one step of the
+        // finest base that holds the time in 999 steps.
+        assert_eq!(s5time(15), "S5T#20MS");
+        assert_eq!(s5time(1005), "S5T#1S10MS");
+        assert_eq!(s5time(9990), "S5T#9S990MS");
+        assert_eq!(s5time(10_010), "S5T#10S100MS");
+        assert_eq!(s5time(61_005), "S5T#1M1S100MS");
+        assert_eq!(s5time(655_000), "S5T#10M55S");
+        for ms in [
+            10, 15, 999, 1005, 9990, 9999, 10_010, 99_901, 123_456, 655_000,
+        ] {
+            let got = literal_ms(&s5time(ms));
+            assert!(got >= ms && got - ms < base_of(got), "{ms} ms -> {got} ms");
+            assert!(got / base_of(got) <= 999, "{ms} ms -> {got} ms");
+        }
     }
 
     #[test]

@@ -55,6 +55,14 @@ struct Context {
 }
 
 fn condition(literals: &[Literal], festo: &Allocation) -> Vec<ConditionLine> {
+    if literals.is_empty() {
+        // FST's condition that always holds.
+        return vec![ConditionLine {
+            keyword: "IF",
+            operand: "NOP".to_string(),
+            comment: "always".to_string(),
+        }];
+    }
     literals
         .iter()
         .enumerate()

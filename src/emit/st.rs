@@ -17,6 +17,10 @@ use crate::program::{Action, Literal, condition_text};
 /// step counter is called `active_step`.
 pub const PROGRAM_NAME: &str = "steptable_main";
 pub const STEP_VAR: &str = "active_step";
+/// The names OpenPLC Runtime requires (its upload script moves `Config0.c`
+/// and `Res0.c`); Beremiz accepts any.
+pub const CONFIGURATION_NAME: &str = "Config0";
+pub const RESOURCE_NAME: &str = "Res0";
 
 #[derive(Serialize)]
 struct Var {
@@ -134,15 +138,23 @@ fn operand(signal: Signal) -> String {
     }
 }
 
+/// A condition as an ST expression; one with no literal always holds
+/// (`IF THEN` with nothing between is a syntax error in matiec).
 fn condition(literals: &[Literal]) -> String {
+    if literals.is_empty() {
+        return "TRUE".to_string();
+    }
     condition_text(literals, operand, "AND", "NOT ")
 }
 
 fn statement(action: Action) -> String {
     match action {
         Action::Reset(Signal::Sequence) => format!("{STEP_VAR} := 1;"),
+        // Called with IN off then on, the TON restarts now: its time runs
+        // from this scan, as the step program's timer does (a TON first
+        // called with IN on in the next scan would end one scan late).
         Action::StartTimer(timer, ms) => format!(
-            "{pt} := T#{ms}ms; {run} := TRUE; {t}(IN := FALSE, PT := {pt});",
+            "{pt} := T#{ms}ms; {run} := TRUE; {t}(IN := FALSE, PT := {pt}); {t}(IN := TRUE, PT := {pt});",
             pt = timer_preset(timer),
             run = timer_run(timer),
             t = timer.ident()
@@ -279,8 +291,10 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
             .collect(),
         internals,
         body,
-        configuration_name: "config0",
-        resource_name: "resource0",
+        // OpenPLC's upload moves exactly Config0.c and Res0.c, the files
+        // matiec names after the configuration and its resource.
+        configuration_name: CONFIGURATION_NAME,
+        resource_name: RESOURCE_NAME,
         task_name: "cyclic_task",
         instance_name: "main_instance",
         task_interval: format!("T#{scan_millis}ms"),

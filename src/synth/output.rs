@@ -361,10 +361,17 @@ pub fn structured_text(s: &Synthesis, title: &str) -> String {
             "  IF {n}_reset THEN {n} := FALSE; ELSIF {n}_set THEN {n} := TRUE; END_IF;\n"
         ));
     }
-    out.push_str(
-        "END_PROGRAM\n\nCONFIGURATION config0\n  RESOURCE resource0 ON PLC\n    TASK cyclic_task(INTERVAL := T#10ms, PRIORITY := 0);\n    PROGRAM main_instance WITH cyclic_task : synth_main;\n  END_RESOURCE\nEND_CONFIGURATION\n",
-    );
+    out.push_str(&configuration("synth_main"));
     out
+}
+
+/// The end of a program file: `END_PROGRAM` and the configuration that runs
+/// it every 10 ms, named as OpenPLC's upload requires.
+fn configuration(program: &str) -> String {
+    use crate::emit::st::{CONFIGURATION_NAME, RESOURCE_NAME};
+    format!(
+        "END_PROGRAM\n\nCONFIGURATION {CONFIGURATION_NAME}\n  RESOURCE {RESOURCE_NAME} ON PLC\n    TASK cyclic_task(INTERVAL := T#10ms, PRIORITY := 0);\n    PROGRAM main_instance WITH cyclic_task : {program};\n  END_RESOURCE\nEND_CONFIGURATION\n"
+    )
 }
 
 /// `NAME.equations.il`: the same equations in IEC instruction list, one
@@ -431,16 +438,22 @@ pub fn instruction_list(s: &Synthesis, title: &str) -> String {
     out.push_str("  (* sensor states: 1 from the extended end until the retracted end *)\n");
     for v in 0..seq.actuators {
         let n = names.state(v);
-        out.push_str(&format!("  LD {n}_end\n  S {n}\n  LD {n}_home\n  R {n}\n"));
+        // One load-or-and-store per latch: matiec fails (internal error or
+        // a crash) on programs with many S/R pairs.
+        out.push_str(&format!(
+            "  LD {n}\n  OR {n}_end\n  ANDN {n}_home\n  ST {n}\n"
+        ));
     }
     out.push_str("  (* the equations, on this scan's state *)\n");
     out.push_str(&body);
     out.push_str("  (* memories: reset wins *)\n");
     for v in seq.actuators..seq.variables() {
         let n = names.state(v);
-        out.push_str(&format!("  LD {n}_set\n  S {n}\n  LD {n}_reset\n  R {n}\n"));
+        out.push_str(&format!(
+            "  LD {n}\n  OR {n}_set\n  ANDN {n}_reset\n  ST {n}\n"
+        ));
     }
-    out.push_str("END_PROGRAM\n\nCONFIGURATION config0\n  RESOURCE resource0 ON PLC\n    TASK cyclic_task(INTERVAL := T#10ms, PRIORITY := 0);\n    PROGRAM main_instance WITH cyclic_task : synth_il;\n  END_RESOURCE\nEND_CONFIGURATION\n");
+    out.push_str(&configuration("synth_il"));
     out
 }
 
