@@ -7,6 +7,7 @@
 //! coils, everything must be home at the end, and a second START must run an
 //! identical second cycle.
 
+pub mod io;
 mod machine;
 pub mod plant;
 pub mod plc;
@@ -295,6 +296,8 @@ struct Run<'a> {
     trace: Vec<(u64, Vec<f64>)>,
     /// Per piston, the PLC indices of its `+`, `-` and single coil.
     coils: Vec<(Option<usize>, Option<usize>, Option<usize>)>,
+    /// The I/O of every scan, when recorded for a replay in another engine.
+    io: Option<io::IoTrace>,
 }
 
 /// Everything the PLC's inputs are read from.
@@ -376,12 +379,32 @@ impl Run<'_> {
         });
         let world = &self.world;
         let read = |s: Signal| read_input(s, world);
+        let recorded_inputs = self.io.as_ref().map(|io| {
+            io.signals
+                .inputs
+                .iter()
+                .map(|s| read_input(*s, world))
+                .collect::<Vec<bool>>()
+        });
         let result = scan(
             self.program,
             &mut self.plc,
             &read,
             self.world.settings.scan_ms as u64,
         );
+        if let (Some(io), Some(inputs)) = (self.io.as_mut(), recorded_inputs) {
+            let outputs = io
+                .signals
+                .outputs
+                .iter()
+                .map(|s| self.plc.bit(*s))
+                .collect();
+            io.scans.push(io::ScanIo {
+                time_ms: now,
+                inputs,
+                outputs,
+            });
+        }
         if let Some(fired) = result.fired {
             self.on_fire(fired);
         }
@@ -703,6 +726,7 @@ impl<'a> Run<'a> {
             spans: Vec::new(),
             trace: Vec::new(),
             coils: Vec::new(),
+            io: None,
         };
         run.dwells = table
             .dwells()
@@ -736,7 +760,33 @@ impl<'a> Run<'a> {
 
 /// Simulates `program` (built from `table`) against the plant.
 pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings) -> SimReport {
+    run(table, program, settings, None).0
+}
+
+/// Simulates like [`simulate`] and records `signals` at every scan, so that
+/// a written program can be replayed in its own engine and compared.
+pub fn simulate_recording(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    signals: io::IoSignals,
+) -> (SimReport, io::IoTrace) {
+    let (report, trace) = run(table, program, settings, Some(signals));
+    (report, trace.unwrap_or_default())
+}
+
+fn run(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    record: Option<io::IoSignals>,
+) -> (SimReport, Option<io::IoTrace>) {
     let mut run = Run::new(table, program, settings);
+    run.io = record.map(|signals| io::IoTrace {
+        scan_ms: run.world.settings.scan_ms,
+        signals,
+        scans: Vec::new(),
+    });
     let timeout = step_timeout_ms(table, program, settings);
     let step_count = program.steps.len();
     let mut cycles: Vec<CycleReport> = Vec::new();
@@ -906,7 +956,7 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
     let all_cycles_done =
         cycles.len() == settings.cycles.max(1) && cycles.iter().all(|c| c.cycle_ms.is_some());
     run.problems.sort_by_key(|p| p.time_ms);
-    SimReport {
+    let report = SimReport {
         passed: run.problems.is_empty() && all_cycles_done,
         cycles,
         problems: run.problems,
@@ -923,7 +973,8 @@ pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings
             .into_iter()
             .filter(|s| s.from_ms < first_cycle_end)
             .collect(),
-    }
+    };
+    (report, run.io)
 }
 
 fn timings(

@@ -11,36 +11,9 @@ use std::process::Command;
 
 use predicates::str::contains;
 
-use crate::helpers::{files_below, read_sheet, root, sample, samples, steptable};
-
-/// The path of a tool, from `STEPTABLE_TOOLS` (a folder) or PATH.
-fn tool(name: &str) -> Option<PathBuf> {
-    if let Ok(dir) = std::env::var("STEPTABLE_TOOLS") {
-        let path = PathBuf::from(dir).join(name);
-        if path.exists() {
-            return Some(path);
-        }
-    }
-    let found = Command::new("sh")
-        .arg("-c")
-        .arg(format!("command -v {name}"))
-        .output()
-        .ok()?;
-    let path = String::from_utf8_lossy(&found.stdout).trim().to_string();
-    (found.status.success() && !path.is_empty()).then(|| PathBuf::from(path))
-}
-
-pub fn require(name: &str) -> Option<PathBuf> {
-    let found = tool(name);
-    if found.is_none() {
-        assert!(
-            std::env::var("STEPTABLE_REQUIRE_TOOLS").is_err(),
-            "{name} is required (STEPTABLE_REQUIRE_TOOLS is set) but was not found"
-        );
-        eprintln!("note: {name} not found, so this check did not run (.ci/run installs it)");
-    }
-    found
-}
+use crate::helpers::{
+    files_below, read_sheet, require, require_shared, sample, samples, steptable,
+};
 
 /// Converts every sample (and the paper's example with every safety check)
 /// with `extra` arguments, returning the output folder.
@@ -81,7 +54,10 @@ fn plcopen_and_codesys_xml_validate_against_the_official_schema() {
     };
     let dir = tempfile::tempdir().unwrap();
     let files = convert_all(dir.path(), &["--formats", "plcopen,codesys"]);
-    let schema = root().join("../shared/reference/tc6_xml_v201.xsd");
+    let Some(shared) = require_shared("the PLCopen schema check") else {
+        return;
+    };
+    let schema = shared.join("reference/tc6_xml_v201.xsd");
     assert!(schema.exists(), "{} is missing", schema.display());
     let mut checked = 0;
     for file in files

@@ -1,6 +1,7 @@
 //! Helpers: run the binary, make workbooks, read workbooks back.
 
 use std::path::{Path, PathBuf};
+use std::process::Command as Process;
 
 use assert_cmd::Command;
 use calamine::{Data, Reader, open_workbook_auto};
@@ -111,4 +112,56 @@ pub fn xlsx_part(path: &Path, part: &str) -> String {
     let mut text = String::new();
     entry.read_to_string(&mut text).expect("read part");
     text
+}
+
+/// The path of a tool, from `STEPTABLE_TOOLS` (a folder) or PATH.
+pub fn tool(name: &str) -> Option<PathBuf> {
+    if let Ok(dir) = std::env::var("STEPTABLE_TOOLS") {
+        let path = PathBuf::from(dir).join(name);
+        if path.exists() {
+            return Some(path);
+        }
+    }
+    let found = Process::new("sh")
+        .arg("-c")
+        .arg(format!("command -v {name}"))
+        .output()
+        .ok()?;
+    let path = String::from_utf8_lossy(&found.stdout).trim().to_string();
+    (found.status.success() && !path.is_empty()).then(|| PathBuf::from(path))
+}
+
+/// Whether a missing tool must fail the test (CI) rather than skip it.
+pub fn tools_required() -> bool {
+    std::env::var("STEPTABLE_REQUIRE_TOOLS").is_ok_and(|v| !v.is_empty() && v != "0")
+}
+
+/// A tool the test needs: its path, or `None` after one printed note (a
+/// developer's machine); with STEPTABLE_REQUIRE_TOOLS set, a failure.
+pub fn require(name: &str) -> Option<PathBuf> {
+    let found = tool(name);
+    if found.is_none() {
+        assert!(
+            !tools_required(),
+            "{name} is required (STEPTABLE_REQUIRE_TOOLS is set) but was not found"
+        );
+        eprintln!("note: {name} not found, so this check did not run (.ci/run installs it)");
+    }
+    found
+}
+
+/// `../shared` beside the repository (the real PLC toolchains and the
+/// PLCopen schema): its path, or `None` after one printed note in a clone
+/// without it; with STEPTABLE_REQUIRE_TOOLS set, a failure.
+pub fn require_shared(what: &str) -> Option<PathBuf> {
+    let dir = root().join("../shared");
+    if dir.join("tools").is_dir() {
+        return Some(dir.canonicalize().unwrap_or(dir));
+    }
+    assert!(
+        !tools_required(),
+        "../shared is required for {what} (STEPTABLE_REQUIRE_TOOLS is set) but is not beside the repository"
+    );
+    eprintln!("note: ../shared is not beside the repository, so {what} did not run");
+    None
 }

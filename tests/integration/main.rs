@@ -4,6 +4,8 @@
 mod batch;
 mod broken;
 mod diagram;
+mod differential;
+mod engines;
 mod exports;
 mod fuzz_regressions;
 mod helpers;

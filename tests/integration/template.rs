@@ -95,7 +95,7 @@ fn the_templates_example_converts_like_the_sample_also_after_libreoffice() {
         .assert()
         .success();
     let mut candidates = vec![template.clone()];
-    if let Some(soffice) = crate::exports::require("soffice") {
+    if let Some(soffice) = crate::helpers::require("soffice") {
         let saved = dir.path().join("libreoffice");
         let status = std::process::Command::new(soffice)
             .args(["--headless", "--convert-to", "xlsx", "--outdir"])

@@ -1,0 +1,154 @@
+//! The PLC's inputs and outputs at every scan of a run, recorded so that a
+//! program file can be replayed in another engine (matiec, awlsim, an FST
+//! interpreter) and its outputs compared with this simulation scan by scan.
+//!
+//! Replaying the recorded inputs is the same as driving the engine from the
+//! plant until the first scan whose outputs differ: up to there the plant saw
+//! the same coils, so it gave the same inputs. The first difference is the
+//! finding.
+
+use crate::address::Signal;
+
+/// Which signals to record: the inputs fed to the engine and the outputs
+/// compared, each in a fixed order.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct IoSignals {
+    pub inputs: Vec<Signal>,
+    pub outputs: Vec<Signal>,
+}
+
+/// One scan: the inputs as read at its start, the outputs as written at its end.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ScanIo {
+    /// Time at the start of the scan, from power-up.
+    pub time_ms: u64,
+    pub inputs: Vec<bool>,
+    pub outputs: Vec<bool>,
+}
+
+/// Every scan of a run.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct IoTrace {
+    pub scan_ms: u32,
+    pub signals: IoSignals,
+    pub scans: Vec<ScanIo>,
+}
+
+/// The first scan at which an engine's outputs differ from the simulation.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Mismatch {
+    pub scan: usize,
+    pub time_ms: u64,
+    pub signal: Signal,
+    pub expected: bool,
+    pub actual: bool,
+}
+
+impl std::fmt::Display for Mismatch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "scan {} ({} ms): {} is {} in the engine, {} in the simulation",
+            self.scan,
+            self.time_ms,
+            self.signal.symbol(),
+            u8::from(self.actual),
+            u8::from(self.expected)
+        )
+    }
+}
+
+impl IoTrace {
+    /// Compares an engine's outputs, one vector per scan in the order of
+    /// `signals.outputs`, with the recorded ones. A run that ended early is a
+    /// mismatch at the first missing scan.
+    pub fn compare(&self, engine: &[Vec<bool>]) -> Result<(), Mismatch> {
+        for (scan, recorded) in self.scans.iter().enumerate() {
+            let Some(actual) = engine.get(scan) else {
+                return Err(Mismatch {
+                    scan,
+                    time_ms: recorded.time_ms,
+                    signal: self
+                        .signals
+                        .outputs
+                        .first()
+                        .copied()
+                        .unwrap_or(Signal::Start),
+                    expected: recorded.outputs.first().copied().unwrap_or(false),
+                    actual: !recorded.outputs.first().copied().unwrap_or(false),
+                });
+            };
+            for (k, signal) in self.signals.outputs.iter().enumerate() {
+                let expected = recorded.outputs[k];
+                let got = actual.get(k).copied().unwrap_or(!expected);
+                if got != expected {
+                    return Err(Mismatch {
+                        scan,
+                        time_ms: recorded.time_ms,
+                        signal: *signal,
+                        expected,
+                        actual: got,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// How many scans turned an output on or off: a trace with none proves
+    /// nothing.
+    pub fn output_changes(&self) -> usize {
+        self.scans
+            .windows(2)
+            .filter(|w| w[0].outputs != w[1].outputs)
+            .count()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cell::Sign;
+
+    fn trace() -> IoTrace {
+        let coil = Signal::Coil {
+            actuator: 1,
+            sign: Sign::Plus,
+        };
+        IoTrace {
+            scan_ms: 10,
+            signals: IoSignals {
+                inputs: vec![Signal::Start],
+                outputs: vec![coil],
+            },
+            scans: (0..4)
+                .map(|i| ScanIo {
+                    time_ms: i * 10,
+                    inputs: vec![i == 1],
+                    outputs: vec![i >= 1],
+                })
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn a_differing_output_names_its_scan_and_signal() {
+        let t = trace();
+        let mut engine: Vec<Vec<bool>> = t.scans.iter().map(|s| s.outputs.clone()).collect();
+        assert_eq!(t.compare(&engine), Ok(()));
+        assert_eq!(t.output_changes(), 1);
+        engine[2][0] = false;
+        let m = t.compare(&engine).unwrap_err();
+        assert_eq!(
+            (m.scan, m.time_ms, m.expected, m.actual),
+            (2, 20, true, false)
+        );
+        assert_eq!(
+            m.to_string(),
+            "scan 2 (20 ms): y1+ is 0 in the engine, 1 in the simulation"
+        );
+        engine.truncate(3);
+        engine[2][0] = true;
+        assert_eq!(t.compare(&engine).unwrap_err().scan, 3);
+    }
+}

@@ -1,0 +1,237 @@
+//! Differential execution of the written files: every program steptable
+//! writes is run in the engine that would really run it — matiec (Beremiz,
+//! OpenPLC) for the `.st` and the ST inside both XML flavours, OpenPLC's own
+//! upload compile, awlsim for the `.awl` in both mnemonic sets, an FST
+//! interpreter for the `.fst.txt` — on the inputs steptable's simulation of
+//! the same table recorded, and its outputs must equal the simulation's at
+//! every scan of two full cycles.
+//!
+//! Matrix: every sample × festo/iec/siemens × plain / `--safety all` /
+//! `--modes all --safety all` (AWL also × `--mnemonic de`). Without
+//! `../shared` or awlsim the engines that need them skip with a note (fail
+//! with STEPTABLE_REQUIRE_TOOLS=1).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::engines::{self, Case, awlsim, fst, matiec, plcxml};
+use crate::helpers::{require, require_shared, samples};
+
+const TARGETS: [&str; 3] = ["festo", "iec", "siemens"];
+const OPTIONS: [&[&str]; 3] = [
+    &[],
+    &["--safety", "all"],
+    &["--modes", "all", "--safety", "all"],
+];
+
+/// Every case of the matrix, converted into `dir`, with `extra` arguments.
+fn matrix(dir: &Path, extra: &[&str]) -> Vec<Case> {
+    let mut cases = Vec::new();
+    for (s, sample) in samples().iter().enumerate() {
+        for target in TARGETS {
+            for (o, options) in OPTIONS.iter().enumerate() {
+                let mut args = vec!["--target", target];
+                args.extend_from_slice(options);
+                args.extend_from_slice(extra);
+                let out = dir.join(format!("{s}-{target}-{o}"));
+                cases.push(engines::prepare(sample, &args, &out));
+            }
+        }
+    }
+    cases
+}
+
+/// Runs `check` on every case on two threads; every failure is reported.
+fn run_all(cases: &[Case], check: impl Fn(&Case) -> Result<(), String> + Sync) {
+    let failures: Vec<String> = std::thread::scope(|scope| {
+        let halves = cases.chunks(cases.len().div_ceil(2).max(1));
+        let handles: Vec<_> = halves
+            .map(|chunk| {
+                scope.spawn(|| {
+                    chunk
+                        .iter()
+                        .filter_map(|c| check(c).err())
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().expect("worker"))
+            .collect()
+    });
+    assert!(
+        failures.is_empty(),
+        "{} of {} cases differ:\n{}",
+        failures.len(),
+        cases.len(),
+        failures.join("\n")
+    );
+    // A trace in which nothing switches would prove nothing.
+    assert!(cases.iter().all(|c| c.trace.output_changes() >= 4));
+}
+
+#[test]
+fn structured_text_runs_in_matiec_as_simulated() {
+    let Some(shared) = require_shared("the matiec differential test") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let cases = matrix(dir.path(), &["--formats", "st"]);
+    run_all(&cases, |c| {
+        c.check(
+            "matiec .st",
+            matiec::run(&shared, &c.file(".st"), &c.trace, &c.allocation),
+        )
+    });
+    eprintln!("matiec: {} .st files run, traces equal", cases.len());
+}
+
+#[test]
+fn st_inside_plcopen_and_codesys_xml_runs_in_matiec_as_simulated() {
+    let Some(shared) = require_shared("the PLCopen/CODESYS differential test") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let cases = matrix(dir.path(), &["--formats", "plcopen,codesys"]);
+    run_all(&cases, |c| {
+        for suffix in [".plcopen.xml", ".codesys.xml"] {
+            let xml = std::fs::read_to_string(c.file(suffix)).unwrap();
+            let st =
+                plcxml::structured_text(&xml).map_err(|e| format!("{}: {suffix}: {e}", c.label))?;
+            let path = c.dir.join(format!("{}{suffix}.st", c.name));
+            std::fs::write(&path, st).unwrap();
+            c.check(
+                &format!("matiec {suffix}"),
+                matiec::run(&shared, &path, &c.trace, &c.allocation),
+            )?;
+        }
+        Ok(())
+    });
+    eprintln!(
+        "matiec: {} PLCopen and {0} CODESYS programs run, traces equal",
+        cases.len()
+    );
+}
+
+/// `check-upload` replays OpenPLC Runtime v3's upload compile.
+fn openplc_accepts(shared: &Path, st: &Path) -> Result<(), String> {
+    let output = Command::new(shared.join("tools/openplc/check-upload"))
+        .arg(st)
+        .output()
+        .map_err(|e| e.to_string())?;
+    let text = String::from_utf8_lossy(&output.stdout);
+    if output.status.success() && text.contains("openplc: accepted") {
+        Ok(())
+    } else {
+        Err(format!(
+            "{}: {text}{}",
+            st.display(),
+            String::from_utf8_lossy(&output.stderr)
+        ))
+    }
+}
+
+#[test]
+fn openplc_upload_accepts_every_st() {
+    let Some(shared) = require_shared("the OpenPLC upload replay") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let cases = matrix(dir.path(), &["--formats", "st"]);
+    run_all(&cases, |c| openplc_accepts(&shared, &c.file(".st")));
+    eprintln!("openplc: {} .st files accepted", cases.len());
+}
+
+#[test]
+fn awl_runs_in_awlsim_as_simulated_in_both_mnemonic_sets() {
+    let Some(awlsim_test) = require("awlsim-test") else {
+        return;
+    };
+    let python = awlsim::python(&awlsim_test);
+    for mnemonic in ["en", "de"] {
+        let dir = tempfile::tempdir().unwrap();
+        let cases = matrix(dir.path(), &["--formats", "awl", "--mnemonic", mnemonic]);
+        run_all(&cases, |c| {
+            c.check(
+                &format!("awlsim ({mnemonic})"),
+                awlsim::run(
+                    &python,
+                    &c.file(".awl"),
+                    c.mnemonic,
+                    &c.trace,
+                    &c.allocation,
+                ),
+            )
+        });
+        eprintln!(
+            "awlsim: {} .awl files ({mnemonic}) run, traces equal",
+            cases.len()
+        );
+    }
+}
+
+#[test]
+fn fst_runs_in_the_interpreter_as_simulated() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = matrix(dir.path(), &["--formats", "fst"]);
+    run_all(&cases, |c| {
+        let text = std::fs::read_to_string(c.file(".fst.txt")).unwrap();
+        c.check("FST interpreter", fst::run(&text, &c.trace, &c.festo))
+    });
+    eprintln!("fst: {} .fst.txt files run, traces equal", cases.len());
+}
+
+/// The layer must be able to fail: a wrong timer, a swapped coil.
+#[test]
+fn a_wrong_file_is_caught_with_its_scan_and_signal() {
+    let dir = tempfile::tempdir().unwrap();
+    let sample = crate::helpers::sample("press_station.xlsx");
+    let case = engines::prepare(&sample, &["--safety", "all"], dir.path());
+    // FST: y2+ where the program says y2- (O1.2 → O0.2 in STEP 4).
+    let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
+    let swapped = swap_first_after(&text, "STEP 4", "SET     O1.2", "SET     O0.2");
+    let err = case
+        .check("FST", fst::run(&swapped, &case.trace, &case.festo))
+        .unwrap_err();
+    assert!(err.contains("scan ") && err.contains("y2"), "{err}");
+    if let Some(shared) = require_shared("the matiec self-test") {
+        let st = std::fs::read_to_string(case.file(".st")).unwrap();
+        let swapped = swap_first_after(&st, "4: (*", "y2m := TRUE;", "y2p := TRUE;");
+        let path: PathBuf = case.dir.join("swapped.st");
+        std::fs::write(&path, swapped).unwrap();
+        let err = case
+            .check(
+                "matiec",
+                matiec::run(&shared, &path, &case.trace, &case.allocation),
+            )
+            .unwrap_err();
+        assert!(err.contains("scan ") && err.contains("y2"), "{err}");
+    }
+    if let Some(awlsim_test) = require("awlsim-test") {
+        // English SE is the extended pulse: the dwells end at once.
+        let awl = std::fs::read_to_string(case.file(".awl")).unwrap();
+        let wrong = awl.replace("SD    T", "SE    T");
+        assert_ne!(wrong, awl);
+        let path = case.dir.join("pulse.awl");
+        std::fs::write(&path, wrong).unwrap();
+        let python = awlsim::python(&awlsim_test);
+        let err = case
+            .check(
+                "awlsim",
+                awlsim::run(&python, &path, case.mnemonic, &case.trace, &case.allocation),
+            )
+            .unwrap_err();
+        assert!(err.contains("scan "), "{err}");
+    }
+}
+
+/// `text` with the first `from` after `marker` replaced by `to`.
+fn swap_first_after(text: &str, marker: &str, from: &str, to: &str) -> String {
+    let at = text
+        .find(marker)
+        .unwrap_or_else(|| panic!("{marker} not in the file"));
+    let (head, tail) = text.split_at(at);
+    assert!(tail.contains(from), "{from} not after {marker}");
+    format!("{head}{}", tail.replacen(from, to, 1))
+}

@@ -1,0 +1,165 @@
+//! Engines that run the files steptable writes, as a user's tool would, and
+//! the cases they are run on. Each engine takes a written file and the input
+//! trace recorded by steptable's own simulation of the same table, runs one
+//! PLC cycle per recorded scan, and returns the outputs of every scan; the
+//! caller compares them with the simulation's ([`IoTrace::compare`]).
+
+pub mod awlsim;
+pub mod fst;
+pub mod matiec;
+pub mod plcxml;
+
+use std::path::{Path, PathBuf};
+
+use steptable::address::{Allocation, Mnemonic, Safety, Target};
+use steptable::convert::{self, Settings};
+use steptable::simulate;
+use steptable::simulate::io::{IoSignals, IoTrace};
+
+use crate::helpers::steptable;
+
+/// One table converted with one set of options: the written files and the
+/// simulation's recorded I/O.
+pub struct Case {
+    /// `press_station.xlsx --target iec --modes all --safety all`.
+    pub label: String,
+    /// Folder holding the written files `NAME.*`.
+    pub dir: PathBuf,
+    pub name: String,
+    pub allocation: Allocation,
+    /// The Festo allocation the FST files use whatever the target.
+    pub festo: Allocation,
+    pub mnemonic: Mnemonic,
+    pub trace: IoTrace,
+}
+
+impl Case {
+    pub fn file(&self, suffix: &str) -> PathBuf {
+        self.dir.join(format!("{}{suffix}", self.name))
+    }
+
+    /// Compares an engine's outputs with the simulation; the error names the
+    /// case, the engine, the scan and the signal.
+    pub fn check(
+        &self,
+        engine: &str,
+        outputs: Result<Vec<Vec<bool>>, String>,
+    ) -> Result<(), String> {
+        let outputs = outputs.map_err(|e| format!("{}: {engine}: {e}", self.label))?;
+        self.trace
+            .compare(&outputs)
+            .map_err(|m| format!("{}: {engine}: {m}", self.label))
+    }
+}
+
+/// The library settings the command-line arguments of a case stand for.
+pub fn settings_for(args: &[&str]) -> Settings {
+    let mut settings = Settings::new();
+    for pair in args.chunks(2) {
+        match pair {
+            ["--target", t] => {
+                settings.target = match *t {
+                    "iec" => Target::Iec,
+                    "siemens" => Target::Siemens,
+                    _ => Target::Festo,
+                };
+                settings.explicit.target = true;
+            }
+            ["--mnemonic", m] => {
+                settings.mnemonic = if *m == "de" {
+                    Mnemonic::De
+                } else {
+                    Mnemonic::En
+                };
+                settings.explicit.mnemonic = true;
+            }
+            ["--safety", s] => {
+                settings.program.safety = Safety::parse(s).expect("safety list");
+                settings.explicit.safety = true;
+            }
+            ["--modes", m] => {
+                settings.program.modes = steptable::address::Modes::parse(m).expect("modes");
+                settings.explicit.modes = true;
+            }
+            // Which files are written does not change the program.
+            ["--formats", _] => {}
+            other => panic!("settings_for does not know {other:?}"),
+        }
+    }
+    settings
+}
+
+/// Converts `input` with `args` through the binary into `out`, and simulates
+/// the same table with the library, recording every input and output of the
+/// written program at every scan.
+pub fn prepare(input: &Path, args: &[&str], out: &Path) -> Case {
+    let label = format!(
+        "{} {}",
+        input.file_name().unwrap().to_string_lossy(),
+        args.join(" ")
+    );
+    steptable()
+        .arg("convert")
+        .arg(input)
+        .args(args)
+        .arg("-o")
+        .arg(out)
+        .assert()
+        .success();
+    let name = convert::output_name(input);
+    let checked = convert::check_path(input, &settings_for(args)).expect("valid table");
+    record(
+        &label,
+        out.join(&name),
+        &name,
+        &checked.table,
+        &checked.settings,
+    )
+}
+
+/// Simulates a checked table and records its I/O (the files must already be
+/// in `dir`).
+pub fn record(
+    label: &str,
+    dir: PathBuf,
+    name: &str,
+    table: &steptable::table::StepTable,
+    settings: &Settings,
+) -> Case {
+    let (allocation, program) = convert::build_program(table, settings);
+    let festo = allocation.for_target(table, Target::Festo, Mnemonic::En);
+    let signals = IoSignals {
+        inputs: allocation.inputs.iter().map(|a| a.signal).collect(),
+        outputs: allocation.outputs.iter().map(|a| a.signal).collect(),
+    };
+    let (report, trace) =
+        simulate::simulate_recording(table, &program, &settings.simulation, signals);
+    assert!(report.passed, "{label}: {}", report.verdict());
+    Case {
+        label: label.to_string(),
+        dir,
+        name: name.to_string(),
+        mnemonic: allocation.mnemonic,
+        allocation,
+        festo,
+        trace,
+    }
+}
+
+/// The recorded inputs, one line of 0/1 per scan.
+pub fn input_lines(trace: &IoTrace) -> String {
+    let mut text = String::with_capacity(trace.scans.len() * (trace.signals.inputs.len() + 1));
+    for scan in &trace.scans {
+        text.extend(scan.inputs.iter().map(|b| if *b { '1' } else { '0' }));
+        text.push('\n');
+    }
+    text
+}
+
+/// An engine's printed outputs, one line of 0/1 per scan.
+pub fn output_lines(text: &str) -> Vec<Vec<bool>> {
+    text.lines()
+        .filter(|l| !l.is_empty())
+        .map(|l| l.chars().map(|c| c == '1').collect())
+        .collect()
+}
