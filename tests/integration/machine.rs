@@ -77,7 +77,10 @@ fn the_press_station_converts_with_its_machine_signals_everywhere() {
     let awl = read("awl");
     assert!(awl.contains("S5T#2S"), "{awl}");
     // The on-delay timer is SD in English mnemonics (SE is the extended pulse).
-    assert!(awl.contains("SD    T 3") && !awl.contains("SE    T"), "{awl}");
+    assert!(
+        awl.contains("SD    T 3") && !awl.contains("SE    T"),
+        "{awl}"
+    );
     let svg = read("diagram.svg");
     assert!(svg.contains(">T=2s</text>") && svg.contains(">I:part_present</text>"));
     // The normalised table in the workbook keeps every item of a cell.

@@ -5,6 +5,7 @@ mod batch;
 mod broken;
 mod diagram;
 mod differential;
+mod differential_random;
 mod engines;
 mod exports;
 mod fuzz_regressions;

@@ -129,6 +129,7 @@ fn parse(text: &str) -> Result<BTreeMap<u32, Program>, String> {
             }
             ["TO", tp] if tp.starts_with("TP") => Action::To(tp.to_string()),
             ["JMP", "TO", label] => Action::Jump(label.to_string()),
+            ["NOP"] => continue,
             _ => return Err(at("unknown statement")),
         };
         let r = rule(program).ok_or_else(|| at("action outside a rule"))?;

@@ -81,6 +81,10 @@ pub fn settings_for(args: &[&str]) -> Settings {
                 settings.program.modes = steptable::address::Modes::parse(m).expect("modes");
                 settings.explicit.modes = true;
             }
+            ["--valve", v] => {
+                settings.simulation.valves.per_actuator =
+                    steptable::valve::parse_valves(v).expect("valve list");
+            }
             // Which files are written does not change the program.
             ["--formats", _] => {}
             other => panic!("settings_for does not know {other:?}"),

@@ -1,0 +1,201 @@
+//! The differential layer over random valid tables: moves in parallel
+//! branches and middle stops, dwells of any length up to 9.99 s, waits on
+//! machine inputs, machine outputs, valve types, operating modes, safety
+//! checks, every target and both mnemonic sets. Each table is written by the
+//! binary and its `.st` (matiec), `.awl` (awlsim) and `.fst.txt` (the FST
+//! interpreter) must give the simulation's outputs at every scan.
+//!
+//! The tables come from fixed seeds, so CI always runs the same ones;
+//! `STEPTABLE_DIFF_CASES=N` runs N of them (default 100) and
+//! `STEPTABLE_DIFF_SEED=S` starts elsewhere.
+
+use std::path::Path;
+
+use steptable::random_table::{Shape, SplitMix64, random_rows};
+
+use crate::engines::{self, Case, awlsim, fst, matiec};
+use crate::helpers::{require, require_shared, write_xlsx};
+
+/// A random table with its command-line options.
+struct Drawn {
+    rows: Vec<Vec<String>>,
+    args: Vec<String>,
+}
+
+fn pick<'a>(rng: &mut SplitMix64, items: &[&'a str]) -> &'a str {
+    items[rng.range(0, items.len() as u32 - 1) as usize]
+}
+
+fn draw(seed: u64) -> Drawn {
+    let mut rng = SplitMix64::new(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0xD1FF);
+    let shape = Shape {
+        actuators: rng.range(1, 5),
+        max_position: rng.range(1, 3),
+        branches: rng.range(1, 3),
+        steps: rng.range(2, 12),
+    };
+    let mut rows = random_rows(seed, shape);
+    for row in &mut rows {
+        let mut add = |rng: &mut SplitMix64, item: String| {
+            let branch = rng.range(0, row.len() as u32) as usize;
+            if branch == row.len() {
+                row.push(item);
+            } else if row[branch].is_empty() {
+                row[branch] = item;
+            } else {
+                row[branch] = format!("{}; {item}", row[branch]);
+            }
+        };
+        if rng.range(0, 3) == 0 {
+            // Any length, awkward ones too: 15 ms, 1005 ms, 9990 ms.
+            let ms = match rng.range(0, 3) {
+                0 => rng.range(10, 99),
+                1 => rng.range(100, 1999),
+                _ => rng.range(2000, 9990),
+            };
+            add(&mut rng, format!("T={ms}ms"));
+        }
+        if rng.range(0, 4) == 0 {
+            let (value, k) = (rng.range(0, 1), rng.range(0, 2));
+            add(&mut rng, format!("I:part{k}={value}"));
+        }
+        if rng.range(0, 3) == 0 {
+            let (sign, k) = (pick(&mut rng, &["+", "-"]), rng.range(0, 2));
+            add(&mut rng, format!("Y:lamp{k}{sign}"));
+        }
+    }
+    // Highest position of each actuator, for its valve.
+    let mut pmax = std::collections::BTreeMap::new();
+    for cell in rows.iter().flatten() {
+        for item in cell.split(';') {
+            let item = item.trim();
+            if let Some(rest) = item.strip_prefix('C')
+                && let Some(at) = rest.find(['+', '-'])
+            {
+                let actuator: u32 = rest[..at].parse().unwrap();
+                let position: u32 = rest[at + 1..].parse().unwrap_or(1);
+                let entry = pmax.entry(actuator).or_insert(0);
+                *entry = (*entry).max(position);
+            }
+        }
+    }
+    let valves: Vec<String> = pmax
+        .iter()
+        .map(|(a, p)| {
+            let valve = if *p > 1 {
+                "53closed"
+            } else {
+                pick(&mut rng, &["52bi", "52mono", "53closed"])
+            };
+            format!("C{a}={valve}")
+        })
+        .collect();
+    let mut args: Vec<String> = vec![
+        "--target".into(),
+        pick(&mut rng, &["festo", "iec", "siemens"]).into(),
+        "--mnemonic".into(),
+        pick(&mut rng, &["en", "de"]).into(),
+        "--valve".into(),
+        valves.join(","),
+    ];
+    let safety = pick(
+        &mut rng,
+        &["", "all", "edge,watchdog", "precheck,plausibility"],
+    );
+    if !safety.is_empty() {
+        args.extend(["--safety".into(), safety.into()]);
+    }
+    let modes = pick(&mut rng, &["", "all", "continuous,stop", "stop,reset"]);
+    if !modes.is_empty() {
+        args.extend(["--modes".into(), modes.into()]);
+    }
+    Drawn { rows, args }
+}
+
+fn env_number(name: &str, default: u64) -> u64 {
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+fn prepare(dir: &Path, seed: u64) -> Case {
+    let drawn = draw(seed);
+    let input = dir.join(format!("random{seed}.xlsx"));
+    let rows: Vec<Vec<&str>> = drawn
+        .rows
+        .iter()
+        .map(|r| r.iter().map(String::as_str).collect())
+        .collect();
+    let rows: Vec<&[&str]> = rows.iter().map(Vec::as_slice).collect();
+    write_xlsx(&input, "Sheet1", &rows);
+    let mut args: Vec<&str> = drawn.args.iter().map(String::as_str).collect();
+    args.extend(["--formats", "st,awl,fst"]);
+    let mut case = engines::prepare(&input, &args, &dir.join(format!("out{seed}")));
+    case.label = format!("seed {seed}: {:?} {}", drawn.rows, drawn.args.join(" "));
+    case
+}
+
+#[test]
+fn random_tables_run_in_every_engine_as_simulated() {
+    let shared = require_shared("the random-table differential test (matiec)");
+    let awlsim_test = require("awlsim-test");
+    let python = awlsim_test.as_deref().map(awlsim::python);
+    let first = env_number("STEPTABLE_DIFF_SEED", 0);
+    let count = env_number("STEPTABLE_DIFF_CASES", 100);
+    let dir = tempfile::tempdir().unwrap();
+    let seeds: Vec<u64> = (first..first + count).collect();
+    let failures: Vec<String> = std::thread::scope(|scope| {
+        let handles: Vec<_> = seeds
+            .chunks(seeds.len().div_ceil(2).max(1))
+            .map(|chunk| {
+                let (dir, shared, python) = (dir.path(), &shared, &python);
+                scope.spawn(move || {
+                    let mut failures = Vec::new();
+                    for &seed in chunk {
+                        let case = prepare(dir, seed);
+                        let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
+                        let mut results =
+                            vec![case.check("FST", fst::run(&text, &case.trace, &case.festo))];
+                        if let Some(shared) = shared {
+                            results.push(case.check(
+                                "matiec",
+                                matiec::run(
+                                    shared,
+                                    &case.file(".st"),
+                                    &case.trace,
+                                    &case.allocation,
+                                ),
+                            ));
+                        }
+                        if let Some(python) = python {
+                            results.push(case.check(
+                                "awlsim",
+                                awlsim::run(
+                                    python,
+                                    &case.file(".awl"),
+                                    case.mnemonic,
+                                    &case.trace,
+                                    &case.allocation,
+                                ),
+                            ));
+                        }
+                        failures.extend(results.into_iter().filter_map(Result::err));
+                    }
+                    failures
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().expect("worker"))
+            .collect()
+    });
+    assert!(
+        failures.is_empty(),
+        "{} differences over {count} random tables:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    eprintln!("random tables: {count} run in the FST interpreter, matiec and awlsim, traces equal");
+}
