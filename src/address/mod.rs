@@ -4,7 +4,10 @@
 use std::fmt;
 
 mod modes;
+mod names;
 pub use modes::Modes;
+
+pub use names::{KEYWORDS, reserved_name};
 
 use crate::cell::{Name, Sign};
 use crate::table::StepTable;
@@ -326,70 +329,6 @@ fn steps_where(table: &StepTable, test: impl Fn(&crate::table::Step) -> bool) ->
         1 => format!("STEP {}", numbers[0]),
         _ => format!("STEPS {}", numbers.join(", ")),
     }
-}
-
-/// IEC 61131-3 keywords (and the common vendor ones) no identifier may be.
-#[rustfmt::skip]
-pub const KEYWORDS: &[&str] = &[
-    "ABS", "ACTION", "AND", "ANY", "ARRAY", "AT", "BOOL", "BY", "BYTE", "CASE", "CONFIGURATION",
-    "CONSTANT", "DATE", "DINT", "DO", "DT", "DWORD", "ELSE", "ELSIF", "END_ACTION", "END_CASE",
-    "END_CONFIGURATION", "END_FOR", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_IF",
-    "END_PROGRAM", "END_REPEAT", "END_RESOURCE", "END_STEP", "END_STRUCT", "END_TRANSITION",
-    "END_TYPE", "END_VAR", "END_WHILE", "EN", "ENO", "EXIT", "FALSE", "FOR", "FROM",
-    "FUNCTION", "FUNCTION_BLOCK", "IF", "INITIAL_STEP", "INT", "INTERVAL", "LINT", "LREAL",
-    "MOD", "NOT", "OF", "ON", "OR", "PRIORITY", "PROGRAM", "READ_ONLY", "READ_WRITE", "REAL",
-    "REPEAT", "RESOURCE", "RETAIN", "RETURN", "SINT", "STEP", "STRING", "STRUCT", "TASK",
-    "THEN", "TIME", "TO", "TOD", "TRANSITION", "TRUE", "TYPE", "UDINT", "UINT", "ULINT",
-    "UNTIL", "USINT", "VAR", "VAR_ACCESS", "VAR_EXTERNAL", "VAR_GLOBAL", "VAR_INPUT",
-    "VAR_IN_OUT", "VAR_OUTPUT", "VAR_TEMP", "WHILE", "WITH", "WORD", "XOR", "NOP", "JMP",
-    "SET", "RESET", "THEN", "TON", "TOF", "TP", "LOAD", "ELSE", "OTHRW", "CMP", "PSE",
-];
-
-/// Why a machine input or output may not have this (lower-case) name, if
-/// it may not: a keyword of a target language, or a name of the generated
-/// program's own (sensors `x…`, coils `y…`, memories, timers, steps).
-pub fn reserved_name(name: &str) -> Option<String> {
-    if KEYWORDS.contains(&name.to_ascii_uppercase().as_str()) {
-        return Some("it is a keyword of a PLC language".to_string());
-    }
-    const OWN: &[&str] = &[
-        "start",
-        "stop",
-        "estop",
-        "reset_pb",
-        "cont",
-        "start_mem",
-        "halt",
-        "alarm_pl",
-        "alarm_wd",
-        "watchdog",
-        "wd_armed",
-        "wd_run",
-        "wd_pt",
-        "wd_restart",
-        "cycle_req",
-        "busy",
-        "auto_run",
-        "homing",
-        "fired",
-        "active_step",
-        "sequence",
-    ];
-    let numbered = [
-        "x", "y", "m", "t", "dwell", "dw", "home", "step_", "p", "f", "i", "o", "q", "e", "a", "l",
-    ];
-    let after_prefix_is_number = |prefix: &str| {
-        name.strip_prefix(prefix)
-            .and_then(|rest| rest.chars().next())
-            .is_some_and(|c| c.is_ascii_digit())
-    };
-    if OWN.contains(&name) || numbered.iter().any(|p| after_prefix_is_number(p)) {
-        return Some(
-            "the generated program uses it (sensors x…, coils y…, memories, timers, steps and addresses such as I0 or T1)"
-                .to_string(),
-        );
-    }
-    None
 }
 
 /// `21` for actuator 2 position 1; `12_3` once either number has two digits,

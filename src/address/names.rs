@@ -1,0 +1,344 @@
+//! Names a machine signal may not have: keywords of the target languages,
+//! the IEC 61131-3 standard library, addresses of STEP 7 and FST, and the
+//! names the generated program uses for itself.
+
+/// IEC 61131-3 keywords (and the common vendor ones) no identifier may be.
+#[rustfmt::skip]
+pub const KEYWORDS: &[&str] = &[
+    "ABS", "ACTION", "AND", "ANY", "ARRAY", "AT", "BOOL", "BY", "BYTE", "CASE", "CONFIGURATION",
+    "CONSTANT", "DATE", "DINT", "DO", "DT", "DWORD", "ELSE", "ELSIF", "END_ACTION", "END_CASE",
+    "END_CONFIGURATION", "END_FOR", "END_FUNCTION", "END_FUNCTION_BLOCK", "END_IF",
+    "END_PROGRAM", "END_REPEAT", "END_RESOURCE", "END_STEP", "END_STRUCT", "END_TRANSITION",
+    "END_TYPE", "END_VAR", "END_WHILE", "EN", "ENO", "EXIT", "FALSE", "FOR", "FROM",
+    "FUNCTION", "FUNCTION_BLOCK", "IF", "INITIAL_STEP", "INT", "INTERVAL", "LINT", "LREAL",
+    "MOD", "NOT", "OF", "ON", "OR", "PRIORITY", "PROGRAM", "READ_ONLY", "READ_WRITE", "REAL",
+    "REPEAT", "RESOURCE", "RETAIN", "RETURN", "SINT", "STEP", "STRING", "STRUCT", "TASK",
+    "THEN", "TIME", "TO", "TOD", "TRANSITION", "TRUE", "TYPE", "UDINT", "UINT", "ULINT",
+    "UNTIL", "USINT", "VAR", "VAR_ACCESS", "VAR_EXTERNAL", "VAR_GLOBAL", "VAR_INPUT",
+    "VAR_IN_OUT", "VAR_OUTPUT", "VAR_TEMP", "WHILE", "WITH", "WORD", "XOR", "NOP", "JMP",
+    "SET", "RESET", "THEN", "TON", "TOF", "TP", "LOAD", "ELSE", "OTHRW", "CMP", "PSE",
+];
+
+/// Why a machine input or output may not have this (lower-case) name, if
+/// it may not: a keyword of a target language, or a name of the generated
+/// program's own (sensors `x…`, coils `y…`, memories, timers, steps).
+pub fn reserved_name(name: &str) -> Option<String> {
+    let upper = name.to_ascii_uppercase();
+    if KEYWORDS.contains(&upper.as_str()) {
+        return Some("it is a keyword of a PLC language".to_string());
+    }
+    if is_standard_library_name(&upper) {
+        return Some(
+            "it is a standard function, function block or data type of IEC 61131-3 (matiec, OpenPLC and CODESYS would take it for that)"
+                .to_string(),
+        );
+    }
+    const OWN: &[&str] = &[
+        "start",
+        "stop",
+        "estop",
+        "reset_pb",
+        "cont",
+        "start_mem",
+        "halt",
+        "alarm_pl",
+        "alarm_wd",
+        "watchdog",
+        "wd_armed",
+        "wd_run",
+        "wd_pt",
+        "wd_restart",
+        "cycle_req",
+        "busy",
+        "auto_run",
+        "homing",
+        "fired",
+        "active_step",
+        "sequence",
+    ];
+    // Followed by a digit these read as the program's own names or as an
+    // address of STEP 7 (I0, MW2, DB1, T3, Z4) or FST (FW1, TP0, R3, V10).
+    let numbered = [
+        "x", "y", "m", "t", "dwell", "dw", "home", "step_", "p", "f", "i", "o", "q", "e", "a", "l",
+        "c", "z", "r", "v", "db", "di", "fb", "fc", "ob", "sfb", "sfc", "mb", "mw", "md", "ib",
+        "iw", "id", "qb", "qw", "qd", "eb", "ew", "ed", "ab", "aw", "ad", "pib", "piw", "pid",
+        "pqb", "pqw", "pqd", "peb", "pew", "ped", "pab", "paw", "pad", "dbx", "dbb", "dbw", "dbd",
+        "fw", "ow", "tp", "tw", "cp", "cw", "lb", "lw", "ld",
+    ];
+    let after_prefix_is_number = |prefix: &str| {
+        name.strip_prefix(prefix)
+            .and_then(|rest| rest.chars().next())
+            .is_some_and(|c| c.is_ascii_digit())
+    };
+    if OWN.contains(&name) || numbered.iter().any(|p| after_prefix_is_number(p)) {
+        return Some(
+            "the generated program uses it (sensors x…, coils y…, memories, timers, steps and addresses such as I0 or T1)"
+                .to_string(),
+        );
+    }
+    None
+}
+
+/// Elementary and generic data types of IEC 61131-3.
+const TYPES: &[&str] = &[
+    "BOOL",
+    "SINT",
+    "INT",
+    "DINT",
+    "LINT",
+    "USINT",
+    "UINT",
+    "UDINT",
+    "ULINT",
+    "REAL",
+    "LREAL",
+    "TIME",
+    "LTIME",
+    "DATE",
+    "TIME_OF_DAY",
+    "TOD",
+    "DATE_AND_TIME",
+    "DT",
+    "STRING",
+    "WSTRING",
+    "CHAR",
+    "WCHAR",
+    "BYTE",
+    "WORD",
+    "DWORD",
+    "LWORD",
+    "ANY",
+    "ANY_DERIVED",
+    "ANY_ELEMENTARY",
+    "ANY_MAGNITUDE",
+    "ANY_NUM",
+    "ANY_REAL",
+    "ANY_INT",
+    "ANY_BIT",
+    "ANY_STRING",
+    "ANY_DATE",
+    "ANY_NBIT",
+    "ANY_SINT",
+    "ANY_UINT",
+];
+
+/// Standard functions and function blocks (IEC 61131-3 and the libraries
+/// matiec and OpenPLC ship), without their typed variants (`ADD_INT`).
+const LIBRARY: &[&str] = &[
+    "ABS",
+    "ACOS",
+    "ADD",
+    "AND",
+    "ASIN",
+    "ATAN",
+    "CONCAT",
+    "COS",
+    "CTD",
+    "CTU",
+    "CTUD",
+    "DELETE",
+    "DERIVATIVE",
+    "DIV",
+    "DIVTIME",
+    "EQ",
+    "EXP",
+    "EXPT",
+    "FIND",
+    "F_TRIG",
+    "GE",
+    "GT",
+    "HYSTERESIS",
+    "INSERT",
+    "INTEGRAL",
+    "LE",
+    "LEFT",
+    "LEN",
+    "LIMIT",
+    "LN",
+    "LOG",
+    "LT",
+    "MAX",
+    "MID",
+    "MIN",
+    "MOD",
+    "MOVE",
+    "MUL",
+    "MULTIME",
+    "MUX",
+    "NE",
+    "NOT",
+    "OR",
+    "PID",
+    "RAMP",
+    "REPLACE",
+    "RIGHT",
+    "ROL",
+    "ROR",
+    "RS",
+    "RTC",
+    "R_TRIG",
+    "SEL",
+    "SEMA",
+    "SHL",
+    "SHR",
+    "SIN",
+    "SQRT",
+    "SR",
+    "SUB",
+    "TAN",
+    "TOF",
+    "TON",
+    "TP",
+    "TRUNC",
+    "XOR",
+    "ROTARY_SWITCH",
+    "TCP_CLOSE",
+    "TCP_CONNECT",
+    "TCP_RECEIVE",
+    "TCP_SEND",
+    "ADD_DT_TIME",
+    "ADD_TOD_TIME",
+    "CONCAT_DATE_TOD",
+    "SUB_DATE_DATE",
+    "SUB_DT_DT",
+    "SUB_DT_TIME",
+    "SUB_TOD_TIME",
+    "SUB_TOD_TOD",
+    "CONCAT_DT_TOD",
+    "SLM_04THM_CONFIG",
+    "SLM_ANALOG_IN_4",
+    "SLM_ANALOG_IN_8",
+    "SLM_ANALOG_OUT_4",
+    "SLM_ANALOG_OUT_8",
+    "SLM_DISCRETE_IN_16",
+    "SLM_DISCRETE_IN_8",
+    "SLM_DISCRETE_OUT_15",
+    "SLM_DISCRETE_OUT_16",
+    "SLM_DISCRETE_OUT_8",
+    "SLM_INIT",
+    "SLM_TEMPERATURE_4",
+    "SM_16DIN",
+    "SM_16RELAY",
+    "SM_4REL4IN",
+    "SM_8DIN",
+    "SM_8MOSFET",
+    "SM_8RELAY",
+    "SM_BAS",
+    "SM_HOME",
+    "SM_INDUSTRIAL",
+    "SM_RTD",
+];
+
+/// Whether an (upper-case) name is a standard function, function block or
+/// type: one of them, a typed variant (`ADD_INT`, `CTU_DINT`), or a
+/// conversion (`INT_TO_REAL`, `BYTE_BCD_TO_UINT`, `TRUNC_INT`).
+fn is_standard_library_name(name: &str) -> bool {
+    if TYPES.contains(&name) || LIBRARY.contains(&name) {
+        return true;
+    }
+    // Typed variants, once or twice (`MUX_DINT_BOOL`).
+    let typed = TYPES.iter().any(|t| {
+        name.strip_suffix(t)
+            .and_then(|base| base.strip_suffix('_'))
+            .is_some_and(|base| {
+                LIBRARY.contains(&base) || TYPES.contains(&base) || is_standard_library_name(base)
+            })
+    });
+    if typed {
+        return true;
+    }
+    let side = |text: &str| {
+        text == "BCD"
+            || TYPES.contains(&text)
+            || text
+                .strip_suffix("_BCD")
+                .is_some_and(|t| TYPES.contains(&t))
+            || text
+                .strip_prefix("BCD_")
+                .is_some_and(|t| TYPES.contains(&t))
+    };
+    name.match_indices("_TO_")
+        .any(|(at, _)| side(&name[..at]) && side(&name[at + 4..]))
+        || name.strip_prefix("TO_").is_some_and(side)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn standard_functions_blocks_and_types_are_refused() {
+        for name in [
+            "max",
+            "min",
+            "left",
+            "right",
+            "limit",
+            "move",
+            "sel",
+            "len",
+            "ctu",
+            "r_trig",
+            "lword",
+            "mux",
+            "abs",
+            "sqrt",
+            "concat",
+            "mid",
+            "find",
+            "insert",
+            "delete",
+            "replace",
+            "trunc",
+            "ton",
+            "tof",
+            "tp",
+            "rs",
+            "sr",
+            "f_trig",
+            "ctd",
+            "ctud",
+            "rtc",
+            "sema",
+            "pid",
+            "ramp",
+            "integral",
+            "derivative",
+            "hysteresis",
+            "expt",
+            "shl",
+            "rol",
+            "wstring",
+            "add_int",
+            "ctu_dint",
+            "int_to_real",
+            "byte_bcd_to_uint",
+            "uint_to_bcd_word",
+            "date_and_time_to_time_of_day",
+            "sub_dt_dt",
+            "mux_dint",
+            "time_of_day",
+            "any_num",
+        ] {
+            assert!(reserved_name(name).is_some(), "{name}");
+        }
+        for name in [
+            "vacuum",
+            "heater",
+            "fan",
+            "clamp",
+            "part_present",
+            "maxi",
+            "left_door",
+        ] {
+            assert_eq!(reserved_name(name), None, "{name}");
+        }
+    }
+
+    #[test]
+    fn addresses_of_step7_and_fst_are_refused() {
+        for name in ["mw10", "db1", "z3", "c1", "fw2", "tp0", "r3", "v10", "dbx0"] {
+            assert!(reserved_name(name).is_some(), "{name}");
+        }
+    }
+}
