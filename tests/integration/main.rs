@@ -6,6 +6,7 @@ mod broken;
 mod diagram;
 mod differential;
 mod differential_random;
+mod differential_timing;
 mod engines;
 mod exports;
 mod fuzz_regressions;
