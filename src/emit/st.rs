@@ -101,6 +101,44 @@ struct Context {
     task_name: &'static str,
     instance_name: &'static str,
     task_interval: String,
+    /// The task interval as CODESYS writes it (`PT0.01S`).
+    task_interval_xsd: String,
+    /// CODESYS object ids of the program and the global variable list:
+    /// stable for a name, so that a re-import replaces the same objects.
+    program_object_id: String,
+    gvl_object_id: String,
+}
+
+/// A GUID derived from `text` (FNV-1a, 128 bits, formatted as a version 4
+/// UUID): the same text gives the same id on every run.
+pub fn object_id(text: &str) -> String {
+    let mut hash: u128 = 0x6c62_272e_07bb_0142_62b8_2175_6295_c58d;
+    for byte in text.bytes() {
+        hash ^= byte as u128;
+        hash = hash.wrapping_mul(0x0000_0000_0100_0000_0000_0000_0000_013b);
+    }
+    let b = hash.to_be_bytes();
+    let hex = |range: std::ops::Range<usize>| {
+        b[range]
+            .iter()
+            .map(|x| format!("{x:02x}"))
+            .collect::<String>()
+    };
+    let version = format!("4{}", &hex(6..8)[1..]);
+    let variant = format!("{:x}{}", 8 | (b[8] >> 4 & 3), &hex(8..10)[1..]);
+    format!(
+        "{}-{}-{version}-{variant}-{}",
+        hex(0..4),
+        hex(4..6),
+        hex(10..16)
+    )
+}
+
+/// `PT0.01S` for 10 ms: an XML Schema duration.
+fn xsd_duration(ms: u32) -> String {
+    let seconds = format!("{}.{:03}", ms / 1000, ms % 1000);
+    let seconds = seconds.trim_end_matches('0').trim_end_matches('.');
+    format!("PT{seconds}S")
 }
 
 /// The fixed creation time of generated files: outputs are byte-stable.
@@ -298,7 +336,41 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
         task_name: "cyclic_task",
         instance_name: "main_instance",
         task_interval: format!("T#{scan_millis}ms"),
+        task_interval_xsd: xsd_duration(scan_millis),
+        program_object_id: object_id(&format!("{}/{PROGRAM_NAME}", input.name)),
+        gvl_object_id: object_id(&format!("{}/GVL_IO", input.name)),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn object_ids_are_stable_guids() {
+        let id = object_id("paper_example/steptable_main");
+        assert_eq!(id, object_id("paper_example/steptable_main"));
+        assert_ne!(id, object_id("paper_example/GVL_IO"));
+        let parts: Vec<&str> = id.split('-').collect();
+        assert_eq!(
+            parts.iter().map(|p| p.len()).collect::<Vec<_>>(),
+            [8, 4, 4, 4, 12]
+        );
+        assert!(parts[2].starts_with('4'));
+        assert!(matches!(
+            parts[3].chars().next(),
+            Some('8' | '9' | 'a' | 'b')
+        ));
+        assert!(id.chars().all(|c| c == '-' || c.is_ascii_hexdigit()));
+    }
+
+    #[test]
+    fn intervals_as_xml_durations() {
+        assert_eq!(xsd_duration(10), "PT0.01S");
+        assert_eq!(xsd_duration(5), "PT0.005S");
+        assert_eq!(xsd_duration(1000), "PT1S");
+        assert_eq!(xsd_duration(1250), "PT1.25S");
+    }
 }
 
 /// Which IEC file to render.

@@ -69,7 +69,11 @@ fn plcopen_and_codesys_xml_validate_against_the_official_schema() {
         let path = if file.to_string_lossy().ends_with(".codesys.xml") {
             let text = std::fs::read_to_string(file).unwrap();
             assert!(text.contains("xmlns=\"http://www.plcopen.org/xml/tc6_0200\""));
-            assert!(text.contains("<pou name=\"PLC_PRG\" pouType=\"program\">"));
+            // Not PLC_PRG: every CODESYS Standard project has one already.
+            assert!(text.contains("<pou name=\"steptable_main\" pouType=\"program\">"));
+            assert!(!text.contains("PLC_PRG"));
+            assert!(text.contains("<task name=\"MainTask\" interval=\"PT0.01S\""));
+            assert_eq!(text.matches("<ObjectId>").count(), 2);
             assert!(text.contains("<globalVars name=\"GVL_IO\">"));
             let swapped = file.with_extension("v201.xml");
             std::fs::write(&swapped, text.replace("tc6_0200", "tc6_0201")).unwrap();

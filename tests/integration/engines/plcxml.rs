@@ -150,7 +150,21 @@ pub fn structured_text(xml: &str) -> Result<String, String> {
     st.push_str("\nEND_PROGRAM\n\n");
     let (task, interval, priority) =
         task.unwrap_or(("cyclic_task".into(), "T#10ms".into(), "0".into()));
-    let (instance, type_name) = instance.unwrap_or(("main_instance".into(), program));
+    let (instance, type_name) = match instance {
+        // CODESYS calls the program by its own name, with no type; IEC
+        // needs an instance name of its own.
+        Some((_, t)) if t.is_empty() => ("main_instance".into(), program),
+        Some(pair) => pair,
+        None => ("main_instance".into(), program),
+    };
+    // CODESYS writes the interval as an XML duration (PT0.01S).
+    let interval = match interval
+        .strip_prefix("PT")
+        .and_then(|t| t.strip_suffix('S'))
+    {
+        Some(seconds) => format!("T#{seconds}s"),
+        None => interval,
+    };
     st.push_str(&format!(
         "CONFIGURATION {}\n  RESOURCE {} ON PLC\n    TASK {task}(INTERVAL := {interval}, PRIORITY := {priority});\n    PROGRAM {instance} WITH {task} : {type_name};\n  END_RESOURCE\nEND_CONFIGURATION\n",
         configuration.unwrap_or_else(|| "Config0".into()),
