@@ -67,11 +67,15 @@ pub enum OutputKind {
     SymbolTable,
     FstAllocation,
     Rockwell,
+    /// CoDeSys V2.3 export (`.exp`).
+    CodesysV2,
+    /// A Beremiz / OpenPLC Editor project folder (`NAME.beremiz/`).
+    Beremiz,
 }
 
 impl OutputKind {
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 14] = [
+    pub const ALL: [OutputKind; 16] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -86,6 +90,8 @@ impl OutputKind {
         OutputKind::SymbolTable,
         OutputKind::FstAllocation,
         OutputKind::Rockwell,
+        OutputKind::CodesysV2,
+        OutputKind::Beremiz,
     ];
 
     /// The name used with `--formats`.
@@ -105,7 +111,14 @@ impl OutputKind {
             OutputKind::SymbolTable => "sdf",
             OutputKind::FstAllocation => "fst-alloc",
             OutputKind::Rockwell => "rockwell",
+            OutputKind::CodesysV2 => "exp",
+            OutputKind::Beremiz => "beremiz",
         }
+    }
+
+    /// How many files it writes: a Beremiz project folder holds two.
+    pub fn file_count(self) -> usize {
+        if self == OutputKind::Beremiz { 2 } else { 1 }
     }
 
     /// The end of the file name, after `NAME`.
@@ -125,6 +138,8 @@ impl OutputKind {
             OutputKind::SymbolTable => ".sdf",
             OutputKind::FstAllocation => ".fst-alloc.csv",
             OutputKind::Rockwell => ".rockwell.csv",
+            OutputKind::CodesysV2 => ".exp",
+            OutputKind::Beremiz => ".beremiz",
         }
     }
 
@@ -474,11 +489,15 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
             OutputKind::StructuredText
             | OutputKind::PlcOpen
             | OutputKind::Codesys
-            | OutputKind::Gvl => {
+            | OutputKind::Gvl
+            | OutputKind::CodesysV2
+            | OutputKind::Beremiz => {
                 let file = match kind {
                     OutputKind::StructuredText => IecFile::StructuredText,
                     OutputKind::PlcOpen => IecFile::PlcOpen,
                     OutputKind::Codesys => IecFile::Codesys,
+                    OutputKind::CodesysV2 => IecFile::CodesysV2,
+                    OutputKind::Beremiz => IecFile::BeremizProject,
                     _ => IecFile::GlobalVariables,
                 };
                 let model = match &iec_model {
@@ -488,7 +507,27 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
                         iec_model.insert(model).clone()
                     }
                 };
-                text(emit::st::render(&input, &model, file))?
+                if kind == OutputKind::Beremiz {
+                    // A project folder Beremiz and the OpenPLC Editor open
+                    // as it is: the PLCopen XML as plc.xml, and beremiz.xml.
+                    let folder = format!("{name}{}", kind.suffix());
+                    let plc = text(emit::st::render(&input, &model, IecFile::PlcOpen))?;
+                    files.push(OutputFile {
+                        name: format!("{folder}/plc.xml"),
+                        bytes: plc,
+                    });
+                    files.push(OutputFile {
+                        name: format!("{folder}/beremiz.xml"),
+                        bytes: text(emit::st::render(&input, &model, file))?,
+                    });
+                    continue;
+                }
+                let rendered = emit::st::render(&input, &model, file);
+                if kind == OutputKind::CodesysV2 {
+                    text(rendered.map(|t| emit::crlf(&t)))?
+                } else {
+                    text(rendered)?
+                }
             }
             OutputKind::TiaTags => {
                 emit::tables::render_tia_tags(&input).map_err(|e| internal("TIA tag table", &e))?
@@ -499,11 +538,15 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
                     .clone();
                 match kind {
                     OutputKind::Awl => text(emit::awl::render_awl(&input, &model))?,
-                    _ => text(emit::awl::render_sdf(&input, &model))?,
+                    _ => text(emit::awl::render_sdf(&input, &model).map(|t| emit::crlf(&t)))?,
                 }
             }
-            OutputKind::FstAllocation => text(emit::tables::render_fst_alloc(&input))?,
-            OutputKind::Rockwell => text(emit::tables::render_rockwell(&input))?,
+            OutputKind::FstAllocation => {
+                text(emit::tables::render_fst_alloc(&input).map(|t| emit::crlf(&t)))?
+            }
+            OutputKind::Rockwell => {
+                text(emit::tables::render_rockwell(&input).map(|t| emit::crlf(&t)))?
+            }
         };
         files.push(OutputFile {
             name: format!("{name}{}", kind.suffix()),

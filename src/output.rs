@@ -52,6 +52,9 @@ pub fn write_files(
     let mut staged = Vec::with_capacity(files.len());
     for file in files {
         let target = folder.join(&file.name);
+        // A project folder's files (`NAME.beremiz/plc.xml`) go below it.
+        let parent = target.parent().unwrap_or(folder);
+        std::fs::create_dir_all(parent).map_err(|e| io_error(parent, e))?;
         let mut builder = tempfile::Builder::new();
         builder.prefix(".steptable-").suffix(".tmp");
         // Temporary files are private (0600); outputs are ordinary files,
@@ -62,7 +65,7 @@ pub fn write_files(
             builder.permissions(std::fs::Permissions::from_mode(0o666));
         }
         let mut temp = builder
-            .tempfile_in(folder)
+            .tempfile_in(parent)
             .map_err(|e| io_error(&target, e))?;
         temp.write_all(&file.bytes)
             .and_then(|_| temp.as_file().sync_all())

@@ -120,3 +120,28 @@ pub fn one_line(text: &str) -> String {
         .map(|c| if c.is_control() { ' ' } else { c })
         .collect()
 }
+
+/// Text with Windows line ends, for the lists Windows tools import (STEP 7
+/// symbol tables, Studio 5000 and FST lists, CoDeSys V2.3 exports).
+pub fn crlf(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() + text.len() / 20);
+    for line in text.split_inclusive('\n') {
+        match line.strip_suffix('\n') {
+            Some(body) => {
+                out.push_str(body.strip_suffix('\r').unwrap_or(body));
+                out.push_str("\r\n");
+            }
+            None => out.push_str(line),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn crlf_ends_every_line_once() {
+        assert_eq!(super::crlf("a\nb\r\nc"), "a\r\nb\r\nc");
+        assert_eq!(super::crlf("a\n\n"), "a\r\n\r\n");
+    }
+}

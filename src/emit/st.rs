@@ -384,6 +384,10 @@ pub enum IecFile {
     Codesys,
     /// `NAME.gvl.txt`, a CODESYS global variable list.
     GlobalVariables,
+    /// `NAME.exp`, a CoDeSys V2.3 export (global variable list and program).
+    CodesysV2,
+    /// `NAME.beremiz/beremiz.xml`, the project file beside `plc.xml`.
+    BeremizProject,
 }
 
 /// The data every IEC template lays out, with the program body rendered once:
@@ -403,6 +407,8 @@ pub fn render(
         IecFile::PlcOpen => "plcopen.xml.j2",
         IecFile::Codesys => "codesys.xml.j2",
         IecFile::GlobalVariables => "gvl.txt.j2",
+        IecFile::CodesysV2 => "program.exp.j2",
+        IecFile::BeremizProject => "beremiz.xml.j2",
     };
     input.templates.render(template, model.clone())
 }

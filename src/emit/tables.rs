@@ -90,6 +90,9 @@ pub fn render_rockwell(input: &EmitInput) -> Result<String, templates::TemplateE
         .render("rockwell.csv.j2", Value::from(Serde(&context)))
 }
 
+/// The TIA Portal version the tag table is laid out for.
+pub const TIA_VERSION: &str = "V17";
+
 /// The columns of a TIA Portal PLC tag table export, in order.
 pub const TIA_COLUMNS: [&str; 10] = [
     "Name",
@@ -105,12 +108,17 @@ pub const TIA_COLUMNS: [&str; 10] = [
 ];
 
 /// `NAME.tags.xlsx`: sheet `PLC Tags` as TIA Portal's tag table import reads
-/// it, with `%I0.0` / `%Q0.0` addresses (the physical byte.bit of each signal).
+/// it, with `%I0.0` / `%Q0.0` addresses (`%E0.0` / `%A0.0` with German
+/// mnemonics; the physical byte.bit of each signal).
 pub fn render_tia_tags(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     let alloc = input.allocation;
     let mut workbook = Workbook::new();
+    // TIA Portal's own tag table exports carry their version as a custom
+    // document property.
     workbook.set_properties(
-        &DocProperties::new().set_creation_datetime(&ExcelDateTime::from_ymd(2020, 1, 1)?),
+        &DocProperties::new()
+            .set_creation_datetime(&ExcelDateTime::from_ymd(2020, 1, 1)?)
+            .set_custom_property("TIA_Version", TIA_VERSION),
     );
     let sheet = workbook.add_worksheet();
     sheet.set_name("PLC Tags")?;
@@ -121,10 +129,11 @@ pub fn render_tia_tags(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     for (i, a) in alloc.inputs.iter().chain(&alloc.outputs).enumerate() {
         let row = i as u32 + 1;
         let (byte, bit) = a.address.byte_bit();
-        let letter = if a.address.area == Area::Input {
-            "I"
-        } else {
-            "Q"
+        let letter = match (a.address.area, alloc.mnemonic) {
+            (Area::Input, Mnemonic::En) => "I",
+            (Area::Input, Mnemonic::De) => "E",
+            (_, Mnemonic::En) => "Q",
+            (_, Mnemonic::De) => "A",
         };
         sheet.write_string(row, 0, a.signal.ident())?;
         sheet.write_string(row, 1, "Default tag table")?;

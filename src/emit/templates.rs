@@ -49,6 +49,14 @@ pub const DEFAULTS: &[(&str, &str)] = &[
         "rockwell.csv.j2",
         include_str!("../../templates/rockwell.csv.j2"),
     ),
+    (
+        "program.exp.j2",
+        include_str!("../../templates/program.exp.j2"),
+    ),
+    (
+        "beremiz.xml.j2",
+        include_str!("../../templates/beremiz.xml.j2"),
+    ),
 ];
 
 /// A template failed to load or render.

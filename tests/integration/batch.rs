@@ -184,7 +184,9 @@ fn ctrl_c_leaves_only_complete_outputs_and_a_summary() {
         .unwrap();
     // Wait until some outputs exist, then interrupt.
     let start = std::time::Instant::now();
-    while files_below(&out).len() < 14 && start.elapsed() < std::time::Duration::from_secs(20) {
+    while files_below(&out).len() < crate::helpers::all_files()
+        && start.elapsed() < std::time::Duration::from_secs(20)
+    {
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
     std::process::Command::new("kill")
@@ -203,8 +205,8 @@ fn ctrl_c_leaves_only_complete_outputs_and_a_summary() {
         assert!(stdout.contains("interrupted:"), "{stdout}");
     }
     assert_eq!(converted + skipped, 80, "{summary}");
-    // Each folder is complete: all 14 files, no temporary file left.
-    let kinds = steptable::convert::OutputKind::ALL.len();
+    // Each folder is complete: every file, no temporary file left.
+    let kinds = crate::helpers::all_files();
     for entry in std::fs::read_dir(&out).unwrap().flatten() {
         if entry.path().is_dir() {
             let files = files_below(&entry.path());
@@ -250,7 +252,7 @@ fn two_runs_into_one_folder_leave_complete_outputs() {
     for i in 0..6 {
         let folder = out.join(format!("line{i:02}"));
         let files = files_below(&folder);
-        assert_eq!(files.len(), steptable::convert::OutputKind::ALL.len());
+        assert_eq!(files.len(), crate::helpers::all_files());
         let st = std::fs::read(folder.join(format!("line{i:02}.st"))).unwrap();
         assert_eq!(st.len(), expected.len());
     }

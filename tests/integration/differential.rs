@@ -88,7 +88,7 @@ fn structured_text_runs_in_matiec_as_simulated() {
 }
 
 #[test]
-fn st_inside_plcopen_and_codesys_xml_runs_in_matiec_as_simulated() {
+fn st_inside_plcopen_codesys_and_exp_runs_in_matiec_as_simulated() {
     let Some(shared) = require_shared("the PLCopen/CODESYS differential test") else {
         return;
     };

@@ -317,3 +317,61 @@ fn a_broken_user_template_names_file_line_and_variable() {
         .stderr(contains("nothing written"));
     assert!(files_below(&dir.path().join("out")).is_empty());
 }
+
+/// The lists Windows tools import use CRLF; the CoDeSys V2.3 export has the
+/// markers of CoDeSys' own export files; the Beremiz project folder holds
+/// the PLCopen XML as plc.xml beside beremiz.xml; the TIA tag table carries
+/// TIA_Version and German %E/%A addresses with --mnemonic de.
+#[test]
+fn windows_lists_codesys_v2_beremiz_and_tia_details() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("convert")
+        .arg(sample("press_station.xlsx"))
+        .args(["--mnemonic", "de", "--target", "siemens", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let out = dir.path().join("press_station");
+    for suffix in [".sdf", ".rockwell.csv", ".fst-alloc.csv", ".exp"] {
+        let bytes = std::fs::read(out.join(format!("press_station{suffix}"))).unwrap();
+        let text = String::from_utf8(bytes).unwrap();
+        let lf = text.matches('\n').count();
+        assert!(lf > 3, "{suffix}");
+        assert_eq!(
+            text.matches("\r\n").count(),
+            lf,
+            "{suffix}: every line ends in CRLF"
+        );
+    }
+    let exp = std::fs::read_to_string(out.join("press_station.exp")).unwrap();
+    for marker in [
+        "(* @NESTEDCOMMENTS := 'Yes' *)",
+        "(* @GLOBAL_VARIABLE_LIST := 'GVL_IO' *)",
+        "(* @PATH := '' *)",
+        "(* @OBJECTFLAGS := '0, 8' *)",
+        "(* @END_DECLARATION := '0' *)",
+        "(* @OBJECT_END := 'GVL_IO' *)",
+        "PROGRAM steptable_main\r\n",
+        "part_present AT %IX0.7 : BOOL;",
+    ] {
+        assert!(exp.contains(marker), "{marker}: {exp}");
+    }
+    let beremiz = out.join("press_station.beremiz");
+    assert_eq!(
+        std::fs::read(beremiz.join("plc.xml")).unwrap(),
+        std::fs::read(out.join("press_station.plcopen.xml")).unwrap()
+    );
+    let project = std::fs::read_to_string(beremiz.join("beremiz.xml")).unwrap();
+    assert!(project.contains("<BeremizRoot") && project.contains("<TargetType/>"));
+    let tags = out.join("press_station.tags.xlsx");
+    let custom = crate::helpers::xlsx_part(&tags, "docProps/custom.xml");
+    assert!(custom.contains("name=\"TIA_Version\""), "{custom}");
+    let rows = read_sheet(&tags, "PLC Tags");
+    assert!(
+        rows[1..]
+            .iter()
+            .all(|r| r[3].starts_with("%E") || r[3].starts_with("%A")),
+        "{rows:?}"
+    );
+}

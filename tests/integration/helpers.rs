@@ -165,3 +165,11 @@ pub fn require_shared(what: &str) -> Option<PathBuf> {
     eprintln!("note: ../shared is not beside the repository, so {what} did not run");
     None
 }
+
+/// How many files one conversion with every format writes.
+pub fn all_files() -> usize {
+    steptable::convert::OutputKind::ALL
+        .iter()
+        .map(|k| k.file_count())
+        .sum()
+}

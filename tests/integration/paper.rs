@@ -202,7 +202,7 @@ fn outputs_are_byte_stable_and_reruns_replace_them() {
         .iter()
         .map(|p| std::fs::read(p).unwrap())
         .collect();
-    assert_eq!(first.len(), steptable::convert::OutputKind::ALL.len());
+    assert_eq!(first.len(), crate::helpers::all_files());
     assert_eq!(first, second);
 }
 
@@ -290,7 +290,7 @@ fn the_binary_converts_every_sample_for_every_target() {
         let files = crate::helpers::files_below(dir.path());
         assert_eq!(
             files.len(),
-            steptable::convert::OutputKind::ALL.len() * crate::helpers::samples().len(),
+            crate::helpers::all_files() * crate::helpers::samples().len(),
             "{target}: {files:?}"
         );
     }

@@ -7,7 +7,7 @@ use steptable::convert::{Settings, convert_path};
 use crate::helpers::samples;
 
 /// Every text output, by the end of its name.
-const TEXT_OUTPUTS: [&str; 10] = [
+const TEXT_OUTPUTS: [&str; 11] = [
     ".st",
     ".fst.txt",
     ".io.csv",
@@ -18,6 +18,7 @@ const TEXT_OUTPUTS: [&str; 10] = [
     ".sdf",
     ".fst-alloc.csv",
     ".rockwell.csv",
+    ".exp",
 ];
 
 #[test]

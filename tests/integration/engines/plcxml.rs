@@ -172,3 +172,23 @@ pub fn structured_text(xml: &str) -> Result<String, String> {
     ));
     Ok(st)
 }
+
+/// The `.st` matiec would compile from a CoDeSys V2.3 export: its global
+/// variable list becomes the program's own I/O block (CoDeSys links the two
+/// by name), its program as written, and a configuration to run it.
+pub fn from_codesys_v2(exp: &str) -> Result<String, String> {
+    let text = exp.replace("\r\n", "\n");
+    let globals = text
+        .split_once("VAR_GLOBAL\n")
+        .and_then(|(_, rest)| rest.split_once("END_VAR"))
+        .map(|(vars, _)| vars)
+        .ok_or("no VAR_GLOBAL block")?;
+    let start = text.find("\nPROGRAM ").ok_or("no PROGRAM")? + 1;
+    let end = text.rfind("END_PROGRAM").ok_or("no END_PROGRAM")?;
+    let program = &text[start..end];
+    let (head, rest) = program.split_once('\n').ok_or("empty PROGRAM")?;
+    let name = head.trim_start_matches("PROGRAM").trim();
+    Ok(format!(
+        "{head}\n  VAR\n{globals}  END_VAR\n{rest}END_PROGRAM\n\nCONFIGURATION Config0\n  RESOURCE Res0 ON PLC\n    TASK cyclic_task(INTERVAL := T#10ms, PRIORITY := 0);\n    PROGRAM main_instance WITH cyclic_task : {name};\n  END_RESOURCE\nEND_CONFIGURATION\n"
+    ))
+}
