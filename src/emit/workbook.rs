@@ -250,6 +250,14 @@ fn faults_sheet(
     Ok(())
 }
 
+/// Pixels of one row at the default height.
+const ROW_PIXELS: u32 = 20;
+
+/// Height in pixels of one actuator's chart: taller with more positions.
+fn chart_height(pmax: u32) -> u32 {
+    90 + 45 * pmax.max(1)
+}
+
 /// The displacement-step diagram as native Excel charts: the positions at the
 /// step boundaries in a small table, and one line chart per actuator, stacked
 /// like the lanes of the hand-drawn diagram.
@@ -278,6 +286,9 @@ fn diagram_sheet(
     }
     let last_row = header + boundaries as u32;
     let chart_col = report.actuators.len() as u16 + 2;
+    // Charts stack downwards, each starting below the one above it: rows
+    // are 20 pixels high (15 points, the sheet's default), plus one spare.
+    let mut chart_row = 1u32;
     for (i, (number, pmax)) in report.actuators.iter().enumerate() {
         let col = i as u16 + 1;
         sheet.write_string_with_format(header, col, format!("C{number}"), bold)?;
@@ -302,9 +313,10 @@ fn diagram_sheet(
             .set_min(0)
             .set_max((*pmax).max(1) as f64)
             .set_major_unit(1);
-        chart.set_width(560).set_height(90 + 45 * (*pmax).max(1));
-        let row = 1 + i as u32 * (8 + 2 * (*pmax).max(1));
-        sheet.insert_chart(row, chart_col, &chart)?;
+        let height = chart_height(*pmax);
+        chart.set_width(560).set_height(height);
+        sheet.insert_chart(chart_row, chart_col, &chart)?;
+        chart_row += height.div_ceil(ROW_PIXELS) + 1;
     }
     Ok(())
 }

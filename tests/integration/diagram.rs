@@ -83,3 +83,40 @@ fn the_readme_diagram_is_current() {
         "regenerate docs/paper_example.diagram.svg with `steptable convert samples/paper_example.xlsx`"
     );
 }
+
+/// The DIAGRAM sheet's charts, one per cylinder, do not cover each other:
+/// each starts below the row where the one above it ends.
+#[test]
+fn diagram_charts_do_not_overlap() {
+    let dir = tempfile::tempdir().unwrap();
+    crate::helpers::steptable()
+        .arg("convert")
+        .arg(crate::helpers::sample("paper_example.xlsx"))
+        .args(["--formats", "xlsx", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let book = dir.path().join("paper_example/paper_example.xlsx");
+    let drawing = crate::helpers::xlsx_part(&book, "xl/drawings/drawing1.xml");
+    let rows = |tag: &str| -> Vec<u32> {
+        drawing
+            .split(&format!("<xdr:{tag}>"))
+            .skip(1)
+            .map(|part| {
+                let row = part.split("<xdr:row>").nth(1).unwrap();
+                row.split('<').next().unwrap().parse().unwrap()
+            })
+            .collect()
+    };
+    let (from, to) = (rows("from"), rows("to"));
+    assert_eq!(from.len(), 4, "{drawing}");
+    for k in 1..from.len() {
+        assert!(
+            from[k] > to[k - 1],
+            "chart {k} starts at row {} but chart {} ends at row {}",
+            from[k],
+            k - 1,
+            to[k - 1]
+        );
+    }
+}
