@@ -89,16 +89,36 @@ fn table_layout(
 }
 
 /// The custom validation rule of one move cell (relative to its top-left
-/// cell B4): empty, or `C` then a digit, with a + or - somewhere, or a cell
-/// starting with a dwell `T=`, a wait `I:` or an output `Y:`. The tool's own
-/// check is stricter; this catches typing slips while typing.
+/// cell B4): empty, or `C` (also Cyrillic or full-width) then a digit (also
+/// subscript or full-width), spaces aside, with a sign somewhere (+, -, the
+/// minus sign, dashes, full-width and raised or lowered signs: every spelling
+/// the reader accepts), or a cell starting with a dwell `T=`, a wait `I:` or
+/// an output `Y:`. The tool's own check is stricter; this catches typing
+/// slips while typing.
 fn move_rule() -> Formula {
-    Formula::new(
-        "=OR(TRIM(B4)=\"\",AND(LEFT(TRIM(B4),1)=\"C\",ISNUMBER(VALUE(MID(TRIM(B4),2,1))),\
-         OR(ISNUMBER(FIND(\"+\",B4)),ISNUMBER(FIND(\"-\",B4)),ISNUMBER(FIND(\"\u{2212}\",B4)))),\
-         LEFT(UPPER(TRIM(B4)),2)=\"T=\",LEFT(UPPER(TRIM(B4)),2)=\"I:\",LEFT(UPPER(TRIM(B4)),2)=\"Y:\")",
-    )
+    let signs: String = MOVE_SIGNS
+        .chars()
+        .map(|c| format!("ISNUMBER(FIND(\"{c}\",B4))"))
+        .collect::<Vec<_>>()
+        .join(",");
+    Formula::new(format!(
+        "=OR(TRIM(B4)=\"\",AND(ISNUMBER(FIND(LEFT(TRIM(B4),1),\"{MOVE_LETTERS}\")),\
+         OR(ISNUMBER(VALUE(MID({SQUEEZED},2,1))),ISNUMBER(FIND(MID({SQUEEZED},2,1),\"{MOVE_DIGITS}\"))),\
+         OR({signs})),\
+         LEFT(UPPER(TRIM(B4)),2)=\"T=\",LEFT(UPPER(TRIM(B4)),2)=\"I:\",LEFT(UPPER(TRIM(B4)),2)=\"Y:\")"
+    ))
 }
+
+/// The cell without spaces (also no-break ones), to find its second character.
+const SQUEEZED: &str = "SUBSTITUTE(SUBSTITUTE(TRIM(B4),\" \",\"\"),\"\u{00A0}\",\"\")";
+/// The letters a move cell may start with: C, Cyrillic Es, full-width C.
+const MOVE_LETTERS: &str = "Cc\u{0421}\u{0441}\u{FF23}\u{FF43}";
+/// Digits other than 0-9 the reader accepts: subscript, superscript and
+/// full-width.
+const MOVE_DIGITS: &str = "\u{2070}\u{00B9}\u{00B2}\u{00B3}\u{2074}\u{2075}\u{2076}\u{2077}\u{2078}\u{2079}\u{2080}\u{2081}\u{2082}\u{2083}\u{2084}\u{2085}\u{2086}\u{2087}\u{2088}\u{2089}\u{FF10}\u{FF11}\u{FF12}\u{FF13}\u{FF14}\u{FF15}\u{FF16}\u{FF17}\u{FF18}\u{FF19}";
+/// Every sign the reader accepts: plus, hyphen-minus, minus sign, the
+/// dashes U+2010 to U+2015, full-width, superscript and subscript signs.
+const MOVE_SIGNS: &str = "+-\u{2212}\u{2010}\u{2011}\u{2012}\u{2013}\u{2014}\u{2015}\u{FF0B}\u{FF0D}\u{207A}\u{207B}\u{208A}\u{208B}\u{FE62}\u{FE63}";
 
 /// Builds the template workbook with `branches` × `steps` move cells.
 pub fn template_workbook(branches: u16, steps: u32) -> Result<Vec<u8>, XlsxError> {

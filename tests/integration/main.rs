@@ -8,6 +8,7 @@ mod differential;
 mod differential_random;
 mod differential_timing;
 mod engines;
+mod excel_formula;
 mod exports;
 mod fuzz_regressions;
 mod helpers;

@@ -230,3 +230,77 @@ fn an_invalid_setting_names_its_cell() {
         .stderr(contains("SETTINGS!B2").and(contains("nothing written")));
     assert!(crate::helpers::files_below(&dir.path().join("out")).is_empty());
 }
+
+/// The template's cell validation accepts every spelling the reader accepts
+/// (dashes, the minus sign, full-width and raised or lowered signs and
+/// digits, Cyrillic C, spaces) and still flags what is no move at all. The
+/// rule is read from the written workbook and evaluated on its own.
+#[test]
+fn the_templates_validation_accepts_what_the_reader_accepts() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.xlsx");
+    steptable()
+        .arg("template")
+        .arg("-o")
+        .arg(&path)
+        .assert()
+        .success();
+    let sheet = crate::helpers::xlsx_part(&path, "xl/worksheets/sheet1.xml");
+    let formula = sheet
+        .split("<formula1>")
+        .nth(1)
+        .and_then(|f| f.split("</formula1>").next())
+        .expect("a custom validation rule");
+    let formula = formula
+        .replace("&quot;", "\"")
+        .replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&amp;", "&");
+    let formula = format!("={formula}");
+    let accepted = [
+        "C2+1",
+        "c2-1",
+        "C1 + 1",
+        "C2\u{2212}1",
+        "C2\u{2013}1",
+        "C2\u{2014}1",
+        "C2\u{2010}1",
+        "C2\u{FF0D}1",
+        "C2\u{FF0B}1",
+        "C\u{2082}\u{208B}1",
+        "C\u{2082}\u{207A}1",
+        "\u{0421}2-1",
+        "\u{FF23}2+1",
+        "C\u{FF12}-1",
+        "C\u{00A0}2+1",
+        "C2+",
+        "C12+3",
+        "T=2s",
+        "I:part",
+        "Y:lamp+",
+        "C3+1; T=2s",
+        "",
+    ];
+    for cell in accepted {
+        if !cell.is_empty()
+            && cell.starts_with(['C', 'c', '\u{0421}', '\u{FF23}'])
+            && !cell.contains(';')
+        {
+            // The reader takes it as a move of some cylinder.
+            assert!(
+                steptable::cell::parse_move(cell).is_ok(),
+                "the reader refuses {cell:?}"
+            );
+        }
+        assert!(
+            crate::excel_formula::evaluate(&formula, cell),
+            "the template refuses {cell:?}"
+        );
+    }
+    for cell in ["hello", "2+1", "X2+1", "C+1", "Cx-1", "C21"] {
+        assert!(
+            !crate::excel_formula::evaluate(&formula, cell),
+            "the template accepts {cell:?}"
+        );
+    }
+}
