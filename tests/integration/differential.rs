@@ -93,12 +93,16 @@ fn st_inside_plcopen_codesys_and_exp_runs_in_matiec_as_simulated() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    let cases = matrix(dir.path(), &["--formats", "plcopen,codesys"]);
+    let cases = matrix(dir.path(), &["--formats", "plcopen,codesys,exp"]);
     run_all(&cases, |c| {
-        for suffix in [".plcopen.xml", ".codesys.xml"] {
-            let xml = std::fs::read_to_string(c.file(suffix)).unwrap();
-            let st =
-                plcxml::structured_text(&xml).map_err(|e| format!("{}: {suffix}: {e}", c.label))?;
+        for suffix in [".plcopen.xml", ".codesys.xml", ".exp"] {
+            let text = std::fs::read_to_string(c.file(suffix)).unwrap();
+            let st = if suffix == ".exp" {
+                plcxml::from_codesys_v2(&text)
+            } else {
+                plcxml::structured_text(&text)
+            };
+            let st = st.map_err(|e| format!("{}: {suffix}: {e}", c.label))?;
             let path = c.dir.join(format!("{}{suffix}.st", c.name));
             std::fs::write(&path, st).unwrap();
             c.check(
@@ -109,7 +113,7 @@ fn st_inside_plcopen_codesys_and_exp_runs_in_matiec_as_simulated() {
         Ok(())
     });
     eprintln!(
-        "matiec: {} PLCopen and {0} CODESYS programs run, traces equal",
+        "matiec: {} PLCopen, {0} CODESYS V3 and {0} CoDeSys V2.3 programs run, traces equal",
         cases.len()
     );
 }

@@ -21,5 +21,6 @@ mod safety;
 mod simulate;
 mod snapshots;
 mod synth;
+mod synth_engines;
 mod template;
 mod valves;

@@ -18,14 +18,9 @@ fn located_name(iec: &str) -> String {
 }
 
 /// The harness: storage for every located variable the program declares
-/// (Beremiz's way, from `LOCATED_VARIABLES.h`), then one scan per input line.
-fn harness(trace: &IoTrace, allocation: &Allocation) -> Result<String, String> {
-    let name = |s| {
-        allocation
-            .address_of(s)
-            .map(|a| located_name(&a.iec()))
-            .ok_or_else(|| format!("{s:?} has no address"))
-    };
+/// (Beremiz's way, from `LOCATED_VARIABLES.h`), then one scan per input line
+/// (`%IX0.1` order as given), printing the outputs after each.
+fn harness(scan_ms: u32, inputs: &[String], outputs: &[String]) -> String {
     let mut c = String::from(
         "#include <stdio.h>\n#include \"iec_std_lib.h\"\n\
          #define __LOCATED_VAR(type, name, ...) type __##name;\n#include \"LOCATED_VARIABLES.h\"\n#undef __LOCATED_VAR\n\
@@ -34,21 +29,39 @@ fn harness(trace: &IoTrace, allocation: &Allocation) -> Result<String, String> {
          int main(void) {\n  char line[4096];\n  unsigned long tick = 0;\n  config_init__();\n\
          while (fgets(line, sizeof line, stdin)) {\n",
     );
-    let ms = trace.scan_ms as u64;
     writeln!(
         c,
-        "    unsigned long long t = (unsigned long long)tick * {ms}ULL;\n    __CURRENT_TIME.tv_sec = t / 1000; __CURRENT_TIME.tv_nsec = (t % 1000) * 1000000;"
+        "    unsigned long long t = (unsigned long long)tick * {scan_ms}ULL;\n    __CURRENT_TIME.tv_sec = t / 1000; __CURRENT_TIME.tv_nsec = (t % 1000) * 1000000;"
     )
     .unwrap();
-    for (k, s) in trace.signals.inputs.iter().enumerate() {
-        writeln!(c, "    *{} = line[{k}] == '1';", name(*s)?).unwrap();
+    for (k, address) in inputs.iter().enumerate() {
+        writeln!(c, "    *{} = line[{k}] == '1';", located_name(address)).unwrap();
     }
     c.push_str("    config_run__(tick++);\n");
-    for s in &trace.signals.outputs {
-        writeln!(c, "    putchar(*{} ? '1' : '0');", name(*s)?).unwrap();
+    for address in outputs {
+        writeln!(c, "    putchar(*{} ? '1' : '0');", located_name(address)).unwrap();
     }
-    c.push_str("    putchar('\\n');\n  }\n  return 0;\n}\n");
-    Ok(c)
+    c.push_str("    putchar('\\n');\n    fflush(stdout);\n  }\n  return 0;\n}\n");
+    c
+}
+
+/// The IEC addresses of the trace's inputs and outputs.
+fn addresses(
+    trace: &IoTrace,
+    allocation: &Allocation,
+) -> Result<(Vec<String>, Vec<String>), String> {
+    let iec = |signals: &[steptable::address::Signal]| {
+        signals
+            .iter()
+            .map(|s| {
+                allocation
+                    .address_of(*s)
+                    .map(|a| a.iec())
+                    .ok_or_else(|| format!("{s:?} has no address"))
+            })
+            .collect::<Result<Vec<_>, _>>()
+    };
+    Ok((iec(&trace.signals.inputs)?, iec(&trace.signals.outputs)?))
 }
 
 /// Compiles `st` with matiec (`shared/tools/matiec`) and returns the C files'
@@ -74,20 +87,28 @@ pub fn compile(shared: &Path, st: &Path, work: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// Runs `st` on the recorded inputs; the outputs of every scan.
-pub fn run(
+/// A program compiled with matiec and linked with the harness.
+pub struct Program {
+    _work: tempfile::TempDir,
+    exe: std::path::PathBuf,
+}
+
+/// Compiles `st` and links it with a harness that reads `inputs` and prints
+/// `outputs` (IEC addresses) once per scan of `scan_ms`.
+pub fn build(
     shared: &Path,
     st: &Path,
-    trace: &IoTrace,
-    allocation: &Allocation,
-) -> Result<Vec<Vec<bool>>, String> {
+    scan_ms: u32,
+    inputs: &[String],
+    outputs: &[String],
+) -> Result<Program, String> {
     let work = tempfile::tempdir().map_err(|e| e.to_string())?;
-    let work = work.path();
-    compile(shared, st, work)?;
-    std::fs::write(work.join("harness.c"), harness(trace, allocation)?)
+    let dir = work.path();
+    compile(shared, st, dir)?;
+    std::fs::write(dir.join("harness.c"), harness(scan_ms, inputs, outputs))
         .map_err(|e| e.to_string())?;
     // The resource file includes POUS.c; the configuration file is the other.
-    let mut sources: Vec<String> = std::fs::read_dir(work)
+    let mut sources: Vec<String> = std::fs::read_dir(dir)
         .map_err(|e| e.to_string())?
         .filter_map(|e| e.ok())
         .map(|e| e.file_name().to_string_lossy().to_string())
@@ -95,7 +116,7 @@ pub fn run(
         .collect();
     sources.sort();
     let output = Command::new("cc")
-        .current_dir(work)
+        .current_dir(dir)
         .args(["-O0", "-w", "-I"])
         .arg(shared.join("tools/matiec/lib/C"))
         .args(["-I", "."])
@@ -109,21 +130,84 @@ pub fn run(
             String::from_utf8_lossy(&output.stderr)
         ));
     }
-    let mut child = Command::new(work.join("plc"))
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .map_err(|e| e.to_string())?;
-    let input = input_lines(trace);
-    let mut stdin = child.stdin.take().expect("stdin");
-    let writer = std::thread::spawn(move || {
-        use std::io::Write;
-        let _ = stdin.write_all(input.as_bytes());
-    });
-    let output = child.wait_with_output().map_err(|e| e.to_string())?;
-    let _ = writer.join();
-    if !output.status.success() {
-        return Err(format!("the compiled program crashed: {}", output.status));
+    let exe = dir.join("plc");
+    Ok(Program { _work: work, exe })
+}
+
+impl Program {
+    /// Runs every input line at once; the outputs of every scan.
+    pub fn replay(&self, lines: String) -> Result<Vec<Vec<bool>>, String> {
+        let mut child = Command::new(&self.exe)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .spawn()
+            .map_err(|e| e.to_string())?;
+        let mut stdin = child.stdin.take().expect("stdin");
+        let writer = std::thread::spawn(move || {
+            use std::io::Write;
+            let _ = stdin.write_all(lines.as_bytes());
+        });
+        let output = child.wait_with_output().map_err(|e| e.to_string())?;
+        let _ = writer.join();
+        if !output.status.success() {
+            return Err(format!("the compiled program crashed: {}", output.status));
+        }
+        Ok(output_lines(&String::from_utf8_lossy(&output.stdout)))
     }
-    Ok(output_lines(&String::from_utf8_lossy(&output.stdout)))
+
+    /// Starts the program for a closed loop: one scan per [`Live::scan`].
+    pub fn live(&self) -> Result<Live, String> {
+        let mut child = Command::new(&self.exe)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .spawn()
+            .map_err(|e| e.to_string())?;
+        let stdin = child.stdin.take().expect("stdin");
+        let stdout = std::io::BufReader::new(child.stdout.take().expect("stdout"));
+        Ok(Live {
+            child,
+            stdin,
+            stdout,
+        })
+    }
+}
+
+/// A running program, scanned one cycle at a time.
+pub struct Live {
+    child: std::process::Child,
+    stdin: std::process::ChildStdin,
+    stdout: std::io::BufReader<std::process::ChildStdout>,
+}
+
+impl Live {
+    /// One scan: the inputs in, the outputs out.
+    pub fn scan(&mut self, inputs: &[bool]) -> Result<Vec<bool>, String> {
+        use std::io::{BufRead, Write};
+        let line: String = inputs.iter().map(|b| if *b { '1' } else { '0' }).collect();
+        writeln!(self.stdin, "{line}").map_err(|e| e.to_string())?;
+        let mut out = String::new();
+        self.stdout.read_line(&mut out).map_err(|e| e.to_string())?;
+        if out.is_empty() {
+            return Err("the program ended".to_string());
+        }
+        Ok(out.trim_end().chars().map(|c| c == '1').collect())
+    }
+}
+
+impl Drop for Live {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Runs `st` on the recorded inputs; the outputs of every scan.
+pub fn run(
+    shared: &Path,
+    st: &Path,
+    trace: &IoTrace,
+    allocation: &Allocation,
+) -> Result<Vec<Vec<bool>>, String> {
+    let (inputs, outputs) = addresses(trace, allocation)?;
+    build(shared, st, trace.scan_ms, &inputs, &outputs)?.replay(input_lines(trace))
 }
