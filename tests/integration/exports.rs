@@ -1,6 +1,7 @@
 //! Exports to other engineering tools, checked with real tools where one is
-//! available: xmllint against the official PLCopen schema, awlsim (an S7
-//! simulator) running the AWL source, blark (an IEC 61131-3 parser) on the ST.
+//! available: xmllint against the official PLCopen schema, blark (an IEC
+//! 61131-3 parser) on the ST. The programs run in their engines in
+//! `differential.rs`.
 //!
 //! `.ci/run` installs these tools and sets STEPTABLE_REQUIRE_TOOLS=1, which
 //! turns a missing tool into a failure; on a developer machine without them
@@ -139,33 +140,6 @@ fn tia_tag_table_has_the_import_layout() {
             .iter()
             .all(|r| r[3].starts_with("%I") || r[3].starts_with("%Q"))
     );
-}
-
-#[test]
-fn awl_sources_run_in_awlsim_with_both_mnemonic_sets() {
-    let Some(awlsim) = require("awlsim-test") else {
-        return;
-    };
-    for mnemonic in ["en", "de"] {
-        let dir = tempfile::tempdir().unwrap();
-        let files = convert_all(dir.path(), &["--formats", "awl", "--mnemonic", mnemonic]);
-        for file in files {
-            // Half a second of simulated CPU is thousands of OB 1 cycles.
-            let output = Command::new(&awlsim)
-                .args(["-D", "-L", "2", "-M", "0.5", "-m", mnemonic])
-                .arg(&file)
-                .output()
-                .unwrap();
-            let text = String::from_utf8_lossy(&output.stdout).to_string()
-                + &String::from_utf8_lossy(&output.stderr);
-            assert!(output.status.success(), "{}: {text}", file.display());
-            assert!(
-                !text.to_lowercase().contains("error"),
-                "{}: {text}",
-                file.display()
-            );
-        }
-    }
 }
 
 #[test]
