@@ -150,15 +150,20 @@ pub(crate) struct CommonArgs {
     pub(crate) modes: Option<Modes>,
     /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: reverse order of the last moves).
     #[arg(long, value_name = "ORDER", value_parser = parse_home_order)]
-    pub(crate) home_order: Option<Vec<Vec<u32>>>,
+    pub(crate) home_order: Option<HomeOrder>,
 }
+
+/// Homing stages, each a list of actuator numbers. A type of its own: clap
+/// takes a bare `Vec` for a flag given several times, and panicked.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct HomeOrder(pub(crate) Vec<Vec<u32>>);
 
 pub(crate) fn parse_modes(text: &str) -> Result<Modes, String> {
     Modes::parse(text)
 }
 
-pub(crate) fn parse_home_order(text: &str) -> Result<Vec<Vec<u32>>, String> {
-    Modes::parse_home_order(text)
+pub(crate) fn parse_home_order(text: &str) -> Result<HomeOrder, String> {
+    Modes::parse_home_order(text).map(HomeOrder)
 }
 
 pub(crate) fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<OutputKind>, String> {
@@ -246,7 +251,7 @@ impl CommonArgs {
             settings.explicit.modes = true;
         }
         if let Some(order) = &self.home_order {
-            settings.program.modes.home_order = Some(order.clone());
+            settings.program.modes.home_order = Some(order.0.clone());
             settings.explicit.home_order = true;
         }
         if let Some(valves) = &self.valve {

@@ -1,6 +1,7 @@
 //! Operating modes in simulation: STOP, EMERGENCY STOP, RESET and continuous
 //! operation, run as scripts of button presses against the paper's example.
 
+use predicates::prelude::PredicateBooleanExt;
 use steptable::address::{Allocation, Mnemonic, Modes, Signal, Target};
 use steptable::program::{self, ProgramOptions, StepProgram};
 use steptable::simulate::scenario::{ScenarioReport, scenario};
@@ -392,4 +393,51 @@ fn broken_stop_and_emergency_stop_wires_are_safe_stalls() {
     }
     // A CONTINUOUS switch stuck on restarts the machine by itself.
     assert_eq!(outcome(Signal::Continuous, true), Outcome::Hazard);
+}
+
+/// `--home-order` through the binary, in every command that takes it: the
+/// stages land in the program as given, and an order that leaves out a
+/// cylinder is E030 (it once panicked for every value).
+#[test]
+fn home_order_flag_through_the_binary() {
+    let dir = tempfile::tempdir().unwrap();
+    let sample = crate::helpers::sample("paper_example.xlsx");
+    crate::helpers::steptable()
+        .arg("convert")
+        .arg(&sample)
+        .args([
+            "--modes",
+            "reset",
+            "--home-order",
+            "C1, C2&C3, C4",
+            "--formats",
+            "st",
+            "-o",
+        ])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let st = std::fs::read_to_string(dir.path().join("paper_example/paper_example.st")).unwrap();
+    assert!(st.contains("(* homing stage 1: C1 home *)"), "{st}");
+    assert!(st.contains("(* homing stage 2: C2, C3 home *)"), "{st}");
+    assert!(st.contains("(* homing stage 3: C4 home *)"), "{st}");
+    for command in ["check", "simulate", "faults"] {
+        let mut cmd = crate::helpers::steptable();
+        cmd.arg(command)
+            .arg(&sample)
+            .args(["--modes", "reset", "--home-order", "C4&C3, C2, C1"]);
+        if command == "faults" {
+            cmd.arg("-o").arg(dir.path().join("faults"));
+        }
+        cmd.assert().success();
+        crate::helpers::steptable()
+            .arg(command)
+            .arg(&sample)
+            .args(["--modes", "reset", "--home-order", "C2, C1"])
+            .assert()
+            .code(1)
+            .stderr(
+                predicates::str::contains("E030").and(predicates::str::contains("leaves out C3")),
+            );
+    }
 }
