@@ -359,12 +359,48 @@ fn check_valves(
     }
 }
 
-/// The output base name for an input path: its file stem.
+/// Longest output base name, in bytes: with the longest file name after it
+/// (`NAME.beremiz/beremiz.xml`) and a temporary file's affixes, every name
+/// stays within the 255 bytes file systems allow.
+pub const MAX_NAME_BYTES: usize = 200;
+
+/// The output base name for an input path: its file stem, made safe as a
+/// folder and file name: control characters become `_`, leading and
+/// trailing dots and spaces go (an input named `...csv` must not write into
+/// `DIR/..`), and it is cut to [`MAX_NAME_BYTES`]. Empty: `steptable`.
 pub fn output_name(path: &Path) -> String {
-    path.file_stem()
+    let stem = path
+        .file_stem()
         .map(|s| s.to_string_lossy().to_string())
-        .filter(|s| !s.is_empty())
-        .unwrap_or_else(|| "steptable".to_string())
+        .unwrap_or_default();
+    let cleaned: String = stem
+        .chars()
+        .map(|c| {
+            if c.is_control() || c == '/' || c == '\\' {
+                '_'
+            } else {
+                c
+            }
+        })
+        .collect();
+    let mut name = cleaned
+        .trim_matches(|c: char| c == '.' || c.is_whitespace())
+        .to_string();
+    if name.len() > MAX_NAME_BYTES {
+        let mut cut = MAX_NAME_BYTES;
+        while !name.is_char_boundary(cut) {
+            cut -= 1;
+        }
+        name.truncate(cut);
+        name = name
+            .trim_end_matches(|c: char| c == '.' || c.is_whitespace())
+            .to_string();
+    }
+    if name.is_empty() {
+        "steptable".to_string()
+    } else {
+        name
+    }
 }
 
 /// Distinct output names for several inputs, in order: the file stem, or
@@ -568,6 +604,17 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn output_names_stay_inside_the_output_folder() {
+        assert_eq!(output_name(Path::new("...csv")), "steptable");
+        assert_eq!(output_name(Path::new("..csv")), "steptable");
+        assert_eq!(output_name(Path::new(".hidden.xlsx")), "hidden");
+        assert_eq!(output_name(Path::new("a\nb.csv")), "a_b");
+        let long = format!("{}.csv", "é".repeat(200));
+        let name = output_name(Path::new(&long));
+        assert!(name.len() <= MAX_NAME_BYTES && name.chars().all(|c| c == 'é'));
+    }
 
     #[test]
     fn colliding_inputs_get_distinct_names() {

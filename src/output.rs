@@ -72,10 +72,15 @@ pub fn write_files(
             .map_err(|e| io_error(&target, e))?;
         staged.push((temp, target));
     }
-    let mut written = Vec::with_capacity(staged.len());
+    let mut written: Vec<PathBuf> = Vec::with_capacity(staged.len());
     for (temp, target) in staged {
-        temp.persist(&target)
-            .map_err(|e| io_error(&target, e.error))?;
+        if let Err(e) = temp.persist(&target) {
+            // All or none: take back what this run already put in place.
+            for path in &written {
+                let _ = std::fs::remove_file(path);
+            }
+            return Err(io_error(&target, e.error));
+        }
         written.push(target);
     }
     Ok(written)

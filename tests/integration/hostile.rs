@@ -534,3 +534,33 @@ fn a_formula_showing_a_move_is_a_move() {
     std::fs::write(&path, bytes).unwrap();
     steptable().arg("check").arg(&path).assert().success();
 }
+
+/// Input names that are no safe folder name (`...csv`, `..csv`, 250
+/// characters) still write every file inside `DIR/NAME/`, and nothing
+/// beside it.
+#[test]
+fn odd_input_names_write_inside_the_output_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let long = format!("{}.csv", "n".repeat(250));
+    for name in ["...csv", "..csv", long.as_str()] {
+        let work = dir.path().join(format!("w{}", name.len()));
+        let out = work.join("out");
+        std::fs::create_dir_all(&work).unwrap();
+        let input = work.join(name);
+        std::fs::write(&input, "C1+1\nC1-0\n").unwrap();
+        crate::helpers::steptable()
+            .arg("convert")
+            .arg(&input)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .success();
+        // Beside the input only the output folder; inside it one folder.
+        let beside: Vec<_> = std::fs::read_dir(&work).unwrap().flatten().collect();
+        assert_eq!(beside.len(), 2, "{name}: {beside:?}");
+        let folders: Vec<_> = std::fs::read_dir(&out).unwrap().flatten().collect();
+        assert_eq!(folders.len(), 1, "{name}");
+        let files = crate::helpers::files_below(&folders[0].path());
+        assert_eq!(files.len(), crate::helpers::all_files(), "{name}");
+    }
+}
