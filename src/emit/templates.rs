@@ -132,6 +132,9 @@ fn environment() -> Result<Environment<'static>, minijinja::Error> {
     });
     env.add_filter("pad", pad);
     env.add_filter("csv", csv_field);
+    // A user's template must end: a loop that runs away runs out of fuel
+    // (the defaults use a few million steps on the largest table allowed).
+    env.set_fuel(Some(TEMPLATE_FUEL));
     Ok(env)
 }
 
@@ -268,8 +271,15 @@ pub fn export_defaults(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     Ok(written)
 }
 
-/// `{{ text | pad(8) }}`: left-justify to a column width.
+/// How many steps one template may take to render.
+pub const TEMPLATE_FUEL: u64 = 200_000_000;
+
+/// Widest column `pad` makes (Rust's formatter refuses widths past 65,535).
+const MAX_PAD: usize = 1000;
+
+/// `{{ text | pad(8) }}`: left-justify to a column width (at most 1,000).
 fn pad(value: String, width: usize) -> String {
+    let width = width.min(MAX_PAD);
     format!("{value:<width$}")
 }
 

@@ -349,3 +349,45 @@ fn windows_lists_codesys_v2_beremiz_and_tia_details() {
         "{rows:?}"
     );
 }
+
+/// A user's template can neither crash steptable nor keep it busy for ever:
+/// a huge `pad` width is capped, a runaway loop runs out of fuel (exit 1,
+/// the template named, nothing written).
+#[test]
+fn runaway_user_templates_are_stopped() {
+    let dir = tempfile::tempdir().unwrap();
+    let templates = dir.path().join("t");
+    std::fs::create_dir_all(&templates).unwrap();
+    std::fs::write(templates.join("gvl.txt.j2"), "{{ title | pad(70000) }}|\n").unwrap();
+    let out = dir.path().join("out1");
+    steptable()
+        .arg("convert")
+        .arg(sample("paper_example.xlsx"))
+        .args(["--formats", "gvl", "--templates"])
+        .arg(&templates)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let gvl = std::fs::read_to_string(out.join("paper_example/paper_example.gvl.txt")).unwrap();
+    assert_eq!(gvl.trim_end().len(), 1001, "padded to the 1,000-column cap");
+    std::fs::write(
+        templates.join("gvl.txt.j2"),
+        "{% for a in range(100000) %}{% for b in range(100000) %}.{% endfor %}{% endfor %}\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out2");
+    let started = std::time::Instant::now();
+    steptable()
+        .arg("convert")
+        .arg(sample("paper_example.xlsx"))
+        .args(["--formats", "gvl", "--templates"])
+        .arg(&templates)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(contains("gvl.txt.j2"));
+    assert!(started.elapsed() < std::time::Duration::from_secs(120));
+    assert!(files_below(&out).is_empty());
+}
