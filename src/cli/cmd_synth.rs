@@ -23,15 +23,37 @@ pub(crate) struct SynthArgs {
     /// Seed of the GA and GP (PCG: the same answer on every machine).
     #[arg(long, default_value_t = 1)]
     pub(crate) seed: u64,
-    /// Population size μ of the GA and GP.
-    #[arg(long, default_value_t = 500)]
+    /// Population size μ of the GA and GP (2 to 5,000).
+    #[arg(long, default_value_t = 500, value_parser = parse_mu)]
     pub(crate) mu: usize,
-    /// (μ+λ)/μ of the GA and GP.
-    #[arg(long, default_value_t = 4)]
+    /// (μ+λ)/μ of the GA and GP (2 to 6).
+    #[arg(long, default_value_t = 4, value_parser = parse_ratio)]
     pub(crate) ratio: usize,
-    /// Generations of the GA.
-    #[arg(long, default_value_t = 400)]
+    /// Generations of the GA (1 to 100,000).
+    #[arg(long, default_value_t = 400, value_parser = parse_generations)]
     pub(crate) generations: usize,
+}
+
+/// A whole number within `low..=high`, or why not.
+fn bounded(text: &str, low: usize, high: usize, what: &str) -> Result<usize, String> {
+    match text.trim().parse::<usize>() {
+        Ok(n) if (low..=high).contains(&n) => Ok(n),
+        _ => Err(format!("{what} is a whole number from {low} to {high}")),
+    }
+}
+
+// The paper's ranges are μ 50-5000 and (μ+λ)/μ 2-6; beyond them the
+// population outgrows memory (μ = 10^8 asked for 3.2 GB at once).
+fn parse_mu(text: &str) -> Result<usize, String> {
+    bounded(text, 2, 5000, "μ")
+}
+
+fn parse_ratio(text: &str) -> Result<usize, String> {
+    bounded(text, 2, 6, "(μ+λ)/μ")
+}
+
+fn parse_generations(text: &str) -> Result<usize, String> {
+    bounded(text, 1, 100_000, "the number of generations")
 }
 
 #[derive(Clone, Copy, ValueEnum)]

@@ -102,3 +102,39 @@ fn a_sequence_with_a_dwell_is_refused_with_its_reason() {
             "STEP 1 (C1+1; T=2s) is not one cylinder move: synthesis handles sequences of moves only",
         ));
 }
+
+/// The GA's population flags are bounded: a huge μ is refused with the range
+/// instead of aborting on a multi-gigabyte allocation; the bounds themselves
+/// run.
+#[test]
+fn ga_parameters_are_bounded() {
+    for (flag, value) in [
+        ("--mu", "100000000"),
+        ("--mu", "1e8"),
+        ("--ratio", "40"),
+        ("--generations", "0"),
+    ] {
+        crate::helpers::steptable()
+            .args(["synth", "--sequence", "A1 A0 B1 B0", flag, value])
+            .assert()
+            .failure()
+            .stderr(predicates::str::contains("is a whole number from"));
+    }
+    let dir = tempfile::tempdir().unwrap();
+    crate::helpers::steptable()
+        .args(["synth", "--sequence", "A1 A0 B1 B0", "--method", "ga"])
+        .args([
+            "--mu",
+            "5000",
+            "--ratio",
+            "2",
+            "--generations",
+            "3",
+            "--seed",
+            "7",
+            "-o",
+        ])
+        .arg(dir.path())
+        .assert()
+        .success();
+}
