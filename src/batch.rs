@@ -73,15 +73,18 @@ impl Outcome {
 
 /// The files and patterns to convert, expanded. Folders are walked
 /// recursively for `.xlsx .xlsm .xls .ods .csv`, skipping hidden files, Excel
-/// lock files (`~$…`) and anything inside `exclude` (the output folder, so a
-/// rerun does not convert its own outputs). A path that is neither a file, a
-/// folder nor a pattern matching something is returned in the second list.
-pub fn expand_inputs(paths: &[PathBuf], exclude: &Path) -> (Vec<PathBuf>, Vec<PathBuf>) {
-    let exclude = std::fs::canonicalize(exclude).ok();
+/// lock files (`~$…`) and what an earlier run wrote into the output folder
+/// `out` (`OUT/NAME/NAME.*` and its own `summary.csv`), so a rerun does not
+/// convert its own outputs while the tables beside them still count. A path
+/// that is neither a file, a folder nor a pattern matching something is
+/// returned in the second list.
+pub fn expand_inputs(paths: &[PathBuf], out: &Path) -> (Vec<PathBuf>, Vec<PathBuf>) {
+    let out = std::fs::canonicalize(out).ok();
     let excluded = |p: &Path| {
-        exclude
-            .as_ref()
-            .is_some_and(|ex| std::fs::canonicalize(p).is_ok_and(|c| c.starts_with(ex)))
+        let (Some(out), Ok(path)) = (out.as_ref(), std::fs::canonicalize(p)) else {
+            return false;
+        };
+        written_by_steptable(out, &path)
     };
     let mut found = Vec::new();
     let mut missing = Vec::new();
@@ -113,6 +116,56 @@ pub fn expand_inputs(paths: &[PathBuf], exclude: &Path) -> (Vec<PathBuf>, Vec<Pa
     let mut seen = std::collections::BTreeSet::new();
     found.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
     (found, missing)
+}
+
+/// The file name for the batch summary in `out`: `summary.csv`, unless a
+/// file of that name is there that is not an earlier summary (a user's
+/// table): then `steptable-summary.csv`, so that nothing the user wrote is
+/// overwritten.
+pub fn summary_name(out: &Path) -> &'static str {
+    let path = out.join("summary.csv");
+    let ours = match (std::fs::canonicalize(out), std::fs::canonicalize(&path)) {
+        (Ok(out), Ok(path)) => written_by_steptable(&out, &path),
+        _ => true,
+    };
+    if ours {
+        "summary.csv"
+    } else {
+        "steptable-summary.csv"
+    }
+}
+
+/// The header of `summary.csv`.
+const SUMMARY_HEADER: [&str; 7] = [
+    "file",
+    "status",
+    "errors",
+    "first error",
+    "steps",
+    "actuators",
+    "milliseconds",
+];
+
+/// Whether `path` (canonical) is a file a steptable run wrote into the
+/// output folder `out` (canonical): `OUT/NAME/NAME.*`, or a summary
+/// (`OUT/summary.csv`, `OUT/steptable-summary.csv`) with its own header.
+fn written_by_steptable(out: &Path, path: &Path) -> bool {
+    let Some(parent) = path.parent() else {
+        return false;
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default();
+    if parent == out && (name == "summary.csv" || name == "steptable-summary.csv") {
+        let first = std::fs::read_to_string(path)
+            .ok()
+            .and_then(|t| t.lines().next().map(str::to_string))
+            .unwrap_or_default();
+        return first == SUMMARY_HEADER.join(",");
+    }
+    let folder = parent.file_name().map(|n| n.to_string_lossy().to_string());
+    parent.parent() == Some(out) && folder.is_some_and(|f| name.starts_with(&format!("{f}.")))
 }
 
 fn walk(dir: &Path, files: &mut Vec<PathBuf>) {
@@ -236,15 +289,7 @@ fn convert_one(
 /// milliseconds — one row per input, in input order.
 pub fn summary_csv(outcomes: &[Outcome]) -> Result<OutputFile, csv::Error> {
     let mut writer = csv::Writer::from_writer(Vec::new());
-    writer.write_record([
-        "file",
-        "status",
-        "errors",
-        "first error",
-        "steps",
-        "actuators",
-        "milliseconds",
-    ])?;
+    writer.write_record(SUMMARY_HEADER)?;
     for o in outcomes {
         writer.write_record([
             o.input.display().to_string(),

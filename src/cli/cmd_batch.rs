@@ -123,7 +123,15 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
         report.say(&format!("  failed: {first}"));
     }
     match batch::summary_csv(&outcomes) {
-        Ok(file) => {
+        Ok(mut file) => {
+            file.name = batch::summary_name(&args.output).to_string();
+            if file.name != "summary.csv" {
+                report.say(&format!(
+                    "note: {} holds a summary.csv of yours; the batch summary is {}",
+                    args.output.display(),
+                    file.name
+                ));
+            }
             if let Err(err) = output::write_files(&args.output, &[file], &inputs) {
                 eprintln!("error: {err}");
                 code = EXIT_INTERNAL;

@@ -257,3 +257,43 @@ fn two_runs_into_one_folder_leave_complete_outputs() {
         assert_eq!(st.len(), expected.len());
     }
 }
+
+/// `batch . -o .`: the tables in the folder are converted (not skipped as
+/// "the output folder"), a rerun does not convert what the first run wrote,
+/// and a table of the user's named summary.csv is never overwritten: the
+/// summary takes another name and says so.
+#[test]
+fn batch_into_its_own_input_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = "C1+1\nC1-0\n";
+    std::fs::write(dir.path().join("line.csv"), table).unwrap();
+    std::fs::write(dir.path().join("summary.csv"), table).unwrap();
+    for run in 0..2 {
+        let output = steptable()
+            .current_dir(dir.path())
+            .args(["batch", ".", "-o", "."])
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert!(output.status.success(), "run {run}: {stdout}");
+        assert!(
+            stdout.contains("steptable-summary.csv"),
+            "run {run}: {stdout}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join("summary.csv")).unwrap(),
+            table
+        );
+        let summary = std::fs::read_to_string(dir.path().join("steptable-summary.csv")).unwrap();
+        assert_eq!(
+            summary.lines().count(),
+            3,
+            "run {run}: two tables, no outputs: {summary}"
+        );
+        assert_eq!(summary.matches(",converted,").count(), 2, "{summary}");
+        assert_eq!(
+            files_below(&dir.path().join("line")).len(),
+            crate::helpers::all_files()
+        );
+    }
+}
