@@ -169,6 +169,18 @@ fn written_by_steptable(out: &Path, path: &Path) -> bool {
 }
 
 fn walk(dir: &Path, files: &mut Vec<PathBuf>) {
+    walk_once(dir, files, &mut std::collections::BTreeSet::new());
+}
+
+/// Walks `dir` unless it was walked already: a folder reached again through
+/// a symbolic link (a link to itself, or to a parent) is walked once.
+fn walk_once(dir: &Path, files: &mut Vec<PathBuf>, seen: &mut std::collections::BTreeSet<PathBuf>) {
+    let Ok(real) = std::fs::canonicalize(dir) else {
+        return;
+    };
+    if !seen.insert(real) {
+        return;
+    }
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
     };
@@ -179,7 +191,7 @@ fn walk(dir: &Path, files: &mut Vec<PathBuf>) {
             continue;
         }
         if path.is_dir() {
-            walk(&path, files);
+            walk_once(&path, files, seen);
         } else if Format::from_path(&path)
             .is_some_and(|f| f != Format::Csv || has_csv_extension(&path))
         {
@@ -193,6 +205,9 @@ fn has_csv_extension(path: &Path) -> bool {
     path.extension()
         .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case("csv"))
 }
+
+/// Most conversions run at once: more threads than this only cost memory.
+pub const MAX_JOBS: usize = 64;
 
 /// Converts every input into `out/NAME/`, `jobs` at a time, calling
 /// `on_done` as each finishes. Once `stop` is set, inputs not yet started are

@@ -40,9 +40,17 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
             path.display()
         );
     }
-    let jobs = args
+    let mut jobs = args
         .jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .max(1);
+    if jobs > batch::MAX_JOBS {
+        report.say(&format!(
+            "note: -j {jobs} is more than steptable runs at once; running {} jobs",
+            batch::MAX_JOBS
+        ));
+        jobs = batch::MAX_JOBS;
+    }
     let bar = if !args.quiet && std::io::stderr().is_terminal() {
         let bar = indicatif::ProgressBar::new(inputs.len() as u64);
         bar.set_style(

@@ -297,3 +297,28 @@ fn batch_into_its_own_input_folder() {
         );
     }
 }
+
+/// A folder with symbolic links to itself is walked once, and an absurd
+/// `-j` is capped with a note instead of starting 100,000 threads.
+#[cfg(unix)]
+#[test]
+fn self_linked_folders_and_huge_job_counts_end() {
+    let dir = tempfile::tempdir().unwrap();
+    let tables = dir.path().join("tables");
+    std::fs::create_dir_all(&tables).unwrap();
+    std::fs::write(tables.join("line.csv"), "C1+1\nC1-0\n").unwrap();
+    std::os::unix::fs::symlink(&tables, tables.join("again")).unwrap();
+    std::os::unix::fs::symlink(&tables, tables.join("and_again")).unwrap();
+    let output = steptable()
+        .arg("batch")
+        .arg(&tables)
+        .args(["-j", "100000", "-o"])
+        .arg(dir.path().join("out"))
+        .timeout(std::time::Duration::from_secs(60))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success(), "{stdout}");
+    assert!(stdout.contains("1 converted"), "{stdout}");
+    assert!(stdout.contains("note: -j 100000"), "{stdout}");
+}
