@@ -29,10 +29,32 @@ pub(crate) enum TemplatesCommand {
     Export {
         /// Folder to write the templates into (created if missing).
         dir: PathBuf,
+        /// Replace templates already in the folder (they may be your edits).
+        #[arg(long)]
+        force: bool,
     },
 }
 
 pub(crate) fn run_template(args: &TemplateArgs) -> i32 {
+    if args.output.is_dir() {
+        eprintln!(
+            "error: {} is a folder; give the workbook's file name, e.g. {}",
+            args.output.display(),
+            args.output.join("steptable-template.xlsx").display()
+        );
+        return EXIT_BAD_INPUT;
+    }
+    let is_xlsx = args
+        .output
+        .extension()
+        .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case("xlsx"));
+    if !is_xlsx {
+        eprintln!(
+            "error: {}: the template is an Excel workbook; give it a name ending in .xlsx",
+            args.output.display()
+        );
+        return EXIT_BAD_INPUT;
+    }
     if args.output.exists() && !args.force {
         eprintln!(
             "error: {} exists and may hold your table; choose another -o or add --force",

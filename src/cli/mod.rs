@@ -87,16 +87,26 @@ pub fn run() -> i32 {
         Command::Template(args) => run_template(&args),
         Command::Batch(args) => run_batch(&args),
         Command::Synth(args) => run_synth(&args),
-        Command::Templates(TemplatesCommand::Export { dir }) => {
-            match steptable::emit::templates::export_defaults(&dir) {
+        Command::Templates(TemplatesCommand::Export { dir, force }) => {
+            use steptable::emit::templates::{ExportError, export_defaults};
+            match export_defaults(&dir, force) {
                 Ok(written) => {
                     for path in written {
                         out(&path.display().to_string());
                     }
                     EXIT_OK
                 }
-                Err(err) => {
-                    eprintln!("error: {}: {err}", dir.display());
+                Err(ExportError::Exists(paths)) => {
+                    for path in paths {
+                        eprintln!(
+                            "error: {} exists and may hold your edits; nothing written (add --force to replace the templates)",
+                            path.display()
+                        );
+                    }
+                    EXIT_BAD_INPUT
+                }
+                Err(ExportError::Write(err)) => {
+                    eprintln!("error: {err}");
                     EXIT_INTERNAL
                 }
             }

@@ -199,6 +199,9 @@ impl Templates {
                 .file_name()
                 .map(|n| n.to_string_lossy().to_string())
                 .unwrap_or_default();
+            if editor_leftover(&name) {
+                continue;
+            }
             if !DEFAULTS.iter().any(|(n, _)| *n == name) {
                 let known: Vec<&str> = DEFAULTS.iter().map(|(n, _)| *n).collect();
                 return Err(error(
@@ -259,16 +262,47 @@ impl Templates {
     }
 }
 
-/// Writes the default templates into `dir` (created if missing), to start from.
-pub fn export_defaults(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir)?;
-    let mut written = Vec::new();
-    for (name, source) in DEFAULTS {
-        let path = dir.join(name);
-        std::fs::write(&path, source)?;
-        written.push(path);
+/// Files an editor leaves beside the ones it edits (`.program.st.j2.swp`,
+/// `program.st.j2~`, `#program.st.j2#`, `.bak`): not templates, not typos.
+fn editor_leftover(name: &str) -> bool {
+    name.starts_with('.')
+        || name.starts_with('#')
+        || name.ends_with('~')
+        || [".swp", ".swo", ".bak", ".orig", ".tmp"]
+            .iter()
+            .any(|ext| name.ends_with(ext))
+}
+
+/// Writes the default templates into `dir` (created if missing), to start
+/// from. Templates already there are edits of someone's: without `force`
+/// nothing is written and their paths are the error. Each file is written
+/// to a temporary file and renamed, so a symbolic link in `dir` is replaced,
+/// never written through.
+pub fn export_defaults(dir: &Path, force: bool) -> Result<Vec<PathBuf>, ExportError> {
+    let existing: Vec<PathBuf> = DEFAULTS
+        .iter()
+        .map(|(name, _)| dir.join(name))
+        .filter(|p| p.symlink_metadata().is_ok())
+        .collect();
+    if !existing.is_empty() && !force {
+        return Err(ExportError::Exists(existing));
     }
-    Ok(written)
+    let files: Vec<crate::convert::OutputFile> = DEFAULTS
+        .iter()
+        .map(|(name, source)| crate::convert::OutputFile {
+            name: name.to_string(),
+            bytes: source.as_bytes().to_vec(),
+        })
+        .collect();
+    crate::output::write_files(dir, &files, &[]).map_err(ExportError::Write)
+}
+
+/// Why `templates export` wrote nothing.
+#[derive(Debug)]
+pub enum ExportError {
+    /// These templates exist already (add `--force` to replace them).
+    Exists(Vec<PathBuf>),
+    Write(crate::output::WriteError),
 }
 
 /// How many steps one template may take to render.

@@ -304,3 +304,74 @@ fn the_templates_validation_accepts_what_the_reader_accepts() {
         );
     }
 }
+
+/// `templates export` never overwrites edited templates without `--force`
+/// and never writes through a symbolic link; an editor's swap file in a
+/// `--templates` folder is not taken for a misnamed template; `template -o`
+/// refuses a folder and a name that is not `.xlsx`.
+#[cfg(unix)]
+#[test]
+fn template_files_are_never_clobbered() {
+    let dir = tempfile::tempdir().unwrap();
+    let templates = dir.path().join("t");
+    steptable()
+        .args(["templates", "export"])
+        .arg(&templates)
+        .assert()
+        .success();
+    let edited = templates.join("program.st.j2");
+    let mut text = std::fs::read_to_string(&edited).unwrap();
+    text.push_str("(* my edit *)\n");
+    std::fs::write(&edited, &text).unwrap();
+    steptable()
+        .args(["templates", "export"])
+        .arg(&templates)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains("--force"));
+    assert_eq!(std::fs::read_to_string(&edited).unwrap(), text);
+    // A link to a file elsewhere: --force replaces the link, not the file.
+    let elsewhere = dir.path().join("elsewhere.txt");
+    std::fs::write(&elsewhere, "keep me").unwrap();
+    std::fs::remove_file(templates.join("gvl.txt.j2")).unwrap();
+    std::os::unix::fs::symlink(&elsewhere, templates.join("gvl.txt.j2")).unwrap();
+    steptable()
+        .args(["templates", "export", "--force"])
+        .arg(&templates)
+        .assert()
+        .success();
+    assert_eq!(std::fs::read_to_string(&elsewhere).unwrap(), "keep me");
+    assert!(
+        !templates
+            .join("gvl.txt.j2")
+            .symlink_metadata()
+            .unwrap()
+            .is_symlink()
+    );
+    // An editor's swap file beside the templates does not stop a conversion.
+    std::fs::write(templates.join(".program.st.j2.swp"), "binary junk").unwrap();
+    std::fs::write(templates.join("program.st.j2~"), "backup").unwrap();
+    steptable()
+        .arg("convert")
+        .arg(crate::helpers::sample("paper_example.xlsx"))
+        .args(["--formats", "st", "--templates"])
+        .arg(&templates)
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .assert()
+        .success();
+    // template -o: a folder, or a name that is no workbook.
+    steptable()
+        .args(["template", "-o"])
+        .arg(dir.path())
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains("is a folder"));
+    steptable()
+        .args(["template", "-o"])
+        .arg(dir.path().join("t.csv"))
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(".xlsx"));
+    assert!(!dir.path().join("t.csv").exists());
+}
