@@ -59,11 +59,10 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
         settings.simulation.record_trace = args.diagram.is_some();
         let (_, program) = convert::build_program(&table, &settings);
         let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
-        reporter.say(&format!("{}: {}", display_name(input), report.verdict()));
-        reporter.say(&steptable::simulate::report::step_table(&report));
-        if !report.passed {
-            code = code.max(EXIT_BAD_INPUT);
-        }
+        // The diagram is written before anything is printed: with stdout
+        // closed, printing ends the process (quietly), and the file the user
+        // asked for must exist by then.
+        let mut diagram = None;
         if let Some(dir) = &args.diagram {
             let svg = steptable::emit::diagram::render_svg(
                 name,
@@ -75,16 +74,20 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
                 bytes: svg.into_bytes(),
             };
             match output::write_files(&dir.join(name), &[file], &args.inputs) {
-                Ok(paths) => {
-                    for path in paths {
-                        reporter.say(&format!("  diagram: {}", path.display()));
-                    }
-                }
+                Ok(paths) => diagram = Some(paths),
                 Err(err) => {
                     eprintln!("error: {err}");
                     code = EXIT_INTERNAL;
                 }
             }
+        }
+        reporter.say(&format!("{}: {}", display_name(input), report.verdict()));
+        reporter.say(&steptable::simulate::report::step_table(&report));
+        if !report.passed {
+            code = code.max(EXIT_BAD_INPUT);
+        }
+        for path in diagram.into_iter().flatten() {
+            reporter.say(&format!("  diagram: {}", path.display()));
         }
     }
     code
@@ -114,19 +117,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
             &settings.simulation,
             args.pairs,
         );
-        report.say(&format!("{}: {}", display_name(input), result.summary()));
-        let rows = steptable::faults::rows(&result);
-        let width = rows.iter().map(|r| r[0].len()).max().unwrap_or(5).max(5);
-        report.say(&format!(
-            "  {:<width$}  {:<10}  {:>4}  explanation",
-            "fault", "outcome", "step"
-        ));
-        for r in &rows {
-            report.say(&format!(
-                "  {:<width$}  {:<10}  {:>4}  {}",
-                r[0], r[1], r[2], r[3]
-            ));
-        }
+        // The table is written before anything is printed (see simulate).
         let file = convert::OutputFile {
             name: format!("{name}.faults.csv"),
             bytes: match steptable::faults::render_csv(&result) {
@@ -141,6 +132,19 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         if let Err(err) = output::write_files(&args.output.join(name), &[file], &args.inputs) {
             eprintln!("error: {err}");
             code = EXIT_INTERNAL;
+        }
+        report.say(&format!("{}: {}", display_name(input), result.summary()));
+        let rows = steptable::faults::rows(&result);
+        let width = rows.iter().map(|r| r[0].len()).max().unwrap_or(5).max(5);
+        report.say(&format!(
+            "  {:<width$}  {:<10}  {:>4}  explanation",
+            "fault", "outcome", "step"
+        ));
+        for r in &rows {
+            report.say(&format!(
+                "  {:<width$}  {:<10}  {:>4}  {}",
+                r[0], r[1], r[2], r[3]
+            ));
         }
     }
     code

@@ -70,3 +70,36 @@ fn faults_prints_the_table_and_writes_the_csv() {
         // 7 inputs: 14 single faults and 14·12/2 = 84 pairs of different inputs.
         .stdout(contains("98 fault case(s)").and(contains(" + ")));
 }
+
+/// With stdout closed (a pipe whose reader is gone), `simulate --diagram`
+/// and `faults` still write the files they were asked for.
+#[cfg(unix)]
+#[test]
+fn files_are_written_even_when_stdout_is_closed() {
+    use std::process::Stdio;
+    let dir = tempfile::tempdir().unwrap();
+    let bin = assert_cmd::cargo::cargo_bin("steptable");
+    for (command, flag, expect) in [
+        (
+            "simulate",
+            "--diagram",
+            "paper_example/paper_example.time.svg",
+        ),
+        ("faults", "-o", "paper_example/paper_example.faults.csv"),
+    ] {
+        let out = dir.path().join(command);
+        let mut child = std::process::Command::new(&bin)
+            .arg(command)
+            .arg(crate::helpers::sample("paper_example.xlsx"))
+            .arg(flag)
+            .arg(&out)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let status = child.wait().unwrap();
+        assert!(status.success(), "{command}: {status}");
+        assert!(out.join(expect).exists(), "{command}: {expect} missing");
+    }
+}
