@@ -72,8 +72,10 @@ pub fn run() -> i32 {
         Ok(cli) => cli,
         Err(err) => {
             let _ = err.print();
+            // A wrong option is wrong input, like a wrong cell: exit 1 (2
+            // stays for internal and I/O failures); --help and --version 0.
             return if err.use_stderr() {
-                EXIT_INTERNAL
+                EXIT_BAD_INPUT
             } else {
                 EXIT_OK
             };

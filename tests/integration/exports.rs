@@ -206,7 +206,7 @@ fn formats_selects_the_files() {
         .arg(sample("paper_example.xlsx"))
         .args(["--formats", "st,pdf"])
         .assert()
-        .code(2)
+        .code(1)
         .stderr(contains("\"pdf\" is not an output format"));
 }
 

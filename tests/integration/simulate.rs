@@ -39,7 +39,7 @@ fn stroke_times_change_the_step_timing() {
         .arg(sample("drilling_station.xlsx"))
         .args(["--stroke", "C1=fast"])
         .assert()
-        .code(2)
+        .code(1)
         .stderr(contains("\"fast\" is not a stroke time"));
 }
 

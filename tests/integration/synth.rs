@@ -117,7 +117,7 @@ fn ga_parameters_are_bounded() {
         crate::helpers::steptable()
             .args(["synth", "--sequence", "A1 A0 B1 B0", flag, value])
             .assert()
-            .failure()
+            .code(1)
             .stderr(predicates::str::contains("is a whole number from"));
     }
     let dir = tempfile::tempdir().unwrap();
