@@ -145,7 +145,9 @@ pub fn require(name: &str) -> Option<PathBuf> {
             !tools_required(),
             "{name} is required (STEPTABLE_REQUIRE_TOOLS is set) but was not found"
         );
-        eprintln!("note: {name} not found, so this check did not run (.ci/run installs it)");
+        note(&format!(
+            "{name} not found, so the checks that need it did not run (.ci/run installs it)"
+        ));
     }
     found
 }
@@ -162,7 +164,9 @@ pub fn require_shared(what: &str) -> Option<PathBuf> {
         !tools_required(),
         "../shared is required for {what} (STEPTABLE_REQUIRE_TOOLS is set) but is not beside the repository"
     );
-    eprintln!("note: ../shared is not beside the repository, so {what} did not run");
+    note(&format!(
+        "../shared is not beside the repository, so the checks that need it did not run (first: {what})"
+    ));
     None
 }
 
@@ -172,4 +176,17 @@ pub fn all_files() -> usize {
         .iter()
         .map(|k| k.file_count())
         .sum()
+}
+
+/// Prints a note once per test run, past the test harness's capture (which
+/// takes only `eprintln!`), so that a skipped check is seen.
+fn note(text: &str) {
+    use std::io::Write;
+    static SEEN: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+    let key = text.split(',').next().unwrap_or(text).to_string();
+    let mut seen = SEEN.lock().unwrap_or_else(|e| e.into_inner());
+    if !seen.contains(&key) {
+        seen.push(key);
+        let _ = writeln!(std::io::stderr(), "note: {text}");
+    }
 }
