@@ -43,23 +43,8 @@ fn matrix(dir: &Path, extra: &[&str]) -> Vec<Case> {
 
 /// Runs `check` on every case on two threads; every failure is reported.
 fn run_all(cases: &[Case], check: impl Fn(&Case) -> Result<(), String> + Sync) {
-    let failures: Vec<String> = std::thread::scope(|scope| {
-        let halves = cases.chunks(cases.len().div_ceil(2).max(1));
-        let handles: Vec<_> = halves
-            .map(|chunk| {
-                scope.spawn(|| {
-                    chunk
-                        .iter()
-                        .filter_map(|c| check(c).err())
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().expect("worker"))
-            .collect()
-    });
+    let failures: Vec<String> =
+        engines::on_two_threads(cases, |c| check(c).err().into_iter().collect());
     assert!(
         failures.is_empty(),
         "{} of {} cases differ:\n{}",

@@ -145,51 +145,29 @@ fn random_tables_run_in_every_engine_as_simulated() {
     let count = env_number("STEPTABLE_DIFF_CASES", 100);
     let dir = tempfile::tempdir().unwrap();
     let seeds: Vec<u64> = (first..first + count).collect();
-    let failures: Vec<String> = std::thread::scope(|scope| {
-        let handles: Vec<_> = seeds
-            .chunks(seeds.len().div_ceil(2).max(1))
-            .map(|chunk| {
-                let (dir, shared, python) = (dir.path(), &shared, &python);
-                scope.spawn(move || {
-                    let mut failures = Vec::new();
-                    for &seed in chunk {
-                        let case = prepare(dir, seed);
-                        let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
-                        let mut results =
-                            vec![case.check("FST", fst::run(&text, &case.trace, &case.festo))];
-                        if let Some(shared) = shared {
-                            results.push(case.check(
-                                "matiec",
-                                matiec::run(
-                                    shared,
-                                    &case.file(".st"),
-                                    &case.trace,
-                                    &case.allocation,
-                                ),
-                            ));
-                        }
-                        if let Some(python) = python {
-                            results.push(case.check(
-                                "awlsim",
-                                awlsim::run(
-                                    python,
-                                    &case.file(".awl"),
-                                    case.mnemonic,
-                                    &case.trace,
-                                    &case.allocation,
-                                ),
-                            ));
-                        }
-                        failures.extend(results.into_iter().filter_map(Result::err));
-                    }
-                    failures
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().expect("worker"))
-            .collect()
+    let failures: Vec<String> = engines::on_two_threads(&seeds, |&seed| {
+        let case = prepare(dir.path(), seed);
+        let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
+        let mut results = vec![case.check("FST", fst::run(&text, &case.trace, &case.festo))];
+        if let Some(shared) = &shared {
+            results.push(case.check(
+                "matiec",
+                matiec::run(shared, &case.file(".st"), &case.trace, &case.allocation),
+            ));
+        }
+        if let Some(python) = &python {
+            results.push(case.check(
+                "awlsim",
+                awlsim::run(
+                    python,
+                    &case.file(".awl"),
+                    case.mnemonic,
+                    &case.trace,
+                    &case.allocation,
+                ),
+            ));
+        }
+        results.into_iter().filter_map(Result::err).collect()
     });
     assert!(
         failures.is_empty(),

@@ -167,3 +167,18 @@ pub fn output_lines(text: &str) -> Vec<Vec<bool>> {
         .map(|l| l.chars().map(|c| c == '1').collect())
         .collect()
 }
+
+/// Runs `work` over `items` on two threads (the machine's two cores) and
+/// gathers what it returns, in no particular order.
+pub fn on_two_threads<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> Vec<R> + Sync) -> Vec<R> {
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = items
+            .chunks(items.len().div_ceil(2).max(1))
+            .map(|chunk| scope.spawn(|| chunk.iter().flat_map(&work).collect::<Vec<R>>()))
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().expect("worker"))
+            .collect()
+    })
+}
