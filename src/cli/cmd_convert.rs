@@ -97,11 +97,9 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         report.diagnostics(&conversion.warnings);
         let folder = args.output.join(&conversion.name);
         match output::write_files(&folder, &conversion.files, &args.inputs) {
-            Ok(written) => {
-                let names: Vec<String> = written
-                    .iter()
-                    .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().to_string()))
-                    .collect();
+            Ok(_) => {
+                // As the files lie in the folder: `NAME.beremiz/plc.xml`.
+                let names: Vec<String> = conversion.files.iter().map(|f| f.name.clone()).collect();
                 report.say(&format!(
                     "{}: {} -> {}/ ({})",
                     display_name(input),
