@@ -121,6 +121,18 @@ impl OutputKind {
         if self == OutputKind::Beremiz { 2 } else { 1 }
     }
 
+    /// Whether its lines end in CRLF: the lists Windows tools import (STEP 7
+    /// symbol tables, Studio 5000 and FST lists, CoDeSys V2.3 exports).
+    pub fn windows_lines(self) -> bool {
+        matches!(
+            self,
+            OutputKind::SymbolTable
+                | OutputKind::FstAllocation
+                | OutputKind::Rockwell
+                | OutputKind::CodesysV2
+        )
+    }
+
     /// The end of the file name, after `NAME`.
     pub fn suffix(self) -> &'static str {
         match self {
@@ -500,13 +512,18 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
     // another: each is built on first use and reused.
     let mut iec_model: Option<minijinja::Value> = None;
     let mut awl_model: Option<minijinja::Value> = None;
-    let mut files = Vec::new();
+    let mut files: Vec<OutputFile> = Vec::new();
     for kind in OutputKind::ALL {
         if !settings.formats.contains(&kind) {
             continue;
         }
         let text = |result: Result<String, TemplateError>| -> Result<Vec<u8>, Failure> {
-            result.map(String::into_bytes).map_err(Failure::Template)
+            let text = result.map_err(Failure::Template)?;
+            Ok(if kind.windows_lines() {
+                emit::crlf(&text).into_bytes()
+            } else {
+                text.into_bytes()
+            })
         };
         let bytes = match kind {
             OutputKind::Workbook => {
@@ -547,7 +564,12 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
                     // A project folder Beremiz and the OpenPLC Editor open
                     // as it is: the PLCopen XML as plc.xml, and beremiz.xml.
                     let folder = format!("{name}{}", kind.suffix());
-                    let plc = text(emit::st::render(&input, &model, IecFile::PlcOpen))?;
+                    // The same bytes as NAME.plcopen.xml, rendered once.
+                    let plcopen = format!("{name}{}", OutputKind::PlcOpen.suffix());
+                    let plc = match files.iter().find(|f| f.name == plcopen) {
+                        Some(file) => file.bytes.clone(),
+                        None => text(emit::st::render(&input, &model, IecFile::PlcOpen))?,
+                    };
                     files.push(OutputFile {
                         name: format!("{folder}/plc.xml"),
                         bytes: plc,
@@ -558,12 +580,7 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
                     });
                     continue;
                 }
-                let rendered = emit::st::render(&input, &model, file);
-                if kind == OutputKind::CodesysV2 {
-                    text(rendered.map(|t| emit::crlf(&t)))?
-                } else {
-                    text(rendered)?
-                }
+                text(emit::st::render(&input, &model, file))?
             }
             OutputKind::TiaTags => {
                 emit::tables::render_tia_tags(&input).map_err(|e| internal("TIA tag table", &e))?
@@ -574,15 +591,11 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
                     .clone();
                 match kind {
                     OutputKind::Awl => text(emit::awl::render_awl(&input, &model))?,
-                    _ => text(emit::awl::render_sdf(&input, &model).map(|t| emit::crlf(&t)))?,
+                    _ => text(emit::awl::render_sdf(&input, &model))?,
                 }
             }
-            OutputKind::FstAllocation => {
-                text(emit::tables::render_fst_alloc(&input).map(|t| emit::crlf(&t)))?
-            }
-            OutputKind::Rockwell => {
-                text(emit::tables::render_rockwell(&input).map(|t| emit::crlf(&t)))?
-            }
+            OutputKind::FstAllocation => text(emit::tables::render_fst_alloc(&input))?,
+            OutputKind::Rockwell => text(emit::tables::render_rockwell(&input))?,
         };
         files.push(OutputFile {
             name: format!("{name}{}", kind.suffix()),

@@ -93,22 +93,16 @@ fn parse(text: &str) -> Result<BTreeMap<u32, Program>, String> {
                     return Err(at("a second IF in one step"));
                 }
                 in_condition = true;
-                words = &words[1..];
-                if words == ["NOP"] {
-                    continue;
+                if words[1..] != ["NOP"] {
+                    push_literal(program, &words[1..]).map_err(&at)?;
                 }
-                let (negated, operand) = literal(words).ok_or_else(|| at("bad condition"))?;
-                let r = rule(program).ok_or_else(|| at("no rule"))?;
-                r.condition.push((negated, operand));
                 continue;
             }
             "AND" => {
                 if !in_condition {
                     return Err(at("AND outside a condition"));
                 }
-                let (negated, operand) = literal(&words[1..]).ok_or_else(|| at("bad condition"))?;
-                let r = rule(program).ok_or_else(|| at("no rule"))?;
-                r.condition.push((negated, operand));
+                push_literal(program, &words[1..]).map_err(&at)?;
                 continue;
             }
             "THEN" => {
@@ -146,6 +140,13 @@ fn rule(program: &mut Program) -> Option<&mut Rule> {
     } else {
         program.rules.last_mut()
     }
+}
+
+/// Adds the literal `words` (`N I0.1`, `F0.4`) to the rule being read.
+fn push_literal(program: &mut Program, words: &[&str]) -> Result<(), &'static str> {
+    let literal = literal(words).ok_or("bad condition")?;
+    rule(program).ok_or("no rule")?.condition.push(literal);
+    Ok(())
 }
 
 fn literal(words: &[&str]) -> Option<(bool, String)> {
