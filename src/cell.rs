@@ -381,6 +381,55 @@ pub fn parse_items(text: &str) -> Vec<Result<CellItem, ItemError>> {
         .collect()
 }
 
+/// A header cell of the published layout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Header {
+    Branch(u32),
+    Step(u32),
+}
+
+/// Recognises `BRANCH 1` / `STEP 1` in any case and spacing, also with a
+/// comment after the number (`STEP 3 (clamp)`, `STEP 3: clamp`, `BRANCH 2 -
+/// gripper`): engineers name their steps, and a label we do not recognise
+/// loses its row.
+pub fn header_kind(text: &str) -> Option<Header> {
+    let squeezed: String = text.chars().filter(|c| !c.is_whitespace()).collect();
+    if let Some(header) = bare_header(&squeezed) {
+        return Some(header);
+    }
+    // `STEP 3 (clamp)`: the word, the number, then a separator and a comment.
+    let trimmed = text.trim();
+    let digits_end = trimmed
+        .char_indices()
+        .skip_while(|(_, c)| c.is_alphabetic() || c.is_whitespace())
+        .find(|(_, c)| !c.is_ascii_digit())
+        .map(|(i, _)| i)?;
+    let (head, comment) = trimmed.split_at(digits_end);
+    let separator = comment.chars().next()?;
+    if separator.is_alphanumeric() || separator == '_' {
+        return None;
+    }
+    let squeezed: String = head.chars().filter(|c| !c.is_whitespace()).collect();
+    bare_header(&squeezed)
+}
+
+/// `BRANCH1` / `STEP1` with nothing else, any case.
+fn bare_header(squeezed: &str) -> Option<Header> {
+    let split = squeezed.find(|c: char| c.is_ascii_digit())?;
+    let (word, number) = squeezed.split_at(split);
+    if !number.chars().all(|c| c.is_ascii_digit()) {
+        return None;
+    }
+    let number: u32 = number.parse().ok()?;
+    if word.eq_ignore_ascii_case("BRANCH") {
+        Some(Header::Branch(number))
+    } else if word.eq_ignore_ascii_case("STEP") {
+        Some(Header::Step(number))
+    } else {
+        None
+    }
+}
+
 /// True when the text looks like an attempt at a move (`C` followed by a digit
 /// after normalisation). Used to find a bare grid of moves without headers.
 pub fn looks_like_move(text: &str) -> bool {
@@ -408,6 +457,20 @@ mod tests {
             actuator: a,
             sign,
             position: p,
+        }
+    }
+
+    #[test]
+    fn headers_may_carry_a_comment() {
+        assert_eq!(header_kind("STEP 3 (clamp)"), Some(Header::Step(3)));
+        assert_eq!(header_kind("step 12: eject"), Some(Header::Step(12)));
+        assert_eq!(header_kind(" Branch 2 - gripper"), Some(Header::Branch(2)));
+        assert_eq!(header_kind("BRANCH 1"), Some(Header::Branch(1)));
+        assert_eq!(header_kind("S T E P 1 0"), Some(Header::Step(10)));
+        for not in [
+            "STEP", "STEP 3a", "BRANH 1", "STEPS 2", "STEP x", "3 STEP", "",
+        ] {
+            assert_eq!(header_kind(not), None, "{not}");
         }
     }
 

@@ -54,10 +54,20 @@ pub enum Code {
     E025NameClash,
     /// More dwells than the PLCs have timers.
     E026TooManyDwells,
+    /// Two step tables on one sheet.
+    E027TwoTables,
+    /// A formula cell whose value was never computed.
+    E016FormulaNotComputed,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
     W002StepNumber,
+    /// A filled cell in or beside the table that is not part of it.
+    W003Ignored,
+    /// The table's sheet was chosen among several, or is hidden.
+    W004SheetChoice,
+    /// The CSV delimiter was chosen among several that read as a table.
+    W005Delimiter,
 }
 
 impl Code {
@@ -86,6 +96,11 @@ impl Code {
             Code::E026TooManyDwells => "E026",
             Code::W001Encoding => "W001",
             Code::W002StepNumber => "W002",
+            Code::W003Ignored => "W003",
+            Code::W004SheetChoice => "W004",
+            Code::W005Delimiter => "W005",
+            Code::E027TwoTables => "E027",
+            Code::E016FormulaNotComputed => "E016",
         }
     }
 }

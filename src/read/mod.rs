@@ -10,9 +10,8 @@ use std::path::Path;
 
 use calamine::{Data, Ods, Range, Reader, Xls, Xlsx, open_workbook_from_rs};
 
-use crate::cell::looks_like_move;
+use crate::cell::{header_kind, looks_like_move};
 use crate::diag::{CellPos, Code, Diagnostics, Location};
-use crate::table::header_kind;
 
 /// Largest input file read, in bytes.
 pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
@@ -32,6 +31,27 @@ pub enum CellValue {
     Date(String),
     /// An error value such as `#REF!`.
     Error(String),
+}
+
+impl CellValue {
+    /// The value as a message names it: `"C1+1"`, `the number 42`.
+    pub fn describe(&self) -> String {
+        match self {
+            CellValue::Text(t) => {
+                let t = t.trim();
+                if t.chars().count() > 40 {
+                    let head: String = t.chars().take(37).collect();
+                    format!("\"{head}…\"")
+                } else {
+                    format!("\"{t}\"")
+                }
+            }
+            CellValue::Number(n) => format!("the number {n}"),
+            CellValue::Bool(b) => format!("the value {}", if *b { "TRUE" } else { "FALSE" }),
+            CellValue::Date(d) => format!("the date {d}"),
+            CellValue::Error(e) => format!("the error {e}"),
+        }
+    }
 }
 
 /// One non-empty cell at its absolute position on the sheet.
@@ -86,6 +106,15 @@ impl Grid {
             file: self.file.clone(),
             sheet: self.sheet.clone(),
             cell: Some(pos),
+        }
+    }
+
+    /// A cell as messages name it: `D7` on a sheet, `7:4` in a CSV file.
+    pub fn cell_name(&self, pos: CellPos) -> String {
+        if self.sheet.is_some() {
+            pos.a1()
+        } else {
+            format!("{}:{}", pos.row + 1, pos.col + 1)
         }
     }
 

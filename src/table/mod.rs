@@ -2,7 +2,11 @@
 //! every rule of the method (DESIGN §2). The table is found by its `BRANCH n` /
 //! `STEP n` headers anywhere on the sheet, or taken as a bare grid of moves.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
+
+mod frame;
+
+use frame::{Frame, find_frame};
 
 use crate::cell::{
     CellError, CellItem, ItemError, MAX_ACTUATOR, MAX_POSITION, Name, Sign, parse_items,
@@ -16,36 +20,6 @@ pub const MAX_STEPS: usize = 10_000;
 pub const MAX_BRANCHES: usize = 256;
 /// Longest text accepted in a cell of the table (a move has a dozen characters).
 pub const MAX_CELL_CHARS: usize = 200;
-
-/// A header cell of the published layout.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Header {
-    Branch(u32),
-    Step(u32),
-}
-
-/// Recognises `BRANCH 1` / `STEP 1` (any case and spacing).
-pub fn header_kind(text: &str) -> Option<Header> {
-    let upper: String = text
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .collect::<String>()
-        .to_ascii_uppercase();
-    let number = |rest: &str| -> Option<u32> {
-        if !rest.is_empty() && rest.chars().all(|c| c.is_ascii_digit()) {
-            rest.parse().ok()
-        } else {
-            None
-        }
-    };
-    if let Some(rest) = upper.strip_prefix("BRANCH") {
-        return number(rest).map(Header::Branch);
-    }
-    if let Some(rest) = upper.strip_prefix("STEP") {
-        return number(rest).map(Header::Step);
-    }
-    None
-}
 
 /// One resolved move: actuator `actuator` goes from `from` to `to`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -222,14 +196,6 @@ struct RawCell {
     branch: usize,
 }
 
-/// The table's frame on the sheet: which rows are steps, which columns branches.
-struct Frame {
-    step_rows: Vec<u32>,
-    /// Step rows that carry a `STEP n` label (trailing empty labelled rows are allowed).
-    labelled: bool,
-    branch_cols: Vec<u32>,
-}
-
 /// Builds the table from a sheet and checks it. Returns `None` when any error
 /// was found (all of them are in `diags`).
 pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
@@ -275,30 +241,15 @@ pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
         let Some(&r) = row_index.get(&cell.pos.row) else {
             continue;
         };
-        match col_index.get(&cell.pos.col) {
-            Some(&branch) => rows[r].push(RawCell {
+        if let Some(&branch) = col_index.get(&cell.pos.col) {
+            rows[r].push(RawCell {
                 pos: cell.pos,
                 value: cell.value.clone(),
                 branch,
-            }),
-            None => {
-                // A move written beside the table would silently be lost.
-                if let CellValue::Text(t) = &cell.value
-                    && crate::cell::looks_like_item(t)
-                    && cell.pos.col > frame.branch_cols.first().copied().unwrap_or(0)
-                {
-                    diags.error(
-                        Code::E010NotAMove,
-                        grid.location(cell.pos),
-                        format!(
-                            "\"{}\" lies outside the table: its column has no BRANCH header",
-                            t.trim()
-                        ),
-                    );
-                }
-            }
+            });
         }
     }
+    frame::report_unused(grid, &frame, diags);
 
     // Parse every cell.
     let mut parsed: Vec<Vec<(CellItem, CellPos, usize)>> = Vec::with_capacity(rows.len());
@@ -451,151 +402,6 @@ fn report_item_error(error: ItemError, text: &str, location: &Location, diags: &
     }
 }
 
-/// Finds step rows and branch columns: by headers, or as a bare grid of moves.
-fn find_frame(grid: &Grid, diags: &mut Diagnostics) -> Option<Frame> {
-    let mut branch_headers: Vec<CellPos> = Vec::new();
-    let mut step_labels: Vec<CellPos> = Vec::new();
-    for cell in &grid.cells {
-        if let CellValue::Text(t) = &cell.value {
-            match header_kind(t) {
-                Some(Header::Branch(_)) => branch_headers.push(cell.pos),
-                Some(Header::Step(_)) => step_labels.push(cell.pos),
-                None => {}
-            }
-        }
-    }
-
-    if !branch_headers.is_empty() {
-        // The header row is the row with the most BRANCH headers (topmost on a tie).
-        let header_row = most_common(branch_headers.iter().map(|p| p.row))?;
-        let branch_cols: Vec<u32> = branch_headers
-            .iter()
-            .filter(|p| p.row == header_row)
-            .map(|p| p.col)
-            .collect::<BTreeSet<_>>()
-            .into_iter()
-            .collect();
-        let first_branch = *branch_cols.first()?;
-        let last_branch = *branch_cols.last()?;
-        let labels: Vec<CellPos> = step_labels
-            .iter()
-            .copied()
-            .filter(|p| p.row > header_row && p.col < first_branch)
-            .collect();
-        if let Some(label_col) = most_common(labels.iter().map(|p| p.col)) {
-            let step_rows: Vec<u32> = labels
-                .iter()
-                .filter(|p| p.col == label_col)
-                .map(|p| p.row)
-                .collect::<BTreeSet<_>>()
-                .into_iter()
-                .collect();
-            warn_on_label_numbers(grid, label_col, &step_rows, diags);
-            return Some(Frame {
-                step_rows,
-                labelled: true,
-                branch_cols,
-            });
-        }
-        // No labels: rows below the header down to the last move in the branch columns.
-        let last_row = grid
-            .cells
-            .iter()
-            .filter(|c| c.pos.row > header_row && (first_branch..=last_branch).contains(&c.pos.col))
-            .filter(|c| matches!(&c.value, CellValue::Text(t) if crate::cell::looks_like_item(t)))
-            .map(|c| c.pos.row)
-            .max()?;
-        return Some(Frame {
-            step_rows: (header_row + 1..=last_row).collect(),
-            labelled: false,
-            branch_cols,
-        });
-    }
-
-    let move_cells: Vec<CellPos> = grid
-        .cells
-        .iter()
-        .filter(|c| matches!(&c.value, CellValue::Text(t) if crate::cell::looks_like_item(t)))
-        .map(|c| c.pos)
-        .collect();
-
-    if let Some(label_col) = most_common(step_labels.iter().map(|p| p.col)) {
-        let step_rows: Vec<u32> = step_labels
-            .iter()
-            .filter(|p| p.col == label_col)
-            .map(|p| p.row)
-            .collect::<BTreeSet<_>>()
-            .into_iter()
-            .collect();
-        let last_col = move_cells
-            .iter()
-            .filter(|p| p.col > label_col && step_rows.binary_search(&p.row).is_ok())
-            .map(|p| p.col)
-            .max()?;
-        return Some(Frame {
-            step_rows,
-            labelled: true,
-            branch_cols: (label_col + 1..=last_col).collect(),
-        });
-    }
-
-    // A bare grid: the bounding box of the cells that look like moves.
-    let _ = diags;
-    let min_row = move_cells.iter().map(|p| p.row).min()?;
-    let max_row = move_cells.iter().map(|p| p.row).max()?;
-    let min_col = move_cells.iter().map(|p| p.col).min()?;
-    let max_col = move_cells.iter().map(|p| p.col).max()?;
-    Some(Frame {
-        step_rows: (min_row..=max_row).collect(),
-        labelled: false,
-        branch_cols: (min_col..=max_col).collect(),
-    })
-}
-
-/// Steps are numbered by their order on the sheet; a `STEP n` label that
-/// says otherwise (a copied row, a skipped number) is worth a warning, since
-/// every output uses the row order.
-fn warn_on_label_numbers(grid: &Grid, label_col: u32, step_rows: &[u32], diags: &mut Diagnostics) {
-    for (k, row) in step_rows.iter().enumerate() {
-        let pos = CellPos::new(*row, label_col);
-        let number = grid
-            .cells
-            .iter()
-            .find(|c| c.pos == pos)
-            .and_then(|c| match &c.value {
-                CellValue::Text(t) => match header_kind(t) {
-                    Some(Header::Step(n)) => Some(n),
-                    _ => None,
-                },
-                _ => None,
-            });
-        if let Some(n) = number
-            && n as usize != k + 1
-        {
-            diags.warning(
-                Code::W002StepNumber,
-                grid.location(pos),
-                format!(
-                    "this row is labelled STEP {n} but is step {} of the table; steps are numbered by their order",
-                    k + 1
-                ),
-            );
-            // One warning tells the story; the rows below are shifted alike.
-            return;
-        }
-    }
-}
-
-/// The most frequent value; the smallest one on a tie.
-fn most_common(values: impl Iterator<Item = u32>) -> Option<u32> {
-    let mut counts: BTreeMap<u32, usize> = BTreeMap::new();
-    for v in values {
-        *counts.entry(v).or_default() += 1;
-    }
-    let best = counts.values().copied().max()?;
-    counts.into_iter().find(|(_, n)| *n == best).map(|(v, _)| v)
-}
-
 /// Resolves positions and checks the rules of DESIGN §2.
 fn check(
     grid: &Grid,
@@ -710,7 +516,7 @@ fn check(
                     format!(
                         "\"{written}\": C{} already moves in STEP {number} (cell {}); an actuator moves at most once per step",
                         m.actuator,
-                        first.a1_or_csv(grid)
+                        grid.cell_name(*first)
                     ),
                 );
                 continue;
@@ -818,7 +624,7 @@ impl Names {
                     grid.location(pos),
                     format!(
                         "{name} is used as {is} here but as {was} in cell {}; give them different names",
-                        first_pos.a1_or_csv(grid)
+                        grid.cell_name(*first_pos)
                     ),
                 );
             }
@@ -850,7 +656,7 @@ impl Names {
                 grid.location(pos),
                 format!(
                     "{name} and {other} (cell {}) begin with the same 9 characters, which is all Festo FST keeps of a symbol",
-                    other_pos.a1_or_csv(grid)
+                    grid.cell_name(*other_pos)
                 ),
             );
         }
@@ -875,21 +681,6 @@ where
     match build(&grid, &mut diags) {
         Some(table) => Ok(table),
         None => Err(diags.into_sorted()),
-    }
-}
-
-trait CellName {
-    fn a1_or_csv(self, grid: &Grid) -> String;
-}
-
-impl CellName for CellPos {
-    /// `D7` on a sheet, `7:4` in a CSV file.
-    fn a1_or_csv(self, grid: &Grid) -> String {
-        if grid.sheet.is_some() {
-            self.a1()
-        } else {
-            format!("{}:{}", self.row + 1, self.col + 1)
-        }
     }
 }
 

@@ -1,0 +1,477 @@
+//! Where the table lies on its sheet: which rows are steps and which columns
+//! branches, found by the `BRANCH n` / `STEP n` headers or as a bare grid of
+//! moves; and the audit that every other filled cell in or beside that region
+//! is reported, never silently dropped.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use crate::cell::{Header, header_kind, looks_like_item, parse_items};
+use crate::diag::{CellPos, Code, Diagnostics};
+use crate::read::{CellValue, Grid};
+
+/// The table's frame on the sheet.
+pub(super) struct Frame {
+    /// Rows that are steps, top to bottom.
+    pub step_rows: Vec<u32>,
+    /// Step rows carry a `STEP n` label (trailing empty labelled rows are allowed).
+    pub labelled: bool,
+    /// Columns that are branches, left to right.
+    pub branch_cols: Vec<u32>,
+    /// The row of the `BRANCH n` headers, if there are any.
+    pub header_row: Option<u32>,
+    /// The column of the `STEP n` labels, if there are any.
+    pub label_col: Option<u32>,
+}
+
+/// Finds step rows and branch columns: by headers, or as a bare grid of moves.
+/// Two tables on one sheet are an error (E027): merging them would run one
+/// machine's steps after the other's.
+pub(super) fn find_frame(grid: &Grid, diags: &mut Diagnostics) -> Option<Frame> {
+    let mut branch_headers: Vec<CellPos> = Vec::new();
+    let mut step_labels: Vec<CellPos> = Vec::new();
+    for cell in &grid.cells {
+        if let CellValue::Text(t) = &cell.value {
+            match header_kind(t) {
+                Some(Header::Branch(_)) => branch_headers.push(cell.pos),
+                Some(Header::Step(_)) => step_labels.push(cell.pos),
+                None => {}
+            }
+        }
+    }
+    if two_tables(grid, &branch_headers, &step_labels, diags) {
+        return None;
+    }
+
+    if !branch_headers.is_empty() {
+        let header_row = branch_headers[0].row;
+        let branch_cols: Vec<u32> = sorted_unique(branch_headers.iter().map(|p| p.col));
+        let first_branch = *branch_cols.first()?;
+        let last_branch = *branch_cols.last()?;
+        let labels: Vec<CellPos> = step_labels
+            .iter()
+            .copied()
+            .filter(|p| p.row > header_row && p.col < first_branch)
+            .collect();
+        if let Some(label_col) = labels.first().map(|p| p.col) {
+            let step_rows = sorted_unique(labels.iter().map(|p| p.row));
+            warn_on_label_numbers(grid, label_col, &step_rows, diags);
+            return Some(Frame {
+                step_rows,
+                labelled: true,
+                branch_cols,
+                header_row: Some(header_row),
+                label_col: Some(label_col),
+            });
+        }
+        // No labels: rows below the header down to the last move in the branch columns.
+        let last_row = grid
+            .cells
+            .iter()
+            .filter(|c| c.pos.row > header_row && (first_branch..=last_branch).contains(&c.pos.col))
+            .filter(|c| matches!(&c.value, CellValue::Text(t) if looks_like_item(t)))
+            .map(|c| c.pos.row)
+            .max()?;
+        return Some(Frame {
+            step_rows: (header_row + 1..=last_row).collect(),
+            labelled: false,
+            branch_cols,
+            header_row: Some(header_row),
+            label_col: None,
+        });
+    }
+
+    let move_cells: Vec<CellPos> = grid
+        .cells
+        .iter()
+        .filter(|c| matches!(&c.value, CellValue::Text(t) if looks_like_item(t)))
+        .map(|c| c.pos)
+        .collect();
+
+    if let Some(label_col) = step_labels.first().map(|p| p.col) {
+        let step_rows = sorted_unique(step_labels.iter().map(|p| p.row));
+        let last_col = move_cells
+            .iter()
+            .filter(|p| p.col > label_col && step_rows.binary_search(&p.row).is_ok())
+            .map(|p| p.col)
+            .max()?;
+        warn_on_label_numbers(grid, label_col, &step_rows, diags);
+        return Some(Frame {
+            step_rows,
+            labelled: true,
+            branch_cols: (label_col + 1..=last_col).collect(),
+            header_row: None,
+            label_col: Some(label_col),
+        });
+    }
+
+    // A bare grid: the bounding box of the cells that look like moves.
+    let min_row = move_cells.iter().map(|p| p.row).min()?;
+    let max_row = move_cells.iter().map(|p| p.row).max()?;
+    let min_col = move_cells.iter().map(|p| p.col).min()?;
+    let max_col = move_cells.iter().map(|p| p.col).max()?;
+    Some(Frame {
+        step_rows: (min_row..=max_row).collect(),
+        labelled: false,
+        branch_cols: (min_col..=max_col).collect(),
+        header_row: None,
+        label_col: None,
+    })
+}
+
+/// BRANCH headers on more than one row, or STEP labels in more than one
+/// column, are two tables: reported (E027), since either merging them or
+/// silently taking one would lose what the engineer wrote.
+fn two_tables(
+    grid: &Grid,
+    branch_headers: &[CellPos],
+    step_labels: &[CellPos],
+    diags: &mut Diagnostics,
+) -> bool {
+    let header_rows = sorted_unique(branch_headers.iter().map(|p| p.row));
+    // A title above the table may start like a label ("Step 1: …").
+    let below = |p: &&CellPos| header_rows.first().is_none_or(|h| p.row > *h);
+    let label_cols = sorted_unique(step_labels.iter().filter(below).map(|p| p.col));
+    let (what, first, second) = if header_rows.len() > 1 {
+        let on = |row: u32| branch_headers.iter().find(|p| p.row == row).copied();
+        ("BRANCH headers", on(header_rows[0]), on(header_rows[1]))
+    } else if label_cols.len() > 1 {
+        let on = |col: u32| {
+            step_labels
+                .iter()
+                .filter(below)
+                .find(|p| p.col == col)
+                .copied()
+        };
+        ("STEP labels", on(label_cols[0]), on(label_cols[1]))
+    } else {
+        return false;
+    };
+    let (Some(first), Some(second)) = (first, second) else {
+        return false;
+    };
+    diags.error(
+        Code::E027TwoTables,
+        grid.location(second),
+        format!(
+            "a second table: {what} at {} and at {}; {} holds one step table (put the other {}, or delete it)",
+            grid.cell_name(first),
+            grid.cell_name(second),
+            if grid.sheet.is_some() { "a sheet" } else { "a CSV file" },
+            if grid.sheet.is_some() { "on its own sheet and choose it with --sheet" } else { "in its own file" }
+        ),
+    );
+    true
+}
+
+fn sorted_unique(values: impl Iterator<Item = u32>) -> Vec<u32> {
+    values.collect::<BTreeSet<_>>().into_iter().collect()
+}
+
+/// Steps are numbered by their order on the sheet; a `STEP n` label that
+/// says otherwise (a copied row, a skipped number) is worth a warning, since
+/// every output uses the row order.
+fn warn_on_label_numbers(grid: &Grid, label_col: u32, step_rows: &[u32], diags: &mut Diagnostics) {
+    let labels: BTreeMap<CellPos, u32> = grid
+        .cells
+        .iter()
+        .filter_map(|c| match &c.value {
+            CellValue::Text(t) if c.pos.col == label_col => match header_kind(t) {
+                Some(Header::Step(n)) => Some((c.pos, n)),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect();
+    for (k, row) in step_rows.iter().enumerate() {
+        let pos = CellPos::new(*row, label_col);
+        if let Some(&n) = labels.get(&pos)
+            && n as usize != k + 1
+        {
+            diags.warning(
+                Code::W002StepNumber,
+                grid.location(pos),
+                format!(
+                    "this row is labelled STEP {n} but is step {} of the table; steps are numbered by their order",
+                    k + 1
+                ),
+            );
+            // One warning tells the story; the rows below are shifted alike.
+            return;
+        }
+    }
+}
+
+/// Reports every filled cell in or beside the table that is not part of it:
+/// an error when it looks like table content that would be lost (a move in a
+/// row without a STEP label or a column without a BRANCH header), else a
+/// warning naming it. Cells far from the table (titles, notes) are left alone
+/// unless they read as moves.
+pub(super) fn report_unused(grid: &Grid, frame: &Frame, diags: &mut Diagnostics) {
+    let (Some(&first_row), Some(&last_row)) = (frame.step_rows.first(), frame.step_rows.last())
+    else {
+        return;
+    };
+    let (Some(&first_branch), Some(&last_branch)) =
+        (frame.branch_cols.first(), frame.branch_cols.last())
+    else {
+        return;
+    };
+    let step_rows: BTreeSet<u32> = frame.step_rows.iter().copied().collect();
+    let branch_cols: BTreeSet<u32> = frame.branch_cols.iter().copied().collect();
+    let top = frame.header_row.unwrap_or(first_row);
+    let left = frame.label_col.unwrap_or(first_branch);
+    // The region and a margin of one cell around it.
+    let near_rows = top.saturating_sub(1)..=last_row.saturating_add(1);
+    let near_cols = left.saturating_sub(1)..=last_branch.saturating_add(1);
+    let last_label = |row: u32| {
+        frame
+            .step_rows
+            .iter()
+            .rposition(|r| *r < row)
+            .map(|k| k + 1)
+    };
+
+    for cell in &grid.cells {
+        let CellPos { row, col } = cell.pos;
+        let in_step_row = step_rows.contains(&row);
+        let is_header = frame.header_row == Some(row)
+            && (branch_cols.contains(&col) || frame.label_col == Some(col));
+        let is_label = in_step_row && frame.label_col == Some(col);
+        if (in_step_row && branch_cols.contains(&col)) || is_label || is_header {
+            if is_header && !branch_cols.contains(&col) && !corner_title(&cell.value) {
+                // The corner above the STEP labels: only a column title belongs there.
+                warn_ignored(
+                    grid,
+                    cell.pos,
+                    &cell.value,
+                    "it is the table's corner",
+                    diags,
+                );
+            }
+            continue;
+        }
+        let text = match &cell.value {
+            CellValue::Text(t) => Some(t.as_str()),
+            _ => None,
+        };
+        let item_like = text.is_some_and(looks_like_item);
+        let in_rows = (first_row..=last_row).contains(&row);
+        let in_cols = (first_branch..=last_branch).contains(&col);
+        let below_header = frame.header_row.is_none_or(|h| row > h);
+        let in_header_row = frame.header_row == Some(row);
+        let lost = if in_header_row {
+            Some("it is in the row of BRANCH headers but is not a BRANCH n header".to_string())
+        } else if in_step_row && col < first_branch {
+            Some("its column, left of the first BRANCH, has no BRANCH header".to_string())
+        } else if in_step_row {
+            Some("its column has no BRANCH header".to_string())
+        } else if in_rows && (in_cols || near_cols.contains(&col)) {
+            Some(match last_label(row) {
+                Some(k) if frame.labelled => {
+                    format!(
+                        "its row (between STEP {k} and STEP {}) has no STEP label",
+                        k + 1
+                    )
+                }
+                _ => "its row is not a step of the table".to_string(),
+            })
+        } else if in_cols && below_header && row > last_row {
+            Some(format!(
+                "it lies below the table's last step (row {})",
+                last_row + 1
+            ))
+        } else {
+            None
+        };
+        match lost {
+            Some(why) if item_like => diags.error(
+                Code::E010NotAMove,
+                grid.location(cell.pos),
+                format!(
+                    "\"{}\" lies outside the table and would be lost: {why}",
+                    text.unwrap_or_default().trim()
+                ),
+            ),
+            Some(why)
+                if near_rows.contains(&row) && near_cols.contains(&col)
+                    || in_step_row
+                    || in_header_row =>
+            {
+                warn_ignored(grid, cell.pos, &cell.value, &why, diags)
+            }
+            _ if near_rows.contains(&row) && near_cols.contains(&col) => warn_ignored(
+                grid,
+                cell.pos,
+                &cell.value,
+                "it lies beside the table",
+                diags,
+            ),
+            _ if text.is_some_and(reads_as_items) => warn_ignored(
+                grid,
+                cell.pos,
+                &cell.value,
+                "it reads as a move but lies away from the table",
+                diags,
+            ),
+            _ => {}
+        }
+    }
+}
+
+/// A corner cell that names the label column (`STEP`, `Step / Branch`).
+fn corner_title(value: &CellValue) -> bool {
+    matches!(value, CellValue::Text(t) if {
+        let upper = t.to_uppercase();
+        upper.contains("STEP") || upper.contains("BRANCH")
+    })
+}
+
+/// Text that parses wholly as cell items, as a note never does.
+fn reads_as_items(text: &str) -> bool {
+    let items = parse_items(text);
+    !items.is_empty() && items.iter().all(Result::is_ok)
+}
+
+fn warn_ignored(grid: &Grid, pos: CellPos, value: &CellValue, why: &str, diags: &mut Diagnostics) {
+    diags.warning(
+        Code::W003Ignored,
+        grid.location(pos),
+        format!(
+            "{} is not part of the step table and was not read: {why}",
+            value.describe()
+        ),
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::diag::Diagnostics;
+    use crate::read::Grid;
+
+    /// Every diagnostic of building `rows` (a sheet named S), and whether a table came out.
+    fn build(rows: &[&[&str]]) -> (bool, Vec<String>) {
+        let grid = Grid::from_text_rows("t.xlsx", Some("S"), rows);
+        let mut diags = Diagnostics::new();
+        let ok = super::super::build(&grid, &mut diags).is_some();
+        (
+            ok,
+            diags.into_sorted().iter().map(|d| d.to_string()).collect(),
+        )
+    }
+
+    #[test]
+    fn a_misspelt_branch_header_loses_nothing() {
+        let (ok, all) = build(&[
+            &["", "BRANH 1", "BRANCH 2"],
+            &["STEP 1", "C1+1", "C2+1"],
+            &["STEP 2", "C1-0", "C2-0"],
+        ]);
+        assert!(!ok);
+        assert!(
+            all[0].contains("S!B1: warning[W003]: \"BRANH 1\""),
+            "{all:?}"
+        );
+        assert!(
+            all[1].contains("S!B2: error[E010]: \"C1+1\" lies outside"),
+            "{all:?}"
+        );
+        assert!(all[2].contains("S!B3: error[E010]"), "{all:?}");
+    }
+
+    #[test]
+    fn a_row_without_a_step_label_is_an_error_not_a_loss() {
+        let (ok, all) = build(&[
+            &["", "BRANCH 1"],
+            &["STEP 1", "C1+1"],
+            &["", "T=2s"],
+            &["STEP 2", "C1-0"],
+        ]);
+        assert!(!ok);
+        assert_eq!(all.len(), 1, "{all:?}");
+        assert!(
+            all[0].contains("S!B3: error[E010]: \"T=2s\"")
+                && all[0].contains("between STEP 1 and STEP 2"),
+            "{all:?}"
+        );
+    }
+
+    #[test]
+    fn labels_with_comments_are_steps() {
+        let (ok, all) = build(&[
+            &["", "BRANCH 1"],
+            &["STEP 1 (clamp)", "C1+1"],
+            &["STEP 2: release", "C1-0"],
+        ]);
+        assert!(ok && all.is_empty(), "{all:?}");
+    }
+
+    #[test]
+    fn two_tables_on_one_sheet_are_refused() {
+        let (ok, all) = build(&[
+            &["", "BRANCH 1"],
+            &["STEP 1", "C1+1"],
+            &["STEP 2", "C1-0"],
+            &[],
+            &["", "BRANCH 1"],
+            &["STEP 1", "C2+1"],
+            &["STEP 2", "C2-0"],
+        ]);
+        assert!(!ok);
+        assert!(
+            all[0].contains("S!B5: error[E027]: a second table"),
+            "{all:?}"
+        );
+        // Side by side: STEP labels in two columns.
+        let (ok, all) = build(&[
+            &["STEP 1", "C1+1", "", "STEP 1", "C2+1"],
+            &["STEP 2", "C1-0", "", "STEP 2", "C2-0"],
+        ]);
+        assert!(!ok && all[0].contains("error[E027]"), "{all:?}");
+    }
+
+    #[test]
+    fn notes_beside_the_table_are_named_and_far_ones_left_alone() {
+        let (ok, all) = build(&[
+            &["My machine"],
+            &[],
+            &["", "BRANCH 1", "remarks"],
+            &["STEP 1", "C1+1", "clamp"],
+            &["STEP 2", "C1-0"],
+            &[],
+            &["Note: C1 is the clamp, see drawing 4711"],
+        ]);
+        assert!(ok);
+        assert_eq!(all.len(), 2, "{all:?}");
+        assert!(
+            all[0].contains("S!C3: warning[W003]: \"remarks\""),
+            "{all:?}"
+        );
+        assert!(all[1].contains("S!C4: warning[W003]: \"clamp\""), "{all:?}");
+        // A move far from the table is still named.
+        let (ok, all) = build(&[
+            &["", "BRANCH 1"],
+            &["STEP 1", "C1+1"],
+            &["STEP 2", "C1-0"],
+            &[],
+            &[],
+            &["", "", "", "C2+1"],
+        ]);
+        assert!(ok);
+        assert!(all[0].contains("S!D6: warning[W003]: \"C2+1\""), "{all:?}");
+    }
+
+    #[test]
+    fn a_move_below_the_labelled_rows_is_an_error() {
+        let (ok, all) = build(&[
+            &["", "BRANCH 1"],
+            &["STEP 1", "C1+1"],
+            &["STEP 2", "C1-0"],
+            &["", "C2+1"],
+        ]);
+        assert!(!ok);
+        assert!(
+            all[0].contains("S!B4: error[E010]") && all[0].contains("below"),
+            "{all:?}"
+        );
+    }
+}
