@@ -406,7 +406,10 @@ pub fn header_kind(text: &str) -> Option<Header> {
         .map(|(i, _)| i)?;
     let (head, comment) = trimmed.split_at(digits_end);
     let separator = comment.chars().next()?;
-    if separator.is_alphanumeric() || separator == '_' {
+    // A comment that reads as a move is a cell the label swallowed
+    // (`STEP 1,C1+1` read with the wrong CSV delimiter).
+    let rest = comment.trim_start_matches(|c: char| !c.is_alphanumeric());
+    if separator.is_alphanumeric() || separator == '_' || looks_like_item(rest) {
         return None;
     }
     let squeezed: String = head.chars().filter(|c| !c.is_whitespace()).collect();
@@ -428,6 +431,40 @@ fn bare_header(squeezed: &str) -> Option<Header> {
     } else {
         None
     }
+}
+
+/// An actuator named in a settings row or option: `C2`, `c 2`, also with a
+/// comment after it (`C2 (clamp)`, `C2: gripper`, `C2 lift`). `None` when
+/// the text names no actuator in range.
+pub fn actuator_name(text: &str) -> Option<u32> {
+    let mut chars = text.trim().chars().peekable();
+    let one = |c: char| normalize(c.encode_utf8(&mut [0; 4]));
+    if one(chars.next()?) != "C" {
+        return None;
+    }
+    while chars.peek().is_some_and(|c| c.is_whitespace()) {
+        chars.next();
+    }
+    let mut number = String::new();
+    while let Some(&c) = chars.peek() {
+        let n = one(c);
+        if n.len() == 1 && n.as_bytes()[0].is_ascii_digit() {
+            number.push_str(&n);
+            chars.next();
+        } else {
+            break;
+        }
+    }
+    if chars
+        .peek()
+        .is_some_and(|c| c.is_alphanumeric() || *c == '_')
+    {
+        return None;
+    }
+    number
+        .parse()
+        .ok()
+        .filter(|n| (1..=MAX_ACTUATOR).contains(n))
 }
 
 /// True when the text looks like an attempt at a move (`C` followed by a digit
@@ -471,6 +508,23 @@ mod tests {
             "STEP", "STEP 3a", "BRANH 1", "STEPS 2", "STEP x", "3 STEP", "",
         ] {
             assert_eq!(header_kind(not), None, "{not}");
+        }
+    }
+
+    #[test]
+    fn actuator_names_may_carry_a_comment() {
+        for (text, n) in [
+            ("C1", 1),
+            ("c 12", 12),
+            ("C1 (clamp)", 1),
+            ("C3: lift", 3),
+            ("C2 gripper", 2),
+            ("\u{FF23}\u{FF12}", 2),
+        ] {
+            assert_eq!(actuator_name(text), Some(n), "{text}");
+        }
+        for text in ["C", "C0", "C1000", "C1a", "X1", "CLAMP", "1", ""] {
+            assert_eq!(actuator_name(text), None, "{text}");
         }
     }
 

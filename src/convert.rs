@@ -316,6 +316,13 @@ fn finish_check(
         Some(sheet) => settings.with_sheet(&crate::settings::parse(sheet, &mut diags)),
         None => settings.clone(),
     };
+    let mut input = input;
+    if !input.csv_readings.is_empty() {
+        let readings = std::mem::take(&mut input.csv_readings);
+        if let Some(grid) = table::choose_reading(readings, &mut diags) {
+            input.table = grid;
+        }
+    }
     let table = table::build(&input.table, &mut diags);
     if let Some(table) = &table {
         check_valves(table, &effective, &input.table, &mut diags);

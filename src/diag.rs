@@ -204,7 +204,7 @@ impl Diagnostic {
 }
 
 /// Collects diagnostics for one input file.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Diagnostics {
     items: Vec<Diagnostic>,
 }
@@ -245,6 +245,14 @@ impl Diagnostics {
             .iter()
             .filter(|d| d.severity == Severity::Error)
             .count()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    pub fn warning_count(&self) -> usize {
+        self.items.len() - self.error_count()
     }
 
     /// All diagnostics, sorted by position in the file so they read top to bottom.

@@ -10,7 +10,7 @@ use std::collections::BTreeMap;
 
 use crate::address::{Mnemonic, Modes, Safety, Target};
 use crate::diag::{CellPos, Code, Diagnostics};
-use crate::read::{CellValue, Grid};
+use crate::read::{CellValue, Grid, GridCell};
 use crate::timing::{Stroke, parse_duration_ms};
 use crate::valve::ValveType;
 
@@ -36,8 +36,8 @@ pub struct SheetSettings {
 /// of extend and retract times, and of the optional valve and load.
 struct ActuatorColumns {
     header: CellPos,
-    extend: u32,
-    retract: u32,
+    extend: Option<u32>,
+    retract: Option<u32>,
     valve: Option<u32>,
     load: Option<u32>,
 }
@@ -52,12 +52,15 @@ pub const LABELS: [&str; 6] = [
     "home order",
 ];
 
+/// The columns an actuator table may have, after `actuator`.
+const COLUMNS: [&str; 4] = ["extend", "retract", "valve", "load"];
+
 fn text_of(value: &CellValue) -> String {
     match value {
         CellValue::Text(t) => t.trim().to_string(),
         CellValue::Number(n) => format!("{n}"),
         CellValue::Bool(b) => b.to_string(),
-        CellValue::Date(d) | CellValue::Error(d) => d.clone(),
+        CellValue::Date(d) | CellValue::Error(d) | CellValue::Uncomputed(d) => d.clone(),
     }
 }
 
@@ -68,7 +71,24 @@ fn label_of(value: &CellValue) -> Option<String> {
     }
 }
 
-/// Reads the settings sheet. Problems go to `diags` with their cells.
+/// The value of a cell as text, or `None` (reported) for a formula that was
+/// never computed: its text is not what the engineer sees.
+fn value_text(grid: &Grid, cell: &GridCell, diags: &mut Diagnostics) -> Option<String> {
+    if let CellValue::Uncomputed(formula) = &cell.value {
+        diags.error(
+            Code::E016FormulaNotComputed,
+            grid.location(cell.pos),
+            format!(
+                "the formula {formula} has no computed value; open and save the workbook in Excel or LibreOffice, or type the value"
+            ),
+        );
+        return None;
+    }
+    Some(text_of(&cell.value))
+}
+
+/// Reads the settings sheet. Problems go to `diags` with their cells;
+/// a row or column that looks meant for steptable but is not read is named.
 pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
     let mut settings = SheetSettings::default();
     let value_right_of = |pos: CellPos| {
@@ -78,37 +98,25 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
             .min_by_key(|c| c.pos.col)
     };
     let mut stroke_header: Option<ActuatorColumns> = None;
+    let mut label_cols: Vec<u32> = Vec::new();
     for cell in &grid.cells {
         let Some(label) = label_of(&cell.value) else {
             continue;
         };
         if label == "actuator" {
-            let column = |name: &str| {
-                grid.cells
-                    .iter()
-                    .find(|c| {
-                        c.pos.row == cell.pos.row && label_of(&c.value).as_deref() == Some(name)
-                    })
-                    .map(|c| c.pos.col)
-            };
-            if let (Some(extend), Some(retract)) = (column("extend"), column("retract")) {
-                stroke_header = Some(ActuatorColumns {
-                    header: cell.pos,
-                    extend,
-                    retract,
-                    valve: column("valve"),
-                    load: column("load"),
-                });
-            }
+            stroke_header = Some(actuator_columns(grid, cell.pos, diags));
             continue;
         }
         if !LABELS.contains(&label.as_str()) {
             continue;
         }
+        label_cols.push(cell.pos.col);
         let Some(value_cell) = value_right_of(cell.pos) else {
             continue;
         };
-        let value = text_of(&value_cell.value);
+        let Some(value) = value_text(grid, value_cell, diags) else {
+            continue;
+        };
         let lower = value.to_ascii_lowercase();
         let mut bad = |expected: &str| {
             diags.error(
@@ -149,96 +157,244 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
             _ => {}
         }
     }
-    if let Some(ActuatorColumns {
-        header,
-        extend: extend_col,
-        retract: retract_col,
-        valve: valve_col,
-        load: load_col,
-    }) = stroke_header
-    {
-        let mut rows: Vec<u32> = grid
-            .cells
-            .iter()
-            .filter(|c| c.pos.col == header.col && c.pos.row > header.row)
-            .map(|c| c.pos.row)
-            .collect();
-        rows.dedup();
-        for row in rows {
-            let at = |col: u32| {
-                grid.cells
-                    .iter()
-                    .find(|c| c.pos.row == row && c.pos.col == col)
-            };
-            let Some(name_cell) = at(header.col) else {
-                continue;
-            };
-            let name = crate::cell::normalize(&text_of(&name_cell.value));
-            // The table ends at the first row that names no actuator.
-            let Some(actuator) = name
-                .strip_prefix('C')
-                .and_then(|n| n.parse::<u32>().ok())
-                .filter(|n| (1..=crate::cell::MAX_ACTUATOR).contains(n))
-            else {
-                break;
-            };
-            if let Some(cell) = valve_col.and_then(&at) {
-                let text = text_of(&cell.value);
-                match ValveType::parse(&text) {
-                    Some(valve) => {
-                        settings.valves.insert(actuator, valve);
-                    }
-                    None => diags.error(
-                        Code::E030BadSetting,
-                        grid.location(cell.pos),
-                        format!("valve of C{actuator}: \"{text}\" is not a valve type (expected 52bi, 52mono, 53closed, 53exhaust or 53pressure)"),
-                    ),
-                }
-            }
-            if let Some(cell) = load_col.and_then(&at) {
-                let text = text_of(&cell.value);
-                match text.replace(',', ".").parse::<f64>() {
-                    Ok(load) if (0.0..=10.0).contains(&load) => {
-                        settings.loads.insert(actuator, load);
-                    }
-                    _ => diags.error(
-                        Code::E030BadSetting,
-                        grid.location(cell.pos),
-                        format!("load of C{actuator}: \"{text}\" is not a drift in stroke per second from 0 to 10, such as 0.05"),
-                    ),
-                }
-            }
-            let mut time = |col: u32| -> Option<u32> {
-                let cell = at(col)?;
-                let text = text_of(&cell.value);
-                let ms = parse_duration_ms(&text);
-                if ms.is_none() {
-                    diags.error(
-                        Code::E030BadSetting,
-                        grid.location(cell.pos),
-                        format!("stroke time of C{actuator}: \"{text}\" is not a time such as 1.5s or 800ms"),
-                    );
-                }
-                ms
-            };
-            let (extend, retract) = (
-                at(extend_col).and_then(|_| time(extend_col)),
-                at(retract_col).and_then(|_| time(retract_col)),
-            );
-            if extend.is_none() && retract.is_none() {
-                continue;
-            }
-            let default = Stroke::default();
-            settings.strokes.insert(
-                actuator,
-                Stroke {
-                    extend_ms: extend.unwrap_or(default.extend_ms),
-                    retract_ms: retract.unwrap_or(default.retract_ms),
-                },
-            );
-        }
+    report_unknown_labels(grid, &label_cols, stroke_header.as_ref(), diags);
+    if let Some(columns) = stroke_header {
+        read_actuator_rows(grid, &columns, &mut settings, diags);
     }
     settings
+}
+
+/// The columns of the actuator table headed at `header`; a header cell
+/// that is none of them is named, since its column would not be read.
+fn actuator_columns(grid: &Grid, header: CellPos, diags: &mut Diagnostics) -> ActuatorColumns {
+    let mut columns = ActuatorColumns {
+        header,
+        extend: None,
+        retract: None,
+        valve: None,
+        load: None,
+    };
+    for cell in grid
+        .cells
+        .iter()
+        .filter(|c| c.pos.row == header.row && c.pos.col > header.col)
+    {
+        let label = label_of(&cell.value).unwrap_or_default();
+        let slot = match label.as_str() {
+            "extend" => &mut columns.extend,
+            "retract" => &mut columns.retract,
+            "valve" => &mut columns.valve,
+            "load" => &mut columns.load,
+            _ => {
+                diags.warning(
+                    Code::W003Ignored,
+                    grid.location(cell.pos),
+                    format!(
+                        "{} heads no column steptable reads (expected {}); its column was not read",
+                        cell.value.describe(),
+                        COLUMNS.join(", ")
+                    ),
+                );
+                continue;
+            }
+        };
+        slot.get_or_insert(cell.pos.col);
+    }
+    columns
+}
+
+/// The rows of the actuator table: from the header down to the first row
+/// with nothing in the table's columns. A row whose first cell is no
+/// actuator (`C2`, `C2 (clamp)`) is an error when it holds values, which
+/// would otherwise be lost.
+fn read_actuator_rows(
+    grid: &Grid,
+    columns: &ActuatorColumns,
+    settings: &mut SheetSettings,
+    diags: &mut Diagnostics,
+) {
+    let header = columns.header;
+    let value_cols: Vec<u32> = [columns.extend, columns.retract, columns.valve, columns.load]
+        .into_iter()
+        .flatten()
+        .collect();
+    // Every headed column counts, so a value under a header we do not read is named.
+    let last_col = grid
+        .cells
+        .iter()
+        .filter(|c| c.pos.row == header.row)
+        .map(|c| c.pos.col)
+        .max()
+        .unwrap_or(header.col);
+    let in_table = |c: &&GridCell| (header.col..=last_col).contains(&c.pos.col);
+    let mut row = header.row + 1;
+    loop {
+        let cells: Vec<&GridCell> = grid
+            .cells
+            .iter()
+            .filter(|c| c.pos.row == row)
+            .filter(in_table)
+            .collect();
+        if cells.is_empty() {
+            break;
+        }
+        row += 1;
+        let at = |col: u32| cells.iter().copied().find(|c| c.pos.col == col);
+        let values: Vec<&GridCell> = cells
+            .iter()
+            .copied()
+            .filter(|c| c.pos.col != header.col)
+            .collect();
+        let Some(name_cell) = at(header.col) else {
+            diags.error(
+                Code::E030BadSetting,
+                grid.location(values[0].pos),
+                "this row of the actuator table names no actuator in its first column; write C1, C2, … there".to_string(),
+            );
+            continue;
+        };
+        let name = text_of(&name_cell.value);
+        let Some(actuator) = crate::cell::actuator_name(&name) else {
+            if values.is_empty() && !crate::cell::looks_like_move(&name) {
+                // A note under the table ends it.
+                diags.warning(
+                    Code::W003Ignored,
+                    grid.location(name_cell.pos),
+                    format!(
+                        "{} is not an actuator; the actuator table ends above it",
+                        name_cell.value.describe()
+                    ),
+                );
+                break;
+            }
+            diags.error(
+                Code::E030BadSetting,
+                grid.location(name_cell.pos),
+                format!(
+                    "\"{name}\" is not an actuator (expected C1 to C{}, optionally with a comment: C1 (clamp)); the row's values were not read",
+                    crate::cell::MAX_ACTUATOR
+                ),
+            );
+            continue;
+        };
+        for cell in &values {
+            if !value_cols.contains(&cell.pos.col) {
+                diags.warning(
+                    Code::W003Ignored,
+                    grid.location(cell.pos),
+                    format!(
+                        "{} of C{actuator} is in a column without a header (expected {}); it was not read",
+                        cell.value.describe(),
+                        COLUMNS.join(", ")
+                    ),
+                );
+            }
+        }
+        read_actuator_row(grid, actuator, columns, &at, settings, diags);
+    }
+}
+
+fn read_actuator_row<'g>(
+    grid: &Grid,
+    actuator: u32,
+    columns: &ActuatorColumns,
+    at: &dyn Fn(u32) -> Option<&'g GridCell>,
+    settings: &mut SheetSettings,
+    diags: &mut Diagnostics,
+) {
+    if let Some(cell) = columns.valve.and_then(at)
+        && let Some(text) = value_text(grid, cell, diags)
+    {
+        match ValveType::parse(&text) {
+            Some(valve) => {
+                settings.valves.insert(actuator, valve);
+            }
+            None => diags.error(
+                Code::E030BadSetting,
+                grid.location(cell.pos),
+                format!("valve of C{actuator}: \"{text}\" is not a valve type (expected 52bi, 52mono, 53closed, 53exhaust or 53pressure)"),
+            ),
+        }
+    }
+    if let Some(cell) = columns.load.and_then(at)
+        && let Some(text) = value_text(grid, cell, diags)
+    {
+        match text.replace(',', ".").parse::<f64>() {
+            Ok(load) if (0.0..=10.0).contains(&load) => {
+                settings.loads.insert(actuator, load);
+            }
+            _ => diags.error(
+                Code::E030BadSetting,
+                grid.location(cell.pos),
+                format!("load of C{actuator}: \"{text}\" is not a drift in stroke per second from 0 to 10, such as 0.05"),
+            ),
+        }
+    }
+    let mut time = |col: Option<u32>| -> Option<u32> {
+        let cell = col.and_then(at)?;
+        let text = value_text(grid, cell, diags)?;
+        let ms = parse_duration_ms(&text);
+        if ms.is_none() {
+            diags.error(
+                Code::E030BadSetting,
+                grid.location(cell.pos),
+                format!(
+                    "stroke time of C{actuator}: \"{text}\" is not a time such as 1.5s or 800ms"
+                ),
+            );
+        }
+        ms
+    };
+    let (extend, retract) = (time(columns.extend), time(columns.retract));
+    if extend.is_none() && retract.is_none() {
+        return;
+    }
+    let default = Stroke::default();
+    settings.strokes.insert(
+        actuator,
+        Stroke {
+            extend_ms: extend.unwrap_or(default.extend_ms),
+            retract_ms: retract.unwrap_or(default.retract_ms),
+        },
+    );
+}
+
+/// A label in the column of the known labels, with a value beside it, that
+/// is no setting (`scan-time`, `safty`): its row would be ignored.
+fn report_unknown_labels(
+    grid: &Grid,
+    label_cols: &[u32],
+    actuators: Option<&ActuatorColumns>,
+    diags: &mut Diagnostics,
+) {
+    let actuator_rows = actuators.map(|a| a.header.row);
+    for cell in &grid.cells {
+        if !label_cols.contains(&cell.pos.col) || actuator_rows.is_some_and(|r| cell.pos.row >= r) {
+            continue;
+        }
+        let Some(label) = label_of(&cell.value) else {
+            continue;
+        };
+        let has_value = grid
+            .cells
+            .iter()
+            .any(|c| c.pos.row == cell.pos.row && c.pos.col == cell.pos.col + 1);
+        if !has_value
+            || LABELS.contains(&label.as_str())
+            || matches!(label.as_str(), "setting" | "settings")
+        {
+            continue;
+        }
+        diags.warning(
+            Code::W003Ignored,
+            grid.location(cell.pos),
+            format!(
+                "{} is not a setting steptable knows ({}); its row was not read",
+                cell.value.describe(),
+                LABELS.join(", ")
+            ),
+        );
+    }
 }
 
 #[cfg(test)]
@@ -313,5 +469,44 @@ mod tests {
             messages[2].contains("SETTINGS!B4") && messages[2].contains("\"fast\""),
             "{messages:?}"
         );
+    }
+
+    #[test]
+    fn nothing_meant_for_steptable_is_dropped_silently() {
+        let mut diags = Diagnostics::new();
+        let s = parse(
+            &grid(&[
+                &["scan-time", "20ms"],
+                &["safety", "all"],
+                &[],
+                &["actuator", "extend", "retract", "valve", "remark"],
+                &["C1 (clamp)", "5s", "5s", "52mono", "old valve"],
+                &["", "2s", "1s"],
+                &["C2x", "1s", "1s"],
+                &["C3", "1s", "1s"],
+                &[],
+                &["C4", "1s"],
+            ]),
+            &mut diags,
+        );
+        let all: Vec<String> = diags.into_sorted().iter().map(|d| d.to_string()).collect();
+        assert_eq!(s.valves.get(&1), Some(&ValveType::Mono52), "{all:?}");
+        assert_eq!(s.strokes[&1].extend_ms, 5000);
+        assert_eq!(
+            s.strokes[&3].extend_ms, 1000,
+            "rows after a bad one are still read"
+        );
+        assert!(!s.strokes.contains_key(&4), "the table ends at a blank row");
+        let expected = [
+            "SETTINGS!A1: warning[W003]: \"scan-time\" is not a setting",
+            "SETTINGS!E4: warning[W003]: \"remark\" heads no column",
+            "SETTINGS!E5: warning[W003]: \"old valve\" of C1",
+            "SETTINGS!B6: error[E030]: this row of the actuator table names no actuator",
+            "SETTINGS!A7: error[E030]: \"C2x\" is not an actuator",
+        ];
+        assert_eq!(all.len(), expected.len(), "{all:#?}");
+        for (got, want) in all.iter().zip(expected) {
+            assert!(got.contains(want), "{got}\n{want}");
+        }
     }
 }

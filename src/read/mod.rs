@@ -2,9 +2,11 @@
 //! Workbooks (`.xlsx`, `.xlsm`, `.xls`, `.ods`) go through calamine; CSV is
 //! decoded here (UTF-8 with or without BOM, UTF-16 with BOM; `,` `;` or tab).
 
+mod csv;
 mod ods;
 mod ole;
 mod xlsx;
+pub use csv::CsvReading;
 use std::io::Cursor;
 use std::path::Path;
 
@@ -31,6 +33,8 @@ pub enum CellValue {
     Date(String),
     /// An error value such as `#REF!`.
     Error(String),
+    /// A formula (its text) saved without a computed value.
+    Uncomputed(String),
 }
 
 impl CellValue {
@@ -50,6 +54,7 @@ impl CellValue {
             CellValue::Bool(b) => format!("the value {}", if *b { "TRUE" } else { "FALSE" }),
             CellValue::Date(d) => format!("the date {d}"),
             CellValue::Error(e) => format!("the error {e}"),
+            CellValue::Uncomputed(f) => format!("the formula {f} (never computed)"),
         }
     }
 }
@@ -126,13 +131,6 @@ impl Grid {
             cell: None,
         }
     }
-
-    fn holds_table(&self) -> bool {
-        self.cells.iter().any(|c| match &c.value {
-            CellValue::Text(t) => looks_like_move(t) || header_kind(t).is_some(),
-            _ => false,
-        })
-    }
 }
 
 /// The sheet name of the engineer's settings, when a workbook has one.
@@ -144,6 +142,9 @@ pub const SETTINGS_SHEET: &str = "SETTINGS";
 pub struct Input {
     pub table: Grid,
     pub settings: Option<Grid>,
+    /// A CSV file's readings, one per delimiter that could be meant, when
+    /// there is more than one: the table decides which is the table.
+    pub csv_readings: Vec<CsvReading>,
 }
 
 /// Which reader a file needs, decided by its extension.
@@ -233,10 +234,23 @@ pub fn read_bytes(
     diags: &mut Diagnostics,
 ) -> Option<Input> {
     match format {
-        Format::Csv => read_csv(file, &bytes, diags).map(|table| Input {
-            table,
-            settings: None,
-        }),
+        Format::Csv => {
+            let mut readings = csv::read_csv(file, &bytes, diags)?;
+            if readings.len() == 1 {
+                let only = readings.remove(0);
+                diags.extend(only.diags);
+                return Some(Input {
+                    table: only.grid,
+                    settings: None,
+                    csv_readings: Vec::new(),
+                });
+            }
+            Some(Input {
+                table: readings[0].grid.clone(),
+                settings: None,
+                csv_readings: readings,
+            })
+        }
         _ => {
             // calamine is a large parser of untrusted zip and OLE data; a panic
             // deep inside it (fuzzing found one in its OLE reader) must become
@@ -400,11 +414,21 @@ fn read_workbook(
         }
     };
 
-    let settings = names
+    let settings_name = names
         .iter()
         .find(|n| n.trim().eq_ignore_ascii_case(SETTINGS_SHEET))
-        .cloned()
-        .and_then(|name| read_sheet(&mut workbook, &name, diags));
+        .cloned();
+    let settings = settings_name.and_then(|name| {
+        let grid = read_sheet(&mut workbook, &name, diags)?;
+        if workbook.hidden().contains(&name) {
+            diags.warning(
+                Code::W004SheetChoice,
+                grid.sheet_location(),
+                "the SETTINGS sheet is hidden but its settings are used",
+            );
+        }
+        Some(grid)
+    });
     let table = pick_table(
         &mut workbook,
         &names,
@@ -413,14 +437,21 @@ fn read_workbook(
         diags,
         &read_sheet,
     )?;
-    Some(Input { table, settings })
+    Some(Input {
+        table,
+        settings,
+        csv_readings: Vec::new(),
+    })
 }
 
 type SheetReader<'a> =
     dyn Fn(&mut Box<dyn SheetSource>, &str, &mut Diagnostics) -> Option<Grid> + 'a;
 
-/// The sheet holding the step table: the one asked for, else the one named
-/// SEQUENTIAL CONTROL DESCRIPTION, else the first that holds moves.
+/// The sheet holding the step table: the one asked for; else the one named
+/// SEQUENTIAL CONTROL DESCRIPTION unless it is hidden; else the visible sheet
+/// that best holds a table (BRANCH/STEP headers first, then the most moves),
+/// and a hidden one only when no visible sheet holds a table. Any choice
+/// among several, or of a hidden sheet, is said (W004).
 fn pick_table(
     workbook: &mut Box<dyn SheetSource>,
     names: &[String],
@@ -430,11 +461,13 @@ fn pick_table(
     read_sheet: &SheetReader,
 ) -> Option<Grid> {
     let whole_file = whole_file.clone();
-    if let Some(wanted) = wanted {
-        let Some(name) = names
+    let find = |wanted: &str| {
+        names
             .iter()
             .find(|n| n.trim().eq_ignore_ascii_case(wanted.trim()))
-        else {
+    };
+    if let Some(wanted) = wanted {
+        let Some(name) = find(wanted) else {
             diags.error(
                 Code::E004NoSuchSheet,
                 whole_file,
@@ -447,31 +480,108 @@ fn pick_table(
         };
         return read_sheet(workbook, name, diags);
     }
-    if let Some(name) = names
-        .iter()
-        .find(|n| n.trim().eq_ignore_ascii_case(TABLE_SHEET))
+    let hidden = workbook.hidden();
+    let is_hidden = |name: &str| hidden.iter().any(|h| h == name);
+    if let Some(name) = find(TABLE_SHEET)
+        && !is_hidden(name)
     {
         return read_sheet(workbook, name, diags);
     }
     // A sheet that could not be read may be the one with the table: say why.
     let mut unread = Diagnostics::new();
+    let mut candidates: Vec<(TableScore, Grid)> = Vec::new();
     for name in names {
         let mut local = Diagnostics::new();
         match read_sheet(workbook, name, &mut local) {
-            Some(grid) if grid.holds_table() => return Some(grid),
-            Some(_) => {}
+            Some(grid) => {
+                if let Some(score) = table_score(&grid, is_hidden(name)) {
+                    candidates.push((score, grid));
+                }
+            }
             None => unread.extend(local),
         }
     }
-    diags.extend(unread);
-    diags.error(
-        Code::E003NoTable,
-        whole_file,
-        format!(
-            "no step table found: no sheet named \"{TABLE_SHEET}\" and no sheet holding moves such as C1+1"
-        ),
-    );
-    None
+    // The best score wins; the first sheet on a tie.
+    let best = candidates
+        .iter()
+        .enumerate()
+        .max_by(|(i, (a, _)), (j, (b, _))| a.cmp(b).then(j.cmp(i)))
+        .map(|(i, _)| i);
+    let Some(best) = best else {
+        diags.extend(unread);
+        diags.error(
+            Code::E003NoTable,
+            whole_file,
+            format!(
+                "no step table found: no sheet named \"{TABLE_SHEET}\" and no sheet holding moves such as C1+1"
+            ),
+        );
+        return None;
+    };
+    let (score, grid) = candidates.swap_remove(best);
+    let others: Vec<String> = candidates
+        .iter()
+        .map(|(s, g)| {
+            let name = g.sheet.clone().unwrap_or_default();
+            if s.visible {
+                name
+            } else {
+                format!("{name} (hidden)")
+            }
+        })
+        .collect();
+    let chosen = grid.sheet.clone().unwrap_or_default();
+    let mut why = Vec::new();
+    if let Some(name) = find(TABLE_SHEET) {
+        why.push(format!("the sheet \"{name}\" is hidden"));
+    }
+    if !score.visible {
+        why.push(format!(
+            "\"{chosen}\" is hidden but no visible sheet holds a table"
+        ));
+    }
+    if !others.is_empty() {
+        why.push(format!(
+            "other sheets also hold moves: {}",
+            others.join(", ")
+        ));
+    }
+    if !why.is_empty() {
+        diags.warning(
+            Code::W004SheetChoice,
+            grid.sheet_location(),
+            format!(
+                "the table was read from sheet \"{chosen}\": {}; choose another with --sheet",
+                why.join("; ")
+            ),
+        );
+    }
+    Some(grid)
+}
+
+/// How well a sheet holds a step table; `None` when it holds none.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct TableScore {
+    visible: bool,
+    /// BRANCH n / STEP n headers: a legend of example moves has none.
+    headers: bool,
+    moves: usize,
+}
+
+fn table_score(grid: &Grid, hidden: bool) -> Option<TableScore> {
+    let mut headers = false;
+    let mut moves = 0;
+    for cell in &grid.cells {
+        if let CellValue::Text(t) = &cell.value {
+            headers |= header_kind(t).is_some();
+            moves += usize::from(looks_like_move(t));
+        }
+    }
+    (headers || moves > 0).then_some(TableScore {
+        visible: !hidden,
+        headers,
+        moves,
+    })
 }
 
 /// The total unpacked size a zip archive declares, if it is one. A zip bomb
@@ -493,8 +603,18 @@ fn format_name(format: Format) -> &'static str {
 /// The two things we need from any calamine reader, object-safe.
 trait SheetSource {
     fn names(&self) -> Vec<String>;
+    /// The names of hidden sheets (also "very hidden" ones).
+    fn hidden(&self) -> Vec<String>;
     /// The filled cells of one sheet.
     fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError>;
+}
+
+fn hidden_sheets(sheets: &[calamine::Sheet]) -> Vec<String> {
+    sheets
+        .iter()
+        .filter(|s| s.visible != calamine::SheetVisible::Visible)
+        .map(|s| s.name.clone())
+        .collect()
 }
 
 /// Why a sheet could not be read.
@@ -513,14 +633,27 @@ impl SheetSource for Xlsx<Cursor<Vec<u8>>> {
         self.sheet_names()
     }
 
+    fn hidden(&self) -> Vec<String> {
+        hidden_sheets(self.sheets_metadata())
+    }
+
     fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError> {
         let unreadable = |e: calamine::XlsxError| SheetError::Unreadable(e.to_string());
         let mut reader = self.worksheet_cells_reader(name).map_err(unreadable)?;
         let mut cells = Vec::new();
-        while let Some(cell) = reader.next_cell().map_err(unreadable)? {
-            let (row, col) = cell.get_position();
-            let data: Data = cell.get_value().clone().into();
-            if let Some(value) = cell_value(&data) {
+        while let Some(cell) = reader
+            .next_cell_with_formula_metadata()
+            .map_err(unreadable)?
+        {
+            let (row, col) = cell.pos;
+            let data: Data = cell.value.into();
+            // A formula saved by a program that never computed it has no
+            // value; read as empty, what the engineer wrote would vanish.
+            let value = match (&data, cell.formula) {
+                (Data::Empty, Some(formula)) => Some(CellValue::Uncomputed(formula_text(formula))),
+                _ => cell_value(&data),
+            };
+            if let Some(value) = value {
                 if cells.len() == MAX_FILLED_CELLS {
                     return Err(SheetError::TooManyCells);
                 }
@@ -538,6 +671,15 @@ impl SheetSource for Xlsx<Cursor<Vec<u8>>> {
     }
 }
 
+/// The text of a formula as the cell holds it, for messages.
+fn formula_text(formula: calamine::XlsxFormulaMetadata) -> String {
+    match formula {
+        calamine::XlsxFormulaMetadata::Normal { formula }
+        | calamine::XlsxFormulaMetadata::Shared { formula, .. } => format!("={formula}"),
+        _ => "a shared formula".to_string(),
+    }
+}
+
 /// `.xls` and `.ods`: calamine decodes these whole; their grids are small
 /// (65,536 × 256 for `.xls`).
 macro_rules! whole_sheet_source {
@@ -545,6 +687,10 @@ macro_rules! whole_sheet_source {
         impl SheetSource for $reader {
             fn names(&self) -> Vec<String> {
                 self.sheet_names()
+            }
+
+            fn hidden(&self) -> Vec<String> {
+                hidden_sheets(self.sheets_metadata())
             }
 
             fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError> {
@@ -600,177 +746,6 @@ fn grid_from_range(file: &str, sheet: &str, range: &Range<Data>) -> Grid {
         sheet: Some(sheet.to_string()),
         cells,
     }
-}
-
-fn read_csv(file: &str, bytes: &[u8], diags: &mut Diagnostics) -> Option<Grid> {
-    let whole_file = Location {
-        file: file.to_string(),
-        sheet: None,
-        cell: None,
-    };
-    let text = match decode_text(bytes) {
-        Ok((text, encoding)) => {
-            if let Some(encoding) = encoding {
-                diags.warning(
-                    Code::W001Encoding,
-                    whole_file.clone(),
-                    format!("read as {encoding} text, not UTF-8"),
-                );
-            }
-            text
-        }
-        Err(why) => {
-            diags.error(Code::E002NotAWorkbook, whole_file, why);
-            return None;
-        }
-    };
-    let delimiter = detect_delimiter(&text);
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .flexible(true)
-        .delimiter(delimiter)
-        .from_reader(text.as_bytes());
-    let mut cells = Vec::new();
-    // Lines are counted from byte offsets: the reader's own line numbers lag
-    // behind with CRLF endings, and a quoted field may span lines.
-    let mut counted_to = 0usize;
-    let mut line = 1u64;
-    for record in reader.records() {
-        let record = match record {
-            Ok(r) => r,
-            Err(err) => {
-                let line = err.position().map(|p| p.line()).unwrap_or(1);
-                diags.error(
-                    Code::E002NotAWorkbook,
-                    Location {
-                        file: file.to_string(),
-                        sheet: None,
-                        cell: Some(CellPos::new(line.saturating_sub(1) as u32, 0)),
-                    },
-                    format!("not valid CSV ({err})"),
-                );
-                return None;
-            }
-        };
-        let bytes = text.as_bytes();
-        let mut start = record
-            .position()
-            .map(|p| p.byte() as usize)
-            .unwrap_or(counted_to)
-            .min(bytes.len());
-        // With CRLF the reader reports a record as starting on the LF.
-        while start < bytes.len() && matches!(bytes[start], b'\r' | b'\n') {
-            start += 1;
-        }
-        if start > counted_to {
-            line += count_line_breaks(&bytes[counted_to..start]);
-            counted_to = start;
-        }
-        let row = line.saturating_sub(1).min(u32::MAX as u64) as u32;
-        for (col, field) in record.iter().enumerate() {
-            if field.trim().is_empty() {
-                continue;
-            }
-            cells.push(GridCell {
-                pos: CellPos::new(row, col.min(u32::MAX as usize) as u32),
-                value: CellValue::Text(field.to_string()),
-            });
-        }
-    }
-    Some(Grid {
-        file: file.to_string(),
-        sheet: None,
-        cells,
-    })
-}
-
-/// Line breaks in a byte slice: LF, CRLF and a lone CR each count once.
-fn count_line_breaks(bytes: &[u8]) -> u64 {
-    let mut count = 0;
-    for (i, b) in bytes.iter().enumerate() {
-        match b {
-            b'\n' => count += 1,
-            b'\r' if bytes.get(i + 1) != Some(&b'\n') => count += 1,
-            _ => {}
-        }
-    }
-    count
-}
-
-/// Decodes CSV bytes: UTF-8 (BOM optional), UTF-16 with a BOM (what Excel's
-/// "Unicode text" writes), or else Windows-1252 (what older Excel writes in
-/// Europe), which is reported. Returns the text and, if it was not UTF-8, the
-/// encoding found.
-fn decode_text(bytes: &[u8]) -> Result<(String, Option<&'static str>), String> {
-    if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]) {
-        return String::from_utf8(rest.to_vec())
-            .map(|t| (t, None))
-            .map_err(|_| "starts with a UTF-8 byte order mark but is not valid UTF-8".to_string());
-    }
-    let utf16 = |rest: &[u8], little: bool| -> Result<(String, Option<&'static str>), String> {
-        let units: Vec<u16> = rest
-            .chunks_exact(2)
-            .map(|p| {
-                if little {
-                    u16::from_le_bytes([p[0], p[1]])
-                } else {
-                    u16::from_be_bytes([p[0], p[1]])
-                }
-            })
-            .collect();
-        String::from_utf16(&units)
-            .map(|t| (t, Some("UTF-16")))
-            .map_err(|_| "UTF-16 text with invalid characters".to_string())
-    };
-    if let Some(rest) = bytes.strip_prefix(&[0xFF, 0xFE]) {
-        return utf16(rest, true);
-    }
-    if let Some(rest) = bytes.strip_prefix(&[0xFE, 0xFF]) {
-        return utf16(rest, false);
-    }
-    if bytes.contains(&0) {
-        return Err("binary data, not a CSV text file".to_string());
-    }
-    match String::from_utf8(bytes.to_vec()) {
-        Ok(text) => Ok((text, None)),
-        Err(e) => {
-            let offset = e.utf8_error().valid_up_to();
-            encoding_rs::WINDOWS_1252
-                .decode_without_bom_handling_and_without_replacement(bytes)
-                .map(|text| (text.into_owned(), Some("Windows-1252")))
-                .ok_or_else(|| {
-                    format!(
-                        "neither UTF-8 nor Windows-1252 text (invalid byte at offset {offset}); save the CSV as \"CSV UTF-8\""
-                    )
-                })
-        }
-    }
-}
-
-/// Picks `,`, `;` or tab: whichever occurs most often outside quotes in the
-/// first lines. Comma on a tie, as in a single-column file.
-fn detect_delimiter(text: &str) -> u8 {
-    let mut counts = [0usize; 3];
-    let mut in_quotes = false;
-    for line in text.lines().take(50) {
-        for ch in line.chars() {
-            match ch {
-                '"' => in_quotes = !in_quotes,
-                ',' if !in_quotes => counts[0] += 1,
-                ';' if !in_quotes => counts[1] += 1,
-                '\t' if !in_quotes => counts[2] += 1,
-                _ => {}
-            }
-        }
-    }
-    let candidates = [b',', b';', b'\t'];
-    let mut best = 0;
-    for i in 1..3 {
-        if counts[i] > counts[best] {
-            best = i;
-        }
-    }
-    candidates[best]
 }
 
 #[cfg(test)]

@@ -4,7 +4,10 @@
 
 use std::collections::BTreeMap;
 
+mod dialect;
 mod frame;
+
+pub use dialect::choose_reading;
 
 use frame::{Frame, find_frame};
 
@@ -336,6 +339,16 @@ fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Vec<CellIt
                 Code::E010NotAMove,
                 location,
                 format!("the cell shows the error {e}, not a move"),
+            );
+            return Vec::new();
+        }
+        CellValue::Uncomputed(formula) => {
+            diags.error(
+                Code::E016FormulaNotComputed,
+                location,
+                format!(
+                    "the formula {formula} has no computed value (the file was saved by a program that does not calculate); open and save it in Excel or LibreOffice, or type the move"
+                ),
             );
             return Vec::new();
         }

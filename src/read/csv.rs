@@ -1,0 +1,330 @@
+//! CSV: bytes → text (UTF-8 with or without BOM, UTF-16 with BOM,
+//! Windows-1252) → one reading per delimiter that could be meant (`,` `;`
+//! tab). Which reading is the table is decided by what parses as one
+//! (`table::choose_reading`), not by counting characters: `;` also joins
+//! items inside a cell (`C1+1; T=2s`).
+
+use crate::diag::{CellPos, Code, Diagnostics, Location};
+
+use super::{CellValue, Grid, GridCell, MAX_FILLED_CELLS};
+
+/// The CSV file read with one delimiter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CsvReading {
+    pub delimiter: u8,
+    pub grid: Grid,
+    /// Fields that start with white space: Excel never writes a space after
+    /// its delimiter, a person writing `C1+1; T=2s` in a cell does.
+    pub spaced_fields: usize,
+    /// Problems of this reading only (a decimal comma split in two).
+    pub diags: Diagnostics,
+}
+
+impl CsvReading {
+    /// The delimiter as messages name it.
+    pub fn delimiter_name(&self) -> &'static str {
+        match self.delimiter {
+            b',' => "comma",
+            b';' => "semicolon",
+            _ => "tab",
+        }
+    }
+}
+
+/// Reads a CSV file: every plausible reading, the most likely first.
+/// `None` (reported) when the bytes are no CSV text.
+pub(super) fn read_csv(
+    file: &str,
+    bytes: &[u8],
+    diags: &mut Diagnostics,
+) -> Option<Vec<CsvReading>> {
+    let whole_file = Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: None,
+    };
+    let text = match decode_text(bytes) {
+        Ok((text, encoding)) => {
+            if let Some(encoding) = encoding {
+                diags.warning(
+                    Code::W001Encoding,
+                    whole_file.clone(),
+                    format!("read as {encoding} text, not UTF-8"),
+                );
+            }
+            text
+        }
+        Err(why) => {
+            diags.error(Code::E002NotAWorkbook, whole_file, why);
+            return None;
+        }
+    };
+    let mut readings = Vec::new();
+    let mut first_failure = None;
+    for delimiter in candidate_delimiters(&text) {
+        let mut local = Diagnostics::new();
+        match read_with(file, &text, delimiter, &mut local) {
+            Some(reading) => readings.push(reading),
+            None if first_failure.is_none() => first_failure = Some(local),
+            None => {}
+        }
+    }
+    if readings.is_empty() {
+        diags.extend(first_failure.unwrap_or_default());
+        return None;
+    }
+    Some(readings)
+}
+
+/// The delimiters that occur outside quotes, the most frequent first, and
+/// comma (a one-column file has no delimiter at all).
+fn candidate_delimiters(text: &str) -> Vec<u8> {
+    let mut counts = [(b',', 0usize), (b';', 0), (b'\t', 0)];
+    let mut in_quotes = false;
+    for byte in text.bytes() {
+        match byte {
+            b'"' => in_quotes = !in_quotes,
+            _ if in_quotes => {}
+            _ => {
+                if let Some(entry) = counts.iter_mut().find(|(d, _)| *d == byte) {
+                    entry.1 += 1;
+                }
+            }
+        }
+    }
+    // Stable: comma first on a tie.
+    counts.sort_by_key(|c| std::cmp::Reverse(c.1));
+    let mut found: Vec<u8> = counts
+        .iter()
+        .filter(|(_, n)| *n > 0)
+        .map(|(d, _)| *d)
+        .collect();
+    if !found.contains(&b',') {
+        found.push(b',');
+    }
+    found
+}
+
+fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> Option<CsvReading> {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .delimiter(delimiter)
+        .from_reader(text.as_bytes());
+    let mut cells = Vec::new();
+    let mut spaced_fields = 0;
+    let mut local = Diagnostics::new();
+    // Lines are counted from byte offsets: the reader's own line numbers lag
+    // behind with CRLF endings, and a quoted field may span lines.
+    let mut counted_to = 0usize;
+    let mut line = 1u64;
+    let location = |row: u32, col: u32| Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: Some(CellPos::new(row, col)),
+    };
+    for record in reader.records() {
+        let record = match record {
+            Ok(r) => r,
+            Err(err) => {
+                let line = err.position().map(|p| p.line()).unwrap_or(1);
+                diags.error(
+                    Code::E002NotAWorkbook,
+                    location(line.saturating_sub(1) as u32, 0),
+                    format!("not valid CSV ({err})"),
+                );
+                return None;
+            }
+        };
+        let bytes = text.as_bytes();
+        let mut start = record
+            .position()
+            .map(|p| p.byte() as usize)
+            .unwrap_or(counted_to)
+            .min(bytes.len());
+        // With CRLF the reader reports a record as starting on the LF.
+        while start < bytes.len() && matches!(bytes[start], b'\r' | b'\n') {
+            start += 1;
+        }
+        if start > counted_to {
+            line += count_line_breaks(&bytes[counted_to..start]);
+            counted_to = start;
+        }
+        let row = line.saturating_sub(1).min(u32::MAX as u64) as u32;
+        let mut previous: Option<&str> = None;
+        for (col, field) in record.iter().enumerate() {
+            let col = col.min(u32::MAX as usize) as u32;
+            if field.trim().is_empty() {
+                previous = None;
+                continue;
+            }
+            if cells.len() == MAX_FILLED_CELLS {
+                diags.error(
+                    Code::E024TableTooLarge,
+                    location(row, col),
+                    format!(
+                        "the file has more than {MAX_FILLED_CELLS} filled cells; a table of 10,000 steps × 256 branches has fewer"
+                    ),
+                );
+                return None;
+            }
+            if col > 0 && field.starts_with(char::is_whitespace) {
+                spaced_fields += 1;
+            }
+            if delimiter == b','
+                && previous.is_some_and(ends_in_dwell_number)
+                && is_number_tail(field)
+            {
+                local.error(
+                    Code::E014BadDwell,
+                    location(row, col),
+                    format!(
+                        "\"{},{}\" was split in two by the comma that separates the CSV's cells: write the dwell with a decimal point (T=1.5s), or quote the cell",
+                        previous.unwrap_or_default().trim(),
+                        field.trim()
+                    ),
+                );
+            }
+            previous = Some(field);
+            cells.push(GridCell {
+                pos: CellPos::new(row, col),
+                value: CellValue::Text(field.to_string()),
+            });
+        }
+    }
+    Some(CsvReading {
+        delimiter,
+        grid: Grid {
+            file: file.to_string(),
+            sheet: None,
+            cells,
+        },
+        spaced_fields,
+        diags: local,
+    })
+}
+
+/// `T=1` or `C1+1; T=1` — a dwell whose decimal comma may have split the cell.
+fn ends_in_dwell_number(field: &str) -> bool {
+    let last = field.rsplit([';', '\u{FF1B}']).next().unwrap_or(field);
+    let squeezed: String = last.chars().filter(|c| !c.is_whitespace()).collect();
+    let upper = squeezed.to_ascii_uppercase();
+    upper
+        .strip_prefix("T=")
+        .is_some_and(|n| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()))
+}
+
+/// `5s`, `25ms`, `5`: the decimals of a split dwell.
+fn is_number_tail(field: &str) -> bool {
+    let t = field.trim();
+    let digits = t.chars().take_while(char::is_ascii_digit).count();
+    digits > 0
+        && matches!(
+            t[digits..].trim().to_ascii_lowercase().as_str(),
+            "" | "s" | "ms" | "min"
+        )
+}
+
+/// Line breaks in a byte slice: LF, CRLF and a lone CR each count once.
+fn count_line_breaks(bytes: &[u8]) -> u64 {
+    let mut count = 0;
+    for (i, b) in bytes.iter().enumerate() {
+        match b {
+            b'\n' => count += 1,
+            b'\r' if bytes.get(i + 1) != Some(&b'\n') => count += 1,
+            _ => {}
+        }
+    }
+    count
+}
+
+/// Decodes CSV bytes: UTF-8 (BOM optional), UTF-16 with a BOM (what Excel's
+/// "Unicode text" writes), or else Windows-1252 (what older Excel writes in
+/// Europe), which is reported. Returns the text and, if it was not UTF-8, the
+/// encoding found.
+fn decode_text(bytes: &[u8]) -> Result<(String, Option<&'static str>), String> {
+    if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]) {
+        return String::from_utf8(rest.to_vec())
+            .map(|t| (t, None))
+            .map_err(|_| "starts with a UTF-8 byte order mark but is not valid UTF-8".to_string());
+    }
+    let utf16 = |rest: &[u8], little: bool| -> Result<(String, Option<&'static str>), String> {
+        let units: Vec<u16> = rest
+            .chunks_exact(2)
+            .map(|p| {
+                if little {
+                    u16::from_le_bytes([p[0], p[1]])
+                } else {
+                    u16::from_be_bytes([p[0], p[1]])
+                }
+            })
+            .collect();
+        String::from_utf16(&units)
+            .map(|t| (t, Some("UTF-16")))
+            .map_err(|_| "UTF-16 text with invalid characters".to_string())
+    };
+    if let Some(rest) = bytes.strip_prefix(&[0xFF, 0xFE]) {
+        return utf16(rest, true);
+    }
+    if let Some(rest) = bytes.strip_prefix(&[0xFE, 0xFF]) {
+        return utf16(rest, false);
+    }
+    if bytes.contains(&0) {
+        return Err("binary data, not a CSV text file".to_string());
+    }
+    match String::from_utf8(bytes.to_vec()) {
+        Ok(text) => Ok((text, None)),
+        Err(e) => {
+            let offset = e.utf8_error().valid_up_to();
+            encoding_rs::WINDOWS_1252
+                .decode_without_bom_handling_and_without_replacement(bytes)
+                .map(|text| (text.into_owned(), Some("Windows-1252")))
+                .ok_or_else(|| {
+                    format!(
+                        "neither UTF-8 nor Windows-1252 text (invalid byte at offset {offset}); save the CSV as \"CSV UTF-8\""
+                    )
+                })
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn readings(text: &str) -> Vec<CsvReading> {
+        read_csv("t.csv", text.as_bytes(), &mut Diagnostics::new()).unwrap()
+    }
+
+    #[test]
+    fn every_delimiter_found_outside_quotes_is_a_reading() {
+        let r = readings("STEP 1,\"C1+1; T=2s\"\n");
+        assert_eq!(r.len(), 1, "the ; is inside quotes");
+        let r = readings("C1+1; T=2s\nC1-0\n");
+        assert_eq!(
+            r.iter().map(|r| r.delimiter).collect::<Vec<_>>(),
+            [b';', b',']
+        );
+        assert_eq!(r[0].spaced_fields, 1);
+        assert_eq!(r[1].spaced_fields, 0);
+    }
+
+    #[test]
+    fn a_decimal_comma_split_by_the_delimiter_is_an_error() {
+        let r = readings(",BRANCH 1\nSTEP 1,C1+1; T=1,5s\nSTEP 2,C1-0\n");
+        let comma = r.iter().find(|r| r.delimiter == b',').unwrap();
+        let all: Vec<String> = comma
+            .diags
+            .clone()
+            .into_sorted()
+            .iter()
+            .map(|d| d.to_string())
+            .collect();
+        assert!(
+            all[0].contains("t.csv:2:3: error[E014]") && all[0].contains("T=1,5s"),
+            "{all:?}"
+        );
+        assert!(ends_in_dwell_number("T = 12") && !ends_in_dwell_number("T=1.5s"));
+        assert!(is_number_tail("5s") && is_number_tail(" 25 ms") && !is_number_tail("C1+1"));
+    }
+}
