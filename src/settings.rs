@@ -359,8 +359,37 @@ fn read_actuator_row<'g>(
     );
 }
 
-/// A label in the column of the known labels, with a value beside it, that
-/// is no setting (`scan-time`, `safty`): its row would be ignored.
+/// `scan-time`, `Safty`, `homeorder`: a label within two letters of one
+/// steptable knows.
+fn resembles_a_label(label: &str) -> bool {
+    let letters = |t: &str| -> Vec<char> { t.chars().filter(|c| c.is_alphabetic()).collect() };
+    let label = letters(label);
+    LABELS
+        .iter()
+        .chain(["actuator"].iter())
+        .any(|known| edit_distance(&label, &letters(known)) <= 2)
+}
+
+/// Levenshtein distance, for the few short labels above.
+fn edit_distance(a: &[char], b: &[char]) -> usize {
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.iter().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (diagonal + usize::from(ca != cb))
+                .min(row[j] + 1)
+                .min(above + 1);
+            diagonal = above;
+        }
+    }
+    row[b.len()]
+}
+
+/// A label with a value beside it, in the column of the known labels or
+/// spelt like one, that is no setting (`scan-time`, `safty`): its row would
+/// be ignored.
 fn report_unknown_labels(
     grid: &Grid,
     label_cols: &[u32],
@@ -369,12 +398,15 @@ fn report_unknown_labels(
 ) {
     let actuator_rows = actuators.map(|a| a.header.row);
     for cell in &grid.cells {
-        if !label_cols.contains(&cell.pos.col) || actuator_rows.is_some_and(|r| cell.pos.row >= r) {
+        if actuator_rows.is_some_and(|r| cell.pos.row >= r) {
             continue;
         }
         let Some(label) = label_of(&cell.value) else {
             continue;
         };
+        if !label_cols.contains(&cell.pos.col) && !resembles_a_label(&label) {
+            continue;
+        }
         let has_value = grid
             .cells
             .iter()

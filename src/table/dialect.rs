@@ -58,15 +58,16 @@ pub fn choose_reading(readings: Vec<CsvReading>, diags: &mut Diagnostics) -> Opt
 }
 
 /// A table found at all first (a wrong delimiter usually lumps each line
-/// into one cell), then fewer errors, fewer fields that start with a space,
-/// fewer warnings, more branches (a real delimiter gives the table its
-/// columns).
+/// into one cell), then the fewest cells left unread (warnings), fewest
+/// errors, fewest fields that start with a space (Excel never writes one
+/// after its delimiter), most branches (a real delimiter gives the table
+/// its columns).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 struct Score {
     no_table: bool,
+    warnings: usize,
     errors: usize,
     spaced_fields: usize,
-    warnings: usize,
     fewer_branches: usize,
 }
 

@@ -234,20 +234,9 @@ pub(super) fn report_unused(grid: &Grid, frame: &Frame, diags: &mut Diagnostics)
     for cell in &grid.cells {
         let CellPos { row, col } = cell.pos;
         let in_step_row = step_rows.contains(&row);
-        let is_header = frame.header_row == Some(row)
-            && (branch_cols.contains(&col) || frame.label_col == Some(col));
+        let is_header = frame.header_row == Some(row) && branch_cols.contains(&col);
         let is_label = in_step_row && frame.label_col == Some(col);
         if (in_step_row && branch_cols.contains(&col)) || is_label || is_header {
-            if is_header && !branch_cols.contains(&col) && !corner_title(&cell.value) {
-                // The corner above the STEP labels: only a column title belongs there.
-                warn_ignored(
-                    grid,
-                    cell.pos,
-                    &cell.value,
-                    "it is the table's corner",
-                    diags,
-                );
-            }
             continue;
         }
         let text = match &cell.value {
@@ -316,14 +305,6 @@ pub(super) fn report_unused(grid: &Grid, frame: &Frame, diags: &mut Diagnostics)
             _ => {}
         }
     }
-}
-
-/// A corner cell that names the label column (`STEP`, `Step / Branch`).
-fn corner_title(value: &CellValue) -> bool {
-    matches!(value, CellValue::Text(t) if {
-        let upper = t.to_uppercase();
-        upper.contains("STEP") || upper.contains("BRANCH")
-    })
 }
 
 /// Text that parses wholly as cell items, as a note never does.

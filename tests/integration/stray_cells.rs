@@ -1,0 +1,160 @@
+//! Nothing written in or beside a table is lost without a word: a stray
+//! cell anywhere in or next to a valid table's region, or one misspelt
+//! header or label, is either read as part of the table or named by an
+//! error or warning at its cell — never a silent success.
+
+use proptest::prelude::*;
+use steptable::diag::{CellPos, Diagnostics, Severity};
+use steptable::random_table::{Shape, random_rows};
+use steptable::read::Grid;
+
+/// What an engineer may leave in a cell: notes, moves, dwells, waits,
+/// outputs, numbers typed as text, half-typed headers.
+const STRAY: [&str; 12] = [
+    "remark",
+    "clamp part",
+    "C7+1",
+    "C1-0",
+    "T=1s",
+    "I:part",
+    "Y:lamp+",
+    "42",
+    "x",
+    "BRANCH",
+    "STEP",
+    "C2+",
+];
+
+/// A valid table from `seed`, laid out as the template does (title, BRANCH
+/// headers, STEP labels) or as a bare grid from A1. Returns the rows and
+/// the region: (top row, left column, last row, last column).
+fn table(seed: u64, labelled: bool) -> (Vec<Vec<String>>, (usize, usize, usize, usize)) {
+    let shape = Shape {
+        actuators: 1 + (seed % 4) as u32,
+        max_position: 1 + (seed % 3) as u32,
+        branches: 1 + (seed % 3) as u32,
+        steps: 4 + (seed % 6) as u32,
+    };
+    let moves = random_rows(seed, shape);
+    let width = moves.iter().map(Vec::len).max().unwrap_or(1);
+    if !labelled {
+        let last = moves.len() - 1;
+        return (moves, (0, 0, last, width - 1));
+    }
+    let mut rows = vec![vec!["My machine".to_string()], vec![]];
+    let mut header = vec![String::new()];
+    header.extend((1..=width).map(|b| format!("BRANCH {b}")));
+    rows.push(header);
+    for (k, row) in moves.iter().enumerate() {
+        let mut line = vec![format!("STEP {}", k + 1)];
+        line.extend(row.iter().cloned());
+        rows.push(line);
+    }
+    let last = rows.len() - 1;
+    (rows, (2, 0, last, width))
+}
+
+fn set(rows: &mut Vec<Vec<String>>, row: usize, col: usize, text: &str) {
+    if rows.len() <= row {
+        rows.resize(row + 1, Vec::new());
+    }
+    if rows[row].len() <= col {
+        rows[row].resize(col + 1, String::new());
+    }
+    rows[row][col] = text.to_string();
+}
+
+fn text_at(rows: &[Vec<String>], row: usize, col: usize) -> &str {
+    rows.get(row)
+        .and_then(|r| r.get(col))
+        .map_or("", |t| t.as_str())
+}
+
+/// True when building names `pos` in a diagnostic, or reads an item from
+/// it: into a valid table, or into one whose errors it caused (`in_body`:
+/// the cell lies among the table's move cells).
+fn seen(rows: &[Vec<String>], pos: CellPos, in_body: bool) -> Result<(), String> {
+    let grid = Grid::from_text_rows("t.xlsx", Some("S"), rows);
+    let mut diags = Diagnostics::new();
+    let table = steptable::table::build(&grid, &mut diags);
+    let all = diags.into_sorted();
+    if all.iter().any(|d| d.location.cell == Some(pos)) {
+        return Ok(());
+    }
+    if in_body && all.iter().any(|d| d.severity == Severity::Error) {
+        return Ok(());
+    }
+    if let Some(table) = table {
+        let used = table.steps.iter().any(|s| {
+            s.moves.iter().any(|m| m.cell == pos)
+                || s.dwells.iter().any(|d| d.cell == pos)
+                || s.waits.iter().any(|w| w.cell == pos)
+                || s.switches.iter().any(|w| w.cell == pos)
+        });
+        if used {
+            return Ok(());
+        }
+    }
+    Err(format!(
+        "{} at {} was neither read nor reported; diagnostics: {:#?}",
+        text_at(rows, pos.row as usize, pos.col as usize),
+        pos.a1(),
+        all.iter().map(|d| d.to_string()).collect::<Vec<_>>()
+    ))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn a_stray_cell_is_read_or_named(
+        seed in 0u64..10_000,
+        labelled in any::<bool>(),
+        row_pick in 0usize..1000,
+        col_pick in 0usize..1000,
+        stray in 0usize..STRAY.len(),
+    ) {
+        let (mut rows, (top, left, last_row, last_col)) = table(seed, labelled);
+        // In the region or one cell around it.
+        let row = top.saturating_sub(1) + row_pick % (last_row + 2 - top.saturating_sub(1));
+        let col = left.saturating_sub(1) + col_pick % (last_col + 2 - left.saturating_sub(1));
+        prop_assume!(text_at(&rows, row, col).is_empty());
+        set(&mut rows, row, col, STRAY[stray]);
+        let pos = CellPos::new(row as u32, col as u32);
+        let in_body = if labelled {
+            (top + 1..=last_row).contains(&row) && (1..=last_col).contains(&col)
+        } else {
+            // A bare grid is the box around whatever reads as a move, the stray too.
+            let items: Vec<(usize, usize)> = rows
+                .iter()
+                .enumerate()
+                .flat_map(|(r, line)| line.iter().enumerate().map(move |(c, t)| (r, c, t)))
+                .filter(|(_, _, t)| steptable::cell::looks_like_item(t))
+                .map(|(r, c, _)| (r, c))
+                .collect();
+            let within = |v: usize, pick: fn(&(usize, usize)) -> usize| {
+                items.iter().map(pick).min() <= Some(v) && Some(v) <= items.iter().map(pick).max()
+            };
+            within(row, |p| p.0) && within(col, |p| p.1)
+        };
+        if let Err(why) = seen(&rows, pos, in_body) {
+            prop_assert!(false, "{}", why);
+        }
+    }
+
+    #[test]
+    fn a_misspelt_header_or_label_is_named(seed in 0u64..10_000, pick in 0usize..1000) {
+        let (mut rows, (top, _, last_row, last_col)) = table(seed, true);
+        // Every BRANCH header and STEP label, one of them misspelt.
+        let mut places: Vec<(usize, usize)> = (1..=last_col).map(|c| (top, c)).collect();
+        places.extend((top + 1..=last_row).map(|r| (r, 0)));
+        let (row, col) = places[pick % places.len()];
+        let misspelt = text_at(&rows, row, col)
+            .replace("BRANCH", "BRANH")
+            .replace("STEP", "STPE");
+        set(&mut rows, row, col, &misspelt);
+        if let Err(why) = seen(&rows, CellPos::new(row as u32, col as u32), false) {
+            prop_assert!(false, "{}", why);
+        }
+    }
+}
