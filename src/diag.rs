@@ -58,6 +58,8 @@ pub enum Code {
     E027TwoTables,
     /// A formula cell whose value was never computed.
     E016FormulaNotComputed,
+    /// The valves, loads, strokes or scan given make the cycle impossible.
+    E032MachineCannotRun,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -101,6 +103,7 @@ impl Code {
             Code::W005Delimiter => "W005",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
+            Code::E032MachineCannotRun => "E032",
         }
     }
 }

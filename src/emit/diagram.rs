@@ -48,6 +48,20 @@ fn lanes(report: &SimReport) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// Seconds between two grid lines of a time diagram: 1, 2, 5, 10, 20, 50 …,
+/// the first that keeps the grid to 60 lines, so a diagram of a long cycle
+/// stays a few thousand pixels wide (a 40-minute cycle was 282,510).
+fn time_tick(seconds: u64) -> u64 {
+    let mut tick = 1;
+    for factor in [2, 5, 2].iter().cycle() {
+        if seconds.div_ceil(tick) <= 60 {
+            return tick;
+        }
+        tick = tick.saturating_mul(*factor);
+    }
+    unreachable!("the cycle of factors never ends")
+}
+
 /// Renders the diagram as a standalone SVG document.
 pub fn render_svg(name: &str, report: &SimReport, kind: DiagramKind) -> String {
     let lanes = lanes(report);
@@ -70,18 +84,20 @@ pub fn render_svg(name: &str, report: &SimReport, kind: DiagramKind) -> String {
         DiagramKind::Time => {
             let end = report.trace.last().map(|(t, _)| *t).unwrap_or(1000);
             let seconds = end.div_ceil(1000).max(1);
+            let tick = time_tick(seconds);
             (
-                (0..=seconds)
-                    .map(|s| (s as f64, format!("{s} s")))
+                (0..=seconds.div_ceil(tick))
+                    .map(|k| (k as f64 * tick as f64, format!("{} s", k * tick)))
                     .collect(),
                 "time",
             )
         }
     };
     let span = columns.last().map(|c| c.0).unwrap_or(1.0).max(1.0);
+    // One grid column is 72 px per step, 60 px per time tick.
     let column_width = match kind {
         DiagramKind::Step => 72.0,
-        DiagramKind::Time => 60.0,
+        DiagramKind::Time => 60.0 / columns.get(1).map(|c| c.0).unwrap_or(1.0).max(1.0),
     };
     let width = (LEFT + RIGHT + span * column_width).max(720.0);
     let x_of = |value: f64| LEFT + value * column_width;

@@ -343,6 +343,12 @@ fn read_workbook(
         );
         return None;
     }
+    if format == Format::Xlsx
+        && let Some(why) = xlsx::overlong_text(&bytes)
+    {
+        diags.error(Code::E005TooLarge, whole_file.clone(), why);
+        return None;
+    }
     if format == Format::Ods
         && let Some(why) = ods::oversized_sheet(&bytes, MAX_FILLED_CELLS as u64)
     {

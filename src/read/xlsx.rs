@@ -1,9 +1,11 @@
-//! A guard in front of calamine's `.xlsx` reader: calamine reserves room for
+//! Guards in front of calamine's `.xlsx` reader. Calamine reserves room for
 //! as many shared strings as `sharedStrings.xml` says it holds
 //! (`uniqueCount`), before reading them, so a 1 KB file claiming four
 //! billion strings made it ask for 96 GB and the process aborted. A string
 //! takes at least five bytes (`<si/>`), so the count is checked against the
-//! part's size.
+//! part's size. And calamine decodes each string whole: 245 KB holding one
+//! 250 MB string took 739 MB, so the text of every part is measured as it
+//! streams past, against Excel's own limit for a cell.
 
 use std::io::{Cursor, Read};
 
@@ -42,6 +44,73 @@ pub fn impossible_string_count(bytes: &[u8]) -> Option<String> {
     None
 }
 
+/// Excel's limit for the text of one cell; formulas are shorter still.
+pub const MAX_TEXT_CHARS: u64 = 32_767;
+
+/// The part and length of a text longer than [`MAX_TEXT_CHARS`] in the
+/// shared strings or a worksheet, measured while the part streams past.
+pub fn overlong_text(bytes: &[u8]) -> Option<String> {
+    let mut archive = zip::ZipArchive::new(Cursor::new(bytes)).ok()?;
+    let names: Vec<String> = archive
+        .file_names()
+        .flatten()
+        .filter(|n| {
+            let lower = n.to_ascii_lowercase();
+            lower.ends_with(".xml")
+                && (lower.ends_with("sharedstrings.xml") || lower.contains("worksheets/"))
+        })
+        .map(|n| n.to_string())
+        .collect();
+    for name in names {
+        let Ok(entry) = archive.by_name(&name) else {
+            continue;
+        };
+        if let Some(chars) = first_text_over(entry, MAX_TEXT_CHARS) {
+            return Some(format!(
+                "{name} holds a text of more than {chars} characters; a cell holds at most {MAX_TEXT_CHARS}"
+            ));
+        }
+    }
+    None
+}
+
+/// Counts the characters of each run of text between two tags (an entity
+/// such as `&amp;` is one character) and stops at the first run longer than
+/// `limit`, returning how far it counted. Reads in blocks, so memory stays
+/// flat whatever the text's length; an unreadable part is left to calamine.
+fn first_text_over(mut part: impl Read, limit: u64) -> Option<u64> {
+    let mut block = [0u8; 64 * 1024];
+    let (mut in_tag, mut in_entity, mut run) = (false, false, 0u64);
+    loop {
+        let n = part.read(&mut block).ok()?;
+        if n == 0 {
+            return None;
+        }
+        for &b in &block[..n] {
+            match b {
+                b'<' => {
+                    in_tag = true;
+                    run = 0;
+                }
+                b'>' => in_tag = false,
+                _ if in_tag => {}
+                b'&' => {
+                    in_entity = true;
+                    run += 1;
+                }
+                b';' if in_entity => in_entity = false,
+                _ if in_entity => {}
+                // A UTF-8 continuation byte is part of the character before.
+                _ if b & 0xC0 == 0x80 => {}
+                _ => run += 1,
+            }
+            if run > limit {
+                return Some(run);
+            }
+        }
+    }
+}
+
 /// The `uniqueCount` of the `sst` element, read as calamine reads it.
 fn unique_count(xml: &[u8]) -> Option<u64> {
     let mut reader = Reader::from_reader(xml);
@@ -73,5 +142,20 @@ mod tests {
         let xml = br#"<?xml version="1.0"?><sst xmlns="x" count="2" uniqueCount="4000000000"><si><t>a</t></si></sst>"#;
         assert_eq!(unique_count(xml), Some(4_000_000_000));
         assert_eq!(unique_count(b"<sst><si/></sst>"), None);
+    }
+
+    #[test]
+    fn measures_text_runs_in_characters_between_tags() {
+        let text = |body: &str| format!("<sst><si><t>{body}</t></si><si><t>x</t></si></sst>");
+        // 4 characters: an entity and a two-byte letter count once each.
+        assert_eq!(first_text_over(text("ab&amp;ü").as_bytes(), 3), Some(4));
+        assert_eq!(first_text_over(text("ab&amp;ü").as_bytes(), 4), None);
+        // Tags and attributes are not text.
+        let long_attribute = format!(r#"<c r="A1" s="{}"/>"#, "9".repeat(100));
+        assert_eq!(first_text_over(long_attribute.as_bytes(), 10), None);
+        // Found across the reader's blocks.
+        let long = text(&"é".repeat(70_000));
+        assert!(first_text_over(long.as_bytes(), MAX_TEXT_CHARS).is_some());
+        assert!(first_text_over(text(&"é".repeat(32_767)).as_bytes(), MAX_TEXT_CHARS).is_none());
     }
 }

@@ -132,6 +132,17 @@ impl Piston {
         plus && minus
     }
 
+    /// Whether the piston has come to rest: its spool drives it against an
+    /// end stop, or it sits on a centred spool (whose drift is the valve's
+    /// doing, judged while the machine idles).
+    pub fn at_rest(&self) -> bool {
+        match self.spool {
+            Spool::Plus => self.s >= 1.0,
+            Spool::Minus => self.s <= 0.0,
+            Spool::Centre => true,
+        }
+    }
+
     /// Advances the piston by one scan. Returns the direction it moved, if any.
     pub fn advance(&mut self) -> Option<Sign> {
         let before = self.s;

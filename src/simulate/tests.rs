@@ -114,3 +114,42 @@ fn sixty_three_positions_on_one_cylinder_pass_with_every_check() {
     let report = run(&rows, options, &SimSettings::default());
     assert!(report.passed, "{}", report.verdict());
 }
+
+/// A closing step fires on the home sensor while the last stroke still runs
+/// into its end stop; a long stroke took longer than the idle between two
+/// START presses, so the second cycle began from a moving piston and its
+/// timing differed (reported as a bug in steptable).
+#[test]
+fn a_long_last_stroke_ends_before_the_next_start_with_every_closing_step() {
+    let rows = vec![vec!["C1+1"], vec!["C1-0"]];
+    for retract_ms in [20_000, 26_000, 40_000] {
+        let mut settings = SimSettings::default();
+        settings.strokes.per_actuator.insert(
+            1,
+            Stroke {
+                extend_ms: 1000,
+                retract_ms,
+            },
+        );
+        for options in [
+            ProgramOptions {
+                safety: crate::address::Safety::all(),
+                ..ProgramOptions::default()
+            },
+            ProgramOptions {
+                modes: crate::address::Modes::parse("all").unwrap(),
+                ..ProgramOptions::default()
+            },
+        ] {
+            let report = run(&rows, options, &settings);
+            assert!(report.passed, "{retract_ms} ms: {}", report.verdict());
+            // The cycle lasts until the piston is home: 98 % of the extend
+            // stroke to reach x11, then the whole way back.
+            let cycle = report.cycles[0].cycle_ms.unwrap();
+            assert!(
+                cycle >= u64::from(980 + retract_ms * 98 / 100),
+                "{retract_ms} ms: {cycle}"
+            );
+        }
+    }
+}

@@ -54,6 +54,40 @@ fn the_time_variant_plots_over_seconds() {
     assert_eq!(svg.matches("<polyline").count(), 4);
 }
 
+/// A long cycle's time diagram stays a picture: grid lines every 10 s
+/// (not 300 of them, 60 px apart) and a straight stroke drawn as one line,
+/// not one point per scan. A 1,200 s stroke at a 1 ms scan wrote 67 MB.
+#[test]
+fn a_long_cycles_time_diagram_stays_small() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = dir.path().join("slow.csv");
+    std::fs::write(&table, "C1+1\nC1-0\n").unwrap();
+    steptable()
+        .args(["simulate", "--stroke", "C1=300s/300s", "--diagram"])
+        .arg(dir.path())
+        .arg(&table)
+        .assert()
+        .success();
+    let svg = std::fs::read_to_string(dir.path().join("slow/slow.time.svg")).unwrap();
+    let width: f64 = svg
+        .split("width=\"")
+        .nth(1)
+        .and_then(|rest| rest.split('"').next())
+        .and_then(|w| w.parse().ok())
+        .unwrap();
+    assert!(width < 4000.0, "{width} px wide");
+    assert!(svg.contains(">600 s</text>") && !svg.contains(">5 s</text>"));
+    let points = svg
+        .split("<polyline points=\"")
+        .nth(1)
+        .and_then(|rest| rest.split('"').next())
+        .unwrap()
+        .split(' ')
+        .count();
+    // Out, back, and the corners where each stroke starts and ends.
+    assert!((4..=12).contains(&points), "{points} points");
+}
+
 #[cfg(unix)]
 #[test]
 fn outputs_are_ordinary_readable_files() {

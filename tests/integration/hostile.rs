@@ -375,6 +375,35 @@ fn cases() -> Vec<Case> {
             "claims 4000000000 shared strings",
         ),
         case(
+            // calamine decoded the string whole: 245 KB holding 250 MB took 739 MB.
+            "a shared string longer than a cell can hold",
+            "long-string.xlsx",
+            raw_xlsx(
+                1,
+                r#"<row r="1"><c r="A1" t="s"><v>0</v></c></row>"#,
+                Some(&format!(
+                    r#"<?xml version="1.0" encoding="UTF-8"?><sst xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main" count="1" uniqueCount="1"><si><t>{}</t></si></sst>"#,
+                    "C".repeat(1 << 20)
+                )),
+            ),
+            1,
+            "error[E005]: xl/sharedStrings.xml holds a text of more than 32768 characters; a cell holds at most 32767",
+        ),
+        case(
+            "an inline string longer than a cell can hold",
+            "long-inline.xlsx",
+            raw_xlsx(
+                1,
+                &format!(
+                    r#"<row r="1"><c r="A1" t="inlineStr"><is><t>{}</t></is></c></row>"#,
+                    "&amp;".repeat(40_000)
+                ),
+                None,
+            ),
+            1,
+            "error[E005]: xl/worksheets/sheet1.xml holds a text of more than 32768 characters",
+        ),
+        case(
             "3,000,100 filled cells",
             "dense.xlsx",
             raw_xlsx(

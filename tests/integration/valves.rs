@@ -4,7 +4,7 @@
 use predicates::prelude::*;
 use predicates::str::contains;
 
-use crate::helpers::{sample, steptable};
+use crate::helpers::{files_below, sample, steptable};
 
 #[test]
 fn the_mixed_valve_sample_converts_and_runs() {
@@ -72,4 +72,59 @@ fn an_exhausted_centre_drifts_off_the_middle_sensor() {
         .assert()
         .success()
         .stdout(contains("passed").and(contains("identical cycle")));
+}
+
+/// A machine set up so that no program can run its cycle — a valve that
+/// cannot hold its load, a stroke that passes a middle sensor between two
+/// scans, a scan too slow for the strokes — is the engineer's setting to
+/// change, not a bug in steptable: exit 1, E032 naming the setting whose
+/// default lets the cycle run, nothing written.
+#[test]
+fn a_machine_that_cannot_run_the_cycle_is_refused_with_the_setting_to_blame() {
+    let cases: &[(&str, &[&str], &str)] = &[
+        (
+            "mixed_valves.xlsx",
+            &["--valve", "C3=53exhaust", "--load", "C3=0.5"],
+            "it runs with C3 on its default valve (53closed)",
+        ),
+        (
+            "paper_example.xlsx",
+            &["--stroke", "C2=10ms"],
+            "it runs with C2 at the default stroke (1 s out, 1 s back) (C2's middle sensor is in view for 0.4 ms",
+        ),
+        (
+            "mixed_valves.xlsx",
+            &["--scan", "200ms"],
+            "it runs with a 10 ms scan (C3's middle sensor is in view for 48.0 ms of its stroke, less than one 200 ms scan",
+        ),
+    ];
+    for (file, flags, says) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        steptable()
+            .arg("convert")
+            .arg(sample(file))
+            .args(*flags)
+            .arg("-o")
+            .arg(dir.path())
+            .assert()
+            .code(1)
+            .stderr(
+                contains("error[E032]: the machine as set up cannot run this cycle")
+                    .and(contains(*says))
+                    .and(contains("bug").not()),
+            );
+        assert!(files_below(dir.path()).is_empty(), "{file} {flags:?}");
+    }
+}
+
+/// A slow scan still sees START: the simulated press lasts two scans.
+#[test]
+fn a_slow_scan_sees_the_start_press() {
+    steptable()
+        .arg("simulate")
+        .arg(sample("drilling_station.xlsx"))
+        .args(["--scan", "200ms"])
+        .assert()
+        .success()
+        .stdout(contains("passed"));
 }

@@ -1,6 +1,8 @@
 //! The pipeline, end to end and in memory: read → table → addresses → program
 //! → every output file. Writing to disk is [`crate::output`]'s job.
 
+mod physics;
+
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -497,10 +499,7 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
     };
     let simulation = simulate::simulate(&table, &program, &sim_settings);
     if !simulation.passed {
-        return Err(Failure::Internal(format!(
-            "the generated program fails its simulation ({}); the table is valid, so this is a bug in steptable: please report it with this file",
-            simulation.reason()
-        )));
+        return Err(physics::explain(&table, settings, &simulation));
     }
     let fault_table = faults::analyse(&table, &program, &allocation, &settings.simulation, false);
     let input = EmitInput {

@@ -1,0 +1,156 @@
+//! A valid table's program that fails its simulation is either a bug in
+//! steptable or a machine set up so that no program could run the cycle: a
+//! valve that cannot hold its load at a middle stop, a stroke so fast that a
+//! sensor passes between two scans, a scan too slow for the strokes. The
+//! simulation is the judge: put one setting back to its default, and if the
+//! cycle then runs, that setting is the reason, said to the engineer as an
+//! input error (E032) rather than reported as a bug.
+
+use super::{Failure, Settings, build_program};
+use crate::diag::{Code, Diagnostic, Location, Severity};
+use crate::simulate::{self, SimReport, plant::Piston};
+use crate::table::StepTable;
+use crate::timing::Stroke;
+use crate::valve::ValveType;
+
+/// A setting put back to its default, and how to say so.
+struct Change {
+    /// "C3 on its default valve (53closed)".
+    said: String,
+    settings: Settings,
+}
+
+/// The failure to report for `table`'s program failing `report` under
+/// `settings`: E032 naming the setting that stops the cycle when one does,
+/// an internal error otherwise.
+pub fn explain(table: &StepTable, settings: &Settings, report: &SimReport) -> Failure {
+    let reason = report.reason();
+    let changes = changes(table, settings);
+    let runs = |settings: &Settings| {
+        let (_, program) = build_program(table, settings);
+        simulate::simulate(table, &program, &settings.simulation).passed
+    };
+    let found = changes
+        .iter()
+        .find(|change| runs(&change.settings))
+        .map(|change| change.said.clone())
+        .or_else(|| {
+            // Several settings together may be to blame.
+            let all = all_defaults(settings);
+            (changes.len() > 1 && runs(&all))
+                .then(|| "every valve, load, stroke and the scan at their defaults".to_string())
+        });
+    match found {
+        Some(said) => Failure::Input(vec![Diagnostic {
+            severity: Severity::Error,
+            code: Code::E032MachineCannotRun,
+            location: Location {
+                file: table.file.clone(),
+                sheet: None,
+                cell: None,
+            },
+            message: format!(
+                "the machine as set up cannot run this cycle: {reason}; it runs with {said}{}",
+                why(table, settings)
+            ),
+        }]),
+        None => Failure::Internal(format!(
+            "the generated program fails its simulation ({reason}); the table is valid, so this is a bug in steptable: please report it with this file"
+        )),
+    }
+}
+
+/// Every setting that differs from its default, each put back on its own:
+/// valves (with their loads) first, then loads, strokes and the scan.
+fn changes(table: &StepTable, settings: &Settings) -> Vec<Change> {
+    let sim = &settings.simulation;
+    let mut changes = Vec::new();
+    let mut with = |said: String, edit: &dyn Fn(&mut Settings)| {
+        let mut changed = settings.clone();
+        edit(&mut changed);
+        changes.push(Change {
+            said,
+            settings: changed,
+        });
+    };
+    for a in &table.actuators {
+        let n = a.number;
+        let default = ValveType::default_for(a.max_position);
+        if sim
+            .valves
+            .per_actuator
+            .get(&n)
+            .is_some_and(|v| *v != default)
+        {
+            with(format!("C{n} on its default valve ({default})"), &|s| {
+                s.simulation.valves.per_actuator.remove(&n);
+                s.simulation.loads.remove(&n);
+            });
+        }
+        if sim.loads.contains_key(&n) {
+            with(
+                format!("C{n} under the default load (0.05 stroke/s)"),
+                &|s| {
+                    s.simulation.loads.remove(&n);
+                },
+            );
+        }
+        if sim.strokes.per_actuator.contains_key(&n) {
+            with(
+                format!("C{n} at the default stroke (1 s out, 1 s back)"),
+                &|s| {
+                    s.simulation.strokes.per_actuator.remove(&n);
+                },
+            );
+        }
+    }
+    if sim.strokes.default != Stroke::default() {
+        with("the default stroke (1 s out, 1 s back)".to_string(), &|s| {
+            s.simulation.strokes.default = Stroke::default()
+        });
+    }
+    let default_scan = simulate::SimSettings::default().scan_ms;
+    if sim.scan_ms != default_scan {
+        with(format!("a {default_scan} ms scan"), &|s| {
+            s.simulation.scan_ms = default_scan
+        });
+    }
+    changes
+}
+
+fn all_defaults(settings: &Settings) -> Settings {
+    let mut all = settings.clone();
+    let defaults = simulate::SimSettings::default();
+    all.simulation.valves = defaults.valves;
+    all.simulation.loads = defaults.loads;
+    all.simulation.strokes = defaults.strokes;
+    all.simulation.scan_ms = defaults.scan_ms;
+    all
+}
+
+/// The physics behind a stroke or scan that fails: the shortest time a
+/// middle sensor is in view, when it is shorter than one scan.
+fn why(table: &StepTable, settings: &Settings) -> String {
+    let sim = &settings.simulation;
+    let glimpses = table
+        .actuators
+        .iter()
+        .filter(|a| a.max_position > 1)
+        .map(|a| {
+            let stroke = sim.strokes.of(a.number);
+            let piston = Piston::new(a.number, a.max_position, stroke, sim.scan_ms);
+            let fastest = stroke.extend_ms.min(stroke.retract_ms) as f64;
+            // The window spans twice its half-width; the piston crosses the
+            // whole stroke in `fastest` ms.
+            (a.number, 2.0 * piston.window(sim.window) * fastest)
+        })
+        .filter(|(_, ms)| *ms < sim.scan_ms as f64)
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    match glimpses {
+        Some((n, ms)) => format!(
+            " (C{n}'s middle sensor is in view for {ms:.1} ms of its stroke, less than one {} ms scan: the PLC cannot stop it there)",
+            sim.scan_ms
+        ),
+        None => String::new(),
+    }
+}
