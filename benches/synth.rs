@@ -51,6 +51,7 @@ fn main() {
                     seed,
                     ..gp::GpParams::default()
                 },
+                time_limit: None,
             };
             let start = Instant::now();
             ga_run = synth::synthesize_with(&seq, options).ok();

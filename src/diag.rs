@@ -60,6 +60,8 @@ pub enum Code {
     E016FormulaNotComputed,
     /// The valves, loads, strokes or scan given make the cycle impossible.
     E032MachineCannotRun,
+    /// The work asked for exceeds a stated budget (fault pairs, synthesis).
+    E033OverBudget,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -104,6 +106,7 @@ impl Code {
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",
+            Code::E033OverBudget => "E033",
         }
     }
 }

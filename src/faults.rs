@@ -88,14 +88,14 @@ pub fn single_faults(allocation: &Allocation) -> Vec<Fault> {
         .collect()
 }
 
-/// Simulates each fault set and classifies it.
-pub fn analyse(
-    table: &StepTable,
-    program: &StepProgram,
-    allocation: &Allocation,
-    settings: &SimSettings,
-    pairs: bool,
-) -> FaultTable {
+/// The most fault cases one analysis runs: every pair of a large table's
+/// faults grows with the square of its inputs (2,049 single faults make two
+/// million pairs, hours of simulation), so more is refused up front.
+pub const MAX_CASES: usize = 100_000;
+
+/// Every fault set to simulate: each single fault, and with `pairs` every
+/// two faults on different inputs.
+pub fn fault_sets(allocation: &Allocation, pairs: bool) -> Vec<Vec<Fault>> {
     let singles = single_faults(allocation);
     let mut sets: Vec<Vec<Fault>> = singles.iter().map(|f| vec![*f]).collect();
     if pairs {
@@ -107,9 +107,55 @@ pub fn analyse(
             }
         }
     }
+    sets
+}
+
+/// How many cases [`fault_sets`] makes, without making them.
+pub fn case_count(allocation: &Allocation, pairs: bool) -> usize {
+    let singles = 2 * allocation.inputs.len();
+    // Pairs on two different inputs: both stuck values of each.
+    let n = allocation.inputs.len();
+    singles
+        + if pairs {
+            4 * (n * n.saturating_sub(1) / 2)
+        } else {
+            0
+        }
+}
+
+/// Simulates each fault set and classifies it.
+pub fn analyse(
+    table: &StepTable,
+    program: &StepProgram,
+    allocation: &Allocation,
+    settings: &SimSettings,
+    pairs: bool,
+) -> FaultTable {
+    analyse_observed(table, program, allocation, settings, pairs, &|_, _| {})
+}
+
+/// Like [`analyse`], on every core, calling `progress(done, total)` after
+/// each case (from any thread) so that a long analysis can be shown.
+pub fn analyse_observed(
+    table: &StepTable,
+    program: &StepProgram,
+    allocation: &Allocation,
+    settings: &SimSettings,
+    pairs: bool,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> FaultTable {
+    use rayon::prelude::*;
+    let sets = fault_sets(allocation, pairs);
+    let total = sets.len();
+    let done = std::sync::atomic::AtomicUsize::new(0);
     let cases = sets
-        .into_iter()
-        .map(|faults| classify(table, program, settings, faults))
+        .into_par_iter()
+        .map(|faults| {
+            let case = classify(table, program, settings, faults);
+            let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            progress(n, total);
+            case
+        })
         .collect();
     FaultTable { cases }
 }
@@ -242,5 +288,14 @@ mod tests {
         // x11 short: step 2 starts while C1 is still moving.
         assert_eq!(case("x11", true).outcome, Outcome::Hazard);
         assert!(result.summary().starts_with("24 fault case(s): "));
+        // The count the budget is checked against is the count run.
+        for pairs in [false, true] {
+            assert_eq!(
+                case_count(&alloc, pairs),
+                fault_sets(&alloc, pairs).len(),
+                "{pairs}"
+            );
+        }
+        assert_eq!(case_count(&alloc, true), 24 + 4 * 66);
     }
 }

@@ -110,13 +110,35 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         };
         let (table, settings) = (checked.table, checked.settings);
         let (allocation, program) = convert::build_program(&table, &settings);
-        let result = steptable::faults::analyse(
+        let cases = steptable::faults::case_count(&allocation, args.pairs);
+        if cases > steptable::faults::MAX_CASES {
+            report.diagnostics(&[Diagnostic {
+                severity: Severity::Error,
+                code: steptable::diag::Code::E033OverBudget,
+                location: steptable::diag::Location {
+                    file: table.file.clone(),
+                    sheet: None,
+                    cell: None,
+                },
+                message: format!(
+                    "--pairs would simulate {cases} fault cases ({} inputs, each stuck at 1 and at 0, in pairs); steptable runs at most {}: analyse single faults (without --pairs), or split the table",
+                    allocation.inputs.len(),
+                    steptable::faults::MAX_CASES
+                ),
+            }]);
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
+        let progress = super::progress::Progress::new("fault cases", false);
+        let result = steptable::faults::analyse_observed(
             &table,
             &program,
             &allocation,
             &settings.simulation,
             args.pairs,
+            &|done, total| progress.update(done, total),
         );
+        progress.finish();
         // The table is written before anything is printed (see simulate).
         let file = convert::OutputFile {
             name: format!("{name}.faults.csv"),

@@ -69,7 +69,16 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
     for (input, name) in args.inputs.iter().zip(&names) {
-        let conversion = match convert::convert_path_as(input, name, &settings) {
+        let progress = super::progress::Progress::new("fault cases", false);
+        let converted = convert::check_path(input, &settings)
+            .map_err(Failure::Input)
+            .and_then(|checked| {
+                convert::generate_observed(name, checked, &|done, total| {
+                    progress.update(done, total)
+                })
+            });
+        progress.finish();
+        let conversion = match converted {
             Ok(c) => c,
             Err(Failure::Input(diagnostics)) => {
                 report.diagnostics(&diagnostics);

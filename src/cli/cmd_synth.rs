@@ -1,6 +1,7 @@
 //! `steptable synth`: logic synthesis for single-branch sequences.
 
 use super::*;
+use std::io::IsTerminal;
 
 #[derive(Args)]
 pub(crate) struct SynthArgs {
@@ -32,6 +33,17 @@ pub(crate) struct SynthArgs {
     /// Generations of the GA (1 to 100,000).
     #[arg(long, default_value_t = 400, value_parser = parse_generations)]
     pub(crate) generations: usize,
+    /// The longest the synthesis may search (1 s to 1 h, e.g. 30s); past it,
+    /// error E033.
+    #[arg(long, value_name = "TIME", default_value = "120s", value_parser = parse_time_limit)]
+    pub(crate) time_limit: std::time::Duration,
+}
+
+fn parse_time_limit(text: &str) -> Result<std::time::Duration, String> {
+    match steptable::timing::parse_duration_ms(text) {
+        Some(ms) if ms >= 1000 => Ok(std::time::Duration::from_millis(ms.into())),
+        _ => Err("the time limit is a duration from 1 s to 1 h, e.g. 30s".to_string()),
+    }
 }
 
 /// A whole number within `low..=high`, or why not.
@@ -118,11 +130,27 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             seed: args.seed,
             ..synth::gp::GpParams::default()
         },
+        time_limit: Some(args.time_limit),
     };
-    let synthesis = match synth::synthesize_with(&sequence, options) {
+    // A spinner on a terminal while the search runs (Ctrl-C stops it;
+    // nothing is written before the end).
+    let spinner = std::io::stderr().is_terminal().then(|| {
+        let spinner = indicatif::ProgressBar::new_spinner();
+        spinner.set_message(format!(
+            "searching (at most {} s; Ctrl-C stops)",
+            args.time_limit.as_secs()
+        ));
+        spinner.enable_steady_tick(std::time::Duration::from_millis(200));
+        spinner
+    });
+    let result = synth::synthesize_with(&sequence, options);
+    if let Some(spinner) = spinner {
+        spinner.finish_and_clear();
+    }
+    let synthesis = match result {
         Ok(s) => s,
-        Err(err @ SynthError::Unsuitable(_)) => {
-            eprintln!("error: {err}");
+        Err(err @ SynthError::OutOfTime(_)) => {
+            eprintln!("error[E033]: {err}");
             return EXIT_BAD_INPUT;
         }
         Err(err) => {

@@ -20,6 +20,7 @@ mod cmd_batch;
 mod cmd_convert;
 mod cmd_synth;
 mod cmd_template;
+mod progress;
 
 use args::*;
 use cmd_analyse::*;

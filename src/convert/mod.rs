@@ -268,8 +268,9 @@ pub struct Conversion {
     pub program: StepProgram,
     /// The simulation that proved the program.
     pub simulation: SimReport,
-    /// Every single input fault, simulated and classified.
-    pub faults: FaultTable,
+    /// Every single input fault, simulated and classified (when an output
+    /// shows it: the fault table or the workbook).
+    pub faults: Option<FaultTable>,
     pub files: Vec<OutputFile>,
     pub warnings: Vec<Diagnostic>,
 }
@@ -486,6 +487,16 @@ pub fn build_program(table: &StepTable, settings: &Settings) -> (Allocation, Ste
 
 /// Generates every output of a checked table.
 pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
+    generate_observed(name, checked, &|_, _| {})
+}
+
+/// Like [`generate`], calling `progress(done, total)` as the fault analysis
+/// (the long part on a large table) runs its cases.
+pub fn generate_observed(
+    name: &str,
+    checked: Checked,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Conversion, Failure> {
     let Checked {
         table,
         warnings,
@@ -501,14 +512,28 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
     if !simulation.passed {
         return Err(physics::explain(&table, settings, &simulation));
     }
-    let fault_table = faults::analyse(&table, &program, &allocation, &settings.simulation, false);
+    // Only the fault table and the workbook show the fault analysis; it is
+    // most of the work on a large table, so it runs only for them.
+    let fault_table = [OutputKind::Faults, OutputKind::Workbook]
+        .iter()
+        .any(|k| settings.formats.contains(k))
+        .then(|| {
+            faults::analyse_observed(
+                &table,
+                &program,
+                &allocation,
+                &settings.simulation,
+                false,
+                progress,
+            )
+        });
     let input = EmitInput {
         name,
         table: &table,
         allocation: &allocation,
         program: &program,
         simulation: Some(&simulation),
-        faults: Some(&fault_table),
+        faults: fault_table.as_ref(),
         templates: &settings.templates,
     };
     let internal =
@@ -543,7 +568,10 @@ pub fn generate(name: &str, checked: Checked) -> Result<Conversion, Failure> {
                 emit::diagram::render_svg(name, &simulation, settings.diagram).into_bytes()
             }
             OutputKind::Faults => {
-                faults::render_csv(&fault_table).map_err(|e| internal("fault table", &e))?
+                let table = fault_table
+                    .as_ref()
+                    .ok_or_else(|| internal("fault table", &"not analysed"))?;
+                faults::render_csv(table).map_err(|e| internal("fault table", &e))?
             }
             OutputKind::StructuredText
             | OutputKind::PlcOpen
@@ -633,6 +661,23 @@ mod tests {
         let long = format!("{}.csv", "é".repeat(200));
         let name = output_name(Path::new(&long));
         assert!(name.len() <= MAX_NAME_BYTES && name.chars().all(|c| c == 'é'));
+    }
+
+    #[test]
+    fn the_fault_analysis_runs_only_for_the_outputs_that_show_it() {
+        let convert = |formats: &str| {
+            let settings = Settings {
+                formats: OutputKind::parse_list(formats).unwrap(),
+                ..Settings::new()
+            };
+            let bytes = b"C1+1\nC2+1\nC1-0\nC2-0\n".to_vec();
+            let checked = check_bytes("t.csv", crate::read::Format::Csv, bytes, &settings).unwrap();
+            generate("t", checked).unwrap()
+        };
+        assert!(convert("st,io").faults.is_none());
+        let with_table = convert("faults").faults.expect("the fault table shows it");
+        assert!(!with_table.cases.is_empty());
+        assert!(convert("xlsx").faults.is_some(), "the workbook shows it");
     }
 
     #[test]

@@ -188,7 +188,7 @@ pub fn minimal(on: &[u32], off: &[u32], variables: usize, limits: SearchLimits) 
                 for (li, &(lm, lid)) in levels[left].iter().enumerate() {
                     let start = if left == right { li } else { 0 };
                     work += (levels[right].len() - start) as u64;
-                    if work > limits.max_work {
+                    if work > limits.max_work || super::budget::exceeded() {
                         return None;
                     }
                     for &(rm, rid) in &levels[right][start..] {

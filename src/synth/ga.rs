@@ -149,10 +149,13 @@ pub fn run(original: &Sequence, params: GaParams) -> GaResult {
     let mut generation = 0;
     let mut best_seen = f64::MAX;
     let mut stalled = 0;
-    while generation < params.generations {
+    while generation < params.generations && !super::budget::exceeded() {
         generation += 1;
         let mut offspring = Vec::with_capacity(lambda);
         for _ in 0..lambda {
+            if super::budget::exceeded() {
+                break;
+            }
             let mother = &population[rng.below(mu)];
             let mut genes = mother.genes.clone();
             if rng.chance(0.5) {

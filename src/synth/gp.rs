@@ -143,8 +143,14 @@ pub fn run(on: &[u32], off: &[u32], variables: usize, params: GpParams) -> Optio
     let mut best = f64::MIN;
     let mut stalled = 0;
     for _ in 0..params.generations {
+        if super::budget::exceeded() {
+            break;
+        }
         let mut offspring = Vec::with_capacity(lambda);
         for _ in 0..lambda {
+            if super::budget::exceeded() {
+                break;
+            }
             let parent = &population[rng.below(mu)].1;
             let parts = subtrees(parent);
             let child = if rng.below(4) == 0 {

@@ -10,6 +10,7 @@
 //! programming for the equations — runs beside it and is reported against
 //! the proven minimum.
 
+mod budget;
 pub mod equations;
 pub mod ga;
 pub mod gp;
@@ -144,7 +145,13 @@ pub struct Options {
     pub method: Method,
     pub ga: ga::GaParams,
     pub gp: gp::GpParams,
+    /// The longest the synthesis may run; `None` for no limit.
+    pub time_limit: Option<std::time::Duration>,
 }
+
+/// The default time limit: long enough for the textbook sequences (the
+/// slowest of them, 10 cylinders and 20 actions, takes about 40 s).
+pub const DEFAULT_TIME_LIMIT: std::time::Duration = std::time::Duration::from_secs(120);
 
 impl Default for Options {
     fn default() -> Self {
@@ -152,6 +159,7 @@ impl Default for Options {
             method: Method::Both,
             ga: ga::GaParams::default(),
             gp: gp::GpParams::default(),
+            time_limit: Some(DEFAULT_TIME_LIMIT),
         }
     }
 }
@@ -220,12 +228,16 @@ pub enum SynthError {
     Unsuitable(String),
     /// No valid modified sequence within the search limits.
     NotFound(String),
+    /// The time limit passed before the search ended.
+    OutOfTime(String),
 }
 
 impl std::fmt::Display for SynthError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            SynthError::Unsuitable(why) | SynthError::NotFound(why) => f.write_str(why),
+            SynthError::Unsuitable(why)
+            | SynthError::NotFound(why)
+            | SynthError::OutOfTime(why) => f.write_str(why),
         }
     }
 }
@@ -326,8 +338,25 @@ pub fn synthesize(original: &Sequence) -> Result<Synthesis, SynthError> {
     synthesize_with(original, Options::default())
 }
 
-/// Synthesises a controller for `original` (a sequence without memories).
+/// Synthesises a controller for `original` (a sequence without memories),
+/// within `options.time_limit`.
 pub fn synthesize_with(original: &Sequence, options: Options) -> Result<Synthesis, SynthError> {
+    let started = Instant::now();
+    let budget = budget::Budget::start(options.time_limit);
+    let result = synthesize_within(original, options);
+    drop(budget);
+    match options.time_limit {
+        Some(limit) if started.elapsed() >= limit => Err(SynthError::OutOfTime(format!(
+            "the search ran past its time limit of {} s ({} actions of {} actuators; the time grows steeply with the length and with repeated states): raise --time-limit, or shorten the sequence",
+            limit.as_secs_f64(),
+            original.actions.len(),
+            original.actuators
+        ))),
+        _ => result,
+    }
+}
+
+fn synthesize_within(original: &Sequence, options: Options) -> Result<Synthesis, SynthError> {
     if original.memories > 0 {
         return Err(SynthError::Unsuitable(
             "give the original sequence without memories (W, X, Y, Z): they are what synthesis finds".to_string(),

@@ -65,7 +65,7 @@ impl Dfs<'_> {
     /// In the gap before original action `pos` (or the closing gap when
     /// `pos` is past the end), with `inserted` operations so far.
     fn gap(&mut self, pos: usize, state: u32, inserted: usize, used: usize) {
-        if self.solutions.len() >= self.max_solutions {
+        if self.solutions.len() >= self.max_solutions || super::budget::exceeded() {
             return;
         }
         // Memories toggled an odd number of times must each be toggled again.

@@ -71,6 +71,45 @@ fn faults_prints_the_table_and_writes_the_csv() {
         .stdout(contains("98 fault case(s)").and(contains(" + ")));
 }
 
+/// `--pairs` grows with the square of the inputs: past 100,000 cases the
+/// request is refused before any simulation runs, with the count and the way
+/// out (E033, exit 1, nothing written), in either message format.
+#[test]
+fn fault_pairs_beyond_the_budget_are_refused_with_the_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("c120.csv");
+    let moves: Vec<String> = (1..=120)
+        .map(|i| format!("C{i}+1"))
+        .chain((1..=120).map(|i| format!("C{i}-0")))
+        .collect();
+    std::fs::write(&csv, moves.join("\n")).unwrap();
+    let out = dir.path().join("out");
+    steptable()
+        .arg("faults")
+        .arg(&csv)
+        .args(["--pairs", "-o"])
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(contains(
+            "error[E033]: --pairs would simulate 116162 fault cases (241 inputs",
+        ))
+        .stderr(contains("analyse single faults (without --pairs)"));
+    assert!(!out.exists());
+    let json = steptable()
+        .arg("faults")
+        .arg(&csv)
+        .args(["--pairs", "--message-format", "json", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(json.status.code(), Some(1));
+    let first: serde_json::Value =
+        serde_json::from_slice(json.stdout.split(|&b| b == b'\n').next().unwrap()).unwrap();
+    assert_eq!(first["code"], "E033");
+    assert_eq!(first["severity"], "error");
+}
+
 /// With stdout closed (a pipe whose reader is gone), `simulate --diagram`
 /// and `faults` still write the files they were asked for.
 #[cfg(unix)]

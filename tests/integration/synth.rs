@@ -138,3 +138,39 @@ fn ga_parameters_are_bounded() {
         .assert()
         .success();
 }
+
+/// A search that outgrows `--time-limit` stops there with E033 and the way
+/// out, writes nothing and exits 1; a limit outside 1 s–1 h is refused.
+#[test]
+fn a_search_past_its_time_limit_stops_with_e033() {
+    let dir = tempfile::tempdir().unwrap();
+    let repeated = "A1 B1 A0 B0 ".repeat(10);
+    let started = std::time::Instant::now();
+    crate::helpers::steptable()
+        .args(["synth", "--sequence", repeated.trim(), "--time-limit", "1s"])
+        .arg("-o")
+        .arg(dir.path())
+        .assert()
+        .code(1)
+        .stderr(contains(
+            "error[E033]: the search ran past its time limit of 1 s",
+        ))
+        .stderr(contains("raise --time-limit"));
+    // Not a timing assertion: a limit that is not honoured would run for
+    // minutes, and this keeps the suite from hanging on it.
+    assert!(started.elapsed() < std::time::Duration::from_secs(60));
+    assert!(crate::helpers::files_below(dir.path()).is_empty());
+    for bad in ["0s", "2h", "soon"] {
+        crate::helpers::steptable()
+            .args(["synth", "--sequence", "A1 A0", "--time-limit", bad])
+            .assert()
+            .code(1)
+            .stderr(contains("--time-limit"));
+    }
+    crate::helpers::steptable()
+        .args(["synth", "--sequence", "A1 B1 A0 B0", "--time-limit", "30s"])
+        .arg("-o")
+        .arg(dir.path())
+        .assert()
+        .success();
+}
