@@ -62,6 +62,8 @@ pub enum Code {
     E032MachineCannotRun,
     /// The work asked for exceeds a stated budget (fault pairs, synthesis).
     E033OverBudget,
+    /// A sequence or table that synthesis does not handle.
+    E034NotSynthesisable,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -72,6 +74,8 @@ pub enum Code {
     W004SheetChoice,
     /// The CSV delimiter was chosen among several that read as a table.
     W005Delimiter,
+    /// A setting that the other settings make ineffective.
+    W006NoEffect,
 }
 
 impl Code {
@@ -103,10 +107,12 @@ impl Code {
             Code::W003Ignored => "W003",
             Code::W004SheetChoice => "W004",
             Code::W005Delimiter => "W005",
+            Code::W006NoEffect => "W006",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",
             Code::E033OverBudget => "E033",
+            Code::E034NotSynthesisable => "E034",
         }
     }
 }

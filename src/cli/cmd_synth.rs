@@ -37,6 +37,10 @@ pub(crate) struct SynthArgs {
     /// error E033.
     #[arg(long, value_name = "TIME", default_value = "120s", value_parser = parse_time_limit)]
     pub(crate) time_limit: std::time::Duration,
+    /// How to print problems: human (default) or json (one object per line
+    /// on stdout; the report then goes to stderr).
+    #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
+    pub(crate) message_format: MessageFormat,
 }
 
 fn parse_time_limit(text: &str) -> Result<std::time::Duration, String> {
@@ -76,13 +80,19 @@ pub(crate) enum MethodArg {
 }
 
 pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
+    use steptable::diag::Code;
     use steptable::synth::{self, SynthError, output as synth_out};
 
+    let reporter = Reporter::for_format(args.message_format);
+    let source = match &args.input {
+        Some(input) if args.sequence.is_none() => display_name(input),
+        _ => "--sequence".to_string(),
+    };
     let (sequence, name, inputs) = match (&args.input, &args.sequence) {
         (_, Some(text)) => match synth::sequence::parse(text) {
             Ok(s) => (s, "sequence".to_string(), Vec::new()),
             Err(why) => {
-                eprintln!("--sequence: error: {why}");
+                reporter.error(&source, Code::E034NotSynthesisable, why);
                 return EXIT_BAD_INPUT;
             }
         },
@@ -92,16 +102,15 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             let checked = match convert::check_path(input, &settings) {
                 Ok(c) => c,
                 Err(diagnostics) => {
-                    for d in diagnostics {
-                        eprintln!("{d}");
-                    }
+                    reporter.diagnostics(&diagnostics);
                     return EXIT_BAD_INPUT;
                 }
             };
+            reporter.diagnostics(&checked.warnings);
             match synth::from_table(&checked.table) {
                 Ok(s) => (s, convert::output_name(input), vec![input.clone()]),
                 Err(why) => {
-                    eprintln!("{}: error: {why}", display_name(input));
+                    reporter.error(&source, Code::E034NotSynthesisable, why.to_string());
                     return EXIT_BAD_INPUT;
                 }
             }
@@ -149,18 +158,18 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
     }
     let synthesis = match result {
         Ok(s) => s,
-        Err(err @ SynthError::OutOfTime(_)) => {
-            eprintln!("error[E033]: {err}");
-            return EXIT_BAD_INPUT;
-        }
         Err(err) => {
-            eprintln!("error: {err}");
+            let code = match err {
+                SynthError::Unsuitable(_) => Code::E034NotSynthesisable,
+                SynthError::NotFound(_) | SynthError::OutOfTime(_) => Code::E033OverBudget,
+            };
+            reporter.error(&source, code, err.to_string());
             return EXIT_BAD_INPUT;
         }
     };
     let verification = synth::verify::verify(&synthesis, 2);
     let report = synth_out::report_text(&synthesis, &verification);
-    out(&report);
+    reporter.say(&report);
     let workbook = match synth_out::workbook(&synthesis, &verification) {
         Ok(b) => b,
         Err(err) => {

@@ -133,9 +133,27 @@ pub(crate) struct Reporter {
 
 impl Reporter {
     pub(crate) fn new(common: &CommonArgs) -> Self {
+        Reporter::for_format(common.message_format)
+    }
+
+    pub(crate) fn for_format(format: MessageFormat) -> Self {
         Reporter {
-            json: common.message_format == MessageFormat::Json,
+            json: format == MessageFormat::Json,
         }
+    }
+
+    /// One error of `code` about `file` as a whole.
+    pub(crate) fn error(&self, file: &str, code: steptable::diag::Code, message: String) {
+        self.diagnostics(&[Diagnostic {
+            severity: Severity::Error,
+            code,
+            location: steptable::diag::Location {
+                file: file.to_string(),
+                sheet: None,
+                cell: None,
+            },
+            message,
+        }]);
     }
 
     pub(crate) fn diagnostics(&self, diagnostics: &[Diagnostic]) {
@@ -161,16 +179,28 @@ impl Reporter {
     }
 }
 
+/// One line on a table and its wiring: the counts, and the address ranges
+/// in the target's notation, first to last (what the panel must have).
 pub(crate) fn summary(
     table: &steptable::table::StepTable,
     allocation: &steptable::address::Allocation,
 ) -> String {
+    let range = |points: &[steptable::address::Assigned]| match (points.first(), points.last()) {
+        (Some(first), Some(last)) => format!(
+            "{} to {}",
+            first.address.display(allocation.mnemonic),
+            last.address.display(allocation.mnemonic)
+        ),
+        _ => "none".to_string(),
+    };
     format!(
-        "{} steps, {} branch(es), {} actuators, {} inputs, {} outputs",
+        "{} steps, {} branch(es), {} actuators, {} inputs, {} outputs; addresses {}, {}",
         table.steps.len(),
         table.branches,
         table.actuators.len(),
         allocation.inputs.len(),
-        allocation.outputs.len()
+        allocation.outputs.len(),
+        range(&allocation.inputs),
+        range(&allocation.outputs)
     )
 }

@@ -329,11 +329,7 @@ fn finish_check(
     let table = table::build(&input.table, &mut diags);
     if let Some(table) = &table {
         check_valves(table, &effective, &input.table, &mut diags);
-        if effective.program.modes.reset
-            && let Err(message) = effective.program.modes.home_stages(table)
-        {
-            diags.error(Code::E030BadSetting, input.table.sheet_location(), message);
-        }
+        check_settings_take_effect(table, &effective, &input.table, &mut diags);
     }
     match table {
         Some(table) if !diags.has_errors() => Ok(Checked {
@@ -342,6 +338,29 @@ fn finish_check(
             settings: effective,
         }),
         _ => Err(diags.into_sorted()),
+    }
+}
+
+/// A home order is checked against the table whether or not it is used,
+/// and a home order without the reset mode that uses it is said, so that a
+/// forgotten `reset` is not silently a no-op.
+fn check_settings_take_effect(
+    table: &StepTable,
+    settings: &Settings,
+    grid: &read::Grid,
+    diags: &mut Diagnostics,
+) {
+    let modes = &settings.program.modes;
+    if modes.home_order.is_some() {
+        if let Err(message) = modes.home_stages(table) {
+            diags.error(Code::E030BadSetting, grid.sheet_location(), message);
+        } else if !modes.reset {
+            diags.warning(
+                Code::W006NoEffect,
+                grid.sheet_location(),
+                "the home order is used by the reset mode only, which is not on: add reset to the modes, or leave the home order out",
+            );
+        }
     }
 }
 

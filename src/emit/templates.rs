@@ -219,6 +219,27 @@ impl Templates {
         Templates::with_overrides(overrides)
     }
 
+    /// The defaults with `sources` (template name, text) in their place, as
+    /// if `load_dir` had read them from files of those names: for programs
+    /// that hold their templates in memory. An unknown name is an error.
+    pub fn from_sources<'a>(
+        sources: impl IntoIterator<Item = (&'a str, &'a str)>,
+    ) -> Result<Self, TemplateError> {
+        let mut overrides = BTreeMap::new();
+        for (name, text) in sources {
+            if !DEFAULTS.iter().any(|(n, _)| *n == name) {
+                return Err(TemplateError {
+                    file: name.to_string(),
+                    user: true,
+                    line: None,
+                    detail: "no template has this name".to_string(),
+                });
+            }
+            overrides.insert(name.to_string(), (PathBuf::from(name), text.to_string()));
+        }
+        Templates::with_overrides(overrides)
+    }
+
     /// Renders template `name` with `context`.
     pub fn render(&self, name: &str, context: Value) -> Result<String, TemplateError> {
         let (file, user) = match self.overrides.get(name) {
@@ -353,6 +374,15 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("progam.st.j2"), "typo").unwrap();
         let err = Templates::load_dir(dir.path()).unwrap_err();
+        assert!(err.detail.contains("no template has this name"), "{err}");
+    }
+
+    #[test]
+    fn templates_from_memory_replace_the_default_and_refuse_unknown_names() {
+        let templates = Templates::from_sources([("gvl.txt.j2", "one {{ 1 + 1 }}")]).unwrap();
+        let empty = Value::from(BTreeMap::<String, String>::new());
+        assert_eq!(templates.render("gvl.txt.j2", empty).unwrap(), "one 2\n");
+        let err = Templates::from_sources([("progam.st.j2", "typo")]).unwrap_err();
         assert!(err.detail.contains("no template has this name"), "{err}");
     }
 

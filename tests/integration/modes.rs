@@ -441,3 +441,34 @@ fn home_order_flag_through_the_binary() {
             );
     }
 }
+
+/// A home order is checked even when the reset mode that uses it is off
+/// (a typo must not wait until the engineer adds reset), and a valid one
+/// without reset is said to have no effect (W006), not silently dropped.
+#[test]
+fn a_home_order_without_reset_is_checked_and_said_to_have_no_effect() {
+    let sample = crate::helpers::sample("paper_example.xlsx");
+    crate::helpers::steptable()
+        .args(["check"])
+        .arg(&sample)
+        .args(["--home-order", "C9"])
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "error[E030]: the home order names C9",
+        ));
+    crate::helpers::steptable()
+        .args(["check"])
+        .arg(&sample)
+        .args(["--home-order", "C4&C3, C2, C1"])
+        .assert()
+        .success()
+        .stderr(predicates::str::contains("warning[W006]").and(predicates::str::contains("reset")));
+    crate::helpers::steptable()
+        .args(["check"])
+        .arg(&sample)
+        .args(["--modes", "reset", "--home-order", "C4&C3, C2, C1"])
+        .assert()
+        .success()
+        .stderr(predicates::str::contains("W006").not());
+}
