@@ -1,104 +1,12 @@
-//! Exports to other engineering tools, checked with real tools where one is
-//! available: xmllint against the official PLCopen schema, blark (an IEC
-//! 61131-3 parser) on the ST. The programs run in their engines in
-//! `differential.rs`.
-//!
-//! `.ci/run` installs these tools and sets STEPTABLE_REQUIRE_TOOLS=1, which
-//! turns a missing tool into a failure; on a developer machine without them
-//! these tests say so and pass.
+//! Exports to other engineering tools: layouts, file selection, user
+//! templates. The checks by other tools (xmllint, blark) and the engines
+//! live in `tests/tools/`.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
 use predicates::str::contains;
 
-use crate::helpers::{
-    files_below, read_sheet, require, require_shared, sample, samples, steptable,
-};
-
-/// Converts every sample (and the paper's example with every safety check)
-/// with `extra` arguments, returning the output folder.
-fn convert_all(dir: &Path, extra: &[&str]) -> Vec<PathBuf> {
-    steptable()
-        .arg("convert")
-        .args(samples())
-        .args(extra)
-        .arg("-o")
-        .arg(dir.join("plain"))
-        .assert()
-        .success();
-    steptable()
-        .arg("convert")
-        .arg(sample("paper_example.xlsx"))
-        .args(extra)
-        .args(["--safety", "all", "-o"])
-        .arg(dir.join("safety"))
-        .assert()
-        .success();
-    // Every operating mode, with dwells, waits and machine outputs.
-    steptable()
-        .arg("convert")
-        .arg(sample("paper_example.xlsx"))
-        .arg(sample("press_station.xlsx"))
-        .args(extra)
-        .args(["--modes", "all", "--safety", "all", "-o"])
-        .arg(dir.join("modes"))
-        .assert()
-        .success();
-    files_below(dir)
-}
-
-#[test]
-fn plcopen_and_codesys_xml_validate_against_the_official_schema() {
-    let Some(xmllint) = require("xmllint") else {
-        return;
-    };
-    let dir = tempfile::tempdir().unwrap();
-    let files = convert_all(dir.path(), &["--formats", "plcopen,codesys"]);
-    let Some(shared) = require_shared("the PLCopen schema check") else {
-        return;
-    };
-    let schema = shared.join("reference/tc6_xml_v201.xsd");
-    assert!(schema.exists(), "{} is missing", schema.display());
-    let mut checked = 0;
-    for file in files
-        .iter()
-        .filter(|f| f.to_string_lossy().ends_with(".xml"))
-    {
-        // The CODESYS flavour uses the v2.00 namespace, whose structure is the
-        // same: validate it against v2.01 with the namespace swapped.
-        let path = if file.to_string_lossy().ends_with(".codesys.xml") {
-            let text = std::fs::read_to_string(file).unwrap();
-            assert!(text.contains("xmlns=\"http://www.plcopen.org/xml/tc6_0200\""));
-            // Not PLC_PRG: every CODESYS Standard project has one already.
-            assert!(text.contains("<pou name=\"steptable_main\" pouType=\"program\">"));
-            assert!(!text.contains("PLC_PRG"));
-            assert!(text.contains("<task name=\"MainTask\" interval=\"PT0.01S\""));
-            assert_eq!(text.matches("<ObjectId>").count(), 2);
-            assert!(text.contains("<globalVars name=\"GVL_IO\">"));
-            let swapped = file.with_extension("v201.xml");
-            std::fs::write(&swapped, text.replace("tc6_0200", "tc6_0201")).unwrap();
-            swapped
-        } else {
-            file.clone()
-        };
-        let output = Command::new(&xmllint)
-            .arg("--noout")
-            .arg("--schema")
-            .arg(&schema)
-            .arg(&path)
-            .output()
-            .unwrap();
-        assert!(
-            output.status.success(),
-            "{}: {}",
-            file.display(),
-            String::from_utf8_lossy(&output.stderr)
-        );
-        checked += 1;
-    }
-    assert_eq!(checked, 2 * (samples().len() + 3));
-}
+use crate::helpers::{files_below, read_sheet, sample, steptable};
 
 #[test]
 fn tia_tag_table_has_the_import_layout() {
@@ -140,40 +48,6 @@ fn tia_tag_table_has_the_import_layout() {
             .iter()
             .all(|r| r[3].starts_with("%I") || r[3].starts_with("%Q"))
     );
-}
-
-#[test]
-fn structured_text_parses_with_blark() {
-    let Some(blark) = require("blark") else {
-        return;
-    };
-    let dir = tempfile::tempdir().unwrap();
-    let mut files = convert_all(dir.path(), &["--formats", "st"]);
-    // The synthesised equations' program too.
-    steptable()
-        .args(["synth", "--sequence", "A1 A0 A1 A0 A1 A0 B1 B0 C1 C0", "-o"])
-        .arg(dir.path().join("synth"))
-        .assert()
-        .success();
-    files.push(dir.path().join("synth/sequence/sequence.equations.st"));
-    for file in files {
-        // blark knows POUs, not CONFIGURATION: cut the file there.
-        let text = std::fs::read_to_string(&file).unwrap();
-        let program = text.split("\nCONFIGURATION").next().unwrap();
-        let cut = file.with_extension("program.st");
-        std::fs::write(&cut, program).unwrap();
-        let output = Command::new(&blark)
-            .arg("parse")
-            .arg(&cut)
-            .output()
-            .unwrap();
-        assert!(
-            output.status.success(),
-            "{}: {}",
-            file.display(),
-            String::from_utf8_lossy(&output.stdout)
-        );
-    }
 }
 
 #[test]

@@ -4,16 +4,38 @@
 
 use crate::helpers::{files_below, root, steptable};
 
-#[test]
-fn fuzz_findings_end_in_a_clean_error() {
-    let dir = root().join("tests/fuzz-regressions");
-    let inputs: Vec<_> = std::fs::read_dir(&dir)
+/// The stored inputs with the outcome the README's table gives each: an
+/// error code, or `converts`.
+fn expectations(dir: &std::path::Path) -> Vec<(String, String)> {
+    std::fs::read_to_string(dir.join("README.md"))
         .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e != "md"))
+        .lines()
+        .filter_map(|line| {
+            let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+            let file = cells.get(1)?.strip_prefix('`')?.strip_suffix('`')?;
+            Some((file.to_string(), cells.get(2)?.to_string()))
+        })
+        .collect()
+}
+
+#[test]
+fn fuzz_findings_end_as_their_table_says() {
+    let dir = root().join("tests/fuzz-regressions");
+    let expected = expectations(&dir);
+    let mut inputs: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .filter(|name| name != "README.md")
         .collect();
-    assert!(!inputs.is_empty());
-    for input in inputs {
+    inputs.sort();
+    let mut listed: Vec<String> = expected.iter().map(|(f, _)| f.clone()).collect();
+    listed.sort();
+    assert_eq!(
+        inputs, listed,
+        "every stored input has one row in README.md"
+    );
+    for (file, outcome) in expected {
+        let input = dir.join(&file);
         let out = tempfile::tempdir().unwrap();
         for command in ["check", "convert"] {
             let mut run = steptable();
@@ -23,20 +45,26 @@ fn fuzz_findings_end_in_a_clean_error() {
             }
             let output = run.output().unwrap();
             let stderr = String::from_utf8_lossy(&output.stderr);
-            let code = output.status.code();
-            assert!(
-                matches!(code, Some(0) | Some(1)),
-                "{} {command}: exit {code:?}\n{stderr}",
-                input.display()
-            );
             assert!(
                 !stderr.contains("panicked") && !stderr.contains("backtrace"),
-                "{} {command}: {stderr}",
-                input.display()
+                "{file} {command}: {stderr}"
             );
-            if code == Some(1) {
-                assert!(stderr.contains("error["), "{stderr}");
-                assert!(files_below(out.path()).is_empty());
+            if outcome == "converts" {
+                assert_eq!(output.status.code(), Some(0), "{file} {command}: {stderr}");
+                if command == "convert" {
+                    assert_eq!(
+                        files_below(out.path()).len(),
+                        crate::helpers::all_files(),
+                        "{file}"
+                    );
+                }
+            } else {
+                assert_eq!(output.status.code(), Some(1), "{file} {command}: {stderr}");
+                assert!(
+                    stderr.contains(&format!("error[{outcome}]")),
+                    "{file} {command}: expected {outcome}: {stderr}"
+                );
+                assert!(files_below(out.path()).is_empty(), "{file}");
             }
         }
     }

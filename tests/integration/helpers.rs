@@ -1,7 +1,6 @@
 //! Helpers: run the binary, make workbooks, read workbooks back.
 
 use std::path::{Path, PathBuf};
-use std::process::Command as Process;
 
 use assert_cmd::Command;
 use calamine::{Data, Reader, open_workbook_auto};
@@ -114,62 +113,6 @@ pub fn xlsx_part(path: &Path, part: &str) -> String {
     text
 }
 
-/// The path of a tool, from `STEPTABLE_TOOLS` (a folder) or PATH.
-pub fn tool(name: &str) -> Option<PathBuf> {
-    if let Ok(dir) = std::env::var("STEPTABLE_TOOLS") {
-        let path = PathBuf::from(dir).join(name);
-        if path.exists() {
-            return Some(path);
-        }
-    }
-    let found = Process::new("sh")
-        .arg("-c")
-        .arg(format!("command -v {name}"))
-        .output()
-        .ok()?;
-    let path = String::from_utf8_lossy(&found.stdout).trim().to_string();
-    (found.status.success() && !path.is_empty()).then(|| PathBuf::from(path))
-}
-
-/// Whether a missing tool must fail the test (CI) rather than skip it.
-pub fn tools_required() -> bool {
-    std::env::var("STEPTABLE_REQUIRE_TOOLS").is_ok_and(|v| !v.is_empty() && v != "0")
-}
-
-/// A tool the test needs: its path, or `None` after one printed note (a
-/// developer's machine); with STEPTABLE_REQUIRE_TOOLS set, a failure.
-pub fn require(name: &str) -> Option<PathBuf> {
-    let found = tool(name);
-    if found.is_none() {
-        assert!(
-            !tools_required(),
-            "{name} is required (STEPTABLE_REQUIRE_TOOLS is set) but was not found"
-        );
-        note(&format!(
-            "{name} not found, so the checks that need it did not run (.ci/run installs it)"
-        ));
-    }
-    found
-}
-
-/// `../shared` beside the repository (the real PLC toolchains and the
-/// PLCopen schema): its path, or `None` after one printed note in a clone
-/// without it; with STEPTABLE_REQUIRE_TOOLS set, a failure.
-pub fn require_shared(what: &str) -> Option<PathBuf> {
-    let dir = root().join("../shared");
-    if dir.join("tools").is_dir() {
-        return Some(dir.canonicalize().unwrap_or(dir));
-    }
-    assert!(
-        !tools_required(),
-        "../shared is required for {what} (STEPTABLE_REQUIRE_TOOLS is set) but is not beside the repository"
-    );
-    note(&format!(
-        "../shared is not beside the repository, so the checks that need it did not run (first: {what})"
-    ));
-    None
-}
-
 /// How many files one conversion with every format writes.
 pub fn all_files() -> usize {
     steptable::convert::OutputKind::ALL
@@ -178,15 +121,30 @@ pub fn all_files() -> usize {
         .sum()
 }
 
-/// Prints a note once per test run, past the test harness's capture (which
-/// takes only `eprintln!`), so that a skipped check is seen.
-fn note(text: &str) {
-    use std::io::Write;
-    static SEEN: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
-    let key = text.split(',').next().unwrap_or(text).to_string();
-    let mut seen = SEEN.lock().unwrap_or_else(|e| e.into_inner());
-    if !seen.contains(&key) {
-        seen.push(key);
-        let _ = writeln!(std::io::stderr(), "note: {text}");
+/// The program files a conversion of `input` writes (ST, FST, I/O list,
+/// AWL, PLCopen), without the lines that name the source file: what two
+/// workbooks holding the same table must agree on.
+pub fn program_texts(input: &Path, out: &Path, sheet: Option<&str>) -> Vec<String> {
+    let mut cmd = steptable();
+    cmd.arg("convert")
+        .arg(input)
+        .args(["--formats", "st,fst,io,awl,plcopen"]);
+    if let Some(sheet) = sheet {
+        cmd.args(["--sheet", sheet]);
     }
+    cmd.arg("-o").arg(out).assert().success();
+    let stem = input.file_stem().unwrap();
+    files_below(&out.join(stem))
+        .iter()
+        .map(|p| {
+            let text = std::fs::read_to_string(p).unwrap();
+            text.lines()
+                .filter(|l| {
+                    !l.contains("Source:")
+                        && !l.contains(&format!("from {}", stem.to_string_lossy()))
+                })
+                .collect::<Vec<_>>()
+                .join("\n")
+        })
+        .collect()
 }

@@ -1,13 +1,10 @@
 //! One integration test binary (faster to link than one per file): the real
 //! executable on the bundled samples and on broken workbooks made by helpers.
+//! The checks that need a tool outside the crate are in `tests/tools/`.
 
 mod batch;
 mod broken;
 mod diagram;
-mod differential;
-mod differential_random;
-mod differential_timing;
-mod engines;
 mod excel_formula;
 mod exports;
 mod fuzz_regressions;
@@ -23,6 +20,5 @@ mod simulate;
 mod snapshots;
 mod stray_cells;
 mod synth;
-mod synth_engines;
 mod template;
 mod valves;

@@ -81,11 +81,10 @@ fn the_template_has_its_sheets_headers_validation_and_protection() {
         .stderr(contains("exists"));
 }
 
-/// The EXAMPLE sheet converts to the same files as the bundled sample: the
-/// template as written, and after LibreOffice opened and saved it (when
-/// LibreOffice is installed; .ci/run installs it).
+/// The EXAMPLE sheet converts to the same files as the bundled sample (after
+/// LibreOffice opened and saved it too: `tests/tools/libreoffice.rs`).
 #[test]
-fn the_templates_example_converts_like_the_sample_also_after_libreoffice() {
+fn the_templates_example_converts_like_the_sample() {
     let dir = tempfile::tempdir().unwrap();
     let template = dir.path().join("paper_example.xlsx");
     steptable()
@@ -94,57 +93,13 @@ fn the_templates_example_converts_like_the_sample_also_after_libreoffice() {
         .arg(&template)
         .assert()
         .success();
-    let mut candidates = vec![template.clone()];
-    if let Some(soffice) = crate::helpers::require("soffice") {
-        let saved = dir.path().join("libreoffice");
-        let status = std::process::Command::new(soffice)
-            .args(["--headless", "--convert-to", "xlsx", "--outdir"])
-            .arg(&saved)
-            .arg(&template)
-            .env("HOME", dir.path())
-            .output()
-            .unwrap();
-        assert!(
-            status.status.success(),
-            "{}",
-            String::from_utf8_lossy(&status.stderr)
-        );
-        candidates.push(saved.join("paper_example.xlsx"));
-    }
-    let convert = |input: &std::path::Path, out: &std::path::Path, sheet: Option<&str>| {
-        let mut cmd = steptable();
-        cmd.arg("convert")
-            .arg(input)
-            .args(["--formats", "st,fst,io,awl,plcopen"]);
-        if let Some(sheet) = sheet {
-            cmd.args(["--sheet", sheet]);
-        }
-        cmd.arg("-o").arg(out).assert().success();
-        crate::helpers::files_below(&out.join("paper_example"))
-            .iter()
-            .map(|p| {
-                let text = std::fs::read_to_string(p).unwrap();
-                // Only the line naming the source may differ.
-                text.lines()
-                    .filter(|l| !l.contains("Source:") && !l.contains("from paper_example"))
-                    .collect::<Vec<_>>()
-                    .join("\n")
-            })
-            .collect::<Vec<_>>()
-    };
-    let expected = convert(
+    let expected = crate::helpers::program_texts(
         &sample("paper_example.xlsx"),
         &dir.path().join("sample"),
         None,
     );
-    for (i, candidate) in candidates.iter().enumerate() {
-        let got = convert(
-            candidate,
-            &dir.path().join(format!("t{i}")),
-            Some("EXAMPLE"),
-        );
-        assert_eq!(got, expected, "{}", candidate.display());
-    }
+    let got = crate::helpers::program_texts(&template, &dir.path().join("t"), Some("EXAMPLE"));
+    assert_eq!(got, expected);
 }
 
 /// The paper's example, as the library holds it.

@@ -8,14 +8,63 @@
 //!
 //! Matrix: every sample × festo/iec/siemens × plain / `--safety all` /
 //! `--modes all --safety all` (AWL also × `--mnemonic de`). Without
-//! `../shared` or awlsim the engines that need them skip with a note (fail
-//! with STEPTABLE_REQUIRE_TOOLS=1).
+//! `../shared` or awlsim the checks that need them are reported as ignored
+//! (they fail with STEPTABLE_REQUIRE_TOOLS=1).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use crate::engines::{self, Case, awlsim, fst, matiec, plcxml};
-use crate::helpers::{require, require_shared, samples};
+use crate::helpers::samples;
+use crate::{Check, Tool, shared, tool};
+
+pub const CHECKS: &[Check] = &[
+    Check::new(
+        "differential::structured_text_runs_in_matiec_as_simulated",
+        &[Tool::Shared],
+        structured_text_runs_in_matiec_as_simulated,
+    ),
+    Check::new(
+        "differential::st_inside_plcopen_codesys_and_exp_runs_in_matiec_as_simulated",
+        &[Tool::Shared],
+        st_inside_plcopen_codesys_and_exp_runs_in_matiec_as_simulated,
+    ),
+    Check::new(
+        "differential::openplc_upload_accepts_every_st",
+        &[Tool::Shared],
+        openplc_upload_accepts_every_st,
+    ),
+    Check::new(
+        "differential::awl_runs_in_awlsim_as_simulated_in_both_mnemonic_sets",
+        &[Tool::Awlsim],
+        awl_runs_in_awlsim_as_simulated_in_both_mnemonic_sets,
+    ),
+    Check::new(
+        "differential::fst_runs_in_the_interpreter_as_simulated",
+        &[],
+        fst_runs_in_the_interpreter_as_simulated,
+    ),
+    Check::new(
+        "differential::a_wrong_fst_file_is_caught_with_its_scan_and_signal",
+        &[],
+        a_wrong_fst_file_is_caught_with_its_scan_and_signal,
+    ),
+    Check::new(
+        "differential::a_wrong_st_file_is_caught_by_matiec",
+        &[Tool::Shared],
+        a_wrong_st_file_is_caught_by_matiec,
+    ),
+    Check::new(
+        "differential::a_wrong_awl_timer_is_caught_by_awlsim",
+        &[Tool::Awlsim],
+        a_wrong_awl_timer_is_caught_by_awlsim,
+    ),
+    Check::new(
+        "differential::the_fst_interpreter_refuses_unknown_statements",
+        &[],
+        fst::unknown_statements_are_refused,
+    ),
+];
 
 const TARGETS: [&str; 3] = ["festo", "iec", "siemens"];
 const OPTIONS: [&[&str]; 3] = [
@@ -56,11 +105,8 @@ fn run_all(cases: &[Case], check: impl Fn(&Case) -> Result<(), String> + Sync) {
     assert!(cases.iter().all(|c| c.trace.output_changes() >= 4));
 }
 
-#[test]
 fn structured_text_runs_in_matiec_as_simulated() {
-    let Some(shared) = require_shared("the matiec differential test") else {
-        return;
-    };
+    let shared = shared();
     let dir = tempfile::tempdir().unwrap();
     let cases = matrix(dir.path(), &["--formats", "st"]);
     run_all(&cases, |c| {
@@ -72,11 +118,8 @@ fn structured_text_runs_in_matiec_as_simulated() {
     eprintln!("matiec: {} .st files run, traces equal", cases.len());
 }
 
-#[test]
 fn st_inside_plcopen_codesys_and_exp_runs_in_matiec_as_simulated() {
-    let Some(shared) = require_shared("the PLCopen/CODESYS differential test") else {
-        return;
-    };
+    let shared = shared();
     let dir = tempfile::tempdir().unwrap();
     let cases = matrix(dir.path(), &["--formats", "plcopen,codesys,exp"]);
     run_all(&cases, |c| {
@@ -121,23 +164,16 @@ fn openplc_accepts(shared: &Path, st: &Path) -> Result<(), String> {
     }
 }
 
-#[test]
 fn openplc_upload_accepts_every_st() {
-    let Some(shared) = require_shared("the OpenPLC upload replay") else {
-        return;
-    };
+    let shared = shared();
     let dir = tempfile::tempdir().unwrap();
     let cases = matrix(dir.path(), &["--formats", "st"]);
     run_all(&cases, |c| openplc_accepts(&shared, &c.file(".st")));
     eprintln!("openplc: {} .st files accepted", cases.len());
 }
 
-#[test]
 fn awl_runs_in_awlsim_as_simulated_in_both_mnemonic_sets() {
-    let Some(awlsim_test) = require("awlsim-test") else {
-        return;
-    };
-    let python = awlsim::python(&awlsim_test);
+    let python = awlsim::python(&tool(Tool::Awlsim));
     for mnemonic in ["en", "de"] {
         let dir = tempfile::tempdir().unwrap();
         let cases = matrix(dir.path(), &["--formats", "awl", "--mnemonic", mnemonic]);
@@ -160,7 +196,6 @@ fn awl_runs_in_awlsim_as_simulated_in_both_mnemonic_sets() {
     }
 }
 
-#[test]
 fn fst_runs_in_the_interpreter_as_simulated() {
     let dir = tempfile::tempdir().unwrap();
     let cases = matrix(dir.path(), &["--formats", "fst"]);
@@ -171,48 +206,62 @@ fn fst_runs_in_the_interpreter_as_simulated() {
     eprintln!("fst: {} .fst.txt files run, traces equal", cases.len());
 }
 
-/// The layer must be able to fail: a wrong timer, a swapped coil.
-#[test]
-fn a_wrong_file_is_caught_with_its_scan_and_signal() {
-    let dir = tempfile::tempdir().unwrap();
+/// The press station with every safety check, converted: the case the
+/// self-tests below break one line of.
+fn press_case(dir: &Path) -> Case {
     let sample = crate::helpers::sample("press_station.xlsx");
-    let case = engines::prepare(&sample, &["--safety", "all"], dir.path());
-    // FST: y2+ where the program says y2- (O1.2 → O0.2 in STEP 4).
+    engines::prepare(&sample, &["--safety", "all"], dir)
+}
+
+/// The layer must be able to fail: a swapped coil in the FST is caught with
+/// the scan and the signal.
+fn a_wrong_fst_file_is_caught_with_its_scan_and_signal() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = press_case(dir.path());
+    // y2+ where the program says y2- (O1.2 → O0.2 in STEP 4).
     let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
     let swapped = swap_first_after(&text, "STEP 4", "SET     O1.2", "SET     O0.2");
     let err = case
         .check("FST", fst::run(&swapped, &case.trace, &case.festo))
         .unwrap_err();
     assert!(err.contains("scan ") && err.contains("y2"), "{err}");
-    if let Some(shared) = require_shared("the matiec self-test") {
-        let st = std::fs::read_to_string(case.file(".st")).unwrap();
-        let swapped = swap_first_after(&st, "4: (*", "y2m := TRUE;", "y2p := TRUE;");
-        let path: PathBuf = case.dir.join("swapped.st");
-        std::fs::write(&path, swapped).unwrap();
-        let err = case
-            .check(
-                "matiec",
-                matiec::run(&shared, &path, &case.trace, &case.allocation),
-            )
-            .unwrap_err();
-        assert!(err.contains("scan ") && err.contains("y2"), "{err}");
-    }
-    if let Some(awlsim_test) = require("awlsim-test") {
-        // English SE is the extended pulse: the dwells end at once.
-        let awl = std::fs::read_to_string(case.file(".awl")).unwrap();
-        let wrong = awl.replace("SD    T", "SE    T");
-        assert_ne!(wrong, awl);
-        let path = case.dir.join("pulse.awl");
-        std::fs::write(&path, wrong).unwrap();
-        let python = awlsim::python(&awlsim_test);
-        let err = case
-            .check(
-                "awlsim",
-                awlsim::run(&python, &path, case.mnemonic, &case.trace, &case.allocation),
-            )
-            .unwrap_err();
-        assert!(err.contains("scan "), "{err}");
-    }
+}
+
+/// The same swap in the `.st`, run by matiec.
+fn a_wrong_st_file_is_caught_by_matiec() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = press_case(dir.path());
+    let st = std::fs::read_to_string(case.file(".st")).unwrap();
+    let swapped = swap_first_after(&st, "4: (*", "y2m := TRUE;", "y2p := TRUE;");
+    let path: PathBuf = case.dir.join("swapped.st");
+    std::fs::write(&path, swapped).unwrap();
+    let err = case
+        .check(
+            "matiec",
+            matiec::run(&shared(), &path, &case.trace, &case.allocation),
+        )
+        .unwrap_err();
+    assert!(err.contains("scan ") && err.contains("y2"), "{err}");
+}
+
+/// English `SE` is the extended pulse, not the on-delay: an AWL file that
+/// used it would end every dwell at once, and awlsim must show it.
+fn a_wrong_awl_timer_is_caught_by_awlsim() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = press_case(dir.path());
+    let awl = std::fs::read_to_string(case.file(".awl")).unwrap();
+    let wrong = awl.replace("SD    T", "SE    T");
+    assert_ne!(wrong, awl);
+    let path = case.dir.join("pulse.awl");
+    std::fs::write(&path, wrong).unwrap();
+    let python = awlsim::python(&tool(Tool::Awlsim));
+    let err = case
+        .check(
+            "awlsim",
+            awlsim::run(&python, &path, case.mnemonic, &case.trace, &case.allocation),
+        )
+        .unwrap_err();
+    assert!(err.contains("scan "), "{err}");
 }
 
 /// `text` with the first `from` after `marker` replaced by `to`.

@@ -10,7 +10,14 @@ use steptable::simulate::plant::Piston;
 use steptable::timing::Stroke;
 
 use crate::engines::matiec;
-use crate::helpers::{require_shared, steptable};
+use crate::helpers::steptable;
+use crate::{Check, Tool, shared};
+
+pub const CHECKS: &[Check] = &[Check::new(
+    "synth_engines::synthesised_programs_run_the_sequence_in_matiec",
+    &[Tool::Shared],
+    synthesised_programs_run_the_sequence_in_matiec,
+)];
 
 /// `name AT %IX0.1 : BOOL;` declarations of a written program.
 fn located(text: &str) -> Vec<(String, String)> {
@@ -96,11 +103,8 @@ fn run(
     Ok(moves)
 }
 
-#[test]
 fn synthesised_programs_run_the_sequence_in_matiec() {
-    let Some(shared) = require_shared("the synthesis engine test") else {
-        return;
-    };
+    let shared = shared();
     let dir = tempfile::tempdir().unwrap();
     let sequences = [
         "A1 A0 B1 B0",

@@ -11,7 +11,32 @@ use steptable::cell::Sign;
 use steptable::simulate::io::IoTrace;
 
 use crate::engines::{self, Case, awlsim, fst, matiec};
-use crate::helpers::{require, require_shared};
+use crate::{Check, Tool, shared, tool};
+
+pub const CHECKS: &[Check] = &[
+    Check::new(
+        "differential_timing::dwells_are_never_shorter_than_asked_in_the_simulation_and_fst",
+        &[],
+        || dwells_are_never_shorter_than_asked(Engine::Fst),
+    ),
+    Check::new(
+        "differential_timing::dwells_are_never_shorter_than_asked_in_matiec",
+        &[Tool::Shared],
+        || dwells_are_never_shorter_than_asked(Engine::Matiec),
+    ),
+    Check::new(
+        "differential_timing::dwells_are_never_shorter_than_asked_in_awlsim",
+        &[Tool::Awlsim],
+        || dwells_are_never_shorter_than_asked(Engine::Awlsim),
+    ),
+];
+
+#[derive(Clone, Copy, PartialEq)]
+enum Engine {
+    Fst,
+    Matiec,
+    Awlsim,
+}
 
 const DURATIONS: [(&str, u64); 6] = [
     ("10ms", 10),
@@ -59,11 +84,10 @@ fn first_input(trace: &IoTrace, signal: Signal) -> usize {
     trace.scans.iter().position(|s| s.inputs[k]).unwrap()
 }
 
-#[test]
-fn dwells_are_never_shorter_than_asked() {
+fn dwells_are_never_shorter_than_asked(engine: Engine) {
     let dir = tempfile::tempdir().unwrap();
-    let shared = require_shared("the matiec dwell check");
-    let python = require("awlsim-test").map(|t| awlsim::python(&t));
+    let shared = (engine == Engine::Matiec).then(shared);
+    let python = (engine == Engine::Awlsim).then(|| awlsim::python(&tool(Tool::Awlsim)));
     for (text, ms) in DURATIONS {
         let case = case(dir.path(), text, &[]);
         let trace = &case.trace;
@@ -83,9 +107,11 @@ fn dwells_are_never_shorter_than_asked() {
             lasted >= ms && lasted < ms + scan,
             "{text}: simulation {lasted} ms"
         );
-        let fst_text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
-        case.check("FST", fst::run(&fst_text, trace, &case.festo))
-            .unwrap();
+        if engine == Engine::Fst {
+            let fst_text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
+            case.check("FST", fst::run(&fst_text, trace, &case.festo))
+                .unwrap();
+        }
         if let Some(shared) = &shared {
             case.check(
                 "matiec",

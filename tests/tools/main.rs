@@ -1,0 +1,162 @@
+//! Checks that run steptable's written files in the tools that will really
+//! run them (matiec, OpenPLC's upload, awlsim, the FST interpreter) and
+//! that validate them with other tools (xmllint, blark, LibreOffice).
+//!
+//! A custom harness (libtest-mimic), so that a check whose tool is missing
+//! is counted as *ignored*, with one note naming the tool, never as passed.
+//! With STEPTABLE_REQUIRE_TOOLS=1 (`.ci/run`) every check runs and a
+//! missing tool fails it.
+
+#[allow(dead_code)]
+#[path = "../integration/helpers.rs"]
+mod helpers;
+
+mod differential;
+mod differential_random;
+mod differential_timing;
+mod engines;
+mod exports;
+mod libreoffice;
+mod names;
+mod synth_engines;
+
+use std::collections::BTreeSet;
+use std::path::PathBuf;
+
+use libtest_mimic::{Arguments, Trial};
+
+/// Something outside the crate that a check needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Tool {
+    /// `../shared` beside the repository: matiec, OpenPLC's compiler and
+    /// upload replay, the PLCopen schema.
+    Shared,
+    Awlsim,
+    Xmllint,
+    Blark,
+    Soffice,
+}
+
+impl Tool {
+    fn find(self) -> Option<PathBuf> {
+        match self {
+            Tool::Shared => {
+                let dir = helpers::root().join("../shared");
+                dir.join("tools")
+                    .is_dir()
+                    .then(|| dir.canonicalize().unwrap_or(dir))
+            }
+            Tool::Awlsim => find_program("awlsim-test"),
+            Tool::Xmllint => find_program("xmllint"),
+            Tool::Blark => find_program("blark"),
+            Tool::Soffice => find_program("soffice"),
+        }
+    }
+
+    fn describe(self) -> &'static str {
+        match self {
+            Tool::Shared => {
+                "../shared (matiec, OpenPLC, the PLCopen schema) is not beside the repository"
+            }
+            Tool::Awlsim => {
+                "awlsim-test was not found (set STEPTABLE_TOOLS or PATH; .ci/run installs it)"
+            }
+            Tool::Xmllint => "xmllint was not found (.ci/run installs libxml2-utils)",
+            Tool::Blark => "blark was not found (set STEPTABLE_TOOLS or PATH; .ci/run installs it)",
+            Tool::Soffice => "soffice was not found (.ci/run installs libreoffice-calc)",
+        }
+    }
+}
+
+/// A program from `STEPTABLE_TOOLS` (a folder) or PATH.
+fn find_program(name: &str) -> Option<PathBuf> {
+    if let Ok(dir) = std::env::var("STEPTABLE_TOOLS") {
+        let path = PathBuf::from(dir).join(name);
+        if path.exists() {
+            return Some(path);
+        }
+    }
+    let found = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!("command -v {name}"))
+        .output()
+        .ok()?;
+    let path = String::from_utf8_lossy(&found.stdout).trim().to_string();
+    (found.status.success() && !path.is_empty()).then(|| PathBuf::from(path))
+}
+
+/// Whether a missing tool must fail its checks (CI) rather than skip them.
+fn tools_required() -> bool {
+    std::env::var("STEPTABLE_REQUIRE_TOOLS").is_ok_and(|v| !v.is_empty() && v != "0")
+}
+
+/// The path of a tool a running check needs. A check runs without its tool
+/// only under STEPTABLE_REQUIRE_TOOLS, where this failure is the point.
+pub fn tool(tool: Tool) -> PathBuf {
+    tool.find()
+        .unwrap_or_else(|| panic!("required: {}", tool.describe()))
+}
+
+/// `../shared`, for the checks that need it.
+pub fn shared() -> PathBuf {
+    tool(Tool::Shared)
+}
+
+/// One check: its name (module::function, for filtering), the tools it
+/// needs and its body, which panics on failure.
+#[derive(Clone, Copy)]
+pub struct Check {
+    name: &'static str,
+    needs: &'static [Tool],
+    run: fn(),
+}
+
+impl Check {
+    pub const fn new(name: &'static str, needs: &'static [Tool], run: fn()) -> Check {
+        Check { name, needs, run }
+    }
+}
+
+fn main() {
+    let args = Arguments::from_args();
+    let required = tools_required();
+    let checks = [
+        differential::CHECKS,
+        differential_random::CHECKS,
+        differential_timing::CHECKS,
+        exports::CHECKS,
+        libreoffice::CHECKS,
+        names::CHECKS,
+        synth_engines::CHECKS,
+    ]
+    .concat();
+    let mut missing = BTreeSet::new();
+    let trials: Vec<Trial> = checks
+        .iter()
+        .map(|check| {
+            let absent: Vec<Tool> = check
+                .needs
+                .iter()
+                .copied()
+                .filter(|t| t.find().is_none())
+                .collect();
+            let skip = !absent.is_empty() && !required;
+            if skip {
+                missing.extend(absent);
+            }
+            let run = check.run;
+            Trial::test(check.name, move || {
+                run();
+                Ok(())
+            })
+            .with_ignored_flag(skip)
+        })
+        .collect();
+    for tool in missing {
+        eprintln!(
+            "note: {}, so the checks that need it are ignored",
+            tool.describe()
+        );
+    }
+    libtest_mimic::run(&args, trials).exit();
+}
