@@ -108,7 +108,26 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
                 continue;
             }
         };
+        report.diagnostics(&checked.warnings);
         let (table, settings) = (checked.table, checked.settings);
+        match convert::check_machine_runs(&table, &settings) {
+            Ok(()) => {}
+            Err(Failure::Input(diagnostics)) => {
+                report.diagnostics(&diagnostics);
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+            Err(Failure::Internal(why)) => {
+                eprintln!("{}: internal error: {why}", display_name(input));
+                code = EXIT_INTERNAL;
+                continue;
+            }
+            Err(Failure::Template(err)) => {
+                eprintln!("{}: internal error: {err}", display_name(input));
+                code = EXIT_INTERNAL;
+                continue;
+            }
+        }
         let (allocation, program) = convert::build_program(&table, &settings);
         let cases = steptable::faults::case_count(&allocation, args.pairs);
         if cases > steptable::faults::MAX_CASES {

@@ -108,12 +108,13 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
     }
     let seconds = started.elapsed().as_secs_f64();
     report.say(&format!(
-        "{} converted, {} failed, in {:.2} s ({:.1} workbooks/s, {} jobs) -> {}",
+        "{} converted, {} failed, in {:.2} s ({:.1} workbooks/s, {} job{}) -> {}",
         outcomes.len() - failed.len() - skipped,
         failed.len() + missing.len(),
         seconds,
         outcomes.len() as f64 / seconds.max(1e-9),
         jobs,
+        if jobs == 1 { "" } else { "s" },
         args.output.display()
     ));
     for o in &failed {

@@ -485,6 +485,19 @@ pub fn convert_path_as(
     generate(name, checked)
 }
 
+/// The healthy machine runs its cycle under `settings`: the fault analysis
+/// judges faults against that cycle, so a machine that cannot run it is said
+/// (E032 with the setting to blame), not analysed.
+pub fn check_machine_runs(table: &StepTable, settings: &Settings) -> Result<(), Failure> {
+    let (_, program) = build_program(table, settings);
+    let simulation = simulate::simulate(table, &program, &settings.simulation);
+    if simulation.passed {
+        Ok(())
+    } else {
+        Err(physics::explain(table, settings, &simulation))
+    }
+}
+
 /// The allocation and step program of a checked table under `settings`.
 pub fn build_program(table: &StepTable, settings: &Settings) -> (Allocation, StepProgram) {
     let allocation = Allocation::with_options(

@@ -148,3 +148,24 @@ pub fn program_texts(input: &Path, out: &Path, sheet: Option<&str>) -> Vec<Strin
         })
         .collect()
 }
+
+/// `f` over `items` on two threads (the CI machine's cores), keeping what it
+/// returns, in no particular order.
+pub fn on_threads<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> Option<R> + Sync) -> Vec<R> {
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let found = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..2 {
+            scope.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                    let Some(item) = items.get(i) else { break };
+                    if let Some(r) = f(item) {
+                        found.lock().unwrap_or_else(|e| e.into_inner()).push(r);
+                    }
+                }
+            });
+        }
+    });
+    found.into_inner().unwrap_or_else(|e| e.into_inner())
+}

@@ -4,9 +4,14 @@
 
 mod batch;
 mod broken;
+// The binary's command-line definition, for the test of every flag.
+#[allow(dead_code, unused_imports)]
+#[path = "../../src/cli/mod.rs"]
+mod cli;
 mod diagram;
 mod excel_formula;
 mod exports;
+mod flags;
 mod fuzz_regressions;
 mod helpers;
 mod hostile;
