@@ -4,6 +4,7 @@
 
 mod batch;
 mod broken;
+mod codes;
 // The binary's command-line definition, for the test of every flag.
 #[allow(dead_code, unused_imports)]
 #[path = "../../src/cli/mod.rs"]
@@ -19,6 +20,7 @@ mod machine;
 mod messy;
 mod modes;
 mod paper;
+mod promise_map;
 mod properties;
 mod safety;
 mod simulate;
