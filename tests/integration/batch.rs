@@ -33,6 +33,11 @@ fn folder_of_inputs(dir: &std::path::Path) -> std::path::PathBuf {
     .unwrap();
     std::fs::write(input.join("notes.txt"), "not a table").unwrap();
     std::fs::write(input.join("~$drill.xlsx"), "Excel lock file").unwrap();
+    // Hidden files and folders hold valid tables, so that converting them
+    // would show: an editor's backup, a version-control folder.
+    std::fs::copy(sample("paper_example.xlsx"), input.join(".backup.xlsx")).unwrap();
+    std::fs::create_dir_all(input.join(".git")).unwrap();
+    std::fs::copy(sample("paper_example.csv"), input.join(".git/old.csv")).unwrap();
     input
 }
 
