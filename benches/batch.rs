@@ -122,8 +122,13 @@ fn main() {
         let conversion = convert::generate("line", checked).ok().unwrap();
         generate_t.push(t.elapsed());
         let t = Instant::now();
-        steptable::output::write_files(&dir.path().join(format!("w{i}")), &conversion.files, &[])
-            .unwrap();
+        steptable::output::write_files(
+            &dir.path().join(format!("w{i}")),
+            &conversion.files,
+            &[],
+            steptable::output::Durability::Rename,
+        )
+        .unwrap();
         write.push(t.elapsed());
     }
     let ms = |d: Duration| d.as_secs_f64() * 1e3;

@@ -274,7 +274,12 @@ fn convert_one(
             outcome.steps = Some(conversion.table.steps.len());
             outcome.actuators = Some(conversion.table.actuators.len());
             outcome.diagnostics = conversion.warnings;
-            if let Err(err) = output::write_files(&out.join(name), &conversion.files, all_inputs) {
+            if let Err(err) = output::write_files(
+                &out.join(name),
+                &conversion.files,
+                all_inputs,
+                settings.durability,
+            ) {
                 outcome.status = Status::Internal;
                 outcome.message = Some(err.to_string());
             }

@@ -50,11 +50,6 @@ impl ValveType {
         ValveType::ALL.into_iter().find(|v| v.name() == t)
     }
 
-    /// Number of coils (outputs).
-    pub fn coils(self) -> usize {
-        if self == ValveType::Mono52 { 1 } else { 2 }
-    }
-
     /// Whether the valve has a centre position, so it can stop a piston between ends.
     pub fn has_centre(self) -> bool {
         matches!(

@@ -80,6 +80,10 @@ pub(crate) struct FileArgs {
     /// (start from `steptable templates export DIR`).
     #[arg(long, value_name = "DIR")]
     pub(crate) templates: Option<PathBuf>,
+    /// Flush every written file and its folder to the disk before finishing
+    /// (slower; for outputs that must survive a power cut).
+    #[arg(long)]
+    pub(crate) sync: bool,
 }
 
 /// The settings of a command that writes files: common flags, simulation
@@ -110,6 +114,9 @@ impl FileArgs {
         };
         if let Some(formats) = &self.formats {
             settings.formats = formats.clone();
+        }
+        if self.sync {
+            settings.durability = steptable::output::Durability::Sync;
         }
         if let Some(dir) = &self.templates {
             settings.templates =

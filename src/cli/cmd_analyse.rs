@@ -73,7 +73,12 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
                 name: format!("{name}.time.svg"),
                 bytes: svg.into_bytes(),
             };
-            match output::write_files(&dir.join(name), &[file], &args.inputs) {
+            match output::write_files(
+                &dir.join(name),
+                &[file],
+                &args.inputs,
+                output::Durability::Rename,
+            ) {
                 Ok(paths) => diagram = Some(paths),
                 Err(err) => {
                     eprintln!("error: {err}");
@@ -170,7 +175,12 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
                 }
             },
         };
-        if let Err(err) = output::write_files(&args.output.join(name), &[file], &args.inputs) {
+        if let Err(err) = output::write_files(
+            &args.output.join(name),
+            &[file],
+            &args.inputs,
+            output::Durability::Rename,
+        ) {
             eprintln!("error: {err}");
             code = EXIT_INTERNAL;
         }

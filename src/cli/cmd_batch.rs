@@ -141,7 +141,9 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
                     file.name
                 ));
             }
-            if let Err(err) = output::write_files(&args.output, &[file], &inputs) {
+            if let Err(err) =
+                output::write_files(&args.output, &[file], &inputs, settings.durability)
+            {
                 eprintln!("error: {err}");
                 code = EXIT_INTERNAL;
             }

@@ -105,7 +105,12 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         };
         report.diagnostics(&conversion.warnings);
         let folder = args.output.join(&conversion.name);
-        match output::write_files(&folder, &conversion.files, &args.inputs) {
+        match output::write_files(
+            &folder,
+            &conversion.files,
+            &args.inputs,
+            settings.durability,
+        ) {
             Ok(_) => {
                 // As the files lie in the folder: `NAME.beremiz/plc.xml`.
                 let names: Vec<String> = conversion.files.iter().map(|f| f.name.clone()).collect();

@@ -199,7 +199,12 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             bytes: workbook,
         },
     ];
-    if let Err(err) = output::write_files(&args.output.join(&name), &files, &inputs) {
+    if let Err(err) = output::write_files(
+        &args.output.join(&name),
+        &files,
+        &inputs,
+        output::Durability::Rename,
+    ) {
         eprintln!("error: {err}");
         return EXIT_INTERNAL;
     }

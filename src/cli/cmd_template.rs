@@ -78,7 +78,12 @@ pub(crate) fn run_template(args: &TemplateArgs) -> i32 {
         .file_name()
         .map(|n| n.to_string_lossy().to_string())
         .unwrap_or_else(|| "steptable-template.xlsx".to_string());
-    match output::write_files(&folder, &[convert::OutputFile { name, bytes }], &[]) {
+    match output::write_files(
+        &folder,
+        &[convert::OutputFile { name, bytes }],
+        &[],
+        output::Durability::Rename,
+    ) {
         Ok(_) => {
             out(&format!(
                 "{}: {} branches x {} steps; fill the yellow cells, then: steptable convert {}",

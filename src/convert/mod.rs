@@ -36,6 +36,8 @@ pub struct Settings {
     pub formats: BTreeSet<OutputKind>,
     /// The templates text outputs are laid out by.
     pub templates: Templates,
+    /// Whether written files are flushed to the disk (`--sync`).
+    pub durability: crate::output::Durability,
     /// Which settings the command line gave explicitly; a workbook's
     /// SETTINGS sheet decides the others.
     pub explicit: Explicit,

@@ -315,7 +315,8 @@ pub fn export_defaults(dir: &Path, force: bool) -> Result<Vec<PathBuf>, ExportEr
             bytes: source.as_bytes().to_vec(),
         })
         .collect();
-    crate::output::write_files(dir, &files, &[]).map_err(ExportError::Write)
+    crate::output::write_files(dir, &files, &[], crate::output::Durability::Rename)
+        .map_err(ExportError::Write)
 }
 
 /// Why `templates export` wrote nothing.

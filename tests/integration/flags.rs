@@ -337,6 +337,16 @@ fn table_cases(command: &'static str, out: &'static str) -> Vec<Case> {
         ));
     }
     if writes_files {
+        cases.push(case(
+            command,
+            "--sync",
+            Paper,
+            &["--sync"],
+            &[],
+            Unchanged(
+                "the same files, flushed to the disk before the command ends; tools/sync.rs counts the flushes",
+            ),
+        ));
         cases.extend([
             case(
                 command,
@@ -757,10 +767,12 @@ fn text_at(run: &Run, place: &Place) -> String {
     }
 }
 
-/// Every written file's bytes, by path.
+/// Every written file's bytes, by path (batch's summary.csv aside: it holds
+/// each conversion's time).
 fn written(run: &Run) -> Vec<(String, Vec<u8>)> {
     crate::helpers::files_below(run.dir.path())
         .into_iter()
+        .filter(|p| !p.ends_with("summary.csv"))
         .map(|p| {
             let name = p
                 .strip_prefix(run.dir.path())

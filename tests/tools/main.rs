@@ -18,6 +18,7 @@ mod engines;
 mod exports;
 mod libreoffice;
 mod names;
+mod sync;
 mod synth_engines;
 
 use std::collections::BTreeSet;
@@ -35,6 +36,7 @@ pub enum Tool {
     Xmllint,
     Blark,
     Soffice,
+    Strace,
 }
 
 impl Tool {
@@ -50,6 +52,7 @@ impl Tool {
             Tool::Xmllint => find_program("xmllint"),
             Tool::Blark => find_program("blark"),
             Tool::Soffice => find_program("soffice"),
+            Tool::Strace => find_program("strace"),
         }
     }
 
@@ -64,6 +67,7 @@ impl Tool {
             Tool::Xmllint => "xmllint was not found (.ci/run installs libxml2-utils)",
             Tool::Blark => "blark was not found (set STEPTABLE_TOOLS or PATH; .ci/run installs it)",
             Tool::Soffice => "soffice was not found (.ci/run installs libreoffice-calc)",
+            Tool::Strace => "strace was not found (.ci/run installs it)",
         }
     }
 }
@@ -127,6 +131,7 @@ fn main() {
         exports::CHECKS,
         libreoffice::CHECKS,
         names::CHECKS,
+        sync::CHECKS,
         synth_engines::CHECKS,
     ]
     .concat();
