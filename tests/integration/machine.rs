@@ -258,3 +258,57 @@ fn standard_library_and_generated_names_are_refused() {
         );
     }
 }
+
+/// Every name the generated program declares for itself is refused as a
+/// machine signal name, so that an engineer's `I:`/`Y:` name can never
+/// clash with one: the names are read from the written `.st` of every
+/// operating mode and safety check, and only the table's own machine
+/// inputs and outputs may pass.
+#[test]
+fn every_name_the_program_declares_is_reserved() {
+    use steptable::address::reserved_name;
+    let dir = tempfile::tempdir().unwrap();
+    let mut checked = 0;
+    for name in ["paper_example", "press_station"] {
+        for options in [&[][..], &["--modes", "all", "--safety", "all"][..]] {
+            let out = dir.path().join(format!("{name}{}", options.len()));
+            steptable()
+                .arg("convert")
+                .arg(sample(&format!("{name}.xlsx")))
+                .args(options)
+                .args(["--target", "iec", "--formats", "st,io", "-o"])
+                .arg(&out)
+                .assert()
+                .success();
+            let io = std::fs::read_to_string(out.join(format!("{name}/{name}.io.csv"))).unwrap();
+            let machine: Vec<String> = io
+                .lines()
+                .filter_map(|l| {
+                    let cells: Vec<&str> = l.split(',').collect();
+                    matches!(cells.get(2), Some(&"input") | Some(&"output"))
+                        .then(|| cells[1].to_ascii_lowercase())
+                })
+                .collect();
+            let st = std::fs::read_to_string(out.join(format!("{name}/{name}.st"))).unwrap();
+            let mut in_var = false;
+            for line in st.lines().map(str::trim) {
+                if line.starts_with("VAR") {
+                    in_var = true;
+                } else if line.starts_with("END_VAR") {
+                    in_var = false;
+                } else if in_var && let Some(ident) = line.split([' ', ':']).next() {
+                    let ident = ident.to_ascii_lowercase();
+                    if ident.is_empty() || ident.starts_with("(*") || machine.contains(&ident) {
+                        continue;
+                    }
+                    assert!(
+                        reserved_name(&ident).is_some(),
+                        "{name} {options:?}: the program declares {ident}, which a table may use as a machine signal"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 60, "{checked}");
+}
