@@ -433,6 +433,14 @@ fn bare_header(squeezed: &str) -> Option<Header> {
     }
 }
 
+/// An actuator named exactly (`C2`, `c2`, `C 2`, nothing after it), as a
+/// command-line option or a home order names one; `None` when out of range.
+/// The one parser of `C<n>` outside the cell grammar.
+pub fn parse_actuator(text: &str) -> Option<u32> {
+    let number = actuator_name(text)?;
+    (normalize(text) == format!("C{number}")).then_some(number)
+}
+
 /// An actuator named in a settings row or option: `C2`, `c 2`, also with a
 /// comment after it (`C2 (clamp)`, `C2: gripper`, `C2 lift`). `None` when
 /// the text names no actuator in range.
@@ -525,6 +533,14 @@ mod tests {
         }
         for text in ["C", "C0", "C1000", "C1a", "X1", "CLAMP", "1", ""] {
             assert_eq!(actuator_name(text), None, "{text}");
+            assert_eq!(parse_actuator(text), None, "{text}");
+        }
+        // An option names the actuator and nothing else.
+        for (text, n) in [("C2", 2), ("c 12", 12), (" C999 ", 999)] {
+            assert_eq!(parse_actuator(text), Some(n), "{text}");
+        }
+        for text in ["C2 (clamp)", "C2: gripper", "C2 lift"] {
+            assert_eq!(parse_actuator(text), None, "{text}");
         }
     }
 

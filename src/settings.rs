@@ -319,11 +319,11 @@ fn read_actuator_row<'g>(
     if let Some(cell) = columns.load.and_then(at)
         && let Some(text) = value_text(grid, cell, diags)
     {
-        match text.replace(',', ".").parse::<f64>() {
-            Ok(load) if (0.0..=10.0).contains(&load) => {
+        match crate::valve::parse_load(&text) {
+            Some(load) => {
                 settings.loads.insert(actuator, load);
             }
-            _ => diags.error(
+            None => diags.error(
                 Code::E030BadSetting,
                 grid.location(cell.pos),
                 format!("load of C{actuator}: \"{text}\" is not a drift in stroke per second from 0 to 10, such as 0.05"),

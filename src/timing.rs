@@ -63,11 +63,7 @@ pub fn parse_strokes(text: &str) -> Result<BTreeMap<u32, Stroke>, String> {
         let (name, times) = item.split_once('=').ok_or_else(|| {
             format!("\"{item}\": expected C<number>=<extend>/<retract>, e.g. C2=1.5s/0.8s")
         })?;
-        let name = crate::cell::normalize(name);
-        let actuator: u32 = name
-            .strip_prefix('C')
-            .and_then(|n| n.parse().ok())
-            .filter(|n| (1..=crate::cell::MAX_ACTUATOR).contains(n))
+        let actuator = crate::cell::parse_actuator(name)
             .ok_or_else(|| format!("\"{item}\": expected an actuator such as C2 before ="))?;
         let (extend, retract) = times.split_once('/').unwrap_or((times, times));
         let parse = |t: &str| {

@@ -90,6 +90,33 @@ impl Valves {
     }
 }
 
+/// A drift rate in stroke per second, from 0 to 10 (`0.05`; a decimal comma
+/// as a spreadsheet cell may hold it, `0,05`).
+pub fn parse_load(text: &str) -> Option<f64> {
+    text.trim()
+        .replace(',', ".")
+        .parse::<f64>()
+        .ok()
+        .filter(|l| (0.0..=10.0).contains(l))
+}
+
+/// Parses `--load C2=0.1,C3=0.05`.
+pub fn parse_loads(text: &str) -> Result<BTreeMap<u32, f64>, String> {
+    let mut loads = BTreeMap::new();
+    for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+        let (name, value) = item.split_once('=').ok_or_else(|| {
+            format!("\"{item}\": expected C<number>=<stroke per second>, e.g. C2=0.1")
+        })?;
+        let actuator = crate::cell::parse_actuator(name)
+            .ok_or_else(|| format!("\"{item}\": expected an actuator such as C2 before ="))?;
+        let load = parse_load(value).ok_or_else(|| {
+            format!("\"{item}\": expected a drift from 0 to 10 stroke per second")
+        })?;
+        loads.insert(actuator, load);
+    }
+    Ok(loads)
+}
+
 /// Parses `--valve C1=52mono,C2=53closed`.
 pub fn parse_valves(text: &str) -> Result<BTreeMap<u32, ValveType>, String> {
     let mut valves = BTreeMap::new();
@@ -97,10 +124,7 @@ pub fn parse_valves(text: &str) -> Result<BTreeMap<u32, ValveType>, String> {
         let (name, valve) = item
             .split_once('=')
             .ok_or_else(|| format!("\"{item}\": expected C<number>=<valve>, e.g. C1=52mono"))?;
-        let actuator = crate::cell::normalize(name)
-            .strip_prefix('C')
-            .and_then(|n| n.parse::<u32>().ok())
-            .filter(|n| (1..=crate::cell::MAX_ACTUATOR).contains(n))
+        let actuator = crate::cell::parse_actuator(name)
             .ok_or_else(|| format!("\"{item}\": expected an actuator such as C1 before ="))?;
         let valve = ValveType::parse(valve).ok_or_else(|| {
             format!(
@@ -116,6 +140,20 @@ pub fn parse_valves(text: &str) -> Result<BTreeMap<u32, ValveType>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn loads_parse_as_on_the_settings_sheet() {
+        let loads = parse_loads("C2=0.1, c3 = 0.05").unwrap();
+        assert_eq!(loads[&2], 0.1);
+        assert_eq!(loads[&3], 0.05);
+        assert_eq!(parse_load("0,1"), Some(0.1));
+        assert_eq!(parse_load("10"), Some(10.0));
+        assert_eq!(parse_load("10.5"), None);
+        assert_eq!(parse_load("-1"), None);
+        assert!(parse_loads("C1000=0.1").is_err());
+        assert!(parse_loads("C0=0.1").is_err());
+        assert!(parse_loads("C2").is_err());
+    }
 
     #[test]
     fn valve_names_parse() {

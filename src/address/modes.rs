@@ -61,10 +61,7 @@ impl Modes {
                 if item.is_empty() {
                     continue;
                 }
-                let number = item
-                    .strip_prefix(['C', 'c'])
-                    .and_then(|n| n.parse::<u32>().ok())
-                    .filter(|n| (1..=crate::cell::MAX_ACTUATOR).contains(n))
+                let number = crate::cell::parse_actuator(item)
                     .ok_or_else(|| format!("\"{item}\" is not an actuator (expected C1, C2, …)"))?;
                 actuators.push(number);
             }

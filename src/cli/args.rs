@@ -184,26 +184,7 @@ pub(crate) fn parse_valves(
 }
 
 pub(crate) fn parse_loads(text: &str) -> Result<std::collections::BTreeMap<u32, f64>, String> {
-    let mut loads = std::collections::BTreeMap::new();
-    for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
-        let (name, value) = item.split_once('=').ok_or_else(|| {
-            format!("\"{item}\": expected C<number>=<stroke per second>, e.g. C2=0.1")
-        })?;
-        let actuator = steptable::cell::normalize(name)
-            .strip_prefix('C')
-            .and_then(|n| n.parse::<u32>().ok())
-            .ok_or_else(|| format!("\"{item}\": expected an actuator such as C2 before ="))?;
-        let load: f64 = value
-            .trim()
-            .parse()
-            .ok()
-            .filter(|l: &f64| (0.0..=10.0).contains(l))
-            .ok_or_else(|| {
-                format!("\"{item}\": expected a drift from 0 to 10 stroke per second")
-            })?;
-        loads.insert(actuator, load);
-    }
-    Ok(loads)
+    steptable::valve::parse_loads(text)
 }
 
 pub(crate) fn parse_safety(text: &str) -> Result<Safety, String> {
