@@ -561,10 +561,12 @@ pub fn generate_observed(
                 progress,
             )
         });
+    let festo = allocation.for_target(&table, Target::Festo, Mnemonic::En);
     let input = EmitInput {
         name,
         table: &table,
         allocation: &allocation,
+        festo: &festo,
         program: &program,
         simulation: Some(&simulation),
         faults: fault_table.as_ref(),

@@ -9,7 +9,7 @@ use minijinja::value::Serde;
 use serde::Serialize;
 
 use super::{EmitInput, action_comment, one_line, templates};
-use crate::address::{Allocation, Mnemonic, Signal, Target};
+use crate::address::{Allocation, Signal};
 use crate::program::{Action, Literal};
 
 #[derive(Serialize)]
@@ -133,9 +133,7 @@ fn actions(
 /// Renders `NAME.fst.txt`.
 pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
     let program = input.program;
-    let festo = input
-        .allocation
-        .for_target(input.table, Target::Festo, Mnemonic::En);
+    let festo = input.festo;
     let mut init = Vec::new();
     if !program.rungs.is_empty() {
         init.push(ActionLine {
@@ -145,7 +143,7 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
             comment: "start program P1 (logic that runs while P0 waits)".to_string(),
         });
     }
-    init.extend(actions(&program.init, &festo, |a| action_comment(a, &[])));
+    init.extend(actions(&program.init, festo, |a| action_comment(a, &[])));
     for (i, line) in init.iter_mut().enumerate() {
         line.first = i == 0;
     }
@@ -158,8 +156,8 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         .map(|(i, s)| StepContext {
             number: s.number,
             moves: one_line(&s.title),
-            condition: condition(&s.condition, &festo),
-            actions: actions(&s.actions, &festo, |a| action_comment(a, &s.moves)),
+            condition: condition(&s.condition, festo),
+            actions: actions(&s.actions, festo, |a| action_comment(a, &s.moves)),
             last: i + 1 == count,
         })
         .collect();
@@ -169,8 +167,8 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         .iter()
         .map(|r| RungContext {
             comment: one_line(&r.comment),
-            condition: condition(&r.condition, &festo),
-            actions: actions(&r.actions, &festo, |a| action_comment(a, &[])),
+            condition: condition(&r.condition, festo),
+            actions: actions(&r.actions, festo, |a| action_comment(a, &[])),
         })
         .collect();
     let context = Context {

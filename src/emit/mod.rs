@@ -26,6 +26,9 @@ pub struct EmitInput<'a> {
     pub name: &'a str,
     pub table: &'a StepTable,
     pub allocation: &'a Allocation,
+    /// The same signals on Festo operands, which the FST files use whatever
+    /// the target: allocated once, by the caller, not by each emitter.
+    pub festo: &'a Allocation,
     pub program: &'a StepProgram,
     /// The simulation of the program, for the SIMULATION sheet.
     pub simulation: Option<&'a SimReport>,

@@ -8,7 +8,7 @@ use rust_xlsxwriter::{DocProperties, ExcelDateTime, Format, Workbook, XlsxError}
 use serde::Serialize;
 
 use super::{EmitInput, one_line, templates};
-use crate::address::{Area, Mnemonic, Target};
+use crate::address::{Area, Mnemonic};
 
 #[derive(Serialize)]
 struct Entry {
@@ -25,9 +25,7 @@ struct FstContext {
 /// `NAME.fst-alloc.csv`: absolute operand, symbolic operand, comment, with
 /// the Festo operands the `.fst.txt` uses (inputs, outputs, flags, timer).
 pub fn render_fst_alloc(input: &EmitInput) -> Result<String, templates::TemplateError> {
-    let festo = input
-        .allocation
-        .for_target(input.table, Target::Festo, Mnemonic::En);
+    let festo = input.festo;
     let symbols = festo
         .inputs
         .iter()
