@@ -166,7 +166,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         // The table is written before anything is printed (see simulate).
         let file = convert::OutputFile {
             name: format!("{name}.faults.csv"),
-            bytes: match steptable::faults::render_csv(&result) {
+            bytes: match steptable::emit::faults_csv::render(&result) {
                 Ok(b) => b,
                 Err(e) => {
                     eprintln!("internal error: {e}");

@@ -607,7 +607,7 @@ pub fn generate_observed(
                 let table = fault_table
                     .as_ref()
                     .ok_or_else(|| internal("fault table", &"not analysed"))?;
-                faults::render_csv(table).map_err(|e| internal("fault table", &e))?
+                emit::faults_csv::render(table).map_err(|e| internal("fault table", &e))?
             }
             OutputKind::StructuredText
             | OutputKind::PlcOpen

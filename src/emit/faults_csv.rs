@@ -1,0 +1,37 @@
+//! The fault table as CSV (`NAME.faults.csv`), written by `convert` and
+//! `faults` alike.
+
+use crate::faults::FaultTable;
+
+/// `NAME.faults.csv`: `fault,signal,stuck_at,outcome,step,explanation`, one row
+/// per case (pairs have both signals joined with `+`).
+pub fn render(table: &FaultTable) -> Result<Vec<u8>, csv::Error> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record([
+        "fault",
+        "signals",
+        "stuck_at",
+        "outcome",
+        "step",
+        "explanation",
+    ])?;
+    for c in &table.cases {
+        let signals: Vec<String> = c.faults.iter().map(|f| f.signal.symbol()).collect();
+        let stuck: Vec<&str> = c
+            .faults
+            .iter()
+            .map(|f| if f.stuck_at { "1" } else { "0" })
+            .collect();
+        writer.write_record([
+            c.fault_text(),
+            signals.join("+"),
+            stuck.join("+"),
+            c.outcome.label().to_string(),
+            c.step.map(|s| s.to_string()).unwrap_or_default(),
+            c.explanation.clone(),
+        ])?;
+    }
+    writer
+        .into_inner()
+        .map_err(|e| csv::Error::from(std::io::Error::other(e.to_string())))
+}
