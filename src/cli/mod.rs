@@ -15,17 +15,19 @@ use steptable::output;
 use steptable::read::display_name;
 
 mod args;
-mod cmd_analyse;
 mod cmd_batch;
 mod cmd_convert;
+mod cmd_faults;
+mod cmd_simulate;
 mod cmd_synth;
 mod cmd_template;
 mod progress;
 
 use args::*;
-use cmd_analyse::*;
 use cmd_batch::*;
 use cmd_convert::*;
+use cmd_faults::*;
+use cmd_simulate::*;
 use cmd_synth::*;
 use cmd_template::*;
 

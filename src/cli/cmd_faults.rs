@@ -1,4 +1,5 @@
-//! `steptable simulate` and `steptable faults`.
+//! `steptable faults`: what every sensor stuck at 1 or 0 does to the
+//! machine, as a table on the terminal and `NAME.faults.csv`.
 
 use super::*;
 
@@ -17,85 +18,6 @@ pub(crate) struct FaultsArgs {
     pub(crate) common: CommonArgs,
     #[command(flatten)]
     pub(crate) sim: SimArgs,
-}
-
-#[derive(Args)]
-pub(crate) struct SimulateArgs {
-    /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
-    #[arg(required = true)]
-    pub(crate) inputs: Vec<PathBuf>,
-    /// Generate the program without middle stops, as the published method
-    /// does, to see why they matter.
-    #[arg(long)]
-    pub(crate) no_middle_stop: bool,
-    /// Also write the run's displacement-time diagram (dwells and waits
-    /// shaded) to DIR/NAME/NAME.time.svg.
-    #[arg(long, value_name = "DIR")]
-    pub(crate) diagram: Option<PathBuf>,
-    #[command(flatten)]
-    pub(crate) common: CommonArgs,
-    #[command(flatten)]
-    pub(crate) sim: SimArgs,
-}
-
-pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
-    let mut settings = args.common.settings();
-    let reporter = Reporter::new(&args.common);
-    args.sim.apply(&mut settings);
-    settings.program.middle_stops = !args.no_middle_stop;
-    let mut code = EXIT_OK;
-    let names = convert::output_names(&args.inputs);
-    for (input, name) in args.inputs.iter().zip(&names) {
-        let checked = match convert::check_path(input, &settings) {
-            Ok(c) => c,
-            Err(diagnostics) => {
-                reporter.diagnostics(&diagnostics);
-                code = code.max(EXIT_BAD_INPUT);
-                continue;
-            }
-        };
-        reporter.diagnostics(&checked.warnings);
-        let (table, mut settings) = (checked.table, checked.settings);
-        settings.simulation.record_trace = args.diagram.is_some();
-        let (_, program) = convert::build_program(&table, &settings);
-        let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
-        // The diagram is written before anything is printed: with stdout
-        // closed, printing ends the process (quietly), and the file the user
-        // asked for must exist by then.
-        let mut diagram = None;
-        if let Some(dir) = &args.diagram {
-            let svg = steptable::emit::diagram::render_svg(
-                name,
-                &report,
-                steptable::emit::diagram::DiagramKind::Time,
-            );
-            let file = convert::OutputFile {
-                name: format!("{name}.time.svg"),
-                bytes: svg.into_bytes(),
-            };
-            match output::write_files(
-                &dir.join(name),
-                &[file],
-                &args.inputs,
-                output::Durability::Rename,
-            ) {
-                Ok(paths) => diagram = Some(paths),
-                Err(err) => {
-                    eprintln!("error: {err}");
-                    code = EXIT_INTERNAL;
-                }
-            }
-        }
-        reporter.say(&format!("{}: {}", display_name(input), report.verdict()));
-        reporter.say(&steptable::simulate::report::step_table(&report));
-        if !report.passed {
-            code = code.max(EXIT_BAD_INPUT);
-        }
-        for path in diagram.into_iter().flatten() {
-            reporter.say(&format!("  diagram: {}", path.display()));
-        }
-    }
-    code
 }
 
 pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
