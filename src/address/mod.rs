@@ -455,6 +455,13 @@ impl Safety {
     pub fn any(self) -> bool {
         self.edge || self.precheck || self.plausibility || self.watchdog
     }
+
+    /// Whether the program has a `halt` memory: a check that stops the
+    /// sequence (plausibility, watchdog) or an emergency stop sets it. The
+    /// one place this is decided, for the allocation and the program.
+    pub fn halts(self, modes: &Modes) -> bool {
+        self.plausibility || self.watchdog || modes.estop
+    }
 }
 
 /// One signal with its address.
@@ -640,7 +647,7 @@ impl Allocation {
         if safety.edge {
             extra.push(Signal::StartMemory);
         }
-        if safety.plausibility || safety.watchdog || modes.estop {
+        if safety.halts(modes) {
             extra.push(Signal::Halt);
         }
         if safety.watchdog {

@@ -287,7 +287,7 @@ pub fn build(
     let middle_stops = options.middle_stops;
     let safety = options.safety;
     let modes = &options.modes;
-    let halts = safety.plausibility || safety.watchdog || modes.estop;
+    let halts = safety.halts(modes);
     let homes: Vec<Literal> = table
         .actuators
         .iter()

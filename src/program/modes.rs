@@ -32,7 +32,7 @@ pub(super) fn mode_rungs(
     homes: &[Literal],
     rungs: &mut Vec<Rung>,
 ) {
-    let halts = safety.plausibility || safety.watchdog || modes.estop;
+    let halts = safety.halts(modes);
     // Ready for a new cycle: none under way, no halt, not homing, all home.
     let mut ready = vec![Literal::not(Signal::Busy)];
     if halts {
