@@ -637,7 +637,7 @@ impl Allocation {
             .filter(|m| {
                 table
                     .actuator(m.actuator)
-                    .is_some_and(|a| m.to > 0 && m.to < a.max_position)
+                    .is_some_and(|a| a.is_middle(m.to))
             })
             .map(|m| (m.actuator, m.to))
             .collect();

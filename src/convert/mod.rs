@@ -384,7 +384,7 @@ fn check_valves(
         }
         let Some(m) =
             table.steps.iter().flat_map(|s| &s.moves).find(|m| {
-                m.actuator == actuator.number && m.to > 0 && m.to < actuator.max_position
+                m.actuator == actuator.number && actuator.is_middle(m.to)
             })
         else {
             continue;

@@ -224,7 +224,7 @@ fn move_actions(
     let is_middle = |actuator: u32, position: u32| {
         table
             .actuator(actuator)
-            .is_some_and(|a| position > 0 && position < a.max_position)
+            .is_some_and(|a| a.is_middle(position))
     };
     let pmax = table.actuator(m.actuator).map_or(1, |a| a.max_position);
     if allocation.valves.of(m.actuator, pmax) == ValveType::Mono52 {

@@ -161,6 +161,12 @@ impl Actuator {
     pub fn has_middle_positions(&self) -> bool {
         self.max_position > 1
     }
+
+    /// True when `position` is between the ends, where the piston must be
+    /// stopped on its sensor (a middle stop). The one place this is decided.
+    pub fn is_middle(&self, position: u32) -> bool {
+        position > 0 && position < self.max_position
+    }
 }
 
 /// A checked step table.
