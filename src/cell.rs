@@ -520,6 +520,18 @@ mod tests {
     }
 
     #[test]
+    fn every_digit_a_keyboard_or_a_font_makes_reads_as_a_digit() {
+        // Subscripts, superscripts (¹²³ live apart from ⁰⁴⁻⁹), full-width.
+        assert_eq!(normalize("₀₁₂₃₄₅₆₇₈₉"), "0123456789");
+        assert_eq!(normalize("⁰¹²³⁴⁵⁶⁷⁸⁹"), "0123456789");
+        assert_eq!(normalize("０１２３４５６７８９"), "0123456789");
+        // Signs and the letter C as other scripts and fonts write them.
+        assert_eq!(normalize("c 2 − 1"), "C2-1");
+        assert_eq!(normalize("С１＋₂"), "C1+2");
+        assert_eq!(normalize("Ｃ3⁻0\u{200B}"), "C3-0");
+    }
+
+    #[test]
     fn actuator_names_may_carry_a_comment() {
         for (text, n) in [
             ("C1", 1),
