@@ -621,8 +621,13 @@ mod tests {
         assert_eq!(parse_item("T=1.5s"), dwell(1500));
         assert_eq!(parse_item("T=0,1s"), dwell(100));
         assert_eq!(parse_item("T=3"), dwell(3000));
+        // Whole milliseconds are the timers' resolution: 20.0 ms is 20.
+        assert_eq!(parse_item("T=20.0ms"), dwell(20));
         for bad in [
             "T=",
+            "T=12.5ms",
+            // Long enough to overflow the arithmetic if it were not refused.
+            "T=99999999999999999s",
             "T=0s",
             "T=5ms",
             "T=656s",
