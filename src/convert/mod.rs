@@ -382,10 +382,11 @@ fn check_valves(
         if valve.has_centre() {
             continue;
         }
-        let Some(m) =
-            table.steps.iter().flat_map(|s| &s.moves).find(|m| {
-                m.actuator == actuator.number && actuator.is_middle(m.to)
-            })
+        let Some(m) = table
+            .steps
+            .iter()
+            .flat_map(|s| &s.moves)
+            .find(|m| m.actuator == actuator.number && actuator.is_middle(m.to))
         else {
             continue;
         };
