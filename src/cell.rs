@@ -520,6 +520,14 @@ mod tests {
     }
 
     #[test]
+    fn a_space_before_the_sign_of_an_output_is_not_inside_its_name() {
+        assert!(!name_has_space("Y:vacuum +"));
+        assert!(!name_has_space("I:part_present = 1"));
+        assert!(name_has_space("Y:vac uum+"));
+        assert_eq!(format!("{:?}", Name::new("vacuum").unwrap()), "\"vacuum\"");
+    }
+
+    #[test]
     fn every_digit_a_keyboard_or_a_font_makes_reads_as_a_digit() {
         // Subscripts, superscripts (¹²³ live apart from ⁰⁴⁻⁹), full-width.
         assert_eq!(normalize("₀₁₂₃₄₅₆₇₈₉"), "0123456789");
@@ -623,6 +631,9 @@ mod tests {
         assert_eq!(parse_item("T=3"), dwell(3000));
         // Whole milliseconds are the timers' resolution: 20.0 ms is 20.
         assert_eq!(parse_item("T=20.0ms"), dwell(20));
+        // Up to three decimals and seven whole digits are read.
+        assert_eq!(parse_item("T=1.005s"), dwell(1005));
+        assert_eq!(parse_item("T=0000010s"), dwell(10_000));
         for bad in [
             "T=",
             "T=12.5ms",
