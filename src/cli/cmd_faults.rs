@@ -37,25 +37,25 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         };
         report.diagnostics(&checked.warnings);
         let (table, settings) = (checked.table, checked.settings);
-        match convert::check_machine_runs(&table, &settings) {
-            Ok(()) => {}
-            Err(Failure::Input(diagnostics)) => {
-                report.diagnostics(&diagnostics);
-                code = code.max(EXIT_BAD_INPUT);
-                continue;
-            }
-            Err(Failure::Internal(why)) => {
-                eprintln!("{}: internal error: {why}", display_name(input));
-                code = EXIT_INTERNAL;
-                continue;
-            }
-            Err(Failure::Template(err)) => {
-                eprintln!("{}: internal error: {err}", display_name(input));
-                code = EXIT_INTERNAL;
-                continue;
-            }
-        }
-        let (allocation, program) = convert::build_program(&table, &settings);
+        let (allocation, program) =
+            match convert::healthy_program(&table, &settings, &settings.simulation) {
+                Ok((allocation, program, _)) => (allocation, program),
+                Err(Failure::Input(diagnostics)) => {
+                    report.diagnostics(&diagnostics);
+                    code = code.max(EXIT_BAD_INPUT);
+                    continue;
+                }
+                Err(Failure::Internal(why)) => {
+                    eprintln!("{}: internal error: {why}", display_name(input));
+                    code = EXIT_INTERNAL;
+                    continue;
+                }
+                Err(Failure::Template(err)) => {
+                    eprintln!("{}: internal error: {err}", display_name(input));
+                    code = EXIT_INTERNAL;
+                    continue;
+                }
+            };
         let cases = steptable::faults::case_count(&allocation, args.pairs);
         if cases > steptable::faults::MAX_CASES {
             report.diagnostics(&[Diagnostic {

@@ -488,14 +488,19 @@ pub fn convert_path_as(
     generate(name, checked)
 }
 
-/// The healthy machine runs its cycle under `settings`: the fault analysis
-/// judges faults against that cycle, so a machine that cannot run it is said
-/// (E032 with the setting to blame), not analysed.
-pub fn check_machine_runs(table: &StepTable, settings: &Settings) -> Result<(), Failure> {
-    let (_, program) = build_program(table, settings);
-    let simulation = simulate::simulate(table, &program, &settings.simulation);
+/// The program of a checked table and its simulation under `sim`, which
+/// must run the cycle: outputs and fault tables are judged against that
+/// cycle, so a machine that cannot run it is said (E032 with the setting to
+/// blame), not converted or analysed.
+pub fn healthy_program(
+    table: &StepTable,
+    settings: &Settings,
+    sim: &SimSettings,
+) -> Result<(Allocation, StepProgram, SimReport), Failure> {
+    let (allocation, program) = build_program(table, settings);
+    let simulation = simulate::simulate(table, &program, sim);
     if simulation.passed {
-        Ok(())
+        Ok((allocation, program, simulation))
     } else {
         Err(physics::explain(table, settings, &simulation))
     }
@@ -538,15 +543,11 @@ pub fn generate_observed(
         settings,
     } = checked;
     let settings = &settings;
-    let (allocation, program) = build_program(&table, settings);
     let sim_settings = SimSettings {
         record_trace: settings.diagram == DiagramKind::Time,
         ..settings.simulation.clone()
     };
-    let simulation = simulate::simulate(&table, &program, &sim_settings);
-    if !simulation.passed {
-        return Err(physics::explain(&table, settings, &simulation));
-    }
+    let (allocation, program, simulation) = healthy_program(&table, settings, &sim_settings)?;
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them.
     let fault_table = [OutputKind::Faults, OutputKind::Workbook]

@@ -14,7 +14,7 @@ use std::path::Path;
 
 use steptable::random_table::{Shape, SplitMix64, random_rows};
 
-use crate::engines::{self, Case, awlsim, fst, matiec};
+use crate::engines::{self, Case, Engine, awlsim, fst, matiec};
 use crate::helpers::write_xlsx;
 use crate::{Check, Tool, shared, tool};
 
@@ -35,14 +35,6 @@ pub const CHECKS: &[Check] = &[
         || random_tables_run_as_simulated(Engine::Awlsim),
     ),
 ];
-
-/// The engine one check runs the random tables' files in.
-#[derive(Clone, Copy, Debug)]
-enum Engine {
-    Fst,
-    Matiec,
-    Awlsim,
-}
 
 /// A random table with its command-line options.
 struct Drawn {

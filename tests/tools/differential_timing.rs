@@ -10,7 +10,7 @@ use steptable::address::{Mnemonic, Signal};
 use steptable::cell::Sign;
 use steptable::simulate::io::IoTrace;
 
-use crate::engines::{self, Case, awlsim, fst, matiec};
+use crate::engines::{self, Case, Engine, awlsim, fst, matiec};
 use crate::{Check, Tool, shared, tool};
 
 pub const CHECKS: &[Check] = &[
@@ -30,13 +30,6 @@ pub const CHECKS: &[Check] = &[
         || dwells_are_never_shorter_than_asked(Engine::Awlsim),
     ),
 ];
-
-#[derive(Clone, Copy, PartialEq)]
-enum Engine {
-    Fst,
-    Matiec,
-    Awlsim,
-}
 
 const DURATIONS: [(&str, u64); 6] = [
     ("10ms", 10),

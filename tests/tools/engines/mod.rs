@@ -18,6 +18,16 @@ use steptable::simulate::io::{IoSignals, IoTrace};
 
 use crate::helpers::steptable;
 
+/// The engine a check runs written files in, when a check is split per
+/// engine so that a missing engine is an ignored check, not a pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Engine {
+    /// The FST interpreter of these tests (always there).
+    Fst,
+    Matiec,
+    Awlsim,
+}
+
 /// One table converted with one set of options: the written files and the
 /// simulation's recorded I/O.
 pub struct Case {
