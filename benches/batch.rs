@@ -149,13 +149,12 @@ fn main() {
     let mut diags = Diagnostics::new();
     let input = steptable::read::read_path(&one, None, &mut diags).unwrap();
     let table = steptable::table::build(&input.table, &mut diags).unwrap();
-    let (allocation, program) = convert::build_program(&table, &settings);
+    let program = convert::build_program(&table, &settings);
     let t = Instant::now();
     let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
     let sim = t.elapsed();
     let t = Instant::now();
-    let faults =
-        steptable::faults::analyse(&table, &program, &allocation, &settings.simulation, false);
+    let faults = steptable::faults::analyse(&table, &program, &settings.simulation, false);
     let fault_time = t.elapsed();
     println!(
         "  of generate: simulation {:.2} ms ({}), single-fault table {:.2} ms ({} cases)",

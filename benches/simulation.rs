@@ -33,16 +33,10 @@ fn main() {
     let paper = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("samples/paper_example.xlsx");
     let settings = Settings::new();
     let checked = convert::check_path(&paper, &settings).expect("paper sample");
-    let (allocation, program) = convert::build_program(&checked.table, &settings);
+    let program = convert::build_program(&checked.table, &settings);
 
     let (t, table) = time(5, || {
-        faults::analyse(
-            &checked.table,
-            &program,
-            &allocation,
-            &settings.simulation,
-            true,
-        )
+        faults::analyse(&checked.table, &program, &settings.simulation, true)
     });
     println!(
         "faults --pairs, paper example: median {:.1} ms over 5 runs ({}; {} cases)",
@@ -61,7 +55,7 @@ fn main() {
         },
     );
     let big = steptable::table::from_rows("big.csv", &rows).expect("valid generated table");
-    let (_, big_program) = convert::build_program(&big, &settings);
+    let big_program = convert::build_program(&big, &settings);
     let (t, report) = time(5, || simulate(&big, &big_program, &SimSettings::default()));
     let scans = report.cycles.iter().filter_map(|c| c.cycle_ms).sum::<u64>() / 10;
     println!(

@@ -2,7 +2,6 @@
 //! (short circuit) or at 0 (open circuit), alone or in pairs, simulated from
 //! the start of the run and classified as no effect, safe stall or hazard.
 
-use crate::address::Allocation;
 use crate::program::StepProgram;
 use crate::simulate::{Fault, ProblemKind, SimSettings, simulate};
 use crate::table::StepTable;
@@ -74,17 +73,14 @@ impl FaultTable {
     }
 }
 
-/// Every single fault of every input (START and each sensor), in address order.
-pub fn single_faults(allocation: &Allocation) -> Vec<Fault> {
-    allocation
+/// Every single fault of every input (START, each sensor, machine inputs
+/// and buttons), in address order.
+pub fn single_faults(program: &StepProgram) -> Vec<Fault> {
+    program
+        .signals
         .inputs
         .iter()
-        .flat_map(|a| {
-            [true, false].map(|stuck_at| Fault {
-                signal: a.signal,
-                stuck_at,
-            })
-        })
+        .flat_map(|&signal| [true, false].map(|stuck_at| Fault { signal, stuck_at }))
         .collect()
 }
 
@@ -95,8 +91,8 @@ pub const MAX_CASES: usize = 100_000;
 
 /// Every fault set to simulate: each single fault, and with `pairs` every
 /// two faults on different inputs.
-pub fn fault_sets(allocation: &Allocation, pairs: bool) -> Vec<Vec<Fault>> {
-    let singles = single_faults(allocation);
+pub fn fault_sets(program: &StepProgram, pairs: bool) -> Vec<Vec<Fault>> {
+    let singles = single_faults(program);
     let mut sets: Vec<Vec<Fault>> = singles.iter().map(|f| vec![*f]).collect();
     if pairs {
         for (i, a) in singles.iter().enumerate() {
@@ -111,10 +107,10 @@ pub fn fault_sets(allocation: &Allocation, pairs: bool) -> Vec<Vec<Fault>> {
 }
 
 /// How many cases [`fault_sets`] makes, without making them.
-pub fn case_count(allocation: &Allocation, pairs: bool) -> usize {
-    let singles = 2 * allocation.inputs.len();
+pub fn case_count(program: &StepProgram, pairs: bool) -> usize {
+    let n = program.signals.inputs.len();
+    let singles = 2 * n;
     // Pairs on two different inputs: both stuck values of each.
-    let n = allocation.inputs.len();
     singles
         + if pairs {
             4 * (n * n.saturating_sub(1) / 2)
@@ -127,11 +123,10 @@ pub fn case_count(allocation: &Allocation, pairs: bool) -> usize {
 pub fn analyse(
     table: &StepTable,
     program: &StepProgram,
-    allocation: &Allocation,
     settings: &SimSettings,
     pairs: bool,
 ) -> FaultTable {
-    analyse_observed(table, program, allocation, settings, pairs, &|_, _| {})
+    analyse_observed(table, program, settings, pairs, &|_, _| {})
 }
 
 /// Like [`analyse`], on every core, calling `progress(done, total)` after
@@ -139,13 +134,12 @@ pub fn analyse(
 pub fn analyse_observed(
     table: &StepTable,
     program: &StepProgram,
-    allocation: &Allocation,
     settings: &SimSettings,
     pairs: bool,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> FaultTable {
     use rayon::prelude::*;
-    let sets = fault_sets(allocation, pairs);
+    let sets = fault_sets(program, pairs);
     let total = sets.len();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let cases = sets
@@ -223,20 +217,18 @@ pub fn rows(table: &FaultTable) -> Vec<[String; 4]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::address::{Mnemonic, Target};
     use crate::program::{self, ProgramOptions};
 
     #[test]
     fn paper_single_faults_are_classified() {
         let table = crate::program::tests::paper_table();
-        let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
         let program = program::build(
             &table,
-            &alloc,
-            ProgramOptions::default(),
+            &ProgramOptions::default(),
+            &crate::valve::Valves::default(),
             &crate::timing::Strokes::default(),
         );
-        let result = analyse(&table, &program, &alloc, &SimSettings::default(), false);
+        let result = analyse(&table, &program, &SimSettings::default(), false);
         assert_eq!(result.cases.len(), 24);
         let case = |symbol: &str, stuck: bool| {
             result
@@ -258,11 +250,11 @@ mod tests {
         // The count the budget is checked against is the count run.
         for pairs in [false, true] {
             assert_eq!(
-                case_count(&alloc, pairs),
-                fault_sets(&alloc, pairs).len(),
+                case_count(&program, pairs),
+                fault_sets(&program, pairs).len(),
                 "{pairs}"
             );
         }
-        assert_eq!(case_count(&alloc, true), 24 + 4 * 66);
+        assert_eq!(case_count(&program, true), 24 + 4 * 66);
     }
 }

@@ -16,6 +16,7 @@ pub mod convert;
 pub mod diag;
 pub mod emit;
 pub mod faults;
+pub mod names;
 pub mod output;
 pub mod program;
 pub mod random_table;

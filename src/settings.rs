@@ -8,8 +8,9 @@
 
 use std::collections::BTreeMap;
 
-use crate::address::{Mnemonic, Modes, Safety, Target};
+use crate::address::{Mnemonic, Target};
 use crate::diag::{CellPos, Code, Diagnostics};
+use crate::program::{Modes, Safety};
 use crate::read::{CellValue, Grid, GridCell};
 use crate::timing::{Stroke, parse_duration_ms};
 use crate::valve::ValveType;

@@ -5,7 +5,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use steptable::address::{Modes, Safety, Target};
+use steptable::address::Target;
+use steptable::program::{Modes, Safety};
 use steptable::convert::{Settings, check_bytes, generate};
 use steptable::read::Format;
 

@@ -1,17 +1,10 @@
-//! Addresses: which input, output and memory bit each signal gets, for each PLC
-//! dialect, and the symbol names every output language uses for them (DESIGN §3).
+//! Addresses: which input, output, memory bit and timer each signal of a
+//! step program gets, in each PLC dialect's notation (DESIGN §3). The
+//! program says which signals exist; this stage only lays them out.
 
 use std::fmt;
 
-mod modes;
-mod names;
-pub use modes::Modes;
-
-pub use names::{KEYWORDS, reserved_name};
-
-use crate::cell::{Name, Sign};
-use crate::table::StepTable;
-use crate::valve::{ValveType, Valves};
+use crate::program::{Area, Signal, StepProgram};
 
 /// The PLC dialect whose address notation is used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, serde::Serialize)]
@@ -50,295 +43,6 @@ pub enum Mnemonic {
     #[default]
     En,
     De,
-}
-
-/// Input, output, internal memory or timer.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Area {
-    Input,
-    Output,
-    Memory,
-    Timer,
-}
-
-/// Alarm outputs raised by the safety checks.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Alarm {
-    /// Two sensors of one actuator on at once (plausibility check).
-    Sensor,
-    /// A step did not finish in time (watchdog).
-    Timeout,
-}
-
-/// Every signal the step program reads or writes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Signal {
-    /// The START push-button.
-    Start,
-    /// Sensor `xij`: actuator i stands at position j.
-    Sensor {
-        actuator: u32,
-        position: u32,
-    },
-    /// Valve coil `yi+` / `yi-`.
-    Coil {
-        actuator: u32,
-        sign: Sign,
-    },
-    /// The one coil `yi` of a single-solenoid valve (on = extend).
-    SingleCoil {
-        actuator: u32,
-    },
-    /// Memory: actuator i must stop when it reaches middle position j.
-    StopAt {
-        actuator: u32,
-        position: u32,
-    },
-    /// Memory: START as read in the previous scan (rising-edge detection).
-    StartMemory,
-    /// Memory: a safety check stopped the sequence.
-    Halt,
-    /// Alarm output of a safety check.
-    Alarm(Alarm),
-    /// The step watchdog timer; as a condition, true while it runs.
-    Watchdog,
-    /// Memory: the watchdog is timing a step.
-    WatchdogArmed,
-    /// A machine input a step waits for (`I:part_present`).
-    MachineInput(Name),
-    /// A machine output a step switches (`Y:vacuum+`).
-    MachineOutput(Name),
-    /// Dwell timer n (`T=2s`); as a condition, true while it runs.
-    Dwell(u16),
-    /// Memory: dwell n waits for its branch to finish before its timer starts.
-    DwellArmed(u16),
-    /// Operating-mode inputs: the CONTINUOUS switch, the STOP and EMERGENCY
-    /// STOP buttons (normally closed: 1 = not pressed), the RESET button.
-    Continuous,
-    Stop,
-    EStop,
-    Reset,
-    /// Memory: a cycle was asked for (START, or CONTINUOUS at a cycle's end).
-    CycleRequest,
-    /// Memory: a cycle is under way (from STEP 1 to the end of the cycle).
-    Busy,
-    /// Memory: continuous operation was started and not stopped.
-    AutoRun,
-    /// Memory: the homing sequence runs.
-    Homing,
-    /// Memory: homing stage n runs.
-    HomeStage(u16),
-    /// Not a bit: the sequence itself. `Reset(Sequence)` sends it back to
-    /// STEP 1 (each language has its own statement for that).
-    Sequence,
-}
-
-impl Signal {
-    pub fn area(self) -> Area {
-        match self {
-            Signal::Start
-            | Signal::Sensor { .. }
-            | Signal::MachineInput(_)
-            | Signal::Continuous
-            | Signal::Stop
-            | Signal::EStop
-            | Signal::Reset => Area::Input,
-            Signal::Coil { .. }
-            | Signal::SingleCoil { .. }
-            | Signal::Alarm(_)
-            | Signal::MachineOutput(_) => Area::Output,
-            Signal::StopAt { .. }
-            | Signal::StartMemory
-            | Signal::Halt
-            | Signal::WatchdogArmed
-            | Signal::DwellArmed(_)
-            | Signal::CycleRequest
-            | Signal::Busy
-            | Signal::AutoRun
-            | Signal::Homing
-            | Signal::HomeStage(_)
-            | Signal::Sequence => Area::Memory,
-            Signal::Watchdog | Signal::Dwell(_) => Area::Timer,
-        }
-    }
-
-    /// Whether the plant (not the program) gives this signal's value.
-    pub fn is_input(self) -> bool {
-        self.area() == Area::Input
-    }
-
-    /// The symbol of the published method, as on the address sheets (`x21`, `y2+`).
-    pub fn symbol(self) -> String {
-        match self {
-            Signal::Start => "START".to_string(),
-            Signal::Sensor { actuator, position } => format!("x{}", pair(actuator, position)),
-            Signal::Coil { actuator, sign } => format!("y{actuator}{}", sign.symbol()),
-            Signal::SingleCoil { actuator } => format!("y{actuator}"),
-            Signal::StopAt { actuator, position } => format!("m{actuator}_{position}"),
-            // At most 9 characters: the shortest limit of any target (FST).
-            Signal::StartMemory => "start_mem".to_string(),
-            Signal::Halt => "halt".to_string(),
-            Signal::Alarm(Alarm::Sensor) => "alarm_pl".to_string(),
-            Signal::Alarm(Alarm::Timeout) => "alarm_wd".to_string(),
-            Signal::Watchdog => "watchdog".to_string(),
-            Signal::WatchdogArmed => "wd_armed".to_string(),
-            Signal::MachineInput(name) | Signal::MachineOutput(name) => name.to_string(),
-            Signal::Dwell(n) => format!("dwell{n}"),
-            Signal::DwellArmed(n) => format!("dw{n}_arm"),
-            Signal::Continuous => "CONT".to_string(),
-            Signal::Stop => "STOP".to_string(),
-            Signal::EStop => "ESTOP".to_string(),
-            // RESET is an FST and IL keyword.
-            Signal::Reset => "RESET_PB".to_string(),
-            Signal::CycleRequest => "cycle_req".to_string(),
-            Signal::Busy => "busy".to_string(),
-            Signal::AutoRun => "auto_run".to_string(),
-            Signal::Homing => "homing".to_string(),
-            Signal::HomeStage(n) => format!("home{n}"),
-            Signal::Sequence => "sequence".to_string(),
-        }
-    }
-
-    /// An identifier legal in IEC 61131-3 and every other target language
-    /// (`+`/`-` become `p`/`m`; no keyword, no double underscore).
-    pub fn ident(self) -> String {
-        match self {
-            Signal::Coil { actuator, sign } => {
-                format!("y{actuator}{}", if sign == Sign::Plus { 'p' } else { 'm' })
-            }
-            other => other.symbol(),
-        }
-    }
-
-    /// The symbolic operand in Festo FST, which keeps 9 characters: the
-    /// identifier, with a long machine signal name cut to its first 9 (the
-    /// table check makes sure those tell every name apart).
-    pub fn fst_symbol(self) -> String {
-        self.ident().chars().take(9).collect()
-    }
-
-    /// The `kind` column of the allocation list.
-    pub fn kind(self) -> &'static str {
-        match self {
-            Signal::Start => "start",
-            Signal::Sensor { .. } => "sensor",
-            Signal::Coil { .. } | Signal::SingleCoil { .. } => "coil",
-            Signal::Alarm(_) => "alarm",
-            Signal::MachineInput(_) => "input",
-            Signal::MachineOutput(_) => "output",
-            Signal::Continuous => "continuous",
-            Signal::Stop => "stop",
-            Signal::EStop => "estop",
-            Signal::Reset => "reset",
-            other => match other.area() {
-                Area::Timer => "timer",
-                _ => "memory",
-            },
-        }
-    }
-
-    /// A human description ("cylinder 2, middle position 1").
-    pub fn comment(self, table: &StepTable) -> String {
-        let pmax = |a: u32| table.actuator(a).map(|x| x.max_position).unwrap_or(1);
-        match self {
-            Signal::Start => "START push-button".to_string(),
-            Signal::Sensor { actuator, position } => {
-                let which = if position == 0 {
-                    "home position 0".to_string()
-                } else if position == pmax(actuator) {
-                    format!("end position {position}")
-                } else {
-                    format!("middle position {position}")
-                };
-                format!("cylinder {actuator}, {which}")
-            }
-            Signal::Coil { actuator, sign } => match sign {
-                Sign::Plus => format!("cylinder {actuator}, coil + (extend)"),
-                Sign::Minus => format!("cylinder {actuator}, coil - (retract)"),
-            },
-            Signal::SingleCoil { actuator } => {
-                format!("cylinder {actuator}, coil (on: extend; off: the spring retracts)")
-            }
-            Signal::StopAt { actuator, position } => {
-                format!("cylinder {actuator} stops at middle position {position}")
-            }
-            Signal::StartMemory => "START in the previous scan (rising edge)".to_string(),
-            Signal::Halt => "sequence stopped by a safety check".to_string(),
-            Signal::Alarm(Alarm::Sensor) => {
-                "alarm: two sensors of one cylinder on at once".to_string()
-            }
-            Signal::Alarm(Alarm::Timeout) => "alarm: a step did not finish in time".to_string(),
-            Signal::Watchdog => "step watchdog timer".to_string(),
-            Signal::WatchdogArmed => "watchdog is timing a step".to_string(),
-            Signal::MachineInput(name) => {
-                let steps = steps_where(table, |s| s.waits.iter().any(|w| w.input == name));
-                format!("machine input {name}, waited for in {steps}")
-            }
-            Signal::MachineOutput(name) => {
-                let steps = steps_where(table, |s| s.switches.iter().any(|w| w.output == name));
-                format!("machine output {name}, switched in {steps}")
-            }
-            Signal::Dwell(n) | Signal::DwellArmed(n) => {
-                let what = table
-                    .steps
-                    .iter()
-                    .find_map(|s| {
-                        s.dwells.iter().find(|d| d.number == n).map(|d| {
-                            format!(
-                                "STEP {}, branch {}, {}",
-                                s.number,
-                                d.branch + 1,
-                                crate::cell::dwell_text(d.ms)
-                            )
-                        })
-                    })
-                    .unwrap_or_default();
-                if matches!(self, Signal::Dwell(_)) {
-                    format!("dwell timer {n} ({what})")
-                } else {
-                    format!("dwell {n} waits for its branch to finish ({what})")
-                }
-            }
-            Signal::Continuous => "CONTINUOUS switch (on: repeat cycles)".to_string(),
-            Signal::Stop => {
-                "STOP push-button, normally closed (0: finish the cycle, then halt)".to_string()
-            }
-            Signal::EStop => {
-                "EMERGENCY STOP, normally closed (0: every coil off at once)".to_string()
-            }
-            Signal::Reset => "RESET push-button (home every actuator)".to_string(),
-            Signal::CycleRequest => "a cycle was asked for".to_string(),
-            Signal::Busy => "a cycle is under way".to_string(),
-            Signal::AutoRun => "continuous operation runs".to_string(),
-            Signal::Homing => "the homing sequence runs".to_string(),
-            Signal::HomeStage(n) => format!("homing stage {n} runs"),
-            Signal::Sequence => "the step sequence".to_string(),
-        }
-    }
-}
-
-/// `STEP 2` or `STEPS 2, 5`.
-fn steps_where(table: &StepTable, test: impl Fn(&crate::table::Step) -> bool) -> String {
-    let numbers: Vec<String> = table
-        .steps
-        .iter()
-        .filter(|s| test(s))
-        .map(|s| s.number.to_string())
-        .collect();
-    match numbers.len() {
-        1 => format!("STEP {}", numbers[0]),
-        _ => format!("STEPS {}", numbers.join(", ")),
-    }
-}
-
-/// `21` for actuator 2 position 1; `12_3` once either number has two digits,
-/// so that `x1_23` and `x12_3` can never be confused.
-fn pair(actuator: u32, position: u32) -> String {
-    if actuator <= 9 && position <= 9 {
-        format!("{actuator}{position}")
-    } else {
-        format!("{actuator}_{position}")
-    }
 }
 
 /// A bit address: unit (word or byte, per target) and bit.
@@ -407,63 +111,6 @@ impl Address {
     }
 }
 
-/// The safety checks a generated program carries (`--safety`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Safety {
-    /// A cycle starts only on a rising edge of START.
-    pub edge: bool,
-    /// A move starts only while its target sensor is still off.
-    pub precheck: bool,
-    /// Two sensors of one actuator on at once stops the sequence.
-    pub plausibility: bool,
-    /// A step that does not finish in time raises an alarm and stops.
-    pub watchdog: bool,
-}
-
-impl Safety {
-    /// All four checks.
-    pub fn all() -> Self {
-        Safety {
-            edge: true,
-            precheck: true,
-            plausibility: true,
-            watchdog: true,
-        }
-    }
-
-    /// Parses `edge,precheck,plausibility,watchdog` (any subset; `all`, `none`).
-    pub fn parse(text: &str) -> Result<Safety, String> {
-        let mut safety = Safety::default();
-        for item in text.split(',').map(|s| s.trim().to_ascii_lowercase()) {
-            match item.as_str() {
-                "" | "none" => {}
-                "all" => safety = Safety::all(),
-                "edge" => safety.edge = true,
-                "precheck" => safety.precheck = true,
-                "plausibility" => safety.plausibility = true,
-                "watchdog" => safety.watchdog = true,
-                other => {
-                    return Err(format!(
-                        "\"{other}\" is not a safety check (expected edge, precheck, plausibility, watchdog, all or none)"
-                    ));
-                }
-            }
-        }
-        Ok(safety)
-    }
-
-    pub fn any(self) -> bool {
-        self.edge || self.precheck || self.plausibility || self.watchdog
-    }
-
-    /// Whether the program has a `halt` memory: a check that stops the
-    /// sequence (plausibility, watchdog) or an emergency stop sets it. The
-    /// one place this is decided, for the allocation and the program.
-    pub fn halts(self, modes: &Modes) -> bool {
-        self.plausibility || self.watchdog || modes.estop
-    }
-}
-
 /// One signal with its address.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Assigned {
@@ -482,219 +129,91 @@ pub struct Allocation {
     pub outputs: Vec<Assigned>,
     /// Internal memory bits of the program (middle-stop requests, safety).
     pub memories: Vec<Assigned>,
-    /// Timers (the step watchdog).
+    /// Timers (the step watchdog, the dwells).
     pub timers: Vec<Assigned>,
-    /// The safety checks this allocation has room for.
-    pub safety: Safety,
-    /// The operating modes this allocation has room for.
-    pub modes: Modes,
-    /// The valve types given explicitly.
-    pub valves: Valves,
+}
+
+/// Consecutive bits of one area, in the given order.
+fn lay_out(area: Area, target: Target, signals: impl Iterator<Item = Signal>) -> Vec<Assigned> {
+    signals
+        .zip(0..)
+        .map(|(signal, index)| Assigned {
+            signal,
+            address: Address::from_index(area, target, index),
+        })
+        .collect()
 }
 
 impl Allocation {
-    /// Allocates addresses for every signal the table needs.
+    /// Lays out every signal `program` uses.
     ///
     /// Inputs: START first, then for each actuator in ascending number its
-    /// sensors 0…pmax, packed densely. Outputs on Festo follow the paper: all
-    /// `+` coils from `O0.1` on, all `-` coils from bit 1 of the next free word.
-    /// On IEC and Siemens targets each valve's two coils sit side by side
-    /// (`+` then `-`), as they do on a valve terminal.
-    pub fn new(table: &StepTable, target: Target, mnemonic: Mnemonic) -> Self {
-        Self::with_safety(table, target, mnemonic, Safety::default())
-    }
+    /// sensors 0…pmax, packed densely, then machine inputs and the mode
+    /// buttons. Outputs on Festo follow the paper: all `+` coils from `O0.1`
+    /// on, all `-` coils from bit 1 of the next free word. On IEC and Siemens
+    /// targets each valve's two coils sit side by side (`+` then `-`), as they
+    /// do on a valve terminal. A single-solenoid valve's one coil takes the
+    /// place its `+` coil would have; its `-` place stays free, so no other
+    /// address moves when a valve type changes. Machine outputs and alarms
+    /// follow the coils.
+    pub fn new(program: &StepProgram, target: Target, mnemonic: Mnemonic) -> Self {
+        let signals = &program.signals;
+        let inputs = lay_out(Area::Input, target, signals.inputs.iter().copied());
 
-    /// As [`Allocation::new`], plus the alarm outputs, memories and timer the
-    /// chosen safety checks need. Alarm outputs follow the coils.
-    pub fn with_safety(
-        table: &StepTable,
-        target: Target,
-        mnemonic: Mnemonic,
-        safety: Safety,
-    ) -> Self {
-        Self::with_options(
-            table,
-            target,
-            mnemonic,
-            safety,
-            &Modes::default(),
-            &Valves::default(),
-        )
-    }
-
-    /// The same signals allocated for another target (the FST files always
-    /// use Festo operands).
-    pub fn for_target(&self, table: &StepTable, target: Target, mnemonic: Mnemonic) -> Self {
-        Self::with_options(
-            table,
-            target,
-            mnemonic,
-            self.safety,
-            &self.modes,
-            &self.valves,
-        )
-    }
-
-    /// The full allocation. A single-solenoid (`52mono`) actuator gets one
-    /// output, in the place its `+` coil would have; its `-` place stays free,
-    /// so no other address moves when a valve type changes.
-    pub fn with_options(
-        table: &StepTable,
-        target: Target,
-        mnemonic: Mnemonic,
-        safety: Safety,
-        modes: &Modes,
-        valves: &Valves,
-    ) -> Self {
-        let sensors = table.actuators.iter().flat_map(|actuator| {
-            (0..=actuator.max_position).map(|position| Signal::Sensor {
-                actuator: actuator.number,
-                position,
-            })
-        });
-        // Machine inputs after the sensors, then the operating-mode buttons.
-        let mode_inputs = [
-            (modes.continuous, Signal::Continuous),
-            (modes.stop, Signal::Stop),
-            (modes.estop, Signal::EStop),
-            (modes.reset, Signal::Reset),
-        ]
-        .into_iter()
-        .filter_map(|(wanted, signal)| wanted.then_some(signal));
-        let inputs: Vec<Assigned> = std::iter::once(Signal::Start)
-            .chain(sensors)
-            .chain(table.inputs.iter().map(|n| Signal::MachineInput(*n)))
-            .chain(mode_inputs)
-            .enumerate()
-            .map(|(index, signal)| Assigned {
-                signal,
-                address: Address::from_index(Area::Input, target, index as u32),
-            })
-            .collect();
-
-        let count = table.actuators.len() as u32;
-        let mut outputs = Vec::with_capacity(2 * table.actuators.len());
-        for (rank, actuator) in table.actuators.iter().enumerate() {
+        let count = signals.valves.len() as u32;
+        let width = target.bits_per_unit();
+        let mut outputs = Vec::with_capacity(2 * signals.valves.len() + signals.outputs.len());
+        for (rank, valve) in signals.valves.iter().enumerate() {
             let rank = rank as u32;
             let (plus, minus) = match target {
                 Target::Festo => {
-                    let width = target.bits_per_unit();
                     let minus_base = (count + 1).div_ceil(width) * width;
                     (rank + 1, minus_base + rank + 1)
                 }
                 Target::Iec | Target::Siemens => (2 * rank, 2 * rank + 1),
             };
-            if valves.of(actuator.number, actuator.max_position) == ValveType::Mono52 {
-                outputs.push(Assigned {
-                    signal: Signal::SingleCoil {
-                        actuator: actuator.number,
-                    },
-                    address: Address::from_index(Area::Output, target, plus),
-                });
-                continue;
-            }
-            for (sign, index) in [(Sign::Plus, plus), (Sign::Minus, minus)] {
-                outputs.push(Assigned {
-                    signal: Signal::Coil {
-                        actuator: actuator.number,
-                        sign,
-                    },
-                    address: Address::from_index(Area::Output, target, index),
-                });
+            let place = |signal, index| Assigned {
+                signal,
+                address: Address::from_index(Area::Output, target, index),
+            };
+            outputs.push(place(valve.extend(), plus));
+            if let Some(retract) = valve.retract() {
+                outputs.push(place(retract, minus));
             }
         }
         outputs.sort_by_key(|a| a.address);
-        let mut next_output = outputs
+        let next_output = outputs
             .last()
-            .map(|a| a.address.unit * target.bits_per_unit() + a.address.bit + 1)
+            .map(|a| a.address.unit * width + a.address.bit + 1)
             .unwrap_or(0);
-        for name in &table.outputs {
-            outputs.push(Assigned {
-                signal: Signal::MachineOutput(*name),
-                address: Address::from_index(Area::Output, target, next_output),
-            });
-            next_output += 1;
-        }
-        let alarms = [
-            (safety.plausibility, Alarm::Sensor),
-            (safety.watchdog, Alarm::Timeout),
-        ];
-        for (wanted, alarm) in alarms {
-            if wanted {
-                outputs.push(Assigned {
-                    signal: Signal::Alarm(alarm),
-                    address: Address::from_index(Area::Output, target, next_output),
-                });
-                next_output += 1;
-            }
-        }
+        outputs.extend(
+            signals
+                .outputs
+                .iter()
+                .zip(next_output..)
+                .map(|(&signal, index)| Assigned {
+                    signal,
+                    address: Address::from_index(Area::Output, target, index),
+                }),
+        );
 
-        let mut memories = Vec::new();
-        let mut stops: Vec<(u32, u32)> = table
-            .steps
-            .iter()
-            .flat_map(|s| &s.moves)
-            .filter(|m| {
-                table
-                    .actuator(m.actuator)
-                    .is_some_and(|a| a.is_middle(m.to))
-            })
-            .map(|m| (m.actuator, m.to))
-            .collect();
-        stops.sort_unstable();
-        stops.dedup();
-        let mut extra = Vec::new();
-        if safety.edge {
-            extra.push(Signal::StartMemory);
-        }
-        if safety.halts(modes) {
-            extra.push(Signal::Halt);
-        }
-        if safety.watchdog {
-            extra.push(Signal::WatchdogArmed);
-        }
-        extra.extend(table.dwells().map(|d| Signal::DwellArmed(d.number)));
-        if modes.any() {
-            extra.push(Signal::CycleRequest);
-            extra.push(Signal::Busy);
-        }
-        if modes.continuous {
-            extra.push(Signal::AutoRun);
-        }
-        if modes.reset {
-            extra.push(Signal::Homing);
-            let stages = modes.home_stages(table).map(|s| s.len()).unwrap_or(0);
-            extra.extend((1..=stages).map(|n| Signal::HomeStage(n as u16)));
-        }
-        let signals = stops
-            .into_iter()
-            .map(|(actuator, position)| Signal::StopAt { actuator, position })
-            .chain(extra);
-        for (index, signal) in signals.enumerate() {
-            memories.push(Assigned {
-                signal,
-                address: Address::from_index(Area::Memory, target, index as u32),
-            });
-        }
+        let memories = lay_out(Area::Memory, target, signals.memories.iter().copied());
         // T0 is the watchdog's; dwell n gets timer n.
-        let timer = |signal, unit| Assigned {
-            signal,
-            address: Address {
-                area: Area::Timer,
-                target,
-                unit,
-                bit: 0,
-            },
-        };
-        let timers = safety
-            .watchdog
-            .then(|| timer(Signal::Watchdog, 0))
-            .into_iter()
-            .chain(
-                table
-                    .dwells()
-                    .map(|d| timer(Signal::Dwell(d.number), d.number as u32)),
-            )
+        let timers = program
+            .timers
+            .iter()
+            .map(|&signal| Assigned {
+                signal,
+                address: Address {
+                    area: Area::Timer,
+                    target,
+                    unit: match signal {
+                        Signal::Dwell(n) => n as u32,
+                        _ => 0,
+                    },
+                    bit: 0,
+                },
+            })
             .collect();
 
         Allocation {
@@ -704,9 +223,6 @@ impl Allocation {
             outputs,
             memories,
             timers,
-            safety,
-            modes: modes.clone(),
-            valves: valves.clone(),
         }
     }
 
@@ -740,14 +256,20 @@ impl fmt::Display for Target {
 mod tests {
     use super::*;
 
-    fn table(rows: &[&[&str]]) -> StepTable {
-        crate::table::from_rows("t.csv", rows).expect("valid table")
+    fn allocate(rows: &[&[&str]], target: Target) -> Allocation {
+        let table = crate::table::from_rows("t.csv", rows).expect("valid table");
+        let program = crate::program::build(
+            &table,
+            &crate::program::ProgramOptions::default(),
+            &crate::valve::Valves::default(),
+            &crate::timing::Strokes::default(),
+        );
+        Allocation::new(&program, target, Mnemonic::En)
     }
 
     #[test]
     fn festo_outputs_follow_the_paper() {
-        let t = table(&[&["C1+1", "C2+1"], &["C1-0", "C2-0"]]);
-        let alloc = Allocation::new(&t, Target::Festo, Mnemonic::En);
+        let alloc = allocate(&[&["C1+1", "C2+1"], &["C1-0", "C2-0"]], Target::Festo);
         let outs: Vec<String> = alloc
             .outputs
             .iter()
@@ -762,9 +284,8 @@ mod tests {
         let minus: Vec<String> = (1..=40).map(|i| format!("C{i}-0")).collect();
         let plus_ref: Vec<&str> = plus.iter().map(String::as_str).collect();
         let minus_ref: Vec<&str> = minus.iter().map(String::as_str).collect();
-        let t = table(&[&plus_ref, &minus_ref]);
         for target in [Target::Festo, Target::Iec, Target::Siemens] {
-            let alloc = Allocation::new(&t, target, Mnemonic::En);
+            let alloc = allocate(&[&plus_ref, &minus_ref], target);
             let mut seen = std::collections::BTreeSet::new();
             for a in alloc.inputs.iter().chain(&alloc.outputs) {
                 assert!(a.address.bit < target.bits_per_unit());
@@ -777,43 +298,6 @@ mod tests {
             assert_eq!(alloc.inputs.len(), 81);
             assert_eq!(alloc.outputs.len(), 80);
         }
-    }
-
-    #[test]
-    fn symbols_are_unambiguous_identifiers() {
-        let a = Signal::Sensor {
-            actuator: 1,
-            position: 23,
-        };
-        let b = Signal::Sensor {
-            actuator: 12,
-            position: 3,
-        };
-        assert_ne!(a.ident(), b.ident());
-        assert_eq!(
-            Signal::Sensor {
-                actuator: 2,
-                position: 1
-            }
-            .ident(),
-            "x21"
-        );
-        assert_eq!(
-            Signal::Coil {
-                actuator: 2,
-                sign: Sign::Minus
-            }
-            .ident(),
-            "y2m"
-        );
-        assert_eq!(
-            Signal::Coil {
-                actuator: 2,
-                sign: Sign::Minus
-            }
-            .symbol(),
-            "y2-"
-        );
     }
 
     #[test]
@@ -834,80 +318,5 @@ mod tests {
         };
         assert_eq!(q.display(Mnemonic::De), "A3.7");
         assert_eq!(q.iec(), "%QX3.7");
-    }
-}
-
-#[cfg(test)]
-mod identifier_tests {
-    use super::*;
-
-    #[test]
-    fn every_identifier_is_legal_in_every_target_language() {
-        let signals = [
-            Signal::Start,
-            Signal::Sensor {
-                actuator: 999,
-                position: 63,
-            },
-            Signal::Sensor {
-                actuator: 9,
-                position: 9,
-            },
-            Signal::Coil {
-                actuator: 999,
-                sign: Sign::Plus,
-            },
-            Signal::Coil {
-                actuator: 1,
-                sign: Sign::Minus,
-            },
-            Signal::StopAt {
-                actuator: 999,
-                position: 62,
-            },
-            Signal::StartMemory,
-            Signal::Halt,
-            Signal::Alarm(Alarm::Sensor),
-            Signal::Alarm(Alarm::Timeout),
-            Signal::Watchdog,
-            Signal::WatchdogArmed,
-            Signal::Dwell(255),
-            Signal::DwellArmed(255),
-            Signal::Continuous,
-            Signal::Stop,
-            Signal::EStop,
-            Signal::Reset,
-            Signal::CycleRequest,
-            Signal::Busy,
-            Signal::AutoRun,
-            Signal::Homing,
-            Signal::HomeStage(999),
-        ];
-        for signal in signals {
-            let id = signal.ident();
-            let mut chars = id.chars();
-            assert!(
-                chars.next().is_some_and(|c| c.is_ascii_alphabetic()),
-                "{id}"
-            );
-            assert!(chars.all(|c| c.is_ascii_alphanumeric() || c == '_'), "{id}");
-            assert!(!id.contains("__") && !id.ends_with('_'), "{id}");
-            // 9 characters: FST's symbolic operands; STEP 7 allows 24.
-            assert!(id.len() <= 9, "{id} is longer than 9 characters");
-            assert!(
-                !KEYWORDS.contains(&id.to_ascii_uppercase().as_str()),
-                "{id} is a keyword"
-            );
-        }
-    }
-
-    #[test]
-    fn long_machine_names_keep_nine_characters_in_fst() {
-        let name = crate::cell::Name::new("part_present").unwrap();
-        assert_eq!(Signal::MachineInput(name).ident(), "part_present");
-        assert_eq!(Signal::MachineInput(name).fst_symbol(), "part_pres");
-        assert!(reserved_name("x11").is_some());
-        assert!(reserved_name("reset").is_some());
-        assert_eq!(reserved_name("vacuum"), None);
     }
 }

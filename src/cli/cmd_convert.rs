@@ -40,7 +40,11 @@ pub(crate) fn run_check(args: &CheckArgs) -> i32 {
                     display_name(input),
                     summary(
                         &checked.table,
-                        &convert::build_program(&checked.table, &checked.settings).0
+                        &steptable::address::Allocation::new(
+                            &convert::build_program(&checked.table, &checked.settings),
+                            checked.settings.target,
+                            checked.settings.mnemonic,
+                        )
                     )
                 ));
             }

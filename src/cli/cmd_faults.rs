@@ -37,26 +37,25 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         };
         report.diagnostics(&checked.warnings);
         let (table, settings) = (checked.table, checked.settings);
-        let (allocation, program) =
-            match convert::healthy_program(&table, &settings, &settings.simulation) {
-                Ok((allocation, program, _)) => (allocation, program),
-                Err(Failure::Input(diagnostics)) => {
-                    report.diagnostics(&diagnostics);
-                    code = code.max(EXIT_BAD_INPUT);
-                    continue;
-                }
-                Err(Failure::Internal(why)) => {
-                    eprintln!("{}: internal error: {why}", display_name(input));
-                    code = EXIT_INTERNAL;
-                    continue;
-                }
-                Err(Failure::Template(err)) => {
-                    eprintln!("{}: internal error: {err}", display_name(input));
-                    code = EXIT_INTERNAL;
-                    continue;
-                }
-            };
-        let cases = steptable::faults::case_count(&allocation, args.pairs);
+        let program = match convert::healthy_program(&table, &settings, &settings.simulation) {
+            Ok((program, _)) => program,
+            Err(Failure::Input(diagnostics)) => {
+                report.diagnostics(&diagnostics);
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+            Err(Failure::Internal(why)) => {
+                eprintln!("{}: internal error: {why}", display_name(input));
+                code = EXIT_INTERNAL;
+                continue;
+            }
+            Err(Failure::Template(err)) => {
+                eprintln!("{}: internal error: {err}", display_name(input));
+                code = EXIT_INTERNAL;
+                continue;
+            }
+        };
+        let cases = steptable::faults::case_count(&program, args.pairs);
         if cases > steptable::faults::MAX_CASES {
             report.diagnostics(&[Diagnostic {
                 severity: Severity::Error,
@@ -68,7 +67,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
                 },
                 message: format!(
                     "--pairs would simulate {cases} fault cases ({} inputs, each stuck at 1 and at 0, in pairs); steptable runs at most {}: analyse single faults (without --pairs), or split the table",
-                    allocation.inputs.len(),
+                    program.signals.inputs.len(),
                     steptable::faults::MAX_CASES
                 ),
             }]);
@@ -79,7 +78,6 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         let result = steptable::faults::analyse_observed(
             &table,
             &program,
-            &allocation,
             &settings.simulation,
             args.pairs,
             &|done, total| progress.update(done, total),

@@ -41,7 +41,7 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
         reporter.diagnostics(&checked.warnings);
         let (table, mut settings) = (checked.table, checked.settings);
         settings.simulation.record_trace = args.diagram.is_some();
-        let (_, program) = convert::build_program(&table, &settings);
+        let program = convert::build_program(&table, &settings);
         let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
         // The diagram is written before anything is printed: with stdout
         // closed, printing ends the process (quietly), and the file the user

@@ -7,11 +7,12 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use steptable::address::{Mnemonic, Modes, Safety, Target};
+use steptable::address::{Mnemonic, Target};
 use steptable::convert::{self, Failure, OutputKind, Settings};
 use steptable::diag::{Diagnostic, Severity};
 use steptable::emit::diagram::DiagramKind;
 use steptable::output;
+use steptable::program::{Modes, Safety};
 use steptable::read::display_name;
 
 mod args;

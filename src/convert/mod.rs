@@ -496,33 +496,24 @@ pub fn healthy_program(
     table: &StepTable,
     settings: &Settings,
     sim: &SimSettings,
-) -> Result<(Allocation, StepProgram, SimReport), Failure> {
-    let (allocation, program) = build_program(table, settings);
+) -> Result<(StepProgram, SimReport), Failure> {
+    let program = build_program(table, settings);
     let simulation = simulate::simulate(table, &program, sim);
     if simulation.passed {
-        Ok((allocation, program, simulation))
+        Ok((program, simulation))
     } else {
         Err(physics::explain(table, settings, &simulation))
     }
 }
 
-/// The allocation and step program of a checked table under `settings`.
-pub fn build_program(table: &StepTable, settings: &Settings) -> (Allocation, StepProgram) {
-    let allocation = Allocation::with_options(
+/// The step program of a checked table under `settings`.
+pub fn build_program(table: &StepTable, settings: &Settings) -> StepProgram {
+    program::build(
         table,
-        settings.target,
-        settings.mnemonic,
-        settings.program.safety,
-        &settings.program.modes,
+        &settings.program,
         &settings.simulation.valves,
-    );
-    let program = program::build(
-        table,
-        &allocation,
-        settings.program.clone(),
         &settings.simulation.strokes,
-    );
-    (allocation, program)
+    )
 }
 
 /// Generates every output of a checked table.
@@ -547,23 +538,15 @@ pub fn generate_observed(
         record_trace: settings.diagram == DiagramKind::Time,
         ..settings.simulation.clone()
     };
-    let (allocation, program, simulation) = healthy_program(&table, settings, &sim_settings)?;
+    let (program, simulation) = healthy_program(&table, settings, &sim_settings)?;
+    let allocation = Allocation::new(&program, settings.target, settings.mnemonic);
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them.
     let fault_table = [OutputKind::Faults, OutputKind::Workbook]
         .iter()
         .any(|k| settings.formats.contains(k))
-        .then(|| {
-            faults::analyse_observed(
-                &table,
-                &program,
-                &allocation,
-                &settings.simulation,
-                false,
-                progress,
-            )
-        });
-    let festo = allocation.for_target(&table, Target::Festo, Mnemonic::En);
+        .then(|| faults::analyse_observed(&table, &program, &settings.simulation, false, progress));
+    let festo = Allocation::new(&program, Target::Festo, Mnemonic::En);
     let input = EmitInput {
         name,
         table: &table,

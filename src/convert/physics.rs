@@ -27,7 +27,7 @@ pub fn explain(table: &StepTable, settings: &Settings, report: &SimReport) -> Fa
     let reason = report.reason();
     let changes = changes(table, settings);
     let runs = |settings: &Settings| {
-        let (_, program) = build_program(table, settings);
+        let program = build_program(table, settings);
         simulate::simulate(table, &program, &settings.simulation).passed
     };
     let found = changes

@@ -9,8 +9,9 @@ use minijinja::value::Serde;
 use serde::Serialize;
 
 use super::{EmitInput, action_comment, one_line, templates};
-use crate::address::{Area, Mnemonic, Signal};
+use crate::address::Mnemonic;
 use crate::program::{Action, Literal};
+use crate::program::{Area, Signal};
 
 /// The AWL words of one mnemonic set.
 struct Words {

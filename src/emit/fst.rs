@@ -9,7 +9,8 @@ use minijinja::value::Serde;
 use serde::Serialize;
 
 use super::{EmitInput, action_comment, one_line, templates};
-use crate::address::{Allocation, Signal};
+use crate::address::Allocation;
+use crate::program::Signal;
 use crate::program::{Action, Literal};
 
 #[derive(Serialize)]

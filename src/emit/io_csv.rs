@@ -3,7 +3,7 @@
 //! `address,symbol,kind,actuator,position,direction,comment`.
 
 use super::EmitInput;
-use crate::address::Signal;
+use crate::program::Signal;
 
 /// The header row.
 pub const COLUMNS: [&str; 7] = [

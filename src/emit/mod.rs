@@ -12,9 +12,10 @@ pub mod tables;
 pub mod templates;
 pub mod workbook;
 
-use crate::address::{Allocation, Signal};
+use crate::address::Allocation;
 use crate::cell::Sign;
 use crate::faults::FaultTable;
+use crate::program::Signal;
 use crate::program::{Action, StepProgram};
 use crate::simulate::SimReport;
 use crate::table::{Move, StepTable};

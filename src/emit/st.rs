@@ -10,8 +10,9 @@ use minijinja::value::Serde;
 use serde::Serialize;
 
 use super::{EmitInput, action_comment, templates};
-use crate::address::{Area, Assigned, Signal};
+use crate::address::Assigned;
 use crate::program::{Action, Literal, condition_text};
+use crate::program::{Area, Signal};
 
 /// Identifiers of the program's own parts. `step` is an IEC keyword, so the
 /// step counter is called `active_step`.

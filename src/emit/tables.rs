@@ -8,7 +8,8 @@ use rust_xlsxwriter::{DocProperties, ExcelDateTime, Format, Workbook, XlsxError}
 use serde::Serialize;
 
 use super::{EmitInput, one_line, templates};
-use crate::address::{Area, Mnemonic};
+use crate::address::Mnemonic;
+use crate::program::Area;
 
 #[derive(Serialize)]
 struct Entry {

@@ -8,9 +8,10 @@ use rust_xlsxwriter::{
 };
 
 use super::EmitInput;
-use crate::address::{Area, Assigned, Signal};
+use crate::address::Assigned;
 use crate::faults::FaultTable;
 use crate::program::{Action, paper_sentence};
+use crate::program::{Area, Signal};
 use crate::read::TABLE_SHEET;
 use crate::simulate::SimReport;
 

@@ -15,12 +15,18 @@
 //! signals; one-coil valves simply get different actions.
 
 mod modes;
+mod options;
+mod signal;
+mod signals;
 
-use crate::address::{Alarm, Allocation, Modes, Safety, Signal};
+pub use options::{Modes, ProgramOptions, Safety};
+pub use signal::{Alarm, Area, Signal};
+pub use signals::{Coils, Signals};
+
 use crate::cell::Sign;
 use crate::table::{Move, Step, StepTable};
 use crate::timing::Strokes;
-use crate::valve::ValveType;
+use crate::valve::Valves;
 use modes::{homing_rungs, mode_rungs};
 
 /// A signal in a condition, possibly negated.
@@ -144,28 +150,6 @@ pub struct Rung {
     pub actions: Vec<Action>,
 }
 
-/// Choices that change the generated program.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ProgramOptions {
-    /// Switch both coils off when an actuator reaches a middle target. Off only
-    /// to show what the published method does without it (it hangs).
-    pub middle_stops: bool,
-    /// Safety checks carried by the program.
-    pub safety: Safety,
-    /// Operating modes carried by the program.
-    pub modes: Modes,
-}
-
-impl Default for ProgramOptions {
-    fn default() -> Self {
-        ProgramOptions {
-            middle_stops: true,
-            safety: Safety::default(),
-            modes: Modes::default(),
-        }
-    }
-}
-
 /// The complete step program of one table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepProgram {
@@ -175,6 +159,8 @@ pub struct StepProgram {
     pub rungs: Vec<Rung>,
     /// Timers, advanced at the start of every scan.
     pub timers: Vec<Signal>,
+    /// Every bit signal the program uses, in address order.
+    pub signals: Signals,
 }
 
 impl StepProgram {
@@ -216,7 +202,7 @@ fn wait_literal(w: &crate::table::Wait) -> Literal {
 /// The actions that move actuator `m` (its coils, and its middle-stop request).
 fn move_actions(
     table: &StepTable,
-    allocation: &Allocation,
+    signals: &Signals,
     middle_stops: bool,
     m: &Move,
     actions: &mut Vec<Action>,
@@ -226,8 +212,9 @@ fn move_actions(
             .actuator(actuator)
             .is_some_and(|a| a.is_middle(position))
     };
-    let pmax = table.actuator(m.actuator).map_or(1, |a| a.max_position);
-    if allocation.valves.of(m.actuator, pmax) == ValveType::Mono52 {
+    if signals.valves.contains(&Coils::Single {
+        actuator: m.actuator,
+    }) {
         // One coil, held for as long as the cylinder must stay out;
         // switching it off lets the spring retract.
         let coil = Signal::SingleCoil {
@@ -280,10 +267,11 @@ fn move_actions(
 /// a homing sequence.
 pub fn build(
     table: &StepTable,
-    allocation: &Allocation,
-    options: ProgramOptions,
+    options: &ProgramOptions,
+    valves: &Valves,
     strokes: &Strokes,
 ) -> StepProgram {
+    let signals = signals::declare(table, options, valves);
     let middle_stops = options.middle_stops;
     let safety = options.safety;
     let modes = &options.modes;
@@ -339,7 +327,7 @@ pub fn build(
 
         let mut actions = Vec::new();
         for m in &step.moves {
-            move_actions(table, allocation, middle_stops, m, &mut actions);
+            move_actions(table, &signals, middle_stops, m, &mut actions);
         }
         for switch in &step.switches {
             let output = Signal::MachineOutput(switch.output);
@@ -409,8 +397,8 @@ pub fn build(
 
     let mut rungs = Vec::new();
     if middle_stops {
-        for memory in &allocation.memories {
-            let Signal::StopAt { actuator, position } = memory.signal else {
+        for &memory in &signals.memories {
+            let Signal::StopAt { actuator, position } = memory else {
                 continue;
             };
             let sensor = Signal::Sensor { actuator, position };
@@ -420,7 +408,7 @@ pub fn build(
                     "middle stop: C{actuator} stops at {} (both coils off, the 5/3 valve holds it)",
                     sensor.symbol()
                 ),
-                condition: vec![Literal::is(memory.signal), Literal::is(sensor)],
+                condition: vec![Literal::is(memory), Literal::is(sensor)],
                 actions: vec![
                     Action::Reset(Signal::Coil {
                         actuator,
@@ -430,7 +418,7 @@ pub fn build(
                         actuator,
                         sign: Sign::Minus,
                     }),
-                    Action::Reset(memory.signal),
+                    Action::Reset(memory),
                 ],
             });
         }
@@ -469,7 +457,7 @@ pub fn build(
         }
     }
     if modes.any() {
-        mode_rungs(table, allocation, safety, modes, &homes, &mut rungs);
+        mode_rungs(safety, modes, &homes, &mut rungs);
     }
     let mut init = Vec::new();
     if safety.edge {
@@ -533,13 +521,14 @@ pub fn build(
     }
     timers.extend(table.dwells().map(|d| Signal::Dwell(d.number)));
     if modes.any() {
-        homing_rungs(table, allocation, safety, modes, &mut rungs);
+        homing_rungs(table, &signals, &timers, modes, &mut rungs);
     }
     StepProgram {
         init,
         steps,
         rungs,
         timers,
+        signals,
     }
 }
 
@@ -615,7 +604,6 @@ pub fn condition_text(
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::address::{Mnemonic, Target};
 
     /// The paper's example table (DESIGN §4), as a bare grid.
     pub(crate) fn paper_table() -> StepTable {
@@ -626,11 +614,10 @@ pub(crate) mod tests {
     #[test]
     fn paper_program_matches_design_section_4() {
         let table = paper_table();
-        let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
         let program = build(
             &table,
-            &alloc,
-            ProgramOptions::default(),
+            &ProgramOptions::default(),
+            &Valves::default(),
             &Strokes::default(),
         );
         let lines: Vec<String> = program
@@ -664,11 +651,10 @@ pub(crate) mod tests {
     #[test]
     fn middle_targets_get_a_stop_rung() {
         let table = paper_table();
-        let alloc = Allocation::new(&table, Target::Festo, Mnemonic::En);
         let program = build(
             &table,
-            &alloc,
-            ProgramOptions::default(),
+            &ProgramOptions::default(),
+            &Valves::default(),
             &Strokes::default(),
         );
         // C2 stops at 1 and 2, C3 at 1 (C3's pmax is 2).
@@ -696,11 +682,11 @@ pub(crate) mod tests {
         );
         let plain = build(
             &table,
-            &alloc,
-            ProgramOptions {
+            &ProgramOptions {
                 middle_stops: false,
                 ..ProgramOptions::default()
             },
+            &Valves::default(),
             &Strokes::default(),
         );
         assert!(plain.rungs.is_empty());

@@ -3,35 +3,12 @@
 //! EMERGENCY STOP switches everything off. All of it is rungs of the one
 //! step program, so every language and the simulator get it alike.
 
-use super::{Action, Literal, Rung, RungKind};
-use crate::address::{Allocation, Modes, Safety, Signal};
+use super::{Action, Coils, Literal, Modes, Rung, RungKind, Safety, Signal, Signals};
 use crate::cell::Sign;
 use crate::table::StepTable;
 
-/// Every output the program drives: coils, single coils and machine outputs.
-fn driven_outputs(allocation: &Allocation) -> Vec<Signal> {
-    allocation
-        .outputs
-        .iter()
-        .map(|a| a.signal)
-        .filter(|s| {
-            matches!(
-                s,
-                Signal::Coil { .. } | Signal::SingleCoil { .. } | Signal::MachineOutput(_)
-            )
-        })
-        .collect()
-}
-
 /// START, CONTINUOUS and STOP turn into a cycle request; STEP 1 consumes it.
-pub(super) fn mode_rungs(
-    _table: &StepTable,
-    _allocation: &Allocation,
-    safety: Safety,
-    modes: &Modes,
-    homes: &[Literal],
-    rungs: &mut Vec<Rung>,
-) {
+pub(super) fn mode_rungs(safety: Safety, modes: &Modes, homes: &[Literal], rungs: &mut Vec<Rung>) {
     let halts = safety.halts(modes);
     // Ready for a new cycle: none under way, no halt, not homing, all home.
     let mut ready = vec![Literal::not(Signal::Busy)];
@@ -98,13 +75,13 @@ pub(super) fn mode_rungs(
 /// that nothing after it can switch a coil back on in the same scan.
 pub(super) fn homing_rungs(
     table: &StepTable,
-    allocation: &Allocation,
-    safety: Safety,
+    signals: &Signals,
+    timers: &[Signal],
     modes: &Modes,
     rungs: &mut Vec<Rung>,
 ) {
-    let outputs = driven_outputs(allocation);
-    let memories: Vec<Signal> = allocation.memories.iter().map(|m| m.signal).collect();
+    let outputs: Vec<Signal> = signals.driven().collect();
+    let memories = &signals.memories;
     if modes.reset {
         let stages = modes.home_stages(table).unwrap_or_default();
         let mut condition = vec![Literal::is(Signal::Reset)];
@@ -130,14 +107,8 @@ pub(super) fn homing_rungs(
                 })
                 .map(|m| Action::Reset(*m)),
         );
-        actions.extend(
-            allocation
-                .outputs
-                .iter()
-                .filter(|a| matches!(a.signal, Signal::Alarm(_)))
-                .map(|a| Action::Reset(a.signal)),
-        );
-        actions.extend(allocation.timers.iter().map(|t| Action::Reset(t.signal)));
+        actions.extend(signals.alarms().map(Action::Reset));
+        actions.extend(timers.iter().map(|t| Action::Reset(*t)));
         actions.push(Action::Set(Signal::Homing));
         for n in 1..=stages.len() {
             let stage = Signal::HomeStage(n as u16);
@@ -154,15 +125,13 @@ pub(super) fn homing_rungs(
             condition,
             actions,
         });
-        let _ = safety;
         for (i, stage) in stages.iter().enumerate() {
             let memory = Signal::HomeStage(i as u16 + 1);
             let names: Vec<String> = stage.iter().map(|a| format!("C{a}")).collect();
             let mut drive = Vec::new();
             let mut home = vec![Literal::is(memory)];
             for &actuator in stage {
-                let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
-                if allocation.valves.of(actuator, pmax) == crate::valve::ValveType::Mono52 {
+                if signals.valves.contains(&Coils::Single { actuator }) {
                     drive.push(Action::Reset(Signal::SingleCoil { actuator }));
                 } else {
                     drive.push(Action::Set(Signal::Coil {

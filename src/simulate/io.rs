@@ -7,7 +7,7 @@
 //! the same coils, so it gave the same inputs. The first difference is the
 //! finding.
 
-use crate::address::Signal;
+use crate::program::Signal;
 
 /// Which signals to record: the inputs fed to the engine and the outputs
 /// compared, each in a fixed order.

@@ -16,9 +16,9 @@ pub mod scenario;
 
 use std::collections::BTreeMap;
 
-use crate::address::{Alarm, Signal};
 use crate::cell::{Name, Sign};
 use crate::program::{Action, Literal, StepKind, StepProgram};
+use crate::program::{Alarm, Signal};
 use crate::table::{Move, StepTable};
 use crate::timing::{Stroke, Strokes};
 use crate::valve::Valves;

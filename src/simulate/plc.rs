@@ -7,7 +7,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::address::Signal;
+use crate::program::Signal;
 use crate::program::{Action, Literal, StepProgram};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

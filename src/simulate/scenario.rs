@@ -3,7 +3,7 @@
 //! machine did scan by scan. The standard proof ([`super::simulate`]) only
 //! ever presses START; this shows what the other buttons do.
 
-use crate::address::Signal;
+use crate::program::Signal;
 use crate::program::StepProgram;
 use crate::table::StepTable;
 
@@ -68,7 +68,7 @@ pub fn scenario(
         .flat_map(|s| &s.actions)
         .chain(program.rungs.iter().flat_map(|r| &r.actions))
         .map(|a| a.signal())
-        .filter(|s| s.area() == crate::address::Area::Output)
+        .filter(|s| s.area() == crate::program::Area::Output)
         .filter_map(|s| run.plc.index_of(s).map(|i| (i, s)))
         .collect::<std::collections::BTreeMap<_, _>>()
         .into_iter()

@@ -1,12 +1,10 @@
 use super::*;
-use crate::address::{Allocation, Mnemonic, Target};
 use crate::program::{self, ProgramOptions};
 use crate::timing::Stroke;
 
 fn run(rows: &[Vec<&str>], options: ProgramOptions, settings: &SimSettings) -> SimReport {
     let table = crate::table::from_rows("t.csv", rows).expect("valid table");
-    let alloc = Allocation::with_safety(&table, Target::Festo, Mnemonic::En, options.safety);
-    let program = program::build(&table, &alloc, options, &settings.strokes);
+    let program = program::build(&table, &options, &settings.valves, &settings.strokes);
     simulate(&table, &program, settings)
 }
 
@@ -108,7 +106,7 @@ fn sixty_three_positions_on_one_cylinder_pass_with_every_check() {
     // the plausibility check would see two at once.
     let rows = vec![vec!["C1+63"], vec!["C1-31"], vec!["C1+32"], vec!["C1-0"]];
     let options = ProgramOptions {
-        safety: crate::address::Safety::all(),
+        safety: crate::program::Safety::all(),
         ..ProgramOptions::default()
     };
     let report = run(&rows, options, &SimSettings::default());
@@ -133,11 +131,11 @@ fn a_long_last_stroke_ends_before_the_next_start_with_every_closing_step() {
         );
         for options in [
             ProgramOptions {
-                safety: crate::address::Safety::all(),
+                safety: crate::program::Safety::all(),
                 ..ProgramOptions::default()
             },
             ProgramOptions {
-                modes: crate::address::Modes::parse("all").unwrap(),
+                modes: crate::program::Modes::parse("all").unwrap(),
                 ..ProgramOptions::default()
             },
         ] {

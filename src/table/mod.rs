@@ -650,13 +650,13 @@ impl Names {
             return;
         }
         let stem = |n: &Name| n.as_str().chars().take(9).collect::<String>();
-        if let Some(reason) = crate::address::reserved_name(name.as_str()) {
+        if let Some(reason) = crate::names::reserved_name(name.as_str()) {
             diags.error(
                 Code::E015BadName,
                 grid.location(pos),
                 format!("\"{name}\" cannot name a machine signal: {reason}"),
             );
-        } else if let Some(reason) = crate::address::reserved_name(&stem(&name)) {
+        } else if let Some(reason) = crate::names::reserved_name(&stem(&name)) {
             // FST keeps 9 characters: the cut name must not be taken either.
             diags.error(
                 Code::E015BadName,

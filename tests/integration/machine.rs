@@ -266,7 +266,7 @@ fn standard_library_and_generated_names_are_refused() {
 /// inputs and outputs may pass.
 #[test]
 fn every_name_the_program_declares_is_reserved() {
-    use steptable::address::reserved_name;
+    use steptable::names::reserved_name;
     let dir = tempfile::tempdir().unwrap();
     let mut checked = 0;
     for name in ["paper_example", "press_station"] {

@@ -2,8 +2,8 @@
 //! operation, run as scripts of button presses against the paper's example.
 
 use predicates::prelude::PredicateBooleanExt;
-use steptable::address::{Allocation, Mnemonic, Modes, Signal, Target};
 use steptable::program::{self, ProgramOptions, StepProgram};
+use steptable::program::{Modes, Signal};
 use steptable::simulate::scenario::{ScenarioReport, scenario};
 use steptable::simulate::{Operator, SimSettings};
 use steptable::table::{StepTable, from_rows};
@@ -12,32 +12,23 @@ fn paper() -> StepTable {
     from_rows("paper.csv", &steptable::template::PAPER_EXAMPLE).expect("valid table")
 }
 
-/// The allocation and program of `table` with `modes`, for the valves and
+/// The program of `table` with `modes`, for the valves and
 /// strokes of `settings`.
-fn build_with(table: &StepTable, modes: &str, settings: &SimSettings) -> (Allocation, StepProgram) {
+fn build_with(table: &StepTable, modes: &str, settings: &SimSettings) -> StepProgram {
     let modes = Modes::parse(modes).expect("valid modes");
-    let allocation = Allocation::with_options(
+    program::build(
         table,
-        Target::Festo,
-        Mnemonic::En,
-        Default::default(),
-        &modes,
-        &settings.valves,
-    );
-    let program = program::build(
-        table,
-        &allocation,
-        ProgramOptions {
+        &ProgramOptions {
             modes,
             ..ProgramOptions::default()
         },
+        &settings.valves,
         &settings.strokes,
-    );
-    (allocation, program)
+    )
 }
 
 fn program_with(table: &StepTable, modes: &str) -> StepProgram {
-    build_with(table, modes, &SimSettings::default()).1
+    build_with(table, modes, &SimSettings::default())
 }
 
 const IDLE: Operator = Operator {
@@ -327,7 +318,7 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
                 retract_ms: 2000,
             },
         );
-        let (_, program) = build_with(&table, "estop", &settings);
+        let program = build_with(&table, "estop", &settings);
         // START at 0.5 s; ESTOP at 1.5 s, half-way out; held from then on.
         let mut script = press(500, start());
         script.push((
@@ -365,14 +356,8 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
 fn broken_stop_and_emergency_stop_wires_are_safe_stalls() {
     use steptable::faults::{self, Outcome};
     let table = paper();
-    let (allocation, program) = build_with(&table, "all", &SimSettings::default());
-    let fault_table = faults::analyse(
-        &table,
-        &program,
-        &allocation,
-        &SimSettings::default(),
-        false,
-    );
+    let program = build_with(&table, "all", &SimSettings::default());
+    let fault_table = faults::analyse(&table, &program, &SimSettings::default(), false);
     let outcome = |signal: Signal, stuck_at: bool| {
         fault_table
             .cases

@@ -1,7 +1,7 @@
 //! Property tests: invariants over random valid tables.
 
 use proptest::prelude::*;
-use steptable::address::{Allocation, Mnemonic, Safety, Target};
+use steptable::program::Safety;
 use steptable::program::{self, ProgramOptions};
 use steptable::simulate::{SimSettings, simulate};
 use steptable::timing::Stroke;
@@ -78,9 +78,8 @@ proptest! {
             .map_err(|d| TestCaseError::fail(format!("generator made an invalid table: {d:?}")))?;
         prop_assert!(table.steps.len() <= 40);
         for safety in [Safety::default(), Safety::all()] {
-            let alloc = Allocation::with_safety(&table, Target::Festo, Mnemonic::En, safety);
             let options = ProgramOptions { safety, ..ProgramOptions::default() };
-            let program = program::build(&table, &alloc, options, &settings.strokes);
+            let program = program::build(&table, &options, &settings.valves, &settings.strokes);
             let report = simulate(&table, &program, &settings);
             prop_assert!(report.passed, "{:?}: {}\n{:?}", safety, report.verdict(), rows);
         }
@@ -152,17 +151,9 @@ proptest! {
         let rows = with_extras(&rows, &extras);
         let table = steptable::table::from_rows("random.csv", &rows)
             .map_err(|d| TestCaseError::fail(format!("invalid table: {d:?}\n{rows:?}")))?;
-        let modes = steptable::address::Modes::parse(modes).unwrap();
-        let alloc = Allocation::with_options(
-            &table,
-            Target::Festo,
-            Mnemonic::En,
-            safety,
-            &modes,
-            &Default::default(),
-        );
+        let modes = steptable::program::Modes::parse(modes).unwrap();
         let options = ProgramOptions { modes, safety, ..ProgramOptions::default() };
-        let program = program::build(&table, &alloc, options, &settings.strokes);
+        let program = program::build(&table, &options, &settings.valves, &settings.strokes);
         let report = simulate(&table, &program, &settings);
         prop_assert!(report.passed, "{}\n{:?}", report.verdict(), rows);
         let cycle = &report.cycles[0];

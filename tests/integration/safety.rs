@@ -1,9 +1,9 @@
 //! The safety checks: with all four, no single sensor or START fault is a
 //! hazard on any sample; without them the paper's example has hazards.
 
-use steptable::address::{Safety, Signal};
 use steptable::convert::{self, Settings};
 use steptable::faults::{self, Outcome};
+use steptable::program::{Safety, Signal};
 
 use crate::helpers::{read_sheet, sample, samples, steptable};
 
@@ -11,14 +11,8 @@ fn fault_table(path: &std::path::Path, safety: Safety) -> faults::FaultTable {
     let mut settings = Settings::new();
     settings.program.safety = safety;
     let checked = convert::check_path(path, &settings).expect("valid sample");
-    let (allocation, program) = convert::build_program(&checked.table, &settings);
-    faults::analyse(
-        &checked.table,
-        &program,
-        &allocation,
-        &settings.simulation,
-        false,
-    )
+    let program = convert::build_program(&checked.table, &settings);
+    faults::analyse(&checked.table, &program, &settings.simulation, false)
 }
 
 /// The checks watch START and the cylinder sensors. A machine input the

@@ -69,7 +69,7 @@ fn every_sample_with_all_safety_checks() {
         for (target, label) in [(Target::Festo, "festo"), (Target::Iec, "iec")] {
             let mut settings = Settings::new();
             settings.target = target;
-            settings.program.safety = steptable::address::Safety::all();
+            settings.program.safety = steptable::program::Safety::all();
             let conversion = match convert_path(&path, &settings) {
                 Ok(c) => c,
                 Err(e) => panic!("{}: {e:?}", path.display()),
@@ -103,7 +103,7 @@ fn paper_and_press_station_with_every_operating_mode() {
     for name in ["paper_example.xlsx", "press_station.xlsx"] {
         let path = crate::helpers::sample(name);
         let mut settings = Settings::new();
-        settings.program.modes = steptable::address::Modes::parse("all").unwrap();
+        settings.program.modes = steptable::program::Modes::parse("all").unwrap();
         let conversion = match convert_path(&path, &settings) {
             Ok(c) => c,
             Err(e) => panic!("{}: {e:?}", path.display()),

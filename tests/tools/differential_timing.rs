@@ -6,8 +6,9 @@
 
 use std::path::Path;
 
-use steptable::address::{Mnemonic, Signal};
+use steptable::address::Mnemonic;
 use steptable::cell::Sign;
+use steptable::program::Signal;
 use steptable::simulate::io::IoTrace;
 
 use crate::engines::{self, Case, Engine, awlsim, fst, matiec};

@@ -2,7 +2,7 @@
 //! OpenPLC compile against is refused as a machine signal name (E015): a
 //! signal named like one would not compile.
 
-use steptable::address::reserved_name;
+use steptable::names::reserved_name;
 
 use crate::{Check, Tool, shared};
 

@@ -5,7 +5,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use steptable::address::{Allocation, Mnemonic, Signal};
+use steptable::address::{Allocation, Mnemonic};
+use steptable::program::Signal;
 use steptable::simulate::io::IoTrace;
 
 use super::{input_lines, output_lines};

@@ -50,7 +50,7 @@ fn addresses(
     trace: &IoTrace,
     allocation: &Allocation,
 ) -> Result<(Vec<String>, Vec<String>), String> {
-    let iec = |signals: &[steptable::address::Signal]| {
+    let iec = |signals: &[steptable::program::Signal]| {
         signals
             .iter()
             .map(|s| {

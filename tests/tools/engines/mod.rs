@@ -11,8 +11,9 @@ pub mod plcxml;
 
 use std::path::{Path, PathBuf};
 
-use steptable::address::{Allocation, Mnemonic, Safety, Target};
+use steptable::address::{Allocation, Mnemonic, Target};
 use steptable::convert::{self, Settings};
+use steptable::program::Safety;
 use steptable::simulate;
 use steptable::simulate::io::{IoSignals, IoTrace};
 
@@ -88,7 +89,7 @@ pub fn settings_for(args: &[&str]) -> Settings {
                 settings.explicit.safety = true;
             }
             ["--modes", m] => {
-                settings.program.modes = steptable::address::Modes::parse(m).expect("modes");
+                settings.program.modes = steptable::program::Modes::parse(m).expect("modes");
                 settings.explicit.modes = true;
             }
             ["--valve", v] => {
@@ -140,8 +141,9 @@ pub fn record(
     table: &steptable::table::StepTable,
     settings: &Settings,
 ) -> Case {
-    let (allocation, program) = convert::build_program(table, settings);
-    let festo = allocation.for_target(table, Target::Festo, Mnemonic::En);
+    let program = convert::build_program(table, settings);
+    let allocation = Allocation::new(&program, settings.target, settings.mnemonic);
+    let festo = Allocation::new(&program, Target::Festo, Mnemonic::En);
     let signals = IoSignals {
         inputs: allocation.inputs.iter().map(|a| a.signal).collect(),
         outputs: allocation.outputs.iter().map(|a| a.signal).collect(),

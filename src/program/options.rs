@@ -1,8 +1,88 @@
-//! The operating modes a program carries and the homing order RESET uses.
+//! The choices that change a generated program: its safety checks, its
+//! operating modes and the homing order RESET uses.
 
 use std::collections::BTreeMap;
 
 use crate::table::StepTable;
+
+/// Choices that change the generated program.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ProgramOptions {
+    /// Switch both coils off when an actuator reaches a middle target. Off only
+    /// to show what the published method does without it (it hangs).
+    pub middle_stops: bool,
+    /// Safety checks carried by the program.
+    pub safety: Safety,
+    /// Operating modes carried by the program.
+    pub modes: Modes,
+}
+
+impl Default for ProgramOptions {
+    fn default() -> Self {
+        ProgramOptions {
+            middle_stops: true,
+            safety: Safety::default(),
+            modes: Modes::default(),
+        }
+    }
+}
+
+/// The safety checks a generated program carries (`--safety`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Safety {
+    /// A cycle starts only on a rising edge of START.
+    pub edge: bool,
+    /// A move starts only while its target sensor is still off.
+    pub precheck: bool,
+    /// Two sensors of one actuator on at once stops the sequence.
+    pub plausibility: bool,
+    /// A step that does not finish in time raises an alarm and stops.
+    pub watchdog: bool,
+}
+
+impl Safety {
+    /// All four checks.
+    pub fn all() -> Self {
+        Safety {
+            edge: true,
+            precheck: true,
+            plausibility: true,
+            watchdog: true,
+        }
+    }
+
+    /// Parses `edge,precheck,plausibility,watchdog` (any subset; `all`, `none`).
+    pub fn parse(text: &str) -> Result<Safety, String> {
+        let mut safety = Safety::default();
+        for item in text.split(',').map(|s| s.trim().to_ascii_lowercase()) {
+            match item.as_str() {
+                "" | "none" => {}
+                "all" => safety = Safety::all(),
+                "edge" => safety.edge = true,
+                "precheck" => safety.precheck = true,
+                "plausibility" => safety.plausibility = true,
+                "watchdog" => safety.watchdog = true,
+                other => {
+                    return Err(format!(
+                        "\"{other}\" is not a safety check (expected edge, precheck, plausibility, watchdog, all or none)"
+                    ));
+                }
+            }
+        }
+        Ok(safety)
+    }
+
+    pub fn any(self) -> bool {
+        self.edge || self.precheck || self.plausibility || self.watchdog
+    }
+
+    /// Whether the program has a `halt` memory: a check that stops the
+    /// sequence (plausibility, watchdog) or an emergency stop sets it. The
+    /// one place this is decided, for the allocation and the program.
+    pub fn halts(self, modes: &Modes) -> bool {
+        self.plausibility || self.watchdog || modes.estop
+    }
+}
 
 /// The operating modes a generated program carries (`--modes`).
 #[derive(Debug, Clone, PartialEq, Eq, Default)]

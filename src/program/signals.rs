@@ -1,0 +1,183 @@
+//! Which signals a program uses, decided once from the table and the
+//! options: the address allocation lays out exactly these, and the rungs
+//! that reset "every output" or "every memory" read them from here.
+
+use super::options::ProgramOptions;
+use super::signal::{Alarm, Signal};
+use crate::cell::Sign;
+use crate::table::StepTable;
+use crate::valve::{ValveType, Valves};
+
+/// The coils of one actuator's valve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Coils {
+    /// `yi+` and `yi-` of a double-solenoid or 5/3 valve.
+    Double { actuator: u32 },
+    /// The one coil `yi` of a single-solenoid (`52mono`) valve.
+    Single { actuator: u32 },
+}
+
+impl Coils {
+    pub fn actuator(self) -> u32 {
+        match self {
+            Coils::Double { actuator } | Coils::Single { actuator } => actuator,
+        }
+    }
+
+    /// The coil that extends (the only one of a single-solenoid valve).
+    pub fn extend(self) -> Signal {
+        match self {
+            Coils::Double { actuator } => Signal::Coil {
+                actuator,
+                sign: Sign::Plus,
+            },
+            Coils::Single { actuator } => Signal::SingleCoil { actuator },
+        }
+    }
+
+    /// The coil that retracts, if the valve has one.
+    pub fn retract(self) -> Option<Signal> {
+        match self {
+            Coils::Double { actuator } => Some(Signal::Coil {
+                actuator,
+                sign: Sign::Minus,
+            }),
+            Coils::Single { .. } => None,
+        }
+    }
+}
+
+/// Every bit signal of a program, in the order addresses are given.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Signals {
+    /// START, each actuator's sensors 0…pmax, machine inputs, mode buttons.
+    pub inputs: Vec<Signal>,
+    /// Each actuator's valve, in ascending actuator number.
+    pub valves: Vec<Coils>,
+    /// The outputs after the coils: machine outputs, then alarms.
+    pub outputs: Vec<Signal>,
+    /// Middle-stop requests, then the memories of the safety checks, dwells
+    /// and modes.
+    pub memories: Vec<Signal>,
+}
+
+impl Signals {
+    /// Every output the machine drives (coils and machine outputs, not
+    /// alarms): extend coils, then retract coils, then machine outputs.
+    pub fn driven(&self) -> impl Iterator<Item = Signal> + '_ {
+        self.valves
+            .iter()
+            .map(|v| v.extend())
+            .chain(self.valves.iter().filter_map(|v| v.retract()))
+            .chain(
+                self.outputs
+                    .iter()
+                    .copied()
+                    .filter(|s| matches!(s, Signal::MachineOutput(_))),
+            )
+    }
+
+    /// The alarm outputs.
+    pub fn alarms(&self) -> impl Iterator<Item = Signal> + '_ {
+        self.outputs
+            .iter()
+            .copied()
+            .filter(|s| matches!(s, Signal::Alarm(_)))
+    }
+}
+
+/// The signals a program of `table` under `options` uses.
+pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valves) -> Signals {
+    let safety = options.safety;
+    let modes = &options.modes;
+    let sensors = table.actuators.iter().flat_map(|actuator| {
+        (0..=actuator.max_position).map(|position| Signal::Sensor {
+            actuator: actuator.number,
+            position,
+        })
+    });
+    let mode_inputs = [
+        (modes.continuous, Signal::Continuous),
+        (modes.stop, Signal::Stop),
+        (modes.estop, Signal::EStop),
+        (modes.reset, Signal::Reset),
+    ]
+    .into_iter()
+    .filter_map(|(wanted, signal)| wanted.then_some(signal));
+    let inputs = std::iter::once(Signal::Start)
+        .chain(sensors)
+        .chain(table.inputs.iter().map(|n| Signal::MachineInput(*n)))
+        .chain(mode_inputs)
+        .collect();
+
+    let coils = table
+        .actuators
+        .iter()
+        .map(|a| match valves.of(a.number, a.max_position) {
+            ValveType::Mono52 => Coils::Single { actuator: a.number },
+            _ => Coils::Double { actuator: a.number },
+        })
+        .collect();
+    let alarms = [
+        (safety.plausibility, Alarm::Sensor),
+        (safety.watchdog, Alarm::Timeout),
+    ]
+    .into_iter()
+    .filter_map(|(wanted, alarm)| wanted.then_some(Signal::Alarm(alarm)));
+    let outputs = table
+        .outputs
+        .iter()
+        .map(|n| Signal::MachineOutput(*n))
+        .chain(alarms)
+        .collect();
+
+    let mut stops: Vec<(u32, u32)> = if options.middle_stops {
+        table
+            .steps
+            .iter()
+            .flat_map(|s| &s.moves)
+            .filter(|m| {
+                table
+                    .actuator(m.actuator)
+                    .is_some_and(|a| a.is_middle(m.to))
+            })
+            .map(|m| (m.actuator, m.to))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    stops.sort_unstable();
+    stops.dedup();
+    let mut memories: Vec<Signal> = stops
+        .into_iter()
+        .map(|(actuator, position)| Signal::StopAt { actuator, position })
+        .collect();
+    if safety.edge {
+        memories.push(Signal::StartMemory);
+    }
+    if safety.halts(modes) {
+        memories.push(Signal::Halt);
+    }
+    if safety.watchdog {
+        memories.push(Signal::WatchdogArmed);
+    }
+    memories.extend(table.dwells().map(|d| Signal::DwellArmed(d.number)));
+    if modes.any() {
+        memories.push(Signal::CycleRequest);
+        memories.push(Signal::Busy);
+    }
+    if modes.continuous {
+        memories.push(Signal::AutoRun);
+    }
+    if modes.reset {
+        memories.push(Signal::Homing);
+        let stages = modes.home_stages(table).map(|s| s.len()).unwrap_or(0);
+        memories.extend((1..=stages).map(|n| Signal::HomeStage(n as u16)));
+    }
+    Signals {
+        inputs,
+        valves: coils,
+        outputs,
+        memories,
+    }
+}
