@@ -11,9 +11,10 @@ use std::time::{Duration, Instant};
 
 use rust_xlsxwriter::Workbook;
 use steptable::batch;
-use steptable::convert::{self, Settings};
+use steptable::convert;
 use steptable::diag::Diagnostics;
 use steptable::random_table::{Shape, SplitMix64, random_rows};
+use steptable::settings::Settings;
 
 fn write_workbook(path: &Path, rows: &[Vec<String>]) {
     let mut workbook = Workbook::new();
@@ -122,11 +123,11 @@ fn main() {
         let conversion = convert::generate("line", checked).ok().unwrap();
         generate_t.push(t.elapsed());
         let t = Instant::now();
-        steptable::output::write_files(
+        steptable::write::write_files(
             &dir.path().join(format!("w{i}")),
             &conversion.files,
             &[],
-            steptable::output::Durability::Rename,
+            steptable::write::Durability::Rename,
         )
         .unwrap();
         write.push(t.elapsed());

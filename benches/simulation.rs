@@ -8,9 +8,10 @@
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use steptable::convert::{self, Settings};
+use steptable::convert;
 use steptable::faults;
 use steptable::random_table::{Shape, random_rows};
+use steptable::settings::Settings;
 use steptable::simulate::{SimSettings, simulate};
 
 fn median(mut runs: Vec<Duration>) -> Duration {

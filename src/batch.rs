@@ -8,10 +8,11 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use crate::convert::{self, Failure, OutputFile, Settings};
+use crate::convert::{self, Failure};
 use crate::diag::{Diagnostic, Severity};
-use crate::output;
 use crate::read::Format;
+use crate::settings::Settings;
+use crate::write::{self, OutputFile};
 
 /// What happened to one input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -274,7 +275,7 @@ fn convert_one(
             outcome.steps = Some(conversion.table.steps.len());
             outcome.actuators = Some(conversion.table.actuators.len());
             outcome.diagnostics = conversion.warnings;
-            if let Err(err) = output::write_files(
+            if let Err(err) = write::write_files(
                 &out.join(name),
                 &conversion.files,
                 all_inputs,

@@ -331,6 +331,13 @@ fn name_has_space(text: &str) -> bool {
 
 /// `2s`, `500ms`, `1.5s`, `1,5s` (a bare number is seconds).
 fn parse_dwell(text: &str) -> Option<u32> {
+    parse_duration_in(text, MIN_DWELL_MS..=MAX_DWELL_MS)
+}
+
+/// The one duration parser (dwells, stroke and scan times, input delays):
+/// `2s`, `500ms`, `1.5s`, `1,5s`, a bare number in seconds, at most three
+/// decimals, in exact decimal arithmetic; `None` outside `range` (ms).
+pub fn parse_duration_in(text: &str, range: std::ops::RangeInclusive<u32>) -> Option<u32> {
     let lower = text.to_ascii_lowercase();
     let (number, scale) = if let Some(n) = lower.strip_suffix("ms") {
         (n, 1u64)
@@ -367,7 +374,7 @@ fn parse_dwell(text: &str) -> Option<u32> {
         return None;
     }
     let ms = ms / 1000;
-    (MIN_DWELL_MS as u64..=MAX_DWELL_MS as u64)
+    (*range.start() as u64..=*range.end() as u64)
         .contains(&ms)
         .then_some(ms as u32)
 }

@@ -35,24 +35,18 @@ impl Strokes {
     }
 }
 
-/// Parses a duration such as `1.5s`, `800ms` or `2 s` into milliseconds.
-/// A bare number means seconds.
+/// Parses a duration such as `1.5s`, `800ms` or `2 s` into milliseconds,
+/// from 1 ms to an hour. A bare number means seconds.
 pub fn parse_duration_ms(text: &str) -> Option<u32> {
-    let t: String = text
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .collect::<String>()
-        .to_ascii_lowercase();
-    let (number, scale) = if let Some(n) = t.strip_suffix("ms") {
-        (n, 1.0)
-    } else if let Some(n) = t.strip_suffix('s') {
-        (n, 1000.0)
-    } else {
-        (t.as_str(), 1000.0)
-    };
-    let value: f64 = number.replace(',', ".").parse().ok()?;
-    let ms = (value * scale).round();
-    (value.is_finite() && (1.0..=3_600_000.0).contains(&ms)).then_some(ms as u32)
+    let t: String = text.chars().filter(|c| !c.is_whitespace()).collect();
+    crate::cell::parse_duration_in(&t, 1..=3_600_000)
+}
+
+/// Parses a scan time (`--scan`, the SETTINGS sheet's `scan time`): 1 ms to 1 s.
+pub fn parse_scan(text: &str) -> Result<u32, String> {
+    parse_duration_ms(text)
+        .filter(|ms| *ms <= 1000)
+        .ok_or_else(|| format!("\"{text}\" is not a scan time from 1ms to 1s, such as 10ms"))
 }
 
 /// Parses `--stroke` values: `C2=1.5s/0.8s,C3=2s` (extend/retract, or one

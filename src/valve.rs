@@ -22,6 +22,21 @@ pub enum ValveType {
     Pressure53,
 }
 
+impl std::str::FromStr for ValveType {
+    type Err = String;
+
+    /// `52bi`, `5/2 mono`, `53-closed`, … in any case.
+    fn from_str(text: &str) -> Result<Self, String> {
+        let t = text
+            .trim()
+            .to_ascii_lowercase()
+            .replace(['/', ' ', '-'], "");
+        ValveType::ALL.into_iter().find(|v| v.name() == t).ok_or_else(|| {
+            format!("\"{}\" is not a valve type (expected 52bi, 52mono, 53closed, 53exhaust or 53pressure)", text.trim())
+        })
+    }
+}
+
 impl ValveType {
     pub const ALL: [ValveType; 5] = [
         ValveType::Bistable52,
@@ -40,14 +55,6 @@ impl ValveType {
             ValveType::Exhaust53 => "53exhaust",
             ValveType::Pressure53 => "53pressure",
         }
-    }
-
-    pub fn parse(text: &str) -> Option<ValveType> {
-        let t = text
-            .trim()
-            .to_ascii_lowercase()
-            .replace(['/', ' ', '-'], "");
-        ValveType::ALL.into_iter().find(|v| v.name() == t)
     }
 
     /// Whether the valve has a centre position, so it can stop a piston between ends.
@@ -126,12 +133,7 @@ pub fn parse_valves(text: &str) -> Result<BTreeMap<u32, ValveType>, String> {
             .ok_or_else(|| format!("\"{item}\": expected C<number>=<valve>, e.g. C1=52mono"))?;
         let actuator = crate::cell::parse_actuator(name)
             .ok_or_else(|| format!("\"{item}\": expected an actuator such as C1 before ="))?;
-        let valve = ValveType::parse(valve).ok_or_else(|| {
-            format!(
-                "\"{item}\": \"{}\" is not a valve type (expected 52bi, 52mono, 53closed, 53exhaust or 53pressure)",
-                valve.trim()
-            )
-        })?;
+        let valve: ValveType = valve.parse().map_err(|e| format!("\"{item}\": {e}"))?;
         valves.insert(actuator, valve);
     }
     Ok(valves)

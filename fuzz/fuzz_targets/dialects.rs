@@ -6,7 +6,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use steptable::convert::{Settings, check_bytes};
+use steptable::convert::check_bytes;
+use steptable::settings::Settings;
 use steptable::diag::Code;
 use steptable::random_table::{Shape, random_rows};
 use steptable::read::Format;

@@ -7,7 +7,8 @@
 use libfuzzer_sys::fuzz_target;
 use steptable::address::Target;
 use steptable::program::{Modes, Safety};
-use steptable::convert::{Settings, check_bytes, generate};
+use steptable::convert::{check_bytes, generate};
+use steptable::settings::Settings;
 use steptable::read::Format;
 
 fuzz_target!(|bytes: &[u8]| {

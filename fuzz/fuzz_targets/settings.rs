@@ -5,7 +5,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use steptable::convert::{Failure, Settings, check_bytes, generate};
+use steptable::convert::{Failure, check_bytes, generate};
+use steptable::settings::Settings;
 use steptable::diag::Diagnostics;
 use steptable::read::{Format, Grid};
 

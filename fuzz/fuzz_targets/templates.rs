@@ -4,7 +4,9 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use steptable::convert::{Failure, OutputKind, Settings, check_bytes, generate};
+use steptable::convert::{Failure, check_bytes, generate};
+use steptable::settings::Settings;
+use steptable::emit::OutputKind;
 use steptable::emit::templates::{DEFAULTS, Templates};
 use steptable::read::Format;
 

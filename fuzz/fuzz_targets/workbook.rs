@@ -3,7 +3,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use steptable::convert::{Settings, check_bytes};
+use steptable::convert::check_bytes;
+use steptable::settings::Settings;
 use steptable::read::Format;
 
 fuzz_target!(|bytes: &[u8]| {

@@ -246,6 +246,48 @@ impl Allocation {
     }
 }
 
+impl Target {
+    /// Every target, as `--target` and the SETTINGS sheet name them.
+    pub const ALL: [Target; 3] = [Target::Festo, Target::Iec, Target::Siemens];
+}
+
+impl std::str::FromStr for Target {
+    type Err = String;
+
+    /// `festo`, `iec` or `siemens`, in any case.
+    fn from_str(text: &str) -> Result<Self, String> {
+        let lower = text.trim().to_ascii_lowercase();
+        Target::ALL
+            .into_iter()
+            .find(|t| t.name() == lower)
+            .ok_or_else(|| format!("\"{text}\" is not a target (expected festo, iec or siemens)"))
+    }
+}
+
+impl Mnemonic {
+    pub const ALL: [Mnemonic; 2] = [Mnemonic::En, Mnemonic::De];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Mnemonic::En => "en",
+            Mnemonic::De => "de",
+        }
+    }
+}
+
+impl std::str::FromStr for Mnemonic {
+    type Err = String;
+
+    /// `en` (I/Q) or `de` (E/A), in any case.
+    fn from_str(text: &str) -> Result<Self, String> {
+        let lower = text.trim().to_ascii_lowercase();
+        Mnemonic::ALL
+            .into_iter()
+            .find(|m| m.name() == lower)
+            .ok_or_else(|| format!("\"{text}\" is not a mnemonic (expected en or de)"))
+    }
+}
+
 impl fmt::Display for Target {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())

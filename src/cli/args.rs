@@ -43,23 +43,17 @@ pub(crate) fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
 }
 
 pub(crate) fn parse_scan(text: &str) -> Result<u32, String> {
-    steptable::timing::parse_duration_ms(text)
-        .filter(|ms| *ms <= 1000)
-        .ok_or_else(|| format!("\"{text}\" is not a scan time from 1ms to 1s, such as 10ms"))
+    steptable::timing::parse_scan(text)
 }
 
 impl SimArgs {
     pub(crate) fn apply(&self, settings: &mut Settings) {
-        if let Some(scan) = self.scan {
-            settings.simulation.scan_ms = scan;
-            settings.explicit.scan = true;
-        }
-        if let Some(loads) = &self.load {
-            settings.simulation.loads = loads.clone();
-        }
-        if let Some(strokes) = &self.stroke {
-            settings.simulation.strokes.per_actuator = strokes.clone();
-        }
+        settings.give(Given {
+            scan_ms: self.scan,
+            loads: self.load.clone().unwrap_or_default(),
+            strokes: self.stroke.clone().unwrap_or_default(),
+            ..Given::default()
+        });
         if let Some(delays) = &self.input_delay {
             settings.simulation.input_delays = delays.clone();
         }
@@ -116,11 +110,11 @@ impl FileArgs {
             settings.formats = formats.clone();
         }
         if self.sync {
-            settings.durability = steptable::output::Durability::Sync;
+            settings.durability = steptable::write::Durability::Sync;
         }
         if let Some(dir) = &self.templates {
             settings.templates =
-                steptable::emit::templates::Templates::load_dir(dir).map_err(|e| e.to_string())?;
+                steptable::settings::user_templates::load_dir(dir).map_err(|e| e.to_string())?;
         }
         Ok(())
     }
@@ -135,11 +129,11 @@ pub(crate) enum DiagramArg {
 #[derive(Args)]
 pub(crate) struct CommonArgs {
     /// Address dialect: festo (I0.0/O0.0, 16-bit words), iec (%IX0.0/%QX0.0), siemens (I0.0/Q0.0).
-    #[arg(long, value_enum)]
-    pub(crate) target: Option<TargetArg>,
+    #[arg(long, ignore_case = true, value_parser = parse_target())]
+    pub(crate) target: Option<Target>,
     /// Operand letters for siemens: en (I/Q) or de (E/A).
-    #[arg(long, value_enum)]
-    pub(crate) mnemonic: Option<MnemonicArg>,
+    #[arg(long, ignore_case = true, value_parser = parse_mnemonic())]
+    pub(crate) mnemonic: Option<Mnemonic>,
     /// Read this sheet instead of "SEQUENTIAL CONTROL DESCRIPTION" or the first sheet with moves.
     #[arg(long, value_name = "NAME")]
     pub(crate) sheet: Option<String>,
@@ -166,7 +160,7 @@ pub(crate) struct CommonArgs {
 pub(crate) struct HomeOrder(pub(crate) Vec<Vec<u32>>);
 
 pub(crate) fn parse_modes(text: &str) -> Result<Modes, String> {
-    Modes::parse(text)
+    text.parse()
 }
 
 pub(crate) fn parse_home_order(text: &str) -> Result<HomeOrder, String> {
@@ -188,14 +182,19 @@ pub(crate) fn parse_loads(text: &str) -> Result<std::collections::BTreeMap<u32, 
 }
 
 pub(crate) fn parse_safety(text: &str) -> Result<Safety, String> {
-    Safety::parse(text)
+    text.parse()
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-pub(crate) enum TargetArg {
-    Festo,
-    Iec,
-    Siemens,
+/// `--target`: the library's parser, with the names listed in `--help`.
+fn parse_target() -> impl clap::builder::TypedValueParser<Value = Target> {
+    clap::builder::PossibleValuesParser::new(Target::ALL.map(Target::name))
+        .try_map(|text| text.parse::<Target>())
+}
+
+/// `--mnemonic`: the library's parser, with the names listed in `--help`.
+fn parse_mnemonic() -> impl clap::builder::TypedValueParser<Value = Mnemonic> {
+    clap::builder::PossibleValuesParser::new(Mnemonic::ALL.map(Mnemonic::name))
+        .try_map(|text| text.parse::<Mnemonic>())
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -204,47 +203,20 @@ pub(crate) enum MessageFormat {
     Json,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-pub(crate) enum MnemonicArg {
-    En,
-    De,
-}
-
 impl CommonArgs {
-    /// Settings from the flags; those given explicitly are marked so that a
-    /// workbook's SETTINGS sheet does not change them.
+    /// Settings from the flags; what they give, a workbook's SETTINGS sheet
+    /// does not change.
     pub(crate) fn settings(&self) -> Settings {
         let mut settings = Settings::new();
-        if let Some(target) = self.target {
-            settings.target = match target {
-                TargetArg::Festo => Target::Festo,
-                TargetArg::Iec => Target::Iec,
-                TargetArg::Siemens => Target::Siemens,
-            };
-            settings.explicit.target = true;
-        }
-        if let Some(mnemonic) = self.mnemonic {
-            settings.mnemonic = match mnemonic {
-                MnemonicArg::En => Mnemonic::En,
-                MnemonicArg::De => Mnemonic::De,
-            };
-            settings.explicit.mnemonic = true;
-        }
-        if let Some(safety) = self.safety {
-            settings.program.safety = safety;
-            settings.explicit.safety = true;
-        }
-        if let Some(modes) = &self.modes {
-            settings.program.modes = modes.clone();
-            settings.explicit.modes = true;
-        }
-        if let Some(order) = &self.home_order {
-            settings.program.modes.home_order = Some(order.0.clone());
-            settings.explicit.home_order = true;
-        }
-        if let Some(valves) = &self.valve {
-            settings.simulation.valves.per_actuator = valves.clone();
-        }
+        settings.give(Given {
+            target: self.target,
+            mnemonic: self.mnemonic,
+            safety: self.safety,
+            modes: self.modes.clone(),
+            home_order: self.home_order.as_ref().map(|order| order.0.clone()),
+            valves: self.valve.clone().unwrap_or_default(),
+            ..Given::default()
+        });
         settings.sheet = self.sheet.clone();
         settings
     }

@@ -142,7 +142,7 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
                 ));
             }
             if let Err(err) =
-                output::write_files(&args.output, &[file], &inputs, settings.durability)
+                write::write_files(&args.output, &[file], &inputs, settings.durability)
             {
                 eprintln!("error: {err}");
                 code = EXIT_INTERNAL;

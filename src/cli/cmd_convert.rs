@@ -109,7 +109,7 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         };
         report.diagnostics(&conversion.warnings);
         let folder = args.output.join(&conversion.name);
-        match output::write_files(
+        match write::write_files(
             &folder,
             &conversion.files,
             &args.inputs,

@@ -84,7 +84,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         );
         progress.finish();
         // The table is written before anything is printed (see simulate).
-        let file = convert::OutputFile {
+        let file = steptable::write::OutputFile {
             name: format!("{name}.faults.csv"),
             bytes: match steptable::emit::faults_csv::render(&result) {
                 Ok(b) => b,
@@ -95,11 +95,11 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
                 }
             },
         };
-        if let Err(err) = output::write_files(
+        if let Err(err) = write::write_files(
             &args.output.join(name),
             &[file],
             &args.inputs,
-            output::Durability::Rename,
+            write::Durability::Rename,
         ) {
             eprintln!("error: {err}");
             code = EXIT_INTERNAL;

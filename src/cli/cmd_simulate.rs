@@ -53,15 +53,15 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
                 &report,
                 steptable::emit::diagram::DiagramKind::Time,
             );
-            let file = convert::OutputFile {
+            let file = steptable::write::OutputFile {
                 name: format!("{name}.time.svg"),
                 bytes: svg.into_bytes(),
             };
-            match output::write_files(
+            match write::write_files(
                 &dir.join(name),
                 &[file],
                 &args.inputs,
-                output::Durability::Rename,
+                write::Durability::Rename,
             ) {
                 Ok(paths) => diagram = Some(paths),
                 Err(err) => {

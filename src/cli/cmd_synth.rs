@@ -178,32 +178,32 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
         }
     };
     let files = vec![
-        convert::OutputFile {
+        steptable::write::OutputFile {
             name: format!("{name}.synth.txt"),
             bytes: report.into_bytes(),
         },
-        convert::OutputFile {
+        steptable::write::OutputFile {
             name: format!("{name}.synth.json"),
             bytes: synth_out::report_json(&synthesis, &verification, args.seed).into_bytes(),
         },
-        convert::OutputFile {
+        steptable::write::OutputFile {
             name: format!("{name}.equations.st"),
             bytes: synth_out::structured_text(&synthesis, &name).into_bytes(),
         },
-        convert::OutputFile {
+        steptable::write::OutputFile {
             name: format!("{name}.equations.il"),
             bytes: synth_out::instruction_list(&synthesis, &name).into_bytes(),
         },
-        convert::OutputFile {
+        steptable::write::OutputFile {
             name: format!("{name}.xlsx"),
             bytes: workbook,
         },
     ];
-    if let Err(err) = output::write_files(
+    if let Err(err) = write::write_files(
         &args.output.join(&name),
         &files,
         &inputs,
-        output::Durability::Rename,
+        write::Durability::Rename,
     ) {
         eprintln!("error: {err}");
         return EXIT_INTERNAL;

@@ -78,11 +78,11 @@ pub(crate) fn run_template(args: &TemplateArgs) -> i32 {
         .file_name()
         .map(|n| n.to_string_lossy().to_string())
         .unwrap_or_else(|| "steptable-template.xlsx".to_string());
-    match output::write_files(
+    match write::write_files(
         &folder,
-        &[convert::OutputFile { name, bytes }],
+        &[steptable::write::OutputFile { name, bytes }],
         &[],
-        output::Durability::Rename,
+        write::Durability::Rename,
     ) {
         Ok(_) => {
             out(&format!(

@@ -5,15 +5,18 @@
 use std::io::Write;
 use std::path::PathBuf;
 
+use clap::builder::TypedValueParser;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use steptable::address::{Mnemonic, Target};
-use steptable::convert::{self, Failure, OutputKind, Settings};
+use steptable::convert::{self, Failure};
 use steptable::diag::{Diagnostic, Severity};
+use steptable::emit::OutputKind;
 use steptable::emit::diagram::DiagramKind;
-use steptable::output;
 use steptable::program::{Modes, Safety};
 use steptable::read::display_name;
+use steptable::settings::{Given, Settings};
+use steptable::write;
 
 mod args;
 mod cmd_batch;
@@ -94,7 +97,7 @@ pub fn run() -> i32 {
         Command::Batch(args) => run_batch(&args),
         Command::Synth(args) => run_synth(&args),
         Command::Templates(TemplatesCommand::Export { dir, force }) => {
-            use steptable::emit::templates::{ExportError, export_defaults};
+            use steptable::settings::user_templates::{ExportError, export_defaults};
             match export_defaults(&dir, force) {
                 Ok(written) => {
                     for path in written {

@@ -1,247 +1,22 @@
 //! The pipeline, end to end and in memory: read → table → addresses → program
-//! → every output file. Writing to disk is [`crate::output`]'s job.
+//! → every output file. Writing to disk is [`crate::write`]'s job.
 
 mod physics;
 
-use std::collections::BTreeSet;
 use std::path::Path;
 
 use crate::address::{Allocation, Mnemonic, Target};
 use crate::diag::{Code, Diagnostic, Diagnostics};
-use crate::emit::diagram::DiagramKind;
 use crate::emit::st::IecFile;
-use crate::emit::templates::{TemplateError, Templates};
-use crate::emit::{self, EmitInput};
+use crate::emit::templates::TemplateError;
+use crate::emit::{self, EmitInput, OutputKind};
 use crate::faults::{self, FaultTable};
-use crate::program::{self, ProgramOptions, StepProgram};
+use crate::program::{self, StepProgram};
 use crate::read::{self, Format};
-use crate::settings::SheetSettings;
+use crate::settings::Settings;
 use crate::simulate::{self, SimReport, SimSettings};
 use crate::table::{self, StepTable};
-
-/// Validated settings of one run (raw command-line values are turned into this
-/// before any work starts).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct Settings {
-    pub target: Target,
-    pub mnemonic: Mnemonic,
-    /// Sheet to read instead of the default choice.
-    pub sheet: Option<String>,
-    pub program: ProgramOptions,
-    /// Simulation settings; `simulation.scan_ms` is also the generated task's cycle.
-    pub simulation: SimSettings,
-    /// Horizontal axis of `NAME.diagram.svg`.
-    pub diagram: DiagramKind,
-    /// Which files to write.
-    pub formats: BTreeSet<OutputKind>,
-    /// The templates text outputs are laid out by.
-    pub templates: Templates,
-    /// Whether written files are flushed to the disk (`--sync`).
-    pub durability: crate::output::Durability,
-    /// Which settings the command line gave explicitly; a workbook's
-    /// SETTINGS sheet decides the others.
-    pub explicit: Explicit,
-}
-
-/// Settings given on the command line, which a SETTINGS sheet must not change.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Explicit {
-    pub target: bool,
-    pub mnemonic: bool,
-    pub scan: bool,
-    pub safety: bool,
-    pub modes: bool,
-    pub home_order: bool,
-}
-
-/// One kind of output file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum OutputKind {
-    Workbook,
-    StructuredText,
-    Fst,
-    Allocation,
-    Diagram,
-    Faults,
-    PlcOpen,
-    Codesys,
-    Gvl,
-    TiaTags,
-    Awl,
-    SymbolTable,
-    FstAllocation,
-    Rockwell,
-    /// CoDeSys V2.3 export (`.exp`).
-    CodesysV2,
-    /// A Beremiz / OpenPLC Editor project folder (`NAME.beremiz/`).
-    Beremiz,
-}
-
-impl OutputKind {
-    /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 16] = [
-        OutputKind::Workbook,
-        OutputKind::StructuredText,
-        OutputKind::Fst,
-        OutputKind::Allocation,
-        OutputKind::Diagram,
-        OutputKind::Faults,
-        OutputKind::PlcOpen,
-        OutputKind::Codesys,
-        OutputKind::Gvl,
-        OutputKind::TiaTags,
-        OutputKind::Awl,
-        OutputKind::SymbolTable,
-        OutputKind::FstAllocation,
-        OutputKind::Rockwell,
-        OutputKind::CodesysV2,
-        OutputKind::Beremiz,
-    ];
-
-    /// The name used with `--formats`.
-    pub fn name(self) -> &'static str {
-        match self {
-            OutputKind::Workbook => "xlsx",
-            OutputKind::StructuredText => "st",
-            OutputKind::Fst => "fst",
-            OutputKind::Allocation => "io",
-            OutputKind::Diagram => "diagram",
-            OutputKind::Faults => "faults",
-            OutputKind::PlcOpen => "plcopen",
-            OutputKind::Codesys => "codesys",
-            OutputKind::Gvl => "gvl",
-            OutputKind::TiaTags => "tia",
-            OutputKind::Awl => "awl",
-            OutputKind::SymbolTable => "sdf",
-            OutputKind::FstAllocation => "fst-alloc",
-            OutputKind::Rockwell => "rockwell",
-            OutputKind::CodesysV2 => "exp",
-            OutputKind::Beremiz => "beremiz",
-        }
-    }
-
-    /// How many files it writes: a Beremiz project folder holds two.
-    pub fn file_count(self) -> usize {
-        if self == OutputKind::Beremiz { 2 } else { 1 }
-    }
-
-    /// Whether its lines end in CRLF: the lists Windows tools import (STEP 7
-    /// symbol tables, Studio 5000 and FST lists, CoDeSys V2.3 exports).
-    pub fn windows_lines(self) -> bool {
-        matches!(
-            self,
-            OutputKind::SymbolTable
-                | OutputKind::FstAllocation
-                | OutputKind::Rockwell
-                | OutputKind::CodesysV2
-        )
-    }
-
-    /// The end of the file name, after `NAME`.
-    pub fn suffix(self) -> &'static str {
-        match self {
-            OutputKind::Workbook => ".xlsx",
-            OutputKind::StructuredText => ".st",
-            OutputKind::Fst => ".fst.txt",
-            OutputKind::Allocation => ".io.csv",
-            OutputKind::Diagram => ".diagram.svg",
-            OutputKind::Faults => ".faults.csv",
-            OutputKind::PlcOpen => ".plcopen.xml",
-            OutputKind::Codesys => ".codesys.xml",
-            OutputKind::Gvl => ".gvl.txt",
-            OutputKind::TiaTags => ".tags.xlsx",
-            OutputKind::Awl => ".awl",
-            OutputKind::SymbolTable => ".sdf",
-            OutputKind::FstAllocation => ".fst-alloc.csv",
-            OutputKind::Rockwell => ".rockwell.csv",
-            OutputKind::CodesysV2 => ".exp",
-            OutputKind::Beremiz => ".beremiz",
-        }
-    }
-
-    /// Parses `--formats st,plcopen,awl` (`all` for every kind).
-    pub fn parse_list(text: &str) -> Result<BTreeSet<OutputKind>, String> {
-        let mut kinds = BTreeSet::new();
-        for item in text.split(',').map(|s| s.trim().to_ascii_lowercase()) {
-            if item == "all" {
-                kinds.extend(OutputKind::ALL);
-                continue;
-            }
-            match OutputKind::ALL.iter().find(|k| k.name() == item) {
-                Some(kind) => {
-                    kinds.insert(*kind);
-                }
-                None => {
-                    let names: Vec<&str> = OutputKind::ALL.iter().map(|k| k.name()).collect();
-                    return Err(format!(
-                        "\"{item}\" is not an output format (expected some of: {}, or all)",
-                        names.join(", ")
-                    ));
-                }
-            }
-        }
-        if kinds.is_empty() {
-            return Err("no output format given".to_string());
-        }
-        Ok(kinds)
-    }
-}
-
-impl Settings {
-    /// These settings with a SETTINGS sheet filling in what the command line
-    /// did not give. Stroke times given on the command line win per actuator.
-    pub fn with_sheet(&self, sheet: &SheetSettings) -> Settings {
-        let mut merged = self.clone();
-        if let (false, Some(target)) = (self.explicit.target, sheet.target) {
-            merged.target = target;
-        }
-        if let (false, Some(mnemonic)) = (self.explicit.mnemonic, sheet.mnemonic) {
-            merged.mnemonic = mnemonic;
-        }
-        if let (false, Some(scan)) = (self.explicit.scan, sheet.scan_ms) {
-            merged.simulation.scan_ms = scan;
-        }
-        if let (false, Some(safety)) = (self.explicit.safety, sheet.safety) {
-            merged.program.safety = safety;
-        }
-        if let (false, Some(modes)) = (self.explicit.modes, &sheet.modes) {
-            let order = merged.program.modes.home_order.take();
-            merged.program.modes = modes.clone();
-            merged.program.modes.home_order = order;
-        }
-        if let (false, Some(order)) = (self.explicit.home_order, &sheet.home_order) {
-            merged.program.modes.home_order = Some(order.clone());
-        }
-        for (actuator, stroke) in &sheet.strokes {
-            merged
-                .simulation
-                .strokes
-                .per_actuator
-                .entry(*actuator)
-                .or_insert(*stroke);
-        }
-        for (actuator, valve) in &sheet.valves {
-            merged
-                .simulation
-                .valves
-                .per_actuator
-                .entry(*actuator)
-                .or_insert(*valve);
-        }
-        for (actuator, load) in &sheet.loads {
-            merged.simulation.loads.entry(*actuator).or_insert(*load);
-        }
-        merged
-    }
-
-    /// Defaults: Festo addresses, middle stops, no safety checks, every format.
-    pub fn new() -> Self {
-        Settings {
-            formats: OutputKind::ALL.into_iter().collect(),
-            ..Settings::default()
-        }
-    }
-}
+use crate::write::OutputFile;
 
 /// A table that passed every check, with any warnings.
 #[derive(Debug, Clone)]
@@ -250,14 +25,6 @@ pub struct Checked {
     pub warnings: Vec<Diagnostic>,
     /// The settings in force for this file (command line over SETTINGS sheet).
     pub settings: Settings,
-}
-
-/// One generated file, in memory.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct OutputFile {
-    /// File name without folder, e.g. `paper.st`.
-    pub name: String,
-    pub bytes: Vec<u8>,
 }
 
 /// Everything a conversion produced.
@@ -535,7 +302,7 @@ pub fn generate_observed(
     } = checked;
     let settings = &settings;
     let sim_settings = SimSettings {
-        record_trace: settings.diagram == DiagramKind::Time,
+        record_trace: settings.diagram == emit::diagram::DiagramKind::Time,
         ..settings.simulation.clone()
     };
     let (program, simulation) = healthy_program(&table, settings, &sim_settings)?;

@@ -6,8 +6,9 @@
 //! cycle then runs, that setting is the reason, said to the engineer as an
 //! input error (E032) rather than reported as a bug.
 
-use super::{Failure, Settings, build_program};
+use super::{Failure, build_program};
 use crate::diag::{Code, Diagnostic, Location, Severity};
+use crate::settings::Settings;
 use crate::simulate::{self, SimReport, plant::Piston};
 use crate::table::StepTable;
 use crate::timing::Stroke;

@@ -7,10 +7,13 @@ pub mod diagram;
 pub mod faults_csv;
 pub mod fst;
 pub mod io_csv;
+mod kind;
 pub mod st;
 pub mod tables;
 pub mod templates;
 pub mod workbook;
+
+pub use kind::OutputKind;
 
 use crate::address::Allocation;
 use crate::cell::Sign;

@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 use std::fmt;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use minijinja::syntax::SyntaxConfig;
 use minijinja::{AutoEscape, Environment, UndefinedBehavior, Value};
@@ -140,7 +140,7 @@ fn environment() -> Result<Environment<'static>, minijinja::Error> {
 
 impl Templates {
     /// The defaults with `overrides` (template name → (path, source)) in their place.
-    fn with_overrides(
+    pub(crate) fn with_overrides(
         overrides: BTreeMap<String, (PathBuf, String)>,
     ) -> Result<Self, TemplateError> {
         let mut env = environment().map_err(|e| TemplateError {
@@ -170,53 +170,6 @@ impl Templates {
             env,
             overrides: paths,
         })
-    }
-
-    /// The defaults, with every file of `dir` that has a template's name in
-    /// its place. A file in `dir` that is no template's name is an error, so
-    /// a typo does not silently keep the default.
-    pub fn load_dir(dir: &Path) -> Result<Self, TemplateError> {
-        let error = |file: String, detail: String| TemplateError {
-            file,
-            user: true,
-            line: None,
-            detail,
-        };
-        let entries = std::fs::read_dir(dir).map_err(|e| {
-            error(
-                dir.display().to_string(),
-                format!("cannot read the folder: {e}"),
-            )
-        })?;
-        let mut overrides = BTreeMap::new();
-        let mut names: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
-        names.sort();
-        for path in names {
-            if path.is_dir() {
-                continue;
-            }
-            let name = path
-                .file_name()
-                .map(|n| n.to_string_lossy().to_string())
-                .unwrap_or_default();
-            if editor_leftover(&name) {
-                continue;
-            }
-            if !DEFAULTS.iter().any(|(n, _)| *n == name) {
-                let known: Vec<&str> = DEFAULTS.iter().map(|(n, _)| *n).collect();
-                return Err(error(
-                    path.display().to_string(),
-                    format!(
-                        "no template has this name (templates: {})",
-                        known.join(", ")
-                    ),
-                ));
-            }
-            let source = std::fs::read_to_string(&path)
-                .map_err(|e| error(path.display().to_string(), format!("cannot read: {e}")))?;
-            overrides.insert(name, (path, source));
-        }
-        Templates::with_overrides(overrides)
     }
 
     /// The defaults with `sources` (template name, text) in their place, as
@@ -283,50 +236,6 @@ impl Templates {
     }
 }
 
-/// Files an editor leaves beside the ones it edits (`.program.st.j2.swp`,
-/// `program.st.j2~`, `#program.st.j2#`, `.bak`): not templates, not typos.
-fn editor_leftover(name: &str) -> bool {
-    name.starts_with('.')
-        || name.starts_with('#')
-        || name.ends_with('~')
-        || [".swp", ".swo", ".bak", ".orig", ".tmp"]
-            .iter()
-            .any(|ext| name.ends_with(ext))
-}
-
-/// Writes the default templates into `dir` (created if missing), to start
-/// from. Templates already there are edits of someone's: without `force`
-/// nothing is written and their paths are the error. Each file is written
-/// to a temporary file and renamed, so a symbolic link in `dir` is replaced,
-/// never written through.
-pub fn export_defaults(dir: &Path, force: bool) -> Result<Vec<PathBuf>, ExportError> {
-    let existing: Vec<PathBuf> = DEFAULTS
-        .iter()
-        .map(|(name, _)| dir.join(name))
-        .filter(|p| p.symlink_metadata().is_ok())
-        .collect();
-    if !existing.is_empty() && !force {
-        return Err(ExportError::Exists(existing));
-    }
-    let files: Vec<crate::convert::OutputFile> = DEFAULTS
-        .iter()
-        .map(|(name, source)| crate::convert::OutputFile {
-            name: name.to_string(),
-            bytes: source.as_bytes().to_vec(),
-        })
-        .collect();
-    crate::output::write_files(dir, &files, &[], crate::output::Durability::Rename)
-        .map_err(ExportError::Write)
-}
-
-/// Why `templates export` wrote nothing.
-#[derive(Debug)]
-pub enum ExportError {
-    /// These templates exist already (add `--force` to replace them).
-    Exists(Vec<PathBuf>),
-    Write(crate::output::WriteError),
-}
-
 /// How many steps one template may take to render.
 pub const TEMPLATE_FUEL: u64 = 200_000_000;
 
@@ -351,32 +260,6 @@ fn csv_field(value: String) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn user_template_errors_name_file_line_and_variable() {
-        let dir = tempfile::tempdir().unwrap();
-        std::fs::write(
-            dir.path().join("gvl.txt.j2"),
-            "VAR_GLOBAL\n{{ no_such_thing }}\nEND_VAR\n",
-        )
-        .unwrap();
-        let templates = Templates::load_dir(dir.path()).unwrap();
-        let err = templates
-            .render("gvl.txt.j2", Value::from(BTreeMap::<String, String>::new()))
-            .unwrap_err();
-        assert!(err.user);
-        assert_eq!(err.line, Some(2));
-        assert!(err.to_string().contains("gvl.txt.j2:2:"), "{err}");
-        assert!(err.to_string().contains("no_such_thing"), "{err}");
-    }
-
-    #[test]
-    fn unknown_template_names_are_refused() {
-        let dir = tempfile::tempdir().unwrap();
-        std::fs::write(dir.path().join("progam.st.j2"), "typo").unwrap();
-        let err = Templates::load_dir(dir.path()).unwrap_err();
-        assert!(err.detail.contains("no template has this name"), "{err}");
-    }
 
     #[test]
     fn templates_from_memory_replace_the_default_and_refuse_unknown_names() {

@@ -40,6 +40,22 @@ pub struct Safety {
     pub watchdog: bool,
 }
 
+impl std::str::FromStr for Safety {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        Safety::parse(text)
+    }
+}
+
+impl std::str::FromStr for Modes {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        Modes::parse(text)
+    }
+}
+
 impl Safety {
     /// All four checks.
     pub fn all() -> Self {

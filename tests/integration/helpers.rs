@@ -115,7 +115,7 @@ pub fn xlsx_part(path: &Path, part: &str) -> String {
 
 /// How many files one conversion with every format writes.
 pub fn all_files() -> usize {
-    steptable::convert::OutputKind::ALL
+    steptable::emit::OutputKind::ALL
         .iter()
         .map(|k| k.file_count())
         .sum()

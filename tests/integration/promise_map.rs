@@ -70,7 +70,7 @@ fn the_map_names_every_flag_code_and_file() {
     }
     assert!(count >= 30, "{count} codes");
     // Every output kind.
-    for kind in steptable::convert::OutputKind::ALL {
+    for kind in steptable::emit::OutputKind::ALL {
         let suffix = kind.suffix();
         assert!(
             map.contains(&format!("`NAME{suffix}`")) || map.contains(&format!("`NAME{suffix}/")),

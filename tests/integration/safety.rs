@@ -1,9 +1,10 @@
 //! The safety checks: with all four, no single sensor or START fault is a
 //! hazard on any sample; without them the paper's example has hazards.
 
-use steptable::convert::{self, Settings};
+use steptable::convert;
 use steptable::faults::{self, Outcome};
 use steptable::program::{Safety, Signal};
+use steptable::settings::Settings;
 
 use crate::helpers::{read_sheet, sample, samples, steptable};
 

@@ -2,7 +2,8 @@
 //! change to any output shows up as a reviewable diff (`cargo insta review`).
 
 use steptable::address::{Mnemonic, Target};
-use steptable::convert::{Settings, convert_path};
+use steptable::convert::convert_path;
+use steptable::settings::Settings;
 
 use crate::helpers::samples;
 

@@ -12,8 +12,8 @@ pub mod plcxml;
 use std::path::{Path, PathBuf};
 
 use steptable::address::{Allocation, Mnemonic, Target};
-use steptable::convert::{self, Settings};
-use steptable::program::Safety;
+use steptable::convert;
+use steptable::settings::{Given, Settings};
 use steptable::simulate;
 use steptable::simulate::io::{IoSignals, IoTrace};
 
@@ -68,34 +68,26 @@ pub fn settings_for(args: &[&str]) -> Settings {
     let mut settings = Settings::new();
     for pair in args.chunks(2) {
         match pair {
-            ["--target", t] => {
-                settings.target = match *t {
-                    "iec" => Target::Iec,
-                    "siemens" => Target::Siemens,
-                    _ => Target::Festo,
-                };
-                settings.explicit.target = true;
-            }
-            ["--mnemonic", m] => {
-                settings.mnemonic = if *m == "de" {
-                    Mnemonic::De
-                } else {
-                    Mnemonic::En
-                };
-                settings.explicit.mnemonic = true;
-            }
-            ["--safety", s] => {
-                settings.program.safety = Safety::parse(s).expect("safety list");
-                settings.explicit.safety = true;
-            }
-            ["--modes", m] => {
-                settings.program.modes = steptable::program::Modes::parse(m).expect("modes");
-                settings.explicit.modes = true;
-            }
-            ["--valve", v] => {
-                settings.simulation.valves.per_actuator =
-                    steptable::valve::parse_valves(v).expect("valve list");
-            }
+            ["--target", t] => settings.give(Given {
+                target: Some(t.parse().expect("target")),
+                ..Given::default()
+            }),
+            ["--mnemonic", m] => settings.give(Given {
+                mnemonic: Some(m.parse().expect("mnemonic")),
+                ..Given::default()
+            }),
+            ["--safety", s] => settings.give(Given {
+                safety: Some(s.parse().expect("safety list")),
+                ..Given::default()
+            }),
+            ["--modes", m] => settings.give(Given {
+                modes: Some(m.parse().expect("modes")),
+                ..Given::default()
+            }),
+            ["--valve", v] => settings.give(Given {
+                valves: steptable::valve::parse_valves(v).expect("valve list"),
+                ..Given::default()
+            }),
             // Which files are written does not change the program.
             ["--formats", _] => {}
             other => panic!("settings_for does not know {other:?}"),

@@ -11,7 +11,13 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use crate::convert::OutputFile;
+/// One generated file, in memory.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OutputFile {
+    /// File name without folder, e.g. `paper.st`.
+    pub name: String,
+    pub bytes: Vec<u8>,
+}
 
 /// Why outputs could not be written.
 #[derive(Debug, thiserror::Error)]

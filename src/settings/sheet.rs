@@ -6,32 +6,13 @@
 //! with its value in the next filled cell to the right; and a small table
 //! headed `actuator | extend | retract` with rows such as `C2 | 1.5s | 0.8s`.
 
-use std::collections::BTreeMap;
-
+use super::Given;
 use crate::address::{Mnemonic, Target};
 use crate::diag::{CellPos, Code, Diagnostics};
 use crate::program::{Modes, Safety};
 use crate::read::{CellValue, Grid, GridCell};
-use crate::timing::{Stroke, parse_duration_ms};
+use crate::timing::{Stroke, parse_duration_ms, parse_scan};
 use crate::valve::ValveType;
-
-/// What a SETTINGS sheet says; `None` where it says nothing.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct SheetSettings {
-    pub target: Option<Target>,
-    pub mnemonic: Option<Mnemonic>,
-    pub scan_ms: Option<u32>,
-    pub safety: Option<Safety>,
-    /// Operating modes (`continuous, stop, estop, reset`).
-    pub modes: Option<Modes>,
-    /// Homing stages (`C3&C4, C2, C1`).
-    pub home_order: Option<Vec<Vec<u32>>>,
-    pub strokes: BTreeMap<u32, Stroke>,
-    /// Valve types from the table's `valve` column.
-    pub valves: BTreeMap<u32, ValveType>,
-    /// Drift rates from the table's `load` column (stroke per second).
-    pub loads: BTreeMap<u32, f64>,
-}
 
 /// Where the actuator table's columns are: its header cell and the columns
 /// of extend and retract times, and of the optional valve and load.
@@ -90,8 +71,8 @@ fn value_text(grid: &Grid, cell: &GridCell, diags: &mut Diagnostics) -> Option<S
 
 /// Reads the settings sheet. Problems go to `diags` with their cells;
 /// a row or column that looks meant for steptable but is not read is named.
-pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
-    let mut settings = SheetSettings::default();
+pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
+    let mut settings = Given::default();
     let value_right_of = |pos: CellPos| {
         grid.cells
             .iter()
@@ -127,26 +108,23 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> SheetSettings {
             );
         };
         match label.as_str() {
-            "target" => match lower.as_str() {
-                "festo" => settings.target = Some(Target::Festo),
-                "iec" => settings.target = Some(Target::Iec),
-                "siemens" => settings.target = Some(Target::Siemens),
-                _ => bad("festo, iec or siemens"),
+            "target" => match value.parse::<Target>() {
+                Ok(target) => settings.target = Some(target),
+                Err(_) => bad("festo, iec or siemens"),
             },
-            "mnemonic" => match lower.as_str() {
-                "en" => settings.mnemonic = Some(Mnemonic::En),
-                "de" => settings.mnemonic = Some(Mnemonic::De),
-                _ => bad("en or de"),
+            "mnemonic" => match value.parse::<Mnemonic>() {
+                Ok(mnemonic) => settings.mnemonic = Some(mnemonic),
+                Err(_) => bad("en or de"),
             },
-            "scan time" => match parse_duration_ms(&value).filter(|ms| *ms <= 1000) {
-                Some(ms) => settings.scan_ms = Some(ms),
-                None => bad("a scan time from 1ms to 1s, such as 10ms"),
+            "scan time" => match parse_scan(&value) {
+                Ok(ms) => settings.scan_ms = Some(ms),
+                Err(_) => bad("a scan time from 1ms to 1s, such as 10ms"),
             },
-            "safety" => match Safety::parse(&value) {
+            "safety" => match value.parse::<Safety>() {
                 Ok(safety) => settings.safety = Some(safety),
                 Err(_) => bad("none, all, or some of edge, precheck, plausibility, watchdog"),
             },
-            "modes" => match Modes::parse(&value) {
+            "modes" => match value.parse::<Modes>() {
                 Ok(modes) => settings.modes = Some(modes),
                 Err(_) => bad("none, all, or some of continuous, stop, estop, reset"),
             },
@@ -211,7 +189,7 @@ fn actuator_columns(grid: &Grid, header: CellPos, diags: &mut Diagnostics) -> Ac
 fn read_actuator_rows(
     grid: &Grid,
     columns: &ActuatorColumns,
-    settings: &mut SheetSettings,
+    settings: &mut Given,
     diags: &mut Diagnostics,
 ) {
     let header = columns.header;
@@ -300,17 +278,17 @@ fn read_actuator_row<'g>(
     actuator: u32,
     columns: &ActuatorColumns,
     at: &dyn Fn(u32) -> Option<&'g GridCell>,
-    settings: &mut SheetSettings,
+    settings: &mut Given,
     diags: &mut Diagnostics,
 ) {
     if let Some(cell) = columns.valve.and_then(at)
         && let Some(text) = value_text(grid, cell, diags)
     {
-        match ValveType::parse(&text) {
-            Some(valve) => {
+        match text.parse::<ValveType>() {
+            Ok(valve) => {
                 settings.valves.insert(actuator, valve);
             }
-            None => diags.error(
+            Err(_) => diags.error(
                 Code::E030BadSetting,
                 grid.location(cell.pos),
                 format!("valve of C{actuator}: \"{text}\" is not a valve type (expected 52bi, 52mono, 53closed, 53exhaust or 53pressure)"),

@@ -1,0 +1,210 @@
+//! The settings of a run, and where they come from: the command line, a
+//! workbook's SETTINGS sheet, the defaults, in that order of precedence
+//! (`cli.or(sheet).or(default)`). Each value has one parser ([`FromStr`] on
+//! its type), used by clap and by the sheet alike.
+//!
+//! [`FromStr`]: std::str::FromStr
+
+mod sheet;
+pub mod user_templates;
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use crate::address::{Mnemonic, Target};
+use crate::emit::OutputKind;
+use crate::emit::diagram::DiagramKind;
+use crate::emit::templates::Templates;
+use crate::program::{Modes, ProgramOptions, Safety};
+use crate::simulate::SimSettings;
+use crate::timing::Stroke;
+use crate::valve::ValveType;
+
+pub use sheet::{LABELS, parse};
+
+/// What one source of settings says (the command line or a SETTINGS
+/// sheet); `None` and missing entries leave the choice to the next source.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Given {
+    pub target: Option<Target>,
+    pub mnemonic: Option<Mnemonic>,
+    pub scan_ms: Option<u32>,
+    pub safety: Option<Safety>,
+    /// Operating modes (`continuous, stop, estop, reset`).
+    pub modes: Option<Modes>,
+    /// Homing stages (`C3&C4, C2, C1`).
+    pub home_order: Option<Vec<Vec<u32>>>,
+    /// Stroke times per actuator.
+    pub strokes: BTreeMap<u32, Stroke>,
+    /// Valve types per actuator.
+    pub valves: BTreeMap<u32, ValveType>,
+    /// Drift rates per actuator (stroke per second).
+    pub loads: BTreeMap<u32, f64>,
+}
+
+impl Given {
+    /// What `self` gives, and what `other` gives where `self` is silent.
+    pub fn or(&self, other: &Given) -> Given {
+        fn merged<V: Clone>(first: &BTreeMap<u32, V>, then: &BTreeMap<u32, V>) -> BTreeMap<u32, V> {
+            let mut all = then.clone();
+            all.extend(first.iter().map(|(k, v)| (*k, v.clone())));
+            all
+        }
+        Given {
+            target: self.target.or(other.target),
+            mnemonic: self.mnemonic.or(other.mnemonic),
+            scan_ms: self.scan_ms.or(other.scan_ms),
+            safety: self.safety.or(other.safety),
+            modes: self.modes.clone().or_else(|| other.modes.clone()),
+            home_order: self.home_order.clone().or_else(|| other.home_order.clone()),
+            strokes: merged(&self.strokes, &other.strokes),
+            valves: merged(&self.valves, &other.valves),
+            loads: merged(&self.loads, &other.loads),
+        }
+    }
+}
+
+/// Validated settings of one run (raw command-line values are turned into this
+/// before any work starts).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Settings {
+    pub target: Target,
+    pub mnemonic: Mnemonic,
+    /// Sheet to read instead of the default choice.
+    pub sheet: Option<String>,
+    pub program: ProgramOptions,
+    /// Simulation settings; `simulation.scan_ms` is also the generated task's cycle.
+    pub simulation: SimSettings,
+    /// Horizontal axis of `NAME.diagram.svg`.
+    pub diagram: DiagramKind,
+    /// Which files to write.
+    pub formats: BTreeSet<OutputKind>,
+    /// The templates text outputs are laid out by.
+    pub templates: Templates,
+    /// Whether written files are flushed to the disk (`--sync`).
+    pub durability: crate::write::Durability,
+    /// What the command line gave: a workbook's SETTINGS sheet decides
+    /// only what it leaves open.
+    pub given: Given,
+}
+
+impl Settings {
+    /// Takes `given` as the command line's word (over what it said before)
+    /// and puts it in force.
+    pub fn give(&mut self, given: Given) {
+        self.given = given.or(&self.given);
+        let layer = self.given.clone();
+        self.apply(&layer);
+    }
+
+    /// These settings with a SETTINGS sheet filling in what the command line
+    /// did not give; per actuator, the command line wins.
+    pub fn with_sheet(&self, sheet: &Given) -> Settings {
+        let mut merged = self.clone();
+        merged.apply(&self.given.or(sheet));
+        merged
+    }
+
+    /// Puts every value `layer` gives in force; the others stay as they are.
+    fn apply(&mut self, layer: &Given) {
+        if let Some(target) = layer.target {
+            self.target = target;
+        }
+        if let Some(mnemonic) = layer.mnemonic {
+            self.mnemonic = mnemonic;
+        }
+        if let Some(scan) = layer.scan_ms {
+            self.simulation.scan_ms = scan;
+        }
+        if let Some(safety) = layer.safety {
+            self.program.safety = safety;
+        }
+        let modes = &mut self.program.modes;
+        if let Some(given) = &layer.modes {
+            let order = modes.home_order.take();
+            *modes = given.clone();
+            modes.home_order = order;
+        }
+        if let Some(order) = &layer.home_order {
+            modes.home_order = Some(order.clone());
+        }
+        let simulation = &mut self.simulation;
+        simulation.strokes.per_actuator.extend(&layer.strokes);
+        simulation.valves.per_actuator.extend(&layer.valves);
+        simulation.loads.extend(&layer.loads);
+    }
+
+    /// Defaults: Festo addresses, middle stops, no safety checks, every format.
+    pub fn new() -> Self {
+        Settings {
+            formats: OutputKind::ALL.into_iter().collect(),
+            ..Settings::default()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn stroke(ms: u32) -> Stroke {
+        Stroke {
+            extend_ms: ms,
+            retract_ms: ms,
+        }
+    }
+
+    #[test]
+    fn the_command_line_wins_and_the_sheet_fills_in_per_actuator() {
+        let mut settings = Settings::new();
+        settings.give(Given {
+            target: Some(Target::Iec),
+            strokes: [(1, stroke(500))].into(),
+            ..Given::default()
+        });
+        let sheet = Given {
+            target: Some(Target::Siemens),
+            mnemonic: Some(Mnemonic::De),
+            scan_ms: Some(20),
+            strokes: [(1, stroke(900)), (2, stroke(700))].into(),
+            ..Given::default()
+        };
+        let merged = settings.with_sheet(&sheet);
+        assert_eq!(merged.target, Target::Iec);
+        assert_eq!(merged.mnemonic, Mnemonic::De);
+        assert_eq!(merged.simulation.scan_ms, 20);
+        assert_eq!(merged.simulation.strokes.of(1), stroke(500));
+        assert_eq!(merged.simulation.strokes.of(2), stroke(700));
+        // Without a sheet value the default stays.
+        assert_eq!(
+            settings.with_sheet(&Given::default()).simulation.scan_ms,
+            10
+        );
+    }
+
+    #[test]
+    fn sheet_modes_keep_the_command_lines_home_order() {
+        let mut settings = Settings::new();
+        settings.give(Given {
+            home_order: Some(vec![vec![2], vec![1]]),
+            ..Given::default()
+        });
+        let sheet = Given {
+            modes: Some("reset".parse().unwrap()),
+            home_order: Some(vec![vec![1, 2]]),
+            ..Given::default()
+        };
+        let modes = settings.with_sheet(&sheet).program.modes;
+        assert!(modes.reset);
+        assert_eq!(modes.home_order, Some(vec![vec![2], vec![1]]));
+    }
+
+    #[test]
+    fn one_parser_per_value_in_any_case() {
+        assert_eq!("Siemens".parse::<Target>(), Ok(Target::Siemens));
+        assert_eq!(" DE ".parse::<Mnemonic>(), Ok(Mnemonic::De));
+        assert!("s7".parse::<Target>().is_err());
+        assert_eq!("5/2 mono".parse::<ValveType>(), Ok(ValveType::Mono52));
+        assert_eq!(crate::timing::parse_scan("0,02s"), Ok(20));
+        assert!(crate::timing::parse_scan("2s").is_err());
+    }
+}
