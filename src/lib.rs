@@ -18,13 +18,14 @@ pub mod emit;
 pub mod faults;
 pub mod names;
 pub mod program;
+#[cfg(feature = "testing")]
 pub mod random_table;
 pub mod read;
 pub mod settings;
 pub mod simulate;
 pub mod synth;
 pub mod table;
-pub mod template;
+pub mod template_workbook;
 pub mod timing;
 pub mod valve;
 pub mod write;

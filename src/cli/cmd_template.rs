@@ -62,7 +62,7 @@ pub(crate) fn run_template(args: &TemplateArgs) -> i32 {
         );
         return EXIT_BAD_INPUT;
     }
-    let bytes = match steptable::template::template_workbook(args.branches, args.steps) {
+    let bytes = match steptable::template_workbook::template_workbook(args.branches, args.steps) {
         Ok(b) => b,
         Err(err) => {
             eprintln!("internal error: template: {err}");

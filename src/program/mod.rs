@@ -607,7 +607,7 @@ pub(crate) mod tests {
 
     /// The paper's example table (DESIGN §4), as a bare grid.
     pub(crate) fn paper_table() -> StepTable {
-        crate::table::from_rows("paper.csv", &crate::template::PAPER_EXAMPLE)
+        crate::table::from_rows("paper.csv", &crate::template_workbook::PAPER_EXAMPLE)
             .expect("paper table is valid")
     }
 

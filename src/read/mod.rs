@@ -3,9 +3,11 @@
 //! decoded here (UTF-8 with or without BOM, UTF-16 with BOM; `,` `;` or tab).
 
 mod csv;
-mod ods;
-mod ole;
-mod xlsx;
+// Guards in front of calamine's readers, against files that would make it
+// allocate without bound.
+mod guard_ods;
+mod guard_ole;
+mod guard_xlsx;
 pub use csv::CsvReading;
 use std::io::Cursor;
 use std::path::Path;
@@ -334,7 +336,7 @@ fn read_workbook(
         return None;
     }
     if format == Format::Xlsx
-        && let Some(why) = xlsx::impossible_string_count(&bytes)
+        && let Some(why) = guard_xlsx::impossible_string_count(&bytes)
     {
         diags.error(
             Code::E002NotAWorkbook,
@@ -344,26 +346,26 @@ fn read_workbook(
         return None;
     }
     if format == Format::Xlsx
-        && let Some(why) = xlsx::overlong_text(&bytes)
+        && let Some(why) = guard_xlsx::overlong_text(&bytes)
     {
         diags.error(Code::E005TooLarge, whole_file.clone(), why);
         return None;
     }
     if format == Format::Ods
-        && let Some(why) = ods::oversized_sheet(&bytes, MAX_FILLED_CELLS as u64)
+        && let Some(why) = guard_ods::oversized_sheet(&bytes, MAX_FILLED_CELLS as u64)
     {
         diags.error(Code::E024TableTooLarge, whole_file, why);
         return None;
     }
     if format == Format::Xls
-        && let Some(refusal) = ole::unsafe_to_decode(&bytes)
+        && let Some(refusal) = guard_ole::unsafe_to_decode(&bytes)
     {
         let (code, message) = match refusal {
-            ole::Refusal::Damaged(why) => (
+            guard_ole::Refusal::Damaged(why) => (
                 Code::E002NotAWorkbook,
                 format!("the workbook is damaged and could not be decoded ({why})"),
             ),
-            ole::Refusal::TooLarge(why) => (Code::E024TableTooLarge, why),
+            guard_ole::Refusal::TooLarge(why) => (Code::E024TableTooLarge, why),
         };
         diags.error(code, whole_file, message);
         return None;

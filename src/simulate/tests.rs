@@ -10,7 +10,7 @@ fn run(rows: &[Vec<&str>], options: ProgramOptions, settings: &SimSettings) -> S
 
 /// The paper's example, as rows of cells.
 fn paper() -> Vec<Vec<&'static str>> {
-    crate::template::PAPER_EXAMPLE
+    crate::template_workbook::PAPER_EXAMPLE
         .iter()
         .map(|r| r.to_vec())
         .collect()

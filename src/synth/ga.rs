@@ -10,7 +10,7 @@
 use rand_core::{RngCore, SeedableRng};
 use rand_pcg::Pcg64;
 
-use super::sequence::{Action, MEMORIES, Sequence, apply};
+use super::sequence::{MEMORIES, Operation, Sequence, apply};
 
 /// GA parameters (the paper: μ 50–5000, (μ+λ)/μ 2–6).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,7 +74,7 @@ fn decode(original: &Sequence, genes: &[Gene], slots: usize) -> Sequence {
         for g in &genes[i * slots..(i + 1) * slots] {
             if let Gene::Op(m, value) = g {
                 let index = used.iter().position(|u| u == m).unwrap_or(0);
-                actions.push(Action {
+                actions.push(Operation {
                     var: original.actuators + index,
                     value: *value,
                 });

@@ -22,7 +22,7 @@ pub mod verify;
 use std::time::Instant;
 
 use equations::{Expr, SearchLimits};
-use sequence::{Action, Clash, Sequence};
+use sequence::{Clash, Operation, Sequence};
 
 /// One cell of the truth table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -48,7 +48,7 @@ impl Cell {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct TruthTable {
     pub rows: Vec<u32>,
-    pub columns: Vec<Action>,
+    pub columns: Vec<Operation>,
     /// `cells[row][column]`.
     pub cells: Vec<Vec<Cell>>,
 }
@@ -59,7 +59,7 @@ impl TruthTable {
     /// order) 0 until the next 1; below a 1 don't-care until the next 0.
     pub fn of(sequence: &Sequence) -> TruthTable {
         let rows = sequence.pre_states();
-        let mut columns: Vec<Action> = Vec::new();
+        let mut columns: Vec<Operation> = Vec::new();
         for a in &sequence.actions {
             if !columns.contains(a) {
                 columns.push(*a);
@@ -119,7 +119,7 @@ impl TruthTable {
 /// One action's equation.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Equation {
-    pub action: Action,
+    pub action: Operation,
     /// The proven smallest tree.
     pub expr: Expr,
     /// The Quine–McCluskey two-level form over the full table, if computed.

@@ -5,7 +5,7 @@
 //! and each memory's first operation sets it (a memory whose first
 //! operation resets it is the same memory with its value inverted).
 
-use super::sequence::{Action, MEMORIES, Sequence, apply};
+use super::sequence::{MEMORIES, Operation, Sequence, apply};
 
 /// Search limits: the most memories and inserted operations tried, and how
 /// many minimal solutions are kept for choosing the smallest equations.
@@ -37,13 +37,13 @@ pub struct Minimal {
 }
 
 struct Dfs<'a> {
-    original: &'a [Action],
+    original: &'a [Operation],
     actuators: usize,
     memories: usize,
     budget: usize,
     initial: u32,
     seen: Vec<u64>,
-    actions: Vec<Action>,
+    actions: Vec<Operation>,
     solutions: Vec<Sequence>,
     max_solutions: usize,
 }
@@ -91,7 +91,7 @@ impl Dfs<'_> {
         if inserted < self.budget {
             for j in 0..(used + 1).min(self.memories) {
                 let var = self.actuators + j;
-                let action = Action {
+                let action = Operation {
                     var,
                     value: (state >> var) & 1 == 0,
                 };

@@ -12,9 +12,10 @@ pub const MEMORIES: [char; 4] = ['X', 'Y', 'Z', 'W'];
 /// Most actuators a sequence may have (letters A…L, clear of W…Z).
 pub const MAX_ACTUATORS: usize = 12;
 
-/// One action: variable `var` (actuators first, then memories) goes to `value`.
+/// One operation of a sequence: variable `var` (actuators first, then
+/// memories) goes to `value` (`A+`, `m1-`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct Action {
+pub struct Operation {
     pub var: usize,
     pub value: bool,
 }
@@ -26,7 +27,7 @@ pub struct Sequence {
     pub memories: usize,
     /// The letter of each memory (`X`, `Y`, …), in variable order.
     pub memory_names: Vec<char>,
-    pub actions: Vec<Action>,
+    pub actions: Vec<Operation>,
 }
 
 impl Sequence {
@@ -52,7 +53,7 @@ impl Sequence {
     }
 
     /// `A1`, `X0`.
-    pub fn token(&self, action: Action) -> String {
+    pub fn token(&self, action: Operation) -> String {
         format!("{}{}", self.var_name(action.var), u8::from(action.value))
     }
 
@@ -178,7 +179,7 @@ impl fmt::Display for Clash {
     }
 }
 
-pub fn apply(state: u32, action: Action) -> u32 {
+pub fn apply(state: u32, action: Operation) -> u32 {
     if action.value {
         state | (1 << action.var)
     } else {
@@ -271,7 +272,7 @@ pub fn parse(text: &str) -> Result<Sequence, String> {
     memory_order.sort_by_key(|m| MEMORIES.iter().position(|x| x == m));
     let actions = raw
         .iter()
-        .map(|(v, value)| Action {
+        .map(|(v, value)| Operation {
             var: match v {
                 Ok(a) => *a,
                 Err(m) => actuators + memory_order.iter().position(|x| x == m).unwrap_or(0),

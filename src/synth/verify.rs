@@ -88,7 +88,7 @@ pub fn verify(synthesis: &Synthesis, cycles: usize) -> Verification {
         // Record every variable that changed, in variable order.
         for var in 0..seq.variables() {
             if (state ^ next) >> var & 1 == 1 {
-                let token = seq.token(super::sequence::Action {
+                let token = seq.token(super::sequence::Operation {
                     var,
                     value: (next >> var) & 1 == 1,
                 });
@@ -135,6 +135,6 @@ pub fn verify(synthesis: &Synthesis, cycles: usize) -> Verification {
     }
 }
 
-fn sequence_action(var: usize, value: bool) -> super::sequence::Action {
-    super::sequence::Action { var, value }
+fn sequence_action(var: usize, value: bool) -> super::sequence::Operation {
+    super::sequence::Operation { var, value }
 }

@@ -16,6 +16,7 @@ mod flags;
 mod fuzz_regressions;
 mod helpers;
 mod hostile;
+mod layers;
 mod machine;
 mod messy;
 mod modes;

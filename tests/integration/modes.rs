@@ -9,7 +9,7 @@ use steptable::simulate::{Operator, SimSettings};
 use steptable::table::{StepTable, from_rows};
 
 fn paper() -> StepTable {
-    from_rows("paper.csv", &steptable::template::PAPER_EXAMPLE).expect("valid table")
+    from_rows("paper.csv", &steptable::template_workbook::PAPER_EXAMPLE).expect("valid table")
 }
 
 /// The program of `table` with `modes`, for the valves and

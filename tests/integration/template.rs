@@ -104,7 +104,7 @@ fn the_templates_example_converts_like_the_sample() {
 
 /// The paper's example, as the library holds it.
 fn paper_rows() -> Vec<&'static [&'static str]> {
-    steptable::template::PAPER_EXAMPLE
+    steptable::template_workbook::PAPER_EXAMPLE
         .iter()
         .map(|r| r.as_slice())
         .collect()
