@@ -6,7 +6,7 @@ mod physics;
 use std::path::Path;
 
 use crate::address::{Allocation, Mnemonic, Target};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{Diagnostic, Diagnostics};
 use crate::emit::st::IecFile;
 use crate::emit::templates::TemplateError;
 use crate::emit::{self, EmitInput, OutputKind};
@@ -97,8 +97,15 @@ fn finish_check(
     }
     let table = table::build(&input.table, &mut diags);
     if let Some(table) = &table {
-        check_valves(table, &effective, &input.table, &mut diags);
-        check_settings_take_effect(table, &effective, &input.table, &mut diags);
+        let modes = &effective.program.modes;
+        table::check_machine(
+            table,
+            &effective.simulation.valves,
+            modes.home_order.as_deref(),
+            modes.reset,
+            &input.table,
+            &mut diags,
+        );
     }
     match table {
         Some(table) if !diags.has_errors() => Ok(Checked {
@@ -107,66 +114,6 @@ fn finish_check(
             settings: effective,
         }),
         _ => Err(diags.into_sorted()),
-    }
-}
-
-/// A home order is checked against the table whether or not it is used,
-/// and a home order without the reset mode that uses it is said, so that a
-/// forgotten `reset` is not silently a no-op.
-fn check_settings_take_effect(
-    table: &StepTable,
-    settings: &Settings,
-    grid: &read::Grid,
-    diags: &mut Diagnostics,
-) {
-    let modes = &settings.program.modes;
-    if modes.home_order.is_some() {
-        if let Err(message) = modes.home_stages(table) {
-            diags.error(Code::E030BadSetting, grid.sheet_location(), message);
-        } else if !modes.reset {
-            diags.warning(
-                Code::W006NoEffect,
-                grid.sheet_location(),
-                "the home order is used by the reset mode only, which is not on: add reset to the modes, or leave the home order out",
-            );
-        }
-    }
-}
-
-/// A middle position needs a valve with a centre: a 5/2 valve cannot stop a
-/// piston between its ends. Names the cell of the first move that asks for it.
-fn check_valves(
-    table: &StepTable,
-    settings: &Settings,
-    grid: &read::Grid,
-    diags: &mut Diagnostics,
-) {
-    for actuator in table.actuators.iter().filter(|a| a.has_middle_positions()) {
-        let valve = settings
-            .simulation
-            .valves
-            .of(actuator.number, actuator.max_position);
-        if valve.has_centre() {
-            continue;
-        }
-        let Some(m) = table
-            .steps
-            .iter()
-            .flat_map(|s| &s.moves)
-            .find(|m| m.actuator == actuator.number && actuator.is_middle(m.to))
-        else {
-            continue;
-        };
-        diags.error(
-            Code::E031ValveCannotStop,
-            grid.location(m.cell),
-            format!(
-                "\"{}\" stops C{} at middle position {}, but its valve is {valve}, which cannot stop a piston between its ends (use 53closed, 53exhaust or 53pressure)",
-                m.notation(),
-                actuator.number,
-                m.to
-            ),
-        );
     }
 }
 

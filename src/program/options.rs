@@ -1,8 +1,6 @@
 //! The choices that change a generated program: its safety checks, its
 //! operating modes and the homing order RESET uses.
 
-use std::collections::BTreeMap;
-
 use crate::table::StepTable;
 
 /// Choices that change the generated program.
@@ -175,42 +173,9 @@ impl Modes {
         self.continuous || self.stop || self.estop || self.reset
     }
 
-    /// The homing stages for a table: the given order, checked to name every
-    /// actuator once, or by default the reverse order of the last moves
-    /// (actuators whose last move is in the same step go home together).
+    /// The homing stages for a table: the given order, checked against the
+    /// table, or by default the reverse order of the last moves.
     pub fn home_stages(&self, table: &StepTable) -> Result<Vec<Vec<u32>>, String> {
-        if let Some(order) = &self.home_order {
-            let mut named: Vec<u32> = order.iter().flatten().copied().collect();
-            named.sort_unstable();
-            let before = named.len();
-            named.dedup();
-            if named.len() != before {
-                return Err("the home order names an actuator twice".to_string());
-            }
-            let all: Vec<u32> = table.actuators.iter().map(|a| a.number).collect();
-            if let Some(extra) = named.iter().find(|n| !all.contains(n)) {
-                return Err(format!(
-                    "the home order names C{extra}, which the table does not move"
-                ));
-            }
-            if let Some(missing) = all.iter().find(|n| !named.contains(n)) {
-                return Err(format!("the home order leaves out C{missing}"));
-            }
-            return Ok(order.clone());
-        }
-        let mut last: BTreeMap<u32, usize> = BTreeMap::new();
-        for step in &table.steps {
-            for m in &step.moves {
-                last.insert(m.actuator, step.number);
-            }
-        }
-        let mut stages: BTreeMap<std::cmp::Reverse<usize>, Vec<u32>> = BTreeMap::new();
-        for (actuator, step) in last {
-            stages
-                .entry(std::cmp::Reverse(step))
-                .or_default()
-                .push(actuator);
-        }
-        Ok(stages.into_values().collect())
+        table.home_stages(self.home_order.as_deref())
     }
 }

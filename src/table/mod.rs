@@ -4,12 +4,14 @@
 
 use std::collections::BTreeMap;
 
+mod check;
 mod dialect;
 mod frame;
 
+pub use check::check_machine;
 pub use dialect::choose_reading;
 
-use frame::{Frame, find_frame};
+use frame::find_frame;
 
 use crate::cell::{
     CellError, CellItem, ItemError, MAX_ACTUATOR, MAX_POSITION, Name, Sign, parse_items,
@@ -188,6 +190,47 @@ pub struct StepTable {
 }
 
 impl StepTable {
+    /// The homing stages RESET uses: `order`, checked to name every actuator
+    /// once, or by default the reverse order of the last moves (actuators
+    /// whose last move is in the same step go home together).
+    pub fn home_stages(&self, order: Option<&[Vec<u32>]>) -> Result<Vec<Vec<u32>>, String> {
+        if let Some(order) = order {
+            let mut named: Vec<u32> = order.iter().flatten().copied().collect();
+            named.sort_unstable();
+            let before = named.len();
+            named.dedup();
+            if named.len() != before {
+                return Err("the home order names an actuator twice".to_string());
+            }
+            let all: Vec<u32> = self.actuators.iter().map(|a| a.number).collect();
+            if let Some(extra) = named.iter().find(|n| !all.contains(n)) {
+                return Err(format!(
+                    "the home order names C{extra}, which the table does not move"
+                ));
+            }
+            if let Some(missing) = all.iter().find(|n| !named.contains(n)) {
+                return Err(format!("the home order leaves out C{missing}"));
+            }
+            return Ok(order.to_vec());
+        }
+        let mut last: BTreeMap<u32, usize> = BTreeMap::new();
+        for step in &self.steps {
+            for m in &step.moves {
+                last.insert(m.actuator, step.number);
+            }
+        }
+        let mut stages: BTreeMap<std::cmp::Reverse<usize>, Vec<u32>> = BTreeMap::new();
+        for (actuator, step) in last {
+            stages
+                .entry(std::cmp::Reverse(step))
+                .or_default()
+                .push(actuator);
+        }
+        Ok(stages.into_values().collect())
+    }
+}
+
+impl StepTable {
     /// Every dwell of the table, in step order.
     pub fn dwells(&self) -> impl Iterator<Item = &Dwell> {
         self.steps.iter().flat_map(|s| &s.dwells)
@@ -301,7 +344,7 @@ pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
     }
     parsed.truncate(last_with_moves + 1);
 
-    let table = check(grid, &frame, parsed, diags);
+    let table = check::check(grid, &frame, parsed, diags);
     if diags.error_count() > errors_before {
         None
     } else {
@@ -418,272 +461,6 @@ fn report_item_error(error: ItemError, text: &str, location: &Location, diags: &
         ),
         ItemError::BadDwell(message) => diags.error(Code::E014BadDwell, location, message),
         ItemError::BadName(message) => diags.error(Code::E015BadName, location, message),
-    }
-}
-
-/// Resolves positions and checks the rules of DESIGN §2.
-fn check(
-    grid: &Grid,
-    frame: &Frame,
-    parsed: Vec<Vec<(CellItem, CellPos, usize)>>,
-    diags: &mut Diagnostics,
-) -> Option<StepTable> {
-    // pmax(i): the highest position written for Ci; at least 1.
-    let mut max_position: BTreeMap<u32, u32> = BTreeMap::new();
-    for (item, _, _) in parsed.iter().flatten() {
-        if let CellItem::Move(m) = item {
-            let entry = max_position.entry(m.actuator).or_insert(1);
-            if let Some(p) = m.position {
-                *entry = (*entry).max(p);
-            }
-        }
-    }
-
-    let location = |pos: CellPos| -> Location { grid.location(pos) };
-    let mut current: BTreeMap<u32, (u32, Option<CellPos>)> =
-        max_position.keys().map(|a| (*a, (0, None))).collect();
-    let mut names = Names::default();
-    let mut dwell_count = 0usize;
-    let mut steps = Vec::with_capacity(parsed.len());
-    for (index, row) in parsed.into_iter().enumerate() {
-        let number = index + 1;
-        let mut step = Step {
-            number,
-            moves: Vec::with_capacity(row.len()),
-            dwells: Vec::new(),
-            waits: Vec::new(),
-            switches: Vec::new(),
-        };
-        let mut seen: BTreeMap<u32, CellPos> = BTreeMap::new();
-        for (item, pos, branch) in row {
-            let m = match item {
-                CellItem::Move(m) => m,
-                CellItem::Dwell { ms } => {
-                    if step.dwells.iter().any(|d| d.cell == pos) {
-                        diags.error(
-                            Code::E021TwiceInStep,
-                            location(pos),
-                            "a cell holds at most one dwell (T=…); add the times up",
-                        );
-                        continue;
-                    }
-                    dwell_count += 1;
-                    if dwell_count == MAX_DWELLS + 1 {
-                        diags.error(
-                            Code::E026TooManyDwells,
-                            location(pos),
-                            format!(
-                                "this is dwell number {dwell_count}; a table has at most {MAX_DWELLS} (PLCs have 256 timers)"
-                            ),
-                        );
-                    }
-                    step.dwells.push(Dwell {
-                        number: dwell_count.min(u16::MAX as usize) as u16,
-                        ms,
-                        branch,
-                        cell: pos,
-                    });
-                    continue;
-                }
-                CellItem::Wait { input, value } => {
-                    if step.waits.iter().any(|w| w.input == input) {
-                        diags.error(
-                            Code::E021TwiceInStep,
-                            location(pos),
-                            format!("STEP {number} already waits for I:{input}; a step waits for an input once"),
-                        );
-                        continue;
-                    }
-                    names.use_name(input, NameKind::Input, pos, grid, diags);
-                    step.waits.push(Wait {
-                        input,
-                        value,
-                        branch,
-                        cell: pos,
-                    });
-                    continue;
-                }
-                CellItem::Switch { output, on } => {
-                    if step.switches.iter().any(|w| w.output == output) {
-                        diags.error(
-                            Code::E021TwiceInStep,
-                            location(pos),
-                            format!("STEP {number} already switches Y:{output}; a step switches an output once"),
-                        );
-                        continue;
-                    }
-                    names.use_name(output, NameKind::Output, pos, grid, diags);
-                    step.switches.push(Switch {
-                        output,
-                        on,
-                        branch,
-                        cell: pos,
-                    });
-                    continue;
-                }
-            };
-            let pmax = max_position.get(&m.actuator).copied().unwrap_or(1);
-            let to = m.position.unwrap_or(match m.sign {
-                Sign::Plus => pmax,
-                Sign::Minus => 0,
-            });
-            let written = m.to_string();
-            if let Some(first) = seen.get(&m.actuator) {
-                diags.error(
-                    Code::E021TwiceInStep,
-                    location(pos),
-                    format!(
-                        "\"{written}\": C{} already moves in STEP {number} (cell {}); an actuator moves at most once per step",
-                        m.actuator,
-                        grid.cell_name(*first)
-                    ),
-                );
-                continue;
-            }
-            seen.insert(m.actuator, pos);
-            let (from, _) = current.get(&m.actuator).copied().unwrap_or((0, None));
-            let ok = match m.sign {
-                Sign::Plus => to > from,
-                Sign::Minus => to < from,
-            };
-            if !ok {
-                let (need, verb) = match m.sign {
-                    Sign::Plus => ("higher", "a + move extends"),
-                    Sign::Minus => ("lower", "a - move retracts"),
-                };
-                diags.error(
-                    Code::E020WrongDirection,
-                    location(pos),
-                    format!(
-                        "\"{written}\": C{} stands at position {from} before STEP {number}; {verb}, so it must go to a {need} position than {from}",
-                        m.actuator
-                    ),
-                );
-            }
-            current.insert(m.actuator, (to, Some(pos)));
-            step.moves.push(Move {
-                actuator: m.actuator,
-                sign: m.sign,
-                from,
-                to,
-                branch,
-                cell: pos,
-            });
-        }
-        steps.push(step);
-    }
-
-    for (actuator, (position, last_cell)) in &current {
-        if *position != 0 {
-            let loc = match last_cell {
-                Some(pos) => location(*pos),
-                None => grid.sheet_location(),
-            };
-            diags.error(
-                Code::E022NotHome,
-                loc,
-                format!(
-                    "C{actuator} ends the cycle at position {position}, not at home; every actuator must be back at position 0 after the last step (add C{actuator}-0)"
-                ),
-            );
-        }
-    }
-
-    Some(StepTable {
-        file: grid.file.clone(),
-        sheet: grid.sheet.clone(),
-        branches: frame.branch_cols.len(),
-        steps,
-        actuators: max_position
-            .into_iter()
-            .map(|(number, max_position)| Actuator {
-                number,
-                max_position,
-            })
-            .collect(),
-        inputs: names.inputs,
-        outputs: names.outputs,
-    })
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum NameKind {
-    Input,
-    Output,
-}
-
-/// The machine inputs and outputs named so far, with where each was first used.
-#[derive(Default)]
-struct Names {
-    inputs: Vec<Name>,
-    outputs: Vec<Name>,
-    first: BTreeMap<Name, (NameKind, CellPos)>,
-}
-
-impl Names {
-    /// Records a use of a name; a name is an input or an output, not both,
-    /// may not be one the program uses for itself, and must differ from every
-    /// other name in its first 9 characters (all Festo FST keeps).
-    fn use_name(
-        &mut self,
-        name: Name,
-        kind: NameKind,
-        pos: CellPos,
-        grid: &Grid,
-        diags: &mut Diagnostics,
-    ) {
-        if let Some((first_kind, first_pos)) = self.first.get(&name) {
-            if *first_kind != kind {
-                let (was, is) = match first_kind {
-                    NameKind::Input => ("an input (I:)", "an output (Y:)"),
-                    NameKind::Output => ("an output (Y:)", "an input (I:)"),
-                };
-                diags.error(
-                    Code::E025NameClash,
-                    grid.location(pos),
-                    format!(
-                        "{name} is used as {is} here but as {was} in cell {}; give them different names",
-                        grid.cell_name(*first_pos)
-                    ),
-                );
-            }
-            return;
-        }
-        let stem = |n: &Name| n.as_str().chars().take(9).collect::<String>();
-        if let Some(reason) = crate::names::reserved_name(name.as_str()) {
-            diags.error(
-                Code::E015BadName,
-                grid.location(pos),
-                format!("\"{name}\" cannot name a machine signal: {reason}"),
-            );
-        } else if let Some(reason) = crate::names::reserved_name(&stem(&name)) {
-            // FST keeps 9 characters: the cut name must not be taken either.
-            diags.error(
-                Code::E015BadName,
-                grid.location(pos),
-                format!(
-                    "\"{name}\" cannot name a machine signal: Festo FST keeps its first 9 characters, \"{}\", and {reason}",
-                    stem(&name)
-                ),
-            );
-        }
-        if let Some((other, (_, other_pos))) =
-            self.first.iter().find(|(n, _)| stem(n) == stem(&name))
-        {
-            diags.error(
-                Code::E025NameClash,
-                grid.location(pos),
-                format!(
-                    "{name} and {other} (cell {}) begin with the same 9 characters, which is all Festo FST keeps of a symbol",
-                    grid.cell_name(*other_pos)
-                ),
-            );
-        }
-        self.first.insert(name, (kind, pos));
-        match kind {
-            NameKind::Input => self.inputs.push(name),
-            NameKind::Output => self.outputs.push(name),
-        }
     }
 }
 

@@ -1,0 +1,346 @@
+//! The rules a table must keep, by code: positions and directions (E020),
+//! one move per actuator per step (E021), home at the end (E022), dwells
+//! (E026), machine signal names (E015, E025), and the machine the table
+//! runs on: valves that can stop at middle positions (E031), a home order
+//! that fits the table (E030, W006).
+
+use std::collections::BTreeMap;
+
+use super::frame::Frame;
+use super::{Actuator, Dwell, MAX_DWELLS, Move, Step, StepTable, Switch, Wait};
+use crate::cell::{CellItem, Name, Sign};
+use crate::diag::{CellPos, Code, Diagnostics, Location};
+use crate::read::Grid;
+use crate::valve::Valves;
+
+/// Checks a built table against the machine it runs on: the valve types
+/// and the home order (checked whether or not the reset mode uses it).
+pub fn check_machine(
+    table: &StepTable,
+    valves: &Valves,
+    home_order: Option<&[Vec<u32>]>,
+    reset: bool,
+    grid: &Grid,
+    diags: &mut Diagnostics,
+) {
+    check_valves(table, valves, grid, diags);
+    check_home_order(table, home_order, reset, grid, diags);
+}
+
+/// A home order is checked against the table whether or not it is used,
+/// and a home order without the reset mode that uses it is said, so that a
+/// forgotten `reset` is not silently a no-op.
+fn check_home_order(
+    table: &StepTable,
+    home_order: Option<&[Vec<u32>]>,
+    reset: bool,
+    grid: &Grid,
+    diags: &mut Diagnostics,
+) {
+    if home_order.is_some() {
+        if let Err(message) = table.home_stages(home_order) {
+            diags.error(Code::E030BadSetting, grid.sheet_location(), message);
+        } else if !reset {
+            diags.warning(
+                Code::W006NoEffect,
+                grid.sheet_location(),
+                "the home order is used by the reset mode only, which is not on: add reset to the modes, or leave the home order out",
+            );
+        }
+    }
+}
+
+/// A middle position needs a valve with a centre: a 5/2 valve cannot stop a
+/// piston between its ends. Names the cell of the first move that asks for it.
+fn check_valves(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut Diagnostics) {
+    for actuator in table.actuators.iter().filter(|a| a.has_middle_positions()) {
+        let valve = valves.of(actuator.number, actuator.max_position);
+        if valve.has_centre() {
+            continue;
+        }
+        let Some(m) = table
+            .steps
+            .iter()
+            .flat_map(|s| &s.moves)
+            .find(|m| m.actuator == actuator.number && actuator.is_middle(m.to))
+        else {
+            continue;
+        };
+        diags.error(
+            Code::E031ValveCannotStop,
+            grid.location(m.cell),
+            format!(
+                "\"{}\" stops C{} at middle position {}, but its valve is {valve}, which cannot stop a piston between its ends (use 53closed, 53exhaust or 53pressure)",
+                m.notation(),
+                actuator.number,
+                m.to
+            ),
+        );
+    }
+}
+
+/// Resolves positions and checks the rules of DESIGN §2.
+pub(super) fn check(
+    grid: &Grid,
+    frame: &Frame,
+    parsed: Vec<Vec<(CellItem, CellPos, usize)>>,
+    diags: &mut Diagnostics,
+) -> Option<StepTable> {
+    // pmax(i): the highest position written for Ci; at least 1.
+    let mut max_position: BTreeMap<u32, u32> = BTreeMap::new();
+    for (item, _, _) in parsed.iter().flatten() {
+        if let CellItem::Move(m) = item {
+            let entry = max_position.entry(m.actuator).or_insert(1);
+            if let Some(p) = m.position {
+                *entry = (*entry).max(p);
+            }
+        }
+    }
+
+    let location = |pos: CellPos| -> Location { grid.location(pos) };
+    let mut current: BTreeMap<u32, (u32, Option<CellPos>)> =
+        max_position.keys().map(|a| (*a, (0, None))).collect();
+    let mut names = Names::default();
+    let mut dwell_count = 0usize;
+    let mut steps = Vec::with_capacity(parsed.len());
+    for (index, row) in parsed.into_iter().enumerate() {
+        let number = index + 1;
+        let mut step = Step {
+            number,
+            moves: Vec::with_capacity(row.len()),
+            dwells: Vec::new(),
+            waits: Vec::new(),
+            switches: Vec::new(),
+        };
+        let mut seen: BTreeMap<u32, CellPos> = BTreeMap::new();
+        for (item, pos, branch) in row {
+            let m = match item {
+                CellItem::Move(m) => m,
+                CellItem::Dwell { ms } => {
+                    if step.dwells.iter().any(|d| d.cell == pos) {
+                        diags.error(
+                            Code::E021TwiceInStep,
+                            location(pos),
+                            "a cell holds at most one dwell (T=…); add the times up",
+                        );
+                        continue;
+                    }
+                    dwell_count += 1;
+                    if dwell_count == MAX_DWELLS + 1 {
+                        diags.error(
+                            Code::E026TooManyDwells,
+                            location(pos),
+                            format!(
+                                "this is dwell number {dwell_count}; a table has at most {MAX_DWELLS} (PLCs have 256 timers)"
+                            ),
+                        );
+                    }
+                    step.dwells.push(Dwell {
+                        number: dwell_count.min(u16::MAX as usize) as u16,
+                        ms,
+                        branch,
+                        cell: pos,
+                    });
+                    continue;
+                }
+                CellItem::Wait { input, value } => {
+                    if step.waits.iter().any(|w| w.input == input) {
+                        diags.error(
+                            Code::E021TwiceInStep,
+                            location(pos),
+                            format!("STEP {number} already waits for I:{input}; a step waits for an input once"),
+                        );
+                        continue;
+                    }
+                    names.use_name(input, NameKind::Input, pos, grid, diags);
+                    step.waits.push(Wait {
+                        input,
+                        value,
+                        branch,
+                        cell: pos,
+                    });
+                    continue;
+                }
+                CellItem::Switch { output, on } => {
+                    if step.switches.iter().any(|w| w.output == output) {
+                        diags.error(
+                            Code::E021TwiceInStep,
+                            location(pos),
+                            format!("STEP {number} already switches Y:{output}; a step switches an output once"),
+                        );
+                        continue;
+                    }
+                    names.use_name(output, NameKind::Output, pos, grid, diags);
+                    step.switches.push(Switch {
+                        output,
+                        on,
+                        branch,
+                        cell: pos,
+                    });
+                    continue;
+                }
+            };
+            let pmax = max_position.get(&m.actuator).copied().unwrap_or(1);
+            let to = m.position.unwrap_or(match m.sign {
+                Sign::Plus => pmax,
+                Sign::Minus => 0,
+            });
+            let written = m.to_string();
+            if let Some(first) = seen.get(&m.actuator) {
+                diags.error(
+                    Code::E021TwiceInStep,
+                    location(pos),
+                    format!(
+                        "\"{written}\": C{} already moves in STEP {number} (cell {}); an actuator moves at most once per step",
+                        m.actuator,
+                        grid.cell_name(*first)
+                    ),
+                );
+                continue;
+            }
+            seen.insert(m.actuator, pos);
+            let (from, _) = current.get(&m.actuator).copied().unwrap_or((0, None));
+            let ok = match m.sign {
+                Sign::Plus => to > from,
+                Sign::Minus => to < from,
+            };
+            if !ok {
+                let (need, verb) = match m.sign {
+                    Sign::Plus => ("higher", "a + move extends"),
+                    Sign::Minus => ("lower", "a - move retracts"),
+                };
+                diags.error(
+                    Code::E020WrongDirection,
+                    location(pos),
+                    format!(
+                        "\"{written}\": C{} stands at position {from} before STEP {number}; {verb}, so it must go to a {need} position than {from}",
+                        m.actuator
+                    ),
+                );
+            }
+            current.insert(m.actuator, (to, Some(pos)));
+            step.moves.push(Move {
+                actuator: m.actuator,
+                sign: m.sign,
+                from,
+                to,
+                branch,
+                cell: pos,
+            });
+        }
+        steps.push(step);
+    }
+
+    for (actuator, (position, last_cell)) in &current {
+        if *position != 0 {
+            let loc = match last_cell {
+                Some(pos) => location(*pos),
+                None => grid.sheet_location(),
+            };
+            diags.error(
+                Code::E022NotHome,
+                loc,
+                format!(
+                    "C{actuator} ends the cycle at position {position}, not at home; every actuator must be back at position 0 after the last step (add C{actuator}-0)"
+                ),
+            );
+        }
+    }
+
+    Some(StepTable {
+        file: grid.file.clone(),
+        sheet: grid.sheet.clone(),
+        branches: frame.branch_cols.len(),
+        steps,
+        actuators: max_position
+            .into_iter()
+            .map(|(number, max_position)| Actuator {
+                number,
+                max_position,
+            })
+            .collect(),
+        inputs: names.inputs,
+        outputs: names.outputs,
+    })
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum NameKind {
+    Input,
+    Output,
+}
+
+/// The machine inputs and outputs named so far, with where each was first used.
+#[derive(Default)]
+struct Names {
+    inputs: Vec<Name>,
+    outputs: Vec<Name>,
+    first: BTreeMap<Name, (NameKind, CellPos)>,
+}
+
+impl Names {
+    /// Records a use of a name; a name is an input or an output, not both,
+    /// may not be one the program uses for itself, and must differ from every
+    /// other name in its first 9 characters (all Festo FST keeps).
+    fn use_name(
+        &mut self,
+        name: Name,
+        kind: NameKind,
+        pos: CellPos,
+        grid: &Grid,
+        diags: &mut Diagnostics,
+    ) {
+        if let Some((first_kind, first_pos)) = self.first.get(&name) {
+            if *first_kind != kind {
+                let (was, is) = match first_kind {
+                    NameKind::Input => ("an input (I:)", "an output (Y:)"),
+                    NameKind::Output => ("an output (Y:)", "an input (I:)"),
+                };
+                diags.error(
+                    Code::E025NameClash,
+                    grid.location(pos),
+                    format!(
+                        "{name} is used as {is} here but as {was} in cell {}; give them different names",
+                        grid.cell_name(*first_pos)
+                    ),
+                );
+            }
+            return;
+        }
+        let stem = |n: &Name| n.as_str().chars().take(9).collect::<String>();
+        if let Some(reason) = crate::names::reserved_name(name.as_str()) {
+            diags.error(
+                Code::E015BadName,
+                grid.location(pos),
+                format!("\"{name}\" cannot name a machine signal: {reason}"),
+            );
+        } else if let Some(reason) = crate::names::reserved_name(&stem(&name)) {
+            // FST keeps 9 characters: the cut name must not be taken either.
+            diags.error(
+                Code::E015BadName,
+                grid.location(pos),
+                format!(
+                    "\"{name}\" cannot name a machine signal: Festo FST keeps its first 9 characters, \"{}\", and {reason}",
+                    stem(&name)
+                ),
+            );
+        }
+        if let Some((other, (_, other_pos))) =
+            self.first.iter().find(|(n, _)| stem(n) == stem(&name))
+        {
+            diags.error(
+                Code::E025NameClash,
+                grid.location(pos),
+                format!(
+                    "{name} and {other} (cell {}) begin with the same 9 characters, which is all Festo FST keeps of a symbol",
+                    grid.cell_name(*other_pos)
+                ),
+            );
+        }
+        self.first.insert(name, (kind, pos));
+        match kind {
+            NameKind::Input => self.inputs.push(name),
+            NameKind::Output => self.outputs.push(name),
+        }
+    }
+}
