@@ -10,9 +10,10 @@ use rayon::prelude::*;
 
 use crate::convert::{self, Failure};
 use crate::diag::{Diagnostic, Severity};
+use crate::emit::OutputFile;
 use crate::read::Format;
 use crate::settings::Settings;
-use crate::write::{self, OutputFile};
+use crate::write;
 
 /// What happened to one input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

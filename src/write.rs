@@ -11,13 +11,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// One generated file, in memory.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct OutputFile {
-    /// File name without folder, e.g. `paper.st`.
-    pub name: String,
-    pub bytes: Vec<u8>,
-}
+use crate::emit::OutputFile;
 
 /// Why outputs could not be written.
 #[derive(Debug, thiserror::Error)]

@@ -84,7 +84,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         );
         progress.finish();
         // The table is written before anything is printed (see simulate).
-        let file = steptable::write::OutputFile {
+        let file = steptable::emit::OutputFile {
             name: format!("{name}.faults.csv"),
             bytes: match steptable::emit::faults_csv::render(&result) {
                 Ok(b) => b,

@@ -53,7 +53,7 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
                 &report,
                 steptable::emit::diagram::DiagramKind::Time,
             );
-            let file = steptable::write::OutputFile {
+            let file = steptable::emit::OutputFile {
                 name: format!("{name}.time.svg"),
                 bytes: svg.into_bytes(),
             };

@@ -178,23 +178,23 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
         }
     };
     let files = vec![
-        steptable::write::OutputFile {
+        steptable::emit::OutputFile {
             name: format!("{name}.synth.txt"),
             bytes: report.into_bytes(),
         },
-        steptable::write::OutputFile {
+        steptable::emit::OutputFile {
             name: format!("{name}.synth.json"),
             bytes: synth_out::report_json(&synthesis, &verification, args.seed).into_bytes(),
         },
-        steptable::write::OutputFile {
+        steptable::emit::OutputFile {
             name: format!("{name}.equations.st"),
             bytes: synth_out::structured_text(&synthesis, &name).into_bytes(),
         },
-        steptable::write::OutputFile {
+        steptable::emit::OutputFile {
             name: format!("{name}.equations.il"),
             bytes: synth_out::instruction_list(&synthesis, &name).into_bytes(),
         },
-        steptable::write::OutputFile {
+        steptable::emit::OutputFile {
             name: format!("{name}.xlsx"),
             bytes: workbook,
         },

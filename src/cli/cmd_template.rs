@@ -80,7 +80,7 @@ pub(crate) fn run_template(args: &TemplateArgs) -> i32 {
         .unwrap_or_else(|| "steptable-template.xlsx".to_string());
     match write::write_files(
         &folder,
-        &[steptable::write::OutputFile { name, bytes }],
+        &[steptable::emit::OutputFile { name, bytes }],
         &[],
         write::Durability::Rename,
     ) {

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use crate::address::{Allocation, Mnemonic, Target};
 use crate::diag::{Diagnostic, Diagnostics};
-use crate::emit::st::IecFile;
+use crate::emit::OutputFile;
 use crate::emit::templates::TemplateError;
 use crate::emit::{self, EmitInput, OutputKind};
 use crate::faults::{self, FaultTable};
@@ -16,7 +16,6 @@ use crate::read::{self, Format};
 use crate::settings::Settings;
 use crate::simulate::{self, SimReport, SimSettings};
 use crate::table::{self, StepTable};
-use crate::write::OutputFile;
 
 /// A table that passed every check, with any warnings.
 #[derive(Debug, Clone)]
@@ -270,107 +269,13 @@ pub fn generate_observed(
         simulation: Some(&simulation),
         faults: fault_table.as_ref(),
         templates: &settings.templates,
+        scan_ms: settings.simulation.scan_ms,
+        diagram: settings.diagram,
     };
-    let internal =
-        |what: &str, e: &dyn std::fmt::Display| Failure::Internal(format!("{what}: {e}"));
-    let scan = settings.simulation.scan_ms;
-    // The IEC files share one model (with the ST body), the STEP 7 files
-    // another: each is built on first use and reused.
-    let mut iec_model: Option<minijinja::Value> = None;
-    let mut awl_model: Option<minijinja::Value> = None;
-    let mut files: Vec<OutputFile> = Vec::new();
-    for kind in OutputKind::ALL {
-        if !settings.formats.contains(&kind) {
-            continue;
-        }
-        let text = |result: Result<String, TemplateError>| -> Result<Vec<u8>, Failure> {
-            let text = result.map_err(Failure::Template)?;
-            Ok(if kind.windows_lines() {
-                emit::crlf(&text).into_bytes()
-            } else {
-                text.into_bytes()
-            })
-        };
-        let bytes = match kind {
-            OutputKind::Workbook => {
-                emit::workbook::render(&input).map_err(|e| internal("workbook", &e))?
-            }
-            OutputKind::Fst => text(emit::fst::render(&input))?,
-            OutputKind::Allocation => {
-                emit::io_csv::render(&input).map_err(|e| internal("allocation list", &e))?
-            }
-            OutputKind::Diagram => {
-                emit::diagram::render_svg(name, &simulation, settings.diagram).into_bytes()
-            }
-            OutputKind::Faults => {
-                let table = fault_table
-                    .as_ref()
-                    .ok_or_else(|| internal("fault table", &"not analysed"))?;
-                emit::faults_csv::render(table).map_err(|e| internal("fault table", &e))?
-            }
-            OutputKind::StructuredText
-            | OutputKind::PlcOpen
-            | OutputKind::Codesys
-            | OutputKind::Gvl
-            | OutputKind::CodesysV2
-            | OutputKind::Beremiz => {
-                let file = match kind {
-                    OutputKind::StructuredText => IecFile::StructuredText,
-                    OutputKind::PlcOpen => IecFile::PlcOpen,
-                    OutputKind::Codesys => IecFile::Codesys,
-                    OutputKind::CodesysV2 => IecFile::CodesysV2,
-                    OutputKind::Beremiz => IecFile::BeremizProject,
-                    _ => IecFile::GlobalVariables,
-                };
-                let model = match &iec_model {
-                    Some(model) => model.clone(),
-                    None => {
-                        let model = emit::st::model(&input, scan).map_err(Failure::Template)?;
-                        iec_model.insert(model).clone()
-                    }
-                };
-                if kind == OutputKind::Beremiz {
-                    // A project folder Beremiz and the OpenPLC Editor open
-                    // as it is: the PLCopen XML as plc.xml, and beremiz.xml.
-                    let folder = format!("{name}{}", kind.suffix());
-                    // The same bytes as NAME.plcopen.xml, rendered once.
-                    let plcopen = format!("{name}{}", OutputKind::PlcOpen.suffix());
-                    let plc = match files.iter().find(|f| f.name == plcopen) {
-                        Some(file) => file.bytes.clone(),
-                        None => text(emit::st::render(&input, &model, IecFile::PlcOpen))?,
-                    };
-                    files.push(OutputFile {
-                        name: format!("{folder}/plc.xml"),
-                        bytes: plc,
-                    });
-                    files.push(OutputFile {
-                        name: format!("{folder}/beremiz.xml"),
-                        bytes: text(emit::st::render(&input, &model, file))?,
-                    });
-                    continue;
-                }
-                text(emit::st::render(&input, &model, file))?
-            }
-            OutputKind::TiaTags => {
-                emit::tables::render_tia_tags(&input).map_err(|e| internal("TIA tag table", &e))?
-            }
-            OutputKind::Awl | OutputKind::SymbolTable => {
-                let model = awl_model
-                    .get_or_insert_with(|| emit::awl::model(&input))
-                    .clone();
-                match kind {
-                    OutputKind::Awl => text(emit::awl::render_awl(&input, &model))?,
-                    _ => text(emit::awl::render_sdf(&input, &model))?,
-                }
-            }
-            OutputKind::FstAllocation => text(emit::tables::render_fst_alloc(&input))?,
-            OutputKind::Rockwell => text(emit::tables::render_rockwell(&input))?,
-        };
-        files.push(OutputFile {
-            name: format!("{name}{}", kind.suffix()),
-            bytes,
-        });
-    }
+    let files = emit::render(settings.formats.iter().copied(), input).map_err(|e| match e {
+        emit::EmitError::Template(e) => Failure::Template(e),
+        emit::EmitError::Internal(why) => Failure::Internal(why),
+    })?;
     Ok(Conversion {
         name: name.to_string(),
         table,

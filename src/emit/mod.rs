@@ -8,12 +8,14 @@ pub mod faults_csv;
 pub mod fst;
 pub mod io_csv;
 mod kind;
+mod render;
 pub mod st;
 pub mod tables;
 pub mod templates;
 pub mod workbook;
 
 pub use kind::OutputKind;
+pub use render::{EmitError, Renderer, render};
 
 use crate::address::Allocation;
 use crate::cell::Sign;
@@ -23,6 +25,14 @@ use crate::program::{Action, StepProgram};
 use crate::simulate::SimReport;
 use crate::table::{Move, StepTable};
 use templates::Templates;
+
+/// One generated file, in memory.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OutputFile {
+    /// File name without folder, e.g. `paper.st`.
+    pub name: String,
+    pub bytes: Vec<u8>,
+}
 
 /// Everything an emitter may read.
 #[derive(Debug, Clone, Copy)]
@@ -41,6 +51,10 @@ pub struct EmitInput<'a> {
     pub faults: Option<&'a FaultTable>,
     /// The templates text outputs are laid out by.
     pub templates: &'a Templates,
+    /// The PLC scan time, which is also the generated task's cycle.
+    pub scan_ms: u32,
+    /// The horizontal axis of the diagram.
+    pub diagram: diagram::DiagramKind,
 }
 
 impl EmitInput<'_> {

@@ -5,8 +5,9 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use crate::emit::OutputFile;
 use crate::emit::templates::{DEFAULTS, TemplateError, Templates};
-use crate::write::{Durability, OutputFile, WriteError, write_files};
+use crate::write::{Durability, WriteError, write_files};
 
 /// The defaults, with every file of `dir` that has a template's name in
 /// its place. A file in `dir` that is no template's name is an error, so

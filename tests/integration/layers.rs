@@ -127,11 +127,12 @@ fn emit_never_touches_the_file_system() {
         let path = entry.unwrap().path();
         let text = std::fs::read_to_string(&path).unwrap();
         let code = text.split("#[cfg(test)]").next().unwrap();
-        for call in ["std::fs", "File::", "read_dir", "OpenOptions"] {
-            assert!(
-                !code.contains(call),
-                "{}: {call} (emit never reads or writes files)",
-                path.display()
+        let io = regex::Regex::new(r"std::fs|\bFile::|\bread_dir\b|\bOpenOptions\b").unwrap();
+        if let Some(found) = io.find(code) {
+            panic!(
+                "{}: {} (emit never reads or writes files)",
+                path.display(),
+                found.as_str()
             );
         }
     }

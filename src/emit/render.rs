@@ -1,0 +1,163 @@
+//! The one way into emit: an output kind and the input give its files.
+
+use minijinja::Value;
+
+use super::st::IecFile;
+use super::templates::TemplateError;
+use super::{EmitInput, OutputFile, OutputKind};
+
+/// Why an output could not be rendered.
+#[derive(Debug)]
+pub enum EmitError {
+    /// A template failed: the user's (fix it) or a default one (a bug).
+    Template(TemplateError),
+    /// A bug: a writer failed on bytes in memory, or an input was missing.
+    Internal(String),
+}
+
+fn internal(what: &str, e: impl std::fmt::Display) -> EmitError {
+    EmitError::Internal(format!("{what}: {e}"))
+}
+
+/// Renders the files of one conversion. The IEC files share one model (with
+/// the ST body) and the STEP 7 files another: each is built on first use and
+/// reused, as are the PLCopen bytes a Beremiz project holds.
+pub struct Renderer<'a> {
+    input: EmitInput<'a>,
+    iec: Option<Value>,
+    awl: Option<Value>,
+    plcopen: Option<Vec<u8>>,
+}
+
+/// Every file of `kinds`, in the order of [`OutputKind::ALL`].
+pub fn render(
+    kinds: impl IntoIterator<Item = OutputKind>,
+    input: EmitInput<'_>,
+) -> Result<Vec<OutputFile>, EmitError> {
+    let mut kinds: Vec<OutputKind> = kinds.into_iter().collect();
+    kinds.sort_unstable();
+    kinds.dedup();
+    let mut renderer = Renderer::new(input);
+    let mut files = Vec::new();
+    for kind in kinds {
+        files.extend(renderer.render(kind)?);
+    }
+    Ok(files)
+}
+
+impl<'a> Renderer<'a> {
+    pub fn new(input: EmitInput<'a>) -> Self {
+        Renderer {
+            input,
+            iec: None,
+            awl: None,
+            plcopen: None,
+        }
+    }
+
+    /// The files of one kind: one file, or a Beremiz project's two.
+    pub fn render(&mut self, kind: OutputKind) -> Result<Vec<OutputFile>, EmitError> {
+        let input = self.input;
+        let name = input.name;
+        let file = |bytes| OutputFile {
+            name: format!("{name}{}", kind.suffix()),
+            bytes,
+        };
+        let bytes = match kind {
+            OutputKind::Workbook => {
+                super::workbook::render(&input).map_err(|e| internal("workbook", e))?
+            }
+            OutputKind::Fst => text(kind, super::fst::render(&input))?,
+            OutputKind::Allocation => {
+                super::io_csv::render(&input).map_err(|e| internal("allocation list", e))?
+            }
+            OutputKind::Diagram => {
+                let simulation = input
+                    .simulation
+                    .ok_or_else(|| internal("diagram", "not simulated"))?;
+                super::diagram::render_svg(name, simulation, input.diagram).into_bytes()
+            }
+            OutputKind::Faults => {
+                let faults = input
+                    .faults
+                    .ok_or_else(|| internal("fault table", "not analysed"))?;
+                super::faults_csv::render(faults).map_err(|e| internal("fault table", e))?
+            }
+            OutputKind::TiaTags => {
+                super::tables::render_tia_tags(&input).map_err(|e| internal("TIA tag table", e))?
+            }
+            OutputKind::Awl => {
+                let model = self.awl_model();
+                text(kind, super::awl::render_awl(&input, &model))?
+            }
+            OutputKind::SymbolTable => {
+                let model = self.awl_model();
+                text(kind, super::awl::render_sdf(&input, &model))?
+            }
+            OutputKind::FstAllocation => text(kind, super::tables::render_fst_alloc(&input))?,
+            OutputKind::Rockwell => text(kind, super::tables::render_rockwell(&input))?,
+            OutputKind::Beremiz => return self.beremiz(),
+            OutputKind::StructuredText => self.iec(kind, IecFile::StructuredText)?,
+            OutputKind::PlcOpen => {
+                let bytes = self.iec(kind, IecFile::PlcOpen)?;
+                self.plcopen = Some(bytes.clone());
+                bytes
+            }
+            OutputKind::Codesys => self.iec(kind, IecFile::Codesys)?,
+            OutputKind::Gvl => self.iec(kind, IecFile::GlobalVariables)?,
+            OutputKind::CodesysV2 => self.iec(kind, IecFile::CodesysV2)?,
+        };
+        Ok(vec![file(bytes)])
+    }
+
+    fn awl_model(&mut self) -> Value {
+        let input = self.input;
+        self.awl
+            .get_or_insert_with(|| super::awl::model(&input))
+            .clone()
+    }
+
+    fn iec(&mut self, kind: OutputKind, file: IecFile) -> Result<Vec<u8>, EmitError> {
+        let input = self.input;
+        let model = match &self.iec {
+            Some(model) => model.clone(),
+            None => {
+                let model = super::st::model(&input, input.scan_ms).map_err(EmitError::Template)?;
+                self.iec.insert(model).clone()
+            }
+        };
+        text(kind, super::st::render(&input, &model, file))
+    }
+
+    /// A project folder Beremiz and the OpenPLC Editor open as it is: the
+    /// PLCopen XML as `plc.xml` (the same bytes as `NAME.plcopen.xml`), and
+    /// `beremiz.xml`.
+    fn beremiz(&mut self) -> Result<Vec<OutputFile>, EmitError> {
+        let folder = format!("{}{}", self.input.name, OutputKind::Beremiz.suffix());
+        let plc = match self.plcopen.clone() {
+            Some(bytes) => bytes,
+            None => self.iec(OutputKind::PlcOpen, IecFile::PlcOpen)?,
+        };
+        let project = self.iec(OutputKind::Beremiz, IecFile::BeremizProject)?;
+        Ok(vec![
+            OutputFile {
+                name: format!("{folder}/plc.xml"),
+                bytes: plc,
+            },
+            OutputFile {
+                name: format!("{folder}/beremiz.xml"),
+                bytes: project,
+            },
+        ])
+    }
+}
+
+/// A rendered text as bytes, with CRLF line ends where the kind wants them.
+fn text(kind: OutputKind, result: Result<String, TemplateError>) -> Result<Vec<u8>, EmitError> {
+    let text = result.map_err(EmitError::Template)?;
+    Ok(if kind.windows_lines() {
+        super::crlf(&text).into_bytes()
+    } else {
+        text.into_bytes()
+    })
+}
