@@ -1,6 +1,166 @@
-//! Text reports of a simulation, as `simulate` prints them.
+//! What a simulation found: problems, step timings, the verdict, and the
+//! text `simulate` prints of them.
 
-use super::{SimReport, seconds};
+/// What went wrong in a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum ProblemKind {
+    /// The sequence waits for ever (a safe stall unless something else happened).
+    Stall,
+    /// A move passed its target sensor.
+    RanThrough,
+    /// An actuator moved although no step was moving it (or the wrong way).
+    OutsideStep,
+    /// A valve saw both coils.
+    CoilConflict,
+    /// A step fired before the previous step's moves physically finished.
+    Premature,
+    /// A cycle started without a START press.
+    UnexpectedStart,
+    /// The cycle ended with an actuator away from home.
+    NotHome,
+    /// The second cycle differs from the first.
+    CycleDiffers,
+}
+
+impl ProblemKind {
+    /// Whether this problem can hurt someone or something (DESIGN §6): a move
+    /// that starts too early, motion no step commands, both coils, a start
+    /// without START. A run-through is a move that goes on in the direction
+    /// its own step commanded to the cylinder's next sensor or end stop
+    /// because its target sensor is dead: it fails the run, and the sequence
+    /// then stalls, but it is not motion outside the step.
+    pub fn is_hazard(self) -> bool {
+        !matches!(
+            self,
+            ProblemKind::Stall
+                | ProblemKind::CycleDiffers
+                | ProblemKind::RanThrough
+                | ProblemKind::NotHome
+        )
+    }
+}
+
+/// One problem, when it happened and in which step.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Problem {
+    pub kind: ProblemKind,
+    pub time_ms: u64,
+    /// The step the problem concerns (one-based).
+    pub step: usize,
+    pub message: String,
+}
+
+/// Timing of one step in one cycle.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StepTiming {
+    pub step: usize,
+    /// When the step fired, from the START press of its cycle.
+    pub start_ms: u64,
+    /// Until the next step fired (or, for the last step, until its moves ended).
+    pub duration_ms: u64,
+    /// What the step does, in the table's notation.
+    pub moves: String,
+    /// Dwells and waits of the step, as they happened: `T=2s from 1.21 s`,
+    /// `I:part_present after 0.50 s`.
+    pub notes: String,
+}
+
+/// A span of time in the run (absolute milliseconds) with a label: a dwell
+/// running or a step waiting for a machine input. Drawn on the time diagram.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Span {
+    pub from_ms: u64,
+    pub to_ms: u64,
+    pub label: String,
+}
+
+/// The operator's buttons and switches at one moment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Operator {
+    pub start: bool,
+    pub continuous: bool,
+    /// STOP pressed (the normally closed input reads 0).
+    pub stop: bool,
+    /// EMERGENCY STOP pressed (the normally closed input reads 0).
+    pub estop: bool,
+    pub reset: bool,
+}
+
+/// One complete or interrupted cycle.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CycleReport {
+    /// Absolute time of the START press.
+    pub press_ms: u64,
+    pub steps: Vec<StepTiming>,
+    /// From the START press to the end of the last move, when the cycle completed.
+    pub cycle_ms: Option<u64>,
+}
+
+/// The result of a simulation run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimReport {
+    pub passed: bool,
+    pub cycles: Vec<CycleReport>,
+    pub problems: Vec<Problem>,
+    /// Step the sequence waited at when the run ended (one-based), if stalled.
+    pub stalled_at: Option<usize>,
+    /// Positions in sensor units of every actuator (table order) at each step
+    /// boundary of the first cycle: before step 1, …, after the last step.
+    pub step_positions: Vec<Vec<f64>>,
+    /// Actuator numbers, in the order of every position vector.
+    pub actuators: Vec<(u32, u32)>,
+    /// `(time_ms, positions)` at every scan, when recorded.
+    pub trace: Vec<(u64, Vec<f64>)>,
+    /// Dwells and waits of the first cycle, in absolute time.
+    pub spans: Vec<Span>,
+}
+
+impl SimReport {
+    /// One line: `passed: cycle 8.46 s` or the reason it failed.
+    pub fn verdict(&self) -> String {
+        if self.passed {
+            let ms = self
+                .cycles
+                .first()
+                .and_then(|c| c.cycle_ms)
+                .unwrap_or_default();
+            format!("passed: cycle time {}", seconds(ms))
+        } else {
+            format!("FAILED: {}", self.reason())
+        }
+    }
+
+    /// Why the run failed: a stall with the run-throughs that explain it, or
+    /// else the first problem.
+    pub fn reason(&self) -> String {
+        let stall = self.problems.iter().find(|p| p.kind == ProblemKind::Stall);
+        let Some(first) = stall.or(self.problems.first()) else {
+            return "no problem recorded".to_string();
+        };
+        let mut text = first.message.clone();
+        if first.kind == ProblemKind::Stall {
+            for p in self
+                .problems
+                .iter()
+                .filter(|p| p.kind == ProblemKind::RanThrough)
+            {
+                text.push_str("; ");
+                text.push_str(&p.message);
+            }
+        }
+        text
+    }
+
+    /// Whether any hazard happened.
+    pub fn hazard(&self) -> Option<&Problem> {
+        self.problems.iter().find(|p| p.kind.is_hazard())
+    }
+}
+
+/// `1.23 s`.
+pub fn seconds(ms: u64) -> String {
+    format!("{:.2} s", ms as f64 / 1000.0)
+}
 
 /// The per-step timing of the first cycle as an aligned text table, and a line
 /// about the second cycle.

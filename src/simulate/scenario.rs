@@ -8,7 +8,8 @@ use crate::program::StepProgram;
 use crate::table::StepTable;
 
 use super::plant::Piston;
-use super::{Operator, Problem, Run, SimSettings};
+use super::run::Run;
+use super::{Operator, Problem, SimSettings};
 
 /// The machine at the end of one scan.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,5 +1,5 @@
 use super::*;
-use crate::program::{self, ProgramOptions};
+use crate::program::{self, ProgramOptions, Signal};
 use crate::timing::Stroke;
 
 fn run(rows: &[Vec<&str>], options: ProgramOptions, settings: &SimSettings) -> SimReport {

@@ -3,9 +3,10 @@
 //! has moved on), and it watches that dwells and waits were really met, not
 //! passed on a faulty input.
 
-use super::{DEFAULT_INPUT_DELAY_MS, ProblemKind, Run, Span, sensor_symbol};
+use super::{Run, sensor_symbol};
 use crate::cell::Name;
 use crate::program::StepKind;
+use crate::simulate::{DEFAULT_INPUT_DELAY_MS, ProblemKind, Span};
 use crate::table::StepTable;
 
 impl Run<'_> {
@@ -40,7 +41,7 @@ impl Run<'_> {
     /// A dwell must start only once its branch is really done: its moves at
     /// their targets and its waits answered by the machine, not by a faulty
     /// input.
-    fn check_dwell_start(&mut self, number: u16) {
+    pub(in crate::simulate) fn check_dwell_start(&mut self, number: u16) {
         let Some((step, dwell)) = self
             .table
             .steps
@@ -81,7 +82,7 @@ impl Run<'_> {
     }
 
     /// Whether the machine itself (not a faulty input) gives what `wait` asks.
-    fn machine_gave(&self, wait: &crate::table::Wait) -> bool {
+    pub(in crate::simulate) fn machine_gave(&self, wait: &crate::table::Wait) -> bool {
         self.world
             .machine
             .get(&wait.input)

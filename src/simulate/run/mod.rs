@@ -1,0 +1,396 @@
+//! One run of the program against the plant, scan by scan: the state of
+//! the run and what each scan checks.
+
+mod drive;
+mod machine;
+
+pub(super) use drive::run;
+
+use std::collections::BTreeMap;
+
+use super::plant::Piston;
+use super::plc::{PlcState, scan};
+use super::*;
+use crate::cell::{Name, Sign};
+use crate::program::{Literal, Signal, StepProgram};
+use crate::table::{Move, StepTable};
+
+/// A move in progress: set when its step fires.
+#[derive(Debug, Clone)]
+pub(in crate::simulate) struct ActiveMove {
+    pub(in crate::simulate) piston: usize,
+    pub(in crate::simulate) mv: Move,
+    pub(in crate::simulate) step: usize,
+    pub(in crate::simulate) reached: bool,
+    pub(in crate::simulate) ran_through: bool,
+}
+
+pub(in crate::simulate) struct Run<'a> {
+    pub(in crate::simulate) program: &'a StepProgram,
+    /// What the PLC's inputs read from: the plant, the operator, the machine.
+    pub(in crate::simulate) world: World,
+    pub(in crate::simulate) plc: PlcState,
+    pub(in crate::simulate) time_ms: u64,
+    pub(in crate::simulate) problems: Vec<Problem>,
+    /// The moves of the step that fired last.
+    pub(in crate::simulate) active: Vec<ActiveMove>,
+    /// Per piston, the last move commanded: it may finish settling into its
+    /// target window after the next step has fired.
+    pub(in crate::simulate) last_move: Vec<Option<ActiveMove>>,
+    pub(in crate::simulate) pending: Vec<(u64, Name, bool)>,
+    /// Inputs the machine gave for the step that fired last.
+    pub(in crate::simulate) answered: Vec<Name>,
+    pub(in crate::simulate) table: &'a StepTable,
+    /// Dwell timers: PLC index, dwell number, when it started (if running).
+    pub(in crate::simulate) dwells: Vec<(usize, u16, Option<u64>)>,
+    pub(in crate::simulate) spans: Vec<Span>,
+    pub(in crate::simulate) trace: Vec<(u64, Vec<f64>)>,
+    /// Per piston, the PLC indices of its `+`, `-` and single coil.
+    pub(in crate::simulate) coils: Vec<(Option<usize>, Option<usize>, Option<usize>)>,
+    /// The I/O of every scan, when recorded for a replay in another engine.
+    pub(in crate::simulate) io: Option<io::IoTrace>,
+}
+
+/// Everything the PLC's inputs are read from.
+pub(in crate::simulate) struct World {
+    pub(in crate::simulate) settings: SimSettings,
+    pub(in crate::simulate) pistons: Vec<Piston>,
+    pub(in crate::simulate) index_of: BTreeMap<u32, usize>,
+    pub(in crate::simulate) start_pressed: bool,
+    /// Buttons other than START (the standard proof leaves them alone).
+    pub(in crate::simulate) operator: Operator,
+    /// Machine inputs as the machine gives them.
+    pub(in crate::simulate) machine: BTreeMap<Name, bool>,
+}
+
+impl Run<'_> {
+    /// The literals of step `index`'s condition that do not hold now.
+    pub(in crate::simulate) fn missing(&self, index: usize) -> Vec<Literal> {
+        let Some(step) = self.program.steps.get(index) else {
+            return Vec::new();
+        };
+        step.condition
+            .iter()
+            .copied()
+            .filter(|l| {
+                let raw = if l.signal.is_input() {
+                    read_input(l.signal, &self.world)
+                } else {
+                    self.plc.bit(l.signal)
+                };
+                raw == l.negated
+            })
+            .collect()
+    }
+}
+
+impl Run<'_> {
+    /// Whether the cycle has ended: STEP 1 waits for nothing but a start.
+    pub(in crate::simulate) fn cycle_complete(&self) -> bool {
+        self.missing(0).iter().all(|l| {
+            matches!(
+                l.signal,
+                Signal::Start | Signal::StartMemory | Signal::CycleRequest
+            )
+        })
+    }
+
+    pub(in crate::simulate) fn problem(&mut self, kind: ProblemKind, step: usize, message: String) {
+        // One report per kind and step is enough to explain what happened.
+        if self
+            .problems
+            .iter()
+            .any(|p| p.kind == kind && p.step == step && p.message == message)
+        {
+            return;
+        }
+        self.problems.push(Problem {
+            kind,
+            time_ms: self.time_ms,
+            step,
+            message,
+        });
+    }
+
+    /// One PLC scan plus one scan period of the plant. Returns the index of the
+    /// step that fired, if any.
+    pub(in crate::simulate) fn tick(&mut self) -> Option<usize> {
+        // Inputs are read from the plant as it stands at the start of the
+        // scan; the plant does not move while the program runs.
+        // The machine gives the inputs its steps wait for.
+        let now = self.time_ms;
+        let machine = &mut self.world.machine;
+        self.pending.retain(|(at, name, value)| {
+            if *at <= now {
+                machine.insert(*name, *value);
+                false
+            } else {
+                true
+            }
+        });
+        let world = &self.world;
+        let read = |s: Signal| read_input(s, world);
+        let recorded_inputs = self.io.as_ref().map(|io| {
+            io.signals
+                .inputs
+                .iter()
+                .map(|s| read_input(*s, world))
+                .collect::<Vec<bool>>()
+        });
+        let result = scan(
+            self.program,
+            &mut self.plc,
+            &read,
+            self.world.settings.scan_ms as u64,
+        );
+        if let (Some(io), Some(inputs)) = (self.io.as_mut(), recorded_inputs) {
+            let outputs = io
+                .signals
+                .outputs
+                .iter()
+                .map(|s| self.plc.bit(*s))
+                .collect();
+            io.scans.push(io::ScanIo {
+                time_ms: now,
+                inputs,
+                outputs,
+            });
+        }
+        if let Some(fired) = result.fired {
+            self.on_fire(fired);
+        }
+        self.track_dwells(now);
+
+        // Outputs to valves, then the plant moves for one scan period.
+        for i in 0..self.world.pistons.len() {
+            let number = self.world.pistons[i].number;
+            let (plus_at, minus_at, single_at) = self.coils[i];
+            let on = |at: Option<usize>| at.is_some_and(|i| self.plc.bit_at(i));
+            let plus = on(plus_at) || on(single_at);
+            let minus = on(minus_at);
+            if self.world.pistons[i].drive(plus, minus) {
+                let step = self.current_step();
+                self.problem(
+                    ProblemKind::CoilConflict,
+                    step,
+                    format!("the valve of C{number} sees both coils y{number}+ and y{number}- in step {step}"),
+                );
+            }
+            if let Some(direction) = self.world.pistons[i].advance() {
+                self.check_motion(i, direction);
+            }
+        }
+        self.time_ms += self.world.settings.scan_ms as u64;
+        self.update_reached();
+        if self.world.settings.record_trace {
+            let positions = self
+                .world
+                .pistons
+                .iter()
+                .map(Piston::position_units)
+                .collect();
+            record_point(&mut self.trace, self.time_ms, positions);
+        }
+        result.fired
+    }
+
+    /// The one-based number of the step whose moves are under way.
+    pub(in crate::simulate) fn current_step(&self) -> usize {
+        let n = self.program.steps.len();
+        let last_fired = (self.plc.awaited + n - 1) % n;
+        self.program.steps[last_fired].number
+    }
+
+    pub(in crate::simulate) fn on_fire(&mut self, fired: usize) {
+        let step = &self.program.steps[fired];
+        self.machine_on_fire(fired);
+        if fired == 0
+            && !(self.world.start_pressed
+                || self.world.operator.start
+                || self.world.operator.continuous)
+        {
+            self.problem(
+                ProblemKind::UnexpectedStart,
+                step.number,
+                "the cycle started without a START press".to_string(),
+            );
+        }
+        let unfinished: Vec<String> = self
+            .active
+            .iter()
+            .filter(|a| !a.reached)
+            .map(|a| {
+                format!(
+                    "C{} had not reached {}",
+                    a.mv.actuator,
+                    sensor_symbol(&a.mv)
+                )
+            })
+            .collect();
+        if !unfinished.is_empty() {
+            self.problem(
+                ProblemKind::Premature,
+                step.number,
+                format!(
+                    "step {} started before step {} finished ({})",
+                    step.number,
+                    self.active[0].step,
+                    unfinished.join(", ")
+                ),
+            );
+        }
+        self.active = step
+            .moves
+            .iter()
+            .filter_map(|m| {
+                self.world
+                    .index_of
+                    .get(&m.actuator)
+                    .map(|&piston| ActiveMove {
+                        piston,
+                        mv: *m,
+                        step: step.number,
+                        reached: false,
+                        ran_through: false,
+                    })
+            })
+            .collect();
+        for a in &self.active {
+            self.last_move[a.piston] = Some(a.clone());
+        }
+    }
+
+    pub(in crate::simulate) fn check_motion(&mut self, piston: usize, direction: Sign) {
+        let p = &self.world.pistons[piston];
+        let window = p.window(self.world.settings.window);
+        let number = p.number;
+        let s = p.s;
+        let commanded = self.last_move[piston]
+            .as_ref()
+            .filter(|a| a.mv.sign == direction)
+            .cloned();
+        let Some(a) = commanded else {
+            let step = self.current_step();
+            self.problem(
+                ProblemKind::OutsideStep,
+                step,
+                format!(
+                    "C{number} moves {} although no step moves it that way (during step {step})",
+                    if direction == Sign::Plus { "+" } else { "-" }
+                ),
+            );
+            return;
+        };
+        let target = p.sensor_point(a.mv.to);
+        let beyond = match direction {
+            Sign::Plus => s > target + window,
+            Sign::Minus => s < target - window,
+        };
+        if beyond && !a.ran_through {
+            for m in self.last_move[piston]
+                .iter_mut()
+                .chain(self.active.iter_mut().filter(|m| m.piston == piston))
+            {
+                m.ran_through = true;
+            }
+            self.problem(
+                ProblemKind::RanThrough,
+                a.step,
+                format!(
+                    "C{number} ran through {} in step {}",
+                    sensor_symbol(&a.mv),
+                    a.step
+                ),
+            );
+        }
+    }
+
+    pub(in crate::simulate) fn update_reached(&mut self) {
+        let window = self.world.settings.window;
+        for a in &mut self.active {
+            if !a.reached && !a.ran_through && self.world.pistons[a.piston].sensor(a.mv.to, window)
+            {
+                a.reached = true;
+            }
+        }
+    }
+
+    /// Every move under way has reached its target sensor and come to rest
+    /// (against the end stop, or held by a closed centre).
+    pub(in crate::simulate) fn all_moves_ended(&self) -> bool {
+        self.active.iter().all(|a| {
+            let p = &self.world.pistons[a.piston];
+            a.reached && p.at_rest() && p.sensor(a.mv.to, self.world.settings.window)
+        })
+    }
+
+    pub(in crate::simulate) fn positions(&self) -> Vec<f64> {
+        self.world
+            .pistons
+            .iter()
+            .map(Piston::position_units)
+            .collect()
+    }
+}
+
+/// The value an input reads: a fault overrides the plant. STOP and
+/// EMERGENCY STOP are normally closed: they read 1 until pressed.
+pub(in crate::simulate) fn read_input(signal: Signal, world: &World) -> bool {
+    if let Some(f) = world.settings.faults.iter().find(|f| f.signal == signal) {
+        return f.stuck_at;
+    }
+    let operator = world.operator;
+    match signal {
+        Signal::Start => world.start_pressed || operator.start,
+        Signal::Sensor { actuator, position } => world
+            .index_of
+            .get(&actuator)
+            .is_some_and(|i| world.pistons[*i].sensor(position, world.settings.window)),
+        Signal::MachineInput(name) => world.machine.get(&name).copied().unwrap_or(false),
+        Signal::Continuous => operator.continuous,
+        Signal::Stop => !operator.stop,
+        Signal::EStop => !operator.estop,
+        Signal::Reset => operator.reset,
+        _ => false,
+    }
+}
+
+pub(in crate::simulate) fn sensor_symbol(m: &Move) -> String {
+    Signal::Sensor {
+        actuator: m.actuator,
+        position: m.to,
+    }
+    .symbol()
+}
+
+pub(in crate::simulate) fn literal_text(l: &Literal) -> String {
+    if l.negated {
+        format!("NOT {}", l.signal.symbol())
+    } else {
+        l.signal.symbol()
+    }
+}
+
+/// Adds a point to the position trace, keeping only the corners of the
+/// polyline: a point on the straight line through the two before it
+/// replaces the last one. A 1,200 s stroke at a 1 ms scan kept 4.7 million
+/// points (692 MB, a 67 MB diagram) for a handful of straight lines.
+pub(in crate::simulate) fn record_point(
+    trace: &mut Vec<(u64, Vec<f64>)>,
+    time_ms: u64,
+    positions: Vec<f64>,
+) {
+    if let [.., (t0, p0), (t1, p1)] = trace.as_slice() {
+        let (dt0, dt1) = ((t1 - t0) as f64, (time_ms - t1) as f64);
+        let straight = p0.iter().zip(p1).zip(&positions).all(|((a, b), c)| {
+            // Same speed before and after the middle point, to well below
+            // what a diagram can show.
+            ((b - a) * dt1 - (c - b) * dt0).abs() <= 1e-9 * dt0 * dt1
+        });
+        if straight {
+            *trace.last_mut().expect("two points") = (time_ms, positions);
+            return;
+        }
+    }
+    trace.push((time_ms, positions));
+}

@@ -1,0 +1,87 @@
+//! What a simulation is run with: the plant's parameters, the faults
+//! present, what to record.
+
+use std::collections::BTreeMap;
+
+use crate::cell::Name;
+use crate::program::Signal;
+use crate::timing::{Stroke, Strokes};
+use crate::valve::Valves;
+
+/// Stroke fraction per second a 5/3 piston drifts with no coil on, unless
+/// `--load` says otherwise.
+pub const DEFAULT_DRIFT: f64 = 0.05;
+
+/// How long the operator holds START.
+pub(crate) const START_PRESS_MS: u32 = 100;
+/// Idle time before the first press and between cycles.
+pub(crate) const IDLE_MS: u32 = 500;
+/// How long the machine takes to give an input a step waits for, unless
+/// `SimSettings::input_delays` says otherwise.
+pub const DEFAULT_INPUT_DELAY_MS: u32 = 500;
+
+/// A sensor or push-button circuit fault: the input reads `stuck_at` always.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Fault {
+    pub signal: Signal,
+    pub stuck_at: bool,
+}
+
+impl Fault {
+    /// `x11 short circuit (stuck at 1)` / `x11 open circuit (stuck at 0)`.
+    pub fn describe(&self) -> String {
+        if self.stuck_at {
+            format!("{} short circuit (stuck at 1)", self.signal.symbol())
+        } else {
+            format!("{} open circuit (stuck at 0)", self.signal.symbol())
+        }
+    }
+}
+
+/// Simulation settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimSettings {
+    /// PLC scan time in milliseconds.
+    pub scan_ms: u32,
+    /// Stroke times of every actuator.
+    pub strokes: Strokes,
+    /// Valve types given explicitly (the others get the default for their positions).
+    pub valves: Valves,
+    /// Drift, in stroke per second, of a piston on a 5/3 valve with no coil
+    /// on: the load on an exhausted centre (towards home), the creep of a
+    /// pressurised centre (outwards). Per actuator; default 0.05.
+    pub loads: BTreeMap<u32, f64>,
+    /// Half-width of a sensor's detection window, as a fraction of the stroke.
+    pub window: f64,
+    /// Number of START presses (cycles) to run.
+    pub cycles: usize,
+    /// Input faults present from the start of the run.
+    pub faults: Vec<Fault>,
+    /// Record every actuator's position at every scan (for the time diagram).
+    pub record_trace: bool,
+    /// Per machine input, how long after its step starts the machine gives
+    /// the value the step waits for (default [`DEFAULT_INPUT_DELAY_MS`]).
+    pub input_delays: BTreeMap<Name, u32>,
+}
+
+impl Default for SimSettings {
+    fn default() -> Self {
+        SimSettings {
+            scan_ms: 10,
+            strokes: Strokes::default(),
+            valves: Valves::default(),
+            loads: BTreeMap::new(),
+            window: 0.02,
+            cycles: 2,
+            faults: Vec::new(),
+            record_trace: false,
+            input_delays: BTreeMap::new(),
+        }
+    }
+}
+
+impl SimSettings {
+    pub fn stroke(&self, actuator: u32) -> Stroke {
+        self.strokes.of(actuator)
+    }
+}
