@@ -1,0 +1,455 @@
+//! Building the step program from a checked table (DESIGN §4): the steps of
+//! the sequence, the end of the cycle, and the rungs every scan runs.
+
+use super::modes::{homing_rungs, mode_rungs};
+use super::signals::{self, Coils, Signals};
+use super::{
+    Action, Alarm, Literal, ProgramOptions, ProgramStep, Rung, RungKind, Signal, StepKind,
+    StepProgram,
+};
+use crate::cell::Sign;
+use crate::table::{Move, Step, StepTable};
+use crate::timing::Strokes;
+use crate::valve::Valves;
+
+/// What must hold for a step of the table to be complete: every move at its
+/// target sensor, every wait met, every dwell run out (its arming memory
+/// cleared when its timer started, and the timer stopped).
+fn completion(step: &Step) -> Vec<Literal> {
+    let mut literals: Vec<Literal> = step
+        .moves
+        .iter()
+        .map(|m| {
+            Literal::is(Signal::Sensor {
+                actuator: m.actuator,
+                position: m.to,
+            })
+        })
+        .collect();
+    literals.extend(step.waits.iter().map(wait_literal));
+    for d in &step.dwells {
+        literals.push(Literal::not(Signal::DwellArmed(d.number)));
+        literals.push(Literal::not(Signal::Dwell(d.number)));
+    }
+    literals
+}
+
+fn wait_literal(w: &crate::table::Wait) -> Literal {
+    Literal {
+        signal: Signal::MachineInput(w.input),
+        negated: !w.value,
+    }
+}
+
+/// The actions that move actuator `m` (its coils, and its middle-stop request).
+fn move_actions(
+    table: &StepTable,
+    signals: &Signals,
+    middle_stops: bool,
+    m: &Move,
+    actions: &mut Vec<Action>,
+) {
+    let is_middle = |actuator: u32, position: u32| {
+        table
+            .actuator(actuator)
+            .is_some_and(|a| a.is_middle(position))
+    };
+    if signals.valves.contains(&Coils::Single {
+        actuator: m.actuator,
+    }) {
+        // One coil, held for as long as the cylinder must stay out;
+        // switching it off lets the spring retract.
+        let coil = Signal::SingleCoil {
+            actuator: m.actuator,
+        };
+        actions.push(match m.sign {
+            Sign::Plus => Action::Set(coil),
+            Sign::Minus => Action::Reset(coil),
+        });
+        return;
+    }
+    // Two coils: the move's coil is set and held (it is the valve's
+    // only memory across a power dip), the opposite one reset.
+    actions.push(Action::Set(Signal::Coil {
+        actuator: m.actuator,
+        sign: m.sign,
+    }));
+    actions.push(Action::Reset(Signal::Coil {
+        actuator: m.actuator,
+        sign: m.sign.opposite(),
+    }));
+    if middle_stops {
+        // A stop request left from reaching the previous middle target
+        // must not cut this new move.
+        if is_middle(m.actuator, m.from) {
+            actions.push(Action::Reset(Signal::StopAt {
+                actuator: m.actuator,
+                position: m.from,
+            }));
+        }
+        if is_middle(m.actuator, m.to) {
+            actions.push(Action::Set(Signal::StopAt {
+                actuator: m.actuator,
+                position: m.to,
+            }));
+        }
+    }
+}
+
+/// Builds the step program of a checked table.
+///
+/// Step k fires when step k−1 is complete (its moves at their sensors, its
+/// waits met, its dwells run out); step 1 fires on START and every home
+/// sensor. Each move sets its coil and resets the opposite one. A move to a
+/// middle position also sets a stop request, and a rung switches both coils
+/// off the moment the middle sensor is reached: a 5/3 valve only holds the
+/// piston with both coils off (DESIGN §4, trap 2). A dwell is armed when its
+/// step fires and a rung starts its timer once the other items of its branch
+/// are done. Operating modes (`options.modes`) add rungs for the buttons and
+/// a homing sequence.
+pub fn build(
+    table: &StepTable,
+    options: &ProgramOptions,
+    valves: &Valves,
+    strokes: &Strokes,
+) -> StepProgram {
+    let signals = signals::declare(table, options, valves);
+    let safety = options.safety;
+    let modes = &options.modes;
+    let homes: Vec<Literal> = table
+        .actuators
+        .iter()
+        .map(|a| {
+            Literal::is(Signal::Sensor {
+                actuator: a.number,
+                position: 0,
+            })
+        })
+        .collect();
+    let mut steps = sequence_steps(table, options, &signals, &homes, strokes);
+    steps.extend(end_of_cycle(table, options));
+
+    let mut rungs = Vec::new();
+    if options.middle_stops {
+        rungs.extend(middle_stop_rungs(&signals));
+    }
+    rungs.extend(dwell_rungs(table));
+    if modes.any() {
+        mode_rungs(safety, modes, &homes, &mut rungs);
+    }
+    let mut init = Vec::new();
+    if safety.edge {
+        // START already pressed at power-up is no rising edge.
+        init.push(Action::Set(Signal::StartMemory));
+        rungs.extend(edge_rungs());
+    }
+    if safety.plausibility {
+        rungs.extend(plausibility_rungs(table));
+    }
+    let mut timers = Vec::new();
+    if safety.watchdog {
+        timers.push(Signal::Watchdog);
+        rungs.push(watchdog_rung());
+    }
+    timers.extend(table.dwells().map(|d| Signal::Dwell(d.number)));
+    if modes.any() {
+        homing_rungs(table, &signals, &timers, modes, &mut rungs);
+    }
+    StepProgram {
+        init,
+        steps,
+        rungs,
+        timers,
+        signals,
+    }
+}
+
+/// The steps of the table: each fires when the one before is complete.
+fn sequence_steps(
+    table: &StepTable,
+    options: &ProgramOptions,
+    signals: &Signals,
+    homes: &[Literal],
+    strokes: &Strokes,
+) -> Vec<ProgramStep> {
+    let middle_stops = options.middle_stops;
+    let safety = options.safety;
+    let modes = &options.modes;
+    let halts = safety.halts(modes);
+    let mut steps = Vec::with_capacity(table.steps.len() + 1);
+    for (index, step) in table.steps.iter().enumerate() {
+        let mut condition: Vec<Literal> = if index == 0 {
+            let mut first = if modes.any() {
+                // The buttons' rungs turn START and CONTINUOUS into a request.
+                vec![Literal::is(Signal::CycleRequest)]
+            } else {
+                std::iter::once(Literal::is(Signal::Start))
+                    .chain(safety.edge.then_some(Literal::not(Signal::StartMemory)))
+                    .collect()
+            };
+            first.extend(homes.iter().copied());
+            first
+        } else {
+            completion(&table.steps[index - 1])
+        };
+        if safety.precheck {
+            // A target sensor already on before the move starts is a lie.
+            condition.extend(step.moves.iter().map(|m| {
+                Literal::not(Signal::Sensor {
+                    actuator: m.actuator,
+                    position: m.to,
+                })
+            }));
+        }
+        if halts {
+            condition.push(Literal::not(Signal::Halt));
+        }
+
+        let mut actions = Vec::new();
+        for m in &step.moves {
+            move_actions(table, signals, middle_stops, m, &mut actions);
+        }
+        for switch in &step.switches {
+            let output = Signal::MachineOutput(switch.output);
+            actions.push(if switch.on {
+                Action::Set(output)
+            } else {
+                Action::Reset(output)
+            });
+        }
+        actions.extend(
+            step.dwells
+                .iter()
+                .map(|d| Action::Set(Signal::DwellArmed(d.number))),
+        );
+        if index == 0 && modes.any() {
+            actions.push(Action::Reset(Signal::CycleRequest));
+            actions.push(Action::Set(Signal::Busy));
+        }
+        if safety.watchdog {
+            if step.waits.is_empty() {
+                actions.push(Action::StartTimer(
+                    Signal::Watchdog,
+                    watchdog_preset_ms(table, step, strokes),
+                ));
+                actions.push(Action::Set(Signal::WatchdogArmed));
+            } else {
+                // Waiting for a part may take as long as it takes: a step
+                // that waits on a machine input is not timed.
+                actions.push(Action::Reset(Signal::Watchdog));
+                actions.push(Action::Reset(Signal::WatchdogArmed));
+            }
+        }
+        steps.push(ProgramStep {
+            number: step.number,
+            kind: StepKind::Table,
+            title: step.text(),
+            moves: step.moves.clone(),
+            condition,
+            actions,
+        });
+    }
+    steps
+}
+
+/// The end of the cycle is a step of its own when something must notice it
+/// (the watchdog, the modes) or when the last step ends on more than its
+/// moves: STEP 1 cannot wait for the last step's machine inputs, which
+/// nothing gives at power-up.
+fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramStep> {
+    let safety = options.safety;
+    let modes = &options.modes;
+    let halts = safety.halts(modes);
+    let last = table.steps.last()?;
+    let last_waits = !last.waits.is_empty() || !last.dwells.is_empty();
+    if !(safety.watchdog || modes.any() || last_waits) {
+        return None;
+    }
+    // The end of the cycle is an event of its own: the watchdog must stop
+    // once the last moves have finished, not run on while the machine
+    // idles, and a new cycle may be asked for only now.
+    let mut condition = completion(last);
+    if halts {
+        condition.push(Literal::not(Signal::Halt));
+    }
+    let mut actions = Vec::new();
+    if safety.watchdog {
+        actions.push(Action::Reset(Signal::Watchdog));
+        actions.push(Action::Reset(Signal::WatchdogArmed));
+    }
+    if modes.any() {
+        actions.push(Action::Reset(Signal::Busy));
+    }
+    Some(ProgramStep {
+        number: last.number + 1,
+        kind: StepKind::EndOfCycle,
+        title: "end of cycle".to_string(),
+        moves: Vec::new(),
+        condition,
+        actions,
+    })
+}
+
+/// Both coils off the moment a middle target is reached: a 5/3 valve only
+/// holds the piston with both coils off (DESIGN §4, trap 2).
+fn middle_stop_rungs(signals: &Signals) -> Vec<Rung> {
+    let mut rungs = Vec::new();
+    for &memory in &signals.memories {
+        let Signal::StopAt { actuator, position } = memory else {
+            continue;
+        };
+        let sensor = Signal::Sensor { actuator, position };
+        rungs.push(Rung {
+            kind: RungKind::MiddleStop,
+            comment: format!(
+                "middle stop: C{actuator} stops at {} (both coils off, the 5/3 valve holds it)",
+                sensor.symbol()
+            ),
+            condition: vec![Literal::is(memory), Literal::is(sensor)],
+            actions: vec![
+                Action::Reset(Signal::Coil {
+                    actuator,
+                    sign: Sign::Plus,
+                }),
+                Action::Reset(Signal::Coil {
+                    actuator,
+                    sign: Sign::Minus,
+                }),
+                Action::Reset(memory),
+            ],
+        });
+    }
+    rungs
+}
+
+/// Each dwell starts its timer once the other items of its branch are done.
+fn dwell_rungs(table: &StepTable) -> Vec<Rung> {
+    let mut rungs = Vec::new();
+    for step in &table.steps {
+        for d in &step.dwells {
+            // The dwell starts once the other items of its branch are done.
+            let mut condition = vec![Literal::is(Signal::DwellArmed(d.number))];
+            condition.extend(step.branch_moves(d.branch).map(|m| {
+                Literal::is(Signal::Sensor {
+                    actuator: m.actuator,
+                    position: m.to,
+                })
+            }));
+            condition.extend(
+                step.waits
+                    .iter()
+                    .filter(|w| w.branch == d.branch)
+                    .map(wait_literal),
+            );
+            rungs.push(Rung {
+                kind: RungKind::Dwell,
+                comment: format!(
+                    "dwell {}: STEP {}, branch {} waits {} once its other items are done",
+                    d.number,
+                    step.number,
+                    d.branch + 1,
+                    crate::cell::dwell_text(d.ms)
+                ),
+                condition,
+                actions: vec![
+                    Action::StartTimer(Signal::Dwell(d.number), d.ms),
+                    Action::Reset(Signal::DwellArmed(d.number)),
+                ],
+            });
+        }
+    }
+    rungs
+}
+
+/// START is remembered for the next scan, so that a cycle starts only on
+/// its rising edge.
+fn edge_rungs() -> [Rung; 2] {
+    [
+        Rung {
+            kind: RungKind::Edge,
+            comment: "edge: remember START for the next scan".to_string(),
+            condition: vec![Literal::is(Signal::Start)],
+            actions: vec![Action::Set(Signal::StartMemory)],
+        },
+        Rung {
+            kind: RungKind::Edge,
+            comment: "edge: START released".to_string(),
+            condition: vec![Literal::not(Signal::Start)],
+            actions: vec![Action::Reset(Signal::StartMemory)],
+        },
+    ]
+}
+
+/// Two sensors of one actuator on at once halt the sequence.
+fn plausibility_rungs(table: &StepTable) -> Vec<Rung> {
+    let mut rungs = Vec::new();
+    for a in &table.actuators {
+        for low in 0..a.max_position {
+            for high in low + 1..=a.max_position {
+                let sensor = |position| Signal::Sensor {
+                    actuator: a.number,
+                    position,
+                };
+                rungs.push(Rung {
+                    kind: RungKind::Plausibility,
+                    comment: format!(
+                        "plausibility: C{} cannot be at {} and {} at once",
+                        a.number,
+                        sensor(low).symbol(),
+                        sensor(high).symbol()
+                    ),
+                    condition: vec![Literal::is(sensor(low)), Literal::is(sensor(high))],
+                    actions: vec![
+                        Action::Set(Signal::Halt),
+                        Action::Set(Signal::Alarm(Alarm::Sensor)),
+                    ],
+                });
+            }
+        }
+    }
+    rungs
+}
+
+/// A step that does not finish in time raises the alarm and halts.
+fn watchdog_rung() -> Rung {
+    Rung {
+        kind: RungKind::Watchdog,
+        comment: "watchdog: the step did not finish in time".to_string(),
+        condition: vec![
+            Literal::is(Signal::WatchdogArmed),
+            Literal::not(Signal::Watchdog),
+        ],
+        actions: vec![
+            Action::Set(Signal::Halt),
+            Action::Set(Signal::Alarm(Alarm::Timeout)),
+            Action::Reset(Signal::WatchdogArmed),
+        ],
+    }
+}
+
+/// Twice the longest move of the step plus its longest dwell plus one
+/// second, rounded up to 100 ms: generous enough for a sticky valve, short
+/// enough to catch a lost sensor.
+fn watchdog_preset_ms(table: &StepTable, step: &Step, strokes: &Strokes) -> u32 {
+    let dwell = step.dwells.iter().map(|d| d.ms as u64).max().unwrap_or(0);
+    let longest = step
+        .moves
+        .iter()
+        .map(|m| {
+            let pmax = table
+                .actuator(m.actuator)
+                .map(|a| a.max_position)
+                .unwrap_or(1)
+                .max(1);
+            let stroke = strokes.of(m.actuator);
+            let full = match m.sign {
+                Sign::Plus => stroke.extend_ms,
+                Sign::Minus => stroke.retract_ms,
+            };
+            (full as u64 * m.from.abs_diff(m.to) as u64).div_ceil(pmax as u64)
+        })
+        .max()
+        .unwrap_or(0);
+    let preset = 2 * longest + dwell + 1000;
+    (preset.div_ceil(100) * 100).min(u32::MAX as u64) as u32
+}
