@@ -1,0 +1,442 @@
+//! Workbooks through calamine: the sheets, which of them holds the table,
+//! and each filled cell's value.
+
+use std::io::Cursor;
+
+use calamine::{Data, Ods, Range, Reader, Xls, Xlsx, open_workbook_from_rs};
+
+use super::*;
+use crate::cell::{header_kind, looks_like_move};
+use crate::diag::{CellPos, Code, Diagnostics, Location};
+
+pub(super) fn read_workbook(
+    file: &str,
+    format: Format,
+    bytes: Vec<u8>,
+    wanted: Option<&str>,
+    diags: &mut Diagnostics,
+) -> Option<Input> {
+    let whole_file = Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: None,
+    };
+    if matches!(format, Format::Xlsx | Format::Ods)
+        && let Some(unpacked) = unpacked_size(&bytes)
+        && unpacked > MAX_UNPACKED_BYTES
+    {
+        diags.error(
+            Code::E005TooLarge,
+            whole_file,
+            format!(
+                "the workbook unpacks to {} MiB; the limit is {} MiB",
+                unpacked / (1024 * 1024),
+                MAX_UNPACKED_BYTES / (1024 * 1024)
+            ),
+        );
+        return None;
+    }
+    if format == Format::Xlsx
+        && let Some(why) = guard_xlsx::impossible_string_count(&bytes)
+    {
+        diags.error(
+            Code::E002NotAWorkbook,
+            whole_file.clone(),
+            format!("the workbook is damaged and could not be decoded ({why})"),
+        );
+        return None;
+    }
+    if format == Format::Xlsx
+        && let Some(why) = guard_xlsx::overlong_text(&bytes)
+    {
+        diags.error(Code::E005TooLarge, whole_file.clone(), why);
+        return None;
+    }
+    if format == Format::Ods
+        && let Some(why) = guard_ods::oversized_sheet(&bytes, MAX_FILLED_CELLS as u64)
+    {
+        diags.error(Code::E024TableTooLarge, whole_file, why);
+        return None;
+    }
+    if format == Format::Xls
+        && let Some(refusal) = guard_ole::unsafe_to_decode(&bytes)
+    {
+        let (code, message) = match refusal {
+            guard_ole::Refusal::Damaged(why) => (
+                Code::E002NotAWorkbook,
+                format!("the workbook is damaged and could not be decoded ({why})"),
+            ),
+            guard_ole::Refusal::TooLarge(why) => (Code::E024TableTooLarge, why),
+        };
+        diags.error(code, whole_file, message);
+        return None;
+    }
+    let cursor = Cursor::new(bytes);
+    let opened: Result<Box<dyn SheetSource>, String> = match format {
+        Format::Xlsx => open_workbook_from_rs::<Xlsx<_>, _>(cursor)
+            .map(|w| Box::new(w) as Box<dyn SheetSource>)
+            .map_err(|e| e.to_string()),
+        Format::Xls => open_workbook_from_rs::<Xls<_>, _>(cursor)
+            .map(|w| Box::new(w) as Box<dyn SheetSource>)
+            .map_err(|e| e.to_string()),
+        Format::Ods => open_workbook_from_rs::<Ods<_>, _>(cursor)
+            .map(|w| Box::new(w) as Box<dyn SheetSource>)
+            .map_err(|e| e.to_string()),
+        Format::Csv => Err("internal: CSV is not a workbook".to_string()),
+    };
+    let mut workbook = match opened {
+        Ok(w) => w,
+        Err(err) => {
+            diags.error(
+                Code::E002NotAWorkbook,
+                whole_file,
+                format!("not a readable {} workbook ({err})", format_name(format)),
+            );
+            return None;
+        }
+    };
+    let names = workbook.names();
+    let read_sheet = |workbook: &mut Box<dyn SheetSource>, name: &str, diags: &mut Diagnostics| {
+        match workbook.grid(file, name) {
+            Ok(grid) => Some(grid),
+            Err(err) => {
+                let (code, message) = match err {
+                    SheetError::Unreadable(why) => (
+                        Code::E002NotAWorkbook,
+                        format!("sheet could not be read ({why})"),
+                    ),
+                    SheetError::TooManyCells => (
+                        Code::E024TableTooLarge,
+                        format!(
+                            "the sheet has more than {MAX_FILLED_CELLS} filled cells; a table of 10,000 steps × 256 branches has fewer"
+                        ),
+                    ),
+                };
+                let sheet = Location {
+                    file: file.to_string(),
+                    sheet: Some(name.to_string()),
+                    cell: None,
+                };
+                diags.error(code, sheet, message);
+                None
+            }
+        }
+    };
+
+    let settings_name = names
+        .iter()
+        .find(|n| n.trim().eq_ignore_ascii_case(SETTINGS_SHEET))
+        .cloned();
+    let settings = settings_name.and_then(|name| {
+        let grid = read_sheet(&mut workbook, &name, diags)?;
+        if workbook.hidden().contains(&name) {
+            diags.warning(
+                Code::W004SheetChoice,
+                grid.sheet_location(),
+                "the SETTINGS sheet is hidden but its settings are used",
+            );
+        }
+        Some(grid)
+    });
+    let table = pick_table(
+        &mut workbook,
+        &names,
+        wanted,
+        &whole_file,
+        diags,
+        &read_sheet,
+    )?;
+    Some(Input {
+        table,
+        settings,
+        csv_readings: Vec::new(),
+    })
+}
+
+type SheetReader<'a> =
+    dyn Fn(&mut Box<dyn SheetSource>, &str, &mut Diagnostics) -> Option<Grid> + 'a;
+
+/// The sheet holding the step table: the one asked for; else the one named
+/// SEQUENTIAL CONTROL DESCRIPTION unless it is hidden; else the visible sheet
+/// that best holds a table (BRANCH/STEP headers first, then the most moves),
+/// and a hidden one only when no visible sheet holds a table. Any choice
+/// among several, or of a hidden sheet, is said (W004).
+fn pick_table(
+    workbook: &mut Box<dyn SheetSource>,
+    names: &[String],
+    wanted: Option<&str>,
+    whole_file: &Location,
+    diags: &mut Diagnostics,
+    read_sheet: &SheetReader,
+) -> Option<Grid> {
+    let whole_file = whole_file.clone();
+    let find = |wanted: &str| {
+        names
+            .iter()
+            .find(|n| n.trim().eq_ignore_ascii_case(wanted.trim()))
+    };
+    if let Some(wanted) = wanted {
+        let Some(name) = find(wanted) else {
+            diags.error(
+                Code::E004NoSuchSheet,
+                whole_file,
+                format!(
+                    "no sheet named \"{wanted}\" (the workbook has: {})",
+                    names.join(", ")
+                ),
+            );
+            return None;
+        };
+        return read_sheet(workbook, name, diags);
+    }
+    let hidden = workbook.hidden();
+    let is_hidden = |name: &str| hidden.iter().any(|h| h == name);
+    if let Some(name) = find(TABLE_SHEET)
+        && !is_hidden(name)
+    {
+        return read_sheet(workbook, name, diags);
+    }
+    // A sheet that could not be read may be the one with the table: say why.
+    let mut unread = Diagnostics::new();
+    let mut candidates: Vec<(TableScore, Grid)> = Vec::new();
+    for name in names {
+        let mut local = Diagnostics::new();
+        match read_sheet(workbook, name, &mut local) {
+            Some(grid) => {
+                if let Some(score) = table_score(&grid, is_hidden(name)) {
+                    candidates.push((score, grid));
+                }
+            }
+            None => unread.extend(local),
+        }
+    }
+    // The best score wins; the first sheet on a tie.
+    let best = candidates
+        .iter()
+        .enumerate()
+        .max_by(|(i, (a, _)), (j, (b, _))| a.cmp(b).then(j.cmp(i)))
+        .map(|(i, _)| i);
+    let Some(best) = best else {
+        diags.extend(unread);
+        diags.error(
+            Code::E003NoTable,
+            whole_file,
+            format!(
+                "no step table found: no sheet named \"{TABLE_SHEET}\" and no sheet holding moves such as C1+1"
+            ),
+        );
+        return None;
+    };
+    let (score, grid) = candidates.swap_remove(best);
+    let others: Vec<String> = candidates
+        .iter()
+        .map(|(s, g)| {
+            let name = g.sheet.clone().unwrap_or_default();
+            if s.visible {
+                name
+            } else {
+                format!("{name} (hidden)")
+            }
+        })
+        .collect();
+    let chosen = grid.sheet.clone().unwrap_or_default();
+    let mut why = Vec::new();
+    if let Some(name) = find(TABLE_SHEET) {
+        why.push(format!("the sheet \"{name}\" is hidden"));
+    }
+    if !score.visible {
+        why.push(format!(
+            "\"{chosen}\" is hidden but no visible sheet holds a table"
+        ));
+    }
+    if !others.is_empty() {
+        why.push(format!(
+            "other sheets also hold moves: {}",
+            others.join(", ")
+        ));
+    }
+    if !why.is_empty() {
+        diags.warning(
+            Code::W004SheetChoice,
+            grid.sheet_location(),
+            format!(
+                "the table was read from sheet \"{chosen}\": {}; choose another with --sheet",
+                why.join("; ")
+            ),
+        );
+    }
+    Some(grid)
+}
+
+/// How well a sheet holds a step table; `None` when it holds none.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct TableScore {
+    visible: bool,
+    /// BRANCH n / STEP n headers: a legend of example moves has none.
+    headers: bool,
+    moves: usize,
+}
+
+fn table_score(grid: &Grid, hidden: bool) -> Option<TableScore> {
+    let mut headers = false;
+    let mut moves = 0;
+    for cell in &grid.cells {
+        if let CellValue::Text(t) = &cell.value {
+            headers |= header_kind(t).is_some();
+            moves += usize::from(looks_like_move(t));
+        }
+    }
+    (headers || moves > 0).then_some(TableScore {
+        visible: !hidden,
+        headers,
+        moves,
+    })
+}
+
+/// The two things we need from any calamine reader, object-safe.
+trait SheetSource {
+    fn names(&self) -> Vec<String>;
+    /// The names of hidden sheets (also "very hidden" ones).
+    fn hidden(&self) -> Vec<String>;
+    /// The filled cells of one sheet.
+    fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError>;
+}
+
+fn hidden_sheets(sheets: &[calamine::Sheet]) -> Vec<String> {
+    sheets
+        .iter()
+        .filter(|s| s.visible != calamine::SheetVisible::Visible)
+        .map(|s| s.name.clone())
+        .collect()
+}
+
+/// Why a sheet could not be read.
+enum SheetError {
+    /// calamine could not decode it.
+    Unreadable(String),
+    /// More than [`MAX_FILLED_CELLS`] filled cells.
+    TooManyCells,
+}
+
+/// `.xlsx` is read cell by cell as the sheet's XML streams past: memory
+/// follows the filled cells, not the rectangle around them (a sheet with
+/// cells at A1 and XFD1048576 would otherwise need 17 billion empty cells).
+impl SheetSource for Xlsx<Cursor<Vec<u8>>> {
+    fn names(&self) -> Vec<String> {
+        self.sheet_names()
+    }
+
+    fn hidden(&self) -> Vec<String> {
+        hidden_sheets(self.sheets_metadata())
+    }
+
+    fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError> {
+        let unreadable = |e: calamine::XlsxError| SheetError::Unreadable(e.to_string());
+        let mut reader = self.worksheet_cells_reader(name).map_err(unreadable)?;
+        let mut cells = Vec::new();
+        while let Some(cell) = reader
+            .next_cell_with_formula_metadata()
+            .map_err(unreadable)?
+        {
+            let (row, col) = cell.pos;
+            let data: Data = cell.value.into();
+            // A formula saved by a program that never computed it has no
+            // value; read as empty, what the engineer wrote would vanish.
+            let value = match (&data, cell.formula) {
+                (Data::Empty, Some(formula)) => Some(CellValue::Uncomputed(formula_text(formula))),
+                _ => cell_value(&data),
+            };
+            if let Some(value) = value {
+                if cells.len() == MAX_FILLED_CELLS {
+                    return Err(SheetError::TooManyCells);
+                }
+                cells.push(GridCell {
+                    pos: CellPos::new(row, col),
+                    value,
+                });
+            }
+        }
+        Ok(Grid {
+            file: file.to_string(),
+            sheet: Some(name.to_string()),
+            cells,
+        })
+    }
+}
+
+/// The text of a formula as the cell holds it, for messages.
+fn formula_text(formula: calamine::XlsxFormulaMetadata) -> String {
+    match formula {
+        calamine::XlsxFormulaMetadata::Normal { formula }
+        | calamine::XlsxFormulaMetadata::Shared { formula, .. } => format!("={formula}"),
+        _ => "a shared formula".to_string(),
+    }
+}
+
+/// `.xls` and `.ods`: calamine decodes these whole; their grids are small
+/// (65,536 × 256 for `.xls`).
+macro_rules! whole_sheet_source {
+    ($reader:ty) => {
+        impl SheetSource for $reader {
+            fn names(&self) -> Vec<String> {
+                self.sheet_names()
+            }
+
+            fn hidden(&self) -> Vec<String> {
+                hidden_sheets(self.sheets_metadata())
+            }
+
+            fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError> {
+                let range = self
+                    .worksheet_range(name)
+                    .map_err(|e| SheetError::Unreadable(e.to_string()))?;
+                Ok(grid_from_range(file, name, &range))
+            }
+        }
+    };
+}
+whole_sheet_source!(Xls<Cursor<Vec<u8>>>);
+whole_sheet_source!(Ods<Cursor<Vec<u8>>>);
+
+/// Most filled cells read from one sheet: a full table (10,000 steps × 256
+/// branches) with its labels fits; a sheet of millions of cells is refused.
+pub const MAX_FILLED_CELLS: usize = 3_000_000;
+
+/// What a filled cell holds; `None` for an empty or blank one.
+fn cell_value(data: &Data) -> Option<CellValue> {
+    Some(match data {
+        Data::Empty => return None,
+        Data::String(s) => {
+            if s.trim().is_empty() {
+                return None;
+            }
+            CellValue::Text(s.clone())
+        }
+        Data::Int(i) => CellValue::Number(*i as f64),
+        Data::Float(f) => CellValue::Number(*f),
+        Data::Bool(b) => CellValue::Bool(*b),
+        Data::DateTime(dt) => CellValue::Date(dt.to_string()),
+        Data::DateTimeIso(s) | Data::DurationIso(s) => CellValue::Date(s.clone()),
+        Data::Error(e) => CellValue::Error(e.to_string()),
+    })
+}
+
+fn grid_from_range(file: &str, sheet: &str, range: &Range<Data>) -> Grid {
+    // calamine's Range starts at its first non-empty cell: add the start back.
+    let (row0, col0) = range.start().unwrap_or((0, 0));
+    let mut cells = Vec::new();
+    for (r, c, data) in range.used_cells() {
+        let Some(value) = cell_value(data) else {
+            continue;
+        };
+        cells.push(GridCell {
+            pos: CellPos::new(row0 + r as u32, col0 + c as u32),
+            value,
+        });
+    }
+    Grid {
+        file: file.to_string(),
+        sheet: Some(sheet.to_string()),
+        cells,
+    }
+}
