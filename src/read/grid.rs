@@ -1,6 +1,5 @@
 //! A sheet as read: its filled cells with absolute positions.
 
-
 use crate::diag::{CellPos, Location};
 
 /// The value of one non-empty cell.

@@ -17,7 +17,6 @@ use std::io::Cursor;
 use std::path::Path;
 pub use workbook::MAX_FILLED_CELLS;
 
-
 use crate::diag::{Code, Diagnostics, Location};
 
 /// Largest input file read, in bytes.
