@@ -122,3 +122,82 @@ fn paper_and_press_station_with_every_operating_mode() {
         }
     }
 }
+
+/// The step program itself, in the paper's notation: the one model every
+/// output is rendered from. A change in it shows here before it shows in
+/// eleven output files.
+fn program_text(program: &steptable::program::StepProgram) -> String {
+    use steptable::program::{Signal, paper_sentence};
+    let mut lines = Vec::new();
+    let init: Vec<String> = program
+        .init
+        .iter()
+        .map(|a| format!("{} {}", a.verb(), a.signal().symbol()))
+        .collect();
+    let none = |list: Vec<String>| {
+        if list.is_empty() {
+            "(none)".to_string()
+        } else {
+            list.join(", ")
+        }
+    };
+    lines.push(format!("INIT {}", none(init)));
+    for step in &program.steps {
+        lines.push(format!(
+            "STEP {} ({}): {}",
+            step.number,
+            step.title,
+            paper_sentence(&step.condition, &step.actions, Signal::symbol)
+        ));
+    }
+    for rung in &program.rungs {
+        lines.push(format!(
+            "RUNG {}: {}",
+            rung.kind.label(),
+            paper_sentence(&rung.condition, &rung.actions, Signal::symbol)
+        ));
+    }
+    let timers: Vec<String> = program.timers.iter().map(|t| t.symbol()).collect();
+    lines.push(format!("TIMERS {}", none(timers)));
+    lines.join("\n") + "\n"
+}
+
+#[test]
+fn step_programs_and_template_contexts() {
+    use steptable::emit::{self, EmitInput};
+    for (name, modes, safety) in [
+        ("paper_example.xlsx", "none", "none"),
+        ("paper_example.xlsx", "all", "all"),
+        ("press_station.xlsx", "all", "none"),
+        ("mixed_valves.xlsx", "none", "all"),
+    ] {
+        let path = crate::helpers::sample(name);
+        let mut settings = Settings::new();
+        settings.program.modes = modes.parse().unwrap();
+        settings.program.safety = safety.parse().unwrap();
+        let c = convert_path(&path, &settings).expect("sample converts");
+        let label = format!("{}-modes-{modes}-safety-{safety}", name.replace('.', "_"));
+        insta::assert_snapshot!(format!("{label}.program"), program_text(&c.program));
+
+        // What the templates see: the IEC and STEP 7 models, as JSON.
+        let festo = steptable::address::Allocation::new(&c.program, Target::Festo, Mnemonic::En);
+        let input = EmitInput {
+            name: &c.name,
+            table: &c.table,
+            allocation: &c.allocation,
+            festo: &festo,
+            program: &c.program,
+            simulation: Some(&c.simulation),
+            faults: c.faults.as_ref(),
+            templates: &settings.templates,
+            scan_ms: settings.simulation.scan_ms,
+            diagram: settings.diagram,
+        };
+        let iec = emit::st::model(&input, settings.simulation.scan_ms).expect("model");
+        let awl = emit::awl::model(&input);
+        for (kind, model) in [("iec", iec), ("awl", awl)] {
+            let json = serde_json::to_string_pretty(&model).expect("a model is JSON");
+            insta::assert_snapshot!(format!("{label}.{kind}-context.json"), json);
+        }
+    }
+}
