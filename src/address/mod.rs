@@ -2,8 +2,6 @@
 //! step program gets, in each PLC dialect's notation (DESIGN §3). The
 //! program says which signals exist; this stage only lays them out.
 
-use std::fmt;
-
 use crate::program::{Area, Signal, StepProgram};
 
 /// The PLC dialect whose address notation is used.
@@ -288,12 +286,6 @@ impl std::str::FromStr for Mnemonic {
     }
 }
 
-impl fmt::Display for Target {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -333,12 +325,48 @@ mod tests {
                 assert!(a.address.bit < target.bits_per_unit());
                 assert!(
                     seen.insert(a.address),
-                    "{target}: duplicate {:?}",
+                    "{}: duplicate {:?}",
+                    target.name(),
                     a.address
                 );
             }
             assert_eq!(alloc.inputs.len(), 81);
             assert_eq!(alloc.outputs.len(), 80);
+        }
+    }
+
+    /// The paper's layout: `+` coils from bit 1 of word 0, `-` coils from
+    /// bit 1 of the first word the `+` coils leave free.
+    #[test]
+    fn festo_minus_coils_start_in_the_next_free_word() {
+        let first_minus = |count: usize| {
+            let plus: Vec<String> = (1..=count).map(|i| format!("C{i}+1")).collect();
+            let minus: Vec<String> = (1..=count).map(|i| format!("C{i}-0")).collect();
+            let plus: Vec<&str> = plus.iter().map(String::as_str).collect();
+            let minus: Vec<&str> = minus.iter().map(String::as_str).collect();
+            let alloc = allocate(&[&plus, &minus], Target::Festo);
+            alloc
+                .outputs
+                .iter()
+                .find(|a| a.signal.symbol() == "y1-")
+                .map(|a| a.address.display(Mnemonic::En))
+        };
+        assert_eq!(first_minus(1).as_deref(), Some("O1.1"));
+        assert_eq!(first_minus(15).as_deref(), Some("O1.1"));
+        // Sixteen + coils fill O0.1 to O1.0: the - coils begin in word 2.
+        assert_eq!(first_minus(16).as_deref(), Some("O2.1"));
+    }
+
+    #[test]
+    fn targets_parse_from_their_names() {
+        for target in Target::ALL {
+            assert_eq!(target.name().parse::<Target>(), Ok(target));
+        }
+        for mnemonic in Mnemonic::ALL {
+            assert_eq!(
+                mnemonic.name().to_uppercase().parse::<Mnemonic>(),
+                Ok(mnemonic)
+            );
         }
     }
 

@@ -161,13 +161,6 @@ pub struct StepProgram {
     pub signals: Signals,
 }
 
-impl StepProgram {
-    /// The steps of the table (all but a closing END step).
-    pub fn table_steps(&self) -> impl Iterator<Item = &ProgramStep> {
-        self.steps.iter().filter(|s| s.kind == StepKind::Table)
-    }
-}
-
 /// `IF a AND b THEN SET y1+ RESET y1-` in the paper's notation, with symbols
 /// from `name`. Only actions on outputs are listed when `outputs_only`.
 pub fn paper_sentence(

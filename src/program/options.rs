@@ -86,10 +86,6 @@ impl Safety {
         Ok(safety)
     }
 
-    pub fn any(self) -> bool {
-        self.edge || self.precheck || self.plausibility || self.watchdog
-    }
-
     /// Whether the program has a `halt` memory: a check that stops the
     /// sequence (plausibility, watchdog) or an emergency stop sets it. The
     /// one place this is decided, for the allocation and the program.

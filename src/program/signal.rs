@@ -397,6 +397,15 @@ mod tests {
     }
 
     #[test]
+    fn every_signal_has_the_kind_of_its_role() {
+        assert_eq!(Signal::Watchdog.kind(), "timer");
+        assert_eq!(Signal::Dwell(1).kind(), "timer");
+        assert_eq!(Signal::Halt.kind(), "memory");
+        assert_eq!(Signal::Reset.kind(), "reset");
+        assert_eq!(Signal::SingleCoil { actuator: 1 }.kind(), "coil");
+    }
+
+    #[test]
     fn long_machine_names_keep_nine_characters_in_fst() {
         let name = crate::cell::Name::new("part_present").unwrap();
         assert_eq!(Signal::MachineInput(name).ident(), "part_present");
