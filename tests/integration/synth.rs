@@ -174,3 +174,21 @@ fn a_search_past_its_time_limit_stops_with_e033() {
         .assert()
         .success();
 }
+
+/// The synthesised programs as written, for Table 5's cases 1 and 2: the IEC
+/// files an engineer loads (the tool checks run them in matiec).
+#[test]
+fn synthesised_programs_are_snapshotted() {
+    use steptable::synth::{output, sequence, synthesize};
+    for (label, text) in [("case1", "A1 A0 B1 B0"), ("case2", "A0 A1 C1 C0 B1 B0")] {
+        let synthesis = synthesize(&sequence::parse(text).unwrap()).unwrap();
+        insta::assert_snapshot!(
+            format!("synth-{label}.equations.st"),
+            output::structured_text(&synthesis, label)
+        );
+        insta::assert_snapshot!(
+            format!("synth-{label}.equations.il"),
+            output::instruction_list(&synthesis, label)
+        );
+    }
+}
