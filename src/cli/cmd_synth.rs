@@ -41,6 +41,10 @@ pub(crate) struct SynthArgs {
     /// on stdout; the report then goes to stderr).
     #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
     pub(crate) message_format: MessageFormat,
+    /// Folder of templates that replace the built-in ones by file name
+    /// (equations.st.j2, equations.il.j2; start from `steptable templates export DIR`).
+    #[arg(long, value_name = "DIR")]
+    pub(crate) templates: Option<PathBuf>,
 }
 
 fn parse_time_limit(text: &str) -> Result<std::time::Duration, String> {
@@ -84,6 +88,16 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
     use steptable::synth::{self, SynthError, output as synth_out};
 
     let reporter = Reporter::for_format(args.message_format);
+    let templates = match &args.templates {
+        Some(dir) => match steptable::settings::user_templates::load_dir(dir) {
+            Ok(templates) => templates,
+            Err(err) => {
+                eprintln!("{err}");
+                return EXIT_BAD_INPUT;
+            }
+        },
+        None => steptable::emit::templates::Templates::default(),
+    };
     let source = match &args.input {
         Some(input) if args.sequence.is_none() => display_name(input),
         _ => "--sequence".to_string(),
@@ -177,6 +191,22 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             return EXIT_INTERNAL;
         }
     };
+    let programs = steptable::emit::equations::structured_text(&templates, &synthesis, &name)
+        .and_then(|st| {
+            steptable::emit::equations::instruction_list(&templates, &synthesis, &name)
+                .map(|il| (st, il))
+        });
+    let (st, il) = match programs {
+        Ok(programs) => programs,
+        Err(err) if err.user => {
+            eprintln!("{err}");
+            return EXIT_BAD_INPUT;
+        }
+        Err(err) => {
+            eprintln!("internal error: {err}");
+            return EXIT_INTERNAL;
+        }
+    };
     let files = vec![
         steptable::emit::OutputFile {
             name: format!("{name}.synth.txt"),
@@ -188,11 +218,11 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
         },
         steptable::emit::OutputFile {
             name: format!("{name}.equations.st"),
-            bytes: synth_out::structured_text(&synthesis, &name).into_bytes(),
+            bytes: st.into_bytes(),
         },
         steptable::emit::OutputFile {
             name: format!("{name}.equations.il"),
-            bytes: synth_out::instruction_list(&synthesis, &name).into_bytes(),
+            bytes: il.into_bytes(),
         },
         steptable::emit::OutputFile {
             name: format!("{name}.xlsx"),

@@ -4,6 +4,7 @@
 
 pub mod awl;
 pub mod diagram;
+pub mod equations;
 pub mod faults_csv;
 pub mod fst;
 pub mod io_csv;

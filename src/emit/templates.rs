@@ -57,6 +57,22 @@ pub const DEFAULTS: &[(&str, &str)] = &[
         "beremiz.xml.j2",
         include_str!("../../templates/beremiz.xml.j2"),
     ),
+    (
+        "equations.st.j2",
+        include_str!("../../templates/equations.st.j2"),
+    ),
+    (
+        "equations.il.j2",
+        include_str!("../../templates/equations.il.j2"),
+    ),
+    (
+        "equations_vars.j2",
+        include_str!("../../templates/equations_vars.j2"),
+    ),
+    (
+        "equations_config.j2",
+        include_str!("../../templates/equations_config.j2"),
+    ),
 ];
 
 /// A template failed to load or render.

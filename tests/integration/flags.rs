@@ -512,6 +512,17 @@ fn all_cases() -> Vec<Case> {
         ),
         case(
             "synth",
+            "--templates",
+            PaperWithTemplates,
+            &["--sequence", "A1 B1 A0 B0", "--templates", "tpl"],
+            &["--sequence", "A1 B1 A0 B0"],
+            Has(
+                Place::File("steptable-out/sequence/sequence.equations.st".to_string()),
+                "(* marked template *)",
+            ),
+        ),
+        case(
+            "synth",
             "--output",
             None,
             &["--sequence", "A1 B1 A0 B0", "-o", "o2"],
@@ -672,9 +683,11 @@ fn prepare(dir: &Path, input: Input) {
                 .output()
                 .unwrap();
             assert!(out.status.success());
-            let st = dir.join("tpl/program.st.j2");
-            let text = std::fs::read_to_string(&st).unwrap();
-            std::fs::write(&st, format!("(* marked template *)\n{text}")).unwrap();
+            for name in ["program.st.j2", "equations.st.j2"] {
+                let st = dir.join("tpl").join(name);
+                let text = std::fs::read_to_string(&st).unwrap();
+                std::fs::write(&st, format!("(* marked template *)\n{text}")).unwrap();
+            }
         }
         Input::None => {}
     }

@@ -179,16 +179,18 @@ fn a_search_past_its_time_limit_stops_with_e033() {
 /// files an engineer loads (the tool checks run them in matiec).
 #[test]
 fn synthesised_programs_are_snapshotted() {
-    use steptable::synth::{output, sequence, synthesize};
+    use steptable::emit::{equations, templates::Templates};
+    use steptable::synth::{sequence, synthesize};
+    let templates = Templates::default();
     for (label, text) in [("case1", "A1 A0 B1 B0"), ("case2", "A0 A1 C1 C0 B1 B0")] {
         let synthesis = synthesize(&sequence::parse(text).unwrap()).unwrap();
         insta::assert_snapshot!(
             format!("synth-{label}.equations.st"),
-            output::structured_text(&synthesis, label)
+            equations::structured_text(&templates, &synthesis, label).unwrap()
         );
         insta::assert_snapshot!(
             format!("synth-{label}.equations.il"),
-            output::instruction_list(&synthesis, label)
+            equations::instruction_list(&templates, &synthesis, label).unwrap()
         );
     }
 }

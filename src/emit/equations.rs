@@ -1,0 +1,238 @@
+//! The synthesised equations as IEC programs (`NAME.equations.st`,
+//! `NAME.equations.il`): names, addresses and instruction-list code are
+//! decided here, the templates `equations.st.j2` and `equations.il.j2` lay
+//! them out.
+
+use minijinja::Value;
+use minijinja::value::Serde;
+use serde::Serialize;
+
+use super::st::{CONFIGURATION_NAME, RESOURCE_NAME};
+use super::templates::{TemplateError, Templates};
+use crate::synth::equations::Expr;
+use crate::synth::output::{CONVENTION, equation_line};
+use crate::synth::{Equation, Synthesis};
+
+/// IEC identifiers of the program: sensors `a_home`/`a_end`, state `a`,
+/// coils `ya_p`/`ya_m`, memories `x`, … (IEC is case-insensitive, so coils
+/// cannot be called `A1`).
+struct Names<'a> {
+    s: &'a Synthesis,
+}
+
+impl Names<'_> {
+    fn state(&self, v: usize) -> String {
+        self.s.modified.signal_name(v).to_string()
+    }
+
+    fn output(&self, e: &Equation) -> String {
+        let v = e.action.var;
+        let value = e.action.value;
+        if self.s.modified.is_memory(v) {
+            format!("{}_{}", self.state(v), if value { "set" } else { "reset" })
+        } else {
+            format!("y{}_{}", self.state(v), if value { "p" } else { "m" })
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct Located {
+    name: String,
+    address: String,
+    comment: String,
+}
+
+#[derive(Serialize)]
+struct State {
+    name: String,
+    initial: &'static str,
+    comment: &'static str,
+}
+
+#[derive(Serialize)]
+struct EquationModel {
+    output: String,
+    token: String,
+    /// As Structured Text.
+    expr: String,
+    /// `A1  = NOT (b OR x)`, the comment of the IL block.
+    line: String,
+    /// The instruction-list code that leaves the value in the accumulator.
+    il: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct Model {
+    title: String,
+    version: &'static str,
+    original: String,
+    modified: String,
+    convention: &'static str,
+    inputs: Vec<Located>,
+    coils: Vec<Located>,
+    states: Vec<State>,
+    /// The set and reset outputs of the memories.
+    memory_outputs: Vec<String>,
+    /// IL scratch variables `t1`, `t2`, … for nested operands.
+    temporaries: Vec<String>,
+    actuators: Vec<String>,
+    memories: Vec<String>,
+    equations: Vec<EquationModel>,
+    program: &'static str,
+    configuration: &'static str,
+    resource: &'static str,
+}
+
+/// Instruction list for `e`, result in the accumulator; a nested right
+/// operand goes through a temporary.
+fn instructions(e: &Expr, names: &Names, code: &mut Vec<String>, temps: &mut usize) {
+    match e {
+        Expr::Var(v) => code.push(format!("LD {}", names.state(*v))),
+        Expr::Not(inner) => {
+            instructions(inner, names, code, temps);
+            code.push("NOT".to_string());
+        }
+        Expr::And(a, b) | Expr::Or(a, b) | Expr::Xor(a, b) => {
+            let op = match e {
+                Expr::And(..) => "AND",
+                Expr::Or(..) => "OR",
+                _ => "XOR",
+            };
+            match &**b {
+                Expr::Var(v) => {
+                    instructions(a, names, code, temps);
+                    code.push(format!("{op} {}", names.state(*v)));
+                }
+                Expr::Not(n) if matches!(**n, Expr::Var(_)) => {
+                    instructions(a, names, code, temps);
+                    if let Expr::Var(v) = **n {
+                        code.push(format!("{op}N {}", names.state(v)));
+                    }
+                }
+                _ => {
+                    *temps += 1;
+                    let t = format!("t{temps}");
+                    instructions(b, names, code, temps);
+                    code.push(format!("ST {t}"));
+                    instructions(a, names, code, temps);
+                    code.push(format!("{op} {t}"));
+                }
+            }
+        }
+    }
+}
+
+/// `temporaries`: whether the language needs scratch variables (IL does).
+fn model(s: &Synthesis, title: &str, program: &'static str, temporaries: bool) -> Model {
+    let seq = &s.modified;
+    let names = Names { s };
+    let bit = |n: usize| format!("{}.{}", n / 8, n % 8);
+    let mut inputs = Vec::new();
+    for v in 0..seq.actuators {
+        for (end, what) in [("home", "retracted"), ("end", "extended")] {
+            inputs.push(Located {
+                name: format!("{}_{end}", names.state(v)),
+                address: format!("%IX{}", bit(inputs.len())),
+                comment: format!("{} {what}", seq.var_name(v)),
+            });
+        }
+    }
+    let coils = s
+        .equations
+        .iter()
+        .filter(|e| !seq.is_memory(e.action.var))
+        .enumerate()
+        .map(|(n, e)| Located {
+            name: names.output(e),
+            address: format!("%QX{}", bit(n)),
+            comment: seq.token(e.action),
+        })
+        .collect();
+    let initial = seq.initial_state();
+    let states = (0..seq.variables())
+        .map(|v| State {
+            name: names.state(v),
+            initial: if (initial >> v) & 1 == 1 {
+                "TRUE"
+            } else {
+                "FALSE"
+            },
+            comment: if seq.is_memory(v) {
+                "memory"
+            } else {
+                "sensor state"
+            },
+        })
+        .collect();
+    let mut most_temps = 0;
+    let equations = s
+        .equations
+        .iter()
+        .map(|e| {
+            let mut il = Vec::new();
+            let mut temps = 0;
+            instructions(&e.expr, &names, &mut il, &mut temps);
+            most_temps = most_temps.max(temps);
+            EquationModel {
+                output: names.output(e),
+                token: seq.token(e.action),
+                expr: e.expr.text(&|v| names.state(v)),
+                line: equation_line(s, e),
+                il,
+            }
+        })
+        .collect();
+    Model {
+        title: title.to_string(),
+        version: env!("CARGO_PKG_VERSION"),
+        original: s.original.text(),
+        modified: seq.text(),
+        convention: CONVENTION,
+        inputs,
+        coils,
+        states,
+        memory_outputs: s
+            .equations
+            .iter()
+            .filter(|e| seq.is_memory(e.action.var))
+            .map(|e| names.output(e))
+            .collect(),
+        temporaries: (1..=if temporaries { most_temps } else { 0 })
+            .map(|t| format!("t{t}"))
+            .collect(),
+        actuators: (0..seq.actuators).map(|v| names.state(v)).collect(),
+        memories: (seq.actuators..seq.variables())
+            .map(|v| names.state(v))
+            .collect(),
+        equations,
+        program,
+        configuration: CONFIGURATION_NAME,
+        resource: RESOURCE_NAME,
+    }
+}
+
+/// `NAME.equations.st`: a complete program with a configuration, that reads
+/// the end sensors, evaluates every equation on the scan's state, drives the
+/// coils and sets/resets the memories.
+pub fn structured_text(
+    templates: &Templates,
+    s: &Synthesis,
+    title: &str,
+) -> Result<String, TemplateError> {
+    let model = model(s, title, "synth_main", false);
+    templates.render("equations.st.j2", Value::from(Serde(&model)))
+}
+
+/// `NAME.equations.il`: the same equations in IEC instruction list, one
+/// block per output, with temporaries for nested operands. Each latch is
+/// one load-or-and-store, not an S/R pair: matiec fails (an internal error
+/// or a crash) on programs with many S/R pairs.
+pub fn instruction_list(
+    templates: &Templates,
+    s: &Synthesis,
+    title: &str,
+) -> Result<String, TemplateError> {
+    let model = model(s, title, "synth_il", true);
+    templates.render("equations.il.j2", Value::from(Serde(&model)))
+}
