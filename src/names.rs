@@ -240,9 +240,7 @@ fn is_standard_library_name(name: &str) -> bool {
     let typed = TYPES.iter().any(|t| {
         name.strip_suffix(t)
             .and_then(|base| base.strip_suffix('_'))
-            .is_some_and(|base| {
-                LIBRARY.contains(&base) || TYPES.contains(&base) || is_standard_library_name(base)
-            })
+            .is_some_and(is_standard_library_name)
     });
     if typed {
         return true;
@@ -319,6 +317,8 @@ mod tests {
             "mux_dint",
             "time_of_day",
             "any_num",
+            "bcd_to_int",
+            "to_bcd",
         ] {
             assert!(reserved_name(name).is_some(), "{name}");
         }
@@ -330,6 +330,10 @@ mod tests {
             "part_present",
             "maxi",
             "left_door",
+            // A conversion's name needs a type on both sides of `_to_`.
+            "part_to_bin",
+            "part_to_int",
+            "int_to_bin",
         ] {
             assert_eq!(reserved_name(name), None, "{name}");
         }
