@@ -47,6 +47,8 @@ pub struct Problem {
     pub time_ms: u64,
     /// The step the problem concerns (one-based).
     pub step: usize,
+    /// The actuator it concerns, where it concerns one (a run-through).
+    pub actuator: Option<u32>,
     pub message: String,
 }
 

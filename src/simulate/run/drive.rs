@@ -270,6 +270,7 @@ pub(in crate::simulate) fn run(
                         kind: ProblemKind::NotHome,
                         time_ms: run.time_ms,
                         step,
+                        actuator: Some(p.number),
                         message: format!("C{} is not home at the end of the cycle", p.number),
                     });
                 }
@@ -301,6 +302,7 @@ pub(in crate::simulate) fn run(
                 kind: ProblemKind::CycleDiffers,
                 time_ms: run.time_ms,
                 step: 1,
+                actuator: None,
                 message: "the second cycle's step timing differs from the first".to_string(),
             });
         }
@@ -311,10 +313,7 @@ pub(in crate::simulate) fn run(
             continue;
         }
         if let Some(piston) = problem
-            .message
-            .strip_prefix('C')
-            .and_then(|rest| rest.split(' ').next())
-            .and_then(|n| n.parse::<u32>().ok())
+            .actuator
             .and_then(|n| run.world.index_of.get(&n))
             .map(|i| &run.world.pistons[*i])
         {

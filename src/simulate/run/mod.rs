@@ -96,6 +96,17 @@ impl Run<'_> {
     }
 
     pub(in crate::simulate) fn problem(&mut self, kind: ProblemKind, step: usize, message: String) {
+        self.problem_of(kind, step, None, message);
+    }
+
+    /// A problem that concerns one actuator.
+    pub(in crate::simulate) fn problem_of(
+        &mut self,
+        kind: ProblemKind,
+        step: usize,
+        actuator: Option<u32>,
+        message: String,
+    ) {
         // One report per kind and step is enough to explain what happened.
         if self
             .problems
@@ -108,6 +119,7 @@ impl Run<'_> {
             kind,
             time_ms: self.time_ms,
             step,
+            actuator,
             message,
         });
     }
@@ -293,9 +305,10 @@ impl Run<'_> {
             {
                 m.ran_through = true;
             }
-            self.problem(
+            self.problem_of(
                 ProblemKind::RanThrough,
                 a.step,
+                Some(number),
                 format!(
                     "C{number} ran through {} in step {}",
                     sensor_symbol(&a.mv),
