@@ -169,3 +169,61 @@ pub fn on_threads<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> Option<R> + S
     });
     found.into_inner().unwrap_or_else(|e| e.into_inner())
 }
+
+/// One table through the library with the options a test names, so that
+/// tests say what they vary and nothing else:
+/// `Build::paper().modes("all").program()`.
+pub struct Build {
+    pub table: steptable::table::StepTable,
+    pub settings: steptable::settings::Settings,
+}
+
+impl Build {
+    /// The paper's example (DESIGN §4), as a bare grid.
+    pub fn paper() -> Self {
+        Build::rows("paper.csv", &steptable::template_workbook::PAPER_EXAMPLE)
+    }
+
+    /// A table from rows of cell text laid out from A1.
+    pub fn rows<R: AsRef<[S]>, S: AsRef<str>>(file: &str, rows: &[R]) -> Self {
+        let table = steptable::table::from_rows(file, rows).expect("a valid table");
+        Build {
+            table,
+            settings: steptable::settings::Settings::new(),
+        }
+    }
+
+    /// A workbook, read and checked (its SETTINGS sheet applied).
+    pub fn path(path: &Path) -> Self {
+        let settings = steptable::settings::Settings::new();
+        let checked = steptable::convert::check_path(path, &settings).expect("a valid sample");
+        Build {
+            table: checked.table,
+            settings: checked.settings,
+        }
+    }
+
+    pub fn modes(mut self, modes: &str) -> Self {
+        self.settings.program.modes = modes.parse().expect("valid modes");
+        self
+    }
+
+    pub fn safety(mut self, safety: steptable::program::Safety) -> Self {
+        self.settings.program.safety = safety;
+        self
+    }
+
+    pub fn simulation(mut self, simulation: steptable::simulate::SimSettings) -> Self {
+        self.settings.simulation = simulation;
+        self
+    }
+
+    pub fn program(&self) -> steptable::program::StepProgram {
+        steptable::convert::build_program(&self.table, &self.settings)
+    }
+
+    pub fn faults(&self) -> steptable::faults::FaultTable {
+        let program = self.program();
+        steptable::faults::analyse(&self.table, &program, &self.settings.simulation, false)
+    }
+}

@@ -2,33 +2,25 @@
 //! operation, run as scripts of button presses against the paper's example.
 
 use predicates::prelude::PredicateBooleanExt;
-use steptable::program::{self, ProgramOptions, StepProgram};
-use steptable::program::{Modes, Signal};
+use steptable::program::{Modes, Signal, StepProgram};
+use steptable::settings::Settings;
 use steptable::simulate::scenario::{ScenarioReport, scenario};
 use steptable::simulate::{Operator, SimSettings};
 use steptable::table::{StepTable, from_rows};
 
-fn paper() -> StepTable {
-    from_rows("paper.csv", &steptable::template_workbook::PAPER_EXAMPLE).expect("valid table")
-}
+use crate::helpers::Build;
 
-/// The program of `table` with `modes`, for the valves and
-/// strokes of `settings`.
-fn build_with(table: &StepTable, modes: &str, settings: &SimSettings) -> StepProgram {
-    let modes = Modes::parse(modes).expect("valid modes");
-    program::build(
-        table,
-        &ProgramOptions {
-            modes,
-            ..ProgramOptions::default()
-        },
-        &settings.valves,
-        &settings.strokes,
-    )
+fn paper() -> StepTable {
+    Build::paper().table
 }
 
 fn program_with(table: &StepTable, modes: &str) -> StepProgram {
-    build_with(table, modes, &SimSettings::default())
+    Build {
+        table: table.clone(),
+        settings: Settings::new(),
+    }
+    .modes(modes)
+    .program()
 }
 
 const IDLE: Operator = Operator {
@@ -318,7 +310,10 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
                 retract_ms: 2000,
             },
         );
-        let program = build_with(&table, "estop", &settings);
+        let program = Build::rows("one.csv", &[["C1+1"], ["C1-0"]])
+            .simulation(settings.clone())
+            .modes("estop")
+            .program();
         // START at 0.5 s; ESTOP at 1.5 s, half-way out; held from then on.
         let mut script = press(500, start());
         script.push((
@@ -356,7 +351,7 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
 fn broken_stop_and_emergency_stop_wires_are_safe_stalls() {
     use steptable::faults::{self, Outcome};
     let table = paper();
-    let program = build_with(&table, "all", &SimSettings::default());
+    let program = program_with(&table, "all");
     let fault_table = faults::analyse(&table, &program, &SimSettings::default(), false);
     let outcome = |signal: Signal, stuck_at: bool| {
         fault_table

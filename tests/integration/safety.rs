@@ -6,14 +6,10 @@ use steptable::faults::{self, Outcome};
 use steptable::program::{Safety, Signal};
 use steptable::settings::Settings;
 
-use crate::helpers::{read_sheet, sample, samples, steptable};
+use crate::helpers::{Build, read_sheet, sample, samples, steptable};
 
 fn fault_table(path: &std::path::Path, safety: Safety) -> faults::FaultTable {
-    let mut settings = Settings::new();
-    settings.program.safety = safety;
-    let checked = convert::check_path(path, &settings).expect("valid sample");
-    let program = convert::build_program(&checked.table, &settings);
-    faults::analyse(&checked.table, &program, &settings.simulation, false)
+    Build::path(path).safety(safety).faults()
 }
 
 /// The checks watch START and the cylinder sensors. A machine input the
