@@ -226,7 +226,7 @@ mod tests {
             &table,
             &ProgramOptions::default(),
             &crate::valve::Valves::default(),
-            &crate::timing::Strokes::default(),
+            &crate::stroke::Strokes::default(),
         );
         let result = analyse(&table, &program, &SimSettings::default(), false);
         assert_eq!(result.cases.len(), 24);

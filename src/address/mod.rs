@@ -296,7 +296,7 @@ mod tests {
             &table,
             &crate::program::ProgramOptions::default(),
             &crate::valve::Valves::default(),
-            &crate::timing::Strokes::default(),
+            &crate::stroke::Strokes::default(),
         );
         Allocation::new(&program, target, Mnemonic::En)
     }

@@ -29,21 +29,21 @@ pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
             .ok_or_else(|| format!("\"{item}\": expected <input>=<time>, e.g. part_present=2s"))?;
         let name = steptable::cell::Name::new(&name.trim().to_ascii_lowercase())
             .map_err(|e| format!("\"{item}\": {e}"))?;
-        let ms = steptable::timing::parse_duration_ms(value)
+        let ms = steptable::stroke::parse_duration_ms(value)
             .ok_or_else(|| format!("\"{item}\": expected a time such as 2s or 300ms"))?;
         delays.insert(name, ms);
     }
     Ok(delays)
 }
 
-pub(crate) type StrokeMap = std::collections::BTreeMap<u32, steptable::timing::Stroke>;
+pub(crate) type StrokeMap = std::collections::BTreeMap<u32, steptable::stroke::Stroke>;
 
 pub(crate) fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
-    steptable::timing::parse_strokes(text)
+    steptable::stroke::parse_strokes(text)
 }
 
 pub(crate) fn parse_scan(text: &str) -> Result<u32, String> {
-    steptable::timing::parse_scan(text)
+    steptable::stroke::parse_scan(text)
 }
 
 impl SimArgs {

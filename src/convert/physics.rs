@@ -10,8 +10,8 @@ use super::{Failure, build_program};
 use crate::diag::{Code, Diagnostic, Location, Severity};
 use crate::settings::Settings;
 use crate::simulate::{self, SimReport, plant::Piston};
+use crate::stroke::Stroke;
 use crate::table::StepTable;
-use crate::timing::Stroke;
 use crate::valve::ValveType;
 
 /// A setting put back to its default, and how to say so.

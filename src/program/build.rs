@@ -8,8 +8,8 @@ use super::{
     StepProgram,
 };
 use crate::cell::Sign;
+use crate::stroke::Strokes;
 use crate::table::{Move, Step, StepTable};
-use crate::timing::Strokes;
 use crate::valve::Valves;
 
 /// What must hold for a step of the table to be complete: every move at its

@@ -206,8 +206,8 @@ pub fn condition_text(
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::stroke::Strokes;
     use crate::table::StepTable;
-    use crate::timing::Strokes;
     use crate::valve::Valves;
 
     /// The paper's example table (DESIGN §4), as a bare grid.

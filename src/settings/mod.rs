@@ -16,7 +16,7 @@ use crate::emit::diagram::DiagramKind;
 use crate::emit::templates::Templates;
 use crate::program::{Modes, ProgramOptions, Safety};
 use crate::simulate::SimSettings;
-use crate::timing::Stroke;
+use crate::stroke::Stroke;
 use crate::valve::ValveType;
 
 pub use sheet::{LABELS, parse};
@@ -204,7 +204,7 @@ mod tests {
         assert_eq!(" DE ".parse::<Mnemonic>(), Ok(Mnemonic::De));
         assert!("s7".parse::<Target>().is_err());
         assert_eq!("5/2 mono".parse::<ValveType>(), Ok(ValveType::Mono52));
-        assert_eq!(crate::timing::parse_scan("0,02s"), Ok(20));
-        assert!(crate::timing::parse_scan("2s").is_err());
+        assert_eq!(crate::stroke::parse_scan("0,02s"), Ok(20));
+        assert!(crate::stroke::parse_scan("2s").is_err());
     }
 }

@@ -11,7 +11,7 @@ use crate::address::{Mnemonic, Target};
 use crate::diag::{CellPos, Code, Diagnostics};
 use crate::program::{Modes, Safety};
 use crate::read::{CellValue, Grid, GridCell};
-use crate::timing::{Stroke, parse_duration_ms, parse_scan};
+use crate::stroke::{Stroke, parse_duration_ms, parse_scan};
 use crate::valve::ValveType;
 
 /// Where the actuator table's columns are: its header cell and the columns

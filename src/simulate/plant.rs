@@ -2,7 +2,7 @@
 //! detection window, and the valve each actuator sits on (DESIGN §5).
 
 use crate::cell::Sign;
-use crate::timing::Stroke;
+use crate::stroke::Stroke;
 use crate::valve::ValveType;
 
 /// Where the valve's spool is.

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use crate::cell::Name;
 use crate::program::Signal;
-use crate::timing::{Stroke, Strokes};
+use crate::stroke::{Stroke, Strokes};
 use crate::valve::Valves;
 
 /// Stroke fraction per second a 5/3 piston drifts with no coil on, unless

@@ -1,6 +1,6 @@
 use super::*;
 use crate::program::{self, ProgramOptions, Signal};
-use crate::timing::Stroke;
+use crate::stroke::Stroke;
 
 fn run(rows: &[Vec<&str>], options: ProgramOptions, settings: &SimSettings) -> SimReport {
     let table = crate::table::from_rows("t.csv", rows).expect("valid table");

@@ -7,7 +7,7 @@
 
 use super::Synthesis;
 use crate::simulate::plant::Piston;
-use crate::timing::Stroke;
+use crate::stroke::Stroke;
 
 /// The result of simulating a synthesised controller.
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -305,7 +305,7 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
         settings.loads.insert(1, 0.01);
         settings.strokes.per_actuator.insert(
             1,
-            steptable::timing::Stroke {
+            steptable::stroke::Stroke {
                 extend_ms: 2000,
                 retract_ms: 2000,
             },

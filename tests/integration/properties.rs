@@ -4,7 +4,7 @@ use proptest::prelude::*;
 use steptable::program::Safety;
 use steptable::program::{self, ProgramOptions};
 use steptable::simulate::{SimSettings, simulate};
-use steptable::timing::Stroke;
+use steptable::stroke::Stroke;
 
 /// Per actuator: pmax, extend ms, retract ms.
 type Actuators = Vec<(u32, u32, u32)>;

@@ -7,7 +7,7 @@
 use std::path::Path;
 
 use steptable::simulate::plant::Piston;
-use steptable::timing::Stroke;
+use steptable::stroke::Stroke;
 
 use crate::engines::matiec;
 use crate::helpers::steptable;
