@@ -2,6 +2,19 @@
 //! the IEC 61131-3 standard library, addresses of STEP 7 and FST, and the
 //! names the generated program uses for itself.
 
+/// The step counter of the Structured Text programs.
+pub const STEP_COUNTER: &str = "active_step";
+/// The STEP 7 memory that lets at most one step fire per cycle.
+pub const FIRED: &str = "fired";
+/// Festo FST keeps this many characters of a symbolic operand: the shortest
+/// limit of any target.
+pub const FST_SYMBOL_CHARS: usize = 9;
+
+/// What FST keeps of a name: its first [`FST_SYMBOL_CHARS`] characters.
+pub fn fst_stem(name: &str) -> String {
+    name.chars().take(FST_SYMBOL_CHARS).collect()
+}
+
 /// IEC 61131-3 keywords (and the common vendor ones) no identifier may be.
 #[rustfmt::skip]
 pub const KEYWORDS: &[&str] = &[
@@ -52,8 +65,8 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "busy",
         "auto_run",
         "homing",
-        "fired",
-        "active_step",
+        FIRED,
+        STEP_COUNTER,
         "sequence",
     ];
     // Followed by a digit these read as the program's own names or as an

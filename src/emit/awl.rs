@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use super::{EmitInput, action_comment, one_line, templates};
 use crate::address::Mnemonic;
+use crate::names::FIRED;
 use crate::program::{Action, Literal};
 use crate::program::{Area, Signal};
 
@@ -293,7 +294,7 @@ fn build(input: &EmitInput) -> Context {
         title: "no step has fired yet in this cycle".to_string(),
         lines: vec![
             line("SET", "", ""),
-            line("R", Layout::m(layout.fired), "fired"),
+            line("R", Layout::m(layout.fired), FIRED),
         ],
     });
     for t in &layout.timers {
@@ -326,7 +327,7 @@ fn build(input: &EmitInput) -> Context {
                 Layout::m(layout.step_flags[k]),
                 format!("step_{}", k + 1),
             ),
-            line(w.and_not, Layout::m(layout.fired), "fired"),
+            line(w.and_not, Layout::m(layout.fired), FIRED),
         ];
         condition(&mut lines, &step.condition);
         let skip = label(labels);
@@ -345,7 +346,7 @@ fn build(input: &EmitInput) -> Context {
             Layout::m(layout.step_flags[next]),
             format!("step_{}", next + 1),
         ));
-        lines.push(line("S", Layout::m(layout.fired), "fired"));
+        lines.push(line("S", Layout::m(layout.fired), FIRED));
         lines.push(Line {
             label: format!("{skip}:"),
             op: "NOP".to_string(),
@@ -415,7 +416,7 @@ fn build(input: &EmitInput) -> Context {
         });
     }
     symbols.push(Symbol {
-        symbol: "fired".to_string(),
+        symbol: FIRED.to_string(),
         address: sdf_address(&Layout::m(layout.fired)),
         data_type: "BOOL",
         comment: "a step fired in this cycle".to_string(),

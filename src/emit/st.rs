@@ -17,7 +17,7 @@ use crate::program::{Area, Signal};
 /// Identifiers of the program's own parts. `step` is an IEC keyword, so the
 /// step counter is called `active_step`.
 pub const PROGRAM_NAME: &str = "steptable_main";
-pub const STEP_VAR: &str = "active_step";
+pub const STEP_VAR: &str = crate::names::STEP_COUNTER;
 /// The names OpenPLC Runtime requires (its upload script moves `Config0.c`
 /// and `Res0.c`); Beremiz accepts any.
 pub const CONFIGURATION_NAME: &str = "Config0";

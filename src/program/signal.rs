@@ -167,7 +167,7 @@ impl Signal {
     /// identifier, with a long machine signal name cut to its first 9 (the
     /// table check makes sure those tell every name apart).
     pub fn fst_symbol(self) -> String {
-        self.ident().chars().take(9).collect()
+        crate::names::fst_stem(&self.ident())
     }
 
     /// The `kind` column of the allocation list.
@@ -392,6 +392,15 @@ mod tests {
             assert!(
                 !KEYWORDS.contains(&id.to_ascii_uppercase().as_str()),
                 "{id} is a keyword"
+            );
+            // No table may name a machine signal like one of the program's own.
+            assert!(
+                reserved_name(&id.to_ascii_lowercase()).is_some(),
+                "{id} is not reserved"
+            );
+            assert!(
+                reserved_name(&signal.fst_symbol().to_ascii_lowercase()).is_some(),
+                "{id} in FST is not reserved"
             );
         }
     }

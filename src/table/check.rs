@@ -307,7 +307,7 @@ impl Names {
             }
             return;
         }
-        let stem = |n: &Name| n.as_str().chars().take(9).collect::<String>();
+        let stem = |n: &Name| crate::names::fst_stem(n.as_str());
         if let Some(reason) = crate::names::reserved_name(name.as_str()) {
             diags.error(
                 Code::E015BadName,
