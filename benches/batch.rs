@@ -1,10 +1,14 @@
 //! Benchmark (not a test): generates 1,000 realistic workbooks (2–12
 //! actuators, up to 60 steps, up to 4 branches, some middle positions) and
-//! prints the batch throughput for 1 and 2 jobs, and where the time of one
-//! conversion goes (read, check, generate, write).
+//! prints the batch throughput for 1 and 2 jobs beside the I/O floor's
+//! (`floor.rs`) from the same run, and where the time of one conversion goes
+//! (read, check, generate, write).
 //!
 //! Run with `cargo bench --bench batch` (set STEPTABLE_BENCH_WORKBOOKS to
 //! change the count).
+
+#[path = "support/floor.rs"]
+mod floor;
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -74,19 +78,57 @@ fn main() {
     let inputs = generate(dir.path(), count);
     let settings = Settings::new();
 
+    // The floor writes the same bytes as steptable's outputs but the
+    // workbook: made once here, outside the timing.
+    let texts: Vec<Vec<steptable::emit::OutputFile>> = inputs
+        .iter()
+        .map(|input| {
+            let name = input.file_stem().unwrap().to_string_lossy().to_string();
+            let conversion = convert::convert_path_as(input, &name, &settings).expect("converts");
+            conversion
+                .files
+                .into_iter()
+                .filter(|f| !f.name.ends_with(".xlsx") || f.name.ends_with(".tags.xlsx"))
+                .collect()
+        })
+        .collect();
+    // Floor and steptable alternate, three rounds each, so that both see
+    // the same caches and the same load; medians are printed.
+    let mut single = Duration::ZERO;
     for jobs in [1, 2] {
-        let out = dir.path().join(format!("out{jobs}"));
-        let start = Instant::now();
-        let stop = std::sync::atomic::AtomicBool::new(false);
-        let outcomes = batch::run(&inputs, &out, &settings, jobs, &stop, &|_| {});
-        let seconds = start.elapsed().as_secs_f64();
-        let failed = outcomes
-            .iter()
-            .filter(|o| o.status != batch::Status::Converted)
-            .count();
+        let (mut floors, mut ours) = (Vec::new(), Vec::new());
+        let mut failed = 0;
+        for round in 0..3 {
+            let floor_dir = dir.path().join(format!("floor{jobs}-{round}"));
+            floors.push(floor::run(&inputs, &texts, &floor_dir, jobs));
+            let out = dir.path().join(format!("out{jobs}-{round}"));
+            let start = Instant::now();
+            let stop = std::sync::atomic::AtomicBool::new(false);
+            let outcomes = batch::run(&inputs, &out, &settings, jobs, &stop, &|_| {});
+            ours.push(start.elapsed());
+            failed = outcomes
+                .iter()
+                .filter(|o| o.status != batch::Status::Converted)
+                .count();
+        }
+        let (floor, elapsed) = (median(floors), median(ours));
+        let seconds = elapsed.as_secs_f64();
+        if jobs == 1 {
+            single = elapsed;
+        }
         println!(
-            "batch -j {jobs}: {count} workbooks in {seconds:.2} s = {:.1} workbooks/s ({failed} failed)",
-            count as f64 / seconds
+            "batch -j {jobs}: {count} workbooks in {seconds:.2} s = {:.1} workbooks/s ({failed} failed); floor {:.2} s, ratio {:.2}x{}",
+            count as f64 / seconds,
+            floor.as_secs_f64(),
+            seconds / floor.as_secs_f64(),
+            if jobs > 1 {
+                format!(
+                    "; speed-up over -j 1 {:.2}x",
+                    single.as_secs_f64() / seconds
+                )
+            } else {
+                String::new()
+            }
         );
     }
 
