@@ -81,6 +81,8 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
     };
     let mut stroke_header: Option<ActuatorColumns> = None;
     let mut label_cols: Vec<u32> = Vec::new();
+    // Label cells and their values, which may sit beside the actuator table.
+    let mut read_elsewhere: Vec<CellPos> = Vec::new();
     for cell in &grid.cells {
         let Some(label) = label_of(&cell.value) else {
             continue;
@@ -93,9 +95,11 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
             continue;
         }
         label_cols.push(cell.pos.col);
+        read_elsewhere.push(cell.pos);
         let Some(value_cell) = value_right_of(cell.pos) else {
             continue;
         };
+        read_elsewhere.push(value_cell.pos);
         let Some(value) = value_text(grid, value_cell, diags) else {
             continue;
         };
@@ -138,7 +142,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
     }
     report_unknown_labels(grid, &label_cols, stroke_header.as_ref(), diags);
     if let Some(columns) = stroke_header {
-        read_actuator_rows(grid, &columns, &mut settings, diags);
+        read_actuator_rows(grid, &columns, &read_elsewhere, &mut settings, diags);
     }
     settings
 }
@@ -189,6 +193,7 @@ fn actuator_columns(grid: &Grid, header: CellPos, diags: &mut Diagnostics) -> Ac
 fn read_actuator_rows(
     grid: &Grid,
     columns: &ActuatorColumns,
+    read_elsewhere: &[CellPos],
     settings: &mut Given,
     diags: &mut Diagnostics,
 ) {
@@ -216,6 +221,21 @@ fn read_actuator_rows(
             .collect();
         if cells.is_empty() {
             break;
+        }
+        // Right of the last headed column, on a row of the table: a value
+        // that would otherwise be lost.
+        for cell in grid.cells.iter().filter(|c| {
+            c.pos.row == row && c.pos.col > last_col && !read_elsewhere.contains(&c.pos)
+        }) {
+            diags.warning(
+                Code::W003Ignored,
+                grid.location(cell.pos),
+                format!(
+                    "{} is right of the actuator table, in a column without a header (expected {}); it was not read",
+                    cell.value.describe(),
+                    COLUMNS.join(", ")
+                ),
+            );
         }
         row += 1;
         let at = |col: u32| cells.iter().copied().find(|c| c.pos.col == col);
@@ -414,6 +434,26 @@ mod tests {
 
     fn grid(rows: &[&[&str]]) -> Grid {
         Grid::from_text_rows("t.xlsx", Some("SETTINGS"), rows)
+    }
+
+    #[test]
+    fn cells_right_of_the_actuator_table_are_named_and_labels_beside_it_read() {
+        let mut diags = Diagnostics::new();
+        let s = parse(
+            &grid(&[
+                &["actuator", "extend", "retract", "valve", "load"],
+                &["C1", "1s", "1s", "53closed", "0.2", "", "oops"],
+                &["C2", "2s", "1s", "", "", "", "scan time", "20ms"],
+            ]),
+            &mut diags,
+        );
+        assert_eq!(s.loads.get(&1), Some(&0.2));
+        assert_eq!(s.valves.get(&1), Some(&ValveType::Closed53));
+        assert_eq!(s.scan_ms, Some(20));
+        let found = diags.into_sorted();
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!(found[0].message.contains("oops"), "{found:?}");
+        assert_eq!(found[0].location.cell, Some(CellPos::new(1, 6)));
     }
 
     #[test]
