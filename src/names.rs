@@ -47,11 +47,9 @@ pub fn reserved_name(name: &str) -> Option<String> {
         );
     }
     const OWN: &[&str] = &[
+        // The mode buttons (stop, estop, reset_pb, cont) are taken only when
+        // their mode is on: the table check knows which are.
         "start",
-        "stop",
-        "estop",
-        "reset_pb",
-        "cont",
         "start_mem",
         "halt",
         "alarm_pl",

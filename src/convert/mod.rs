@@ -97,14 +97,17 @@ fn finish_check(
     let table = table::build(&input.table, &mut diags);
     if let Some(table) = &table {
         let modes = &effective.program.modes;
-        table::check_machine(
-            table,
-            &effective.simulation.valves,
-            modes.home_order.as_deref(),
-            modes.reset,
-            &input.table,
-            &mut diags,
-        );
+        let buttons: Vec<String> = modes
+            .buttons()
+            .map(|b| b.ident().to_ascii_lowercase())
+            .collect();
+        let machine = table::Machine {
+            valves: &effective.simulation.valves,
+            home_order: modes.home_order.as_deref(),
+            reset: modes.reset,
+            buttons: &buttons,
+        };
+        table::check_machine(table, &machine, &input.table, &mut diags);
     }
     match table {
         Some(table) if !diags.has_errors() => Ok(Checked {

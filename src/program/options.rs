@@ -169,6 +169,19 @@ impl Modes {
         self.continuous || self.stop || self.estop || self.reset
     }
 
+    /// The input of each mode that is on, in address order.
+    pub fn buttons(&self) -> impl Iterator<Item = super::Signal> {
+        use super::Signal;
+        [
+            (self.continuous, Signal::Continuous),
+            (self.stop, Signal::Stop),
+            (self.estop, Signal::EStop),
+            (self.reset, Signal::Reset),
+        ]
+        .into_iter()
+        .filter_map(|(on, signal)| on.then_some(signal))
+    }
+
     /// The homing stages for a table: the given order, checked against the
     /// table, or by default the reverse order of the last moves.
     pub fn home_stages(&self, table: &StepTable) -> Result<Vec<Vec<u32>>, String> {

@@ -96,14 +96,7 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
             position,
         })
     });
-    let mode_inputs = [
-        (modes.continuous, Signal::Continuous),
-        (modes.stop, Signal::Stop),
-        (modes.estop, Signal::EStop),
-        (modes.reset, Signal::Reset),
-    ]
-    .into_iter()
-    .filter_map(|(wanted, signal)| wanted.then_some(signal));
+    let mode_inputs = modes.buttons();
     let inputs = std::iter::once(Signal::Start)
         .chain(sensors)
         .chain(table.inputs.iter().map(|n| Signal::MachineInput(*n)))

@@ -13,18 +13,57 @@ use crate::diag::{CellPos, Code, Diagnostics, Location};
 use crate::read::Grid;
 use crate::valve::Valves;
 
-/// Checks a built table against the machine it runs on: the valve types
-/// and the home order (checked whether or not the reset mode uses it).
-pub fn check_machine(
-    table: &StepTable,
-    valves: &Valves,
-    home_order: Option<&[Vec<u32>]>,
-    reset: bool,
-    grid: &Grid,
-    diags: &mut Diagnostics,
-) {
-    check_valves(table, valves, grid, diags);
-    check_home_order(table, home_order, reset, grid, diags);
+/// What a table is checked against besides its own rules: the machine it
+/// runs on and the program's options.
+#[derive(Debug, Clone, Copy)]
+pub struct Machine<'a> {
+    pub valves: &'a Valves,
+    pub home_order: Option<&'a [Vec<u32>]>,
+    /// Whether the program has the reset mode, which uses the home order.
+    pub reset: bool,
+    /// The (lower-case) names of the operating-mode buttons the program has
+    /// (`stop`, `estop`, …): taken only when their mode is on.
+    pub buttons: &'a [String],
+}
+
+/// Checks a built table against the machine it runs on: the valve types,
+/// the home order (checked whether or not the reset mode uses it) and the
+/// names the operating modes take.
+pub fn check_machine(table: &StepTable, machine: &Machine, grid: &Grid, diags: &mut Diagnostics) {
+    check_valves(table, machine.valves, grid, diags);
+    check_home_order(table, machine.home_order, machine.reset, grid, diags);
+    check_button_names(table, machine.buttons, grid, diags);
+}
+
+/// A machine input or output may be called `stop` unless the program has a
+/// STOP button of that name (and likewise for the other buttons), also as
+/// Festo FST cuts it.
+fn check_button_names(table: &StepTable, buttons: &[String], grid: &Grid, diags: &mut Diagnostics) {
+    let first_cell = |name: Name| {
+        table.steps.iter().find_map(|s| {
+            s.waits
+                .iter()
+                .find(|w| w.input == name)
+                .map(|w| w.cell)
+                .or_else(|| s.switches.iter().find(|w| w.output == name).map(|w| w.cell))
+        })
+    };
+    for name in table.inputs.iter().chain(&table.outputs) {
+        let clash = buttons.iter().find(|b| {
+            b.as_str() == name.as_str()
+                || crate::names::fst_stem(b) == crate::names::fst_stem(name.as_str())
+        });
+        if let (Some(button), Some(cell)) = (clash, first_cell(*name)) {
+            diags.error(
+                Code::E015BadName,
+                grid.location(cell),
+                format!(
+                    "\"{name}\" cannot name a machine signal while the program has the operating-mode button {}: rename the signal, or leave that mode out",
+                    button.to_ascii_uppercase()
+                ),
+            );
+        }
+    }
 }
 
 /// A home order is checked against the table whether or not it is used,

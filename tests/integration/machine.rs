@@ -264,6 +264,37 @@ fn standard_library_and_generated_names_are_refused() {
 /// clash with one: the names are read from the written `.st` of every
 /// operating mode and safety check, and only the table's own machine
 /// inputs and outputs may pass.
+/// Aly 2008's oven has an input called STOP; it is refused only when the
+/// program has a STOP button of its own.
+#[test]
+fn a_machine_signal_may_be_called_stop_unless_the_program_has_stop() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("oven.csv");
+    std::fs::write(&csv, "C1+1\nI:stop=1; C1-0\n").unwrap();
+    steptable().args(["check"]).arg(&csv).assert().success();
+    steptable()
+        .args(["check", "--modes", "continuous,reset"])
+        .arg(&csv)
+        .assert()
+        .success();
+    steptable()
+        .args(["check", "--modes", "stop"])
+        .arg(&csv)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains("E015"))
+        .stderr(predicates::str::contains("operating-mode button STOP"))
+        .stderr(predicates::str::contains("oven.csv:2:1"));
+    // Y:estop as an output clashes with the EMERGENCY STOP input.
+    std::fs::write(&csv, "C1+1; Y:estop+\nC1-0; Y:estop-\n").unwrap();
+    steptable()
+        .args(["check", "--modes", "estop"])
+        .arg(&csv)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains("operating-mode button ESTOP"));
+}
+
 #[test]
 fn every_name_the_program_declares_is_reserved() {
     use steptable::names::reserved_name;
@@ -298,7 +329,14 @@ fn every_name_the_program_declares_is_reserved() {
                     in_var = false;
                 } else if in_var && let Some(ident) = line.split([' ', ':']).next() {
                     let ident = ident.to_ascii_lowercase();
-                    if ident.is_empty() || ident.starts_with("(*") || machine.contains(&ident) {
+                    // The mode buttons are taken while their mode is on:
+                    // `a_machine_signal_may_be_called_stop_unless_the_program_has_stop`.
+                    let button = ["cont", "stop", "estop", "reset_pb"].contains(&ident.as_str());
+                    if ident.is_empty()
+                        || ident.starts_with("(*")
+                        || machine.contains(&ident)
+                        || button
+                    {
                         continue;
                     }
                     assert!(
