@@ -457,6 +457,33 @@ mod tests {
     }
 
     #[test]
+    fn labels_within_two_letters_of_a_known_one_are_named_others_left_alone() {
+        let mut diags = Diagnostics::new();
+        parse(
+            &grid(&[
+                &["scan-tme", "20ms"],
+                &["Safty", "all"],
+                &["home ordr", "C1"],
+                &["comment", "hello"],
+                &["owner", "me"],
+                &["zzzzzzzz", "x"],
+            ]),
+            &mut diags,
+        );
+        let found = diags.into_sorted();
+        let cells: Vec<_> = found.iter().map(|d| d.location.cell).collect();
+        assert_eq!(
+            cells,
+            [
+                Some(CellPos::new(0, 0)),
+                Some(CellPos::new(1, 0)),
+                Some(CellPos::new(2, 0))
+            ],
+            "{found:?}"
+        );
+    }
+
+    #[test]
     fn reads_every_setting() {
         let mut diags = Diagnostics::new();
         let s = parse(
