@@ -484,6 +484,23 @@ mod tests {
     }
 
     #[test]
+    fn an_unknown_label_in_the_column_of_the_known_ones_is_named() {
+        let mut diags = Diagnostics::new();
+        parse(
+            &grid(&[
+                &["target", "festo"],
+                &["comment", "hello"],
+                &["note"],
+                &["x", "", "owner", "me"],
+            ]),
+            &mut diags,
+        );
+        let found = diags.into_sorted();
+        let cells: Vec<_> = found.iter().map(|d| d.location.cell).collect();
+        assert_eq!(cells, [Some(CellPos::new(1, 0))], "{found:?}");
+    }
+
+    #[test]
     fn reads_every_setting() {
         let mut diags = Diagnostics::new();
         let s = parse(

@@ -102,6 +102,22 @@ pub enum ExportError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn editor_leftovers_are_told_from_templates() {
+        for name in [
+            ".program.st.j2.swp",
+            "#program.st.j2#",
+            "program.st.j2~",
+            "program.st.j2.bak",
+            "gvl.txt.j2.orig",
+        ] {
+            assert!(editor_leftover(name), "{name}");
+        }
+        for name in ["program.st.j2", "gvl.txt.j2", "equations.il.j2"] {
+            assert!(!editor_leftover(name), "{name}");
+        }
+    }
     use minijinja::Value;
 
     #[test]
