@@ -1,6 +1,7 @@
 //! Benchmark (not a test): prints the median wall time of
-//! - `faults --pairs` on the paper's example (every pair of stuck inputs),
-//! - simulating a 100-actuator × 1,000-step table (two cycles),
+//! - simulating the paper's example (two cycles), event-driven and scan by scan,
+//! - its single-fault table and `faults --pairs` (every pair of stuck inputs),
+//! - simulating a 100-actuator × 1,000-step table (two cycles), both ways,
 //! - converting the paper's sample in memory (read → every output).
 //!
 //! Run with `cargo bench --bench simulation`.
@@ -12,7 +13,7 @@ use steptable::convert;
 use steptable::faults;
 use steptable::random_table::{Shape, random_rows};
 use steptable::settings::Settings;
-use steptable::simulate::{SimSettings, simulate};
+use steptable::simulate::{SimSettings, Stepping, simulate_stepping};
 
 fn median(mut runs: Vec<Duration>) -> Duration {
     runs.sort();
@@ -36,6 +37,25 @@ fn main() {
     let checked = convert::check_path(&paper, &settings).expect("paper sample");
     let program = convert::build_program(&checked.table, &settings);
 
+    for stepping in [Stepping::Events, Stepping::EveryScan] {
+        let (t, report) = time(51, || {
+            simulate_stepping(&checked.table, &program, &settings.simulation, stepping)
+        });
+        println!(
+            "simulate paper example ({stepping:?}): median {:.3} ms over 51 runs ({})",
+            t.as_secs_f64() * 1e3,
+            report.verdict()
+        );
+    }
+    let (t, table) = time(21, || {
+        faults::analyse(&checked.table, &program, &settings.simulation, false)
+    });
+    println!(
+        "faults, paper example: median {:.2} ms over 21 runs ({}; {} cases)",
+        t.as_secs_f64() * 1e3,
+        table.summary(),
+        table.cases.len()
+    );
     let (t, table) = time(5, || {
         faults::analyse(&checked.table, &program, &settings.simulation, true)
     });
@@ -57,15 +77,19 @@ fn main() {
     );
     let big = steptable::table::from_rows("big.csv", &rows).expect("valid generated table");
     let big_program = convert::build_program(&big, &settings);
-    let (t, report) = time(5, || simulate(&big, &big_program, &SimSettings::default()));
-    let scans = report.cycles.iter().filter_map(|c| c.cycle_ms).sum::<u64>() / 10;
-    println!(
-        "simulate 100 actuators x {} steps: median {:.1} ms over 5 runs ({}; about {} scans)",
-        big.steps.len(),
-        t.as_secs_f64() * 1e3,
-        report.verdict(),
-        scans
-    );
+    for stepping in [Stepping::Events, Stepping::EveryScan] {
+        let (t, report) = time(5, || {
+            simulate_stepping(&big, &big_program, &SimSettings::default(), stepping)
+        });
+        let scans = report.cycles.iter().filter_map(|c| c.cycle_ms).sum::<u64>() / 10;
+        println!(
+            "simulate 100 actuators x {} steps ({stepping:?}): median {:.1} ms over 5 runs ({}; about {} scans)",
+            big.steps.len(),
+            t.as_secs_f64() * 1e3,
+            report.verdict(),
+            scans
+        );
+    }
 
     let (t, _) = time(21, || {
         convert::convert_path(&paper, &settings).expect("converts")

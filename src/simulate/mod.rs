@@ -21,9 +21,32 @@ use crate::table::StepTable;
 pub use report::*;
 pub use settings::*;
 
+/// How a run advances through time. Both give the same report, scan for
+/// scan; the stepper is the plain reference the event-driven run is tested
+/// against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Stepping {
+    /// Every scan that can change something runs; scans in which nothing
+    /// can (no input, timer or position crosses a threshold) pass at once.
+    #[default]
+    Events,
+    /// Every scan runs.
+    EveryScan,
+}
+
 /// Simulates `program` (built from `table`) against the plant.
 pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings) -> SimReport {
-    run::run(table, program, settings, None).0
+    simulate_stepping(table, program, settings, Stepping::Events)
+}
+
+/// Simulates like [`simulate`], advancing through time as `stepping` says.
+pub fn simulate_stepping(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    stepping: Stepping,
+) -> SimReport {
+    run::run(table, program, settings, None, stepping).0
 }
 
 /// Simulates like [`simulate`] and records `signals` at every scan, so that
@@ -34,7 +57,7 @@ pub fn simulate_recording(
     settings: &SimSettings,
     signals: io::IoSignals,
 ) -> (SimReport, io::IoTrace) {
-    let (report, trace) = run::run(table, program, settings, Some(signals));
+    let (report, trace) = run::run(table, program, settings, Some(signals), Stepping::Events);
     (report, trace.unwrap_or_default())
 }
 

@@ -99,7 +99,7 @@ impl Piston {
 
     /// The sensor that currently sees the piston, if any.
     pub fn sensor_on(&self, window: f64) -> Option<u32> {
-        (0..=self.max_position).find(|p| self.sensor(*p, window))
+        self.sensor_on_at(self.s, window)
     }
 
     /// The position in sensor units (`s · pmax`), for diagrams.
@@ -141,6 +141,65 @@ impl Piston {
             Spool::Minus => self.s <= 0.0,
             Spool::Centre => true,
         }
+    }
+
+    /// The stroke fraction the piston moves per scan as its spool stands
+    /// (negative towards home, 0 at rest).
+    pub fn velocity(&self) -> f64 {
+        match self.spool {
+            Spool::Plus if self.s < 1.0 => self.extend_per_scan,
+            Spool::Minus if self.s > 0.0 => -self.retract_per_scan,
+            Spool::Centre
+                if (self.drift_per_scan > 0.0 && self.s < 1.0)
+                    || (self.drift_per_scan < 0.0 && self.s > 0.0) =>
+            {
+                self.drift_per_scan
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// How many of the next `limit` scans the piston advances with no
+    /// sensor switching on or off, without coming to rest at an end and
+    /// without passing `mark` (`(low, high)`: the stroke fractions below and
+    /// above which the caller's check fires).
+    pub fn scans_before_an_event(&self, window: f64, mark: Option<(f64, f64)>, limit: u64) -> u64 {
+        let v = self.velocity();
+        if v == 0.0 || limit == 0 {
+            return limit;
+        }
+        let half = self.window(window) + 1e-9;
+        let distance = (0..=self.max_position)
+            .map(|p| self.sensor_point(p))
+            .flat_map(|c| [c - half, c + half])
+            .chain([0.0, 1.0])
+            .chain(mark.into_iter().flat_map(|(low, high)| [low, high]))
+            .map(|t| (t - self.s) * v.signum())
+            .filter(|d| *d >= 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let estimate = ((distance / v.abs()).floor() as u64).min(limit);
+        // The sums of per-scan steps may round a hair past the nearest
+        // threshold (never past the next: a step is far wider than the
+        // rounding); step a copy as the run will and check where it ends.
+        let watched = |p: &Piston| {
+            let beyond = mark.map(|(low, high)| (p.s < low, p.s > high));
+            (p.sensor_on(window), p.at_rest(), beyond)
+        };
+        let mut copy = self.clone();
+        for _ in 0..estimate {
+            copy.advance();
+        }
+        if watched(&copy) == watched(self) {
+            estimate
+        } else {
+            estimate.saturating_sub(1)
+        }
+    }
+
+    /// The sensor that sees a piston at stroke fraction `s`, if any.
+    pub fn sensor_on_at(&self, s: f64, window: f64) -> Option<u32> {
+        let half = self.window(window) + 1e-9;
+        (0..=self.max_position).find(|p| (s - self.sensor_point(*p)).abs() <= half)
     }
 
     /// Advances the piston by one scan. Returns the direction it moved, if any.

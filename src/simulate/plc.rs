@@ -44,6 +44,8 @@ pub struct PlcState {
     bits: Vec<bool>,
     /// Running timers: elapsed and preset milliseconds, by signal index.
     timers: Vec<Option<(u64, u64)>>,
+    /// The indices of the running timers, so that a scan visits only them.
+    running: Vec<usize>,
     steps: Vec<Rule>,
     rungs: Vec<Rule>,
 }
@@ -77,6 +79,7 @@ impl PlcState {
             awaited: 0,
             bits: vec![false; signals.len()],
             timers: vec![None; signals.len()],
+            running: Vec::new(),
             steps: program
                 .steps
                 .iter()
@@ -91,7 +94,7 @@ impl PlcState {
             index,
         };
         let init = compile(&state.index, &[], &program.init);
-        state.apply(&init.actions);
+        let _ = state.apply(&init.actions);
         state
     }
 
@@ -115,33 +118,79 @@ impl PlcState {
         self.bits[index]
     }
 
-    fn apply(&mut self, actions: &[Op]) {
+    /// Applies `actions`; returns whether any of them changed the state (a
+    /// timer started again counts: its elapsed time went back to 0).
+    fn apply(&mut self, actions: &[Op]) -> bool {
+        let mut changed = false;
         for action in actions {
             match *action {
-                Op::Set(i) => self.bits[i] = true,
+                Op::Set(i) => {
+                    changed |= !self.bits[i];
+                    self.bits[i] = true;
+                }
                 Op::Reset(i) => {
+                    changed |= self.bits[i];
                     self.bits[i] = false;
-                    self.timers[i] = None;
+                    if self.timers[i].take().is_some() {
+                        changed = true;
+                        self.running.retain(|r| *r != i);
+                    }
                 }
                 Op::Start(i, preset) => {
+                    changed = true;
                     self.bits[i] = true;
-                    self.timers[i] = Some((0, preset));
+                    if self.timers[i].replace((0, preset)).is_none() {
+                        self.running.push(i);
+                    }
                 }
-                Op::Restart => self.awaited = 0,
+                Op::Restart => {
+                    changed |= self.awaited != 0;
+                    self.awaited = 0;
+                }
             }
         }
+        changed
     }
 
     /// Advances every running timer by one scan; a timer whose preset has
-    /// elapsed stops (its bit goes off).
-    fn advance_timers(&mut self, scan_ms: u64) {
-        for i in 0..self.timers.len() {
-            if let Some((elapsed, preset)) = &mut self.timers[i] {
-                *elapsed += scan_ms;
-                if *elapsed >= *preset {
-                    self.timers[i] = None;
-                    self.bits[i] = false;
-                }
+    /// elapsed stops (its bit goes off). Returns whether one did.
+    fn advance_timers(&mut self, scan_ms: u64) -> bool {
+        let mut expired = false;
+        let (timers, bits) = (&mut self.timers, &mut self.bits);
+        self.running.retain(|&i| {
+            let Some((elapsed, preset)) = &mut timers[i] else {
+                return false;
+            };
+            *elapsed += scan_ms;
+            if *elapsed >= *preset {
+                timers[i] = None;
+                bits[i] = false;
+                expired = true;
+                return false;
+            }
+            true
+        });
+        expired
+    }
+
+    /// How many scans from now may pass with no timer running out: the
+    /// scan in which the first one does is not among them.
+    pub fn scans_before_a_timer_ends(&self, scan_ms: u64) -> u64 {
+        self.running
+            .iter()
+            .filter_map(|&i| self.timers[i])
+            .map(|(elapsed, preset)| (preset - elapsed).div_ceil(scan_ms) - 1)
+            .min()
+            .unwrap_or(u64::MAX)
+    }
+
+    /// `scans` quiet scans at once: the running timers advance, nothing else
+    /// changes (the caller has made sure none runs out, see
+    /// [`PlcState::scans_before_a_timer_ends`]).
+    pub fn pass_quiet_scans(&mut self, scans: u64, scan_ms: u64) {
+        for &i in &self.running {
+            if let Some((elapsed, _)) = &mut self.timers[i] {
+                *elapsed += scans * scan_ms;
             }
         }
     }
@@ -186,6 +235,11 @@ fn compile(index: &BTreeMap<Signal, usize>, condition: &[Literal], actions: &[Ac
 pub struct ScanResult {
     /// Index of the step that fired in this scan, if any.
     pub fired: Option<usize>,
+    /// Whether the scan changed the PLC's state beyond its timers' elapsed
+    /// time: a step fired, a bit went on or off, a timer started or ran out.
+    /// A scan that changed nothing is repeated exactly by the next one that
+    /// reads the same inputs, until a timer runs out.
+    pub changed: bool,
 }
 
 /// Runs one PLC scan of `scan_ms` milliseconds. `input` gives the value of an
@@ -196,7 +250,7 @@ pub fn scan(
     input: &dyn Fn(Signal) -> bool,
     scan_ms: u64,
 ) -> ScanResult {
-    state.advance_timers(scan_ms);
+    let mut changed = state.advance_timers(scan_ms);
     let mut fired = None;
     let awaited = state.awaited;
     if awaited < state.steps.len() && state.holds(&state.steps[awaited].condition, input) {
@@ -204,14 +258,15 @@ pub fn scan(
         state.apply(&actions);
         state.steps[awaited].actions = actions;
         fired = Some(awaited);
+        changed = true;
         state.awaited = (awaited + 1) % program.steps.len();
     }
     for r in 0..state.rungs.len() {
         if state.holds(&state.rungs[r].condition, input) {
             let actions = std::mem::take(&mut state.rungs[r].actions);
-            state.apply(&actions);
+            changed |= state.apply(&actions);
             state.rungs[r].actions = actions;
         }
     }
-    ScanResult { fired }
+    ScanResult { fired, changed }
 }

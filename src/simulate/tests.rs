@@ -151,3 +151,43 @@ fn a_long_last_stroke_ends_before_the_next_start_with_every_closing_step() {
         }
     }
 }
+
+/// The I/O recorded for the engines' replays is the same, scan for scan,
+/// whether the run jumps over quiet scans or steps through each.
+#[test]
+fn the_recorded_io_is_the_same_both_ways() {
+    let dwells_and_waits: Vec<Vec<&str>> = vec![
+        vec!["C1+1; T=300ms", "I:part_present"],
+        vec!["C2+2", "Y:vacuum+"],
+        vec!["C2-0; T=50ms", "Y:vacuum-"],
+        vec!["C1-0"],
+    ];
+    for (rows, options) in [
+        (paper(), ProgramOptions::default()),
+        (
+            paper(),
+            ProgramOptions {
+                safety: crate::program::Safety::all(),
+                ..ProgramOptions::default()
+            },
+        ),
+        (dwells_and_waits, ProgramOptions::default()),
+    ] {
+        let table = crate::table::from_rows("t.csv", &rows).expect("valid table");
+        let settings = SimSettings::default();
+        let program = program::build(&table, &options, &settings.valves, &settings.strokes);
+        let signals = io::IoSignals {
+            inputs: program.signals.inputs.clone(),
+            outputs: program.signals.driven().collect(),
+        };
+        let record =
+            |stepping| run::run(&table, &program, &settings, Some(signals.clone()), stepping);
+        let (events, events_io) = record(Stepping::Events);
+        let (scans, scans_io) = record(Stepping::EveryScan);
+        assert!(events.passed, "{:?}", events.problems);
+        assert_eq!(events, scans);
+        let (events_io, scans_io) = (events_io.expect("recorded"), scans_io.expect("recorded"));
+        assert!(scans_io.scans.len() > 500, "{}", scans_io.scans.len());
+        assert_eq!(events_io, scans_io);
+    }
+}

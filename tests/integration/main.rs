@@ -26,6 +26,7 @@ mod properties;
 mod safety;
 mod simulate;
 mod snapshots;
+mod stepping;
 mod stray_cells;
 mod synth;
 mod template;

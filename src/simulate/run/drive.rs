@@ -116,6 +116,9 @@ impl<'a> Run<'a> {
             trace: Vec::new(),
             coils: Vec::new(),
             io: None,
+            event_driven: false,
+            quiet: false,
+            moving: (0..table.actuators.len()).collect(),
         };
         run.dwells = table
             .dwells()
@@ -152,8 +155,10 @@ pub(in crate::simulate) fn run(
     program: &StepProgram,
     settings: &SimSettings,
     record: Option<io::IoSignals>,
+    stepping: Stepping,
 ) -> (SimReport, Option<io::IoTrace>) {
     let mut run = Run::new(table, program, settings);
+    run.event_driven = stepping == Stepping::Events;
     run.io = record.map(|signals| io::IoTrace {
         scan_ms: run.world.settings.scan_ms,
         signals,
@@ -171,6 +176,7 @@ pub(in crate::simulate) fn run(
     'cycles: for cycle in 0..settings.cycles.max(1) {
         while run.time_ms < press_at {
             run.tick();
+            run.pass_quiet_scans(press_at);
         }
         let mut report = CycleReport {
             press_ms: press_at,
@@ -256,6 +262,15 @@ pub(in crate::simulate) fn run(
                 cycles.push(report);
                 break 'cycles;
             }
+            // Quiet scans pass at once until START is released or the
+            // wait could time out.
+            let scan = run.world.settings.scan_ms as u64;
+            let release = if run.world.start_pressed {
+                press_at + press_ms
+            } else {
+                u64::MAX
+            };
+            run.pass_quiet_scans(release.min((last_event + timeout + 1).saturating_sub(scan)));
         }
         report.steps = timings(program, &fire_times, run.time_ms, press_at, &run.spans);
         if cycle == 0 {
@@ -289,6 +304,7 @@ pub(in crate::simulate) fn run(
         run.world.start_pressed = false;
         while run.time_ms < until {
             run.tick();
+            run.pass_quiet_scans(until);
         }
     }
 

@@ -49,6 +49,16 @@ pub(in crate::simulate) struct Run<'a> {
     pub(in crate::simulate) coils: Vec<(Option<usize>, Option<usize>, Option<usize>)>,
     /// The I/O of every scan, when recorded for a replay in another engine.
     pub(in crate::simulate) io: Option<io::IoTrace>,
+    /// Jump over scans in which nothing can change (see [`Run::pass_quiet_scans`]);
+    /// off, the run steps every scan (the reference it is tested against).
+    pub(in crate::simulate) event_driven: bool,
+    /// The last scan changed nothing: the PLC's state, the inputs it read,
+    /// the run's findings and every piston's sensors and rest stayed as
+    /// they were.
+    pub(in crate::simulate) quiet: bool,
+    /// The pistons that moved in the last scan (all of them before the
+    /// first).
+    pub(in crate::simulate) moving: Vec<usize>,
 }
 
 /// Everything the PLC's inputs are read from.
@@ -132,6 +142,7 @@ impl Run<'_> {
         // The machine gives the inputs its steps wait for.
         let now = self.time_ms;
         let machine = &mut self.world.machine;
+        let waiting = self.pending.len();
         self.pending.retain(|(at, name, value)| {
             if *at <= now {
                 machine.insert(*name, *value);
@@ -140,6 +151,8 @@ impl Run<'_> {
                 true
             }
         });
+        let problems = self.problems.len();
+        let mut quiet = self.pending.len() == waiting;
         let world = &self.world;
         let read = |s: Signal| read_input(s, world);
         let recorded_inputs = self.io.as_ref().map(|io| {
@@ -168,19 +181,29 @@ impl Run<'_> {
                 outputs,
             });
         }
+        quiet &= !result.changed;
         if let Some(fired) = result.fired {
             self.on_fire(fired);
         }
         self.track_dwells(now);
 
-        // Outputs to valves, then the plant moves for one scan period.
-        for i in 0..self.world.pistons.len() {
+        // Outputs to valves, then the plant moves for one scan period. With
+        // the outputs as they were, a piston at rest stays at rest: only the
+        // moving ones need a look.
+        let mut due = std::mem::take(&mut self.moving);
+        if result.changed || !self.event_driven {
+            due.clear();
+            due.extend(0..self.world.pistons.len());
+        }
+        for &i in &due {
             let number = self.world.pistons[i].number;
             let (plus_at, minus_at, single_at) = self.coils[i];
             let on = |at: Option<usize>| at.is_some_and(|i| self.plc.bit_at(i));
             let plus = on(plus_at) || on(single_at);
             let minus = on(minus_at);
-            if self.world.pistons[i].drive(plus, minus) {
+            let piston = &mut self.world.pistons[i];
+            let was = (piston.s, piston.at_rest());
+            if piston.drive(plus, minus) {
                 let step = self.current_step();
                 self.problem(
                     ProblemKind::CoilConflict,
@@ -191,9 +214,19 @@ impl Run<'_> {
             if let Some(direction) = self.world.pistons[i].advance() {
                 self.check_motion(i, direction);
             }
+            // The inputs the next scan reads stay those this one read.
+            let piston = &self.world.pistons[i];
+            let window = self.world.settings.window;
+            let same = piston.at_rest() == was.1
+                && (piston.s == was.0
+                    || piston.sensor_on(window) == piston.sensor_on_at(was.0, window));
+            quiet &= same;
         }
+        due.retain(|&i| self.world.pistons[i].velocity() != 0.0);
+        self.moving = due;
         self.time_ms += self.world.settings.scan_ms as u64;
-        self.update_reached();
+        quiet &= !self.update_reached();
+        self.quiet = quiet && self.problems.len() == problems;
         if self.world.settings.record_trace {
             let positions = self
                 .world
@@ -318,13 +351,78 @@ impl Run<'_> {
         }
     }
 
-    pub(in crate::simulate) fn update_reached(&mut self) {
+    /// Marks the moves that have reached their target; returns whether one
+    /// just did.
+    pub(in crate::simulate) fn update_reached(&mut self) -> bool {
         let window = self.world.settings.window;
+        let mut any = false;
         for a in &mut self.active {
             if !a.reached && !a.ran_through && self.world.pistons[a.piston].sensor(a.mv.to, window)
             {
                 a.reached = true;
+                any = true;
             }
+        }
+        any
+    }
+
+    /// After a quiet scan, passes at once every following scan that is
+    /// certain to be quiet too and to start before `until_ms` (when the
+    /// caller changes what the operator does or checks the time): the same
+    /// PLC state reading the same inputs does the same nothing, so only the
+    /// timers and the moving pistons advance. It stops short of the scan in
+    /// which a timer runs out, the machine answers, or a piston reaches a
+    /// sensor's edge, an end or the point where it would run through its
+    /// target; those scans run one by one. The pistons advance scan by scan
+    /// so that every position is the very number the stepper computes.
+    pub(in crate::simulate) fn pass_quiet_scans(&mut self, until_ms: u64) {
+        if !(self.event_driven && self.quiet) {
+            return;
+        }
+        let scan = self.world.settings.scan_ms as u64;
+        let window = self.world.settings.window;
+        let mut scans = until_ms
+            .saturating_sub(self.time_ms)
+            .div_ceil(scan)
+            .min(self.plc.scans_before_a_timer_ends(scan));
+        if let Some(at) = self.pending.iter().map(|(at, _, _)| *at).min() {
+            scans = scans.min(at.saturating_sub(self.time_ms).div_ceil(scan));
+        }
+        for &i in &self.moving {
+            let p = &self.world.pistons[i];
+            // Where the run would see the piston run through its target.
+            let mark = self.last_move[i]
+                .as_ref()
+                .filter(|a| !a.ran_through)
+                .map(|a| {
+                    let target = p.sensor_point(a.mv.to);
+                    let w = p.window(window);
+                    (target - w, target + w)
+                });
+            scans = p.scans_before_an_event(window, mark, scans);
+        }
+        if scans == 0 {
+            return;
+        }
+        if let Some(io) = self.io.as_mut()
+            && let Some(last) = io.scans.last().cloned()
+        {
+            io.scans.extend((1..=scans).map(|j| io::ScanIo {
+                time_ms: last.time_ms + j * scan,
+                ..last.clone()
+            }));
+        }
+        for &i in &self.moving {
+            let p = &mut self.world.pistons[i];
+            for _ in 0..scans {
+                p.advance();
+            }
+        }
+        self.plc.pass_quiet_scans(scans, scan);
+        self.time_ms += scans * scan;
+        if self.world.settings.record_trace {
+            let positions = self.positions();
+            record_point(&mut self.trace, self.time_ms, positions);
         }
     }
 
