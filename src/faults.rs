@@ -3,7 +3,7 @@
 //! the start of the run and classified as no effect, safe stall or hazard.
 
 use crate::program::StepProgram;
-use crate::simulate::{Fault, ProblemKind, SimSettings, simulate};
+use crate::simulate::{Fault, ProblemKind, SimSettings, Simulator};
 use crate::table::StepTable;
 
 /// What a fault does to the machine.
@@ -142,10 +142,11 @@ pub fn analyse_observed(
     let sets = fault_sets(program, pairs);
     let total = sets.len();
     let done = std::sync::atomic::AtomicUsize::new(0);
+    let simulator = Simulator::new(table, program);
     let cases = sets
         .into_par_iter()
         .map(|faults| {
-            let case = classify(table, program, settings, faults);
+            let case = classify(&simulator, settings, faults);
             let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             progress(n, total);
             case
@@ -154,18 +155,13 @@ pub fn analyse_observed(
     FaultTable { cases }
 }
 
-fn classify(
-    table: &StepTable,
-    program: &StepProgram,
-    settings: &SimSettings,
-    faults: Vec<Fault>,
-) -> FaultCase {
+fn classify(simulator: &Simulator, settings: &SimSettings, faults: Vec<Fault>) -> FaultCase {
     let run = SimSettings {
         faults: faults.clone(),
         record_trace: false,
         ..settings.clone()
     };
-    let report = simulate(table, program, &run);
+    let report = simulator.run(&run);
     if let Some(hazard) = report.hazard() {
         return FaultCase {
             faults,

@@ -46,7 +46,42 @@ pub fn simulate_stepping(
     settings: &SimSettings,
     stepping: Stepping,
 ) -> SimReport {
-    run::run(table, program, settings, None, stepping).0
+    Simulator::new(table, program).run_stepping(settings, stepping)
+}
+
+/// A program ready to be simulated many times under different settings
+/// (the fault analysis): it is compiled once.
+pub struct Simulator<'a> {
+    table: &'a StepTable,
+    program: &'a StepProgram,
+    code: plc::PlcProgram,
+}
+
+impl<'a> Simulator<'a> {
+    pub fn new(table: &'a StepTable, program: &'a StepProgram) -> Self {
+        Simulator {
+            table,
+            program,
+            code: plc::PlcProgram::compile(program),
+        }
+    }
+
+    /// The same as [`simulate`].
+    pub fn run(&self, settings: &SimSettings) -> SimReport {
+        self.run_stepping(settings, Stepping::Events)
+    }
+
+    fn run_stepping(&self, settings: &SimSettings, stepping: Stepping) -> SimReport {
+        run::run(
+            self.table,
+            self.program,
+            &self.code,
+            settings,
+            None,
+            stepping,
+        )
+        .0
+    }
 }
 
 /// Simulates like [`simulate`] and records `signals` at every scan, so that
@@ -57,7 +92,15 @@ pub fn simulate_recording(
     settings: &SimSettings,
     signals: io::IoSignals,
 ) -> (SimReport, io::IoTrace) {
-    let (report, trace) = run::run(table, program, settings, Some(signals), Stepping::Events);
+    let code = plc::PlcProgram::compile(program);
+    let (report, trace) = run::run(
+        table,
+        program,
+        &code,
+        settings,
+        Some(signals),
+        Stepping::Events,
+    );
     (report, trace.unwrap_or_default())
 }
 

@@ -32,28 +32,20 @@ struct Rule {
     actions: Vec<Op>,
 }
 
-/// The PLC's memory: the awaited step, outputs, internal bits and timers.
+/// The step program compiled into signal indices, once for every run of
+/// it (the fault analysis runs one program dozens of times).
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct PlcState {
-    /// Index into `program.steps` of the step the sequence waits to fire.
-    pub awaited: usize,
+pub struct PlcProgram {
     /// Every signal the program uses, by index.
     signals: Vec<Signal>,
     index: BTreeMap<Signal, usize>,
-    /// Outputs, memories and running timers currently on.
-    bits: Vec<bool>,
-    /// Running timers: elapsed and preset milliseconds, by signal index.
-    timers: Vec<Option<(u64, u64)>>,
-    /// The indices of the running timers, so that a scan visits only them.
-    running: Vec<usize>,
     steps: Vec<Rule>,
     rungs: Vec<Rule>,
+    init: Vec<Op>,
 }
 
-impl PlcState {
-    /// Power-up state: waiting at step 1, everything off, then the program's
-    /// initial actions.
-    pub fn new(program: &StepProgram) -> Self {
+impl PlcProgram {
+    pub fn compile(program: &StepProgram) -> Self {
         // Every signal named by a condition or an action, indexed once.
         let mut signals: Vec<Signal> = program
             .steps
@@ -75,37 +67,68 @@ impl PlcState {
         signals.dedup();
         let index: BTreeMap<Signal, usize> =
             signals.iter().enumerate().map(|(i, s)| (*s, i)).collect();
-        let mut state = PlcState {
-            awaited: 0,
-            bits: vec![false; signals.len()],
-            timers: vec![None; signals.len()],
-            running: Vec::new(),
-            steps: program
-                .steps
-                .iter()
-                .map(|s| compile(&index, &s.condition, &s.actions))
-                .collect(),
-            rungs: program
-                .rungs
-                .iter()
-                .map(|r| compile(&index, &r.condition, &r.actions))
-                .collect(),
+        let rules = |rules: &mut dyn Iterator<Item = (&[Literal], &[Action])>| {
+            rules
+                .map(|(condition, actions)| compile(&index, condition, actions))
+                .collect()
+        };
+        PlcProgram {
+            steps: rules(
+                &mut program
+                    .steps
+                    .iter()
+                    .map(|s| (&s.condition[..], &s.actions[..])),
+            ),
+            rungs: rules(
+                &mut program
+                    .rungs
+                    .iter()
+                    .map(|r| (&r.condition[..], &r.actions[..])),
+            ),
+            init: compile(&index, &[], &program.init).actions,
             signals,
             index,
+        }
+    }
+}
+
+/// The PLC's memory: the awaited step, outputs, internal bits and timers.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PlcState<'a> {
+    /// Index into `program.steps` of the step the sequence waits to fire.
+    pub awaited: usize,
+    code: &'a PlcProgram,
+    /// Outputs, memories and running timers currently on.
+    bits: Vec<bool>,
+    /// Running timers: elapsed and preset milliseconds, by signal index.
+    timers: Vec<Option<(u64, u64)>>,
+    /// The indices of the running timers, so that a scan visits only them.
+    running: Vec<usize>,
+}
+
+impl<'a> PlcState<'a> {
+    /// Power-up state: waiting at step 1, everything off, then the program's
+    /// initial actions.
+    pub fn new(code: &'a PlcProgram) -> Self {
+        let mut state = PlcState {
+            awaited: 0,
+            code,
+            bits: vec![false; code.signals.len()],
+            timers: vec![None; code.signals.len()],
+            running: Vec::new(),
         };
-        let init = compile(&state.index, &[], &program.init);
-        let _ = state.apply(&init.actions);
+        let _ = state.apply(&code.init);
         state
     }
 
     /// The index of a signal, if the program uses it.
     pub fn index_of(&self, signal: Signal) -> Option<usize> {
-        self.index.get(&signal).copied()
+        self.code.index.get(&signal).copied()
     }
 
     /// The signal at an index.
     pub fn signal(&self, index: usize) -> Signal {
-        self.signals[index]
+        self.code.signals[index]
     }
 
     /// Whether an output or memory bit (or a running timer) is on.
@@ -198,7 +221,7 @@ impl PlcState {
     fn holds(&self, condition: &[Lit], input: &dyn Fn(Signal) -> bool) -> bool {
         condition.iter().all(|l| {
             let raw = if l.input {
-                input(self.signals[l.index])
+                input(self.code.signals[l.index])
             } else {
                 self.bits[l.index]
             };
@@ -244,28 +267,22 @@ pub struct ScanResult {
 
 /// Runs one PLC scan of `scan_ms` milliseconds. `input` gives the value of an
 /// input signal as read at the start of the scan.
-pub fn scan(
-    program: &StepProgram,
-    state: &mut PlcState,
-    input: &dyn Fn(Signal) -> bool,
-    scan_ms: u64,
-) -> ScanResult {
+pub fn scan(state: &mut PlcState, input: &dyn Fn(Signal) -> bool, scan_ms: u64) -> ScanResult {
+    let code = state.code;
     let mut changed = state.advance_timers(scan_ms);
     let mut fired = None;
     let awaited = state.awaited;
-    if awaited < state.steps.len() && state.holds(&state.steps[awaited].condition, input) {
-        let actions = std::mem::take(&mut state.steps[awaited].actions);
-        state.apply(&actions);
-        state.steps[awaited].actions = actions;
+    if let Some(step) = code.steps.get(awaited)
+        && state.holds(&step.condition, input)
+    {
+        state.apply(&step.actions);
         fired = Some(awaited);
         changed = true;
-        state.awaited = (awaited + 1) % program.steps.len();
+        state.awaited = (awaited + 1) % code.steps.len();
     }
-    for r in 0..state.rungs.len() {
-        if state.holds(&state.rungs[r].condition, input) {
-            let actions = std::mem::take(&mut state.rungs[r].actions);
-            changed |= state.apply(&actions);
-            state.rungs[r].actions = actions;
+    for rung in &code.rungs {
+        if state.holds(&rung.condition, input) {
+            changed |= state.apply(&rung.actions);
         }
     }
     ScanResult { fired, changed }

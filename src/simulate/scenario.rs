@@ -8,6 +8,7 @@ use crate::program::StepProgram;
 use crate::table::StepTable;
 
 use super::plant::Piston;
+use super::plc::PlcProgram;
 use super::run::Run;
 use super::{Operator, Problem, SimSettings};
 
@@ -62,7 +63,8 @@ pub fn scenario(
     script: &[(u64, Operator)],
     until_ms: u64,
 ) -> ScenarioReport {
-    let mut run = Run::new(table, program, settings);
+    let code = PlcProgram::compile(program);
+    let mut run = Run::new(table, program, &code, settings);
     let outputs: Vec<(usize, Signal)> = program
         .steps
         .iter()

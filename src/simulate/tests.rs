@@ -180,8 +180,17 @@ fn the_recorded_io_is_the_same_both_ways() {
             inputs: program.signals.inputs.clone(),
             outputs: program.signals.driven().collect(),
         };
-        let record =
-            |stepping| run::run(&table, &program, &settings, Some(signals.clone()), stepping);
+        let code = plc::PlcProgram::compile(&program);
+        let record = |stepping| {
+            run::run(
+                &table,
+                &program,
+                &code,
+                &settings,
+                Some(signals.clone()),
+                stepping,
+            )
+        };
         let (events, events_io) = record(Stepping::Events);
         let (scans, scans_io) = record(Stepping::EveryScan);
         assert!(events.passed, "{:?}", events.problems);

@@ -4,6 +4,7 @@
 use super::*;
 use crate::cell::Sign;
 use crate::program::{Action, Alarm, Signal, StepKind, StepProgram};
+use crate::simulate::plc::{PlcProgram, PlcState};
 use crate::table::StepTable;
 
 /// The longest a step may take before the run counts as stalled: well past
@@ -59,6 +60,7 @@ impl<'a> Run<'a> {
     pub(in crate::simulate) fn new(
         table: &'a StepTable,
         program: &'a StepProgram,
+        code: &'a PlcProgram,
         settings: &SimSettings,
     ) -> Run<'a> {
         let scan_ms = settings.scan_ms.max(1);
@@ -103,7 +105,7 @@ impl<'a> Run<'a> {
                     .filter_map(|n| machine::rest_value(table, *n).map(|v| (*n, v)))
                     .collect(),
             },
-            plc: PlcState::new(program),
+            plc: PlcState::new(code),
             time_ms: 0,
             problems: Vec::new(),
             active: Vec::new(),
@@ -153,11 +155,12 @@ impl<'a> Run<'a> {
 pub(in crate::simulate) fn run(
     table: &StepTable,
     program: &StepProgram,
+    code: &PlcProgram,
     settings: &SimSettings,
     record: Option<io::IoSignals>,
     stepping: Stepping,
 ) -> (SimReport, Option<io::IoTrace>) {
-    let mut run = Run::new(table, program, settings);
+    let mut run = Run::new(table, program, code, settings);
     run.event_driven = stepping == Stepping::Events;
     run.io = record.map(|signals| io::IoTrace {
         scan_ms: run.world.settings.scan_ms,

@@ -29,7 +29,7 @@ pub(in crate::simulate) struct Run<'a> {
     pub(in crate::simulate) program: &'a StepProgram,
     /// What the PLC's inputs read from: the plant, the operator, the machine.
     pub(in crate::simulate) world: World,
-    pub(in crate::simulate) plc: PlcState,
+    pub(in crate::simulate) plc: PlcState<'a>,
     pub(in crate::simulate) time_ms: u64,
     pub(in crate::simulate) problems: Vec<Problem>,
     /// The moves of the step that fired last.
@@ -162,12 +162,7 @@ impl Run<'_> {
                 .map(|s| read_input(*s, world))
                 .collect::<Vec<bool>>()
         });
-        let result = scan(
-            self.program,
-            &mut self.plc,
-            &read,
-            self.world.settings.scan_ms as u64,
-        );
+        let result = scan(&mut self.plc, &read, self.world.settings.scan_ms as u64);
         if let (Some(io), Some(inputs)) = (self.io.as_mut(), recorded_inputs) {
             let outputs = io
                 .signals
