@@ -86,11 +86,16 @@ struct Model {
 
 /// Instruction list for `e`, result in the accumulator; a nested right
 /// operand goes through a temporary.
-fn instructions(e: &Expr, names: &Names, code: &mut Vec<String>, temps: &mut usize) {
+fn instructions(
+    e: &Expr,
+    state: &dyn Fn(usize) -> String,
+    code: &mut Vec<String>,
+    temps: &mut usize,
+) {
     match e {
-        Expr::Var(v) => code.push(format!("LD {}", names.state(*v))),
+        Expr::Var(v) => code.push(format!("LD {}", state(*v))),
         Expr::Not(inner) => {
-            instructions(inner, names, code, temps);
+            instructions(inner, state, code, temps);
             code.push("NOT".to_string());
         }
         Expr::And(a, b) | Expr::Or(a, b) | Expr::Xor(a, b) => {
@@ -101,21 +106,21 @@ fn instructions(e: &Expr, names: &Names, code: &mut Vec<String>, temps: &mut usi
             };
             match &**b {
                 Expr::Var(v) => {
-                    instructions(a, names, code, temps);
-                    code.push(format!("{op} {}", names.state(*v)));
+                    instructions(a, state, code, temps);
+                    code.push(format!("{op} {}", state(*v)));
                 }
                 Expr::Not(n) if matches!(**n, Expr::Var(_)) => {
-                    instructions(a, names, code, temps);
+                    instructions(a, state, code, temps);
                     if let Expr::Var(v) = **n {
-                        code.push(format!("{op}N {}", names.state(v)));
+                        code.push(format!("{op}N {}", state(v)));
                     }
                 }
                 _ => {
                     *temps += 1;
                     let t = format!("t{temps}");
-                    instructions(b, names, code, temps);
+                    instructions(b, state, code, temps);
                     code.push(format!("ST {t}"));
-                    instructions(a, names, code, temps);
+                    instructions(a, state, code, temps);
                     code.push(format!("{op} {t}"));
                 }
             }
@@ -172,7 +177,7 @@ fn model(s: &Synthesis, title: &str, program: &'static str, temporaries: bool) -
         .map(|e| {
             let mut il = Vec::new();
             let mut temps = 0;
-            instructions(&e.expr, &names, &mut il, &mut temps);
+            instructions(&e.expr, &|v| names.state(v), &mut il, &mut temps);
             most_temps = most_temps.max(temps);
             EquationModel {
                 output: names.output(e),
@@ -235,4 +240,36 @@ pub fn instruction_list(
 ) -> Result<String, TemplateError> {
     let model = model(s, title, "synth_il", true);
     templates.render("equations.il.j2", Value::from(Serde(&model)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn il(e: &Expr) -> Vec<String> {
+        let (mut code, mut temps) = (Vec::new(), 0);
+        instructions(
+            e,
+            &|v| ["a", "b", "c"][v].to_string(),
+            &mut code,
+            &mut temps,
+        );
+        code
+    }
+
+    #[test]
+    fn a_negated_operand_is_one_instruction_only_when_it_is_a_variable() {
+        let var = |v| Box::new(Expr::Var(v));
+        let and_not_b = Expr::And(var(0), Box::new(Expr::Not(var(1))));
+        assert_eq!(il(&and_not_b), ["LD a", "ANDN b"]);
+        // NOT (b OR c) needs its own accumulator: through a temporary.
+        let and_not_b_or_c = Expr::And(
+            var(0),
+            Box::new(Expr::Not(Box::new(Expr::Or(var(1), var(2))))),
+        );
+        assert_eq!(
+            il(&and_not_b_or_c),
+            ["LD b", "OR c", "NOT", "ST t1", "LD a", "AND t1"]
+        );
+    }
 }

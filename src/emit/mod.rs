@@ -74,15 +74,6 @@ impl EmitInput<'_> {
     }
 }
 
-/// The moves of a step as the table writes them: `C3+2, C2+2`.
-pub fn moves_text(moves: &[Move]) -> String {
-    moves
-        .iter()
-        .map(Move::notation)
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 /// A short explanation of an action for a program comment.
 pub fn action_comment(action: Action, moves: &[Move]) -> String {
     let symbol = action.signal().symbol();

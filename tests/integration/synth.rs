@@ -194,3 +194,28 @@ fn synthesised_programs_are_snapshotted() {
         );
     }
 }
+
+/// A memory whose first operation resets it starts set: the program must
+/// declare it TRUE, or the first action waits for a state that never comes.
+#[test]
+fn a_memory_reset_first_starts_set_in_both_programs() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .args(["synth", "--sequence", "A+ B+ B- A-", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success()
+        .stdout(contains("simulation: passed"));
+    let out = dir.path().join("sequence");
+    for file in ["sequence.equations.st", "sequence.equations.il"] {
+        let text = std::fs::read_to_string(out.join(file)).unwrap();
+        assert!(
+            text.contains("x : BOOL := TRUE; (* memory *)"),
+            "{file}: {text}"
+        );
+        assert!(
+            text.contains("a : BOOL := FALSE; (* sensor state *)"),
+            "{file}"
+        );
+    }
+}
