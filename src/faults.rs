@@ -159,6 +159,7 @@ fn classify(simulator: &Simulator, settings: &SimSettings, faults: Vec<Fault>) -
     let run = SimSettings {
         faults: faults.clone(),
         record_trace: false,
+        stop_at_hazard: true,
         ..settings.clone()
     };
     let report = simulator.run(&run);

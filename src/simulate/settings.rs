@@ -62,6 +62,9 @@ pub struct SimSettings {
     /// Per machine input, how long after its step starts the machine gives
     /// the value the step waits for (default [`DEFAULT_INPUT_DELAY_MS`]).
     pub input_delays: BTreeMap<Name, u32>,
+    /// End the run at the scan that finds the first hazard: the fault
+    /// analysis needs no more (the rest of the report is then cut short).
+    pub stop_at_hazard: bool,
 }
 
 impl Default for SimSettings {
@@ -76,6 +79,7 @@ impl Default for SimSettings {
             faults: Vec::new(),
             record_trace: false,
             input_delays: BTreeMap::new(),
+            stop_at_hazard: false,
         }
     }
 }

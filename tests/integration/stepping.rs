@@ -30,6 +30,27 @@ fn assert_same_run(what: &str, table: &StepTable, program: &StepProgram, setting
     assert_eq!(events, scans, "{what}");
 }
 
+/// A run that stops at its first hazard reaches the verdict the whole run
+/// reaches: the same first hazard, or the same stall and its reason.
+fn assert_same_verdict(
+    what: &str,
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+) {
+    let whole = simulate_stepping(table, program, settings, Stepping::Events);
+    let cut = SimSettings {
+        stop_at_hazard: true,
+        ..settings.clone()
+    };
+    let cut = simulate_stepping(table, program, &cut, Stepping::Events);
+    assert_eq!(cut.hazard(), whole.hazard(), "{what}");
+    assert_eq!(cut.passed, whole.passed, "{what}");
+    if whole.hazard().is_none() {
+        assert_eq!(cut, whole, "{what}");
+    }
+}
+
 fn checked(path: &std::path::Path, settings: &Settings) -> Checked {
     match check_path(path, settings) {
         Ok(checked) => checked,
@@ -61,6 +82,7 @@ fn both_simulators_agree_on_every_sample_under_every_fault() {
                 };
                 let what = format!("{} {safety:?} {faults:?}", path.display());
                 assert_same_run(&what, &checked.table, &program, &run);
+                assert_same_verdict(&what, &checked.table, &program, &run);
             }
         }
     }
@@ -165,7 +187,9 @@ fn both_simulators_agree_on_random_tables_and_faults() {
                 faults: faults.clone(),
                 ..sim.clone()
             };
-            assert_same_run(&format!("{healthy} {faults:?}"), &table, &program, &run);
+            let what = format!("{healthy} {faults:?}");
+            assert_same_run(&what, &table, &program, &run);
+            assert_same_verdict(&what, &table, &program, &run);
         }
         compared += 3;
     }

@@ -121,6 +121,7 @@ impl<'a> Run<'a> {
             event_driven: false,
             quiet: false,
             moving: (0..table.actuators.len()).collect(),
+            hazard_seen: false,
         };
         run.dwells = table
             .dwells()
@@ -179,6 +180,9 @@ pub(in crate::simulate) fn run(
     'cycles: for cycle in 0..settings.cycles.max(1) {
         while run.time_ms < press_at {
             run.tick();
+            if run.judged() {
+                break 'cycles;
+            }
             run.pass_quiet_scans(press_at);
         }
         let mut report = CycleReport {
@@ -195,6 +199,11 @@ pub(in crate::simulate) fn run(
             run.world.start_pressed = run.time_ms < press_at + press_ms;
             let before = run.time_ms;
             let fired = run.tick();
+            if run.judged() {
+                report.steps = timings(program, &fire_times, run.time_ms, press_at, &run.spans);
+                cycles.push(report);
+                break 'cycles;
+            }
             if let Some(index) = fired {
                 // A boundary of the diagram: the previous step has ended.
                 // (A closing END step is not a boundary: the cycle end is.)
@@ -302,10 +311,10 @@ pub(in crate::simulate) fn run(
         press_at = run.time_ms + IDLE_MS as u64;
     }
     // A short idle after the last cycle: nothing may move on its own.
-    if stalled_at.is_none() {
+    if stalled_at.is_none() && !run.judged() {
         let until = run.time_ms + IDLE_MS as u64;
         run.world.start_pressed = false;
-        while run.time_ms < until {
+        while run.time_ms < until && !run.judged() {
             run.tick();
             run.pass_quiet_scans(until);
         }

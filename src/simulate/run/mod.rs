@@ -59,6 +59,8 @@ pub(in crate::simulate) struct Run<'a> {
     /// The pistons that moved in the last scan (all of them before the
     /// first).
     pub(in crate::simulate) moving: Vec<usize>,
+    /// A hazard is among the problems.
+    pub(in crate::simulate) hazard_seen: bool,
 }
 
 /// Everything the PLC's inputs are read from.
@@ -109,6 +111,12 @@ impl Run<'_> {
         self.problem_of(kind, step, None, message);
     }
 
+    /// The run has found a hazard and was asked to stop at the first (the
+    /// fault analysis: what comes after does not change its verdict).
+    pub(in crate::simulate) fn judged(&self) -> bool {
+        self.world.settings.stop_at_hazard && self.hazard_seen
+    }
+
     /// A problem that concerns one actuator.
     pub(in crate::simulate) fn problem_of(
         &mut self,
@@ -125,6 +133,7 @@ impl Run<'_> {
         {
             return;
         }
+        self.hazard_seen |= kind.is_hazard();
         self.problems.push(Problem {
             kind,
             time_ms: self.time_ms,
