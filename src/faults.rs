@@ -3,7 +3,7 @@
 //! the start of the run and classified as no effect, safe stall or hazard.
 
 use crate::program::StepProgram;
-use crate::simulate::{Fault, ProblemKind, SimSettings, Simulator};
+use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings, Simulator};
 use crate::table::StepTable;
 
 /// What a fault does to the machine.
@@ -143,6 +143,17 @@ pub fn analyse_observed(
     let total = sets.len();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let simulator = Simulator::new(table, program);
+    // What the healthy cycle does is the yardstick: the combinations of
+    // positions it reaches are the ones a faulty run may reach.
+    let healthy = simulator.run(&SimSettings {
+        record_places: true,
+        record_trace: false,
+        ..settings.clone()
+    });
+    let settings = &SimSettings {
+        known_places: Some(std::sync::Arc::new(healthy.places)),
+        ..settings.clone()
+    };
     let cases = sets
         .into_par_iter()
         .map(|faults| {
@@ -163,35 +174,65 @@ fn classify(simulator: &Simulator, settings: &SimSettings, faults: Vec<Fault>) -
         ..settings.clone()
     };
     let report = simulator.run(&run);
-    if let Some(hazard) = report.hazard() {
-        return FaultCase {
-            faults,
-            outcome: Outcome::Hazard,
-            step: Some(hazard.step),
-            explanation: hazard.message.clone(),
-        };
-    }
-    if let Some(step) = report.stalled_at {
-        return FaultCase {
-            faults,
-            outcome: Outcome::SafeStall,
-            step: Some(step),
-            explanation: report.reason(),
-        };
-    }
-    let explanation = match report
-        .problems
-        .iter()
-        .find(|p| p.kind == ProblemKind::CycleDiffers)
-    {
-        Some(p) => format!("runs, but {}", p.message),
-        None => "the cycle runs as without the fault".to_string(),
-    };
+    let (outcome, step, explanation) = judge(&report);
     FaultCase {
         faults,
-        outcome: Outcome::NoEffect,
-        step: None,
+        outcome,
+        step,
         explanation,
+    }
+}
+
+/// The verdict on one faulty run: its outcome, the step concerned and why.
+/// A hazard is the first the sequence shows (a move too early, motion no
+/// step commands, both coils, a start without START) or a combination of
+/// positions the healthy cycle never has; the explanation gives the
+/// sequence's reason first (the stall, the early step) and then the
+/// combination. A collision found after the first sequence hazard is not
+/// part of the verdict: a run may stop at that hazard.
+pub fn judge(report: &SimReport) -> (Outcome, Option<usize>, String) {
+    let sequence = report
+        .problems
+        .iter()
+        .find(|p| p.kind.is_hazard() && p.kind != ProblemKind::Collision);
+    let collision = report
+        .problems
+        .iter()
+        .find(|p| p.kind == ProblemKind::Collision)
+        .filter(|c| sequence.is_none_or(|s| c.time_ms <= s.time_ms));
+    match (sequence, collision) {
+        (Some(s), None) => (Outcome::Hazard, Some(s.step), s.message.clone()),
+        (Some(s), Some(c)) => (
+            Outcome::Hazard,
+            Some(c.step),
+            format!("{}; {}", s.message, c.message),
+        ),
+        (None, Some(c)) => {
+            let reason = if report.stalled_at.is_some() {
+                format!("{}; ", report.reason())
+            } else {
+                String::new()
+            };
+            (
+                Outcome::Hazard,
+                Some(c.step),
+                format!("{reason}{}", c.message),
+            )
+        }
+        (None, None) => {
+            if let Some(step) = report.stalled_at {
+                return (Outcome::SafeStall, Some(step), report.reason());
+            }
+            let explanation = match report
+                .problems
+                .iter()
+                .find(|p| p.kind == ProblemKind::CycleDiffers)
+            {
+                Some(p) => format!("runs, but {}", p.message),
+                None => "the cycle runs as without the fault".to_string(),
+            };
+            (Outcome::NoEffect, None, explanation)
+        }
     }
 }
 

@@ -99,7 +99,7 @@ impl Piston {
 
     /// The sensor that currently sees the piston, if any.
     pub fn sensor_on(&self, window: f64) -> Option<u32> {
-        self.sensor_on_at(self.s, window)
+        (0..=self.max_position).find(|p| self.sensor(*p, window))
     }
 
     /// The position in sensor units (`s · pmax`), for diagrams.
@@ -160,7 +160,8 @@ impl Piston {
     }
 
     /// How many of the next `limit` scans the piston advances with no
-    /// sensor switching on or off, without coming to rest at an end and
+    /// sensor switching on or off, no change of [`Piston::place`], without
+    /// coming to rest at an end and
     /// without passing `mark` (`(low, high)`: the stroke fractions below and
     /// above which the caller's check fires).
     pub fn scans_before_an_event(&self, window: f64, mark: Option<(f64, f64)>, limit: u64) -> u64 {
@@ -171,7 +172,7 @@ impl Piston {
         let half = self.window(window) + 1e-9;
         let distance = (0..=self.max_position)
             .map(|p| self.sensor_point(p))
-            .flat_map(|c| [c - half, c + half])
+            .flat_map(|c| [c - half, c, c + half])
             .chain([0.0, 1.0])
             .chain(mark.into_iter().flat_map(|(low, high)| [low, high]))
             .map(|t| (t - self.s) * v.signum())
@@ -183,7 +184,7 @@ impl Piston {
         // rounding); step a copy as the run will and check where it ends.
         let watched = |p: &Piston| {
             let beyond = mark.map(|(low, high)| (p.s < low, p.s > high));
-            (p.sensor_on(window), p.at_rest(), beyond)
+            (p.place(window), p.at_rest(), beyond)
         };
         let mut copy = self.clone();
         for _ in 0..estimate {
@@ -196,10 +197,17 @@ impl Piston {
         }
     }
 
-    /// The sensor that sees a piston at stroke fraction `s`, if any.
-    pub fn sensor_on_at(&self, s: f64, window: f64) -> Option<u32> {
-        let half = self.window(window) + 1e-9;
-        (0..=self.max_position).find(|p| (s - self.sensor_point(*p)).abs() <= half)
+    /// Where the piston is, coarsely: `2p` on sensor `p`, `2p + 1` between
+    /// sensors `p` and `p + 1`. The combination of every piston's place is
+    /// what the collision check compares with the healthy cycle.
+    pub fn place(&self, window: f64) -> u32 {
+        match self.sensor_on(window) {
+            Some(p) => 2 * p,
+            None => {
+                let below = (self.s * self.max_position.max(1) as f64).floor() as u32;
+                2 * below.min(self.max_position.saturating_sub(1)) + 1
+            }
+        }
     }
 
     /// Advances the piston by one scan. Returns the direction it moved, if any.

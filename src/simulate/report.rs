@@ -20,6 +20,10 @@ pub enum ProblemKind {
     NotHome,
     /// The second cycle differs from the first.
     CycleDiffers,
+    /// The actuators stand (or move) in a combination of positions the
+    /// healthy cycle never has: on a real machine, a possible collision.
+    /// Only checked against a recorded healthy run (the fault analysis).
+    Collision,
 }
 
 impl ProblemKind {
@@ -115,6 +119,8 @@ pub struct SimReport {
     pub trace: Vec<(u64, Vec<f64>)>,
     /// Dwells and waits of the first cycle, in absolute time.
     pub spans: Vec<Span>,
+    /// Every combination of actuator places reached, when recorded.
+    pub places: super::Places,
 }
 
 impl SimReport {

@@ -62,10 +62,20 @@ pub struct SimSettings {
     /// Per machine input, how long after its step starts the machine gives
     /// the value the step waits for (default [`DEFAULT_INPUT_DELAY_MS`]).
     pub input_delays: BTreeMap<Name, u32>,
-    /// End the run at the scan that finds the first hazard: the fault
-    /// analysis needs no more (the rest of the report is then cut short).
+    /// End the run at the scan that finds the sequence's first hazard (any
+    /// but a collision): the fault analysis needs no more (the rest of the
+    /// report is then cut short).
     pub stop_at_hazard: bool,
+    /// Record every combination of actuator places the run reaches
+    /// ([`SimReport::places`]), for the collision check of later runs.
+    pub record_places: bool,
+    /// The combinations a healthy run reached: reaching another is a
+    /// [`ProblemKind::Collision`](super::ProblemKind::Collision).
+    pub known_places: Option<std::sync::Arc<Places>>,
 }
+
+/// Combinations of actuator places ([`Piston::place`](super::plant::Piston::place)), in table order.
+pub type Places = std::collections::BTreeSet<Vec<u32>>;
 
 impl Default for SimSettings {
     fn default() -> Self {
@@ -80,6 +90,8 @@ impl Default for SimSettings {
             record_trace: false,
             input_delays: BTreeMap::new(),
             stop_at_hazard: false,
+            record_places: false,
+            known_places: None,
         }
     }
 }

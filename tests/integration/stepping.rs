@@ -5,11 +5,11 @@
 //! valve type and scan time.
 
 use steptable::convert::{Checked, build_program, check_path};
-use steptable::faults::fault_sets;
+use steptable::faults::{Outcome, fault_sets, judge};
 use steptable::program::{self, ProgramOptions, Safety, StepProgram};
 use steptable::random_table::{Shape, SplitMix64, random_rows};
 use steptable::settings::Settings;
-use steptable::simulate::{SimSettings, Stepping, simulate_stepping};
+use steptable::simulate::{ProblemKind, SimSettings, Stepping, simulate_stepping};
 use steptable::stroke::Stroke;
 use steptable::table::StepTable;
 use steptable::valve::ValveType;
@@ -31,24 +31,49 @@ fn assert_same_run(what: &str, table: &StepTable, program: &StepProgram, setting
 }
 
 /// A run that stops at its first hazard reaches the verdict the whole run
-/// reaches: the same first hazard, or the same stall and its reason.
+/// reaches (the same first hazard, or the same stall and its reason), with
+/// the collision check on as the fault analysis runs it.
 fn assert_same_verdict(
     what: &str,
     table: &StepTable,
     program: &StepProgram,
     settings: &SimSettings,
 ) {
-    let whole = simulate_stepping(table, program, settings, Stepping::Events);
-    let cut = SimSettings {
-        stop_at_hazard: true,
+    let healthy = SimSettings {
+        faults: Vec::new(),
+        record_places: true,
         ..settings.clone()
     };
+    let healthy = simulate_stepping(table, program, &healthy, Stepping::Events);
+    let checked = SimSettings {
+        known_places: Some(std::sync::Arc::new(healthy.places)),
+        ..settings.clone()
+    };
+    let whole = simulate_stepping(table, program, &checked, Stepping::Events);
+    let cut = SimSettings {
+        stop_at_hazard: true,
+        ..checked.clone()
+    };
     let cut = simulate_stepping(table, program, &cut, Stepping::Events);
-    assert_eq!(cut.hazard(), whole.hazard(), "{what}");
-    assert_eq!(cut.passed, whole.passed, "{what}");
-    if whole.hazard().is_none() {
-        assert_eq!(cut, whole, "{what}");
+    assert_eq!(judge(&cut), judge(&whole), "{what}");
+    if settings.faults.is_empty() {
+        // A run is never a collision risk against itself.
+        let collisions = whole
+            .problems
+            .iter()
+            .filter(|p| p.kind == ProblemKind::Collision);
+        assert_eq!(collisions.count(), 0, "{what}");
+        if whole.passed {
+            assert_eq!(
+                judge(&whole).0,
+                Outcome::NoEffect,
+                "{what}: the healthy run"
+            );
+        }
     }
+    // And both steppings see the same collisions.
+    let scans = simulate_stepping(table, program, &checked, Stepping::EveryScan);
+    assert_eq!(whole.problems, scans.problems, "{what}");
 }
 
 fn checked(path: &std::path::Path, settings: &Settings) -> Checked {
@@ -178,6 +203,7 @@ fn both_simulators_agree_on_random_tables_and_faults() {
         let program = program::build(&table, &options, &sim.valves, &sim.strokes);
         let healthy = format!("seed {seed} {rows:?}");
         assert_same_run(&healthy, &table, &program, &sim);
+        assert_same_verdict(&healthy, &table, &program, &sim);
         // One random fault and one random pair.
         let singles = fault_sets(&program, false);
         let pairs = fault_sets(&program, true);

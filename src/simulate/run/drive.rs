@@ -122,6 +122,8 @@ impl<'a> Run<'a> {
             quiet: false,
             moving: (0..table.actuators.len()).collect(),
             hazard_seen: false,
+            places: Vec::new(),
+            visited: Places::new(),
         };
         run.dwells = table
             .dwells()
@@ -131,6 +133,13 @@ impl<'a> Run<'a> {
                     .map(|at| (at, d.number, None))
             })
             .collect();
+        run.places = run
+            .world
+            .pistons
+            .iter()
+            .map(|p| p.place(settings.window))
+            .collect();
+        run.visit();
         run.coils = table
             .actuators
             .iter()
@@ -374,6 +383,7 @@ pub(in crate::simulate) fn run(
             .map(|a| (a.number, a.max_position))
             .collect(),
         trace: run.trace,
+        places: run.visited,
         spans: run
             .spans
             .into_iter()

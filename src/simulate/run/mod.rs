@@ -61,6 +61,9 @@ pub(in crate::simulate) struct Run<'a> {
     pub(in crate::simulate) moving: Vec<usize>,
     /// A hazard is among the problems.
     pub(in crate::simulate) hazard_seen: bool,
+    /// Every piston's [`Piston::place`] now, and the combinations reached.
+    pub(in crate::simulate) places: Vec<u32>,
+    pub(in crate::simulate) visited: Places,
 }
 
 /// Everything the PLC's inputs are read from.
@@ -111,8 +114,39 @@ impl Run<'_> {
         self.problem_of(kind, step, None, message);
     }
 
-    /// The run has found a hazard and was asked to stop at the first (the
-    /// fault analysis: what comes after does not change its verdict).
+    /// The pistons have reached a new combination of places: recorded, and
+    /// checked against the healthy cycle's when given.
+    pub(in crate::simulate) fn visit(&mut self) {
+        if self.world.settings.record_places && !self.visited.contains(&self.places) {
+            self.visited.insert(self.places.clone());
+        }
+        let Some(known) = &self.world.settings.known_places else {
+            return;
+        };
+        if known.contains(&self.places) {
+            return;
+        }
+        let combination: Vec<String> = self
+            .world
+            .pistons
+            .iter()
+            .zip(&self.places)
+            .map(|(p, place)| place_text(p.number, *place))
+            .collect();
+        let step = self.current_step();
+        self.problem(
+            ProblemKind::Collision,
+            step,
+            format!(
+                "collision risk: {} (during step {step}), positions the healthy cycle never has together",
+                combination.join(", ")
+            ),
+        );
+    }
+
+    /// The run has found a hazard of the sequence and was asked to stop at
+    /// the first (the fault analysis: what comes after does not change its
+    /// verdict).
     pub(in crate::simulate) fn judged(&self) -> bool {
         self.world.settings.stop_at_hazard && self.hazard_seen
     }
@@ -133,7 +167,8 @@ impl Run<'_> {
         {
             return;
         }
-        self.hazard_seen |= kind.is_hazard();
+        // A collision is judged with what the sequence does after it.
+        self.hazard_seen |= kind.is_hazard() && kind != ProblemKind::Collision;
         self.problems.push(Problem {
             kind,
             time_ms: self.time_ms,
@@ -194,6 +229,7 @@ impl Run<'_> {
         // Outputs to valves, then the plant moves for one scan period. With
         // the outputs as they were, a piston at rest stays at rest: only the
         // moving ones need a look.
+        let mut moved_on = false;
         let mut due = std::mem::take(&mut self.moving);
         if result.changed || !self.event_driven {
             due.clear();
@@ -206,7 +242,8 @@ impl Run<'_> {
             let plus = on(plus_at) || on(single_at);
             let minus = on(minus_at);
             let piston = &mut self.world.pistons[i];
-            let was = (piston.s, piston.at_rest());
+            let was_at_rest = piston.at_rest();
+            let was_at = piston.s;
             if piston.drive(plus, minus) {
                 let step = self.current_step();
                 self.problem(
@@ -218,13 +255,21 @@ impl Run<'_> {
             if let Some(direction) = self.world.pistons[i].advance() {
                 self.check_motion(i, direction);
             }
-            // The inputs the next scan reads stay those this one read.
+            // The inputs the next scan reads stay those this one read (a
+            // sensor's change is a change of place).
             let piston = &self.world.pistons[i];
-            let window = self.world.settings.window;
-            let same = piston.at_rest() == was.1
-                && (piston.s == was.0
-                    || piston.sensor_on(window) == piston.sensor_on_at(was.0, window));
-            quiet &= same;
+            quiet &= piston.at_rest() == was_at_rest;
+            if piston.s != was_at {
+                let place = piston.place(self.world.settings.window);
+                if place != self.places[i] {
+                    self.places[i] = place;
+                    moved_on = true;
+                }
+            }
+        }
+        quiet &= !moved_on;
+        if moved_on {
+            self.visit();
         }
         due.retain(|&i| self.world.pistons[i].velocity() != 0.0);
         self.moving = due;
@@ -467,6 +512,20 @@ pub(in crate::simulate) fn read_input(signal: Signal, world: &World) -> bool {
         Signal::EStop => !operator.estop,
         Signal::Reset => operator.reset,
         _ => false,
+    }
+}
+
+/// `C2 at x23`, `C2 between x22 and x23`.
+fn place_text(actuator: u32, place: u32) -> String {
+    let sensor = |position| Signal::Sensor { actuator, position }.symbol();
+    if place.is_multiple_of(2) {
+        format!("C{actuator} at {}", sensor(place / 2))
+    } else {
+        format!(
+            "C{actuator} between {} and {}",
+            sensor(place / 2),
+            sensor(place / 2 + 1)
+        )
     }
 }
 
