@@ -64,6 +64,9 @@ pub enum Code {
     E033OverBudget,
     /// A sequence or table that synthesis does not handle.
     E034NotSynthesisable,
+    /// A row of the ADDRESSES sheet: an unknown signal, an address not in
+    /// the target's notation or out of range, the wrong area, a clash.
+    E035BadPinnedAddress,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -113,6 +116,7 @@ impl Code {
             Code::E032MachineCannotRun => "E032",
             Code::E033OverBudget => "E033",
             Code::E034NotSynthesisable => "E034",
+            Code::E035BadPinnedAddress => "E035",
         }
     }
 }

@@ -9,7 +9,7 @@ use rust_xlsxwriter::{
 };
 
 use crate::cell::{MAX_ACTUATOR, MAX_POSITION};
-use crate::read::{SETTINGS_SHEET, TABLE_SHEET};
+use crate::read::{ADDRESSES_SHEET, SETTINGS_SHEET, TABLE_SHEET};
 use crate::table::{MAX_BRANCHES, MAX_STEPS};
 
 /// Sheet with the paper's example.
@@ -168,6 +168,7 @@ pub fn template_workbook(branches: u16, steps: u32) -> Result<Vec<u8>, XlsxError
     sheet.protect();
 
     settings_sheet(workbook.add_worksheet(), &f)?;
+    addresses_sheet(workbook.add_worksheet(), &f)?;
     help_sheet(workbook.add_worksheet(), &f)?;
 
     // The paper's example, to look at or copy from.
@@ -188,6 +189,26 @@ pub fn template_workbook(branches: u16, steps: u32) -> Result<Vec<u8>, XlsxError
         }
     }
     workbook.save_to_buffer()
+}
+
+/// Pins to the wiring: empty (any pin would bind every target's notation),
+/// with the example in the notes above the header.
+fn addresses_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
+    sheet.set_name(ADDRESSES_SHEET)?;
+    sheet.write_string_with_format(0, 0, "ADDRESSES", &f.title)?;
+    let notes = [
+        "Optional: signals wired to given terminals. One row per signal below the header: the signal as the allocation list names it (START, x11, y1+, part_present) and its address in the target's notation.",
+        "Example for the siemens target: START | I0.0, x11 | I0.2, y1+ | Q0.1 (festo: I0.0 / O0.1; iec: %IX0.0 / %QX0.1).",
+        "Pinned signals keep their address; the others are laid out around them in their usual order.",
+    ];
+    for (row, note) in notes.iter().enumerate() {
+        sheet.write_string(1 + row as u32, 0, *note)?;
+    }
+    sheet.write_string_with_format(5, 0, "SIGNAL", &f.header)?;
+    sheet.write_string_with_format(5, 1, "ADDRESS", &f.header)?;
+    sheet.set_column_width(0, 16)?;
+    sheet.set_column_width(1, 12)?;
+    Ok(())
 }
 
 fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {

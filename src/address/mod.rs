@@ -63,6 +63,75 @@ impl Address {
         }
     }
 
+    /// An input or output bit written in `target`'s notation: `I0.3` /
+    /// `O1.2` (Festo, 16 bits a word), `%IX0.3` / `%QX1.2` (IEC), `I0.3` /
+    /// `Q1.2` or `E0.3` / `A1.2` (Siemens, either set of letters).
+    pub fn parse(text: &str, target: Target) -> Result<Address, String> {
+        let t = text.trim().to_ascii_uppercase();
+        let letters: &[(&str, Area)] = match target {
+            Target::Festo => &[("I", Area::Input), ("O", Area::Output)],
+            Target::Iec => &[("%IX", Area::Input), ("%QX", Area::Output)],
+            Target::Siemens => &[
+                ("I", Area::Input),
+                ("E", Area::Input),
+                ("Q", Area::Output),
+                ("A", Area::Output),
+            ],
+        };
+        let expected = || {
+            let examples = match target {
+                Target::Festo => "I0.0 … I0.15 or O0.0 …",
+                Target::Iec => "%IX0.0 … %IX0.7 or %QX0.0 …",
+                Target::Siemens => "I0.0 … I0.7 (E0.0) or Q0.0 … (A0.0)",
+            };
+            format!(
+                "\"{}\" is not an input or output address of the {} target (expected {examples})",
+                text.trim(),
+                target.name()
+            )
+        };
+        let (area, rest) = letters
+            .iter()
+            .find_map(|(letter, area)| t.strip_prefix(letter).map(|rest| (*area, rest)))
+            .ok_or_else(expected)?;
+        let (unit, bit) = rest.split_once('.').ok_or_else(expected)?;
+        let number = |digits: &str| {
+            (!digits.is_empty() && digits.len() <= 5 && digits.bytes().all(|b| b.is_ascii_digit()))
+                .then(|| digits.parse::<u32>().ok())
+                .flatten()
+        };
+        let (Some(unit), Some(bit)) = (number(unit), number(bit)) else {
+            return Err(expected());
+        };
+        let width = target.bits_per_unit();
+        if bit >= width {
+            return Err(format!(
+                "\"{}\": bit {bit} is out of range, a {} has bits 0 to {}",
+                text.trim(),
+                if width == 16 { "word" } else { "byte" },
+                width - 1
+            ));
+        }
+        if unit > MAX_PINNED_UNIT {
+            return Err(format!(
+                "\"{}\": {} {unit} is out of range (0 to {MAX_PINNED_UNIT})",
+                text.trim(),
+                if width == 16 { "word" } else { "byte" }
+            ));
+        }
+        Ok(Address {
+            area,
+            target,
+            unit,
+            bit,
+        })
+    }
+
+    /// The bit's place among its area's bits, counting from 0.
+    fn index(self) -> u32 {
+        self.unit * self.target.bits_per_unit() + self.bit
+    }
+
     /// The address in the target's notation (`I0.1`, `%QX0.1`, `E0.1`).
     pub fn display(self, mnemonic: Mnemonic) -> String {
         let letter = match (self.target, self.area, mnemonic) {
@@ -107,6 +176,46 @@ impl Address {
         };
         format!("{prefix}{byte}.{bit}")
     }
+}
+
+/// The highest word or byte a pinned address may name: far beyond any
+/// machine's I/O, and below where Festo's and Siemens' input images end.
+pub const MAX_PINNED_UNIT: u32 = 255;
+
+/// Lays out `default` (in address order) around the pinned signals: a
+/// pinned signal keeps its address, the others keep their order and take
+/// the free bits from where the layout starts.
+fn around_pins(default: Vec<Assigned>, pins: &[Assigned]) -> Vec<Assigned> {
+    let Some(first) = default.first() else {
+        return default;
+    };
+    let (area, target) = (first.address.area, first.address.target);
+    let pinned: Vec<Assigned> = pins
+        .iter()
+        .filter(|p| p.address.area == area && default.iter().any(|d| d.signal == p.signal))
+        .copied()
+        .collect();
+    if pinned.is_empty() {
+        return default;
+    }
+    let taken: std::collections::BTreeSet<u32> = pinned.iter().map(|p| p.address.index()).collect();
+    let mut next = first.address.index();
+    let mut laid = pinned.clone();
+    for a in default
+        .iter()
+        .filter(|d| !pinned.iter().any(|p| p.signal == d.signal))
+    {
+        while taken.contains(&next) {
+            next += 1;
+        }
+        laid.push(Assigned {
+            signal: a.signal,
+            address: Address::from_index(area, target, next),
+        });
+        next += 1;
+    }
+    laid.sort_by_key(|a| a.address);
+    laid
 }
 
 /// One signal with its address.
@@ -155,6 +264,19 @@ impl Allocation {
     /// address moves when a valve type changes. Machine outputs and alarms
     /// follow the coils.
     pub fn new(program: &StepProgram, target: Target, mnemonic: Mnemonic) -> Self {
+        Self::pinned(program, target, mnemonic, &[])
+    }
+
+    /// Like [`Allocation::new`], with `pins` (inputs and outputs at the
+    /// addresses the wiring gives them, in `target`'s notation) kept where
+    /// they are and every other signal of their area laid out around them.
+    /// The caller has checked that no two pins share an address.
+    pub fn pinned(
+        program: &StepProgram,
+        target: Target,
+        mnemonic: Mnemonic,
+        pins: &[Assigned],
+    ) -> Self {
         let signals = &program.signals;
         let inputs = lay_out(Area::Input, target, signals.inputs.iter().copied());
 
@@ -217,8 +339,8 @@ impl Allocation {
         Allocation {
             target,
             mnemonic,
-            inputs,
-            outputs,
+            inputs: around_pins(inputs, pins),
+            outputs: around_pins(outputs, pins),
             memories,
             timers,
         }

@@ -2,6 +2,7 @@
 //! → every output file. Writing to disk is [`crate::write`]'s job.
 
 mod physics;
+mod pins;
 
 use std::path::Path;
 
@@ -88,6 +89,10 @@ fn finish_check(
         None => settings.clone(),
     };
     let mut input = input;
+    let mut effective = effective;
+    if let Some(grid) = &input.addresses {
+        effective.pins = crate::settings::pins::parse(grid, &mut diags);
+    }
     if !input.csv_readings.is_empty() {
         let readings = std::mem::take(&mut input.csv_readings);
         if let Some(grid) = table::choose_reading(readings, &mut diags) {
@@ -255,14 +260,24 @@ pub fn generate_observed(
         ..settings.simulation.clone()
     };
     let (program, simulation) = healthy_program(&table, settings, &sim_settings)?;
-    let allocation = Allocation::new(&program, settings.target, settings.mnemonic);
+    let mut diags = crate::diag::Diagnostics::new();
+    let pins = pins::resolve(&program, &settings.pins, settings.target, &mut diags);
+    if diags.has_errors() {
+        return Err(Failure::Input(diags.into_sorted()));
+    }
+    let allocation = Allocation::pinned(&program, settings.target, settings.mnemonic, &pins);
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them.
     let fault_table = [OutputKind::Faults, OutputKind::Workbook]
         .iter()
         .any(|k| settings.formats.contains(k))
         .then(|| faults::analyse_observed(&table, &program, &settings.simulation, false, progress));
-    let festo = Allocation::new(&program, Target::Festo, Mnemonic::En);
+    // The FST files are Festo's whatever the target; the pins are in the
+    // target's notation, so they hold there only when the target is Festo.
+    let festo = match settings.target {
+        Target::Festo => allocation.clone(),
+        _ => Allocation::new(&program, Target::Festo, Mnemonic::En),
+    };
     let input = EmitInput {
         name,
         table: &table,

@@ -29,6 +29,8 @@ pub const TABLE_SHEET: &str = "SEQUENTIAL CONTROL DESCRIPTION";
 
 /// The sheet name of the engineer's settings, when a workbook has one.
 pub const SETTINGS_SHEET: &str = "SETTINGS";
+/// The sheet name of the signals pinned to the wiring's addresses.
+pub const ADDRESSES_SHEET: &str = "ADDRESSES";
 
 /// What was read from one input file: the step table's sheet and, for a
 /// workbook that has one, its SETTINGS sheet.
@@ -36,6 +38,8 @@ pub const SETTINGS_SHEET: &str = "SETTINGS";
 pub struct Input {
     pub table: Grid,
     pub settings: Option<Grid>,
+    /// The ADDRESSES sheet, when a workbook has one.
+    pub addresses: Option<Grid>,
     /// A CSV file's readings, one per delimiter that could be meant, when
     /// there is more than one: the table decides which is the table.
     pub csv_readings: Vec<CsvReading>,
@@ -136,12 +140,14 @@ pub fn read_bytes(
                 return Some(Input {
                     table: only.grid,
                     settings: None,
+                    addresses: None,
                     csv_readings: Vec::new(),
                 });
             }
             Some(Input {
                 table: readings[0].grid.clone(),
                 settings: None,
+                addresses: None,
                 csv_readings: readings,
             })
         }

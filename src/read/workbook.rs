@@ -138,6 +138,11 @@ pub(super) fn read_workbook(
         }
         Some(grid)
     });
+    let addresses = names
+        .iter()
+        .find(|n| n.trim().eq_ignore_ascii_case(ADDRESSES_SHEET))
+        .cloned()
+        .and_then(|name| read_sheet(&mut workbook, &name, diags));
     let table = pick_table(
         &mut workbook,
         &names,
@@ -149,6 +154,7 @@ pub(super) fn read_workbook(
     Some(Input {
         table,
         settings,
+        addresses,
         csv_readings: Vec::new(),
     })
 }

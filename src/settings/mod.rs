@@ -5,6 +5,7 @@
 //!
 //! [`FromStr`]: std::str::FromStr
 
+pub mod pins;
 mod sheet;
 pub mod user_templates;
 
@@ -85,6 +86,8 @@ pub struct Settings {
     /// What the command line gave: a workbook's SETTINGS sheet decides
     /// only what it leaves open.
     pub given: Given,
+    /// The workbook's ADDRESSES sheet: signals pinned to the wiring.
+    pub pins: Vec<pins::PinRow>,
 }
 
 impl Settings {

@@ -21,6 +21,7 @@ mod machine;
 mod messy;
 mod modes;
 mod paper;
+mod pins;
 mod promise_map;
 mod properties;
 mod safety;

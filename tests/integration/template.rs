@@ -22,10 +22,15 @@ fn the_template_has_its_sheets_headers_validation_and_protection() {
         [
             "SEQUENTIAL CONTROL DESCRIPTION",
             "SETTINGS",
+            "ADDRESSES",
             "HELP",
             "EXAMPLE"
         ]
     );
+    // The ADDRESSES sheet: notes above an empty SIGNAL | ADDRESS table.
+    let addresses = read_sheet(&path, "ADDRESSES");
+    assert_eq!(addresses[5][..2], ["SIGNAL", "ADDRESS"]);
+    assert_eq!(addresses.len(), 6, "no pin in the template: {addresses:?}");
     let table = read_sheet(&path, "SEQUENTIAL CONTROL DESCRIPTION");
     assert_eq!(table[0][0], "SEQUENTIAL CONTROL DESCRIPTION");
     assert_eq!(table[2][1..4], ["BRANCH 1", "BRANCH 2", "BRANCH 3"]);

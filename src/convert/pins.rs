@@ -1,0 +1,113 @@
+//! The ADDRESSES sheet's rows against the program and the target: which
+//! signal each names, whether its address is one of the target's inputs or
+//! outputs, and that no two share one. Every problem is an error at its cell.
+
+use crate::address::{Address, Assigned, Target};
+use crate::diag::{Code, Diagnostics};
+use crate::program::{Area, Signal, StepProgram};
+use crate::settings::pins::PinRow;
+
+/// The pinned signals at their addresses, or every problem found.
+pub fn resolve(
+    program: &StepProgram,
+    rows: &[PinRow],
+    target: Target,
+    diags: &mut Diagnostics,
+) -> Vec<Assigned> {
+    let signals: Vec<Signal> = program
+        .signals
+        .inputs
+        .iter()
+        .copied()
+        .chain(program.signals.driven())
+        .collect();
+    let mut pins: Vec<(Assigned, &PinRow)> = Vec::new();
+    for row in rows {
+        if row.address.is_empty() || row.signal.is_empty() {
+            let message = if row.address.is_empty() {
+                format!("\"{}\" has no address beside it", row.signal)
+            } else {
+                format!("the address \"{}\" has no signal beside it", row.address)
+            };
+            diags.error(Code::E035BadPinnedAddress, row.signal_at.clone(), message);
+            continue;
+        }
+        let Some(signal) = signals
+            .iter()
+            .copied()
+            .find(|s| s.symbol().eq_ignore_ascii_case(row.signal.trim()))
+        else {
+            let names: Vec<String> = signals.iter().take(12).map(|s| s.symbol()).collect();
+            let more = if signals.len() > names.len() {
+                ", …"
+            } else {
+                ""
+            };
+            diags.error(
+                Code::E035BadPinnedAddress,
+                row.signal_at.clone(),
+                format!(
+                    "\"{}\" is not an input or output of this program (it has {}{more}; names as in the allocation list)",
+                    row.signal,
+                    names.join(", ")
+                ),
+            );
+            continue;
+        };
+        let address = match Address::parse(&row.address, target) {
+            Ok(address) => address,
+            Err(why) => {
+                diags.error(Code::E035BadPinnedAddress, row.address_at.clone(), why);
+                continue;
+            }
+        };
+        let wanted = signal.area();
+        if address.area != wanted {
+            let area = |a: Area| {
+                if a == Area::Input {
+                    "an input"
+                } else {
+                    "an output"
+                }
+            };
+            diags.error(
+                Code::E035BadPinnedAddress,
+                row.address_at.clone(),
+                format!(
+                    "{} is {}, but \"{}\" is {} address",
+                    signal.symbol(),
+                    area(wanted),
+                    row.address.trim(),
+                    area(address.area)
+                ),
+            );
+            continue;
+        }
+        if let Some((_, first)) = pins.iter().find(|(p, _)| p.signal == signal) {
+            diags.error(
+                Code::E035BadPinnedAddress,
+                row.signal_at.clone(),
+                format!(
+                    "{} is pinned twice (first at {})",
+                    signal.symbol(),
+                    first.signal_at.cell.map(|c| c.a1()).unwrap_or_default()
+                ),
+            );
+            continue;
+        }
+        if let Some((other, _)) = pins.iter().find(|(p, _)| p.address == address) {
+            diags.error(
+                Code::E035BadPinnedAddress,
+                row.address_at.clone(),
+                format!(
+                    "\"{}\" is already {}'s address",
+                    row.address.trim(),
+                    other.signal.symbol()
+                ),
+            );
+            continue;
+        }
+        pins.push((Assigned { signal, address }, row));
+    }
+    pins.into_iter().map(|(pin, _)| pin).collect()
+}

@@ -1,0 +1,152 @@
+//! The ADDRESSES sheet: signals pinned to the wiring keep their addresses in
+//! every output, the rest are laid out around them, and a wrong row is an
+//! error at its cell with nothing written.
+
+use predicates::str::contains;
+
+use crate::helpers::{steptable, write_xlsx_sheets};
+
+const PAPER: &[&[&str]] = &[
+    &["", "BRANCH 1", "BRANCH 2", "BRANCH 3"],
+    &["STEP 1", "C1+1", "", ""],
+    &["STEP 2", "C2+3", "", ""],
+    &["STEP 3", "C2-1", "", ""],
+    &["STEP 4", "C3+2", "C2+2", ""],
+    &["STEP 5", "C3-0", "C2-1", ""],
+    &["STEP 6", "C3+1", "C2+2", "C4+1"],
+    &["STEP 7", "C3-0", "C2-0", "C4-0"],
+    &["STEP 8", "C1-0", "", ""],
+];
+
+fn workbook(dir: &std::path::Path, pins: &[&[&str]]) -> std::path::PathBuf {
+    let path = dir.join("line.xlsx");
+    write_xlsx_sheets(&path, &[("TABLE", PAPER), ("ADDRESSES", pins)]);
+    path
+}
+
+fn convert_for_siemens(
+    input: &std::path::Path,
+    out: &std::path::Path,
+) -> assert_cmd::assert::Assert {
+    steptable()
+        .arg("convert")
+        .arg(input)
+        .args(["--target", "siemens", "-o"])
+        .arg(out)
+        .assert()
+}
+
+fn io_rows(csv: &str) -> Vec<(String, String)> {
+    csv.lines()
+        .skip(1)
+        .map(|l| {
+            let mut f = l.split(',');
+            (f.next().unwrap().to_string(), f.next().unwrap().to_string())
+        })
+        .collect()
+}
+
+#[test]
+fn pinned_signals_keep_their_addresses_in_every_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = workbook(
+        dir.path(),
+        &[
+            &["SIGNAL", "ADDRESS"],
+            &["START", "I1.0"],
+            &["x11", "i0.0"],
+            &["y2-", "Q4.7"],
+        ],
+    );
+    let out = dir.path().join("out");
+    convert_for_siemens(&input, &out).success();
+    let io = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
+    let rows = io_rows(&io);
+    let at = |symbol: &str| {
+        rows.iter()
+            .find(|(_, s)| s == symbol)
+            .map(|(a, _)| a.clone())
+            .unwrap_or_else(|| panic!("{symbol} missing: {io}"))
+    };
+    assert_eq!(
+        (at("START"), at("x11"), at("y2-")),
+        ("I1.0".into(), "I0.0".into(), "Q4.7".into())
+    );
+    // The others keep their order around the pins: x10 takes the first free
+    // bit, the sensors run on past I1.0, the coils close the gap y2- left.
+    assert_eq!(at("x10"), "I0.1");
+    assert_eq!(at("x32"), "I1.1");
+    assert_eq!(at("x40"), "I1.2");
+    assert_eq!(at("y2+"), "Q0.2");
+    assert_eq!(at("y3+"), "Q0.3");
+    let addresses: std::collections::BTreeSet<&String> = rows.iter().map(|(a, _)| a).collect();
+    assert_eq!(addresses.len(), rows.len(), "no address twice: {io}");
+    let awl = std::fs::read_to_string(out.join("line/line.awl")).unwrap();
+    assert!(awl.contains("A     I 1.0;          // START"), "{awl}");
+    let st = std::fs::read_to_string(out.join("line/line.st")).unwrap();
+    assert!(st.contains("AT %IX1.0"), "{st}");
+    assert!(st.contains("AT %QX4.7"), "{st}");
+}
+
+#[test]
+fn pins_on_festo_reach_the_fst_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = workbook(dir.path(), &[&["START", "I2.0"]]);
+    let out = dir.path().join("out");
+    steptable()
+        .arg("convert")
+        .arg(&input)
+        .args(["--formats", "fst,fst-alloc", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let texts: String = crate::helpers::files_below(&out.join("line"))
+        .iter()
+        .map(|p| std::fs::read_to_string(p).unwrap_or_default())
+        .collect();
+    assert!(texts.contains("I2.0"), "{texts}");
+}
+
+#[test]
+fn every_wrong_row_is_an_error_at_its_cell_and_nothing_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = workbook(
+        dir.path(),
+        &[
+            &["SIGNAL", "ADDRESS"],
+            &["x99", "I0.0"],
+            &["x11", "%IX0.1"],
+            &["x20", "I0.8"],
+            &["x21", "Q0.0"],
+            &["x22", "I3.3"],
+            &["x23", "I3.3"],
+            &["x22", "I3.4"],
+            &["START", ""],
+        ],
+    );
+    let out = dir.path().join("out");
+    convert_for_siemens(&input, &out)
+        .code(1)
+        .stderr(contains(
+            "!A2: error[E035]: \"x99\" is not an input or output of this program",
+        ))
+        .stderr(contains(
+            "!B3: error[E035]: \"%IX0.1\" is not an input or output address of the siemens target",
+        ))
+        .stderr(contains(
+            "!B4: error[E035]: \"I0.8\": bit 8 is out of range, a byte has bits 0 to 7",
+        ))
+        .stderr(contains(
+            "!B5: error[E035]: x21 is an input, but \"Q0.0\" is an output address",
+        ))
+        .stderr(contains(
+            "!B7: error[E035]: \"I3.3\" is already x22's address",
+        ))
+        .stderr(contains(
+            "!A8: error[E035]: x22 is pinned twice (first at A6)",
+        ))
+        .stderr(contains(
+            "!A9: error[E035]: \"START\" has no address beside it",
+        ));
+    assert!(!out.exists());
+}
