@@ -227,6 +227,22 @@ pub fn healthy_program(
     }
 }
 
+/// The program's addresses for the target `settings` name, with the
+/// ADDRESSES sheet's pins; every wrong pin is a diagnostic.
+pub fn allocate(program: &StepProgram, settings: &Settings) -> Result<Allocation, Vec<Diagnostic>> {
+    let mut diags = crate::diag::Diagnostics::new();
+    let pins = pins::resolve(program, &settings.pins, settings.target, &mut diags);
+    if diags.has_errors() {
+        return Err(diags.into_sorted());
+    }
+    Ok(Allocation::pinned(
+        program,
+        settings.target,
+        settings.mnemonic,
+        &pins,
+    ))
+}
+
 /// The step program of a checked table under `settings`.
 pub fn build_program(table: &StepTable, settings: &Settings) -> StepProgram {
     program::build(
@@ -260,12 +276,7 @@ pub fn generate_observed(
         ..settings.simulation.clone()
     };
     let (program, simulation) = healthy_program(&table, settings, &sim_settings)?;
-    let mut diags = crate::diag::Diagnostics::new();
-    let pins = pins::resolve(&program, &settings.pins, settings.target, &mut diags);
-    if diags.has_errors() {
-        return Err(Failure::Input(diags.into_sorted()));
-    }
-    let allocation = Allocation::pinned(&program, settings.target, settings.mnemonic, &pins);
+    let allocation = allocate(&program, settings).map_err(Failure::Input)?;
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them.
     let fault_table = [OutputKind::Faults, OutputKind::Workbook]

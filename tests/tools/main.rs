@@ -18,6 +18,7 @@ mod engines;
 mod exports;
 mod libreoffice;
 mod names;
+mod pinned;
 mod sync;
 mod synth_engines;
 
@@ -131,6 +132,7 @@ fn main() {
         exports::CHECKS,
         libreoffice::CHECKS,
         names::CHECKS,
+        pinned::CHECKS,
         sync::CHECKS,
         synth_engines::CHECKS,
     ]

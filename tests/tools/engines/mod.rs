@@ -134,8 +134,11 @@ pub fn record(
     settings: &Settings,
 ) -> Case {
     let program = convert::build_program(table, settings);
-    let allocation = Allocation::new(&program, settings.target, settings.mnemonic);
-    let festo = Allocation::new(&program, Target::Festo, Mnemonic::En);
+    let allocation = convert::allocate(&program, settings).expect("valid pins");
+    let festo = match settings.target {
+        Target::Festo => allocation.clone(),
+        _ => Allocation::new(&program, Target::Festo, Mnemonic::En),
+    };
     let signals = IoSignals {
         inputs: allocation.inputs.iter().map(|a| a.signal).collect(),
         outputs: allocation.outputs.iter().map(|a| a.signal).collect(),

@@ -1,0 +1,92 @@
+//! Pinned addresses in the engines: the paper's table with an ADDRESSES
+//! sheet moving START, a middle sensor and a coil to other terminals runs
+//! in awlsim (siemens), matiec (iec) and the FST interpreter (festo) as
+//! simulated, scan for scan, on the pinned addresses.
+
+use crate::engines::{self, Case, awlsim, fst, matiec};
+use crate::helpers::write_xlsx_sheets;
+use crate::{Check, Tool, shared, tool};
+
+pub const CHECKS: &[Check] = &[Check::new(
+    "pinned::pinned_addresses_run_in_every_engine_as_simulated",
+    &[Tool::Shared, Tool::Awlsim],
+    pinned_addresses_run_in_every_engine_as_simulated,
+)];
+
+const PAPER: &[&[&str]] = &[
+    &["", "BRANCH 1", "BRANCH 2", "BRANCH 3"],
+    &["STEP 1", "C1+1", "", ""],
+    &["STEP 2", "C2+3", "", ""],
+    &["STEP 3", "C2-1", "", ""],
+    &["STEP 4", "C3+2", "C2+2", ""],
+    &["STEP 5", "C3-0", "C2-1", ""],
+    &["STEP 6", "C3+1", "C2+2", "C4+1"],
+    &["STEP 7", "C3-0", "C2-0", "C4-0"],
+    &["STEP 8", "C1-0", "", ""],
+];
+
+/// Converts the paper's table with `pins` for `target` into `dir`.
+fn case(dir: &std::path::Path, target: &str, pins: &[&[&str]], format: &str) -> Case {
+    let input = dir.join(format!("wired_{target}.xlsx"));
+    write_xlsx_sheets(&input, &[("TABLE", PAPER), ("ADDRESSES", pins)]);
+    engines::prepare(
+        &input,
+        &["--target", target, "--formats", format],
+        &dir.join(target),
+    )
+}
+
+fn pinned_addresses_run_in_every_engine_as_simulated() {
+    let dir = tempfile::tempdir().unwrap();
+    let siemens = case(
+        dir.path(),
+        "siemens",
+        &[&["START", "I3.0"], &["x22", "I0.0"], &["y2+", "Q5.7"]],
+        "awl",
+    );
+    assert_eq!(
+        siemens
+            .allocation
+            .display(steptable::program::Signal::Start),
+        "I3.0"
+    );
+    let python = awlsim::python(&tool(Tool::Awlsim));
+    let awl = awlsim::run(
+        &python,
+        &siemens.file(".awl"),
+        siemens.mnemonic,
+        &siemens.trace,
+        &siemens.allocation,
+    );
+    siemens.check("awlsim", awl).unwrap();
+
+    let iec = case(
+        dir.path(),
+        "iec",
+        &[&["START", "%IX3.0"], &["x22", "%IX0.0"], &["y2+", "%QX5.7"]],
+        "st",
+    );
+    let st = matiec::run(&shared(), &iec.file(".st"), &iec.trace, &iec.allocation);
+    iec.check("matiec", st).unwrap();
+
+    let festo = case(
+        dir.path(),
+        "festo",
+        &[&["START", "I3.0"], &["x22", "I0.0"], &["y2+", "O5.15"]],
+        "fst",
+    );
+    let text = std::fs::read_to_string(festo.file(".fst.txt")).unwrap();
+    assert!(text.contains("I3.0") && text.contains("O5.15"), "{text}");
+    festo
+        .check(
+            "FST interpreter",
+            fst::run(&text, &festo.trace, &festo.festo),
+        )
+        .unwrap();
+    for c in [&siemens, &iec, &festo] {
+        assert!(c.trace.output_changes() >= 4, "{}", c.label);
+    }
+    eprintln!(
+        "pinned: awlsim, matiec and the FST interpreter run the pinned programs as simulated"
+    );
+}
