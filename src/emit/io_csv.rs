@@ -33,9 +33,6 @@ pub fn rows(input: &EmitInput) -> Vec<[String; 7]> {
                     String::new(),
                     sign.symbol().to_string(),
                 ),
-                Signal::StopAt { actuator, position } => {
-                    (actuator.to_string(), position.to_string(), String::new())
-                }
                 Signal::SingleCoil { actuator } => {
                     (actuator.to_string(), String::new(), "+".to_string())
                 }

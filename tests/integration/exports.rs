@@ -192,6 +192,18 @@ fn windows_lists_codesys_v2_beremiz_and_tia_details() {
             "{suffix}: every line ends in CRLF"
         );
     }
+    // The others keep Unix line ends: no CR anywhere.
+    for suffix in [
+        ".st",
+        ".io.csv",
+        ".awl",
+        ".faults.csv",
+        ".plcopen.xml",
+        ".fst.txt",
+    ] {
+        let bytes = std::fs::read(out.join(format!("press_station{suffix}"))).unwrap();
+        assert!(!bytes.contains(&b'\r'), "{suffix}: a CR");
+    }
     let exp = std::fs::read_to_string(out.join("press_station.exp")).unwrap();
     for marker in [
         "(* @NESTEDCOMMENTS := 'Yes' *)",
