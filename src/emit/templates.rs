@@ -277,6 +277,19 @@ fn csv_field(value: String) -> String {
 mod tests {
     use super::*;
 
+    /// Settings compare and print their templates by the files overriding
+    /// the defaults (the environment itself has no equality).
+    #[test]
+    fn templates_compare_and_print_by_their_overrides() {
+        let custom = Templates::from_sources([("gvl.txt.j2", "one")]).unwrap();
+        assert_eq!(Templates::default(), Templates::default());
+        assert_ne!(custom, Templates::default());
+        assert_eq!(
+            format!("{custom:?}"),
+            "Templates { overrides: {\"gvl.txt.j2\": \"gvl.txt.j2\"} }"
+        );
+    }
+
     #[test]
     fn templates_from_memory_replace_the_default_and_refuse_unknown_names() {
         let templates = Templates::from_sources([("gvl.txt.j2", "one {{ 1 + 1 }}")]).unwrap();
