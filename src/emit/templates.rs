@@ -277,6 +277,16 @@ fn csv_field(value: String) -> String {
 mod tests {
     use super::*;
 
+    /// A render error quotes the template text it points at when its
+    /// message does not name it.
+    #[test]
+    fn a_render_error_quotes_its_source() {
+        let empty = || Value::from(BTreeMap::<String, String>::new());
+        let undefined = Templates::from_sources([("gvl.txt.j2", "{{ netwerks.x }}")]).unwrap();
+        let err = undefined.render("gvl.txt.j2", empty()).unwrap_err();
+        assert!(err.detail.contains("(`netwerks.x`)"), "{}", err.detail);
+    }
+
     /// Settings compare and print their templates by the files overriding
     /// the defaults (the environment itself has no equality).
     #[test]
