@@ -112,6 +112,7 @@ pub const TIA_COLUMNS: [&str; 10] = [
 pub fn render_tia_tags(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     let alloc = input.allocation;
     let mut workbook = Workbook::new();
+    workbook.set_zip_compression_level(1);
     // TIA Portal's own tag table exports carry their version as a custom
     // document property.
     workbook.set_properties(

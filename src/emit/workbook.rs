@@ -65,6 +65,7 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
 /// Renders `NAME.xlsx`.
 pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     let mut workbook = Workbook::new();
+    workbook.set_zip_compression_level(1);
     let fixed_time = ExcelDateTime::from_ymd(2020, 1, 1)?;
     workbook.set_properties(
         &DocProperties::new()
