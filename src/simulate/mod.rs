@@ -82,6 +82,23 @@ impl<'a> Simulator<'a> {
         )
         .0
     }
+
+    /// The same as [`simulate_recording`].
+    pub fn run_recording(
+        &self,
+        settings: &SimSettings,
+        signals: io::IoSignals,
+    ) -> (SimReport, io::IoTrace) {
+        let (report, trace) = run::run(
+            self.table,
+            self.program,
+            &self.code,
+            settings,
+            Some(signals),
+            Stepping::Events,
+        );
+        (report, trace.unwrap_or_default())
+    }
 }
 
 /// Simulates like [`simulate`] and records `signals` at every scan, so that
@@ -92,16 +109,7 @@ pub fn simulate_recording(
     settings: &SimSettings,
     signals: io::IoSignals,
 ) -> (SimReport, io::IoTrace) {
-    let code = plc::PlcProgram::compile(program);
-    let (report, trace) = run::run(
-        table,
-        program,
-        &code,
-        settings,
-        Some(signals),
-        Stepping::Events,
-    );
-    (report, trace.unwrap_or_default())
+    Simulator::new(table, program).run_recording(settings, signals)
 }
 
 #[cfg(test)]

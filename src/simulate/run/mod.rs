@@ -25,6 +25,20 @@ pub(in crate::simulate) struct ActiveMove {
     pub(in crate::simulate) ran_through: bool,
 }
 
+impl ActiveMove {
+    /// The stroke fractions below and above which the piston has run
+    /// through this move's target: beyond its sensor's window.
+    pub(in crate::simulate) fn run_through_bounds(
+        &self,
+        piston: &Piston,
+        window: f64,
+    ) -> (f64, f64) {
+        let target = piston.sensor_point(self.mv.to);
+        let half = piston.window(window);
+        (target - half, target + half)
+    }
+}
+
 pub(in crate::simulate) struct Run<'a> {
     pub(in crate::simulate) program: &'a StepProgram,
     /// What the PLC's inputs read from: the plant, the operator, the machine.
@@ -356,7 +370,6 @@ impl Run<'_> {
 
     pub(in crate::simulate) fn check_motion(&mut self, piston: usize, direction: Sign) {
         let p = &self.world.pistons[piston];
-        let window = p.window(self.world.settings.window);
         let number = p.number;
         let s = p.s;
         let commanded = self.last_move[piston]
@@ -375,10 +388,11 @@ impl Run<'_> {
             );
             return;
         };
-        let target = p.sensor_point(a.mv.to);
+        let (low, high) =
+            a.run_through_bounds(&self.world.pistons[piston], self.world.settings.window);
         let beyond = match direction {
-            Sign::Plus => s > target + window,
-            Sign::Minus => s < target - window,
+            Sign::Plus => s > high,
+            Sign::Minus => s < low,
         };
         if beyond && !a.ran_through {
             for m in self.last_move[piston]
@@ -443,11 +457,7 @@ impl Run<'_> {
             let mark = self.last_move[i]
                 .as_ref()
                 .filter(|a| !a.ran_through)
-                .map(|a| {
-                    let target = p.sensor_point(a.mv.to);
-                    let w = p.window(window);
-                    (target - w, target + w)
-                });
+                .map(|a| a.run_through_bounds(p, window));
             scans = p.scans_before_an_event(window, mark, scans);
         }
         if scans == 0 {
