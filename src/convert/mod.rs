@@ -84,12 +84,11 @@ fn finish_check(
     let Some(input) = input else {
         return Err(diags.into_sorted());
     };
-    let effective = match &input.settings {
+    let mut effective = match &input.settings {
         Some(sheet) => settings.with_sheet(&crate::settings::parse(sheet, &mut diags)),
         None => settings.clone(),
     };
     let mut input = input;
-    let mut effective = effective;
     if let Some(grid) = &input.addresses {
         effective.pins = crate::settings::pins::parse(grid, &mut diags);
     }
@@ -243,6 +242,16 @@ pub fn allocate(program: &StepProgram, settings: &Settings) -> Result<Allocation
     ))
 }
 
+/// The Festo allocation the FST files use whatever the target: `allocation`
+/// itself on Festo; else Festo's own layout (the pins are in the target's
+/// notation, so they hold only there).
+pub fn festo_allocation(program: &StepProgram, allocation: &Allocation) -> Allocation {
+    match allocation.target {
+        Target::Festo => allocation.clone(),
+        _ => Allocation::new(program, Target::Festo, Mnemonic::En),
+    }
+}
+
 /// The step program of a checked table under `settings`.
 pub fn build_program(table: &StepTable, settings: &Settings) -> StepProgram {
     program::build(
@@ -283,12 +292,7 @@ pub fn generate_observed(
         .iter()
         .any(|k| settings.formats.contains(k))
         .then(|| faults::analyse_observed(&table, &program, &settings.simulation, false, progress));
-    // The FST files are Festo's whatever the target; the pins are in the
-    // target's notation, so they hold there only when the target is Festo.
-    let festo = match settings.target {
-        Target::Festo => allocation.clone(),
-        _ => Allocation::new(&program, Target::Festo, Mnemonic::En),
-    };
+    let festo = festo_allocation(&program, &allocation);
     let input = EmitInput {
         name,
         table: &table,

@@ -11,7 +11,7 @@ pub mod plcxml;
 
 use std::path::{Path, PathBuf};
 
-use steptable::address::{Allocation, Mnemonic, Target};
+use steptable::address::{Allocation, Mnemonic};
 use steptable::convert;
 use steptable::settings::{Given, Settings};
 use steptable::simulate;
@@ -135,10 +135,7 @@ pub fn record(
 ) -> Case {
     let program = convert::build_program(table, settings);
     let allocation = convert::allocate(&program, settings).expect("valid pins");
-    let festo = match settings.target {
-        Target::Festo => allocation.clone(),
-        _ => Allocation::new(&program, Target::Festo, Mnemonic::En),
-    };
+    let festo = convert::festo_allocation(&program, &allocation);
     let signals = IoSignals {
         inputs: allocation.inputs.iter().map(|a| a.signal).collect(),
         outputs: allocation.outputs.iter().map(|a| a.signal).collect(),
