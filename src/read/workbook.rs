@@ -123,26 +123,31 @@ pub(super) fn read_workbook(
         }
     };
 
-    let settings_name = names
-        .iter()
-        .find(|n| n.trim().eq_ignore_ascii_case(SETTINGS_SHEET))
-        .cloned();
-    let settings = settings_name.and_then(|name| {
-        let grid = read_sheet(&mut workbook, &name, diags)?;
-        if workbook.hidden().contains(&name) {
-            diags.warning(
-                Code::W004SheetChoice,
-                grid.sheet_location(),
-                "the SETTINGS sheet is hidden but its settings are used",
-            );
-        }
-        Some(grid)
-    });
-    let addresses = names
-        .iter()
-        .find(|n| n.trim().eq_ignore_ascii_case(ADDRESSES_SHEET))
-        .cloned()
-        .and_then(|name| read_sheet(&mut workbook, &name, diags));
+    // A side sheet (SETTINGS, ADDRESSES) is found by its name in any case;
+    // one that is hidden is used all the same, and said so.
+    let side_sheet =
+        |workbook: &mut Box<dyn SheetSource>, wanted: &str, used: &str, diags: &mut Diagnostics| {
+            let name = names
+                .iter()
+                .find(|n| n.trim().eq_ignore_ascii_case(wanted))?
+                .clone();
+            let grid = read_sheet(workbook, &name, diags)?;
+            if workbook.hidden().contains(&name) {
+                diags.warning(
+                    Code::W004SheetChoice,
+                    grid.sheet_location(),
+                    format!("the {wanted} sheet is hidden but {used} are used"),
+                );
+            }
+            Some(grid)
+        };
+    let settings = side_sheet(&mut workbook, SETTINGS_SHEET, "its settings", diags);
+    let addresses = side_sheet(
+        &mut workbook,
+        ADDRESSES_SHEET,
+        "its pinned addresses",
+        diags,
+    );
     let table = pick_table(
         &mut workbook,
         &names,

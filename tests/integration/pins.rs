@@ -4,23 +4,14 @@
 
 use predicates::str::contains;
 
-use crate::helpers::{steptable, write_xlsx_sheets};
+use steptable::template_workbook::PAPER_EXAMPLE;
 
-const PAPER: &[&[&str]] = &[
-    &["", "BRANCH 1", "BRANCH 2", "BRANCH 3"],
-    &["STEP 1", "C1+1", "", ""],
-    &["STEP 2", "C2+3", "", ""],
-    &["STEP 3", "C2-1", "", ""],
-    &["STEP 4", "C3+2", "C2+2", ""],
-    &["STEP 5", "C3-0", "C2-1", ""],
-    &["STEP 6", "C3+1", "C2+2", "C4+1"],
-    &["STEP 7", "C3-0", "C2-0", "C4-0"],
-    &["STEP 8", "C1-0", "", ""],
-];
+use crate::helpers::{steptable, write_xlsx_sheets};
 
 fn workbook(dir: &std::path::Path, pins: &[&[&str]]) -> std::path::PathBuf {
     let path = dir.join("line.xlsx");
-    write_xlsx_sheets(&path, &[("TABLE", PAPER), ("ADDRESSES", pins)]);
+    let paper: Vec<&[&str]> = PAPER_EXAMPLE.iter().map(|r| &r[..]).collect();
+    write_xlsx_sheets(&path, &[("TABLE", &paper), ("ADDRESSES", pins)]);
     path
 }
 
@@ -149,4 +140,46 @@ fn every_wrong_row_is_an_error_at_its_cell_and_nothing_is_written() {
             "!A9: error[E035]: \"START\" has no address beside it",
         ));
     assert!(!out.exists());
+}
+
+/// A hidden SETTINGS or ADDRESSES sheet is used all the same, and said so.
+#[test]
+fn hidden_side_sheets_are_used_and_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("line.xlsx");
+    let mut workbook = rust_xlsxwriter::Workbook::new();
+    let sheets: [(&str, Vec<Vec<&str>>); 3] = [
+        ("TABLE", PAPER_EXAMPLE.iter().map(|r| r.to_vec()).collect()),
+        ("SETTINGS", vec![vec!["target", "siemens"]]),
+        ("ADDRESSES", vec![vec!["START", "I1.0"]]),
+    ];
+    for (name, rows) in &sheets {
+        let sheet = workbook.add_worksheet();
+        sheet.set_name(*name).unwrap();
+        sheet.set_hidden(*name != "TABLE");
+        for (r, row) in rows.iter().enumerate() {
+            for (c, text) in row.iter().enumerate() {
+                if !text.is_empty() {
+                    sheet.write_string(r as u32, c as u16, *text).unwrap();
+                }
+            }
+        }
+    }
+    workbook.save(&path).unwrap();
+    let out = dir.path().join("out");
+    steptable()
+        .arg("convert")
+        .arg(&path)
+        .args(["--formats", "io", "-o"])
+        .arg(&out)
+        .assert()
+        .success()
+        .stderr(contains(
+            "SETTINGS: warning[W004]: the SETTINGS sheet is hidden but its settings are used",
+        ))
+        .stderr(contains(
+            "ADDRESSES: warning[W004]: the ADDRESSES sheet is hidden but its pinned addresses are used",
+        ));
+    let io = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
+    assert!(io.contains("I1.0,START,"), "{io}");
 }

@@ -4,6 +4,8 @@
 //! simulated, scan for scan, on the pinned addresses.
 
 use crate::engines::{self, Case, awlsim, fst, matiec};
+use steptable::template_workbook::PAPER_EXAMPLE;
+
 use crate::helpers::write_xlsx_sheets;
 use crate::{Check, Tool, shared, tool};
 
@@ -13,22 +15,11 @@ pub const CHECKS: &[Check] = &[Check::new(
     pinned_addresses_run_in_every_engine_as_simulated,
 )];
 
-const PAPER: &[&[&str]] = &[
-    &["", "BRANCH 1", "BRANCH 2", "BRANCH 3"],
-    &["STEP 1", "C1+1", "", ""],
-    &["STEP 2", "C2+3", "", ""],
-    &["STEP 3", "C2-1", "", ""],
-    &["STEP 4", "C3+2", "C2+2", ""],
-    &["STEP 5", "C3-0", "C2-1", ""],
-    &["STEP 6", "C3+1", "C2+2", "C4+1"],
-    &["STEP 7", "C3-0", "C2-0", "C4-0"],
-    &["STEP 8", "C1-0", "", ""],
-];
-
 /// Converts the paper's table with `pins` for `target` into `dir`.
 fn case(dir: &std::path::Path, target: &str, pins: &[&[&str]], format: &str) -> Case {
     let input = dir.join(format!("wired_{target}.xlsx"));
-    write_xlsx_sheets(&input, &[("TABLE", PAPER), ("ADDRESSES", pins)]);
+    let paper: Vec<&[&str]> = PAPER_EXAMPLE.iter().map(|r| &r[..]).collect();
+    write_xlsx_sheets(&input, &[("TABLE", &paper), ("ADDRESSES", pins)]);
     engines::prepare(
         &input,
         &["--target", target, "--formats", format],
