@@ -67,6 +67,9 @@ pub enum Code {
     /// A row of the ADDRESSES sheet: an unknown signal, an address not in
     /// the target's notation or out of range, the wrong area, a clash.
     E035BadPinnedAddress,
+    /// The program needs more inputs or outputs than the OpenPLC board
+    /// wires, or the board is given with a target that is not OpenPLC's.
+    E036BoardTooSmall,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -117,6 +120,7 @@ impl Code {
             Code::E033OverBudget => "E033",
             Code::E034NotSynthesisable => "E034",
             Code::E035BadPinnedAddress => "E035",
+            Code::E036BoardTooSmall => "E036",
         }
     }
 }

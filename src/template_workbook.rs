@@ -222,12 +222,21 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     for (col, header) in [(0, "SETTING"), (1, "VALUE"), (3, "WHAT IT MEANS")] {
         sheet.write_string_with_format(3, col, header, &f.header)?;
     }
-    let rows: [(&str, &str, &str, Option<&[&str]>); 6] = [
+    let boards: Vec<&str> = std::iter::once("none")
+        .chain(crate::address::BOARDS.iter().map(|b| b.name))
+        .collect();
+    let rows: [(&str, &str, &str, Option<&[&str]>); 7] = [
         (
             "target",
             "festo",
-            "Address style: festo (I0.0 / O0.0, 16-bit words, the paper's layout), iec (%IX0.0 / %QX0.0, CODESYS and OpenPLC) or siemens (I0.0 / Q0.0).",
-            Some(&["festo", "iec", "siemens"]),
+            "Address style: festo (I0.0 / O0.0, 16-bit words, the paper's layout), iec or openplc (%IX0.0 / %QX0.0, CODESYS and OpenPLC) or siemens (I0.0 / Q0.0).",
+            Some(&["festo", "iec", "openplc", "siemens"]),
+        ),
+        (
+            "board",
+            "none",
+            "OpenPLC board the program runs on: none, or rpi, uno, mega, esp32, … Only the inputs and outputs the board wires are used (addresses %IX / %QX); a table that needs more is refused with the counts.",
+            Some(&boards),
         ),
         (
             "mnemonic",
@@ -353,6 +362,8 @@ fn help_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         ("Names", "Letters, digits and _, starting with a letter, up to 16 characters, no spaces; the first 9 characters must differ (Festo FST keeps 9).".into()),
         ("Modes", "SETTINGS modes adds START/STOP/EMERGENCY STOP/RESET/CONTINUOUS handling and a homing sequence (home order) to every program.".into()),
         ("Middle stops", "An actuator with positions between 0 and its end gets a 5/3 valve; the program switches both coils off at a middle target.".into()),
+        ("ADDRESSES", "Optional: pin signals to the terminals they are wired to. One row per signal under SIGNAL | ADDRESS (START | I0.0, y1+ | O0.1), in the target's notation; the other signals are laid out around them. A wrong row is an error at its cell.".into()),
+        ("Board", "SETTINGS board (rpi, uno, mega, esp32, …): only the inputs and outputs that OpenPLC board wires are used, packed from %IX0.0 and %QX0.0; a table that needs more is refused with the counts.".into()),
         ("Convert", "steptable convert this-file.xlsx writes the address lists, the programs, the simulation and the fault table.".into()),
     ];
     sheet.write_string_with_format(2, 0, "WRITE", &f.header)?;

@@ -2,7 +2,10 @@
 //! step program gets, in each PLC dialect's notation (DESIGN §3). The
 //! program says which signals exist; this stage only lays them out.
 
+mod board;
+
 use crate::program::{Area, Signal, StepProgram};
+pub use board::{BOARDS, Board};
 
 /// The PLC dialect whose address notation is used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, serde::Serialize)]
@@ -128,7 +131,7 @@ impl Address {
     }
 
     /// The bit's place among its area's bits, counting from 0.
-    fn index(self) -> u32 {
+    pub fn index(self) -> u32 {
         self.unit * self.target.bits_per_unit() + self.bit
     }
 
@@ -346,6 +349,23 @@ impl Allocation {
         }
     }
 
+    /// The layout on an OpenPLC board: IEC addresses, each area packed from
+    /// its first bit (a board's pins are few, and unlike a valve terminal's
+    /// places none is kept free for a coil a valve does not have), around
+    /// `pins`. Whether it fits the board is the caller's to check.
+    pub fn on_board(program: &StepProgram, mnemonic: Mnemonic, pins: &[Assigned]) -> Self {
+        let mut allocation = Self::new(program, Target::Iec, mnemonic);
+        let packed = |area, laid: &[Assigned]| {
+            around_pins(
+                lay_out(area, Target::Iec, laid.iter().map(|a| a.signal)),
+                pins,
+            )
+        };
+        allocation.inputs = packed(Area::Input, &allocation.inputs);
+        allocation.outputs = packed(Area::Output, &allocation.outputs);
+        allocation
+    }
+
     /// The address of a signal.
     pub fn address_of(&self, signal: Signal) -> Option<Address> {
         self.inputs
@@ -369,18 +389,25 @@ impl Allocation {
 impl Target {
     /// Every target, as `--target` and the SETTINGS sheet name them.
     pub const ALL: [Target; 3] = [Target::Festo, Target::Iec, Target::Siemens];
+    /// Every name a target goes by: `openplc` is OpenPLC's name for `iec`.
+    pub const NAMES: [&str; 4] = ["festo", "iec", "openplc", "siemens"];
 }
 
 impl std::str::FromStr for Target {
     type Err = String;
 
-    /// `festo`, `iec` or `siemens`, in any case.
+    /// `festo`, `iec` (or `openplc`) or `siemens`, in any case.
     fn from_str(text: &str) -> Result<Self, String> {
         let lower = text.trim().to_ascii_lowercase();
+        if lower == "openplc" {
+            return Ok(Target::Iec);
+        }
         Target::ALL
             .into_iter()
             .find(|t| t.name() == lower)
-            .ok_or_else(|| format!("\"{text}\" is not a target (expected festo, iec or siemens)"))
+            .ok_or_else(|| {
+                format!("\"{text}\" is not a target (expected festo, iec, openplc or siemens)")
+            })
     }
 }
 

@@ -128,9 +128,12 @@ pub(crate) enum DiagramArg {
 
 #[derive(Args)]
 pub(crate) struct CommonArgs {
-    /// Address dialect: festo (I0.0/O0.0, 16-bit words), iec (%IX0.0/%QX0.0), siemens (I0.0/Q0.0).
+    /// Address dialect: festo (I0.0/O0.0, 16-bit words), iec or openplc (%IX0.0/%QX0.0), siemens (I0.0/Q0.0).
     #[arg(long, ignore_case = true, value_parser = parse_target())]
     pub(crate) target: Option<Target>,
+    /// OpenPLC board: only the inputs and outputs it wires are used (implies --target iec).
+    #[arg(long, ignore_case = true, value_parser = parse_board())]
+    pub(crate) board: Option<Board>,
     /// Operand letters for siemens: en (I/Q) or de (E/A).
     #[arg(long, ignore_case = true, value_parser = parse_mnemonic())]
     pub(crate) mnemonic: Option<Mnemonic>,
@@ -187,8 +190,13 @@ pub(crate) fn parse_safety(text: &str) -> Result<Safety, String> {
 
 /// `--target`: the library's parser, with the names listed in `--help`.
 fn parse_target() -> impl clap::builder::TypedValueParser<Value = Target> {
-    clap::builder::PossibleValuesParser::new(Target::ALL.map(Target::name))
-        .try_map(|text| text.parse::<Target>())
+    clap::builder::PossibleValuesParser::new(Target::NAMES).try_map(|text| text.parse::<Target>())
+}
+
+/// `--board`: the library's parser, with the boards listed in `--help`.
+fn parse_board() -> impl clap::builder::TypedValueParser<Value = Board> {
+    clap::builder::PossibleValuesParser::new(steptable::address::BOARDS.map(|b| b.name))
+        .try_map(|text| text.parse::<Board>())
 }
 
 /// `--mnemonic`: the library's parser, with the names listed in `--help`.
@@ -208,15 +216,19 @@ impl CommonArgs {
     /// does not change.
     pub(crate) fn settings(&self) -> Settings {
         let mut settings = Settings::new();
-        settings.give(Given {
-            target: self.target,
-            mnemonic: self.mnemonic,
-            safety: self.safety,
-            modes: self.modes.clone(),
-            home_order: self.home_order.as_ref().map(|order| order.0.clone()),
-            valves: self.valve.clone().unwrap_or_default(),
-            ..Given::default()
-        });
+        settings.give(
+            Given {
+                target: self.target,
+                board: self.board,
+                mnemonic: self.mnemonic,
+                safety: self.safety,
+                modes: self.modes.clone(),
+                home_order: self.home_order.as_ref().map(|order| order.0.clone()),
+                valves: self.valve.clone().unwrap_or_default(),
+                ..Given::default()
+            }
+            .with_board_target(),
+        );
         settings.sheet = self.sheet.clone();
         settings
     }

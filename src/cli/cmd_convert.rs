@@ -32,20 +32,20 @@ pub(crate) fn run_check(args: &CheckArgs) -> i32 {
     let report = Reporter::new(&args.common);
     let mut code = EXIT_OK;
     for input in &args.inputs {
-        match convert::check_path(input, &settings) {
-            Ok(checked) => {
+        // The addresses are checked too: pins and the board are part of
+        // what convert would refuse.
+        let checked = convert::check_path(input, &settings).and_then(|checked| {
+            let program = convert::build_program(&checked.table, &checked.settings);
+            let allocation = convert::allocate(&program, &checked.settings, &checked.table.file)?;
+            Ok((checked, allocation))
+        });
+        match checked {
+            Ok((checked, allocation)) => {
                 report.diagnostics(&checked.warnings);
                 report.say(&format!(
                     "{}: ok: {}",
                     display_name(input),
-                    summary(
-                        &checked.table,
-                        &steptable::address::Allocation::new(
-                            &convert::build_program(&checked.table, &checked.settings),
-                            checked.settings.target,
-                            checked.settings.mnemonic,
-                        )
-                    )
+                    summary(&checked.table, &allocation)
                 ));
             }
             Err(diagnostics) => {

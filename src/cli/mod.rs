@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use clap::builder::TypedValueParser;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use steptable::address::{Mnemonic, Target};
+use steptable::address::{Board, Mnemonic, Target};
 use steptable::convert::{self, Failure};
 use steptable::diag::{Diagnostic, Severity};
 use steptable::emit::OutputKind;

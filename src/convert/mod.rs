@@ -7,7 +7,7 @@ mod pins;
 use std::path::Path;
 
 use crate::address::{Allocation, Mnemonic, Target};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics, Location};
 use crate::emit::OutputFile;
 use crate::emit::templates::TemplateError;
 use crate::emit::{self, EmitInput, OutputKind};
@@ -227,19 +227,75 @@ pub fn healthy_program(
 }
 
 /// The program's addresses for the target `settings` name, with the
-/// ADDRESSES sheet's pins; every wrong pin is a diagnostic.
-pub fn allocate(program: &StepProgram, settings: &Settings) -> Result<Allocation, Vec<Diagnostic>> {
+/// ADDRESSES sheet's pins, on the OpenPLC board if one is named; every wrong
+/// pin, and a board too small for the program, is a diagnostic. `file`
+/// names the table in them.
+pub fn allocate(
+    program: &StepProgram,
+    settings: &Settings,
+    file: &str,
+) -> Result<Allocation, Vec<Diagnostic>> {
     let mut diags = crate::diag::Diagnostics::new();
-    let pins = pins::resolve(program, &settings.pins, settings.target, &mut diags);
+    let whole_file = || Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: None,
+    };
+    if let Some(board) = settings.board
+        && settings.target != Target::Iec
+    {
+        diags.error(
+            Code::E036BoardTooSmall,
+            whole_file(),
+            format!(
+                "the {} board is OpenPLC's, whose addresses are %IX/%QX, but the target is {}: make the target iec (or openplc), or leave it out",
+                board.name,
+                settings.target.name()
+            ),
+        );
+        return Err(diags.into_sorted());
+    }
+    let pins = pins::resolve(
+        program,
+        &settings.pins,
+        settings.target,
+        settings.board,
+        &mut diags,
+    );
     if diags.has_errors() {
         return Err(diags.into_sorted());
     }
-    Ok(Allocation::pinned(
-        program,
-        settings.target,
-        settings.mnemonic,
-        &pins,
-    ))
+    let Some(board) = settings.board else {
+        return Ok(Allocation::pinned(
+            program,
+            settings.target,
+            settings.mnemonic,
+            &pins,
+        ));
+    };
+    let allocation = Allocation::on_board(program, settings.mnemonic, &pins);
+    for (input, needed, wired) in [
+        (true, allocation.inputs.len(), board.inputs),
+        (false, allocation.outputs.len(), board.outputs),
+    ] {
+        if needed > wired as usize {
+            diags.error(
+                Code::E036BoardTooSmall,
+                whole_file(),
+                format!(
+                    "the program needs {needed} {}, but the {} board ({}) wires {}: choose a board with more, or split the machine",
+                    if input { "inputs" } else { "outputs" },
+                    board.name,
+                    board.label,
+                    board.span(input)
+                ),
+            );
+        }
+    }
+    if diags.has_errors() {
+        return Err(diags.into_sorted());
+    }
+    Ok(allocation)
 }
 
 /// The Festo allocation the FST files use whatever the target: `allocation`
@@ -285,7 +341,7 @@ pub fn generate_observed(
         ..settings.simulation.clone()
     };
     let (program, simulation) = healthy_program(&table, settings, &sim_settings)?;
-    let allocation = allocate(&program, settings).map_err(Failure::Input)?;
+    let allocation = allocate(&program, settings, &table.file).map_err(Failure::Input)?;
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them.
     let fault_table = [OutputKind::Faults, OutputKind::Workbook]

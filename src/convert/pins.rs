@@ -2,7 +2,7 @@
 //! signal each names, whether its address is one of the target's inputs or
 //! outputs, and that no two share one. Every problem is an error at its cell.
 
-use crate::address::{Address, Assigned, Target};
+use crate::address::{Address, Assigned, Board, Target};
 use crate::diag::{Code, Diagnostics};
 use crate::program::{Area, Signal, StepProgram};
 use crate::settings::pins::PinRow;
@@ -12,6 +12,7 @@ pub fn resolve(
     program: &StepProgram,
     rows: &[PinRow],
     target: Target,
+    board: Option<Board>,
     diags: &mut Diagnostics,
 ) -> Vec<Assigned> {
     let signals: Vec<Signal> = program
@@ -82,6 +83,23 @@ pub fn resolve(
                 ),
             );
             continue;
+        }
+        if let Some(board) = board {
+            let input = address.area == Area::Input;
+            let wired = if input { board.inputs } else { board.outputs };
+            if address.index() >= wired {
+                diags.error(
+                    Code::E035BadPinnedAddress,
+                    row.address_at.clone(),
+                    format!(
+                        "\"{}\" is not on the {} board, which wires {}",
+                        row.address.trim(),
+                        board.name,
+                        board.span(input)
+                    ),
+                );
+                continue;
+            }
         }
         if let Some((_, first)) = pins.iter().find(|(p, _)| p.signal == signal) {
             diags.error(

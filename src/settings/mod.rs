@@ -11,7 +11,7 @@ pub mod user_templates;
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use crate::address::{Mnemonic, Target};
+use crate::address::{Board, Mnemonic, Target};
 use crate::emit::OutputKind;
 use crate::emit::diagram::DiagramKind;
 use crate::emit::templates::Templates;
@@ -27,6 +27,8 @@ pub use sheet::{LABELS, parse};
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Given {
     pub target: Option<Target>,
+    /// The OpenPLC board the program runs on (its addresses are `iec`).
+    pub board: Option<Board>,
     pub mnemonic: Option<Mnemonic>,
     pub scan_ms: Option<u32>,
     pub safety: Option<Safety>,
@@ -43,6 +45,16 @@ pub struct Given {
 }
 
 impl Given {
+    /// A source that names a board and no target means OpenPLC's
+    /// addresses (a board beside another target is the conflict
+    /// `convert::allocate` reports).
+    pub fn with_board_target(mut self) -> Given {
+        if self.board.is_some() && self.target.is_none() {
+            self.target = Some(Target::Iec);
+        }
+        self
+    }
+
     /// What `self` gives, and what `other` gives where `self` is silent.
     pub fn or(&self, other: &Given) -> Given {
         fn merged<V: Clone>(first: &BTreeMap<u32, V>, then: &BTreeMap<u32, V>) -> BTreeMap<u32, V> {
@@ -52,6 +64,7 @@ impl Given {
         }
         Given {
             target: self.target.or(other.target),
+            board: self.board.or(other.board),
             mnemonic: self.mnemonic.or(other.mnemonic),
             scan_ms: self.scan_ms.or(other.scan_ms),
             safety: self.safety.or(other.safety),
@@ -69,6 +82,8 @@ impl Given {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Settings {
     pub target: Target,
+    /// Only the addresses this OpenPLC board wires may be used.
+    pub board: Option<Board>,
     pub mnemonic: Mnemonic,
     /// Sheet to read instead of the default choice.
     pub sheet: Option<String>,
@@ -111,6 +126,9 @@ impl Settings {
     fn apply(&mut self, layer: &Given) {
         if let Some(target) = layer.target {
             self.target = target;
+        }
+        if let Some(board) = layer.board {
+            self.board = Some(board);
         }
         if let Some(mnemonic) = layer.mnemonic {
             self.mnemonic = mnemonic;

@@ -25,8 +25,9 @@ struct ActuatorColumns {
 }
 
 /// The labels of the settings, as written on the sheet.
-pub const LABELS: [&str; 6] = [
+pub const LABELS: [&str; 7] = [
     "target",
+    "board",
     "mnemonic",
     "scan time",
     "safety",
@@ -114,7 +115,15 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
         match label.as_str() {
             "target" => match value.parse::<Target>() {
                 Ok(target) => settings.target = Some(target),
-                Err(_) => bad("festo, iec or siemens"),
+                Err(_) => bad("festo, iec, openplc or siemens"),
+            },
+            "board" if lower == "none" => {}
+            "board" => match value.parse::<crate::address::Board>() {
+                Ok(board) => settings.board = Some(board),
+                Err(_) => bad(&format!(
+                    "none or one of {}",
+                    crate::address::BOARDS.map(|b| b.name).join(", ")
+                )),
             },
             "mnemonic" => match value.parse::<Mnemonic>() {
                 Ok(mnemonic) => settings.mnemonic = Some(mnemonic),
@@ -144,7 +153,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
     if let Some(columns) = stroke_header {
         read_actuator_rows(grid, &columns, &read_elsewhere, &mut settings, diags);
     }
-    settings
+    settings.with_board_target()
 }
 
 /// The columns of the actuator table headed at `header`; a header cell

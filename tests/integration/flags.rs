@@ -151,6 +151,14 @@ fn table_cases(command: &'static str, out: &'static str) -> Vec<Case> {
                 &["--target", "siemens"],
                 Has(summary.clone(), "E0.0"),
             ),
+            case(
+                command,
+                "--board",
+                Paper,
+                &["--board", "uno"],
+                &[],
+                Fails("E036"),
+            ),
         ]);
     } else {
         let reason = "the simulation runs the program, whose behaviour does not depend on how its addresses are spelled";
@@ -169,6 +177,14 @@ fn table_cases(command: &'static str, out: &'static str) -> Vec<Case> {
                 Paper,
                 &["--target", "siemens", "--mnemonic", "de"],
                 &["--target", "siemens"],
+                Unchanged(reason),
+            ),
+            case(
+                command,
+                "--board",
+                Paper,
+                &["--board", "uno"],
+                &[],
                 Unchanged(reason),
             ),
         ]);

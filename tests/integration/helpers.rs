@@ -103,6 +103,17 @@ pub fn write_xlsx_sheets(path: &Path, sheets: &[(&str, &[&[&str]])]) {
 }
 
 /// The text of one part of an .xlsx (a zip), such as `xl/worksheets/sheet1.xml`.
+/// The (address, symbol) pairs of a written `NAME.io.csv`.
+pub fn io_rows(csv: &str) -> Vec<(String, String)> {
+    csv.lines()
+        .skip(1)
+        .map(|l| {
+            let mut f = l.split(',');
+            (f.next().unwrap().to_string(), f.next().unwrap().to_string())
+        })
+        .collect()
+}
+
 pub fn xlsx_part(path: &Path, part: &str) -> String {
     use std::io::Read;
     let file = std::fs::File::open(path).expect("open");

@@ -3,6 +3,7 @@
 //! The checks that need a tool outside the crate are in `tests/tools/`.
 
 mod batch;
+mod boards;
 mod broken;
 mod codes;
 // The binary's command-line definition, for the test of every flag.

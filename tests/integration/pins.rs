@@ -6,7 +6,7 @@ use predicates::str::contains;
 
 use steptable::template_workbook::PAPER_EXAMPLE;
 
-use crate::helpers::{steptable, write_xlsx_sheets};
+use crate::helpers::{io_rows, steptable, write_xlsx_sheets};
 
 fn workbook(dir: &std::path::Path, pins: &[&[&str]]) -> std::path::PathBuf {
     let path = dir.join("line.xlsx");
@@ -25,16 +25,6 @@ fn convert_for_siemens(
         .args(["--target", "siemens", "-o"])
         .arg(out)
         .assert()
-}
-
-fn io_rows(csv: &str) -> Vec<(String, String)> {
-    csv.lines()
-        .skip(1)
-        .map(|l| {
-            let mut f = l.split(',');
-            (f.next().unwrap().to_string(), f.next().unwrap().to_string())
-        })
-        .collect()
 }
 
 #[test]

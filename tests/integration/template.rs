@@ -54,8 +54,25 @@ fn the_template_has_its_sheets_headers_validation_and_protection() {
 
     let settings = read_sheet(&path, "SETTINGS");
     let labels: Vec<&str> = settings.iter().map(|r| r[0].as_str()).collect();
-    for label in ["target", "mnemonic", "scan time", "safety", "actuator"] {
+    for label in [
+        "target",
+        "board",
+        "mnemonic",
+        "scan time",
+        "safety",
+        "actuator",
+    ] {
         assert!(labels.contains(&label), "{label}");
+    }
+    // Every label the sheet reader knows is on the template, and HELP
+    // explains the sheets an engineer may not know to fill.
+    for label in steptable::settings::LABELS {
+        assert!(labels.contains(&label), "{label} missing from the template");
+    }
+    let help = read_sheet(&path, "HELP");
+    let topics: Vec<&str> = help.iter().map(|r| r[0].as_str()).collect();
+    for topic in ["ADDRESSES", "Board"] {
+        assert!(topics.contains(&topic), "HELP explains {topic}: {topics:?}");
     }
     let sheet2 = xlsx_part(&path, "xl/worksheets/sheet2.xml");
     assert!(

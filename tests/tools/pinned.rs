@@ -60,6 +60,27 @@ fn pinned_addresses_run_in_every_engine_as_simulated() {
     let st = matiec::run(&shared(), &iec.file(".st"), &iec.trace, &iec.allocation);
     iec.check("matiec", st).unwrap();
 
+    // On the Raspberry Pi board: packed into the 14 inputs and 11 outputs
+    // its hardware layer wires, around a pin on its last input.
+    let input = dir.path().join("wired_rpi.xlsx");
+    let paper: Vec<&[&str]> = PAPER_EXAMPLE.iter().map(|r| &r[..]).collect();
+    let pins: &[&[&str]] = &[&["START", "%IX1.5"]];
+    write_xlsx_sheets(&input, &[("TABLE", &paper), ("ADDRESSES", pins)]);
+    let rpi = engines::prepare(
+        &input,
+        &["--board", "rpi", "--valve", "C1=52mono", "--formats", "st"],
+        &dir.path().join("rpi"),
+    );
+    let last = |a: &[steptable::address::Assigned]| a.iter().map(|a| a.address.index()).max();
+    assert_eq!(last(&rpi.allocation.inputs), Some(13));
+    assert_eq!(
+        last(&rpi.allocation.outputs),
+        Some(6),
+        "seven coils, packed"
+    );
+    let st = matiec::run(&shared(), &rpi.file(".st"), &rpi.trace, &rpi.allocation);
+    rpi.check("matiec", st).unwrap();
+
     let festo = case(
         dir.path(),
         "festo",
@@ -74,10 +95,10 @@ fn pinned_addresses_run_in_every_engine_as_simulated() {
             fst::run(&text, &festo.trace, &festo.festo),
         )
         .unwrap();
-    for c in [&siemens, &iec, &festo] {
+    for c in [&siemens, &iec, &rpi, &festo] {
         assert!(c.trace.output_changes() >= 4, "{}", c.label);
     }
     eprintln!(
-        "pinned: awlsim, matiec and the FST interpreter run the pinned programs as simulated"
+        "pinned: awlsim, matiec (also on the rpi board) and the FST interpreter run the pinned programs as simulated"
     );
 }

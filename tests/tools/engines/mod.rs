@@ -72,6 +72,13 @@ pub fn settings_for(args: &[&str]) -> Settings {
                 target: Some(t.parse().expect("target")),
                 ..Given::default()
             }),
+            ["--board", b] => settings.give(
+                Given {
+                    board: Some(b.parse().expect("board")),
+                    ..Given::default()
+                }
+                .with_board_target(),
+            ),
             ["--mnemonic", m] => settings.give(Given {
                 mnemonic: Some(m.parse().expect("mnemonic")),
                 ..Given::default()
@@ -134,7 +141,7 @@ pub fn record(
     settings: &Settings,
 ) -> Case {
     let program = convert::build_program(table, settings);
-    let allocation = convert::allocate(&program, settings).expect("valid pins");
+    let allocation = convert::allocate(&program, settings, &table.file).expect("valid pins");
     let festo = convert::festo_allocation(&program, &allocation);
     let signals = IoSignals {
         inputs: allocation.inputs.iter().map(|a| a.signal).collect(),
