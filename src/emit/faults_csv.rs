@@ -3,8 +3,9 @@
 
 use crate::faults::FaultTable;
 
-/// `NAME.faults.csv`: `fault,signal,stuck_at,outcome,step,explanation`, one row
-/// per case (pairs have both signals joined with `+`).
+/// `NAME.faults.csv`: `fault,signals,stuck_at,outcome,appears,step,explanation`,
+/// one row per case (pairs have both signals joined with `+`); `appears`
+/// is the first moment of the cycle at which the fault gives its outcome.
 pub fn render(table: &FaultTable) -> Result<Vec<u8>, csv::Error> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record([
@@ -12,6 +13,7 @@ pub fn render(table: &FaultTable) -> Result<Vec<u8>, csv::Error> {
         "signals",
         "stuck_at",
         "outcome",
+        "appears",
         "step",
         "explanation",
     ])?;
@@ -27,6 +29,7 @@ pub fn render(table: &FaultTable) -> Result<Vec<u8>, csv::Error> {
             signals.join("+"),
             stuck.join("+"),
             c.outcome.label().to_string(),
+            c.appears(table.moments.len()),
             c.step.map(|s| s.to_string()).unwrap_or_default(),
             c.explanation.clone(),
         ])?;

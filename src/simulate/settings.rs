@@ -55,8 +55,11 @@ pub struct SimSettings {
     pub window: f64,
     /// Number of START presses (cycles) to run.
     pub cycles: usize,
-    /// Input faults present from the start of the run.
+    /// Input faults, present from [`SimSettings::fault_onset_ms`] on.
     pub faults: Vec<Fault>,
+    /// When the faults appear, in milliseconds of the run: 0 from power-up;
+    /// later, in the middle of a cycle (the fault analysis's phases).
+    pub fault_onset_ms: u64,
     /// Record every actuator's position at every scan (for the time diagram).
     pub record_trace: bool,
     /// Per machine input, how long after its step starts the machine gives
@@ -87,6 +90,7 @@ impl Default for SimSettings {
             window: 0.02,
             cycles: 2,
             faults: Vec::new(),
+            fault_onset_ms: 0,
             record_trace: false,
             input_delays: BTreeMap::new(),
             stop_at_hazard: false,

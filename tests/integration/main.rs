@@ -13,6 +13,7 @@ mod cli;
 mod diagram;
 mod excel_formula;
 mod exports;
+mod fault_phases;
 mod flags;
 mod fuzz_regressions;
 mod helpers;

@@ -346,24 +346,35 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
 }
 
 /// The fault table treats the mode inputs like sensors: a broken STOP or
-/// EMERGENCY STOP wire stops the machine safely, it never starts it.
+/// EMERGENCY STOP wire at power-up stops the machine safely, it never
+/// starts it. Broken mid-cycle, the EMERGENCY STOP wire does what pressing
+/// it does: every output off, and a piston on a bistable valve runs on.
 #[test]
 fn broken_stop_and_emergency_stop_wires_are_safe_stalls() {
-    use steptable::faults::{self, Outcome};
+    use steptable::faults::{self, Outcome, Phase};
     let table = paper();
     let program = program_with(&table, "all");
     let fault_table = faults::analyse(&table, &program, &SimSettings::default(), false);
-    let outcome = |signal: Signal, stuck_at: bool| {
+    let case = |signal: Signal, stuck_at: bool| {
         fault_table
             .cases
             .iter()
             .find(|c| c.faults[0].signal == signal && c.faults[0].stuck_at == stuck_at)
-            .map(|c| c.outcome)
             .expect("every mode input is in the fault table")
     };
+    assert_eq!(fault_table.moments[0].phase, Phase::PowerUp);
+    let outcome = |signal, stuck_at| case(signal, stuck_at).outcome;
     assert_eq!(outcome(Signal::Stop, false), Outcome::SafeStall);
-    assert_eq!(outcome(Signal::EStop, false), Outcome::SafeStall);
-    assert_eq!(outcome(Signal::Reset, true), Outcome::SafeStall);
+    assert_eq!(case(Signal::EStop, false).outcomes[0], Outcome::SafeStall);
+    let estop = case(Signal::EStop, false);
+    assert_eq!(estop.outcome, Outcome::Hazard);
+    assert!(
+        estop.explanation.contains("C4 at x41") && estop.explanation.contains("collision risk"),
+        "C4's bistable valve keeps it going: {}",
+        estop.explanation
+    );
+    assert_eq!(outcome(Signal::Reset, true), Outcome::Hazard);
+    assert_eq!(case(Signal::Reset, true).outcomes[0], Outcome::SafeStall);
     for (signal, stuck_at) in [
         (Signal::Stop, true),
         (Signal::EStop, true),

@@ -115,6 +115,36 @@ fn both_simulators_agree_on_every_sample_under_every_fault() {
 
 /// A random table with dwells, waits and machine outputs added to some
 /// steps, and random plant settings.
+/// A random table with its program and the plant it runs: valves
+/// centred where a middle stop needs them, 5/2 ones (bistable or spring
+/// return) elsewhere, by the dice.
+pub(crate) fn random_machine(seed: u64) -> (Vec<Vec<String>>, StepTable, StepProgram, SimSettings) {
+    let (rows, mut sim, options) = random_case(seed);
+    let Ok(table) = steptable::table::from_rows("random.csv", &rows) else {
+        panic!("seed {seed}: the generator made an invalid table: {rows:?}");
+    };
+    let mut rng = SplitMix64::new(seed);
+    for a in &table.actuators {
+        let choice = rng.range(0, 2) as usize;
+        let valve = if a.max_position > 1 {
+            [
+                ValveType::Closed53,
+                ValveType::Exhaust53,
+                ValveType::Pressure53,
+            ][choice]
+        } else {
+            [
+                ValveType::Bistable52,
+                ValveType::Mono52,
+                ValveType::Closed53,
+            ][choice]
+        };
+        sim.valves.per_actuator.insert(a.number, valve);
+    }
+    let program = program::build(&table, &options, &sim.valves, &sim.strokes);
+    (rows, table, program, sim)
+}
+
 fn random_case(seed: u64) -> (Vec<Vec<String>>, SimSettings, ProgramOptions) {
     let mut rng = SplitMix64::new(seed ^ 0x5eed);
     let shape = Shape {
@@ -176,31 +206,12 @@ fn random_case(seed: u64) -> (Vec<Vec<String>>, SimSettings, ProgramOptions) {
 fn both_simulators_agree_on_random_tables_and_faults() {
     let mut compared = 0;
     for seed in 0..1000u64 {
-        let (rows, mut sim, options) = random_case(seed);
-        let Ok(table) = steptable::table::from_rows("random.csv", &rows) else {
-            panic!("seed {seed}: the generator made an invalid table: {rows:?}");
-        };
-        // Valves: centred ones where a middle stop needs them, 5/2 ones
-        // (bistable or spring return) elsewhere, by the dice.
+        let (rows, table, program, sim) = random_machine(seed);
+        // The dice go on where the valves' left off.
         let mut rng = SplitMix64::new(seed);
-        for a in &table.actuators {
-            let choice = rng.range(0, 2) as usize;
-            let valve = if a.max_position > 1 {
-                [
-                    ValveType::Closed53,
-                    ValveType::Exhaust53,
-                    ValveType::Pressure53,
-                ][choice]
-            } else {
-                [
-                    ValveType::Bistable52,
-                    ValveType::Mono52,
-                    ValveType::Closed53,
-                ][choice]
-            };
-            sim.valves.per_actuator.insert(a.number, valve);
+        for _ in &table.actuators {
+            rng.range(0, 2);
         }
-        let program = program::build(&table, &options, &sim.valves, &sim.strokes);
         let healthy = format!("seed {seed} {rows:?}");
         assert_same_run(&healthy, &table, &program, &sim);
         assert_same_verdict(&healthy, &table, &program, &sim);
@@ -209,11 +220,18 @@ fn both_simulators_agree_on_random_tables_and_faults() {
         let pairs = fault_sets(&program, true);
         for sets in [&singles, &pairs] {
             let faults = sets[rng.range(0, sets.len() as u32 - 1) as usize].clone();
+            // From power-up, or appearing at any moment of the first cycles
+            // (not only on a scan's tick).
+            let onset = match rng.range(0, 1) {
+                0 => 0,
+                _ => rng.range(1, 12_000) as u64,
+            };
             let run = SimSettings {
                 faults: faults.clone(),
+                fault_onset_ms: onset,
                 ..sim.clone()
             };
-            let what = format!("{healthy} {faults:?}");
+            let what = format!("{healthy} {faults:?} from {onset} ms");
             assert_same_run(&what, &table, &program, &run);
             assert_same_verdict(&what, &table, &program, &run);
         }

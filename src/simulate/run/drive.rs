@@ -104,6 +104,7 @@ impl<'a> Run<'a> {
                     .iter()
                     .filter_map(|n| machine::rest_value(table, *n).map(|v| (*n, v)))
                     .collect(),
+                faults_active: settings.fault_onset_ms == 0,
             },
             plc: PlcState::new(code),
             time_ms: 0,

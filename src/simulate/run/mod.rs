@@ -90,6 +90,8 @@ pub(in crate::simulate) struct World {
     pub(in crate::simulate) operator: Operator,
     /// Machine inputs as the machine gives them.
     pub(in crate::simulate) machine: BTreeMap<Name, bool>,
+    /// The faults have appeared (the run has reached their onset).
+    pub(in crate::simulate) faults_active: bool,
 }
 
 impl Run<'_> {
@@ -199,6 +201,7 @@ impl Run<'_> {
         // scan; the plant does not move while the program runs.
         // The machine gives the inputs its steps wait for.
         let now = self.time_ms;
+        self.world.faults_active = now >= self.world.settings.fault_onset_ms;
         let machine = &mut self.world.machine;
         let waiting = self.pending.len();
         self.pending.retain(|(at, name, value)| {
@@ -448,7 +451,8 @@ impl Run<'_> {
             .saturating_sub(self.time_ms)
             .div_ceil(scan)
             .min(self.plc.scans_before_a_timer_ends(scan));
-        if let Some(at) = self.pending.iter().map(|(at, _, _)| *at).min() {
+        let onset = (!self.world.faults_active).then_some(self.world.settings.fault_onset_ms);
+        if let Some(at) = self.pending.iter().map(|(at, _, _)| *at).chain(onset).min() {
             scans = scans.min(at.saturating_sub(self.time_ms).div_ceil(scan));
         }
         for &i in &self.moving {
@@ -506,7 +510,9 @@ impl Run<'_> {
 /// The value an input reads: a fault overrides the plant. STOP and
 /// EMERGENCY STOP are normally closed: they read 1 until pressed.
 pub(in crate::simulate) fn read_input(signal: Signal, world: &World) -> bool {
-    if let Some(f) = world.settings.faults.iter().find(|f| f.signal == signal) {
+    if world.faults_active
+        && let Some(f) = world.settings.faults.iter().find(|f| f.signal == signal)
+    {
         return f.stuck_at;
     }
     let operator = world.operator;

@@ -1,8 +1,14 @@
 //! Sensor faults (Quezada et al. 2016; DESIGN §6): every input stuck at 1
-//! (short circuit) or at 0 (open circuit), alone or in pairs, simulated from
-//! the start of the run and classified as no effect, safe stall or hazard.
+//! (short circuit) or at 0 (open circuit), alone or in pairs, appearing at
+//! power-up and at every phase of the cycle, and classified as no effect,
+//! safe stall or hazard.
+
+mod phases;
+
+pub use phases::{Moment, Phase, moments};
 
 use crate::program::StepProgram;
+use crate::simulate::io::IoSignals;
 use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings, Simulator};
 use crate::table::StepTable;
 
@@ -28,14 +34,20 @@ impl Outcome {
     }
 }
 
-/// One simulated fault case.
+/// One fault set, made to appear at every moment of the cycle: the worst
+/// of what it does.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct FaultCase {
     pub faults: Vec<Fault>,
+    /// The worst outcome over every moment the faults appeared at.
     pub outcome: Outcome,
+    /// The first moment that gives it.
+    pub phase: Phase,
     /// The step concerned (where it stalls or where the hazard happens).
     pub step: Option<usize>,
     pub explanation: String,
+    /// The outcome at each of the table's moments, in their order.
+    pub outcomes: Vec<Outcome>,
 }
 
 impl FaultCase {
@@ -53,6 +65,14 @@ impl FaultCase {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct FaultTable {
     pub cases: Vec<FaultCase>,
+    /// The moments each fault set was made to appear at.
+    pub moments: Vec<Moment>,
+    /// Simulations run: the (fault set, moment) cases left once those that
+    /// give the same run are merged and those that change nothing dropped.
+    pub runs: usize,
+    /// Set when the cases at every moment would have been more than
+    /// [`MAX_PHASE_CASES`] (their number): faults then appear at power-up only.
+    pub phases_skipped: Option<usize>,
 }
 
 impl FaultTable {
@@ -61,17 +81,29 @@ impl FaultTable {
         self.cases.iter().filter(|c| c.outcome == outcome).count()
     }
 
-    /// `24 faults: 10 no effect, 8 safe stall, 6 hazard`.
+    /// `24 fault case(s) at 18 moments of the cycle (132 runs): 10 no
+    /// effect, 8 safe stall, 6 hazard`.
     pub fn summary(&self) -> String {
+        let reach = match self.phases_skipped {
+            Some(cases) => format!(
+                "from power-up only: {cases} cases at every moment of the cycle would exceed {MAX_PHASE_CASES}"
+            ),
+            None => format!("at {} moments of the cycle", self.moments.len()),
+        };
         format!(
-            "{} fault case(s): {} no effect, {} safe stall, {} hazard",
+            "{} fault case(s) {reach} ({} runs): {} no effect, {} safe stall, {} hazard",
             self.cases.len(),
+            self.runs,
             self.count(Outcome::NoEffect),
             self.count(Outcome::SafeStall),
             self.count(Outcome::Hazard)
         )
     }
 }
+
+/// The most (fault set, moment) cases one analysis makes before merging:
+/// past it, faults appear at power-up only (and the summary says so).
+pub const MAX_PHASE_CASES: usize = 50_000;
 
 /// Every single fault of every input (START, each sensor, machine inputs
 /// and buttons), in address order.
@@ -130,7 +162,7 @@ pub fn analyse(
 }
 
 /// Like [`analyse`], on every core, calling `progress(done, total)` after
-/// each case (from any thread) so that a long analysis can be shown.
+/// each run (from any thread) so that a long analysis can be shown.
 pub fn analyse_observed(
     table: &StepTable,
     program: &StepProgram,
@@ -140,43 +172,125 @@ pub fn analyse_observed(
 ) -> FaultTable {
     use rayon::prelude::*;
     let sets = fault_sets(program, pairs);
-    let total = sets.len();
-    let done = std::sync::atomic::AtomicUsize::new(0);
     let simulator = Simulator::new(table, program);
     // What the healthy cycle does is the yardstick: the combinations of
-    // positions it reaches are the ones a faulty run may reach.
-    let healthy = simulator.run(&SimSettings {
+    // positions it reaches are the ones a faulty run may reach, its
+    // moments are when faults appear, its inputs tell which of those runs
+    // are one and the same.
+    let healthy_settings = SimSettings {
         record_places: true,
         record_trace: false,
+        faults: Vec::new(),
         ..settings.clone()
-    });
+    };
+    let healthy = simulator.run(&healthy_settings);
+    let mut moments = moments(&healthy, table, settings.scan_ms as u64);
+    let mut phases_skipped = None;
+    if sets.len() * moments.len() > MAX_PHASE_CASES {
+        phases_skipped = Some(sets.len() * moments.len());
+        moments.truncate(1);
+    }
+    let signals = IoSignals {
+        inputs: program.signals.inputs.clone(),
+        outputs: Vec::new(),
+    };
+    let (_, inputs) = simulator.run_recording(&healthy_settings, signals);
+    let inputs = phases::HealthyInputs::new(&inputs);
+    // Each set at each moment, as the moment its run leaves the healthy one.
+    let onsets: Vec<Vec<Option<u64>>> = sets
+        .iter()
+        .map(|set| {
+            moments
+                .iter()
+                .map(|m| inputs.divergence(set, m.at_ms))
+                .collect()
+        })
+        .collect();
+    let runs: Vec<(usize, u64)> = onsets
+        .iter()
+        .enumerate()
+        .flat_map(|(i, at)| {
+            let mut distinct: Vec<u64> = at.iter().flatten().copied().collect();
+            distinct.sort_unstable();
+            distinct.dedup();
+            distinct.into_iter().map(move |d| (i, d))
+        })
+        .collect();
+    let total = runs.len();
+    let done = std::sync::atomic::AtomicUsize::new(0);
     let settings = &SimSettings {
         known_places: Some(std::sync::Arc::new(healthy.places)),
         ..settings.clone()
     };
-    let cases = sets
+    let verdicts: std::collections::HashMap<(usize, u64), Verdict> = runs
         .into_par_iter()
-        .map(|faults| {
-            let case = classify(&simulator, settings, faults);
+        .map(|(i, onset)| {
+            let verdict = classify(&simulator, settings, &sets[i], onset);
             let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             progress(n, total);
-            case
+            ((i, onset), verdict)
         })
         .collect();
-    FaultTable { cases }
+    let no_effect = Verdict {
+        outcome: Outcome::NoEffect,
+        step: None,
+        explanation: "the input never reads other than without the fault".to_string(),
+    };
+    let cases = sets
+        .into_iter()
+        .enumerate()
+        .map(|(i, faults)| {
+            let mut outcomes = Vec::with_capacity(moments.len());
+            let mut worst: Option<(Phase, &Verdict)> = None;
+            for (moment, onset) in moments.iter().zip(&onsets[i]) {
+                let verdict = onset.map_or(&no_effect, |d| &verdicts[&(i, d)]);
+                outcomes.push(verdict.outcome);
+                if worst.is_none_or(|(_, w)| verdict.outcome > w.outcome) {
+                    worst = Some((moment.phase, verdict));
+                }
+            }
+            let (phase, verdict) = worst.unwrap_or((Phase::PowerUp, &no_effect));
+            FaultCase {
+                faults,
+                outcome: verdict.outcome,
+                phase,
+                step: verdict.step,
+                explanation: verdict.explanation.clone(),
+                outcomes,
+            }
+        })
+        .collect();
+    FaultTable {
+        cases,
+        moments,
+        runs: total,
+        phases_skipped,
+    }
 }
 
-fn classify(simulator: &Simulator, settings: &SimSettings, faults: Vec<Fault>) -> FaultCase {
+/// What one run of a fault set says.
+struct Verdict {
+    outcome: Outcome,
+    step: Option<usize>,
+    explanation: String,
+}
+
+fn classify(
+    simulator: &Simulator,
+    settings: &SimSettings,
+    faults: &[Fault],
+    onset: u64,
+) -> Verdict {
     let run = SimSettings {
-        faults: faults.clone(),
+        faults: faults.to_vec(),
+        fault_onset_ms: onset,
         record_trace: false,
         stop_at_hazard: true,
         ..settings.clone()
     };
     let report = simulator.run(&run);
     let (outcome, step, explanation) = judge(&report);
-    FaultCase {
-        faults,
+    Verdict {
         outcome,
         step,
         explanation,
@@ -236,8 +350,9 @@ pub fn judge(report: &SimReport) -> (Outcome, Option<usize>, String) {
     }
 }
 
-/// The rows of the fault table: fault, outcome, step, explanation.
-pub fn rows(table: &FaultTable) -> Vec<[String; 4]> {
+/// The rows of the fault table: fault, outcome, when it appears, step,
+/// explanation.
+pub fn rows(table: &FaultTable) -> Vec<[String; 5]> {
     table
         .cases
         .iter()
@@ -245,11 +360,27 @@ pub fn rows(table: &FaultTable) -> Vec<[String; 4]> {
             [
                 c.fault_text(),
                 c.outcome.label().to_string(),
+                c.appears(table.moments.len()),
                 c.step.map(|s| s.to_string()).unwrap_or_default(),
                 c.explanation.clone(),
             ]
         })
         .collect()
+}
+
+impl FaultCase {
+    /// When the fault gives its outcome: `while step 3 moves (4 of 18
+    /// moments)`, or `at every moment` when all give it.
+    pub fn appears(&self, moments: usize) -> String {
+        let giving = self.outcomes.iter().filter(|o| **o == self.outcome).count();
+        if moments <= 1 {
+            self.phase.label()
+        } else if giving == moments {
+            "at every moment".to_string()
+        } else {
+            format!("{} ({giving} of {moments} moments)", self.phase.label())
+        }
+    }
 }
 
 #[cfg(test)]
@@ -284,7 +415,23 @@ mod tests {
         assert_eq!(case("x11", false).step, Some(2));
         // x11 short: step 2 starts while C1 is still moving.
         assert_eq!(case("x11", true).outcome, Outcome::Hazard);
-        assert!(result.summary().starts_with("24 fault case(s): "));
+        assert!(
+            result
+                .summary()
+                .starts_with("24 fault case(s) at 17 moments of the cycle (")
+        );
+        // Open from power-up, x21 stalls step 4 (C2 never gets there); open
+        // while step 4 moves C2 away from it, it is a collision risk.
+        let x21 = case("x21", false);
+        assert_eq!(x21.outcomes[0], Outcome::SafeStall);
+        assert_eq!(x21.outcome, Outcome::Hazard);
+        assert_eq!(x21.phase, Phase::Moving(4));
+        assert!(
+            x21.explanation.contains("collision risk"),
+            "{}",
+            x21.explanation
+        );
+        assert_eq!(x21.outcomes.len(), result.moments.len());
         // The count the budget is checked against is the count run.
         for pairs in [false, true] {
             assert_eq!(

@@ -1,0 +1,136 @@
+//! When a fault appears: from power-up, or at a moment of the healthy
+//! cycle (before a step fires, while its moves run, during its dwell or
+//! wait, at rest after the cycle). A sensor that fails mid-trip can do what
+//! the same sensor failed at power-up cannot: the machine is elsewhere.
+//!
+//! Many moments give the same run. A fault that appears while the input
+//! reads, in the healthy run, the very value it sticks at changes nothing
+//! until the healthy input would leave that value: the run is the one the
+//! fault gives appearing then. Moments are merged on that first scan on
+//! which the faulty input differs from the healthy one (a fault that never
+//! differs has no effect and needs no run at all).
+
+use crate::program::Signal;
+use crate::simulate::io::IoTrace;
+use crate::simulate::{Fault, SimReport};
+use crate::table::StepTable;
+
+/// A moment of the healthy cycle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Phase {
+    PowerUp,
+    /// The sequence waits at the step, its condition not yet met.
+    BeforeStep(usize),
+    /// The step has fired; its moves are under way.
+    Moving(usize),
+    /// The step's dwell runs or it waits for a machine input.
+    Waiting(usize),
+    /// The cycle has ended; the machine waits for START.
+    AtRest,
+}
+
+impl Phase {
+    /// `while step 3 moves`, as the fault table says when a fault appears.
+    pub fn label(self) -> String {
+        match self {
+            Phase::PowerUp => "from power-up".to_string(),
+            Phase::BeforeStep(k) => format!("before step {k} fires"),
+            Phase::Moving(k) => format!("while step {k} moves"),
+            Phase::Waiting(k) => format!("during step {k}'s dwell or wait"),
+            Phase::AtRest => "at rest after the cycle".to_string(),
+        }
+    }
+}
+
+/// A phase and the time of the run at which faults appear in it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Moment {
+    pub phase: Phase,
+    pub at_ms: u64,
+}
+
+/// Power-up, then for each step of the healthy run's first cycle: the scan
+/// before it fires (from step 2 on), the scan after (when it moves
+/// something), the middle of each dwell or wait; then rest after the cycle.
+pub fn moments(healthy: &SimReport, table: &StepTable, scan_ms: u64) -> Vec<Moment> {
+    let mut moments = vec![Moment {
+        phase: Phase::PowerUp,
+        at_ms: 0,
+    }];
+    let Some(cycle) = healthy.cycles.first() else {
+        return moments;
+    };
+    for timing in &cycle.steps {
+        let step = timing.step;
+        let fired = cycle.press_ms + timing.start_ms;
+        if step > 1 {
+            moments.push(Moment {
+                phase: Phase::BeforeStep(step),
+                at_ms: fired.saturating_sub(scan_ms),
+            });
+        }
+        let moves = table
+            .steps
+            .get(step - 1)
+            .is_some_and(|s| !s.moves.is_empty());
+        if moves {
+            moments.push(Moment {
+                phase: Phase::Moving(step),
+                at_ms: fired + scan_ms,
+            });
+        }
+        let ends = fired + timing.duration_ms;
+        if let Some(span) = healthy
+            .spans
+            .iter()
+            .find(|s| s.from_ms >= fired && s.from_ms < ends.max(fired + 1))
+        {
+            moments.push(Moment {
+                phase: Phase::Waiting(step),
+                at_ms: (span.from_ms + span.to_ms) / 2,
+            });
+        }
+    }
+    if let Some(ms) = cycle.cycle_ms {
+        let next = healthy.cycles.get(1).map(|c| c.press_ms);
+        let at = cycle.press_ms + ms + 2 * scan_ms;
+        if next.is_none_or(|press| at < press) {
+            moments.push(Moment {
+                phase: Phase::AtRest,
+                at_ms: at,
+            });
+        }
+    }
+    moments
+}
+
+/// The healthy run's inputs, scan by scan, to tell when a fault first
+/// makes a difference.
+pub struct HealthyInputs<'a> {
+    trace: &'a IoTrace,
+}
+
+impl<'a> HealthyInputs<'a> {
+    pub fn new(trace: &'a IoTrace) -> Self {
+        HealthyInputs { trace }
+    }
+
+    /// The time of the first scan at or after `from_ms` on which one of
+    /// `faults` reads other than the healthy run did: the moment the
+    /// faulty run leaves the healthy one. `None`: it never does.
+    pub fn divergence(&self, faults: &[Fault], from_ms: u64) -> Option<u64> {
+        let columns: Vec<(usize, bool)> = faults
+            .iter()
+            .filter_map(|f| self.column(f.signal).map(|c| (c, f.stuck_at)))
+            .collect();
+        let first = self.trace.scans.partition_point(|s| s.time_ms < from_ms);
+        self.trace.scans[first..]
+            .iter()
+            .find(|s| columns.iter().any(|&(c, stuck)| s.inputs[c] != stuck))
+            .map(|s| s.time_ms)
+    }
+
+    fn column(&self, signal: Signal) -> Option<usize> {
+        self.trace.signals.inputs.iter().position(|s| *s == signal)
+    }
+}

@@ -1,0 +1,94 @@
+//! Faults that appear mid-cycle: the analysis runs each fault set once per
+//! distinct moment it makes a difference (moments at which the faulty input
+//! reads as the healthy one are merged, faults that never differ are not
+//! run). Every verdict in the table must be what that fault alone, made to
+//! appear at that moment, gives; and the healthy run is never anything but
+//! a pass.
+
+use steptable::faults::{self, Outcome, judge};
+use steptable::random_table::SplitMix64;
+use steptable::simulate::{SimSettings, simulate};
+
+use crate::stepping::random_machine;
+
+#[test]
+fn every_verdict_is_what_the_fault_alone_gives_when_it_appears_then() {
+    let mut replayed = 0;
+    let mut hazards = 0;
+    for seed in 0..300u64 {
+        let (rows, table, program, mut sim) = random_machine(seed);
+        sim.record_trace = false;
+        let what = format!("seed {seed} {rows:?}");
+        let healthy = simulate(
+            &table,
+            &program,
+            &SimSettings {
+                record_places: true,
+                ..sim.clone()
+            },
+        );
+        if !healthy.passed {
+            // A machine that cannot run its cycle gets no fault table.
+            continue;
+        }
+        assert_eq!(
+            judge(&healthy).0,
+            Outcome::NoEffect,
+            "{what}: the healthy run"
+        );
+        let analysed = faults::analyse(&table, &program, &sim, false);
+        assert!(analysed.phases_skipped.is_none(), "{what}");
+        let known = std::sync::Arc::new(healthy.places.clone());
+        let mut rng = SplitMix64::new(seed ^ 0xfa17);
+        for case in &analysed.cases {
+            assert_eq!(case.outcomes.len(), analysed.moments.len(), "{what}");
+            assert_eq!(
+                case.outcomes.iter().max(),
+                Some(&case.outcome),
+                "{what}: the worst is reported"
+            );
+            // The reported moment, and one more by the dice.
+            let reported = analysed
+                .moments
+                .iter()
+                .position(|m| m.phase == case.phase)
+                .expect("the reported phase is a moment");
+            let other = rng.range(0, analysed.moments.len() as u32 - 1) as usize;
+            for m in [reported, other] {
+                let moment = analysed.moments[m];
+                let alone = simulate(
+                    &table,
+                    &program,
+                    &SimSettings {
+                        faults: case.faults.clone(),
+                        fault_onset_ms: moment.at_ms,
+                        known_places: Some(known.clone()),
+                        ..sim.clone()
+                    },
+                );
+                let (outcome, step, explanation) = judge(&alone);
+                assert_eq!(
+                    outcome,
+                    case.outcomes[m],
+                    "{what}: {} appearing {} ({} ms): {explanation}",
+                    case.fault_text(),
+                    moment.phase.label(),
+                    moment.at_ms
+                );
+                if m == reported {
+                    assert_eq!(
+                        (step, &explanation),
+                        (case.step, &case.explanation),
+                        "{what}: {}",
+                        case.fault_text()
+                    );
+                    hazards += usize::from(outcome == Outcome::Hazard);
+                }
+                replayed += 1;
+            }
+        }
+    }
+    eprintln!("fault phases: {replayed} replays, {hazards} of them hazards");
+    assert!(replayed > 4000, "{replayed} replays");
+    assert!(hazards > 300, "{hazards} hazards replayed");
+}
