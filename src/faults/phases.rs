@@ -104,33 +104,73 @@ pub fn moments(healthy: &SimReport, table: &StepTable, scan_ms: u64) -> Vec<Mome
     moments
 }
 
-/// The healthy run's inputs, scan by scan, to tell when a fault first
-/// makes a difference.
-pub struct HealthyInputs<'a> {
-    trace: &'a IoTrace,
+/// The healthy run's inputs, as the times each changes, to tell when a
+/// fault first makes a difference.
+pub struct HealthyInputs {
+    signals: Vec<Signal>,
+    /// Per input: its value at the first scan, then `(time, value)` at
+    /// every scan on which it changed.
+    changes: Vec<(bool, Vec<(u64, bool)>)>,
+    /// Times of the first and the last scan, and the scan time.
+    first_ms: u64,
+    last_ms: u64,
+    scan_ms: u64,
 }
 
-impl<'a> HealthyInputs<'a> {
-    pub fn new(trace: &'a IoTrace) -> Self {
-        HealthyInputs { trace }
+impl HealthyInputs {
+    pub fn new(trace: &IoTrace) -> Self {
+        let width = trace.signals.inputs.len();
+        let mut changes: Vec<(bool, Vec<(u64, bool)>)> = match trace.scans.first() {
+            Some(first) => first.inputs.iter().map(|v| (*v, Vec::new())).collect(),
+            None => vec![(false, Vec::new()); width],
+        };
+        for pair in trace.scans.windows(2) {
+            for (c, (was, is)) in pair[0].inputs.iter().zip(&pair[1].inputs).enumerate() {
+                if was != is {
+                    changes[c].1.push((pair[1].time_ms, *is));
+                }
+            }
+        }
+        HealthyInputs {
+            signals: trace.signals.inputs.clone(),
+            changes,
+            first_ms: trace.scans.first().map_or(0, |s| s.time_ms),
+            last_ms: trace.scans.last().map_or(0, |s| s.time_ms),
+            scan_ms: trace.scan_ms.max(1) as u64,
+        }
     }
 
     /// The time of the first scan at or after `from_ms` on which one of
     /// `faults` reads other than the healthy run did: the moment the
     /// faulty run leaves the healthy one. `None`: it never does.
     pub fn divergence(&self, faults: &[Fault], from_ms: u64) -> Option<u64> {
-        let columns: Vec<(usize, bool)> = faults
+        faults
             .iter()
-            .filter_map(|f| self.column(f.signal).map(|c| (c, f.stuck_at)))
-            .collect();
-        let first = self.trace.scans.partition_point(|s| s.time_ms < from_ms);
-        self.trace.scans[first..]
-            .iter()
-            .find(|s| columns.iter().any(|&(c, stuck)| s.inputs[c] != stuck))
-            .map(|s| s.time_ms)
+            .filter_map(|f| self.first_difference(f, from_ms))
+            .min()
     }
 
-    fn column(&self, signal: Signal) -> Option<usize> {
-        self.trace.signals.inputs.iter().position(|s| *s == signal)
+    fn first_difference(&self, fault: &Fault, from_ms: u64) -> Option<u64> {
+        let c = self.signals.iter().position(|s| *s == fault.signal)?;
+        // The first scan at or after `from_ms`.
+        let from = self.first_ms
+            + from_ms.saturating_sub(self.first_ms).div_ceil(self.scan_ms) * self.scan_ms;
+        if from > self.last_ms {
+            return None;
+        }
+        let (initial, changes) = &self.changes[c];
+        let seen = changes.partition_point(|(at, _)| *at <= from);
+        let now = if seen == 0 {
+            *initial
+        } else {
+            changes[seen - 1].1
+        };
+        if now != fault.stuck_at {
+            return Some(from);
+        }
+        changes[seen..]
+            .iter()
+            .find(|(_, value)| *value != fault.stuck_at)
+            .map(|(at, _)| *at)
     }
 }

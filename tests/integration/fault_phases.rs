@@ -6,7 +6,7 @@
 //! a pass.
 
 use steptable::faults::{self, Outcome, judge};
-use steptable::random_table::SplitMix64;
+use steptable::random_table::{Shape, SplitMix64, random_rows};
 use steptable::simulate::{SimSettings, simulate};
 
 use crate::stepping::random_machine;
@@ -91,4 +91,31 @@ fn every_verdict_is_what_the_fault_alone_gives_when_it_appears_then() {
     eprintln!("fault phases: {replayed} replays, {hazards} of them hazards");
     assert!(replayed > 4000, "{replayed} replays");
     assert!(hazards > 300, "{hazards} hazards replayed");
+}
+
+/// A long cycle would take minutes at every moment: its faults appear at
+/// power-up only, and the summary says so.
+#[test]
+fn a_long_cycle_gets_its_faults_from_power_up_only_and_says_so() {
+    let shape = Shape {
+        actuators: 12,
+        max_position: 1,
+        branches: 1,
+        steps: 200,
+    };
+    let table = steptable::table::from_rows("long.csv", &random_rows(7, shape)).unwrap();
+    let program = steptable::convert::build_program(&table, &steptable::settings::Settings::new());
+    let analysed = faults::analyse(&table, &program, &SimSettings::default(), false);
+    // Power-up, before each of steps 2…200, while each moves, at rest.
+    let moments_of_the_cycle = 1 + 199 + 200 + 1;
+    assert_eq!(analysed.moments.len(), 1);
+    assert_eq!(analysed.phases_skipped, Some(2 * 25 * moments_of_the_cycle));
+    assert!(
+        analysed
+            .summary()
+            .starts_with("50 fault case(s) from power-up only (20050 cases at every moment"),
+        "{}",
+        analysed.summary()
+    );
+    assert!(analysed.cases.iter().all(|c| c.outcomes.len() == 1));
 }
