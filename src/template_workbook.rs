@@ -225,7 +225,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     let boards: Vec<&str> = std::iter::once("none")
         .chain(crate::address::BOARDS.iter().map(|b| b.name))
         .collect();
-    let rows: [(&str, &str, &str, Option<&[&str]>); 7] = [
+    let rows: [(&str, &str, &str, Option<&[&str]>); 9] = [
         (
             "target",
             "festo",
@@ -270,6 +270,18 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             Some(&["none", "all", "continuous", "stop", "estop", "reset"]),
         ),
         (
+            "hold-safe",
+            "none",
+            "Machine outputs that may stay on when the machine stops on a fault (a vacuum gripper holding its part, a clamp), e.g. vacuum, clamp. Undeclared, a machine output left on in a stopped machine is a hazard in the fault table; coils may stay on.",
+            None,
+        ),
+        (
+            "de-energise on halt",
+            "none",
+            "Outputs the program switches off when a safety check or the emergency stop halts the machine (a heater, a motor), e.g. heater, brush. C2 names both coils of C2.",
+            None,
+        ),
+        (
             "home order",
             "default",
             "Homing stages for RESET, first to last, e.g. C3&C4, C2, C1. default: the reverse order of the last moves.",
@@ -293,7 +305,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             sheet.add_data_validation(row, 1, row, 1, &validation)?;
         }
     }
-    let header = 12;
+    let header = 15;
     sheet.write_string(
         header - 1,
         0,

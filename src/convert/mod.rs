@@ -112,6 +112,21 @@ fn finish_check(
             buttons: &buttons,
         };
         table::check_machine(table, &machine, &input.table, &mut diags);
+        effective.program.halt = crate::settings::halt::resolve(
+            table,
+            effective.hold_safe.as_ref(),
+            effective.off_on_halt.as_ref(),
+            &mut diags,
+        );
+        if let Some(row) = &effective.off_on_halt
+            && !effective.program.safety.halts(&effective.program.modes)
+        {
+            diags.warning(
+                Code::W006NoEffect,
+                row.at.clone(),
+                "de-energise on halt: the program never halts without the plausibility or watchdog check or the emergency stop (--safety, --modes estop); the outputs named stay as the sequence left them",
+            );
+        }
     }
     match table {
         Some(table) if !diags.has_errors() => Ok(Checked {

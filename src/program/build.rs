@@ -152,6 +152,9 @@ pub fn build(
         rungs.push(watchdog_rung());
     }
     timers.extend(table.dwells().map(|d| Signal::Dwell(d.number)));
+    if safety.halts(modes) {
+        rungs.extend(halt_off_rung(&signals, &options.halt));
+    }
     if modes.any() {
         homing_rungs(table, &signals, &timers, modes, &mut rungs);
     }
@@ -161,7 +164,27 @@ pub fn build(
         rungs,
         timers,
         signals,
+        halt: options.halt.clone(),
     }
+}
+
+/// A halt switches off the outputs declared `de-energise on halt`: a heater
+/// or a motor must not stay on in a machine that has stopped on a fault.
+fn halt_off_rung(signals: &Signals, policy: &super::HaltPolicy) -> Option<Rung> {
+    let off: Vec<Signal> = signals
+        .driven()
+        .filter(|s| policy.off_on_halt.contains(s))
+        .collect();
+    if off.is_empty() {
+        return None;
+    }
+    let names: Vec<String> = off.iter().map(|s| s.symbol()).collect();
+    Some(Rung {
+        kind: RungKind::HaltOff,
+        comment: format!("HALT: {} off (de-energise on halt)", names.join(", ")),
+        condition: vec![Literal::is(Signal::Halt)],
+        actions: off.into_iter().map(Action::Reset).collect(),
+    })
 }
 
 /// The steps of the table: each fires when the one before is complete.

@@ -21,7 +21,7 @@ mod signal;
 mod signals;
 
 pub use build::build;
-pub use options::{Modes, ProgramOptions, Safety};
+pub use options::{HaltPolicy, Modes, ProgramOptions, Safety};
 pub use signal::{Alarm, Area, Signal};
 pub use signals::{Coils, Signals};
 
@@ -120,6 +120,8 @@ pub enum RungKind {
     Mode,
     Homing,
     EmergencyStop,
+    /// A halt switches off what may not stay on.
+    HaltOff,
 }
 
 impl RungKind {
@@ -134,6 +136,7 @@ impl RungKind {
             RungKind::Mode => "MODE",
             RungKind::Homing => "HOMING",
             RungKind::EmergencyStop => "EMERGENCY STOP",
+            RungKind::HaltOff => "HALT",
         }
     }
 }
@@ -159,6 +162,9 @@ pub struct StepProgram {
     pub timers: Vec<Signal>,
     /// Every bit signal the program uses, in address order.
     pub signals: Signals,
+    /// What may stay on when the machine stops (the fault analysis judges
+    /// a stopped machine by it).
+    pub halt: HaltPolicy,
 }
 
 /// `IF a AND b THEN SET y1+ RESET y1-` in the paper's notation, with symbols

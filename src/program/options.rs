@@ -1,6 +1,7 @@
 //! The choices that change a generated program: its safety checks, its
 //! operating modes and the homing order RESET uses.
 
+use super::Signal;
 use crate::table::StepTable;
 
 /// Choices that change the generated program.
@@ -13,6 +14,9 @@ pub struct ProgramOptions {
     pub safety: Safety,
     /// Operating modes carried by the program.
     pub modes: Modes,
+    /// What may stay energised when the machine halts, and what the halt
+    /// switches off.
+    pub halt: HaltPolicy,
 }
 
 impl Default for ProgramOptions {
@@ -21,7 +25,36 @@ impl Default for ProgramOptions {
             middle_stops: true,
             safety: Safety::default(),
             modes: Modes::default(),
+            halt: HaltPolicy::default(),
         }
+    }
+}
+
+/// Which outputs may stay on in a stopped machine (SETTINGS `hold-safe`)
+/// and which the program switches off when it halts (`de-energise on
+/// halt`). Undeclared, a cylinder's coil may stay on (it holds the piston
+/// where it is, as a stopped pneumatic machine does) and an alarm lamp is
+/// meant to; a machine output (`Y:heater`, a motor, a spray valve) may
+/// not: a machine that stops with it on is a hazard of energy.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct HaltPolicy {
+    pub hold_safe: std::collections::BTreeSet<Signal>,
+    pub off_on_halt: std::collections::BTreeSet<Signal>,
+}
+
+impl HaltPolicy {
+    /// Whether `output` may stay on in a machine that has stopped.
+    pub fn may_stay_on(&self, output: Signal) -> bool {
+        if self.hold_safe.contains(&output) {
+            return true;
+        }
+        if self.off_on_halt.contains(&output) {
+            return false;
+        }
+        matches!(
+            output,
+            Signal::Coil { .. } | Signal::SingleCoil { .. } | Signal::Alarm(_)
+        )
     }
 }
 

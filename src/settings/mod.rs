@@ -5,6 +5,7 @@
 //!
 //! [`FromStr`]: std::str::FromStr
 
+pub mod halt;
 pub mod pins;
 mod sheet;
 pub mod user_templates;
@@ -42,6 +43,10 @@ pub struct Given {
     pub valves: BTreeMap<u32, ValveType>,
     /// Drift rates per actuator (stroke per second).
     pub loads: BTreeMap<u32, f64>,
+    /// Outputs that may stay on in a stopped machine (`hold-safe`).
+    pub hold_safe: Option<halt::NamedOutputs>,
+    /// Outputs the program switches off when it halts.
+    pub off_on_halt: Option<halt::NamedOutputs>,
 }
 
 impl Given {
@@ -73,6 +78,11 @@ impl Given {
             strokes: merged(&self.strokes, &other.strokes),
             valves: merged(&self.valves, &other.valves),
             loads: merged(&self.loads, &other.loads),
+            hold_safe: self.hold_safe.clone().or_else(|| other.hold_safe.clone()),
+            off_on_halt: self
+                .off_on_halt
+                .clone()
+                .or_else(|| other.off_on_halt.clone()),
         }
     }
 }
@@ -103,6 +113,10 @@ pub struct Settings {
     pub given: Given,
     /// The workbook's ADDRESSES sheet: signals pinned to the wiring.
     pub pins: Vec<pins::PinRow>,
+    /// The SETTINGS rows `hold-safe` and `de-energise on halt`, as written;
+    /// `program.halt` once checked against the table.
+    pub hold_safe: Option<halt::NamedOutputs>,
+    pub off_on_halt: Option<halt::NamedOutputs>,
 }
 
 impl Settings {
@@ -129,6 +143,12 @@ impl Settings {
         }
         if let Some(board) = layer.board {
             self.board = Some(board);
+        }
+        if let Some(names) = &layer.hold_safe {
+            self.hold_safe = Some(names.clone());
+        }
+        if let Some(names) = &layer.off_on_halt {
+            self.off_on_halt = Some(names.clone());
         }
         if let Some(mnemonic) = layer.mnemonic {
             self.mnemonic = mnemonic;

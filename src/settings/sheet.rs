@@ -25,9 +25,11 @@ struct ActuatorColumns {
 }
 
 /// The labels of the settings, as written on the sheet.
-pub const LABELS: [&str; 7] = [
+pub const LABELS: [&str; 9] = [
     "target",
     "board",
+    "hold-safe",
+    "de-energise on halt",
     "mnemonic",
     "scan time",
     "safety",
@@ -141,6 +143,20 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
                 Ok(modes) => settings.modes = Some(modes),
                 Err(_) => bad("none, all, or some of continuous, stop, estop, reset"),
             },
+            "hold-safe" if lower == "none" => {}
+            "hold-safe" => {
+                settings.hold_safe = Some(super::halt::NamedOutputs::parse(
+                    &value,
+                    grid.location(value_cell.pos),
+                ))
+            }
+            "de-energise on halt" if lower == "none" => {}
+            "de-energise on halt" => {
+                settings.off_on_halt = Some(super::halt::NamedOutputs::parse(
+                    &value,
+                    grid.location(value_cell.pos),
+                ))
+            }
             "home order" if lower == "default" => {}
             "home order" => match Modes::parse_home_order(&value) {
                 Ok(order) => settings.home_order = Some(order),

@@ -24,6 +24,10 @@ pub enum ProblemKind {
     /// healthy cycle never has: on a real machine, a possible collision.
     /// Only checked against a recorded healthy run (the fault analysis).
     Collision,
+    /// The machine has stopped (the sequence waits for ever) with an
+    /// output on that may not stay on: a heater, a motor, a spray valve
+    /// (see [`HaltPolicy`](crate::program::HaltPolicy)).
+    Energised,
 }
 
 impl ProblemKind {

@@ -11,6 +11,7 @@ mod codes;
 #[path = "../../src/cli/mod.rs"]
 mod cli;
 mod diagram;
+mod energy;
 mod excel_formula;
 mod exports;
 mod fault_phases;

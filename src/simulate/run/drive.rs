@@ -278,7 +278,23 @@ pub(in crate::simulate) fn run(
                 if !alarms.is_empty() {
                     message.push_str(&format!(" (alarm: {})", alarms.join(", ")));
                 }
-                run.problem(ProblemKind::Stall, waiting.number, message);
+                let energised: Vec<String> = program
+                    .signals
+                    .driven()
+                    .filter(|s| run.plc.bit(*s) && !program.halt.may_stay_on(*s))
+                    .map(|s| s.symbol())
+                    .collect();
+                run.problem(ProblemKind::Stall, waiting.number, message.clone());
+                if !energised.is_empty() {
+                    run.problem(
+                        ProblemKind::Energised,
+                        waiting.number,
+                        format!(
+                            "{message}; the stopped machine keeps {} on (not hold-safe)",
+                            energised.join(", ")
+                        ),
+                    );
+                }
                 stalled_at = Some(waiting.number);
                 report.steps = timings(program, &fire_times, run.time_ms, press_at, &run.spans);
                 cycles.push(report);

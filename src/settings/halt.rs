@@ -1,0 +1,124 @@
+//! The SETTINGS sheet's `hold-safe` and `de-energise on halt` rows: which
+//! outputs may stay on in a stopped machine, which the program switches
+//! off when it halts. The names are read here; what they stand for is
+//! decided against the table (`resolve`), where an unknown one is an error
+//! at its cell.
+
+use std::collections::BTreeSet;
+
+use crate::cell::Sign;
+use crate::diag::{Code, Diagnostics, Location};
+use crate::program::{HaltPolicy, Signal};
+use crate::table::StepTable;
+
+/// Output names as one SETTINGS cell lists them (`vacuum, y1+, C2`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct NamedOutputs {
+    pub names: Vec<String>,
+    pub at: Location,
+}
+
+impl NamedOutputs {
+    pub fn parse(text: &str, at: Location) -> NamedOutputs {
+        NamedOutputs {
+            names: text
+                .split([',', ';'])
+                .map(|n| n.trim().to_string())
+                .filter(|n| !n.is_empty())
+                .collect(),
+            at,
+        }
+    }
+}
+
+/// The outputs a name stands for: a machine output of the table
+/// (`vacuum`), one coil (`y1+`, `y1-`, `y1` for a single-solenoid valve) or
+/// every coil of an actuator (`C1`).
+fn outputs_named(table: &StepTable, name: &str) -> Option<Vec<Signal>> {
+    let lower = name.to_ascii_lowercase();
+    if let Some(output) = table
+        .outputs
+        .iter()
+        .find(|o| o.as_str().eq_ignore_ascii_case(name))
+    {
+        return Some(vec![Signal::MachineOutput(*output)]);
+    }
+    let has = |actuator: u32| table.actuator(actuator).is_some();
+    if let Some(actuator) = crate::cell::parse_actuator(name).filter(|a| has(*a)) {
+        return Some(vec![
+            Signal::Coil {
+                actuator,
+                sign: Sign::Plus,
+            },
+            Signal::Coil {
+                actuator,
+                sign: Sign::Minus,
+            },
+            Signal::SingleCoil { actuator },
+        ]);
+    }
+    let coil = lower.strip_prefix('y')?;
+    let (number, sign) = match coil.strip_suffix('+') {
+        Some(n) => (n, Some(Sign::Plus)),
+        None => match coil.strip_suffix('-') {
+            Some(n) => (n, Some(Sign::Minus)),
+            None => (coil, None),
+        },
+    };
+    let actuator: u32 = number.parse().ok().filter(|a| has(*a))?;
+    Some(vec![match sign {
+        Some(sign) => Signal::Coil { actuator, sign },
+        None => Signal::SingleCoil { actuator },
+    }])
+}
+
+/// The halt policy the two rows give; an unknown name, or one in both
+/// rows, is an E030 at its row's cell.
+pub fn resolve(
+    table: &StepTable,
+    hold_safe: Option<&NamedOutputs>,
+    off_on_halt: Option<&NamedOutputs>,
+    diags: &mut Diagnostics,
+) -> HaltPolicy {
+    let mut sets: [BTreeSet<Signal>; 2] = Default::default();
+    for (set, (label, row)) in sets.iter_mut().zip([
+        ("hold-safe", hold_safe),
+        ("de-energise on halt", off_on_halt),
+    ]) {
+        let Some(row) = row else { continue };
+        for name in &row.names {
+            match outputs_named(table, name) {
+                Some(signals) => set.extend(signals),
+                None => {
+                    let mut known: Vec<String> =
+                        table.outputs.iter().map(|o| o.to_string()).collect();
+                    known.extend(table.actuators.iter().map(|a| format!("C{}", a.number)));
+                    diags.error(
+                        Code::E030BadSetting,
+                        row.at.clone(),
+                        format!(
+                            "{label}: \"{name}\" is not an output of this table (expected a machine output, a coil such as y1+, or an actuator: {})",
+                            known.join(", ")
+                        ),
+                    );
+                }
+            }
+        }
+    }
+    let [hold_safe, off] = sets;
+    if let (Some(row), Some(both)) = (off_on_halt, hold_safe.intersection(&off).next()) {
+        diags.error(
+            Code::E030BadSetting,
+            row.at.clone(),
+            format!(
+                "de-energise on halt: {} is also hold-safe; say one or the other",
+                both.symbol()
+            ),
+        );
+    }
+    let off_on_halt = off;
+    HaltPolicy {
+        hold_safe,
+        off_on_halt,
+    }
+}

@@ -1,0 +1,118 @@
+//! A stopped machine is judged by what it leaves on: a stall with a heater,
+//! a motor or a spray valve still on is a hazard of energy unless SETTINGS
+//! declares that output `hold-safe`; `de-energise on halt` makes the
+//! program switch it off when a check halts the machine.
+
+use predicates::prelude::*;
+use predicates::str::contains;
+
+use crate::helpers::{steptable, write_xlsx_sheets};
+
+/// C1 carries a part under a heater that is on while C1 is out.
+const HEATED: &[&[&str]] = &[&["C1+1; Y:heater+"], &["C1-0; Y:heater-"]];
+
+fn workbook(dir: &std::path::Path, settings: &[&[&str]]) -> std::path::PathBuf {
+    let path = dir.join("heated.xlsx");
+    write_xlsx_sheets(&path, &[("TABLE", HEATED), ("SETTINGS", settings)]);
+    path
+}
+
+fn faults(input: &std::path::Path, extra: &[&str]) -> assert_cmd::assert::Assert {
+    let out = input.parent().unwrap().join("out");
+    steptable()
+        .arg("faults")
+        .arg(input)
+        .args(extra)
+        .arg("-o")
+        .arg(out)
+        .assert()
+}
+
+/// The fault table's row of x11 open, its columns' padding squeezed.
+fn x11_open(assert: &assert_cmd::assert::Assert) -> String {
+    let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
+    let line = stdout
+        .lines()
+        .find(|l| l.contains("x11 open circuit"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    line.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+#[test]
+fn a_stall_that_leaves_the_heater_on_is_a_hazard_unless_it_is_hold_safe() {
+    let dir = tempfile::tempdir().unwrap();
+    // x11 dead: C1 never reports out, step 2 never fires, the heater stays on.
+    let input = workbook(dir.path(), &[&["scan time", "10ms"]]);
+    assert_eq!(
+        x11_open(&faults(&input, &[]).success()),
+        "x11 open circuit (stuck at 0) hazard at every moment 2 step 2 never fires: waiting for x11; the stopped machine keeps heater on (not hold-safe)"
+    );
+    let input = workbook(dir.path(), &[&["hold-safe", "heater"]]);
+    assert_eq!(
+        x11_open(&faults(&input, &[]).success()),
+        "x11 open circuit (stuck at 0) safe stall at every moment 2 step 2 never fires: waiting for x11"
+    );
+    // A coil holds its cylinder: a stall with C1's coil on is safe, unless
+    // the engineer says the coil must go off.
+    let input = workbook(
+        dir.path(),
+        &[&["hold-safe", "heater"], &["de-energise on halt", "C1"]],
+    );
+    faults(&input, &[])
+        .success()
+        .stderr(contains(
+            "warning[W006]: de-energise on halt: the program never halts",
+        ))
+        .stdout(contains("the stopped machine keeps y1+ on (not hold-safe)"));
+}
+
+#[test]
+fn de_energise_on_halt_switches_the_heater_off_when_the_watchdog_halts() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = workbook(dir.path(), &[&["de-energise on halt", "heater"]]);
+    // The watchdog halts the stalled machine, and the halt switches the
+    // heater off: what was a hazard of energy is a safe stall.
+    assert_eq!(
+        x11_open(&faults(&input, &["--safety", "watchdog"]).success()),
+        "x11 open circuit (stuck at 0) safe stall at every moment 2 step 2 never fires: waiting for x11 AND NOT halt (alarm: alarm_wd)"
+    );
+    let out = dir.path().join("conv");
+    steptable()
+        .arg("convert")
+        .arg(&input)
+        .args(["--safety", "watchdog", "--formats", "st", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let st = std::fs::read_to_string(out.join("heated/heated.st")).unwrap();
+    assert!(st.contains("HALT: heater off"), "{st}");
+    // Without the declaration, the halted machine keeps it on.
+    let input = workbook(dir.path(), &[&["scan time", "10ms"]]);
+    faults(&input, &["--safety", "watchdog"])
+        .success()
+        .stdout(contains(
+            "the stopped machine keeps heater on (not hold-safe)",
+        ));
+}
+
+#[test]
+fn a_name_that_is_no_output_of_the_table_is_an_error_at_its_cell() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = workbook(
+        dir.path(),
+        &[
+            &["hold-safe", "heater, fan"],
+            &["de-energise on halt", "heater"],
+        ],
+    );
+    steptable()
+        .arg("check")
+        .arg(&input)
+        .assert()
+        .code(1)
+        .stderr(contains(
+            "SETTINGS!B1: error[E030]: hold-safe: \"fan\" is not an output of this table (expected a machine output, a coil such as y1+, or an actuator: heater, C1)",
+        ))
+        .stderr(contains("SETTINGS!B2: error[E030]: de-energise on halt: heater is also hold-safe"))
+        .stdout(contains("ok").not());
+}
