@@ -16,6 +16,7 @@ mod differential_random;
 mod differential_timing;
 mod engines;
 mod exports;
+mod halt;
 mod libreoffice;
 mod names;
 mod pinned;
@@ -133,6 +134,7 @@ fn main() {
         libreoffice::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
+        halt::CHECKS,
         sync::CHECKS,
         synth_engines::CHECKS,
     ]

@@ -132,7 +132,7 @@ pub fn prepare(input: &Path, args: &[&str], out: &Path) -> Case {
 }
 
 /// Simulates a checked table and records its I/O (the files must already be
-/// in `dir`).
+/// in `dir`); the run must pass.
 pub fn record(
     label: &str,
     dir: PathBuf,
@@ -140,6 +140,20 @@ pub fn record(
     table: &steptable::table::StepTable,
     settings: &Settings,
 ) -> Case {
+    let (case, report) = record_run(label, dir, name, table, settings);
+    assert!(report.passed, "{label}: {}", report.verdict());
+    case
+}
+
+/// Like [`record`], for a run that need not pass (one with faults): its
+/// report comes back beside it.
+pub fn record_run(
+    label: &str,
+    dir: PathBuf,
+    name: &str,
+    table: &steptable::table::StepTable,
+    settings: &Settings,
+) -> (Case, simulate::SimReport) {
     let program = convert::build_program(table, settings);
     let allocation = convert::allocate(&program, settings, &table.file).expect("valid pins");
     let festo = convert::festo_allocation(&program, &allocation);
@@ -149,8 +163,7 @@ pub fn record(
     };
     let (report, trace) =
         simulate::simulate_recording(table, &program, &settings.simulation, signals);
-    assert!(report.passed, "{label}: {}", report.verdict());
-    Case {
+    let case = Case {
         label: label.to_string(),
         dir,
         name: name.to_string(),
@@ -158,7 +171,8 @@ pub fn record(
         allocation,
         festo,
         trace,
-    }
+    };
+    (case, report)
 }
 
 /// The recorded inputs, one line of 0/1 per scan.
