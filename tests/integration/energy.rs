@@ -116,3 +116,43 @@ fn a_name_that_is_no_output_of_the_table_is_an_error_at_its_cell() {
         .stderr(contains("SETTINGS!B2: error[E030]: de-energise on halt: heater is also hold-safe"))
         .stdout(contains("ok").not());
 }
+
+/// The car wash of Quezada et al. 2016: its homing button P (RESET) shorted
+/// while the gantry travels drives the gantry whatever the other inputs,
+/// as they found; a dead end sensor stops it with the spray valve and the
+/// brush motor on, until the watchdog's halt switches them off.
+#[test]
+fn the_carwash_flags_its_stuck_homing_button_and_its_halt_switches_the_motors_off() {
+    let dir = tempfile::tempdir().unwrap();
+    let row = |extra: &[&str], fault: &str| {
+        let assert = steptable()
+            .arg("faults")
+            .arg(crate::helpers::sample("carwash.xlsx"))
+            .args(extra)
+            .arg("-o")
+            .arg(dir.path())
+            .assert()
+            .success();
+        let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
+        let line = stdout
+            .lines()
+            .find(|l| l.contains(fault))
+            .unwrap_or_else(|| panic!("{stdout}"));
+        line.split_whitespace().collect::<Vec<_>>().join(" ")
+    };
+    for extra in [&[][..], &["--safety", "all"]] {
+        assert_eq!(
+            row(extra, "RESET_PB short circuit"),
+            "RESET_PB short circuit (stuck at 1) hazard while step 2 moves (2 of 9 moments) 5 unintended motion: C1 moves - although no step moves it that way (RESET reads pressed: the program homes the machine)",
+            "{extra:?}"
+        );
+    }
+    assert_eq!(
+        row(&[], "x11 open circuit"),
+        "x11 open circuit (stuck at 0) hazard at every moment 3 step 3 never fires: waiting for x11; the stopped machine keeps spray, brush on (not hold-safe)"
+    );
+    assert!(
+        row(&["--safety", "all"], "x11 open circuit")
+            .starts_with("x11 open circuit (stuck at 0) safe stall at every moment 3"),
+    );
+}

@@ -24,9 +24,9 @@ fn fault_table(path: &std::path::Path, safety: Safety) -> faults::FaultTable {
 /// the overrun; the fault table calls it a collision risk.
 ///
 /// Mid-cycle, three more kinds remain, each one no check of the inputs can
-/// catch: a sensor that shorts while its cylinder travels towards it (or
-/// START that shorts at rest) reads exactly as the arrival (the press)
-/// would; and a halt that leaves a piston on a valve that keeps its
+/// catch: a sensor that shorts while its cylinder travels towards it (or a
+/// START, CONTINUOUS or RESET button that shorts) reads exactly as the
+/// arrival (the press) would; and a halt that leaves a piston on a valve that keeps its
 /// position running on (a collision risk: de-energising is not stopping).
 #[test]
 fn with_all_four_checks_only_middle_sensor_overruns_remain_hazards() {
@@ -49,11 +49,16 @@ fn with_all_four_checks_only_middle_sensor_overruns_remain_hazards() {
             }
             _ => false,
         };
-        // From power-up: as the checks promise.
+        // From power-up: as the checks promise, for START and the sensors
+        // (a CONTINUOUS switch stuck on is the operator's choice of
+        // continuous running, whatever the checks).
+        let is_watched = |c: &&faults::FaultCase| {
+            matches!(c.faults[0].signal, Signal::Start | Signal::Sensor { .. })
+        };
         let hazards: Vec<String> = table
             .cases
             .iter()
-            .filter(|c| c.outcomes[0] == Outcome::Hazard && !is_machine_input(c))
+            .filter(|c| c.outcomes[0] == Outcome::Hazard && is_watched(c))
             .filter(|c| !is_middle_overrun(c))
             .map(|c| format!("{}: {}", c.fault_text(), c.explanation))
             .collect();
@@ -64,7 +69,11 @@ fn with_all_four_checks_only_middle_sensor_overruns_remain_hazards() {
             let symbol = fault.signal.symbol();
             fault.stuck_at
                 && match fault.signal {
-                    Signal::Start => c.explanation.contains("without a START press"),
+                    // A button that shorts reads as the operator's press.
+                    Signal::Start | Signal::Continuous => {
+                        c.explanation.contains("without a START press")
+                    }
+                    Signal::Reset => c.explanation.contains("RESET reads pressed"),
                     Signal::Sensor { .. } => {
                         c.explanation
                             .contains(&format!("had not reached {symbol})"))
@@ -110,6 +119,7 @@ fn table_inputs(path: &std::path::Path) -> usize {
         .map(|a| a.max_position as usize + 1)
         .sum::<usize>()
         + checked.table.inputs.len()
+        + checked.settings.program.modes.buttons().count()
 }
 
 #[test]

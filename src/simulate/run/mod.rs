@@ -381,11 +381,18 @@ impl Run<'_> {
             .cloned();
         let Some(a) = commanded else {
             let step = self.current_step();
+            let homing = self.program.signals.memories.contains(&Signal::Homing)
+                && (self.plc.bit(Signal::Homing) || read_input(Signal::Reset, &self.world));
+            let when = if homing {
+                "RESET reads pressed: the program homes the machine".to_string()
+            } else {
+                format!("during step {step}")
+            };
             self.problem(
                 ProblemKind::OutsideStep,
                 step,
                 format!(
-                    "C{number} moves {} although no step moves it that way (during step {step})",
+                    "unintended motion: C{number} moves {} although no step moves it that way ({when})",
                     if direction == Sign::Plus { "+" } else { "-" }
                 ),
             );
