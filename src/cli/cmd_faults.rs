@@ -109,13 +109,13 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         let width = rows.iter().map(|r| r[0].len()).max().unwrap_or(5).max(5);
         let when = rows.iter().map(|r| r[2].len()).max().unwrap_or(7).max(7);
         report.say(&format!(
-            "  {:<width$}  {:<10}  {:<when$}  {:>4}  explanation",
-            "fault", "outcome", "appears", "step"
+            "  {:<width$}  {:<10}  {:<when$}  {:<8}  {:>4}  explanation",
+            "fault", "outcome", "appears", "detected", "step"
         ));
         for r in &rows {
             report.say(&format!(
-                "  {:<width$}  {:<10}  {:<when$}  {:>4}  {}",
-                r[0], r[1], r[2], r[3], r[4]
+                "  {:<width$}  {:<10}  {:<when$}  {:<8}  {:>4}  {}",
+                r[0], r[1], r[2], r[3], r[4], r[5]
             ));
         }
     }

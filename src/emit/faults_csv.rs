@@ -3,9 +3,10 @@
 
 use crate::faults::FaultTable;
 
-/// `NAME.faults.csv`: `fault,signals,stuck_at,outcome,appears,step,explanation`,
+/// `NAME.faults.csv`: `fault,signals,stuck_at,outcome,appears,detected,step,explanation`,
 /// one row per case (pairs have both signals joined with `+`); `appears`
-/// is the first moment of the cycle at which the fault gives its outcome.
+/// is the first moment of the cycle at which the fault gives its outcome,
+/// `detected` is `alarm` when an alarm output came on in that run.
 pub fn render(table: &FaultTable) -> Result<Vec<u8>, csv::Error> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record([
@@ -14,6 +15,7 @@ pub fn render(table: &FaultTable) -> Result<Vec<u8>, csv::Error> {
         "stuck_at",
         "outcome",
         "appears",
+        "detected",
         "step",
         "explanation",
     ])?;
@@ -30,6 +32,7 @@ pub fn render(table: &FaultTable) -> Result<Vec<u8>, csv::Error> {
             stuck.join("+"),
             c.outcome.label().to_string(),
             c.appears(table.moments.len()),
+            c.detected_text().to_string(),
             c.step.map(|s| s.to_string()).unwrap_or_default(),
             c.explanation.clone(),
         ])?;

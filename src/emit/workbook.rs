@@ -231,9 +231,16 @@ fn faults_sheet(
     sheet.write_string_with_format(0, 0, "SENSOR FAULTS", title)?;
     sheet.write_string(1, 0, faults.summary())?;
     let header = 3;
-    for (col, text) in ["FAULT", "OUTCOME", "APPEARS", "STEP", "EXPLANATION"]
-        .iter()
-        .enumerate()
+    for (col, text) in [
+        "FAULT",
+        "OUTCOME",
+        "APPEARS",
+        "DETECTED",
+        "STEP",
+        "EXPLANATION",
+    ]
+    .iter()
+    .enumerate()
     {
         sheet.write_string_with_format(header, col as u16, *text, bold)?;
     }
@@ -247,8 +254,9 @@ fn faults_sheet(
     sheet.set_column_width(0, 38)?;
     sheet.set_column_width(1, 11)?;
     sheet.set_column_width(2, 34)?;
-    sheet.set_column_width(3, 6)?;
-    sheet.set_column_width(4, 90)?;
+    sheet.set_column_width(3, 9)?;
+    sheet.set_column_width(4, 6)?;
+    sheet.set_column_width(5, 90)?;
     sheet.set_freeze_panes(header + 1, 0)?;
     Ok(())
 }

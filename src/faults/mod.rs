@@ -46,6 +46,8 @@ pub struct FaultCase {
     /// The step concerned (where it stalls or where the hazard happens).
     pub step: Option<usize>,
     pub explanation: String,
+    /// An alarm output came on in that run: the machine said so.
+    pub detected: bool,
     /// The outcome at each of the table's moments, in their order.
     pub outcomes: Vec<Outcome>,
 }
@@ -240,6 +242,7 @@ pub fn analyse_observed(
         outcome: Outcome::NoEffect,
         step: None,
         explanation: "the input never reads other than without the fault".to_string(),
+        detected: false,
     };
     let cases = sets
         .into_iter()
@@ -261,6 +264,7 @@ pub fn analyse_observed(
                 phase,
                 step: verdict.step,
                 explanation: verdict.explanation.clone(),
+                detected: verdict.detected,
                 outcomes,
             }
         })
@@ -278,6 +282,7 @@ struct Verdict {
     outcome: Outcome,
     step: Option<usize>,
     explanation: String,
+    detected: bool,
 }
 
 fn classify(
@@ -299,6 +304,7 @@ fn classify(
         outcome,
         step,
         explanation,
+        detected: report.alarmed,
     }
 }
 
@@ -355,9 +361,9 @@ pub fn judge(report: &SimReport) -> (Outcome, Option<usize>, String) {
     }
 }
 
-/// The rows of the fault table: fault, outcome, when it appears, step,
-/// explanation.
-pub fn rows(table: &FaultTable) -> Vec<[String; 5]> {
+/// The rows of the fault table: fault, outcome, when it appears, whether
+/// an alarm came on, step, explanation.
+pub fn rows(table: &FaultTable) -> Vec<[String; 6]> {
     table
         .cases
         .iter()
@@ -366,6 +372,7 @@ pub fn rows(table: &FaultTable) -> Vec<[String; 5]> {
                 c.fault_text(),
                 c.outcome.label().to_string(),
                 c.appears(table.moments.len()),
+                c.detected_text().to_string(),
                 c.step.map(|s| s.to_string()).unwrap_or_default(),
                 c.explanation.clone(),
             ]
@@ -374,6 +381,11 @@ pub fn rows(table: &FaultTable) -> Vec<[String; 5]> {
 }
 
 impl FaultCase {
+    /// `alarm` when an alarm output came on, else empty.
+    pub fn detected_text(&self) -> &'static str {
+        if self.detected { "alarm" } else { "" }
+    }
+
     /// When the fault gives its outcome: `while step 3 moves (4 of 18
     /// moments)`, or `at every moment` when all give it.
     pub fn appears(&self, moments: usize) -> String {

@@ -125,6 +125,9 @@ pub struct SimReport {
     pub spans: Vec<Span>,
     /// Every combination of actuator places reached, when recorded.
     pub places: super::Places,
+    /// An alarm output of a safety check came on during the run: the
+    /// machine told its operator something is wrong.
+    pub alarmed: bool,
 }
 
 impl SimReport {

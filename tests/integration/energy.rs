@@ -74,7 +74,7 @@ fn de_energise_on_halt_switches_the_heater_off_when_the_watchdog_halts() {
     // heater off: what was a hazard of energy is a safe stall.
     assert_eq!(
         x11_open(&faults(&input, &["--safety", "watchdog"]).success()),
-        "x11 open circuit (stuck at 0) safe stall at every moment 2 step 2 never fires: waiting for x11 AND NOT halt (alarm: alarm_wd)"
+        "x11 open circuit (stuck at 0) safe stall at every moment alarm 2 step 2 never fires: waiting for x11 AND NOT halt (alarm: alarm_wd)"
     );
     let out = dir.path().join("conv");
     steptable()
@@ -153,6 +153,6 @@ fn the_carwash_flags_its_stuck_homing_button_and_its_halt_switches_the_motors_of
     );
     assert!(
         row(&["--safety", "all"], "x11 open circuit")
-            .starts_with("x11 open circuit (stuck at 0) safe stall at every moment 3"),
+            .starts_with("x11 open circuit (stuck at 0) safe stall at every moment alarm 3"),
     );
 }

@@ -123,6 +123,8 @@ impl<'a> Run<'a> {
             quiet: false,
             moving: (0..table.actuators.len()).collect(),
             hazard_seen: false,
+            alarm_bits: Vec::new(),
+            alarmed: false,
             places: Vec::new(),
             visited: Places::new(),
         };
@@ -158,6 +160,11 @@ impl<'a> Run<'a> {
                     at(Signal::SingleCoil { actuator: a.number }),
                 )
             })
+            .collect();
+        run.alarm_bits = program
+            .signals
+            .alarms()
+            .filter_map(|a| run.plc.index_of(a))
             .collect();
         run
     }
@@ -389,6 +396,7 @@ pub(in crate::simulate) fn run(
         cycles.len() == settings.cycles.max(1) && cycles.iter().all(|c| c.cycle_ms.is_some());
     run.problems.sort_by_key(|p| p.time_ms);
     let report = SimReport {
+        alarmed: run.alarmed,
         passed: run.problems.is_empty() && all_cycles_done,
         cycles,
         problems: run.problems,

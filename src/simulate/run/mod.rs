@@ -75,6 +75,9 @@ pub(in crate::simulate) struct Run<'a> {
     pub(in crate::simulate) moving: Vec<usize>,
     /// A hazard is among the problems.
     pub(in crate::simulate) hazard_seen: bool,
+    /// The PLC indices of the alarm outputs, and whether one came on.
+    pub(in crate::simulate) alarm_bits: Vec<usize>,
+    pub(in crate::simulate) alarmed: bool,
     /// Every piston's [`Piston::place`] now, and the combinations reached.
     pub(in crate::simulate) places: Vec<u32>,
     pub(in crate::simulate) visited: Places,
@@ -238,6 +241,7 @@ impl Run<'_> {
             });
         }
         quiet &= !result.changed;
+        self.alarmed |= result.changed && self.alarm_bits.iter().any(|&i| self.plc.bit_at(i));
         if let Some(fired) = result.fired {
             self.on_fire(fired);
         }
