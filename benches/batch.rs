@@ -197,7 +197,7 @@ fn main() {
     let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
     let sim = t.elapsed();
     let t = Instant::now();
-    let faults = steptable::faults::analyse(&table, &program, &settings.simulation, false);
+    let faults = steptable::faults::analyse(&table, &program, &settings.simulation, 1);
     let fault_time = t.elapsed();
     println!(
         "  of generate: simulation {:.2} ms ({}), single-fault table {:.2} ms ({} cases)",

@@ -48,7 +48,7 @@ fn main() {
         );
     }
     let (t, table) = time(21, || {
-        faults::analyse(&checked.table, &program, &settings.simulation, false)
+        faults::analyse(&checked.table, &program, &settings.simulation, 1)
     });
     println!(
         "faults at every phase, paper example: median {:.2} ms over 21 runs ({}; {} cases)",
@@ -57,7 +57,7 @@ fn main() {
         table.cases.len()
     );
     let (t, table) = time(5, || {
-        faults::analyse(&checked.table, &program, &settings.simulation, true)
+        faults::analyse(&checked.table, &program, &settings.simulation, 2)
     });
     println!(
         "faults --pairs at every phase, paper example: median {:.1} ms over 5 runs ({}; {} cases)",

@@ -8,9 +8,12 @@ pub(crate) struct FaultsArgs {
     /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
     #[arg(required = true)]
     pub(crate) inputs: Vec<PathBuf>,
-    /// Also every pair of faults.
-    #[arg(long)]
+    /// Also every pair of faults (the same as --faults 2).
+    #[arg(long, conflicts_with = "faults")]
     pub(crate) pairs: bool,
+    /// Up to K faults at once, on different inputs (1 to 4; default 1).
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u8).range(1..=4))]
+    pub(crate) faults: Option<u8>,
     /// Output folder for NAME/NAME.faults.csv.
     #[arg(short, long, value_name = "DIR", default_value = "steptable-out")]
     pub(crate) output: PathBuf,
@@ -55,7 +58,12 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
                 continue;
             }
         };
-        let cases = steptable::faults::case_count(&program, args.pairs);
+        let at_once = if args.pairs {
+            2
+        } else {
+            args.faults.unwrap_or(1) as usize
+        };
+        let cases = steptable::faults::case_count(&program, at_once);
         if cases > steptable::faults::MAX_CASES {
             report.diagnostics(&[Diagnostic {
                 severity: Severity::Error,
@@ -66,9 +74,11 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
                     cell: None,
                 },
                 message: format!(
-                    "--pairs would simulate {cases} fault cases ({} inputs, each stuck at 1 and at 0, in pairs); steptable runs at most {}: analyse single faults (without --pairs), or split the table",
+                    "{} would simulate {cases} fault cases ({} inputs, each stuck at 1 and at 0, up to {at_once} at once); steptable runs at most {}: analyse fewer faults at once (single faults without {}), or split the table",
+                    if args.pairs { "--pairs".to_string() } else { format!("--faults {at_once}") },
                     program.signals.inputs.len(),
-                    steptable::faults::MAX_CASES
+                    steptable::faults::MAX_CASES,
+                    if args.pairs { "--pairs" } else { "--faults" },
                 ),
             }]);
             code = code.max(EXIT_BAD_INPUT);
@@ -79,7 +89,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
             &table,
             &program,
             &settings.simulation,
-            args.pairs,
+            at_once,
             &|done, total| progress.update(done, total),
         );
         progress.finish();

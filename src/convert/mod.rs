@@ -362,7 +362,7 @@ pub fn generate_observed(
     let fault_table = [OutputKind::Faults, OutputKind::Workbook]
         .iter()
         .any(|k| settings.formats.contains(k))
-        .then(|| faults::analyse_observed(&table, &program, &settings.simulation, false, progress));
+        .then(|| faults::analyse_observed(&table, &program, &settings.simulation, 1, progress));
     let festo = festo_allocation(&program, &allocation);
     let input = EmitInput {
         name,

@@ -1,5 +1,5 @@
 //! Sensor faults (Quezada et al. 2016; DESIGN §6): every input stuck at 1
-//! (short circuit) or at 0 (open circuit), alone or in pairs, appearing at
+//! (short circuit) or at 0 (open circuit), alone or up to four at once, appearing at
 //! power-up and at every phase of the cycle, and classified as no effect,
 //! safe stall or hazard.
 
@@ -76,6 +76,9 @@ pub struct FaultTable {
     /// steps each runs through would have been more than [`MAX_PHASE_WORK`]:
     /// faults then appear at power-up only.
     pub phases_skipped: Option<usize>,
+    /// Sets of several faults left out because one of their faults never
+    /// reads other than the healthy input: each is a smaller set.
+    pub equivalent: usize,
 }
 
 impl FaultTable {
@@ -93,8 +96,14 @@ impl FaultTable {
             ),
             None => format!("at {} moments of the cycle", self.moments.len()),
         };
+        let merged = match self.equivalent {
+            0 => String::new(),
+            n => format!(
+                "; {n} set(s) left out, each holding a fault that never reads other than without it"
+            ),
+        };
         format!(
-            "{} fault case(s) {reach} ({} runs): {} no effect, {} safe stall, {} hazard",
+            "{} fault case(s) {reach} ({} runs{merged}): {} no effect, {} safe stall, {} hazard",
             self.cases.len(),
             self.runs,
             self.count(Outcome::NoEffect),
@@ -125,34 +134,46 @@ pub fn single_faults(program: &StepProgram) -> Vec<Fault> {
 /// million pairs, hours of simulation), so more is refused up front.
 pub const MAX_CASES: usize = 100_000;
 
-/// Every fault set to simulate: each single fault, and with `pairs` every
-/// two faults on different inputs.
-pub fn fault_sets(program: &StepProgram, pairs: bool) -> Vec<Vec<Fault>> {
+/// The most faults one case may hold (`faults --faults K`).
+pub const MAX_AT_ONCE: usize = 4;
+
+/// Every fault set to simulate: each single fault and, up to `at_once`
+/// faults in a set, every combination of faults on different inputs
+/// (singles first, then pairs, …, each in address order).
+pub fn fault_sets(program: &StepProgram, at_once: usize) -> Vec<Vec<Fault>> {
     let singles = single_faults(program);
     let mut sets: Vec<Vec<Fault>> = singles.iter().map(|f| vec![*f]).collect();
-    if pairs {
-        for (i, a) in singles.iter().enumerate() {
-            for b in &singles[i + 1..] {
-                if a.signal != b.signal {
-                    sets.push(vec![*a, *b]);
+    let mut last: Vec<(Vec<Fault>, usize)> =
+        (0..singles.len()).map(|i| (vec![singles[i]], i)).collect();
+    for _ in 1..at_once.clamp(1, MAX_AT_ONCE) {
+        let mut next = Vec::new();
+        for (set, after) in &last {
+            for (j, f) in singles.iter().enumerate().skip(after + 1) {
+                if set.iter().all(|g| g.signal != f.signal) {
+                    let mut bigger = set.clone();
+                    bigger.push(*f);
+                    next.push((bigger, j));
                 }
             }
         }
+        sets.extend(next.iter().map(|(set, _)| set.clone()));
+        last = next;
     }
     sets
 }
 
-/// How many cases [`fault_sets`] makes, without making them.
-pub fn case_count(program: &StepProgram, pairs: bool) -> usize {
+/// How many cases [`fault_sets`] makes, without making them: for each size
+/// j up to `at_once`, the ways to choose j of the n inputs times the two
+/// stuck values of each.
+pub fn case_count(program: &StepProgram, at_once: usize) -> usize {
     let n = program.signals.inputs.len();
-    let singles = 2 * n;
-    // Pairs on two different inputs: both stuck values of each.
-    singles
-        + if pairs {
-            4 * (n * n.saturating_sub(1) / 2)
-        } else {
-            0
-        }
+    let mut total = 0usize;
+    let mut choose = 1usize; // C(n, j), built up j by j
+    for j in 1..=at_once.clamp(1, MAX_AT_ONCE) {
+        choose = choose.saturating_mul(n.saturating_sub(j - 1)) / j;
+        total = total.saturating_add(choose.saturating_mul(1 << j));
+    }
+    total
 }
 
 /// Simulates each fault set and classifies it.
@@ -160,9 +181,9 @@ pub fn analyse(
     table: &StepTable,
     program: &StepProgram,
     settings: &SimSettings,
-    pairs: bool,
+    at_once: usize,
 ) -> FaultTable {
-    analyse_observed(table, program, settings, pairs, &|_, _| {})
+    analyse_observed(table, program, settings, at_once, &|_, _| {})
 }
 
 /// Like [`analyse`], on every core, calling `progress(done, total)` after
@@ -171,11 +192,11 @@ pub fn analyse_observed(
     table: &StepTable,
     program: &StepProgram,
     settings: &SimSettings,
-    pairs: bool,
+    at_once: usize,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> FaultTable {
     use rayon::prelude::*;
-    let sets = fault_sets(program, pairs);
+    let mut sets = fault_sets(program, at_once);
     let simulator = Simulator::new(table, program);
     // What the healthy cycle does is the yardstick: the combinations of
     // positions it reaches are the ones a faulty run may reach, its
@@ -191,6 +212,7 @@ pub fn analyse_observed(
     let mut moments = moments(&healthy, table, settings.scan_ms as u64);
     let cases_at_every_moment = sets.len() * moments.len();
     let too_long = cases_at_every_moment * table.steps.len().max(1) > MAX_PHASE_WORK;
+    let mut equivalent = 0;
     let onsets: Vec<Vec<Option<u64>>> = if too_long {
         moments.truncate(1);
         sets.iter().map(|_| vec![Some(0)]).collect()
@@ -201,6 +223,13 @@ pub fn analyse_observed(
         };
         let (_, trace) = simulator.run_recording(&healthy_settings, signals);
         let inputs = phases::HealthyInputs::new(&trace);
+        // A fault that never reads other than the healthy input (STOP
+        // stuck at 1: it is normally closed) adds nothing to a set: the set
+        // is the smaller one, already in the table.
+        let inert = |f: &Fault| inputs.divergence(std::slice::from_ref(f), 0).is_none();
+        let before = sets.len();
+        sets.retain(|set| set.len() == 1 || !set.iter().any(inert));
+        equivalent = before - sets.len();
         // Each set at each moment, as the moment its run leaves the
         // healthy one.
         sets.iter()
@@ -274,6 +303,7 @@ pub fn analyse_observed(
         moments,
         runs: total,
         phases_skipped,
+        equivalent,
     }
 }
 
@@ -414,7 +444,7 @@ mod tests {
             &crate::valve::Valves::default(),
             &crate::stroke::Strokes::default(),
         );
-        let result = analyse(&table, &program, &SimSettings::default(), false);
+        let result = analyse(&table, &program, &SimSettings::default(), 1);
         assert_eq!(result.cases.len(), 24);
         let case = |symbol: &str, stuck: bool| {
             result
@@ -450,13 +480,22 @@ mod tests {
         );
         assert_eq!(x21.outcomes.len(), result.moments.len());
         // The count the budget is checked against is the count run.
-        for pairs in [false, true] {
+        for at_once in 1..=MAX_AT_ONCE {
             assert_eq!(
-                case_count(&program, pairs),
-                fault_sets(&program, pairs).len(),
-                "{pairs}"
+                case_count(&program, at_once),
+                fault_sets(&program, at_once).len(),
+                "{at_once}"
             );
         }
-        assert_eq!(case_count(&program, true), 24 + 4 * 66);
+        assert_eq!(case_count(&program, 2), 24 + 4 * 66);
+        // 12 inputs: 220 ways to choose three, each with 8 stuck values.
+        assert_eq!(case_count(&program, 3), 24 + 4 * 66 + 8 * 220);
+        let triples = fault_sets(&program, 3);
+        let distinct: std::collections::BTreeSet<&Vec<Fault>> = triples.iter().collect();
+        assert_eq!(distinct.len(), triples.len(), "no set twice");
+        assert!(triples.iter().all(|set| {
+            set.windows(2)
+                .all(|w| w[0].signal != w[1].signal && w[0] < w[1])
+        }));
     }
 }

@@ -36,7 +36,7 @@ fn every_verdict_is_what_the_fault_alone_gives_when_it_appears_then() {
             Outcome::NoEffect,
             "{what}: the healthy run"
         );
-        let analysed = faults::analyse(&table, &program, &sim, false);
+        let analysed = faults::analyse(&table, &program, &sim, 1);
         assert!(analysed.phases_skipped.is_none(), "{what}");
         let known = std::sync::Arc::new(healthy.places.clone());
         let mut rng = SplitMix64::new(seed ^ 0xfa17);
@@ -105,7 +105,7 @@ fn a_long_cycle_gets_its_faults_from_power_up_only_and_says_so() {
     };
     let table = steptable::table::from_rows("long.csv", &random_rows(7, shape)).unwrap();
     let program = steptable::convert::build_program(&table, &steptable::settings::Settings::new());
-    let analysed = faults::analyse(&table, &program, &SimSettings::default(), false);
+    let analysed = faults::analyse(&table, &program, &SimSettings::default(), 1);
     // Power-up, before each of steps 2…200, while each moves, at rest.
     let moments_of_the_cycle = 1 + 199 + 200 + 1;
     assert_eq!(analysed.moments.len(), 1);

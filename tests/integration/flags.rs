@@ -441,6 +441,14 @@ fn all_cases() -> Vec<Case> {
         ),
         case(
             "faults",
+            "--faults",
+            Press,
+            &["--faults", "3"],
+            &[],
+            Has(Place::Stdout, "576 fault case(s)"),
+        ),
+        case(
+            "faults",
             "--output",
             Paper,
             &["-o", "o2"],

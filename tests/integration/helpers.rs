@@ -235,6 +235,6 @@ impl Build {
 
     pub fn faults(&self) -> steptable::faults::FaultTable {
         let program = self.program();
-        steptable::faults::analyse(&self.table, &program, &self.settings.simulation, false)
+        steptable::faults::analyse(&self.table, &program, &self.settings.simulation, 1)
     }
 }

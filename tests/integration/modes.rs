@@ -354,7 +354,7 @@ fn broken_stop_and_emergency_stop_wires_are_safe_stalls() {
     use steptable::faults::{self, Outcome, Phase};
     let table = paper();
     let program = program_with(&table, "all");
-    let fault_table = faults::analyse(&table, &program, &SimSettings::default(), false);
+    let fault_table = faults::analyse(&table, &program, &SimSettings::default(), 1);
     let case = |signal: Signal, stuck_at: bool| {
         fault_table
             .cases

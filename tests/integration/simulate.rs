@@ -86,6 +86,51 @@ fn faults_prints_the_table_and_writes_the_csv() {
         .stdout(contains("98 fault case(s)").and(contains(" + ")));
 }
 
+/// Up to K faults at once: a set holding a fault that never reads other
+/// than the healthy input (a normally closed STOP stuck at 1) is the
+/// smaller set, already in the table, and is left out; `--pairs` is
+/// `--faults 2`.
+#[test]
+fn several_faults_at_once_leave_out_the_sets_a_smaller_one_stands_for() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        let assert = steptable()
+            .arg("faults")
+            .arg(sample("carwash.xlsx"))
+            .args(args)
+            .arg("-o")
+            .arg(dir.path())
+            .assert()
+            .success();
+        String::from_utf8_lossy(&assert.get_output().stdout).to_string()
+    };
+    let pairs = run(&["--faults", "2"]);
+    // 8 inputs: 16 singles and 4·28 = 112 pairs, of which 50 hold CONT
+    // stuck at 0, STOP or ESTOP stuck at 1 or RESET stuck at 0.
+    assert!(
+        pairs.starts_with(&format!(
+            "{}: 78 fault case(s) at 9 moments of the cycle (",
+            sample("carwash.xlsx").display()
+        )),
+        "{pairs}"
+    );
+    assert!(
+        pairs.contains(
+            "50 set(s) left out, each holding a fault that never reads other than without it"
+        ),
+        "{pairs}"
+    );
+    assert!(
+        !pairs.contains("STOP short circuit (stuck at 1) +"),
+        "{pairs}"
+    );
+    assert!(
+        pairs.contains("x11 open circuit (stuck at 0) + RESET_PB short circuit (stuck at 1)"),
+        "{pairs}"
+    );
+    assert_eq!(run(&["--pairs"]), pairs);
+}
+
 /// `--pairs` grows with the square of the inputs: past 100,000 cases the
 /// request is refused before any simulation runs, with the count and the way
 /// out (E033, exit 1, nothing written), in either message format.
@@ -109,7 +154,19 @@ fn fault_pairs_beyond_the_budget_are_refused_with_the_count() {
         .stderr(contains(
             "error[E033]: --pairs would simulate 116162 fault cases (241 inputs",
         ))
-        .stderr(contains("analyse single faults (without --pairs)"));
+        .stderr(contains(
+            "analyse fewer faults at once (single faults without --pairs)",
+        ));
+    assert!(!out.exists());
+    // Three at once on 12 inputs is within it; on 241, far beyond.
+    steptable()
+        .arg("faults")
+        .arg(&csv)
+        .args(["--faults", "3", "-o"])
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(contains("error[E033]: --faults 3 would simulate 18547842 fault cases (241 inputs, each stuck at 1 and at 0, up to 3 at once)"));
     assert!(!out.exists());
     let json = steptable()
         .arg("faults")

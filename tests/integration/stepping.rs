@@ -98,7 +98,7 @@ fn both_simulators_agree_on_every_sample_under_every_fault() {
             // Pairs on the paper's example only: the samples' singles cover
             // every kind of signal, the pairs add faults that meet.
             let pairs = path.ends_with("paper_example.xlsx") && safety == Safety::default();
-            let mut sets = fault_sets(&program, pairs);
+            let mut sets = fault_sets(&program, if pairs { 2 } else { 1 });
             sets.insert(0, Vec::new());
             for faults in sets {
                 let run = SimSettings {
@@ -216,8 +216,8 @@ fn both_simulators_agree_on_random_tables_and_faults() {
         assert_same_run(&healthy, &table, &program, &sim);
         assert_same_verdict(&healthy, &table, &program, &sim);
         // One random fault and one random pair.
-        let singles = fault_sets(&program, false);
-        let pairs = fault_sets(&program, true);
+        let singles = fault_sets(&program, 1);
+        let pairs = fault_sets(&program, 2);
         for sets in [&singles, &pairs] {
             let faults = sets[rng.range(0, sets.len() as u32 - 1) as usize].clone();
             // From power-up, or appearing at any moment of the first cycles
