@@ -259,3 +259,76 @@ impl RoundToLevel for f64 {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulate::{SimSettings, simulate};
+
+    /// The grid's labels along the top: `(x, text)` in drawing order.
+    fn top_labels(svg: &str) -> Vec<(f64, String)> {
+        let y = format!(r#"y="{:.1}" text-anchor="middle">"#, TOP - 28.0);
+        svg.lines()
+            .filter(|l| l.starts_with("<text x=\"") && l.contains(&y))
+            .map(|l| {
+                let x = l["<text x=\"".len()..].split('"').next().unwrap();
+                let text = l.split(&y).nth(1).unwrap().trim_end_matches("</text>");
+                (x.parse().unwrap(), text.to_string())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_time_axis_ticks_one_grid_column_apart_from_the_left_edge() {
+        let table = crate::program::tests::paper_table();
+        let program = crate::program::build(
+            &table,
+            &Default::default(),
+            &Default::default(),
+            &Default::default(),
+        );
+        let report = simulate(
+            &table,
+            &program,
+            &SimSettings {
+                record_trace: true,
+                ..SimSettings::default()
+            },
+        );
+        let svg = render_svg("paper", &report, DiagramKind::Time);
+        let labels = top_labels(&svg);
+        let end_s = report.trace.last().unwrap().0.div_ceil(1000);
+        let tick = time_tick(end_s);
+        assert!(labels.len() >= 3, "{labels:?}");
+        for (k, (x, text)) in labels.iter().enumerate() {
+            assert_eq!(*text, format!("{} s", k as u64 * tick), "{labels:?}");
+            assert!((x - (LEFT + 60.0 * k as f64)).abs() < 0.05, "{labels:?}");
+        }
+        // Step 2 fires where its time falls on that axis.
+        let cycle = &report.cycles[0];
+        let fired = (cycle.press_ms + cycle.steps[1].start_ms) as f64 / 1000.0;
+        let x = LEFT + fired * 60.0 / tick as f64;
+        assert!(
+            svg.contains(&format!(r#"<line x1="{x:.1}" y1="{:.1}""#, TOP - 6.0)),
+            "{x}"
+        );
+    }
+
+    #[test]
+    fn the_step_axis_puts_each_step_a_column_apart() {
+        let table = crate::program::tests::paper_table();
+        let program = crate::program::build(
+            &table,
+            &Default::default(),
+            &Default::default(),
+            &Default::default(),
+        );
+        let report = simulate(&table, &program, &SimSettings::default());
+        let labels = top_labels(&render_svg("paper", &report, DiagramKind::Step));
+        let texts: Vec<&str> = labels.iter().map(|(_, t)| t.as_str()).collect();
+        assert_eq!(texts, ["1", "2", "3", "4", "5", "6", "7", "8", "9=1"]);
+        for (k, (x, _)) in labels.iter().enumerate() {
+            assert!((x - (LEFT + 72.0 * k as f64)).abs() < 0.05, "{labels:?}");
+        }
+    }
+}
