@@ -114,6 +114,7 @@ fn finish_check(
         table::check_machine(table, &machine, &input.table, &mut diags);
         effective.program.halt = crate::settings::halt::resolve(
             table,
+            &effective.simulation.valves,
             effective.hold_safe.as_ref(),
             effective.off_on_halt.as_ref(),
             &mut diags,

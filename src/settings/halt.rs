@@ -10,6 +10,7 @@ use crate::cell::Sign;
 use crate::diag::{Code, Diagnostics, Location};
 use crate::program::{HaltPolicy, Signal};
 use crate::table::StepTable;
+use crate::valve::{ValveType, Valves};
 
 /// Output names as one SETTINGS cell lists them (`vacuum, y1+, C2`).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -33,8 +34,9 @@ impl NamedOutputs {
 
 /// The outputs a name stands for: a machine output of the table
 /// (`vacuum`), one coil (`y1+`, `y1-`, `y1` for a single-solenoid valve) or
-/// every coil of an actuator (`C1`).
-fn outputs_named(table: &StepTable, name: &str) -> Option<Vec<Signal>> {
+/// every coil of an actuator (`C1`). A coil its valve does not have (`y1`
+/// of a valve with two coils) is no output: the error names the ones it has.
+fn outputs_named(table: &StepTable, valves: &Valves, name: &str) -> Option<Vec<Signal>> {
     let lower = name.to_ascii_lowercase();
     if let Some(output) = table
         .outputs
@@ -66,16 +68,20 @@ fn outputs_named(table: &StepTable, name: &str) -> Option<Vec<Signal>> {
         },
     };
     let actuator: u32 = number.parse().ok().filter(|a| has(*a))?;
-    Some(vec![match sign {
-        Some(sign) => Signal::Coil { actuator, sign },
-        None => Signal::SingleCoil { actuator },
-    }])
+    let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
+    let single = valves.of(actuator, pmax) == ValveType::Mono52;
+    match (sign, single) {
+        (Some(sign), false) => Some(vec![Signal::Coil { actuator, sign }]),
+        (None, true) => Some(vec![Signal::SingleCoil { actuator }]),
+        _ => None,
+    }
 }
 
 /// The halt policy the two rows give; an unknown name, or one in both
 /// rows, is an E030 at its row's cell.
 pub fn resolve(
     table: &StepTable,
+    valves: &Valves,
     hold_safe: Option<&NamedOutputs>,
     off_on_halt: Option<&NamedOutputs>,
     diags: &mut Diagnostics,
@@ -87,12 +93,19 @@ pub fn resolve(
     ]) {
         let Some(row) = row else { continue };
         for name in &row.names {
-            match outputs_named(table, name) {
+            match outputs_named(table, valves, name) {
                 Some(signals) => set.extend(signals),
                 None => {
                     let mut known: Vec<String> =
                         table.outputs.iter().map(|o| o.to_string()).collect();
-                    known.extend(table.actuators.iter().map(|a| format!("C{}", a.number)));
+                    for a in &table.actuators {
+                        known.push(format!("C{}", a.number));
+                        if valves.of(a.number, a.max_position) == ValveType::Mono52 {
+                            known.push(format!("y{}", a.number));
+                        } else {
+                            known.push(format!("y{0}+, y{0}-", a.number));
+                        }
+                    }
                     diags.error(
                         Code::E030BadSetting,
                         row.at.clone(),

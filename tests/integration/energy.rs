@@ -101,7 +101,7 @@ fn a_name_that_is_no_output_of_the_table_is_an_error_at_its_cell() {
     let input = workbook(
         dir.path(),
         &[
-            &["hold-safe", "heater, fan"],
+            &["hold-safe", "heater, fan, y1"],
             &["de-energise on halt", "heater"],
         ],
     );
@@ -111,9 +111,11 @@ fn a_name_that_is_no_output_of_the_table_is_an_error_at_its_cell() {
         .assert()
         .code(1)
         .stderr(contains(
-            "SETTINGS!B1: error[E030]: hold-safe: \"fan\" is not an output of this table (expected a machine output, a coil such as y1+, or an actuator: heater, C1)",
+            "SETTINGS!B1: error[E030]: hold-safe: \"fan\" is not an output of this table (expected a machine output, a coil such as y1+, or an actuator: heater, C1, y1+, y1-)",
         ))
         .stderr(contains("SETTINGS!B2: error[E030]: de-energise on halt: heater is also hold-safe"))
+        // C1's valve has two coils: y1 names none of them.
+        .stderr(contains("hold-safe: \"y1\" is not an output of this table"))
         .stdout(contains("ok").not());
 }
 
