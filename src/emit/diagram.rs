@@ -315,6 +315,37 @@ mod tests {
     }
 
     #[test]
+    fn a_dwell_is_shaded_where_it_runs_on_the_time_axis() {
+        let table = crate::table::from_rows("dwell.csv", &[["C1+1; T=1s"], ["C1-0"]]).unwrap();
+        let program = crate::program::build(
+            &table,
+            &Default::default(),
+            &Default::default(),
+            &Default::default(),
+        );
+        let report = simulate(
+            &table,
+            &program,
+            &SimSettings {
+                record_trace: true,
+                ..SimSettings::default()
+            },
+        );
+        let span = &report.spans[0];
+        assert_eq!(span.to_ms - span.from_ms, 1000, "{span:?}");
+        let tick = time_tick(report.trace.last().unwrap().0.div_ceil(1000)) as f64;
+        let x = |ms: u64| LEFT + ms as f64 / 1000.0 * 60.0 / tick;
+        let svg = render_svg("dwell", &report, DiagramKind::Time);
+        let band = format!(
+            r#"<rect x="{:.1}" y="{:.1}" width="{:.1}""#,
+            x(span.from_ms),
+            TOP - 10.0,
+            x(span.to_ms) - x(span.from_ms)
+        );
+        assert!(svg.contains(&band), "{band}\n{svg}");
+    }
+
+    #[test]
     fn the_step_axis_puts_each_step_a_column_apart() {
         let table = crate::program::tests::paper_table();
         let program = crate::program::build(
