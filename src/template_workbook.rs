@@ -225,7 +225,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     let boards: Vec<&str> = std::iter::once("none")
         .chain(crate::address::BOARDS.iter().map(|b| b.name))
         .collect();
-    let rows: [(&str, &str, &str, Option<&[&str]>); 9] = [
+    let rows: [(&str, &str, &str, Option<&[&str]>); 10] = [
         (
             "target",
             "festo",
@@ -282,6 +282,12 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             None,
         ),
         (
+            "start permissive",
+            "none",
+            "Machine inputs that must be on for a cycle to start (air pressure, a closed guard), e.g. air_ok, guard_closed. Each gets an input address; no step waits for it.",
+            None,
+        ),
+        (
             "home order",
             "default",
             "Homing stages for RESET, first to last, e.g. C3&C4, C2, C1. default: the reverse order of the last moves.",
@@ -305,7 +311,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             sheet.add_data_validation(row, 1, row, 1, &validation)?;
         }
     }
-    let header = 15;
+    let header = 16;
     sheet.write_string(
         header - 1,
         0,

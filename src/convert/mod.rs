@@ -119,6 +119,12 @@ fn finish_check(
             effective.off_on_halt.as_ref(),
             &mut diags,
         );
+        effective.program.permissive = crate::settings::halt::resolve_permissive(
+            table,
+            &buttons,
+            effective.start_permissive.as_ref(),
+            &mut diags,
+        );
         if let Some(row) = &effective.off_on_halt
             && !effective.program.safety.halts(&effective.program.modes)
         {

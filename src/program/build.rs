@@ -126,7 +126,18 @@ pub fn build(
             })
         })
         .collect();
-    let mut steps = sequence_steps(table, options, &signals, &homes, strokes);
+    // Ready for a cycle: every actuator home and every start permissive on.
+    let ready: Vec<Literal> = homes
+        .iter()
+        .copied()
+        .chain(
+            options
+                .permissive
+                .iter()
+                .map(|n| Literal::is(Signal::MachineInput(*n))),
+        )
+        .collect();
+    let mut steps = sequence_steps(table, options, &signals, &ready, strokes);
     steps.extend(end_of_cycle(table, options));
 
     let mut rungs = Vec::new();
@@ -135,7 +146,7 @@ pub fn build(
     }
     rungs.extend(dwell_rungs(table));
     if modes.any() {
-        mode_rungs(safety, modes, &homes, &mut rungs);
+        mode_rungs(safety, modes, &ready, &mut rungs);
     }
     let mut init = Vec::new();
     if safety.edge {
@@ -165,6 +176,7 @@ pub fn build(
         timers,
         signals,
         halt: options.halt.clone(),
+        permissive: options.permissive.clone(),
     }
 }
 

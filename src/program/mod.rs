@@ -165,6 +165,8 @@ pub struct StepProgram {
     /// What may stay on when the machine stops (the fault analysis judges
     /// a stopped machine by it).
     pub halt: HaltPolicy,
+    /// The start permissives: machine inputs a healthy machine holds on.
+    pub permissive: Vec<crate::cell::Name>,
 }
 
 /// `IF a AND b THEN SET y1+ RESET y1-` in the paper's notation, with symbols

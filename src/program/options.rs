@@ -17,6 +17,9 @@ pub struct ProgramOptions {
     /// What may stay energised when the machine halts, and what the halt
     /// switches off.
     pub halt: HaltPolicy,
+    /// Machine inputs that must be on for a cycle to start (SETTINGS
+    /// `start permissive`: air pressure, a closed guard).
+    pub permissive: Vec<crate::cell::Name>,
 }
 
 impl Default for ProgramOptions {
@@ -26,6 +29,7 @@ impl Default for ProgramOptions {
             safety: Safety::default(),
             modes: Modes::default(),
             halt: HaltPolicy::default(),
+            permissive: Vec::new(),
         }
     }
 }

@@ -100,6 +100,7 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
     let inputs = std::iter::once(Signal::Start)
         .chain(sensors)
         .chain(table.inputs.iter().map(|n| Signal::MachineInput(*n)))
+        .chain(options.permissive.iter().map(|n| Signal::MachineInput(*n)))
         .chain(mode_inputs)
         .collect();
 

@@ -12,16 +12,17 @@ use crate::program::{HaltPolicy, Signal};
 use crate::table::StepTable;
 use crate::valve::{ValveType, Valves};
 
-/// Output names as one SETTINGS cell lists them (`vacuum, y1+, C2`).
+/// Names as one SETTINGS cell lists them (`vacuum, y1+, C2`), with the
+/// cell, for the errors once they are checked against the table.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct NamedOutputs {
+pub struct NamedList {
     pub names: Vec<String>,
     pub at: Location,
 }
 
-impl NamedOutputs {
-    pub fn parse(text: &str, at: Location) -> NamedOutputs {
-        NamedOutputs {
+impl NamedList {
+    pub fn parse(text: &str, at: Location) -> NamedList {
+        NamedList {
             names: text
                 .split([',', ';'])
                 .map(|n| n.trim().to_string())
@@ -82,8 +83,8 @@ fn outputs_named(table: &StepTable, valves: &Valves, name: &str) -> Option<Vec<S
 pub fn resolve(
     table: &StepTable,
     valves: &Valves,
-    hold_safe: Option<&NamedOutputs>,
-    off_on_halt: Option<&NamedOutputs>,
+    hold_safe: Option<&NamedList>,
+    off_on_halt: Option<&NamedList>,
     diags: &mut Diagnostics,
 ) -> HaltPolicy {
     let mut sets: [BTreeSet<Signal>; 2] = Default::default();
@@ -134,4 +135,70 @@ pub fn resolve(
         hold_safe,
         off_on_halt,
     }
+}
+
+/// The SETTINGS row `start permissive`: machine inputs the table does not
+/// wait for, that must be on for a cycle to start. Each must be a name a
+/// machine input may have, and neither an output nor an input the table
+/// waits for (that one's value belongs to its step); else E030 at the cell.
+pub fn resolve_permissive(
+    table: &StepTable,
+    buttons: &[String],
+    row: Option<&NamedList>,
+    diags: &mut Diagnostics,
+) -> Vec<crate::cell::Name> {
+    let Some(row) = row else {
+        return Vec::new();
+    };
+    let mut names: Vec<crate::cell::Name> = Vec::new();
+    for text in &row.names {
+        let lower = text.to_ascii_lowercase();
+        let mut bad = |why: String| {
+            diags.error(
+                Code::E030BadSetting,
+                row.at.clone(),
+                format!("start permissive: {why}"),
+            )
+        };
+        let name = match crate::cell::Name::new(&lower) {
+            Ok(name) => name,
+            Err(why) => {
+                bad(why);
+                continue;
+            }
+        };
+        let stem = crate::names::fst_stem(&lower);
+        if let Some(reason) =
+            crate::names::reserved_name(&lower).or_else(|| crate::names::reserved_name(&stem))
+        {
+            bad(format!(
+                "\"{lower}\" cannot name a machine signal: {reason}"
+            ));
+        } else if buttons.contains(&lower) {
+            bad(format!(
+                "\"{lower}\" is the program's own operating-mode button"
+            ));
+        } else if table.outputs.contains(&name) {
+            bad(format!(
+                "{lower} is a machine output of the table, not an input"
+            ));
+        } else if table.inputs.contains(&name) {
+            bad(format!(
+                "the table waits for {lower} in a step; a permissive is an input no step waits for"
+            ));
+        } else if let Some(other) = table
+            .inputs
+            .iter()
+            .chain(&table.outputs)
+            .chain(&names)
+            .find(|o| **o != name && crate::names::fst_stem(o.as_str()) == stem)
+        {
+            bad(format!(
+                "{lower} and {other} begin with the same 9 characters, which is all Festo FST keeps of a symbol"
+            ));
+        } else if !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    names
 }

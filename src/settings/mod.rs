@@ -44,9 +44,11 @@ pub struct Given {
     /// Drift rates per actuator (stroke per second).
     pub loads: BTreeMap<u32, f64>,
     /// Outputs that may stay on in a stopped machine (`hold-safe`).
-    pub hold_safe: Option<halt::NamedOutputs>,
+    pub hold_safe: Option<halt::NamedList>,
     /// Outputs the program switches off when it halts.
-    pub off_on_halt: Option<halt::NamedOutputs>,
+    pub off_on_halt: Option<halt::NamedList>,
+    /// Machine inputs that must be on for a cycle to start.
+    pub start_permissive: Option<halt::NamedList>,
 }
 
 impl Given {
@@ -83,6 +85,10 @@ impl Given {
                 .off_on_halt
                 .clone()
                 .or_else(|| other.off_on_halt.clone()),
+            start_permissive: self
+                .start_permissive
+                .clone()
+                .or_else(|| other.start_permissive.clone()),
         }
     }
 }
@@ -115,8 +121,10 @@ pub struct Settings {
     pub pins: Vec<pins::PinRow>,
     /// The SETTINGS rows `hold-safe` and `de-energise on halt`, as written;
     /// `program.halt` once checked against the table.
-    pub hold_safe: Option<halt::NamedOutputs>,
-    pub off_on_halt: Option<halt::NamedOutputs>,
+    pub hold_safe: Option<halt::NamedList>,
+    pub off_on_halt: Option<halt::NamedList>,
+    /// The SETTINGS row `start permissive`, as written.
+    pub start_permissive: Option<halt::NamedList>,
 }
 
 impl Settings {
@@ -149,6 +157,9 @@ impl Settings {
         }
         if let Some(names) = &layer.off_on_halt {
             self.off_on_halt = Some(names.clone());
+        }
+        if let Some(names) = &layer.start_permissive {
+            self.start_permissive = Some(names.clone());
         }
         if let Some(mnemonic) = layer.mnemonic {
             self.mnemonic = mnemonic;

@@ -25,11 +25,12 @@ struct ActuatorColumns {
 }
 
 /// The labels of the settings, as written on the sheet.
-pub const LABELS: [&str; 9] = [
+pub const LABELS: [&str; 10] = [
     "target",
     "board",
     "hold-safe",
     "de-energise on halt",
+    "start permissive",
     "mnemonic",
     "scan time",
     "safety",
@@ -145,14 +146,21 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
             },
             "hold-safe" if lower == "none" => {}
             "hold-safe" => {
-                settings.hold_safe = Some(super::halt::NamedOutputs::parse(
+                settings.hold_safe = Some(super::halt::NamedList::parse(
+                    &value,
+                    grid.location(value_cell.pos),
+                ))
+            }
+            "start permissive" if lower == "none" => {}
+            "start permissive" => {
+                settings.start_permissive = Some(super::halt::NamedList::parse(
                     &value,
                     grid.location(value_cell.pos),
                 ))
             }
             "de-energise on halt" if lower == "none" => {}
             "de-energise on halt" => {
-                settings.off_on_halt = Some(super::halt::NamedOutputs::parse(
+                settings.off_on_halt = Some(super::halt::NamedList::parse(
                     &value,
                     grid.location(value_cell.pos),
                 ))

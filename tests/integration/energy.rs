@@ -158,3 +158,59 @@ fn the_carwash_flags_its_stuck_homing_button_and_its_halt_switches_the_motors_of
             .starts_with("x11 open circuit (stuck at 0) safe stall at every moment alarm 3"),
     );
 }
+
+/// A start permissive (SETTINGS `start permissive | air_ok`): a machine
+/// input no step waits for, on in a healthy machine, without which no
+/// cycle starts; it gets an address like any machine input.
+#[test]
+fn a_start_permissive_is_an_input_a_cycle_needs_to_start() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = workbook(
+        dir.path(),
+        &[&["start permissive", "air_ok"], &["hold-safe", "heater"]],
+    );
+    let out = dir.path().join("conv");
+    steptable()
+        .arg("convert")
+        .arg(&input)
+        .args(["--formats", "io,st", "-o"])
+        .arg(&out)
+        .assert()
+        .success()
+        .stdout(contains("4 inputs"));
+    let io = std::fs::read_to_string(out.join("heated/heated.io.csv")).unwrap();
+    assert!(io.contains("I0.3,air_ok,"), "{io}");
+    let st = std::fs::read_to_string(out.join("heated/heated.st")).unwrap();
+    assert!(st.contains("START AND x10 AND air_ok"), "{st}");
+    let stdout = String::from_utf8_lossy(&faults(&input, &[]).success().get_output().stdout)
+        .lines()
+        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert!(
+        stdout.contains("air_ok open circuit (stuck at 0) safe stall at every moment 1 step 1 never fires: waiting for air_ok"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("air_ok short circuit (stuck at 1) no effect at every moment the input never reads other than without the fault"),
+        "{stdout}"
+    );
+    // Not a name an input may have, an output, an input a step waits for.
+    for (name, why) in [
+        ("start", "cannot name a machine signal"),
+        (
+            "heater",
+            "heater is a machine output of the table, not an input",
+        ),
+        ("air ok", "is not a name"),
+    ] {
+        let input = workbook(dir.path(), &[&["start permissive", name]]);
+        steptable()
+            .arg("check")
+            .arg(&input)
+            .assert()
+            .code(1)
+            .stderr(contains("SETTINGS!B1: error[E030]: start permissive: "))
+            .stderr(contains(why));
+    }
+}

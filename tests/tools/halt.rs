@@ -1,7 +1,9 @@
-//! `de-energise on halt` in the engines: a heated table whose x11 dies, so
-//! that the watchdog halts the machine and the HALT rung switches the
-//! heater off, runs in matiec (iec), awlsim (siemens) and the FST
-//! interpreter (festo) as simulated, scan for scan, through the halt.
+//! What the machine does when it must stop or may not start, in the
+//! engines: `de-energise on halt` (a heated table whose x11 dies, so that
+//! the watchdog halts the machine and the HALT rung switches the heater
+//! off) and a `start permissive` (air fails at rest, the next START starts
+//! nothing) run in matiec (iec), awlsim (siemens) and the FST interpreter
+//! (festo) as simulated, scan for scan.
 
 use steptable::convert;
 use steptable::program::Signal;
@@ -11,71 +13,133 @@ use crate::engines::{self, awlsim, fst, matiec};
 use crate::helpers::{steptable, write_xlsx_sheets};
 use crate::{Check, Tool, shared, tool};
 
-pub const CHECKS: &[Check] = &[Check::new(
-    "halt::a_halt_switches_the_heater_off_in_every_engine",
-    &[Tool::Shared, Tool::Awlsim],
-    a_halt_switches_the_heater_off_in_every_engine,
-)];
+pub const CHECKS: &[Check] = &[
+    Check::new(
+        "halt::a_halt_switches_the_heater_off_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        a_halt_switches_the_heater_off_in_every_engine,
+    ),
+    Check::new(
+        "halt::a_start_permissive_holds_the_next_cycle_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        a_start_permissive_holds_the_next_cycle_in_every_engine,
+    ),
+];
+
+/// C1 carries a part under a heater that is on while C1 is out.
+const HEATED: &[&[&str]] = &[&["C1+1; Y:heater+"], &["C1-0; Y:heater-"]];
 
 fn a_halt_switches_the_heater_off_in_every_engine() {
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("heated.xlsx");
-    let table: &[&[&str]] = &[&["C1+1; Y:heater+"], &["C1-0; Y:heater-"]];
     let settings: &[&[&str]] = &[&["de-energise on halt", "heater"]];
-    write_xlsx_sheets(&input, &[("TABLE", table), ("SETTINGS", settings)]);
+    write_xlsx_sheets(&input, &[("TABLE", HEATED), ("SETTINGS", settings)]);
+    let x11 = Fault {
+        signal: Signal::Sensor {
+            actuator: 1,
+            position: 1,
+        },
+        stuck_at: false,
+    };
+    for case in run_everywhere(dir.path(), &input, &["--safety", "watchdog"], x11, Some(0)) {
+        // The heater came on with step 1 and the halt switched it off.
+        let column = heater_column(&case);
+        assert!(column.contains(&true), "{}", case.label);
+        assert_eq!(column.last(), Some(&false), "{}", case.label);
+    }
+    eprintln!(
+        "halt: matiec, awlsim and the FST interpreter switch the heater off on the halt as simulated"
+    );
+}
+
+/// `start permissive | air_ok`: air fails at rest after the first cycle, so
+/// the second START starts nothing; every engine agrees, scan for scan.
+fn a_start_permissive_holds_the_next_cycle_in_every_engine() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("aired.xlsx");
+    let settings: &[&[&str]] = &[&["start permissive", "air_ok"]];
+    write_xlsx_sheets(&input, &[("TABLE", HEATED), ("SETTINGS", settings)]);
+    let air = Fault {
+        signal: Signal::MachineInput(steptable::cell::Name::new("air_ok").unwrap()),
+        stuck_at: false,
+    };
+    for case in run_everywhere(dir.path(), &input, &[], air, None) {
+        // One cycle: the heater came on once, and never again.
+        let rises = heater_column(&case)
+            .windows(2)
+            .filter(|w| !w[0] && w[1])
+            .count();
+        assert_eq!(rises, 1, "{}", case.label);
+    }
+    eprintln!(
+        "permissive: matiec, awlsim and the FST interpreter hold the second cycle as simulated"
+    );
+}
+
+/// The heater's value at every recorded scan.
+fn heater_column(case: &engines::Case) -> Vec<bool> {
+    let heater = case
+        .trace
+        .signals
+        .outputs
+        .iter()
+        .position(|s| s.symbol() == "heater")
+        .expect("the heater is an output");
+    case.trace.scans.iter().map(|s| s.outputs[heater]).collect()
+}
+
+/// Converts `input` for each target into `dir/<target>`, simulates it with
+/// `fault` appearing at `onset_ms` (by default at rest after the first
+/// cycle, as the fault analysis has it), and runs the written file in its
+/// engine: the outputs must equal the simulation's at every scan.
+fn run_everywhere(
+    dir: &std::path::Path,
+    input: &std::path::Path,
+    extra: &[&str],
+    fault: Fault,
+    onset_ms: Option<u64>,
+) -> Vec<engines::Case> {
     let python = awlsim::python(&tool(Tool::Awlsim));
+    let mut cases = Vec::new();
     for (target, format) in [("iec", "st"), ("siemens", "awl"), ("festo", "fst")] {
-        let args = [
-            "--target",
-            target,
-            "--safety",
-            "watchdog",
-            "--formats",
-            format,
-        ];
-        let out = dir.path().join(target);
+        let mut args = vec!["--target", target];
+        args.extend_from_slice(extra);
+        args.extend(["--formats", format]);
+        let out = dir.join(target);
         steptable()
             .arg("convert")
-            .arg(&input)
-            .args(args)
+            .arg(input)
+            .args(&args)
             .arg("-o")
             .arg(&out)
             .assert()
             .success();
         let mut checked =
-            convert::check_path(&input, &engines::settings_for(&args)).expect("valid table");
-        let x11 = Signal::Sensor {
-            actuator: 1,
-            position: 1,
-        };
-        checked.settings.simulation.faults = vec![Fault {
-            signal: x11,
-            stuck_at: false,
-        }];
-        let label = format!("heated.xlsx {} with x11 dead", args.join(" "));
-        let (case, report) = engines::record_run(
+            convert::check_path(input, &engines::settings_for(&args)).expect("valid table");
+        let onset = onset_ms.unwrap_or_else(|| {
+            let program = convert::build_program(&checked.table, &checked.settings);
+            let healthy = steptable::simulate::simulate(
+                &checked.table,
+                &program,
+                &checked.settings.simulation,
+            );
+            let scan = checked.settings.simulation.scan_ms as u64;
+            let moments = steptable::faults::moments(&healthy, &checked.table, scan);
+            let rest = moments.last().expect("a moment");
+            assert_eq!(rest.phase, steptable::faults::Phase::AtRest);
+            rest.at_ms
+        });
+        checked.settings.simulation.faults = vec![fault];
+        checked.settings.simulation.fault_onset_ms = onset;
+        let name = convert::output_name(input);
+        let label = format!("{name} {} with {}", args.join(" "), fault.describe());
+        let (case, _) = engines::record_run(
             &label,
-            out.join("heated"),
-            "heated",
+            out.join(&name),
+            &name,
             &checked.table,
             &checked.settings,
         );
-        assert!(
-            report.verdict().contains("alarm_wd"),
-            "{label}: {}",
-            report.verdict()
-        );
-        // The heater came on with step 1 and the halt switched it off.
-        let heater = case
-            .trace
-            .signals
-            .outputs
-            .iter()
-            .position(|s| s.symbol() == "heater")
-            .expect("the heater is an output");
-        let column: Vec<bool> = case.trace.scans.iter().map(|s| s.outputs[heater]).collect();
-        assert!(column.contains(&true), "{label}");
-        assert_eq!(column.last(), Some(&false), "{label}");
         let outputs = match format {
             "st" => matiec::run(&shared(), &case.file(".st"), &case.trace, &case.allocation),
             "awl" => awlsim::run(
@@ -91,8 +155,7 @@ fn a_halt_switches_the_heater_off_in_every_engine() {
             }
         };
         case.check(format, outputs).unwrap();
+        cases.push(case);
     }
-    eprintln!(
-        "halt: matiec, awlsim and the FST interpreter switch the heater off on the halt as simulated"
-    );
+    cases
 }

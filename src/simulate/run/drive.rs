@@ -103,6 +103,8 @@ impl<'a> Run<'a> {
                     .inputs
                     .iter()
                     .filter_map(|n| machine::rest_value(table, *n).map(|v| (*n, v)))
+                    // A healthy machine holds its start permissives on.
+                    .chain(program.permissive.iter().map(|n| (*n, true)))
                     .collect(),
                 faults_active: settings.fault_onset_ms == 0,
             },
