@@ -54,6 +54,7 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "halt",
         "alarm_pl",
         "alarm_wd",
+        "alarm_il",
         "watchdog",
         "wd_armed",
         "wd_run",

@@ -225,7 +225,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     let boards: Vec<&str> = std::iter::once("none")
         .chain(crate::address::BOARDS.iter().map(|b| b.name))
         .collect();
-    let rows: [(&str, &str, &str, Option<&[&str]>); 10] = [
+    let rows: [(&str, &str, &str, Option<&[&str]>); 11] = [
         (
             "target",
             "festo",
@@ -288,6 +288,12 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             None,
         ),
         (
+            "interlock",
+            "none",
+            "Machine inputs that must stay on (a guard door's switch), e.g. guard_closed. One going off halts the machine where it is and raises alarm_il; RESET clears it.",
+            None,
+        ),
+        (
             "home order",
             "default",
             "Homing stages for RESET, first to last, e.g. C3&C4, C2, C1. default: the reverse order of the last moves.",
@@ -311,7 +317,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             sheet.add_data_validation(row, 1, row, 1, &validation)?;
         }
     }
-    let header = 16;
+    let header = 17;
     sheet.write_string(
         header - 1,
         0,

@@ -119,14 +119,22 @@ fn finish_check(
             effective.off_on_halt.as_ref(),
             &mut diags,
         );
-        effective.program.permissive = crate::settings::halt::resolve_permissive(
+        effective.program.permissive = crate::settings::halt::resolve_held_inputs(
             table,
             &buttons,
+            "start permissive",
             effective.start_permissive.as_ref(),
             &mut diags,
         );
+        effective.program.interlocks = crate::settings::halt::resolve_held_inputs(
+            table,
+            &buttons,
+            "interlock",
+            effective.interlock.as_ref(),
+            &mut diags,
+        );
         if let Some(row) = &effective.off_on_halt
-            && !effective.program.safety.halts(&effective.program.modes)
+            && !effective.program.halts()
         {
             diags.warning(
                 Code::W006NoEffect,

@@ -146,7 +146,7 @@ pub fn build(
     }
     rungs.extend(dwell_rungs(table));
     if modes.any() {
-        mode_rungs(safety, modes, &ready, &mut rungs);
+        mode_rungs(safety, modes, options.halts(), &ready, &mut rungs);
     }
     let mut init = Vec::new();
     if safety.edge {
@@ -163,7 +163,8 @@ pub fn build(
         rungs.push(watchdog_rung());
     }
     timers.extend(table.dwells().map(|d| Signal::Dwell(d.number)));
-    if safety.halts(modes) {
+    rungs.extend(interlock_rung(&options.interlocks));
+    if options.halts() {
         rungs.extend(halt_off_rung(&signals, &options.halt));
     }
     if modes.any() {
@@ -176,8 +177,25 @@ pub fn build(
         timers,
         signals,
         halt: options.halt.clone(),
-        permissive: options.permissive.clone(),
+        permissive: options.held_inputs(),
     }
+}
+
+/// An interlock input that goes off halts the machine where it is and
+/// raises `alarm_il`; RESET (or a restart) clears the halt.
+fn interlock_rung(interlocks: &[crate::cell::Name]) -> Vec<Rung> {
+    interlocks
+        .iter()
+        .map(|name| Rung {
+            kind: RungKind::Interlock,
+            comment: format!("INTERLOCK: {name} off halts the machine"),
+            condition: vec![Literal::not(Signal::MachineInput(*name))],
+            actions: vec![
+                Action::Set(Signal::Halt),
+                Action::Set(Signal::Alarm(Alarm::Interlock)),
+            ],
+        })
+        .collect()
 }
 
 /// A halt switches off the outputs declared `de-energise on halt`: a heater
@@ -210,7 +228,7 @@ fn sequence_steps(
     let middle_stops = options.middle_stops;
     let safety = options.safety;
     let modes = &options.modes;
-    let halts = safety.halts(modes);
+    let halts = options.halts();
     let mut steps = Vec::with_capacity(table.steps.len() + 1);
     for (index, step) in table.steps.iter().enumerate() {
         let mut condition: Vec<Literal> = if index == 0 {
@@ -294,7 +312,7 @@ fn sequence_steps(
 fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramStep> {
     let safety = options.safety;
     let modes = &options.modes;
-    let halts = safety.halts(modes);
+    let halts = options.halts();
     let last = table.steps.last()?;
     let last_waits = !last.waits.is_empty() || !last.dwells.is_empty();
     if !(safety.watchdog || modes.any() || last_waits) {

@@ -122,6 +122,8 @@ pub enum RungKind {
     EmergencyStop,
     /// A halt switches off what may not stay on.
     HaltOff,
+    /// An interlock input went off.
+    Interlock,
 }
 
 impl RungKind {
@@ -137,6 +139,7 @@ impl RungKind {
             RungKind::Homing => "HOMING",
             RungKind::EmergencyStop => "EMERGENCY STOP",
             RungKind::HaltOff => "HALT",
+            RungKind::Interlock => "INTERLOCK",
         }
     }
 }
@@ -165,7 +168,8 @@ pub struct StepProgram {
     /// What may stay on when the machine stops (the fault analysis judges
     /// a stopped machine by it).
     pub halt: HaltPolicy,
-    /// The start permissives: machine inputs a healthy machine holds on.
+    /// The start permissives and interlocks: machine inputs a healthy
+    /// machine holds on.
     pub permissive: Vec<crate::cell::Name>,
 }
 

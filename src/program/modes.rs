@@ -8,8 +8,13 @@ use crate::cell::Sign;
 use crate::table::StepTable;
 
 /// START, CONTINUOUS and STOP turn into a cycle request; STEP 1 consumes it.
-pub(super) fn mode_rungs(safety: Safety, modes: &Modes, homes: &[Literal], rungs: &mut Vec<Rung>) {
-    let halts = safety.halts(modes);
+pub(super) fn mode_rungs(
+    safety: Safety,
+    modes: &Modes,
+    halts: bool,
+    homes: &[Literal],
+    rungs: &mut Vec<Rung>,
+) {
     // Ready for a new cycle: none under way, no halt, not homing, all home.
     let mut ready = vec![Literal::not(Signal::Busy)];
     if halts {

@@ -20,6 +20,29 @@ pub struct ProgramOptions {
     /// Machine inputs that must be on for a cycle to start (SETTINGS
     /// `start permissive`: air pressure, a closed guard).
     pub permissive: Vec<crate::cell::Name>,
+    /// Machine inputs that must stay on: one going off halts the machine
+    /// and raises `alarm_il` (SETTINGS `interlock`: a guard door).
+    pub interlocks: Vec<crate::cell::Name>,
+}
+
+impl ProgramOptions {
+    /// Whether the program can halt: a safety check or the emergency stop
+    /// that halts, or an interlock.
+    pub fn halts(&self) -> bool {
+        self.safety.halts(&self.modes) || !self.interlocks.is_empty()
+    }
+
+    /// The machine inputs the settings add to the table's (permissives,
+    /// then interlocks), each once.
+    pub fn held_inputs(&self) -> Vec<crate::cell::Name> {
+        let mut names = self.permissive.clone();
+        for name in &self.interlocks {
+            if !names.contains(name) {
+                names.push(*name);
+            }
+        }
+        names
+    }
 }
 
 impl Default for ProgramOptions {
@@ -30,6 +53,7 @@ impl Default for ProgramOptions {
             modes: Modes::default(),
             halt: HaltPolicy::default(),
             permissive: Vec::new(),
+            interlocks: Vec::new(),
         }
     }
 }

@@ -21,6 +21,8 @@ pub enum Alarm {
     Sensor,
     /// A step did not finish in time (watchdog).
     Timeout,
+    /// An interlock input went off (SETTINGS `interlock`).
+    Interlock,
 }
 
 /// Every signal the step program reads or writes.
@@ -133,6 +135,7 @@ impl Signal {
             Signal::Halt => "halt".to_string(),
             Signal::Alarm(Alarm::Sensor) => "alarm_pl".to_string(),
             Signal::Alarm(Alarm::Timeout) => "alarm_wd".to_string(),
+            Signal::Alarm(Alarm::Interlock) => "alarm_il".to_string(),
             Signal::Watchdog => "watchdog".to_string(),
             Signal::WatchdogArmed => "wd_armed".to_string(),
             Signal::MachineInput(name) | Signal::MachineOutput(name) => name.to_string(),
@@ -221,6 +224,7 @@ impl Signal {
                 "alarm: two sensors of one cylinder on at once".to_string()
             }
             Signal::Alarm(Alarm::Timeout) => "alarm: a step did not finish in time".to_string(),
+            Signal::Alarm(Alarm::Interlock) => "alarm: an interlock input went off".to_string(),
             Signal::Watchdog => "step watchdog timer".to_string(),
             Signal::WatchdogArmed => "watchdog is timing a step".to_string(),
             Signal::MachineInput(name) => {
@@ -364,6 +368,7 @@ mod tests {
             Signal::Halt,
             Signal::Alarm(Alarm::Sensor),
             Signal::Alarm(Alarm::Timeout),
+            Signal::Alarm(Alarm::Interlock),
             Signal::Watchdog,
             Signal::WatchdogArmed,
             Signal::Dwell(255),

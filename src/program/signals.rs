@@ -100,7 +100,7 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
     let inputs = std::iter::once(Signal::Start)
         .chain(sensors)
         .chain(table.inputs.iter().map(|n| Signal::MachineInput(*n)))
-        .chain(options.permissive.iter().map(|n| Signal::MachineInput(*n)))
+        .chain(options.held_inputs().into_iter().map(Signal::MachineInput))
         .chain(mode_inputs)
         .collect();
 
@@ -115,6 +115,7 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
     let alarms = [
         (safety.plausibility, Alarm::Sensor),
         (safety.watchdog, Alarm::Timeout),
+        (!options.interlocks.is_empty(), Alarm::Interlock),
     ]
     .into_iter()
     .filter_map(|(wanted, alarm)| wanted.then_some(Signal::Alarm(alarm)));
@@ -149,7 +150,7 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
     if safety.edge {
         memories.push(Signal::StartMemory);
     }
-    if safety.halts(modes) {
+    if options.halts() {
         memories.push(Signal::Halt);
     }
     if safety.watchdog {

@@ -137,13 +137,15 @@ pub fn resolve(
     }
 }
 
-/// The SETTINGS row `start permissive`: machine inputs the table does not
-/// wait for, that must be on for a cycle to start. Each must be a name a
-/// machine input may have, and neither an output nor an input the table
-/// waits for (that one's value belongs to its step); else E030 at the cell.
-pub fn resolve_permissive(
+/// The SETTINGS rows `start permissive` and `interlock` (`label`):
+/// machine inputs the table does not wait for, that must be on for a cycle
+/// to start, or stay on. Each must be a name a machine input may have, and
+/// neither an output nor an input the table waits for (that one's value
+/// belongs to its step); else E030 at the cell.
+pub fn resolve_held_inputs(
     table: &StepTable,
     buttons: &[String],
+    label: &str,
     row: Option<&NamedList>,
     diags: &mut Diagnostics,
 ) -> Vec<crate::cell::Name> {
@@ -157,7 +159,7 @@ pub fn resolve_permissive(
             diags.error(
                 Code::E030BadSetting,
                 row.at.clone(),
-                format!("start permissive: {why}"),
+                format!("{label}: {why}"),
             )
         };
         let name = match crate::cell::Name::new(&lower) {
@@ -184,7 +186,7 @@ pub fn resolve_permissive(
             ));
         } else if table.inputs.contains(&name) {
             bad(format!(
-                "the table waits for {lower} in a step; a permissive is an input no step waits for"
+                "the table waits for {lower} in a step; name an input no step waits for"
             ));
         } else if let Some(other) = table
             .inputs

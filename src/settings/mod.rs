@@ -49,6 +49,8 @@ pub struct Given {
     pub off_on_halt: Option<halt::NamedList>,
     /// Machine inputs that must be on for a cycle to start.
     pub start_permissive: Option<halt::NamedList>,
+    /// Machine inputs that must stay on, else the machine halts.
+    pub interlock: Option<halt::NamedList>,
 }
 
 impl Given {
@@ -89,6 +91,7 @@ impl Given {
                 .start_permissive
                 .clone()
                 .or_else(|| other.start_permissive.clone()),
+            interlock: self.interlock.clone().or_else(|| other.interlock.clone()),
         }
     }
 }
@@ -123,8 +126,9 @@ pub struct Settings {
     /// `program.halt` once checked against the table.
     pub hold_safe: Option<halt::NamedList>,
     pub off_on_halt: Option<halt::NamedList>,
-    /// The SETTINGS row `start permissive`, as written.
+    /// The SETTINGS rows `start permissive` and `interlock`, as written.
     pub start_permissive: Option<halt::NamedList>,
+    pub interlock: Option<halt::NamedList>,
 }
 
 impl Settings {
@@ -160,6 +164,9 @@ impl Settings {
         }
         if let Some(names) = &layer.start_permissive {
             self.start_permissive = Some(names.clone());
+        }
+        if let Some(names) = &layer.interlock {
+            self.interlock = Some(names.clone());
         }
         if let Some(mnemonic) = layer.mnemonic {
             self.mnemonic = mnemonic;

@@ -25,12 +25,13 @@ struct ActuatorColumns {
 }
 
 /// The labels of the settings, as written on the sheet.
-pub const LABELS: [&str; 10] = [
+pub const LABELS: [&str; 11] = [
     "target",
     "board",
     "hold-safe",
     "de-energise on halt",
     "start permissive",
+    "interlock",
     "mnemonic",
     "scan time",
     "safety",
@@ -147,6 +148,13 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
             "hold-safe" if lower == "none" => {}
             "hold-safe" => {
                 settings.hold_safe = Some(super::halt::NamedList::parse(
+                    &value,
+                    grid.location(value_cell.pos),
+                ))
+            }
+            "interlock" if lower == "none" => {}
+            "interlock" => {
+                settings.interlock = Some(super::halt::NamedList::parse(
                     &value,
                     grid.location(value_cell.pos),
                 ))

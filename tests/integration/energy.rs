@@ -214,3 +214,49 @@ fn a_start_permissive_is_an_input_a_cycle_needs_to_start() {
             .stderr(contains(why));
     }
 }
+
+/// An interlock (SETTINGS `interlock | guard_closed`): an input that must
+/// stay on; going off, it halts the machine where it is, raises `alarm_il`,
+/// and with `de-energise on halt` the heater goes off.
+#[test]
+fn an_interlock_that_opens_halts_the_machine_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = workbook(
+        dir.path(),
+        &[
+            &["interlock", "guard_closed"],
+            &["de-energise on halt", "heater"],
+        ],
+    );
+    let out = dir.path().join("conv");
+    steptable()
+        .arg("convert")
+        .arg(&input)
+        .args(["--formats", "io,st", "-o"])
+        .arg(&out)
+        .assert()
+        .success()
+        // The interlock halts, so de-energise on halt has an effect.
+        .stderr(contains("W006").not());
+    let io = std::fs::read_to_string(out.join("heated/heated.io.csv")).unwrap();
+    assert!(io.contains(",guard_closed,"), "{io}");
+    assert!(io.contains(",alarm_il,alarm,"), "{io}");
+    let st = std::fs::read_to_string(out.join("heated/heated.st")).unwrap();
+    assert!(
+        st.contains("INTERLOCK: guard_closed off halts the machine"),
+        "{st}"
+    );
+    let stdout = String::from_utf8_lossy(&faults(&input, &[]).success().get_output().stdout)
+        .lines()
+        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let row = stdout
+        .lines()
+        .find(|l| l.starts_with("guard_closed open circuit"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    // Open from power-up or mid-cycle: the machine halts, says so, and
+    // nothing it leaves on is a hazard.
+    assert!(row.contains(" safe stall at every moment alarm "), "{row}");
+    assert!(row.contains("NOT halt (alarm: alarm_il)"), "{row}");
+}

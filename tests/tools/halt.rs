@@ -1,9 +1,10 @@
 //! What the machine does when it must stop or may not start, in the
 //! engines: `de-energise on halt` (a heated table whose x11 dies, so that
 //! the watchdog halts the machine and the HALT rung switches the heater
-//! off) and a `start permissive` (air fails at rest, the next START starts
-//! nothing) run in matiec (iec), awlsim (siemens) and the FST interpreter
-//! (festo) as simulated, scan for scan.
+//! off), a `start permissive` (air fails at rest, the next START starts
+//! nothing) and an `interlock` (the guard opens mid-travel: halt, alarm,
+//! heater off) run in matiec (iec), awlsim (siemens) and the FST
+//! interpreter (festo) as simulated, scan for scan.
 
 use steptable::convert;
 use steptable::program::Signal;
@@ -24,7 +25,48 @@ pub const CHECKS: &[Check] = &[
         &[Tool::Shared, Tool::Awlsim],
         a_start_permissive_holds_the_next_cycle_in_every_engine,
     ),
+    Check::new(
+        "halt::an_open_interlock_halts_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        an_open_interlock_halts_in_every_engine,
+    ),
 ];
+
+/// `interlock | guard_closed` with `de-energise on halt | heater`: the
+/// guard opens while C1 travels out with the heater on; the machine halts,
+/// `alarm_il` comes on and the heater goes off, in every engine as
+/// simulated.
+fn an_open_interlock_halts_in_every_engine() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("guarded.xlsx");
+    let settings: &[&[&str]] = &[
+        &["interlock", "guard_closed"],
+        &["de-energise on halt", "heater"],
+    ];
+    write_xlsx_sheets(&input, &[("TABLE", HEATED), ("SETTINGS", settings)]);
+    let guard = Fault {
+        signal: Signal::MachineInput(steptable::cell::Name::new("guard_closed").unwrap()),
+        stuck_at: false,
+    };
+    // START is pressed at 500 ms; C1 takes a second to travel out.
+    for case in run_everywhere(dir.path(), &input, &[], guard, Some(900)) {
+        let alarm = case
+            .trace
+            .signals
+            .outputs
+            .iter()
+            .position(|s| s.symbol() == "alarm_il")
+            .expect("the interlock's alarm is an output");
+        let last = case.trace.scans.last().expect("scans");
+        assert!(last.outputs[alarm], "{}", case.label);
+        let column = heater_column(&case);
+        assert!(column.contains(&true), "{}", case.label);
+        assert_eq!(column.last(), Some(&false), "{}", case.label);
+    }
+    eprintln!(
+        "interlock: matiec, awlsim and the FST interpreter halt and raise alarm_il as simulated"
+    );
+}
 
 /// C1 carries a part under a heater that is on while C1 is out.
 const HEATED: &[&[&str]] = &[&["C1+1; Y:heater+"], &["C1-0; Y:heater-"]];

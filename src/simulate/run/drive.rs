@@ -262,7 +262,7 @@ pub(in crate::simulate) fn run(
                     missing_literals.retain(|l| l.signal != Signal::Start);
                 }
                 let missing: Vec<String> = missing_literals.iter().map(literal_text).collect();
-                let alarms: Vec<String> = [Alarm::Sensor, Alarm::Timeout]
+                let alarms: Vec<String> = [Alarm::Sensor, Alarm::Timeout, Alarm::Interlock]
                     .into_iter()
                     .map(Signal::Alarm)
                     .filter(|a| run.plc.bit(*a))
