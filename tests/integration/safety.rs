@@ -162,6 +162,17 @@ fn convert_with_safety_lists_alarms_and_passes_simulation() {
         "{:?}",
         simulation[1]
     );
+    // The PLC PROGRAM sheet shows each step starting its watchdog timer,
+    // with the preset, beside the memories it sets.
+    let program = read_sheet(&out.join("paper_example.xlsx"), "PLC PROGRAM");
+    let step1 = program
+        .iter()
+        .find(|r| r[0] == "STEP 1")
+        .unwrap_or_else(|| panic!("{program:?}"));
+    assert!(
+        step1[2].contains("START watchdog (") && step1[2].contains(" ms)"),
+        "{step1:?}"
+    );
     // From power-up, only the overruns of the dead middle sensors x22 and
     // x31 remain; the other hazards need the fault to appear mid-cycle.
     let faults = read_sheet(&out.join("paper_example.xlsx"), "FAULTS");
