@@ -295,3 +295,41 @@ fn the_binary_converts_every_sample_for_every_target() {
         );
     }
 }
+
+/// Each sheet of the written workbook keeps its header on screen when
+/// scrolled: the table below its BRANCH row and right of its STEP labels,
+/// the lists below their header rows, the fault table below its column
+/// titles.
+#[test]
+fn the_workbook_freezes_every_header() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("convert")
+        .arg(sample("paper_example.xlsx"))
+        .args(["--formats", "xlsx", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let workbook = dir.path().join("paper_example/paper_example.xlsx");
+    for (sheet, top_left) in [
+        (1, "B4"),
+        (2, "A2"),
+        (3, "A2"),
+        (4, "A2"),
+        (5, "A6"),
+        (7, "A5"),
+    ] {
+        let xml = crate::helpers::xlsx_part(&workbook, &format!("xl/worksheets/sheet{sheet}.xml"));
+        assert!(
+            xml.contains(&format!(r#"topLeftCell="{top_left}""#))
+                && xml.contains(r#"state="frozen""#),
+            "sheet {sheet}: {}",
+            xml.split("<pane")
+                .nth(1)
+                .unwrap_or("no pane")
+                .split('>')
+                .next()
+                .unwrap_or("")
+        );
+    }
+}
