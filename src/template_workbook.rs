@@ -225,7 +225,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     let boards: Vec<&str> = std::iter::once("none")
         .chain(crate::address::BOARDS.iter().map(|b| b.name))
         .collect();
-    let rows: [(&str, &str, &str, Option<&[&str]>); 11] = [
+    let rows: [(&str, &str, &str, Option<&[&str]>); 12] = [
         (
             "target",
             "festo",
@@ -288,6 +288,12 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             None,
         ),
         (
+            "hold on estop",
+            "none",
+            "Outputs the EMERGENCY STOP leaves on (a vacuum gripper keeps its part, a clamp its workpiece), e.g. vacuum. Every other coil and output goes off.",
+            None,
+        ),
+        (
             "interlock",
             "none",
             "Machine inputs that must stay on (a guard door's switch), e.g. guard_closed. One going off halts the machine where it is and raises alarm_il; RESET clears it.",
@@ -317,7 +323,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             sheet.add_data_validation(row, 1, row, 1, &validation)?;
         }
     }
-    let header = 17;
+    let header = 18;
     sheet.write_string(
         header - 1,
         0,

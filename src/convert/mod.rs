@@ -117,6 +117,7 @@ fn finish_check(
             &effective.simulation.valves,
             effective.hold_safe.as_ref(),
             effective.off_on_halt.as_ref(),
+            effective.hold_on_estop.as_ref(),
             &mut diags,
         );
         effective.program.permissive = crate::settings::halt::resolve_held_inputs(
@@ -133,6 +134,15 @@ fn finish_check(
             effective.interlock.as_ref(),
             &mut diags,
         );
+        if let Some(row) = &effective.hold_on_estop
+            && !effective.program.modes.estop
+        {
+            diags.warning(
+                Code::W006NoEffect,
+                row.at.clone(),
+                "hold on estop: the program has no emergency stop (--modes estop); the outputs named are never held",
+            );
+        }
         if let Some(row) = &effective.off_on_halt
             && !effective.program.halts()
         {

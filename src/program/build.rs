@@ -168,7 +168,14 @@ pub fn build(
         rungs.extend(halt_off_rung(&signals, &options.halt));
     }
     if modes.any() {
-        homing_rungs(table, &signals, &timers, modes, &mut rungs);
+        homing_rungs(
+            table,
+            &signals,
+            &timers,
+            modes,
+            &options.halt.hold_on_estop,
+            &mut rungs,
+        );
     }
     StepProgram {
         init,

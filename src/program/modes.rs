@@ -83,6 +83,7 @@ pub(super) fn homing_rungs(
     signals: &Signals,
     timers: &[Signal],
     modes: &Modes,
+    hold_on_estop: &std::collections::BTreeSet<Signal>,
     rungs: &mut Vec<Rung>,
 ) {
     let outputs: Vec<Signal> = signals.driven().collect();
@@ -182,7 +183,16 @@ pub(super) fn homing_rungs(
         }
     }
     if modes.estop {
-        let mut actions: Vec<Action> = outputs.iter().map(|s| Action::Reset(*s)).collect();
+        let held: Vec<String> = outputs
+            .iter()
+            .filter(|s| hold_on_estop.contains(s))
+            .map(|s| s.symbol())
+            .collect();
+        let mut actions: Vec<Action> = outputs
+            .iter()
+            .filter(|s| !hold_on_estop.contains(s))
+            .map(|s| Action::Reset(*s))
+            .collect();
         actions.push(Action::Set(Signal::Halt));
         actions.extend(
             memories
@@ -201,7 +211,14 @@ pub(super) fn homing_rungs(
         );
         rungs.push(Rung {
             kind: RungKind::EmergencyStop,
-            comment: "EMERGENCY STOP (normally closed): every coil and output off, START blocked until RESET".to_string(),
+            comment: if held.is_empty() {
+                "EMERGENCY STOP (normally closed): every coil and output off, START blocked until RESET".to_string()
+            } else {
+                format!(
+                    "EMERGENCY STOP (normally closed): every coil and output off but {} (hold on estop), START blocked until RESET",
+                    held.join(", ")
+                )
+            },
             condition: vec![Literal::not(Signal::EStop)],
             actions,
         });

@@ -68,12 +68,15 @@ impl Default for ProgramOptions {
 pub struct HaltPolicy {
     pub hold_safe: std::collections::BTreeSet<Signal>,
     pub off_on_halt: std::collections::BTreeSet<Signal>,
+    /// Outputs the emergency stop leaves on (SETTINGS `hold on estop`: a
+    /// vacuum gripper keeps its part, a clamp its workpiece).
+    pub hold_on_estop: std::collections::BTreeSet<Signal>,
 }
 
 impl HaltPolicy {
     /// Whether `output` may stay on in a machine that has stopped.
     pub fn may_stay_on(&self, output: Signal) -> bool {
-        if self.hold_safe.contains(&output) {
+        if self.hold_safe.contains(&output) || self.hold_on_estop.contains(&output) {
             return true;
         }
         if self.off_on_halt.contains(&output) {

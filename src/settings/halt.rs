@@ -78,19 +78,23 @@ fn outputs_named(table: &StepTable, valves: &Valves, name: &str) -> Option<Vec<S
     }
 }
 
-/// The halt policy the two rows give; an unknown name, or one in both
-/// rows, is an E030 at its row's cell.
+/// The halt policy the three rows give (`hold-safe`, `de-energise on
+/// halt`, `hold on estop`); an unknown name, or one both hold-safe and to
+/// be switched off, is an E030 at its row's cell.
 pub fn resolve(
     table: &StepTable,
     valves: &Valves,
     hold_safe: Option<&NamedList>,
     off_on_halt: Option<&NamedList>,
+    hold_on_estop: Option<&NamedList>,
     diags: &mut Diagnostics,
 ) -> HaltPolicy {
-    let mut sets: [BTreeSet<Signal>; 2] = Default::default();
+    let hold_on_estop_row = hold_on_estop;
+    let mut sets: [BTreeSet<Signal>; 3] = Default::default();
     for (set, (label, row)) in sets.iter_mut().zip([
         ("hold-safe", hold_safe),
         ("de-energise on halt", off_on_halt),
+        ("hold on estop", hold_on_estop),
     ]) {
         let Some(row) = row else { continue };
         for name in &row.names {
@@ -119,7 +123,7 @@ pub fn resolve(
             }
         }
     }
-    let [hold_safe, off] = sets;
+    let [hold_safe, off, hold_on_estop] = sets;
     if let (Some(row), Some(both)) = (off_on_halt, hold_safe.intersection(&off).next()) {
         diags.error(
             Code::E030BadSetting,
@@ -130,10 +134,21 @@ pub fn resolve(
             ),
         );
     }
+    if let (Some(row), Some(both)) = (hold_on_estop_row, hold_on_estop.intersection(&off).next()) {
+        diags.error(
+            Code::E030BadSetting,
+            row.at.clone(),
+            format!(
+                "hold on estop: {} is also to be switched off on halt, and the emergency stop halts; say one or the other",
+                both.symbol()
+            ),
+        );
+    }
     let off_on_halt = off;
     HaltPolicy {
         hold_safe,
         off_on_halt,
+        hold_on_estop,
     }
 }
 

@@ -47,6 +47,8 @@ pub struct Given {
     pub hold_safe: Option<halt::NamedList>,
     /// Outputs the program switches off when it halts.
     pub off_on_halt: Option<halt::NamedList>,
+    /// Outputs the emergency stop leaves on.
+    pub hold_on_estop: Option<halt::NamedList>,
     /// Machine inputs that must be on for a cycle to start.
     pub start_permissive: Option<halt::NamedList>,
     /// Machine inputs that must stay on, else the machine halts.
@@ -87,6 +89,10 @@ impl Given {
                 .off_on_halt
                 .clone()
                 .or_else(|| other.off_on_halt.clone()),
+            hold_on_estop: self
+                .hold_on_estop
+                .clone()
+                .or_else(|| other.hold_on_estop.clone()),
             start_permissive: self
                 .start_permissive
                 .clone()
@@ -125,6 +131,7 @@ pub struct Settings {
     /// The SETTINGS rows `hold-safe` and `de-energise on halt`, as written;
     /// `program.halt` once checked against the table.
     pub hold_safe: Option<halt::NamedList>,
+    pub hold_on_estop: Option<halt::NamedList>,
     pub off_on_halt: Option<halt::NamedList>,
     /// The SETTINGS rows `start permissive` and `interlock`, as written.
     pub start_permissive: Option<halt::NamedList>,
@@ -161,6 +168,9 @@ impl Settings {
         }
         if let Some(names) = &layer.off_on_halt {
             self.off_on_halt = Some(names.clone());
+        }
+        if let Some(names) = &layer.hold_on_estop {
+            self.hold_on_estop = Some(names.clone());
         }
         if let Some(names) = &layer.start_permissive {
             self.start_permissive = Some(names.clone());

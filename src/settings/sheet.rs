@@ -25,13 +25,14 @@ struct ActuatorColumns {
 }
 
 /// The labels of the settings, as written on the sheet.
-pub const LABELS: [&str; 11] = [
+pub const LABELS: [&str; 12] = [
     "target",
     "board",
     "hold-safe",
     "de-energise on halt",
     "start permissive",
     "interlock",
+    "hold on estop",
     "mnemonic",
     "scan time",
     "safety",
@@ -148,6 +149,13 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
             "hold-safe" if lower == "none" => {}
             "hold-safe" => {
                 settings.hold_safe = Some(super::halt::NamedList::parse(
+                    &value,
+                    grid.location(value_cell.pos),
+                ))
+            }
+            "hold on estop" if lower == "none" => {}
+            "hold on estop" => {
+                settings.hold_on_estop = Some(super::halt::NamedList::parse(
                     &value,
                     grid.location(value_cell.pos),
                 ))

@@ -260,3 +260,51 @@ fn an_interlock_that_opens_halts_the_machine_and_says_so() {
     assert!(row.contains(" safe stall at every moment alarm "), "{row}");
     assert!(row.contains("NOT halt (alarm: alarm_il)"), "{row}");
 }
+
+/// `hold on estop | vacuum`: the emergency stop switches every coil and
+/// output off but the vacuum, so the gripper keeps its part; without an
+/// emergency stop the row is W006.
+#[test]
+fn hold_on_estop_keeps_the_gripper_holding_through_an_emergency_stop() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("gripper.xlsx");
+    let table: &[&[&str]] = &[&["C1+1; Y:vacuum+"], &["C1-0; Y:vacuum-"]];
+    let settings: &[&[&str]] = &[&["hold on estop", "vacuum"], &["modes", "estop, reset"]];
+    write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);
+    let out = dir.path().join("conv");
+    steptable()
+        .arg("convert")
+        .arg(&path)
+        .args(["--formats", "st", "-o"])
+        .arg(&out)
+        .assert()
+        .success()
+        .stderr(contains("W006").not());
+    let st = std::fs::read_to_string(out.join("gripper/gripper.st")).unwrap();
+    assert!(
+        st.contains("every coil and output off but vacuum (hold on estop)"),
+        "{st}"
+    );
+    // The emergency stop's wire breaks while C1 moves out, vacuum on: the
+    // machine stops holding the part, which is no hazard of energy.
+    let stdout = String::from_utf8_lossy(&faults(&path, &[]).success().get_output().stdout)
+        .lines()
+        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let row = stdout
+        .lines()
+        .find(|l| l.starts_with("ESTOP open circuit"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(!row.contains("keeps vacuum on"), "{row}");
+    let settings: &[&[&str]] = &[&["hold on estop", "vacuum"]];
+    write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);
+    steptable()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .success()
+        .stderr(contains(
+            "warning[W006]: hold on estop: the program has no emergency stop",
+        ));
+}

@@ -30,7 +30,46 @@ pub const CHECKS: &[Check] = &[
         &[Tool::Shared, Tool::Awlsim],
         an_open_interlock_halts_in_every_engine,
     ),
+    Check::new(
+        "halt::an_emergency_stop_keeps_the_gripper_holding_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        an_emergency_stop_keeps_the_gripper_holding_in_every_engine,
+    ),
 ];
+
+/// `hold on estop | vacuum`: the emergency stop's wire breaks while C1
+/// travels out with the vacuum on; every coil goes off but the vacuum
+/// stays on, in every engine as simulated.
+fn an_emergency_stop_keeps_the_gripper_holding_in_every_engine() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("gripper.xlsx");
+    let table: &[&[&str]] = &[&["C1+1; Y:vacuum+"], &["C1-0; Y:vacuum-"]];
+    let settings: &[&[&str]] = &[&["hold on estop", "vacuum"]];
+    write_xlsx_sheets(&input, &[("TABLE", table), ("SETTINGS", settings)]);
+    let estop = Fault {
+        signal: Signal::EStop,
+        stuck_at: false,
+    };
+    let modes = ["--modes", "estop,reset"];
+    for case in run_everywhere(dir.path(), &input, &modes, estop, Some(900)) {
+        let column = |symbol: &str| {
+            let at = case
+                .trace
+                .signals
+                .outputs
+                .iter()
+                .position(|s| s.symbol() == symbol)
+                .unwrap_or_else(|| panic!("{symbol} is an output"));
+            case.trace.scans.iter().map(move |s| s.outputs[at])
+        };
+        assert_eq!(column("vacuum").next_back(), Some(true), "{}", case.label);
+        assert_eq!(column("y1+").next_back(), Some(false), "{}", case.label);
+        assert!(column("y1+").any(|on| on), "{}", case.label);
+    }
+    eprintln!(
+        "estop: matiec, awlsim and the FST interpreter keep the vacuum on through the emergency stop as simulated"
+    );
+}
 
 /// `interlock | guard_closed` with `de-energise on halt | heater`: the
 /// guard opens while C1 travels out with the heater on; the machine halts,
