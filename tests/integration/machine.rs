@@ -100,6 +100,15 @@ fn the_press_station_converts_with_its_machine_signals_everywhere() {
             .any(|c| c.starts_with("I:part_present came after")),
         "{timing:?}"
     );
+    // Step times in seconds, as `steptable simulate` prints them: step 9
+    // (C1-0, C3+1; T=2s) starts at 4.64 s and lasts 3.47 s.
+    let step9 = timing
+        .iter()
+        .find(|r| r[0] == "STEP 9")
+        .unwrap_or_else(|| panic!("{timing:?}"));
+    let seconds = |text: &str| text.parse::<f64>().unwrap_or(f64::NAN);
+    assert!((seconds(&step9[1]) - 4.64).abs() < 0.006, "{step9:?}");
+    assert!((seconds(&step9[2]) - 3.47).abs() < 0.006, "{step9:?}");
 }
 
 #[test]
