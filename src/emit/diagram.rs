@@ -264,6 +264,23 @@ impl RoundToLevel for f64 {
 mod tests {
     use super::*;
     use crate::simulate::{SimSettings, simulate};
+    use crate::table::StepTable;
+
+    /// The healthy run of `table`'s default program, with its position
+    /// trace when the time axis needs it.
+    fn simulated(table: &StepTable, record_trace: bool) -> SimReport {
+        let program = crate::program::build(
+            table,
+            &Default::default(),
+            &Default::default(),
+            &Default::default(),
+        );
+        let settings = SimSettings {
+            record_trace,
+            ..SimSettings::default()
+        };
+        simulate(table, &program, &settings)
+    }
 
     /// The grid's labels along the top: `(x, text)` in drawing order.
     fn top_labels(svg: &str) -> Vec<(f64, String)> {
@@ -281,20 +298,7 @@ mod tests {
     #[test]
     fn the_time_axis_ticks_one_grid_column_apart_from_the_left_edge() {
         let table = crate::program::tests::paper_table();
-        let program = crate::program::build(
-            &table,
-            &Default::default(),
-            &Default::default(),
-            &Default::default(),
-        );
-        let report = simulate(
-            &table,
-            &program,
-            &SimSettings {
-                record_trace: true,
-                ..SimSettings::default()
-            },
-        );
+        let report = simulated(&table, true);
         let svg = render_svg("paper", &report, DiagramKind::Time);
         let labels = top_labels(&svg);
         let end_s = report.trace.last().unwrap().0.div_ceil(1000);
@@ -317,20 +321,7 @@ mod tests {
     #[test]
     fn a_dwell_is_shaded_where_it_runs_on_the_time_axis() {
         let table = crate::table::from_rows("dwell.csv", &[["C1+1; T=1s"], ["C1-0"]]).unwrap();
-        let program = crate::program::build(
-            &table,
-            &Default::default(),
-            &Default::default(),
-            &Default::default(),
-        );
-        let report = simulate(
-            &table,
-            &program,
-            &SimSettings {
-                record_trace: true,
-                ..SimSettings::default()
-            },
-        );
+        let report = simulated(&table, true);
         let span = &report.spans[0];
         assert_eq!(span.to_ms - span.from_ms, 1000, "{span:?}");
         let tick = time_tick(report.trace.last().unwrap().0.div_ceil(1000)) as f64;
@@ -348,13 +339,7 @@ mod tests {
     #[test]
     fn the_step_axis_puts_each_step_a_column_apart() {
         let table = crate::program::tests::paper_table();
-        let program = crate::program::build(
-            &table,
-            &Default::default(),
-            &Default::default(),
-            &Default::default(),
-        );
-        let report = simulate(&table, &program, &SimSettings::default());
+        let report = simulated(&table, false);
         let labels = top_labels(&render_svg("paper", &report, DiagramKind::Step));
         let texts: Vec<&str> = labels.iter().map(|(_, t)| t.as_str()).collect();
         assert_eq!(texts, ["1", "2", "3", "4", "5", "6", "7", "8", "9=1"]);

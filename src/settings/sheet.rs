@@ -146,40 +146,26 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
                 Ok(modes) => settings.modes = Some(modes),
                 Err(_) => bad("none, all, or some of continuous, stop, estop, reset"),
             },
-            "hold-safe" if lower == "none" => {}
-            "hold-safe" => {
-                settings.hold_safe = Some(super::halt::NamedList::parse(
-                    &value,
-                    grid.location(value_cell.pos),
-                ))
-            }
-            "hold on estop" if lower == "none" => {}
-            "hold on estop" => {
-                settings.hold_on_estop = Some(super::halt::NamedList::parse(
-                    &value,
-                    grid.location(value_cell.pos),
-                ))
-            }
-            "interlock" if lower == "none" => {}
-            "interlock" => {
-                settings.interlock = Some(super::halt::NamedList::parse(
-                    &value,
-                    grid.location(value_cell.pos),
-                ))
-            }
-            "start permissive" if lower == "none" => {}
-            "start permissive" => {
-                settings.start_permissive = Some(super::halt::NamedList::parse(
-                    &value,
-                    grid.location(value_cell.pos),
-                ))
-            }
-            "de-energise on halt" if lower == "none" => {}
-            "de-energise on halt" => {
-                settings.off_on_halt = Some(super::halt::NamedList::parse(
-                    &value,
-                    grid.location(value_cell.pos),
-                ))
+            // The rows that list outputs or inputs by name: read as a list
+            // here, checked against the table once it is read.
+            "hold-safe"
+            | "hold on estop"
+            | "interlock"
+            | "start permissive"
+            | "de-energise on halt" => {
+                let slot = match label.as_str() {
+                    "hold-safe" => &mut settings.hold_safe,
+                    "hold on estop" => &mut settings.hold_on_estop,
+                    "interlock" => &mut settings.interlock,
+                    "start permissive" => &mut settings.start_permissive,
+                    _ => &mut settings.off_on_halt,
+                };
+                if lower != "none" {
+                    *slot = Some(super::halt::NamedList::parse(
+                        &value,
+                        grid.location(value_cell.pos),
+                    ));
+                }
             }
             "home order" if lower == "default" => {}
             "home order" => match Modes::parse_home_order(&value) {

@@ -6,7 +6,7 @@
 use predicates::prelude::*;
 use predicates::str::contains;
 
-use crate::helpers::{steptable, write_xlsx_sheets};
+use crate::helpers::{line_with, squeezed_stdout, steptable, write_xlsx_sheets};
 
 /// C1 carries a part under a heater that is on while C1 is out.
 const HEATED: &[&[&str]] = &[&["C1+1; Y:heater+"], &["C1-0; Y:heater-"]];
@@ -30,12 +30,7 @@ fn faults(input: &std::path::Path, extra: &[&str]) -> assert_cmd::assert::Assert
 
 /// The fault table's row of x11 open, its columns' padding squeezed.
 fn x11_open(assert: &assert_cmd::assert::Assert) -> String {
-    let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
-    let line = stdout
-        .lines()
-        .find(|l| l.contains("x11 open circuit"))
-        .unwrap_or_else(|| panic!("{stdout}"));
-    line.split_whitespace().collect::<Vec<_>>().join(" ")
+    line_with(&squeezed_stdout(assert), "x11 open circuit")
 }
 
 #[test]
@@ -135,12 +130,7 @@ fn the_carwash_flags_its_stuck_homing_button_and_its_halt_switches_the_motors_of
             .arg(dir.path())
             .assert()
             .success();
-        let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
-        let line = stdout
-            .lines()
-            .find(|l| l.contains(fault))
-            .unwrap_or_else(|| panic!("{stdout}"));
-        line.split_whitespace().collect::<Vec<_>>().join(" ")
+        line_with(&squeezed_stdout(&assert), fault)
     };
     for extra in [&[][..], &["--safety", "all"]] {
         assert_eq!(
@@ -182,11 +172,7 @@ fn a_start_permissive_is_an_input_a_cycle_needs_to_start() {
     assert!(io.contains("I0.3,air_ok,"), "{io}");
     let st = std::fs::read_to_string(out.join("heated/heated.st")).unwrap();
     assert!(st.contains("START AND x10 AND air_ok"), "{st}");
-    let stdout = String::from_utf8_lossy(&faults(&input, &[]).success().get_output().stdout)
-        .lines()
-        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
-        .collect::<Vec<_>>()
-        .join("\n");
+    let stdout = squeezed_stdout(&faults(&input, &[]).success());
     assert!(
         stdout.contains("air_ok open circuit (stuck at 0) safe stall at every moment 1 step 1 never fires: waiting for air_ok"),
         "{stdout}"
@@ -246,15 +232,8 @@ fn an_interlock_that_opens_halts_the_machine_and_says_so() {
         st.contains("INTERLOCK: guard_closed off halts the machine"),
         "{st}"
     );
-    let stdout = String::from_utf8_lossy(&faults(&input, &[]).success().get_output().stdout)
-        .lines()
-        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
-        .collect::<Vec<_>>()
-        .join("\n");
-    let row = stdout
-        .lines()
-        .find(|l| l.starts_with("guard_closed open circuit"))
-        .unwrap_or_else(|| panic!("{stdout}"));
+    let stdout = squeezed_stdout(&faults(&input, &[]).success());
+    let row = line_with(&stdout, "guard_closed open circuit");
     // Open from power-up or mid-cycle: the machine halts, says so, and
     // nothing it leaves on is a hazard.
     assert!(row.contains(" safe stall at every moment alarm "), "{row}");
@@ -287,15 +266,8 @@ fn hold_on_estop_keeps_the_gripper_holding_through_an_emergency_stop() {
     );
     // The emergency stop's wire breaks while C1 moves out, vacuum on: the
     // machine stops holding the part, which is no hazard of energy.
-    let stdout = String::from_utf8_lossy(&faults(&path, &[]).success().get_output().stdout)
-        .lines()
-        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
-        .collect::<Vec<_>>()
-        .join("\n");
-    let row = stdout
-        .lines()
-        .find(|l| l.starts_with("ESTOP open circuit"))
-        .unwrap_or_else(|| panic!("{stdout}"));
+    let stdout = squeezed_stdout(&faults(&path, &[]).success());
+    let row = line_with(&stdout, "ESTOP open circuit");
     assert!(!row.contains("keeps vacuum on"), "{row}");
     let settings: &[&[&str]] = &[&["hold on estop", "vacuum"]];
     write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);

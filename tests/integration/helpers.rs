@@ -114,6 +114,25 @@ pub fn io_rows(csv: &str) -> Vec<(String, String)> {
         .collect()
 }
 
+/// A command's stdout with each line's runs of spaces squeezed to one: a
+/// printed table's columns without their padding.
+pub fn squeezed_stdout(assert: &assert_cmd::assert::Assert) -> String {
+    String::from_utf8_lossy(&assert.get_output().stdout)
+        .lines()
+        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The first line of `text` that starts with `start` (the whole text in
+/// the panic when none does): a row of a printed table, by its first column.
+pub fn line_with(text: &str, start: &str) -> String {
+    text.lines()
+        .find(|l| l.starts_with(start))
+        .unwrap_or_else(|| panic!("no line starting {start:?} in:\n{text}"))
+        .to_string()
+}
+
 pub fn xlsx_part(path: &Path, part: &str) -> String {
     use std::io::Read;
     let file = std::fs::File::open(path).expect("open");

@@ -54,11 +54,7 @@ fn faults_prints_the_table_and_writes_the_csv() {
         .assert()
         .success();
     // The columns' padding squeezed to one space.
-    let stdout = String::from_utf8_lossy(&assert.get_output().stdout)
-        .lines()
-        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
-        .collect::<Vec<_>>()
-        .join("\n");
+    let stdout = crate::helpers::squeezed_stdout(&assert);
     for line in [
         "24 fault case(s) at 17 moments of the cycle (243 runs): 2 no effect, 9 safe stall, 13 hazard",
         "fault outcome appears detected step explanation",
