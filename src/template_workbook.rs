@@ -225,7 +225,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     let boards: Vec<&str> = std::iter::once("none")
         .chain(crate::address::BOARDS.iter().map(|b| b.name))
         .collect();
-    let rows: [(&str, &str, &str, Option<&[&str]>); 12] = [
+    let rows: [(&str, &str, &str, Option<&[&str]>); 15] = [
         (
             "target",
             "festo",
@@ -294,6 +294,24 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             None,
         ),
         (
+            "on stop",
+            "none",
+            "With modes: stop, what STOP does to each output, e.g. heater off, fan off after 20s, vacuum hold. With this row STOP acts at once, in any state: the cycle is abandoned and every coil and output not named goes off. Without it, STOP lets the cycle finish.",
+            None,
+        ),
+        (
+            "on estop",
+            "none",
+            "What the EMERGENCY STOP does to each output, as for on stop: off (the default), hold, or off after a time (a fan cooling a heater), e.g. fan off after 20s.",
+            None,
+        ),
+        (
+            "on halt",
+            "none",
+            "What a halt (a safety check, the emergency stop, an interlock) does to each output: hold (the default: as the sequence left it), off, or off after a time, e.g. heater off, fan off after 20s.",
+            None,
+        ),
+        (
             "interlock",
             "none",
             "Machine inputs that must stay on (a guard door's switch), e.g. guard_closed. One going off halts the machine where it is and raises alarm_il; RESET clears it.",
@@ -323,7 +341,8 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             sheet.add_data_validation(row, 1, row, 1, &validation)?;
         }
     }
-    let header = 18;
+    // Below the 15 rows of settings and a blank row.
+    let header = 21;
     sheet.write_string(
         header - 1,
         0,

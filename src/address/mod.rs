@@ -193,9 +193,11 @@ fn around_pins(default: Vec<Assigned>, pins: &[Assigned]) -> Vec<Assigned> {
         return default;
     };
     let (area, target) = (first.address.area, first.address.target);
+    // Every pin names a signal of the program (`convert::pins` checks), so
+    // the area tells which of them are laid out here.
     let pinned: Vec<Assigned> = pins
         .iter()
-        .filter(|p| p.address.area == area && default.iter().any(|d| d.signal == p.signal))
+        .filter(|p| p.address.area == area)
         .copied()
         .collect();
     if pinned.is_empty() {
@@ -321,7 +323,13 @@ impl Allocation {
         );
 
         let memories = lay_out(Area::Memory, target, signals.memories.iter().copied());
-        // T0 is the watchdog's; dwell n gets timer n.
+        // T0 is the watchdog's; dwell n gets timer n, run-on n the n-th
+        // timer after the dwells'.
+        let dwells = program
+            .timers
+            .iter()
+            .filter(|t| matches!(t, Signal::Dwell(_)))
+            .count() as u32;
         let timers = program
             .timers
             .iter()
@@ -332,6 +340,7 @@ impl Allocation {
                     target,
                     unit: match signal {
                         Signal::Dwell(n) => n as u32,
+                        Signal::RunOn(n) => dwells + n as u32,
                         _ => 0,
                     },
                     bit: 0,
@@ -517,6 +526,40 @@ mod tests {
                 Ok(mnemonic)
             );
         }
+    }
+
+    /// A pinned address is digits, a dot and digits in the target's
+    /// spelling; a sign, a letter or a sixth digit is not a number, and a
+    /// byte or word past 255 is out of range.
+    #[test]
+    fn pinned_addresses_are_digits_within_range() {
+        let parse = |text: &str| Address::parse(text, Target::Siemens);
+        assert_eq!(parse("Q255.7").map(|a| (a.unit, a.bit)), Ok((255, 7)));
+        assert_eq!(
+            parse("E1.2").map(|a| (a.area, a.unit)),
+            Ok((Area::Input, 1))
+        );
+        let out_of_range = parse("Q256.0").unwrap_err();
+        assert!(
+            out_of_range.contains("256 is out of range (0 to 255)"),
+            "{out_of_range}"
+        );
+        for bad in [
+            "I+1.0",
+            "I1.+0",
+            "I.0",
+            "I0.",
+            "I1a.0",
+            "I123456.0",
+            "I000001.0",
+        ] {
+            let message = parse(bad).unwrap_err();
+            assert!(
+                message.contains("is not an input or output address"),
+                "{bad}: {message}"
+            );
+        }
+        assert!(parse("I0.8").unwrap_err().contains("bit 8 is out of range"));
     }
 
     #[test]

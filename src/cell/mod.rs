@@ -241,13 +241,18 @@ impl fmt::Display for CellItem {
 
 /// `T=2s`, `T=500ms`, `T=1.25s`: the shortest exact spelling.
 pub fn dwell_text(ms: u32) -> String {
+    format!("T={}", duration_text(ms))
+}
+
+/// `2s`, `500ms`, `1.25s`: the shortest exact spelling of a duration.
+pub fn duration_text(ms: u32) -> String {
     if ms.is_multiple_of(1000) {
-        format!("T={}s", ms / 1000)
+        format!("{}s", ms / 1000)
     } else if ms < 1000 {
-        format!("T={ms}ms")
+        format!("{ms}ms")
     } else {
         let text = format!("{:.3}", ms as f64 / 1000.0);
-        format!("T={}s", text.trim_end_matches('0'))
+        format!("{}s", text.trim_end_matches('0'))
     }
 }
 

@@ -15,6 +15,7 @@ use crate::faults::{self, FaultTable};
 use crate::program::{self, StepProgram};
 use crate::read::{self, Format};
 use crate::settings::Settings;
+use crate::settings::halt::{self, Row};
 use crate::simulate::{self, SimReport, SimSettings};
 use crate::table::{self, StepTable};
 
@@ -112,45 +113,48 @@ fn finish_check(
             buttons: &buttons,
         };
         table::check_machine(table, &machine, &input.table, &mut diags);
-        effective.program.halt = crate::settings::halt::resolve(
-            table,
-            &effective.simulation.valves,
-            effective.hold_safe.as_ref(),
-            effective.off_on_halt.as_ref(),
-            effective.hold_on_estop.as_ref(),
-            &mut diags,
-        );
-        effective.program.permissive = crate::settings::halt::resolve_held_inputs(
+        let named = &effective.named;
+        effective.program.halt =
+            halt::resolve(table, &effective.simulation.valves, named, &mut diags);
+        effective.program.permissive = halt::resolve_held_inputs(
             table,
             &buttons,
-            "start permissive",
-            effective.start_permissive.as_ref(),
+            Row::StartPermissive,
+            named.get(&Row::StartPermissive),
             &mut diags,
         );
-        effective.program.interlocks = crate::settings::halt::resolve_held_inputs(
+        effective.program.interlocks = halt::resolve_held_inputs(
             table,
             &buttons,
-            "interlock",
-            effective.interlock.as_ref(),
+            Row::Interlock,
+            named.get(&Row::Interlock),
             &mut diags,
         );
-        if let Some(row) = &effective.hold_on_estop
-            && !effective.program.modes.estop
-        {
-            diags.warning(
-                Code::W006NoEffect,
-                row.at.clone(),
-                "hold on estop: the program has no emergency stop (--modes estop); the outputs named are never held",
-            );
-        }
-        if let Some(row) = &effective.off_on_halt
-            && !effective.program.halts()
-        {
-            diags.warning(
-                Code::W006NoEffect,
-                row.at.clone(),
-                "de-energise on halt: the program never halts without the plausibility or watchdog check or the emergency stop (--safety, --modes estop); the outputs named stay as the sequence left them",
-            );
+        // A row about an event the program does not have does nothing.
+        let program = &effective.program;
+        let no_estop =
+            "the program has no emergency stop (--modes estop); nothing named here is done";
+        let no_halt = "the program never halts without the plausibility or watchdog check, the emergency stop or an interlock (--safety, --modes estop); the outputs named stay as the sequence left them";
+        for (row, has, why) in [
+            (Row::HoldOnEstop, program.modes.estop, no_estop),
+            (Row::OnEstop, program.modes.estop, no_estop),
+            (
+                Row::OnStop,
+                program.modes.stop,
+                "the program has no STOP button (--modes stop); nothing named here is ever done",
+            ),
+            (Row::OffOnHalt, program.halts(), no_halt),
+            (Row::OnHalt, program.halts(), no_halt),
+        ] {
+            if let Some(list) = named.get(&row)
+                && !has
+            {
+                diags.warning(
+                    Code::W006NoEffect,
+                    list.at.clone(),
+                    format!("{}: {why}", row.label()),
+                );
+            }
         }
     }
     match table {

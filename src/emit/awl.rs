@@ -131,6 +131,7 @@ impl Layout {
                 signal,
                 stem: match signal {
                     Signal::Dwell(n) => format!("dw{n}"),
+                    Signal::RunOn(n) => format!("ro{n}"),
                     _ => "wd".to_string(),
                 },
                 run,
@@ -401,7 +402,7 @@ fn build(input: &EmitInput) -> Context {
             symbol: a.signal.ident(),
             address: sdf_address(&layout.operand(input, a.signal)),
             data_type: "BOOL",
-            comment: one_line(&a.signal.comment(input.table)),
+            comment: one_line(&input.program.comment(a.signal, input.table)),
         })
         .collect();
     for (k, flag) in layout.step_flags.iter().enumerate() {
@@ -448,7 +449,7 @@ fn build(input: &EmitInput) -> Context {
             symbol: t.signal.ident(),
             address: sdf_address(&timer_operand(input, t.signal)),
             data_type: "TIMER",
-            comment: one_line(&t.signal.comment(input.table)),
+            comment: one_line(&input.program.comment(t.signal, input.table)),
         });
     }
 

@@ -45,7 +45,7 @@ pub fn rows(input: &EmitInput) -> Vec<[String; 7]> {
                 actuator,
                 position,
                 direction,
-                a.signal.comment(input.table),
+                input.program.comment(a.signal, input.table),
             ]
         })
         .collect()

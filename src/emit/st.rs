@@ -220,7 +220,7 @@ fn located(a: &Assigned, input: &EmitInput) -> Var {
         ident: a.signal.ident(),
         iec_address: a.address.iec(),
         address: a.address.display(input.allocation.mnemonic),
-        comment: comment_text(&a.signal.comment(input.table)),
+        comment: comment_text(&input.program.comment(a.signal, input.table)),
     }
 }
 
@@ -272,7 +272,7 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
                 }
                 .to_string(),
             ),
-            comment: comment_text(&m.signal.comment(input.table)),
+            comment: comment_text(&input.program.comment(m.signal, input.table)),
         }
     }));
     let mut timers = Vec::new();
@@ -282,14 +282,20 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
             data_type: "BOOL",
             derived: false,
             initial: Some("FALSE".to_string()),
-            comment: comment_text(&format!("{} runs", timer.comment(input.table))),
+            comment: comment_text(&format!(
+                "{} runs",
+                input.program.comment(timer, input.table)
+            )),
         });
         internals.push(Internal {
             ident: timer_preset(timer),
             data_type: "TIME",
             derived: false,
             initial: Some("T#0ms".to_string()),
-            comment: comment_text(&format!("{} preset", timer.comment(input.table))),
+            comment: comment_text(&format!(
+                "{} preset",
+                input.program.comment(timer, input.table)
+            )),
         });
         timers.push(Timer {
             ident: timer.ident(),

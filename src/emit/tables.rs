@@ -36,7 +36,7 @@ pub fn render_fst_alloc(input: &EmitInput) -> Result<String, templates::Template
         .map(|a| Entry {
             address: a.address.display(Mnemonic::En),
             symbol: a.signal.fst_symbol(),
-            comment: one_line(&a.signal.comment(input.table)),
+            comment: one_line(&input.program.comment(a.signal, input.table)),
         })
         .collect();
     input.templates.render(
@@ -74,7 +74,7 @@ pub fn render_rockwell(input: &EmitInput) -> Result<String, templates::TemplateE
             description: one_line(&format!(
                 "{} {}",
                 a.address.display(alloc.mnemonic),
-                a.signal.comment(input.table)
+                input.program.comment(a.signal, input.table)
             )),
             data_type: "BOOL",
         })
@@ -139,7 +139,11 @@ pub fn render_tia_tags(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
         sheet.write_string(row, 1, "Default tag table")?;
         sheet.write_string(row, 2, "Bool")?;
         sheet.write_string(row, 3, format!("%{letter}{byte}.{bit}"))?;
-        sheet.write_string(row, 4, one_line(&a.signal.comment(input.table)))?;
+        sheet.write_string(
+            row,
+            4,
+            one_line(&input.program.comment(a.signal, input.table)),
+        )?;
         for col in 5..8 {
             sheet.write_string(row, col, "True")?;
         }

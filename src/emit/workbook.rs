@@ -212,7 +212,7 @@ fn address_sheet(
         let row = i as u32 + 1;
         sheet.write_string(row, 0, a.address.display(input.allocation.mnemonic))?;
         sheet.write_string(row, 1, a.signal.symbol())?;
-        sheet.write_string(row, 2, a.signal.comment(input.table))?;
+        sheet.write_string(row, 2, input.program.comment(a.signal, input.table))?;
     }
     sheet.set_column_width(0, 10)?;
     sheet.set_column_width(1, 10)?;

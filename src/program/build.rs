@@ -1,7 +1,7 @@
 //! Building the step program from a checked table (DESIGN §4): the steps of
 //! the sequence, the end of the cycle, and the rungs every scan runs.
 
-use super::modes::{homing_rungs, mode_rungs};
+use super::modes::{homing_rungs, mode_rungs, stop_now_rungs};
 use super::signals::{self, Coils, Signals};
 use super::{
     Action, Alarm, Literal, ProgramOptions, ProgramStep, Rung, RungKind, Signal, StepKind,
@@ -146,7 +146,14 @@ pub fn build(
     }
     rungs.extend(dwell_rungs(table));
     if modes.any() {
-        mode_rungs(safety, modes, options.halts(), &ready, &mut rungs);
+        mode_rungs(
+            safety,
+            modes,
+            options.halts(),
+            options.stops_now(),
+            &ready,
+            &mut rungs,
+        );
     }
     let mut init = Vec::new();
     if safety.edge {
@@ -163,9 +170,28 @@ pub fn build(
         rungs.push(watchdog_rung());
     }
     timers.extend(table.dwells().map(|d| Signal::Dwell(d.number)));
+    let run_ons = options.run_ons();
+    timers.extend((1..=run_ons.len()).map(|n| Signal::RunOn(n as u16)));
     rungs.extend(interlock_rung(&options.interlocks));
     if options.halts() {
         rungs.extend(halt_off_rung(&signals, &options.halt));
+    }
+    if options.stops_now() {
+        stop_now_rungs(&signals, &timers, &options.halt, &mut rungs);
+    }
+    rungs.extend(run_on_rungs(&run_ons));
+    // A step that switches a running-on output on again ends its run-on.
+    for step in &mut steps {
+        let mut ended = Vec::new();
+        for action in &step.actions {
+            for (i, run_on) in run_ons.iter().enumerate() {
+                if *action == Action::Set(run_on.output) {
+                    ended.push(Action::Reset(Signal::RunOnArmed(i as u16 + 1)));
+                    ended.push(Action::Reset(Signal::RunOn(i as u16 + 1)));
+                }
+            }
+        }
+        step.actions.extend(ended);
     }
     if modes.any() {
         homing_rungs(
@@ -174,6 +200,7 @@ pub fn build(
             &timers,
             modes,
             &options.halt.hold_on_estop,
+            &run_ons,
             &mut rungs,
         );
     }
@@ -185,7 +212,46 @@ pub fn build(
         signals,
         halt: options.halt.clone(),
         permissive: options.held_inputs(),
+        run_ons,
     }
+}
+
+/// Each run-on starts its timer when its event finds its output on, and
+/// switches the output off when the timer has run out.
+fn run_on_rungs(run_ons: &[super::RunOn]) -> Vec<Rung> {
+    use super::StopEvent;
+    let mut rungs = Vec::new();
+    for (i, run_on) in run_ons.iter().enumerate() {
+        let n = i as u16 + 1;
+        let (timer, armed) = (Signal::RunOn(n), Signal::RunOnArmed(n));
+        let output = run_on.output;
+        let time = crate::cell::duration_text(run_on.ms);
+        let event = run_on.event.text();
+        rungs.push(Rung {
+            kind: RungKind::RunOn,
+            comment: format!(
+                "run-on {n}: {} off once {time} have passed after {event}",
+                output.symbol()
+            ),
+            condition: vec![Literal::is(armed), Literal::not(timer)],
+            actions: vec![Action::Reset(output), Action::Reset(armed)],
+        });
+        let happened = match run_on.event {
+            StopEvent::Stop => Literal::not(Signal::Stop),
+            StopEvent::EStop => Literal::not(Signal::EStop),
+            StopEvent::Halt => Literal::is(Signal::Halt),
+        };
+        rungs.push(Rung {
+            kind: RungKind::RunOn,
+            comment: format!(
+                "run-on {n}: {event} finds {} on: it stays on {time}",
+                output.symbol()
+            ),
+            condition: vec![happened, Literal::is(output), Literal::not(armed)],
+            actions: vec![Action::Set(armed), Action::StartTimer(timer, run_on.ms)],
+        });
+    }
+    rungs
 }
 
 /// An interlock input that goes off halts the machine where it is and

@@ -21,7 +21,7 @@ mod signal;
 mod signals;
 
 pub use build::build;
-pub use options::{HaltPolicy, Modes, ProgramOptions, Safety};
+pub use options::{HaltPolicy, Modes, ProgramOptions, RunOn, Safety, StopAction, StopEvent};
 pub use signal::{Alarm, Area, Signal};
 pub use signals::{Coils, Signals};
 
@@ -124,6 +124,10 @@ pub enum RungKind {
     HaltOff,
     /// An interlock input went off.
     Interlock,
+    /// STOP acts at once (SETTINGS `on stop`).
+    StopNow,
+    /// An output running on after STOP.
+    RunOn,
 }
 
 impl RungKind {
@@ -140,6 +144,8 @@ impl RungKind {
             RungKind::EmergencyStop => "EMERGENCY STOP",
             RungKind::HaltOff => "HALT",
             RungKind::Interlock => "INTERLOCK",
+            RungKind::StopNow => "STOP",
+            RungKind::RunOn => "RUN-ON",
         }
     }
 }
@@ -171,6 +177,42 @@ pub struct StepProgram {
     /// The start permissives and interlocks: machine inputs a healthy
     /// machine holds on.
     pub permissive: Vec<crate::cell::Name>,
+    /// The outputs that run on after a stop event: run-on n is the n-th.
+    pub run_ons: Vec<RunOn>,
+}
+
+impl StepProgram {
+    /// Whether STOP acts at once (an `on stop` row) rather than letting
+    /// the cycle finish.
+    pub fn stops_now(&self) -> bool {
+        !self.halt.on_stop.is_empty() && self.signals.inputs.contains(&Signal::Stop)
+    }
+
+    /// A human description of `signal` in this program: what STOP does,
+    /// which output a run-on timer keeps on; the rest as the signal says.
+    pub fn comment(&self, signal: Signal, table: &crate::table::StepTable) -> String {
+        let run_on = |n: u16| self.run_ons.get(usize::from(n).wrapping_sub(1));
+        match signal {
+            Signal::Stop if self.stops_now() => {
+                "STOP push-button, normally closed (0: stop at once, outputs as on stop says)"
+                    .to_string()
+            }
+            Signal::RunOn(n) => match run_on(n) {
+                Some(r) => format!(
+                    "run-on timer {n}: {} stays on {} after {}",
+                    r.output.symbol(),
+                    crate::cell::duration_text(r.ms),
+                    r.event.text()
+                ),
+                None => signal.comment(table),
+            },
+            Signal::RunOnArmed(n) => match run_on(n) {
+                Some(r) => format!("{} runs on after {}", r.output.symbol(), r.event.text()),
+                None => signal.comment(table),
+            },
+            other => other.comment(table),
+        }
+    }
 }
 
 /// `IF a AND b THEN SET y1+ RESET y1-` in the paper's notation, with symbols

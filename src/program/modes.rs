@@ -12,6 +12,7 @@ pub(super) fn mode_rungs(
     safety: Safety,
     modes: &Modes,
     halts: bool,
+    stops_now: bool,
     homes: &[Literal],
     rungs: &mut Vec<Rung>,
 ) {
@@ -62,7 +63,7 @@ pub(super) fn mode_rungs(
             actions: vec![Action::Reset(Signal::AutoRun)],
         });
     }
-    if modes.stop {
+    if modes.stop && !stops_now {
         let mut actions = vec![Action::Reset(Signal::CycleRequest)];
         if modes.continuous {
             actions.push(Action::Reset(Signal::AutoRun));
@@ -84,6 +85,7 @@ pub(super) fn homing_rungs(
     timers: &[Signal],
     modes: &Modes,
     hold_on_estop: &std::collections::BTreeSet<Signal>,
+    run_ons: &[super::RunOn],
     rungs: &mut Vec<Rung>,
 ) {
     let outputs: Vec<Signal> = signals.driven().collect();
@@ -108,6 +110,7 @@ pub(super) fn homing_rungs(
                             | Signal::AutoRun
                             | Signal::StopAt { .. }
                             | Signal::DwellArmed(_)
+                            | Signal::RunOnArmed(_)
                             | Signal::WatchdogArmed
                     )
                 })
@@ -183,14 +186,31 @@ pub(super) fn homing_rungs(
         }
     }
     if modes.estop {
-        let held: Vec<String> = outputs
+        let runs_on = |s: &Signal| {
+            run_ons
+                .iter()
+                .any(|r| r.event == super::StopEvent::EStop && r.output == *s)
+        };
+        let mut held: Vec<String> = outputs
             .iter()
             .filter(|s| hold_on_estop.contains(s))
-            .map(|s| s.symbol())
+            .map(|s| format!("{} (hold on estop)", s.symbol()))
             .collect();
+        held.extend(
+            run_ons
+                .iter()
+                .filter(|r| r.event == super::StopEvent::EStop)
+                .map(|r| {
+                    format!(
+                        "{} (off after {})",
+                        r.output.symbol(),
+                        crate::cell::duration_text(r.ms)
+                    )
+                }),
+        );
         let mut actions: Vec<Action> = outputs
             .iter()
-            .filter(|s| !hold_on_estop.contains(s))
+            .filter(|s| !hold_on_estop.contains(s) && !runs_on(s))
             .map(|s| Action::Reset(*s))
             .collect();
         actions.push(Action::Set(Signal::Halt));
@@ -211,16 +231,86 @@ pub(super) fn homing_rungs(
         );
         rungs.push(Rung {
             kind: RungKind::EmergencyStop,
-            comment: if held.is_empty() {
-                "EMERGENCY STOP (normally closed): every coil and output off, START blocked until RESET".to_string()
-            } else {
-                format!(
-                    "EMERGENCY STOP (normally closed): every coil and output off but {} (hold on estop), START blocked until RESET",
-                    held.join(", ")
-                )
-            },
+            comment: format!(
+                "EMERGENCY STOP (normally closed): {}, START blocked until RESET",
+                all_off_but(&held)
+            ),
             condition: vec![Literal::not(Signal::EStop)],
             actions,
         });
+    }
+}
+
+/// STOP that acts at once (SETTINGS `on stop`): in any state the sequence
+/// is abandoned (back to STEP 1, no cycle asked for or under way, no dwell,
+/// watchdog or homing running) and every coil and output goes off but
+/// those held or running on (their rungs: `build::run_on_rungs`).
+pub(super) fn stop_now_rungs(
+    signals: &Signals,
+    timers: &[Signal],
+    policy: &super::HaltPolicy,
+    rungs: &mut Vec<Rung>,
+) {
+    use super::StopAction;
+    let kept: Vec<String> = signals
+        .driven()
+        .filter_map(|s| match policy.on_stop.get(&s) {
+            Some(StopAction::Hold) => Some(format!("{} held", s.symbol())),
+            Some(StopAction::OffAfter(ms)) => Some(format!(
+                "{} off after {}",
+                s.symbol(),
+                crate::cell::duration_text(*ms)
+            )),
+            _ => None,
+        })
+        .collect();
+    let mut actions: Vec<Action> = signals
+        .driven()
+        .filter(|s| matches!(policy.on_stop.get(s), None | Some(StopAction::Off)))
+        .map(Action::Reset)
+        .collect();
+    actions.extend(
+        signals
+            .memories
+            .iter()
+            .filter(|m| {
+                matches!(
+                    m,
+                    Signal::CycleRequest
+                        | Signal::Busy
+                        | Signal::AutoRun
+                        | Signal::StopAt { .. }
+                        | Signal::DwellArmed(_)
+                        | Signal::WatchdogArmed
+                        | Signal::Homing
+                        | Signal::HomeStage(_)
+                )
+            })
+            .map(|m| Action::Reset(*m)),
+    );
+    actions.extend(
+        timers
+            .iter()
+            .filter(|t| !matches!(t, Signal::RunOn(_)))
+            .map(|t| Action::Reset(*t)),
+    );
+    actions.push(Action::Reset(Signal::Sequence));
+    rungs.push(Rung {
+        kind: RungKind::StopNow,
+        comment: format!(
+            "STOP (normally closed): stop at once, {}",
+            all_off_but(&kept)
+        ),
+        condition: vec![Literal::not(Signal::Stop)],
+        actions,
+    });
+}
+
+/// `every coil and output off`, `… off but fan (off after 20s)`.
+fn all_off_but(kept: &[String]) -> String {
+    if kept.is_empty() {
+        "every coil and output off".to_string()
+    } else {
+        format!("every coil and output off but {}", kept.join(", "))
     }
 }

@@ -32,6 +32,32 @@ impl ProgramOptions {
         self.safety.halts(&self.modes) || !self.interlocks.is_empty()
     }
 
+    /// Whether STOP acts at once (an `on stop` row) rather than letting the
+    /// cycle finish.
+    pub fn stops_now(&self) -> bool {
+        self.modes.stop && !self.halt.on_stop.is_empty()
+    }
+
+    /// Whether the program has `event`: a STOP that acts at once, the
+    /// emergency stop, a halt.
+    pub fn has(&self, event: StopEvent) -> bool {
+        match event {
+            StopEvent::Stop => self.stops_now(),
+            StopEvent::EStop => self.modes.estop,
+            StopEvent::Halt => self.halts(),
+        }
+    }
+
+    /// The outputs that run on after an event the program has: run-on n
+    /// (timer `runonN`, memory `roN_arm`) is the n-th.
+    pub fn run_ons(&self) -> Vec<RunOn> {
+        self.halt
+            .run_ons()
+            .into_iter()
+            .filter(|r| self.has(r.event))
+            .collect()
+    }
+
     /// The machine inputs the settings add to the table's (permissives,
     /// then interlocks), each once.
     pub fn held_inputs(&self) -> Vec<crate::cell::Name> {
@@ -71,12 +97,98 @@ pub struct HaltPolicy {
     /// Outputs the emergency stop leaves on (SETTINGS `hold on estop`: a
     /// vacuum gripper keeps its part, a clamp its workpiece).
     pub hold_on_estop: std::collections::BTreeSet<Signal>,
+    /// What each named output does when STOP is pressed (SETTINGS `on
+    /// stop`). Empty: STOP lets the cycle finish. Any entry makes STOP act
+    /// at once, in any state: the sequence is abandoned, every coil and
+    /// output goes off but those held or running on.
+    pub on_stop: std::collections::BTreeMap<Signal, StopAction>,
+    /// The outputs that run on after the emergency stop or a halt (SETTINGS
+    /// `on estop`, `on halt`: `fan off after 20s`); their `off` and
+    /// `hold` are in `hold_on_estop`, `off_on_halt` and `hold_safe`.
+    pub run_on_estop: std::collections::BTreeMap<Signal, u32>,
+    pub run_on_halt: std::collections::BTreeMap<Signal, u32>,
+}
+
+/// What makes the machine stop, for the outputs' stop behaviour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum StopEvent {
+    /// STOP pressed (with an `on stop` row: at once).
+    Stop,
+    /// The emergency stop.
+    EStop,
+    /// A safety check or an interlock halts the machine.
+    Halt,
+}
+
+impl StopEvent {
+    pub const ALL: [StopEvent; 3] = [StopEvent::Stop, StopEvent::EStop, StopEvent::Halt];
+
+    /// `STOP`, `the emergency stop`, `a halt`: after the word "after".
+    pub fn text(self) -> &'static str {
+        match self {
+            StopEvent::Stop => "STOP",
+            StopEvent::EStop => "the emergency stop",
+            StopEvent::Halt => "a halt",
+        }
+    }
+}
+
+/// An output that stays on for a while after a stop event.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RunOn {
+    pub event: StopEvent,
+    pub output: Signal,
+    pub ms: u32,
+}
+
+/// What an output does when the machine stops.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopAction {
+    Off,
+    Hold,
+    /// Stays on this many milliseconds more, then goes off (an oven's fan).
+    OffAfter(u32),
+}
+
+impl std::fmt::Display for StopAction {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StopAction::Off => f.write_str("off"),
+            StopAction::Hold => f.write_str("hold"),
+            StopAction::OffAfter(ms) => write!(f, "off after {}", crate::cell::duration_text(*ms)),
+        }
+    }
 }
 
 impl HaltPolicy {
+    /// Every output that runs on after an event, by event (STOP, the
+    /// emergency stop, a halt), then signal.
+    pub fn run_ons(&self) -> Vec<RunOn> {
+        let on_stop = self.on_stop.iter().filter_map(|(s, a)| match a {
+            StopAction::OffAfter(ms) => Some((StopEvent::Stop, *s, *ms)),
+            _ => None,
+        });
+        let on_estop = self
+            .run_on_estop
+            .iter()
+            .map(|(s, ms)| (StopEvent::EStop, *s, *ms));
+        let on_halt = self
+            .run_on_halt
+            .iter()
+            .map(|(s, ms)| (StopEvent::Halt, *s, *ms));
+        on_stop
+            .chain(on_estop)
+            .chain(on_halt)
+            .map(|(event, output, ms)| RunOn { event, output, ms })
+            .collect()
+    }
+
     /// Whether `output` may stay on in a machine that has stopped.
     pub fn may_stay_on(&self, output: Signal) -> bool {
-        if self.hold_safe.contains(&output) || self.hold_on_estop.contains(&output) {
+        if self.hold_safe.contains(&output)
+            || self.hold_on_estop.contains(&output)
+            || self.on_stop.get(&output) == Some(&StopAction::Hold)
+        {
             return true;
         }
         if self.off_on_halt.contains(&output) {

@@ -67,6 +67,12 @@ pub enum Signal {
     Dwell(u16),
     /// Memory: dwell n waits for its branch to finish before its timer starts.
     DwellArmed(u16),
+    /// Run-on timer n: the n-th output that stays on for a while after
+    /// STOP (SETTINGS `on stop | fan off after 20s`); true while it runs.
+    RunOn(u16),
+    /// Memory: run-on n is timing; when its timer has run out, its output
+    /// goes off.
+    RunOnArmed(u16),
     /// Operating-mode inputs: the CONTINUOUS switch, the STOP and EMERGENCY
     /// STOP buttons (normally closed: 1 = not pressed), the RESET button.
     Continuous,
@@ -107,13 +113,14 @@ impl Signal {
             | Signal::Halt
             | Signal::WatchdogArmed
             | Signal::DwellArmed(_)
+            | Signal::RunOnArmed(_)
             | Signal::CycleRequest
             | Signal::Busy
             | Signal::AutoRun
             | Signal::Homing
             | Signal::HomeStage(_)
             | Signal::Sequence => Area::Memory,
-            Signal::Watchdog | Signal::Dwell(_) => Area::Timer,
+            Signal::Watchdog | Signal::Dwell(_) | Signal::RunOn(_) => Area::Timer,
         }
     }
 
@@ -141,6 +148,8 @@ impl Signal {
             Signal::MachineInput(name) | Signal::MachineOutput(name) => name.to_string(),
             Signal::Dwell(n) => format!("dwell{n}"),
             Signal::DwellArmed(n) => format!("dw{n}_arm"),
+            Signal::RunOn(n) => format!("runon{n}"),
+            Signal::RunOnArmed(n) => format!("ro{n}_arm"),
             Signal::Continuous => "CONT".to_string(),
             Signal::Stop => "STOP".to_string(),
             Signal::EStop => "ESTOP".to_string(),
@@ -256,6 +265,9 @@ impl Signal {
                     format!("dwell {n} waits for its branch to finish ({what})")
                 }
             }
+            // The program knows which output (StepProgram::comment).
+            Signal::RunOn(n) => format!("run-on timer {n} (an output on after STOP)"),
+            Signal::RunOnArmed(n) => format!("run-on {n} is timing"),
             Signal::Continuous => "CONTINUOUS switch (on: repeat cycles)".to_string(),
             Signal::Stop => {
                 "STOP push-button, normally closed (0: finish the cycle, then halt)".to_string()
@@ -373,6 +385,8 @@ mod tests {
             Signal::WatchdogArmed,
             Signal::Dwell(255),
             Signal::DwellArmed(255),
+            Signal::RunOn(255),
+            Signal::RunOnArmed(255),
             Signal::Continuous,
             Signal::Stop,
             Signal::EStop,

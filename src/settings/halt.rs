@@ -4,13 +4,60 @@
 //! decided against the table (`resolve`), where an unknown one is an error
 //! at its cell.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use crate::cell::Sign;
 use crate::diag::{Code, Diagnostics, Location};
-use crate::program::{HaltPolicy, Signal};
+use crate::program::{HaltPolicy, Signal, StopAction};
 use crate::table::StepTable;
 use crate::valve::{ValveType, Valves};
+
+/// The SETTINGS rows that list outputs or inputs by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Row {
+    HoldSafe,
+    OffOnHalt,
+    HoldOnEstop,
+    OnStop,
+    OnEstop,
+    OnHalt,
+    StartPermissive,
+    Interlock,
+}
+
+impl Row {
+    pub const ALL: [Row; 8] = [
+        Row::HoldSafe,
+        Row::OffOnHalt,
+        Row::HoldOnEstop,
+        Row::OnStop,
+        Row::OnEstop,
+        Row::OnHalt,
+        Row::StartPermissive,
+        Row::Interlock,
+    ];
+
+    /// The row's label on the sheet.
+    pub fn label(self) -> &'static str {
+        match self {
+            Row::HoldSafe => "hold-safe",
+            Row::OffOnHalt => "de-energise on halt",
+            Row::HoldOnEstop => "hold on estop",
+            Row::OnStop => "on stop",
+            Row::OnEstop => "on estop",
+            Row::OnHalt => "on halt",
+            Row::StartPermissive => "start permissive",
+            Row::Interlock => "interlock",
+        }
+    }
+
+    pub fn from_label(label: &str) -> Option<Row> {
+        Row::ALL.into_iter().find(|r| r.label() == label)
+    }
+}
+
+/// The named rows one source gives, by row.
+pub type NamedRows = BTreeMap<Row, NamedList>;
 
 /// Names as one SETTINGS cell lists them (`vacuum, y1+, C2`), with the
 /// cell, for the errors once they are checked against the table.
@@ -48,17 +95,15 @@ fn outputs_named(table: &StepTable, valves: &Valves, name: &str) -> Option<Vec<S
     }
     let has = |actuator: u32| table.actuator(actuator).is_some();
     if let Some(actuator) = crate::cell::parse_actuator(name).filter(|a| has(*a)) {
-        return Some(vec![
-            Signal::Coil {
-                actuator,
-                sign: Sign::Plus,
-            },
-            Signal::Coil {
-                actuator,
-                sign: Sign::Minus,
-            },
-            Signal::SingleCoil { actuator },
-        ]);
+        let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
+        if valves.of(actuator, pmax) == ValveType::Mono52 {
+            return Some(vec![Signal::SingleCoil { actuator }]);
+        }
+        return Some(
+            [Sign::Plus, Sign::Minus]
+                .map(|sign| Signal::Coil { actuator, sign })
+                .to_vec(),
+        );
     }
     let coil = lower.strip_prefix('y')?;
     let (number, sign) = match coil.strip_suffix('+') {
@@ -78,53 +123,61 @@ fn outputs_named(table: &StepTable, valves: &Valves, name: &str) -> Option<Vec<S
     }
 }
 
-/// The halt policy the three rows give (`hold-safe`, `de-energise on
-/// halt`, `hold on estop`); an unknown name, or one both hold-safe and to
-/// be switched off, is an E030 at its row's cell.
+/// The halt policy the rows give (`hold-safe`, `de-energise on halt`,
+/// `hold on estop`, and `on stop`, `on estop`, `on halt` with an action per
+/// output); an unknown name, or an output both kept and switched off by
+/// one event, is an E030 at its row's cell.
 pub fn resolve(
     table: &StepTable,
     valves: &Valves,
-    hold_safe: Option<&NamedList>,
-    off_on_halt: Option<&NamedList>,
-    hold_on_estop: Option<&NamedList>,
+    rows: &NamedRows,
     diags: &mut Diagnostics,
 ) -> HaltPolicy {
-    let hold_on_estop_row = hold_on_estop;
     let mut sets: [BTreeSet<Signal>; 3] = Default::default();
-    for (set, (label, row)) in sets.iter_mut().zip([
-        ("hold-safe", hold_safe),
-        ("de-energise on halt", off_on_halt),
-        ("hold on estop", hold_on_estop),
-    ]) {
-        let Some(row) = row else { continue };
-        for name in &row.names {
+    for (set, row) in sets
+        .iter_mut()
+        .zip([Row::HoldSafe, Row::OffOnHalt, Row::HoldOnEstop])
+    {
+        let Some(list) = rows.get(&row) else { continue };
+        for name in &list.names {
             match outputs_named(table, valves, name) {
                 Some(signals) => set.extend(signals),
-                None => {
-                    let mut known: Vec<String> =
-                        table.outputs.iter().map(|o| o.to_string()).collect();
-                    for a in &table.actuators {
-                        known.push(format!("C{}", a.number));
-                        if valves.of(a.number, a.max_position) == ValveType::Mono52 {
-                            known.push(format!("y{}", a.number));
-                        } else {
-                            known.push(format!("y{0}+, y{0}-", a.number));
-                        }
-                    }
-                    diags.error(
-                        Code::E030BadSetting,
-                        row.at.clone(),
-                        format!(
-                            "{label}: \"{name}\" is not an output of this table (expected a machine output, a coil such as y1+, or an actuator: {})",
-                            known.join(", ")
-                        ),
-                    );
-                }
+                None => not_an_output(table, valves, row, list, name, diags),
             }
         }
     }
-    let [hold_safe, off, hold_on_estop] = sets;
-    if let (Some(row), Some(both)) = (off_on_halt, hold_safe.intersection(&off).next()) {
+    let [mut hold_safe, mut off, mut hold_on_estop] = sets;
+    let mut actions_of = |row: Row| {
+        rows.get(&row)
+            .map(|list| stop_actions(table, valves, row, list, diags))
+            .unwrap_or_default()
+    };
+    let on_stop = actions_of(Row::OnStop);
+    let (on_estop, on_halt) = (actions_of(Row::OnEstop), actions_of(Row::OnHalt));
+    let run_ons = |actions: &BTreeMap<Signal, StopAction>| -> BTreeMap<Signal, u32> {
+        actions
+            .iter()
+            .filter_map(|(s, a)| match a {
+                StopAction::OffAfter(ms) => Some((*s, *ms)),
+                _ => None,
+            })
+            .collect()
+    };
+    let (run_on_estop, run_on_halt) = (run_ons(&on_estop), run_ons(&on_halt));
+    for (signal, action) in &on_estop {
+        if *action == StopAction::Hold {
+            hold_on_estop.insert(*signal);
+        }
+    }
+    for (signal, action) in &on_halt {
+        match action {
+            StopAction::Off => off.insert(*signal),
+            StopAction::Hold => hold_safe.insert(*signal),
+            StopAction::OffAfter(_) => false,
+        };
+    }
+    let halt_row = rows.get(&Row::OnHalt).or(rows.get(&Row::OffOnHalt));
+    if let (Some(row), Some(both)) = (halt_row, hold_safe.intersection(&off).next()) {
         diags.error(
             Code::E030BadSetting,
             row.at.clone(),
@@ -134,22 +187,136 @@ pub fn resolve(
             ),
         );
     }
-    if let (Some(row), Some(both)) = (hold_on_estop_row, hold_on_estop.intersection(&off).next()) {
+    // The emergency stop halts: what it keeps on, a halt may not switch
+    // off or time out.
+    let estop_row = rows.get(&Row::OnEstop).or(rows.get(&Row::HoldOnEstop));
+    let ended_on_halt: BTreeSet<&Signal> = off.iter().chain(run_on_halt.keys()).collect();
+    let mut kept_on_estop = hold_on_estop.iter().chain(run_on_estop.keys());
+    if let (Some(row), Some(both)) = (estop_row, kept_on_estop.find(|s| ended_on_halt.contains(s)))
+    {
         diags.error(
             Code::E030BadSetting,
             row.at.clone(),
             format!(
-                "hold on estop: {} is also to be switched off on halt, and the emergency stop halts; say one or the other",
+                "the emergency stop keeps {} on, but a halt switches it off, and the emergency stop halts; say one or the other",
                 both.symbol()
             ),
         );
     }
-    let off_on_halt = off;
+    let run_on_count = on_stop
+        .values()
+        .filter(|a| matches!(a, StopAction::OffAfter(_)))
+        .count()
+        + run_on_estop.len()
+        + run_on_halt.len();
+    let dwells = table.dwells().count();
+    if run_on_count + dwells > crate::table::MAX_DWELLS
+        && let Some(row) = [Row::OnStop, Row::OnEstop, Row::OnHalt]
+            .into_iter()
+            .find_map(|r| rows.get(&r))
+    {
+        diags.error(
+            Code::E030BadSetting,
+            row.at.clone(),
+            format!(
+                "{run_on_count} run-on timers and {dwells} dwells need more than the {} timers a table may use",
+                crate::table::MAX_DWELLS
+            ),
+        );
+    }
     HaltPolicy {
         hold_safe,
-        off_on_halt,
+        off_on_halt: off,
         hold_on_estop,
+        on_stop,
+        run_on_estop,
+        run_on_halt,
     }
+}
+
+/// E030 for a name that is no output of the table, with the ones it has.
+fn not_an_output(
+    table: &StepTable,
+    valves: &Valves,
+    row: Row,
+    list: &NamedList,
+    name: &str,
+    diags: &mut Diagnostics,
+) {
+    let mut known: Vec<String> = table.outputs.iter().map(|o| o.to_string()).collect();
+    for a in &table.actuators {
+        known.push(format!("C{}", a.number));
+        if valves.of(a.number, a.max_position) == ValveType::Mono52 {
+            known.push(format!("y{}", a.number));
+        } else {
+            known.push(format!("y{0}+, y{0}-", a.number));
+        }
+    }
+    diags.error(
+        Code::E030BadSetting,
+        list.at.clone(),
+        format!(
+            "{}: \"{name}\" is not an output of this table (expected a machine output, a coil such as y1+, or an actuator: {})",
+            row.label(),
+            known.join(", ")
+        ),
+    );
+}
+
+/// The `on stop`, `on estop` and `on halt` rows (`row`): `heater off, fan
+/// off after 20s, vacuum hold` (also `fan on for 20s`). Each item is an
+/// output and what it does when the machine stops so; a run-on lasts 10 ms
+/// to 655 s (FST's timers).
+fn stop_actions(
+    table: &StepTable,
+    valves: &Valves,
+    row: Row,
+    list: &NamedList,
+    diags: &mut Diagnostics,
+) -> BTreeMap<Signal, StopAction> {
+    let label = row.label();
+    let mut actions = BTreeMap::new();
+    for item in &list.names {
+        let (name, rest) = item
+            .split_once(char::is_whitespace)
+            .map_or((item.as_str(), ""), |(n, r)| (n, r.trim()));
+        let lower = rest.to_ascii_lowercase();
+        let words: Vec<&str> = lower.split_whitespace().collect();
+        let action = match words.as_slice() {
+            ["off"] => Some(StopAction::Off),
+            ["hold"] => Some(StopAction::Hold),
+            ["off", "after", time @ ..] | ["on", "for", time @ ..] => {
+                crate::cell::parse_duration_in(&time.concat(), 10..=655_000)
+                    .map(StopAction::OffAfter)
+            }
+            _ => None,
+        };
+        let Some(action) = action else {
+            diags.error(
+                Code::E030BadSetting,
+                list.at.clone(),
+                format!(
+                    "{label}: \"{item}\" is not an output and what it does (expected e.g. heater off, fan off after 20s, vacuum hold; a run-on from 10ms to 655s)"
+                ),
+            );
+            continue;
+        };
+        match outputs_named(table, valves, name) {
+            Some(signals) => {
+                for signal in signals {
+                    if actions.insert(signal, action).is_some() {
+                        diags.error(
+                            Code::E030BadSetting,
+                            list.at.clone(),
+                            format!("{label}: {} is named twice", signal.symbol()),
+                        );
+                    }
+                }
+            }
+            None => not_an_output(table, valves, row, list, name, diags),
+        }
+    }
+    actions
 }
 
 /// The SETTINGS rows `start permissive` and `interlock` (`label`):
@@ -160,13 +327,14 @@ pub fn resolve(
 pub fn resolve_held_inputs(
     table: &StepTable,
     buttons: &[String],
-    label: &str,
+    which: Row,
     row: Option<&NamedList>,
     diags: &mut Diagnostics,
 ) -> Vec<crate::cell::Name> {
     let Some(row) = row else {
         return Vec::new();
     };
+    let label = which.label();
     let mut names: Vec<crate::cell::Name> = Vec::new();
     for text in &row.names {
         let lower = text.to_ascii_lowercase();

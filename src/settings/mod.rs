@@ -43,16 +43,9 @@ pub struct Given {
     pub valves: BTreeMap<u32, ValveType>,
     /// Drift rates per actuator (stroke per second).
     pub loads: BTreeMap<u32, f64>,
-    /// Outputs that may stay on in a stopped machine (`hold-safe`).
-    pub hold_safe: Option<halt::NamedList>,
-    /// Outputs the program switches off when it halts.
-    pub off_on_halt: Option<halt::NamedList>,
-    /// Outputs the emergency stop leaves on.
-    pub hold_on_estop: Option<halt::NamedList>,
-    /// Machine inputs that must be on for a cycle to start.
-    pub start_permissive: Option<halt::NamedList>,
-    /// Machine inputs that must stay on, else the machine halts.
-    pub interlock: Option<halt::NamedList>,
+    /// The rows that name outputs or inputs (`hold-safe`, `on stop`, …),
+    /// as written: checked against the table once it is read.
+    pub named: halt::NamedRows,
 }
 
 impl Given {
@@ -68,7 +61,10 @@ impl Given {
 
     /// What `self` gives, and what `other` gives where `self` is silent.
     pub fn or(&self, other: &Given) -> Given {
-        fn merged<V: Clone>(first: &BTreeMap<u32, V>, then: &BTreeMap<u32, V>) -> BTreeMap<u32, V> {
+        fn merged<K: Ord + Copy, V: Clone>(
+            first: &BTreeMap<K, V>,
+            then: &BTreeMap<K, V>,
+        ) -> BTreeMap<K, V> {
             let mut all = then.clone();
             all.extend(first.iter().map(|(k, v)| (*k, v.clone())));
             all
@@ -84,20 +80,7 @@ impl Given {
             strokes: merged(&self.strokes, &other.strokes),
             valves: merged(&self.valves, &other.valves),
             loads: merged(&self.loads, &other.loads),
-            hold_safe: self.hold_safe.clone().or_else(|| other.hold_safe.clone()),
-            off_on_halt: self
-                .off_on_halt
-                .clone()
-                .or_else(|| other.off_on_halt.clone()),
-            hold_on_estop: self
-                .hold_on_estop
-                .clone()
-                .or_else(|| other.hold_on_estop.clone()),
-            start_permissive: self
-                .start_permissive
-                .clone()
-                .or_else(|| other.start_permissive.clone()),
-            interlock: self.interlock.clone().or_else(|| other.interlock.clone()),
+            named: merged(&self.named, &other.named),
         }
     }
 }
@@ -128,14 +111,10 @@ pub struct Settings {
     pub given: Given,
     /// The workbook's ADDRESSES sheet: signals pinned to the wiring.
     pub pins: Vec<pins::PinRow>,
-    /// The SETTINGS rows `hold-safe` and `de-energise on halt`, as written;
-    /// `program.halt` once checked against the table.
-    pub hold_safe: Option<halt::NamedList>,
-    pub hold_on_estop: Option<halt::NamedList>,
-    pub off_on_halt: Option<halt::NamedList>,
-    /// The SETTINGS rows `start permissive` and `interlock`, as written.
-    pub start_permissive: Option<halt::NamedList>,
-    pub interlock: Option<halt::NamedList>,
+    /// The SETTINGS rows that name outputs or inputs, as written;
+    /// `program.halt`, `program.permissive` and `program.interlocks` once
+    /// checked against the table.
+    pub named: halt::NamedRows,
 }
 
 impl Settings {
@@ -163,21 +142,8 @@ impl Settings {
         if let Some(board) = layer.board {
             self.board = Some(board);
         }
-        if let Some(names) = &layer.hold_safe {
-            self.hold_safe = Some(names.clone());
-        }
-        if let Some(names) = &layer.off_on_halt {
-            self.off_on_halt = Some(names.clone());
-        }
-        if let Some(names) = &layer.hold_on_estop {
-            self.hold_on_estop = Some(names.clone());
-        }
-        if let Some(names) = &layer.start_permissive {
-            self.start_permissive = Some(names.clone());
-        }
-        if let Some(names) = &layer.interlock {
-            self.interlock = Some(names.clone());
-        }
+        self.named
+            .extend(layer.named.iter().map(|(row, list)| (*row, list.clone())));
         if let Some(mnemonic) = layer.mnemonic {
             self.mnemonic = mnemonic;
         }

@@ -25,9 +25,12 @@ struct ActuatorColumns {
 }
 
 /// The labels of the settings, as written on the sheet.
-pub const LABELS: [&str; 12] = [
+pub const LABELS: [&str; 15] = [
     "target",
     "board",
+    "on stop",
+    "on estop",
+    "on halt",
     "hold-safe",
     "de-energise on halt",
     "start permissive",
@@ -148,23 +151,13 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
             },
             // The rows that list outputs or inputs by name: read as a list
             // here, checked against the table once it is read.
-            "hold-safe"
-            | "hold on estop"
-            | "interlock"
-            | "start permissive"
-            | "de-energise on halt" => {
-                let slot = match label.as_str() {
-                    "hold-safe" => &mut settings.hold_safe,
-                    "hold on estop" => &mut settings.hold_on_estop,
-                    "interlock" => &mut settings.interlock,
-                    "start permissive" => &mut settings.start_permissive,
-                    _ => &mut settings.off_on_halt,
-                };
+            other if super::halt::Row::from_label(other).is_some() => {
+                let row = super::halt::Row::from_label(other).expect("matched");
                 if lower != "none" {
-                    *slot = Some(super::halt::NamedList::parse(
-                        &value,
-                        grid.location(value_cell.pos),
-                    ));
+                    settings.named.insert(
+                        row,
+                        super::halt::NamedList::parse(&value, grid.location(value_cell.pos)),
+                    );
                 }
             }
             "home order" if lower == "default" => {}

@@ -31,6 +31,19 @@ pub fn samples() -> Vec<PathBuf> {
     list
 }
 
+/// The targets a sample converts for: the one its ADDRESSES sheet pins
+/// addresses in (the oven's are STEP 7's), or every target.
+pub fn targets_of(path: &Path) -> Vec<&'static str> {
+    let settings = steptable::settings::Settings::new();
+    let checked = steptable::convert::check_path(path, &settings)
+        .unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+    if checked.settings.pins.is_empty() {
+        vec!["festo", "iec", "siemens"]
+    } else {
+        vec![checked.settings.target.name()]
+    }
+}
+
 pub fn steptable() -> Command {
     Command::cargo_bin("steptable").expect("binary built")
 }

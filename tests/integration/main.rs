@@ -23,6 +23,7 @@ mod layers;
 mod machine;
 mod messy;
 mod modes;
+mod on_stop;
 mod paper;
 mod pins;
 mod promise_map;

@@ -277,11 +277,18 @@ fn xls_and_ods_read_the_same_table() {
 
 #[test]
 fn the_binary_converts_every_sample_for_every_target() {
+    let samples = crate::helpers::samples();
     for target in ["festo", "iec", "siemens"] {
+        // A sample whose ADDRESSES sheet pins one target's addresses
+        // converts for that target only (the oven: STEP 7).
+        let fitting: Vec<&std::path::PathBuf> = samples
+            .iter()
+            .filter(|s| crate::helpers::targets_of(s).contains(&target))
+            .collect();
         let dir = tempfile::tempdir().unwrap();
         steptable()
             .arg("convert")
-            .args(crate::helpers::samples())
+            .args(&fitting)
             .args(["--target", target, "-o"])
             .arg(dir.path())
             .assert()
@@ -290,10 +297,18 @@ fn the_binary_converts_every_sample_for_every_target() {
         let files = crate::helpers::files_below(dir.path());
         assert_eq!(
             files.len(),
-            crate::helpers::all_files() * crate::helpers::samples().len(),
+            crate::helpers::all_files() * fitting.len(),
             "{target}: {files:?}"
         );
     }
+    // The pinned oven for another target is an error at its cells.
+    steptable()
+        .arg("check")
+        .arg(crate::helpers::sample("oven.xlsx"))
+        .args(["--target", "festo"])
+        .assert()
+        .failure()
+        .stderr(predicates::str::contains("ADDRESSES!B6: error[E035]"));
 }
 
 /// Each sheet of the written workbook keeps its header on screen when

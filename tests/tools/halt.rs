@@ -21,6 +21,11 @@ pub const CHECKS: &[Check] = &[
         a_halt_switches_the_heater_off_in_every_engine,
     ),
     Check::new(
+        "halt::a_halt_lets_the_fan_run_on_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        a_halt_lets_the_fan_run_on_in_every_engine,
+    ),
+    Check::new(
         "halt::a_start_permissive_holds_the_next_cycle_in_every_engine",
         &[Tool::Shared, Tool::Awlsim],
         a_start_permissive_holds_the_next_cycle_in_every_engine,
@@ -31,11 +36,77 @@ pub const CHECKS: &[Check] = &[
         an_open_interlock_halts_in_every_engine,
     ),
     Check::new(
+        "halt::the_oven_stops_its_coil_at_once_and_its_fan_after_20s_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        the_oven_stops_its_coil_at_once_and_its_fan_after_20s_in_every_engine,
+    ),
+    Check::new(
         "halt::an_emergency_stop_keeps_the_gripper_holding_in_every_engine",
         &[Tool::Shared, Tool::Awlsim],
         an_emergency_stop_keeps_the_gripper_holding_in_every_engine,
     ),
 ];
+
+/// The bundled oven (Aly 2008): START sounds the horn for 10 s, then the
+/// coil and the fan come on and stay on; STOP pressed at rest after the
+/// cycle (`on stop | coil off, fan off after 20s`) switches the coil off in
+/// that scan and the fan 20 s later, in matiec, awlsim and the FST
+/// interpreter as simulated. Its addresses are the paper's Table 3.
+fn the_oven_stops_its_coil_at_once_and_its_fan_after_20s_in_every_engine() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = crate::helpers::sample("oven.xlsx");
+    let stop = Fault {
+        signal: Signal::Stop,
+        stuck_at: false,
+    };
+    for case in run_everywhere(dir.path(), &input, &["--modes", "stop"], stop, None) {
+        // The times at which an output turns to `on`.
+        let times = |symbol: &str, on: bool| -> Vec<u64> {
+            let values = column(&case, symbol);
+            (1..values.len())
+                .filter(|&i| values[i - 1] != on && values[i] == on)
+                .map(|i| case.trace.scans[i].time_ms)
+                .collect()
+        };
+        let label = &case.label;
+        let (horn_on, horn_off) = (times("horn", true), times("horn", false));
+        assert_eq!(
+            horn_off[0] - horn_on[0],
+            10_000,
+            "{label}: the horn sounds 10 s"
+        );
+        assert_eq!(times("coil", true), horn_off[..1], "{label}");
+        assert_eq!(times("fan", true), horn_off[..1], "{label}");
+        let (coil_off, fan_off) = (times("coil", false), times("fan", false));
+        assert_eq!((coil_off.len(), fan_off.len()), (1, 1), "{label}");
+        let run_on = fan_off[0] - coil_off[0];
+        assert!(
+            (20_000..=20_000 + 2 * case.trace.scan_ms as u64).contains(&run_on),
+            "{label}: the fan ran on {run_on} ms after the coil went off"
+        );
+        let pinned: Vec<String> = case
+            .allocation
+            .inputs
+            .iter()
+            .chain(&case.allocation.outputs)
+            .map(|a| format!("{} {}", a.signal.symbol(), a.address.display(case.mnemonic)))
+            .collect();
+        assert_eq!(
+            pinned,
+            [
+                "START I0.0",
+                "STOP I0.1",
+                "horn Q0.0",
+                "coil Q0.1",
+                "fan Q0.2"
+            ],
+            "{label}: the paper's Table 3"
+        );
+    }
+    eprintln!(
+        "oven: matiec, awlsim and the FST interpreter sound the horn 10 s, and after STOP switch the coil off at once and the fan 20 s later, as simulated"
+    );
+}
 
 /// `hold on estop | vacuum`: the emergency stop's wire breaks while C1
 /// travels out with the vacuum on; every coil goes off but the vacuum
@@ -52,16 +123,7 @@ fn an_emergency_stop_keeps_the_gripper_holding_in_every_engine() {
     };
     let modes = ["--modes", "estop,reset"];
     for case in run_everywhere(dir.path(), &input, &modes, estop, Some(900)) {
-        let column = |symbol: &str| {
-            let at = case
-                .trace
-                .signals
-                .outputs
-                .iter()
-                .position(|s| s.symbol() == symbol)
-                .unwrap_or_else(|| panic!("{symbol} is an output"));
-            case.trace.scans.iter().map(move |s| s.outputs[at])
-        };
+        let column = |symbol: &str| column(&case, symbol).into_iter();
         assert_eq!(column("vacuum").next_back(), Some(true), "{}", case.label);
         assert_eq!(column("y1+").next_back(), Some(false), "{}", case.label);
         assert!(column("y1+").any(|on| on), "{}", case.label);
@@ -89,15 +151,8 @@ fn an_open_interlock_halts_in_every_engine() {
     };
     // START is pressed at 500 ms; C1 takes a second to travel out.
     for case in run_everywhere(dir.path(), &input, &[], guard, Some(900)) {
-        let alarm = case
-            .trace
-            .signals
-            .outputs
-            .iter()
-            .position(|s| s.symbol() == "alarm_il")
-            .expect("the interlock's alarm is an output");
-        let last = case.trace.scans.last().expect("scans");
-        assert!(last.outputs[alarm], "{}", case.label);
+        let alarm = column(&case, "alarm_il");
+        assert_eq!(alarm.last(), Some(&true), "{}", case.label);
         let column = heater_column(&case);
         assert!(column.contains(&true), "{}", case.label);
         assert_eq!(column.last(), Some(&false), "{}", case.label);
@@ -107,6 +162,15 @@ fn an_open_interlock_halts_in_every_engine() {
     );
 }
 
+/// C1's out sensor dies: the watchdog halts the machine.
+const X11_DEAD: Fault = Fault {
+    signal: Signal::Sensor {
+        actuator: 1,
+        position: 1,
+    },
+    stuck_at: false,
+};
+
 /// C1 carries a part under a heater that is on while C1 is out.
 const HEATED: &[&[&str]] = &[&["C1+1; Y:heater+"], &["C1-0; Y:heater-"]];
 
@@ -115,14 +179,13 @@ fn a_halt_switches_the_heater_off_in_every_engine() {
     let input = dir.path().join("heated.xlsx");
     let settings: &[&[&str]] = &[&["de-energise on halt", "heater"]];
     write_xlsx_sheets(&input, &[("TABLE", HEATED), ("SETTINGS", settings)]);
-    let x11 = Fault {
-        signal: Signal::Sensor {
-            actuator: 1,
-            position: 1,
-        },
-        stuck_at: false,
-    };
-    for case in run_everywhere(dir.path(), &input, &["--safety", "watchdog"], x11, Some(0)) {
+    for case in run_everywhere(
+        dir.path(),
+        &input,
+        &["--safety", "watchdog"],
+        X11_DEAD,
+        Some(0),
+    ) {
         // The heater came on with step 1 and the halt switched it off.
         let column = heater_column(&case);
         assert!(column.contains(&true), "{}", case.label);
@@ -130,6 +193,45 @@ fn a_halt_switches_the_heater_off_in_every_engine() {
     }
     eprintln!(
         "halt: matiec, awlsim and the FST interpreter switch the heater off on the halt as simulated"
+    );
+}
+
+/// `on halt | heater off, fan off after 2s`: the watchdog halts a machine
+/// whose x11 died; the heater goes off in that scan, the fan 2 s later, in
+/// every engine as simulated.
+fn a_halt_lets_the_fan_run_on_in_every_engine() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("cooled.xlsx");
+    let table: &[&[&str]] = &[&["C1+1; Y:heater+; Y:fan+"], &["C1-0; Y:heater-; Y:fan-"]];
+    let settings: &[&[&str]] = &[&["on halt", "heater off, fan off after 2s"]];
+    write_xlsx_sheets(&input, &[("TABLE", table), ("SETTINGS", settings)]);
+    for case in run_everywhere(
+        dir.path(),
+        &input,
+        &["--safety", "watchdog"],
+        X11_DEAD,
+        Some(0),
+    ) {
+        let off_at = |symbol: &str| {
+            let last_on = column(&case, symbol)
+                .iter()
+                .rposition(|on| *on)
+                .expect("came on");
+            case.trace.scans.get(last_on + 1).map(|s| s.time_ms)
+        };
+        let (heater, fan) = (off_at("heater"), off_at("fan"));
+        let (Some(heater), Some(fan)) = (heater, fan) else {
+            panic!("{}: heater off at {heater:?}, fan at {fan:?}", case.label);
+        };
+        assert!(
+            (2_000..=2_020).contains(&(fan - heater)),
+            "{}: the fan ran on {} ms",
+            case.label,
+            fan - heater
+        );
+    }
+    eprintln!(
+        "halt run-on: matiec, awlsim and the FST interpreter switch the heater off on the halt and the fan 2 s later, as simulated"
     );
 }
 
@@ -159,14 +261,19 @@ fn a_start_permissive_holds_the_next_cycle_in_every_engine() {
 
 /// The heater's value at every recorded scan.
 fn heater_column(case: &engines::Case) -> Vec<bool> {
-    let heater = case
+    column(case, "heater")
+}
+
+/// An output's value at every recorded scan.
+fn column(case: &engines::Case, symbol: &str) -> Vec<bool> {
+    let at = case
         .trace
         .signals
         .outputs
         .iter()
-        .position(|s| s.symbol() == "heater")
-        .expect("the heater is an output");
-    case.trace.scans.iter().map(|s| s.outputs[heater]).collect()
+        .position(|s| s.symbol() == symbol)
+        .unwrap_or_else(|| panic!("{symbol} is an output"));
+    case.trace.scans.iter().map(|s| s.outputs[at]).collect()
 }
 
 /// Converts `input` for each target into `dir/<target>`, simulates it with
@@ -182,11 +289,15 @@ fn run_everywhere(
 ) -> Vec<engines::Case> {
     let python = awlsim::python(&tool(Tool::Awlsim));
     let mut cases = Vec::new();
+    // A table that pins its addresses is converted for its own target,
+    // whose outputs hold every language.
+    let pinned = crate::helpers::targets_of(input);
     for (target, format) in [("iec", "st"), ("siemens", "awl"), ("festo", "fst")] {
+        let target = if pinned.len() == 1 { pinned[0] } else { target };
         let mut args = vec!["--target", target];
         args.extend_from_slice(extra);
         args.extend(["--formats", format]);
-        let out = dir.join(target);
+        let out = dir.join(format);
         steptable()
             .arg("convert")
             .arg(input)

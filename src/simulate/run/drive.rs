@@ -52,7 +52,23 @@ pub(in crate::simulate) fn step_timeout_ms(
             .max()
             .unwrap_or(0) as u64
     };
-    (2 * longest + 500 + dwell + wait).max(watchdog)
+    // An output that runs on after a stop, once the watchdog has halted.
+    let run_on = program.run_ons.iter().map(|r| r.ms).max().unwrap_or(0) as u64;
+    (2 * longest + 500 + dwell + wait).max(watchdog) + run_on
+}
+
+/// Whether the table's cycle ends with `output` on: its last switch in
+/// the table switches it on.
+fn left_on_by_the_cycle(table: &StepTable, output: Signal) -> bool {
+    let Signal::MachineOutput(name) = output else {
+        return false;
+    };
+    table
+        .steps
+        .iter()
+        .flat_map(|s| &s.switches)
+        .rfind(|w| w.output == name)
+        .is_some_and(|w| w.on)
 }
 
 impl<'a> Run<'a> {
@@ -287,10 +303,14 @@ pub(in crate::simulate) fn run(
                 if !alarms.is_empty() {
                     message.push_str(&format!(" (alarm: {})", alarms.join(", ")));
                 }
+                // Waiting for the next cycle, an output the cycle leaves on
+                // (an oven's heater until STOP) is on as in a healthy machine.
+                let at_rest = run.plc.awaited == 0;
                 let energised: Vec<String> = program
                     .signals
                     .driven()
                     .filter(|s| run.plc.bit(*s) && !program.halt.may_stay_on(*s))
+                    .filter(|s| !(at_rest && left_on_by_the_cycle(table, *s)))
                     .map(|s| s.symbol())
                     .collect();
                 run.problem(ProblemKind::Stall, waiting.number, message.clone());
