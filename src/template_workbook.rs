@@ -314,7 +314,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         (
             "interlock",
             "none",
-            "Machine inputs that must stay on (a guard door's switch), e.g. guard_closed. One going off halts the machine where it is and raises alarm_il; RESET clears it.",
+            "Machine inputs that must stay on (a guard door's switch), e.g. guard_closed, or only in some steps: guard_closed in steps 3-5. One going off halts the machine where it is and raises alarm_il; RESET clears it.",
             None,
         ),
         (

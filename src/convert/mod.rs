@@ -123,13 +123,8 @@ fn finish_check(
             named.get(&Row::StartPermissive),
             &mut diags,
         );
-        effective.program.interlocks = halt::resolve_held_inputs(
-            table,
-            &buttons,
-            Row::Interlock,
-            named.get(&Row::Interlock),
-            &mut diags,
-        );
+        effective.program.interlocks =
+            halt::resolve_interlocks(table, &buttons, named.get(&Row::Interlock), &mut diags);
         // A row about an event the program does not have does nothing.
         let program = &effective.program;
         let no_estop =

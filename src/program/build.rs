@@ -172,7 +172,8 @@ pub fn build(
     timers.extend(table.dwells().map(|d| Signal::Dwell(d.number)));
     let run_ons = options.run_ons();
     timers.extend((1..=run_ons.len()).map(|n| Signal::RunOn(n as u16)));
-    rungs.extend(interlock_rung(&options.interlocks));
+    rungs.extend(interlock_rung(options));
+    mark_zones(options, &mut steps);
     if options.halts() {
         rungs.extend(halt_off_rung(&signals, &options.halt));
     }
@@ -256,19 +257,49 @@ fn run_on_rungs(run_ons: &[super::RunOn]) -> Vec<Rung> {
 
 /// An interlock input that goes off halts the machine where it is and
 /// raises `alarm_il`; RESET (or a restart) clears the halt.
-fn interlock_rung(interlocks: &[crate::cell::Name]) -> Vec<Rung> {
-    interlocks
+fn interlock_rung(options: &ProgramOptions) -> Vec<Rung> {
+    let zones: Vec<(Signal, super::Interlock)> = options.zones().collect();
+    options
+        .interlocks
         .iter()
-        .map(|name| Rung {
-            kind: RungKind::Interlock,
-            comment: format!("INTERLOCK: {name} off halts the machine"),
-            condition: vec![Literal::not(Signal::MachineInput(*name))],
-            actions: vec![
-                Action::Set(Signal::Halt),
-                Action::Set(Signal::Alarm(Alarm::Interlock)),
-            ],
+        .map(|interlock| {
+            let name = interlock.input;
+            let mut condition = vec![Literal::not(Signal::MachineInput(name))];
+            let mut comment = format!("INTERLOCK: {name} off halts the machine");
+            if let Some((zone, i)) = zones.iter().find(|(_, i)| i == interlock)
+                && let Some((first, last)) = i.steps
+            {
+                condition.push(Literal::is(*zone));
+                comment.push_str(&format!(" in steps {first} to {last}"));
+            }
+            Rung {
+                kind: RungKind::Interlock,
+                comment,
+                condition,
+                actions: vec![
+                    Action::Set(Signal::Halt),
+                    Action::Set(Signal::Alarm(Alarm::Interlock)),
+                ],
+            }
         })
         .collect()
+}
+
+/// A zone memory is set when the range's first step fires and reset when
+/// the step after its last fires (the end of the cycle after the last).
+fn mark_zones(options: &ProgramOptions, steps: &mut [ProgramStep]) {
+    for (zone, interlock) in options.zones() {
+        let Some((first, last)) = interlock.steps else {
+            continue;
+        };
+        for step in steps.iter_mut() {
+            if step.number == first {
+                step.actions.push(Action::Set(zone));
+            } else if step.number == last + 1 {
+                step.actions.push(Action::Reset(zone));
+            }
+        }
+    }
 }
 
 /// A halt switches off the outputs declared `de-energise on halt`: a heater
@@ -388,7 +419,11 @@ fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramSt
     let halts = options.halts();
     let last = table.steps.last()?;
     let last_waits = !last.waits.is_empty() || !last.dwells.is_empty();
-    if !(safety.watchdog || modes.any() || last_waits) {
+    // An interlock zone that ends with the last step ends with the cycle.
+    let zone_ends = options
+        .zones()
+        .any(|(_, i)| i.steps.is_some_and(|(_, to)| to == last.number));
+    if !(safety.watchdog || modes.any() || last_waits || zone_ends) {
         return None;
     }
     // The end of the cycle is an event of its own: the watchdog must stop

@@ -21,7 +21,9 @@ mod signal;
 mod signals;
 
 pub use build::build;
-pub use options::{HaltPolicy, Modes, ProgramOptions, RunOn, Safety, StopAction, StopEvent};
+pub use options::{
+    HaltPolicy, Interlock, Modes, ProgramOptions, RunOn, Safety, StopAction, StopEvent,
+};
 pub use signal::{Alarm, Area, Signal};
 pub use signals::{Coils, Signals};
 

@@ -111,6 +111,7 @@ pub(super) fn homing_rungs(
                             | Signal::StopAt { .. }
                             | Signal::DwellArmed(_)
                             | Signal::RunOnArmed(_)
+                            | Signal::InterlockZone(_)
                             | Signal::WatchdogArmed
                     )
                 })
@@ -281,6 +282,7 @@ pub(super) fn stop_now_rungs(
                         | Signal::AutoRun
                         | Signal::StopAt { .. }
                         | Signal::DwellArmed(_)
+                        | Signal::InterlockZone(_)
                         | Signal::WatchdogArmed
                         | Signal::Homing
                         | Signal::HomeStage(_)

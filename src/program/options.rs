@@ -22,7 +22,7 @@ pub struct ProgramOptions {
     pub permissive: Vec<crate::cell::Name>,
     /// Machine inputs that must stay on: one going off halts the machine
     /// and raises `alarm_il` (SETTINGS `interlock`: a guard door).
-    pub interlocks: Vec<crate::cell::Name>,
+    pub interlocks: Vec<Interlock>,
 }
 
 impl ProgramOptions {
@@ -58,13 +58,23 @@ impl ProgramOptions {
             .collect()
     }
 
+    /// The interlocks that hold for a range of steps, each with its zone
+    /// memory (`zoneN`, set while the sequence is in the range).
+    pub fn zones(&self) -> impl Iterator<Item = (Signal, Interlock)> + '_ {
+        self.interlocks
+            .iter()
+            .filter(|i| i.steps.is_some())
+            .enumerate()
+            .map(|(n, i)| (Signal::InterlockZone(n as u16 + 1), *i))
+    }
+
     /// The machine inputs the settings add to the table's (permissives,
     /// then interlocks), each once.
     pub fn held_inputs(&self) -> Vec<crate::cell::Name> {
         let mut names = self.permissive.clone();
-        for name in &self.interlocks {
-            if !names.contains(name) {
-                names.push(*name);
+        for interlock in &self.interlocks {
+            if !names.contains(&interlock.input) {
+                names.push(interlock.input);
             }
         }
         names
@@ -107,6 +117,16 @@ pub struct HaltPolicy {
     /// `hold` are in `hold_on_estop`, `off_on_halt` and `hold_safe`.
     pub run_on_estop: std::collections::BTreeMap<Signal, u32>,
     pub run_on_halt: std::collections::BTreeMap<Signal, u32>,
+}
+
+/// An input that must stay on, always or while the sequence is in a range
+/// of steps (`guard_closed in steps 3-5`: from step 3 firing until step 6
+/// fires).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Interlock {
+    pub input: crate::cell::Name,
+    /// First and last step, as numbered in the table.
+    pub steps: Option<(usize, usize)>,
 }
 
 /// What makes the machine stop, for the outputs' stop behaviour.

@@ -73,6 +73,9 @@ pub enum Signal {
     /// Memory: run-on n is timing; when its timer has run out, its output
     /// goes off.
     RunOnArmed(u16),
+    /// Memory: the sequence is in the steps of the n-th interlock with a
+    /// step range (SETTINGS `interlock | guard_closed in steps 3-5`).
+    InterlockZone(u16),
     /// Operating-mode inputs: the CONTINUOUS switch, the STOP and EMERGENCY
     /// STOP buttons (normally closed: 1 = not pressed), the RESET button.
     Continuous,
@@ -114,6 +117,7 @@ impl Signal {
             | Signal::WatchdogArmed
             | Signal::DwellArmed(_)
             | Signal::RunOnArmed(_)
+            | Signal::InterlockZone(_)
             | Signal::CycleRequest
             | Signal::Busy
             | Signal::AutoRun
@@ -150,6 +154,7 @@ impl Signal {
             Signal::DwellArmed(n) => format!("dw{n}_arm"),
             Signal::RunOn(n) => format!("runon{n}"),
             Signal::RunOnArmed(n) => format!("ro{n}_arm"),
+            Signal::InterlockZone(n) => format!("zone{n}"),
             Signal::Continuous => "CONT".to_string(),
             Signal::Stop => "STOP".to_string(),
             Signal::EStop => "ESTOP".to_string(),
@@ -268,6 +273,9 @@ impl Signal {
             // The program knows which output (StepProgram::comment).
             Signal::RunOn(n) => format!("run-on timer {n} (an output on after STOP)"),
             Signal::RunOnArmed(n) => format!("run-on {n} is timing"),
+            Signal::InterlockZone(n) => {
+                format!("the sequence is in the steps of interlock zone {n}")
+            }
             Signal::Continuous => "CONTINUOUS switch (on: repeat cycles)".to_string(),
             Signal::Stop => {
                 "STOP push-button, normally closed (0: finish the cycle, then halt)".to_string()
@@ -387,6 +395,7 @@ mod tests {
             Signal::DwellArmed(255),
             Signal::RunOn(255),
             Signal::RunOnArmed(255),
+            Signal::InterlockZone(255),
             Signal::Continuous,
             Signal::Stop,
             Signal::EStop,

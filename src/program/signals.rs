@@ -158,6 +158,7 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
     }
     memories.extend(table.dwells().map(|d| Signal::DwellArmed(d.number)));
     memories.extend((1..=options.run_ons().len()).map(|n| Signal::RunOnArmed(n as u16)));
+    memories.extend(options.zones().map(|(zone, _)| zone));
     if modes.any() {
         memories.push(Signal::CycleRequest);
         memories.push(Signal::Busy);

@@ -8,7 +8,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use crate::cell::Sign;
 use crate::diag::{Code, Diagnostics, Location};
-use crate::program::{HaltPolicy, Signal, StopAction};
+use crate::program::{HaltPolicy, Interlock, Signal, StopAction};
 use crate::table::StepTable;
 use crate::valve::{ValveType, Valves};
 
@@ -317,6 +317,65 @@ fn stop_actions(
         }
     }
     actions
+}
+
+/// The SETTINGS row `interlock`: inputs that must stay on, each always or
+/// in a range of steps (`guard_closed in steps 3-5`, `door in step 2`); a
+/// step the table does not have, or a range backwards, is E030 at the cell.
+pub fn resolve_interlocks(
+    table: &StepTable,
+    buttons: &[String],
+    row: Option<&NamedList>,
+    diags: &mut Diagnostics,
+) -> Vec<Interlock> {
+    let Some(row) = row else {
+        return Vec::new();
+    };
+    let last = table.steps.len();
+    let mut ranges: Vec<(String, Option<(usize, usize)>)> = Vec::new();
+    for text in &row.names {
+        let lower = text.to_ascii_lowercase();
+        let Some((name, range)) = lower.split_once(" in step") else {
+            ranges.push((lower, None));
+            continue;
+        };
+        let range = range.trim_start_matches('s').trim();
+        let numbers: Vec<Option<usize>> = range
+            .split(['-', '–'])
+            .map(|n| n.trim().trim_matches('.').parse().ok())
+            .collect();
+        let steps = match numbers.as_slice() {
+            [Some(a)] => Some((*a, *a)),
+            [Some(a), Some(b)] => Some((*a, *b)),
+            _ => None,
+        };
+        match steps {
+            Some((a, b)) if (1..=b).contains(&a) && b <= last => {
+                ranges.push((name.trim().to_string(), Some((a, b))));
+            }
+            _ => diags.error(
+                Code::E030BadSetting,
+                row.at.clone(),
+                format!(
+                    "interlock: \"{text}\" has no step range of this table (expected e.g. guard_closed in steps 2-{last}, or guard_closed in step 2; steps 1 to {last})"
+                ),
+            ),
+        }
+    }
+    let names = NamedList {
+        names: ranges.iter().map(|(n, _)| n.clone()).collect(),
+        at: row.at.clone(),
+    };
+    resolve_held_inputs(table, buttons, Row::Interlock, Some(&names), diags)
+        .into_iter()
+        .map(|input| Interlock {
+            input,
+            steps: ranges
+                .iter()
+                .find(|(n, _)| n.as_str() == input.as_str())
+                .and_then(|(_, steps)| *steps),
+        })
+        .collect()
 }
 
 /// The SETTINGS rows `start permissive` and `interlock` (`label`):

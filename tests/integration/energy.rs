@@ -280,3 +280,55 @@ fn hold_on_estop_keeps_the_gripper_holding_through_an_emergency_stop() {
             "warning[W006]: hold on estop: the program has no emergency stop",
         ));
 }
+
+/// `interlock | guard_closed in steps 2-3`: the guard may be open while C1
+/// travels out (step 1) or home (step 4) and at rest; the machine halts
+/// only from step 2 firing until step 4 fires. A guard that breaks at any
+/// moment halts it there (waiting for step 3 or 4), where an interlock
+/// without a range halts wherever it is. A step the table does not have is
+/// E030 at the cell.
+#[test]
+fn an_interlock_over_a_step_range_halts_only_there() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("zoned.xlsx");
+    let table: &[&[&str]] = &[&["C1+1"], &["C2+1"], &["C2-0"], &["C1-0"]];
+    let stalls = |interlock: &str| -> Vec<Option<usize>> {
+        let settings: &[&[&str]] = &[&["interlock", interlock]];
+        write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);
+        let build = crate::helpers::Build::path(&path);
+        let program = build.program();
+        let mut simulation = build.settings.simulation.clone();
+        let healthy = steptable::simulate::simulate(&build.table, &program, &simulation);
+        let moments = steptable::faults::moments(&healthy, &build.table, 10);
+        simulation.faults = vec![steptable::simulate::Fault {
+            signal: steptable::program::Signal::MachineInput(
+                steptable::cell::Name::new("guard_closed").unwrap(),
+            ),
+            stuck_at: false,
+        }];
+        moments
+            .iter()
+            .map(|m| {
+                simulation.fault_onset_ms = m.at_ms;
+                steptable::simulate::simulate(&build.table, &program, &simulation).stalled_at
+            })
+            .collect()
+    };
+    let zoned = stalls("guard_closed in steps 2-3");
+    assert!(
+        zoned.iter().all(|s| matches!(s, Some(3 | 4))),
+        "halts only in the zone: {zoned:?}"
+    );
+    let everywhere = stalls("guard_closed");
+    assert!(everywhere.contains(&Some(2)), "{everywhere:?}");
+    let settings: &[&[&str]] = &[&["interlock", "guard_closed in steps 3-5"]];
+    write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);
+    steptable()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .failure()
+        .stderr(contains(
+            "SETTINGS!B1: error[E030]: interlock: \"guard_closed in steps 3-5\" has no step range of this table",
+        ));
+}

@@ -21,6 +21,11 @@ pub const CHECKS: &[Check] = &[
         a_halt_switches_the_heater_off_in_every_engine,
     ),
     Check::new(
+        "halt::an_interlock_over_a_step_range_waits_for_its_steps_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        an_interlock_over_a_step_range_waits_for_its_steps_in_every_engine,
+    ),
+    Check::new(
         "halt::a_halt_lets_the_fan_run_on_in_every_engine",
         &[Tool::Shared, Tool::Awlsim],
         a_halt_lets_the_fan_run_on_in_every_engine,
@@ -159,6 +164,36 @@ fn an_open_interlock_halts_in_every_engine() {
     }
     eprintln!(
         "interlock: matiec, awlsim and the FST interpreter halt and raise alarm_il as simulated"
+    );
+}
+
+/// `interlock | guard_closed in step 2`: the guard opens while C1 travels
+/// out in step 1; the machine halts only once step 2 has fired, in every
+/// engine as simulated.
+fn an_interlock_over_a_step_range_waits_for_its_steps_in_every_engine() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("zoned.xlsx");
+    let settings: &[&[&str]] = &[&["interlock", "guard_closed in step 2"]];
+    write_xlsx_sheets(&input, &[("TABLE", HEATED), ("SETTINGS", settings)]);
+    let guard = Fault {
+        signal: Signal::MachineInput(steptable::cell::Name::new("guard_closed").unwrap()),
+        stuck_at: false,
+    };
+    // START at 500 ms, C1 out a second later: step 2 fires at about 1.5 s.
+    for case in run_everywhere(dir.path(), &input, &[], guard, Some(900)) {
+        let alarm = column(&case, "alarm_il");
+        let first = alarm.iter().position(|on| *on).expect("the alarm came on");
+        let at = case.trace.scans[first].time_ms;
+        assert!(at > 1_400, "{}: the alarm came on at {at} ms", case.label);
+        // Step 2 fired (C1's - coil) no later than the halt.
+        let step_2 = column(&case, "y1-")
+            .iter()
+            .position(|on| *on)
+            .expect("step 2 fired");
+        assert!(step_2 <= first, "{}", case.label);
+    }
+    eprintln!(
+        "interlock zone: matiec, awlsim and the FST interpreter halt only once the zone's step has fired, as simulated"
     );
 }
 
