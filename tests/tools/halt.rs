@@ -150,12 +150,8 @@ fn an_open_interlock_halts_in_every_engine() {
         &["de-energise on halt", "heater"],
     ];
     write_xlsx_sheets(&input, &[("TABLE", HEATED), ("SETTINGS", settings)]);
-    let guard = Fault {
-        signal: Signal::MachineInput(steptable::cell::Name::new("guard_closed").unwrap()),
-        stuck_at: false,
-    };
     // START is pressed at 500 ms; C1 takes a second to travel out.
-    for case in run_everywhere(dir.path(), &input, &[], guard, Some(900)) {
+    for case in run_everywhere(dir.path(), &input, &[], guard_open(), Some(900)) {
         let alarm = column(&case, "alarm_il");
         assert_eq!(alarm.last(), Some(&true), "{}", case.label);
         let column = heater_column(&case);
@@ -175,12 +171,8 @@ fn an_interlock_over_a_step_range_waits_for_its_steps_in_every_engine() {
     let input = dir.path().join("zoned.xlsx");
     let settings: &[&[&str]] = &[&["interlock", "guard_closed in step 2"]];
     write_xlsx_sheets(&input, &[("TABLE", HEATED), ("SETTINGS", settings)]);
-    let guard = Fault {
-        signal: Signal::MachineInput(steptable::cell::Name::new("guard_closed").unwrap()),
-        stuck_at: false,
-    };
     // START at 500 ms, C1 out a second later: step 2 fires at about 1.5 s.
-    for case in run_everywhere(dir.path(), &input, &[], guard, Some(900)) {
+    for case in run_everywhere(dir.path(), &input, &[], guard_open(), Some(900)) {
         let alarm = column(&case, "alarm_il");
         let first = alarm.iter().position(|on| *on).expect("the alarm came on");
         let at = case.trace.scans[first].time_ms;
@@ -195,6 +187,14 @@ fn an_interlock_over_a_step_range_waits_for_its_steps_in_every_engine() {
     eprintln!(
         "interlock zone: matiec, awlsim and the FST interpreter halt only once the zone's step has fired, as simulated"
     );
+}
+
+/// The guard door's switch breaks (reads open).
+fn guard_open() -> Fault {
+    Fault {
+        signal: Signal::MachineInput(steptable::cell::Name::new("guard_closed").unwrap()),
+        stuck_at: false,
+    }
 }
 
 /// C1's out sensor dies: the watchdog halts the machine.
