@@ -562,6 +562,34 @@ mod tests {
         assert!(parse("I0.8").unwrap_err().contains("bit 8 is out of range"));
     }
 
+    /// Pins on the first bits push the others along, past every taken bit.
+    #[test]
+    fn unpinned_signals_step_over_every_pinned_bit() {
+        let table = crate::table::from_rows("t.csv", &[&["C1+1"], &["C1-0"]]).expect("valid");
+        let program = crate::program::build(
+            &table,
+            &crate::program::ProgramOptions::default(),
+            &crate::valve::Valves::default(),
+            &crate::stroke::Strokes::default(),
+        );
+        let sensor = |position| Signal::Sensor {
+            actuator: 1,
+            position,
+        };
+        let pin = |signal, text| Assigned {
+            signal,
+            address: Address::parse(text, Target::Siemens).expect("an address"),
+        };
+        let pins = [pin(sensor(1), "I0.0"), pin(sensor(0), "I0.1")];
+        let allocation = Allocation::pinned(&program, Target::Siemens, Mnemonic::En, &pins);
+        let inputs: Vec<String> = allocation
+            .inputs
+            .iter()
+            .map(|a| format!("{} {}", a.signal.symbol(), a.address.display(Mnemonic::En)))
+            .collect();
+        assert_eq!(inputs, ["x11 I0.0", "x10 I0.1", "START I0.2"]);
+    }
+
     #[test]
     fn festo_words_map_to_iec_bytes() {
         let addr = Address {
