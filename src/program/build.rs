@@ -1,8 +1,11 @@
 //! Building the step program from a checked table (DESIGN §4): the steps of
 //! the sequence, the end of the cycle, and the rungs every scan runs.
 
-use super::modes::{homing_rungs, mode_rungs, stop_now_rungs};
+use super::modes::{homing_rungs, mode_rungs};
 use super::signals::{self, Coils, Signals};
+use super::stops::{
+    end_run_ons, halt_off_rung, interlock_rung, mark_zones, run_on_rungs, stop_now_rungs,
+};
 use super::{
     Action, Alarm, Literal, ProgramOptions, ProgramStep, Rung, RungKind, Signal, StepKind,
     StepProgram,
@@ -181,19 +184,7 @@ pub fn build(
         stop_now_rungs(&signals, &timers, &options.halt, &mut rungs);
     }
     rungs.extend(run_on_rungs(&run_ons));
-    // A step that switches a running-on output on again ends its run-on.
-    for step in &mut steps {
-        let mut ended = Vec::new();
-        for action in &step.actions {
-            for (i, run_on) in run_ons.iter().enumerate() {
-                if *action == Action::Set(run_on.output) {
-                    ended.push(Action::Reset(Signal::RunOnArmed(i as u16 + 1)));
-                    ended.push(Action::Reset(Signal::RunOn(i as u16 + 1)));
-                }
-            }
-        }
-        step.actions.extend(ended);
-    }
+    end_run_ons(&run_ons, &mut steps);
     if modes.any() {
         homing_rungs(
             table,
@@ -215,110 +206,6 @@ pub fn build(
         permissive: options.held_inputs(),
         run_ons,
     }
-}
-
-/// Each run-on starts its timer when its event finds its output on, and
-/// switches the output off when the timer has run out.
-fn run_on_rungs(run_ons: &[super::RunOn]) -> Vec<Rung> {
-    use super::StopEvent;
-    let mut rungs = Vec::new();
-    for (i, run_on) in run_ons.iter().enumerate() {
-        let n = i as u16 + 1;
-        let (timer, armed) = (Signal::RunOn(n), Signal::RunOnArmed(n));
-        let output = run_on.output;
-        let time = crate::cell::duration_text(run_on.ms);
-        let event = run_on.event.text();
-        rungs.push(Rung {
-            kind: RungKind::RunOn,
-            comment: format!(
-                "run-on {n}: {} off once {time} have passed after {event}",
-                output.symbol()
-            ),
-            condition: vec![Literal::is(armed), Literal::not(timer)],
-            actions: vec![Action::Reset(output), Action::Reset(armed)],
-        });
-        let happened = match run_on.event {
-            StopEvent::Stop => Literal::not(Signal::Stop),
-            StopEvent::EStop => Literal::not(Signal::EStop),
-            StopEvent::Halt => Literal::is(Signal::Halt),
-        };
-        rungs.push(Rung {
-            kind: RungKind::RunOn,
-            comment: format!(
-                "run-on {n}: {event} finds {} on: it stays on {time}",
-                output.symbol()
-            ),
-            condition: vec![happened, Literal::is(output), Literal::not(armed)],
-            actions: vec![Action::Set(armed), Action::StartTimer(timer, run_on.ms)],
-        });
-    }
-    rungs
-}
-
-/// An interlock input that goes off halts the machine where it is and
-/// raises `alarm_il`; RESET (or a restart) clears the halt.
-fn interlock_rung(options: &ProgramOptions) -> Vec<Rung> {
-    let zones: Vec<(Signal, super::Interlock)> = options.zones().collect();
-    options
-        .interlocks
-        .iter()
-        .map(|interlock| {
-            let name = interlock.input;
-            let mut condition = vec![Literal::not(Signal::MachineInput(name))];
-            let mut comment = format!("INTERLOCK: {name} off halts the machine");
-            if let Some((zone, i)) = zones.iter().find(|(_, i)| i == interlock)
-                && let Some((first, last)) = i.steps
-            {
-                condition.push(Literal::is(*zone));
-                comment.push_str(&format!(" in steps {first} to {last}"));
-            }
-            Rung {
-                kind: RungKind::Interlock,
-                comment,
-                condition,
-                actions: vec![
-                    Action::Set(Signal::Halt),
-                    Action::Set(Signal::Alarm(Alarm::Interlock)),
-                ],
-            }
-        })
-        .collect()
-}
-
-/// A zone memory is set when the range's first step fires and reset when
-/// the step after its last fires (the end of the cycle after the last).
-fn mark_zones(options: &ProgramOptions, steps: &mut [ProgramStep]) {
-    for (zone, interlock) in options.zones() {
-        let Some((first, last)) = interlock.steps else {
-            continue;
-        };
-        for step in steps.iter_mut() {
-            if step.number == first {
-                step.actions.push(Action::Set(zone));
-            } else if step.number == last + 1 {
-                step.actions.push(Action::Reset(zone));
-            }
-        }
-    }
-}
-
-/// A halt switches off the outputs declared `de-energise on halt`: a heater
-/// or a motor must not stay on in a machine that has stopped on a fault.
-fn halt_off_rung(signals: &Signals, policy: &super::HaltPolicy) -> Option<Rung> {
-    let off: Vec<Signal> = signals
-        .driven()
-        .filter(|s| policy.off_on_halt.contains(s))
-        .collect();
-    if off.is_empty() {
-        return None;
-    }
-    let names: Vec<String> = off.iter().map(|s| s.symbol()).collect();
-    Some(Rung {
-        kind: RungKind::HaltOff,
-        comment: format!("HALT: {} off (de-energise on halt)", names.join(", ")),
-        condition: vec![Literal::is(Signal::Halt)],
-        actions: off.into_iter().map(Action::Reset).collect(),
-    })
 }
 
 /// The steps of the table: each fires when the one before is complete.

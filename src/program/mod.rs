@@ -19,6 +19,7 @@ mod modes;
 mod options;
 mod signal;
 mod signals;
+mod stops;
 
 pub use build::build;
 pub use options::{

@@ -3,6 +3,7 @@
 //! EMERGENCY STOP switches everything off. All of it is rungs of the one
 //! step program, so every language and the simulator get it alike.
 
+use super::stops::all_off_but;
 use super::{Action, Coils, Literal, Modes, Rung, RungKind, Safety, Signal, Signals};
 use crate::cell::Sign;
 use crate::table::StepTable;
@@ -239,80 +240,5 @@ pub(super) fn homing_rungs(
             condition: vec![Literal::not(Signal::EStop)],
             actions,
         });
-    }
-}
-
-/// STOP that acts at once (SETTINGS `on stop`): in any state the sequence
-/// is abandoned (back to STEP 1, no cycle asked for or under way, no dwell,
-/// watchdog or homing running) and every coil and output goes off but
-/// those held or running on (their rungs: `build::run_on_rungs`).
-pub(super) fn stop_now_rungs(
-    signals: &Signals,
-    timers: &[Signal],
-    policy: &super::HaltPolicy,
-    rungs: &mut Vec<Rung>,
-) {
-    use super::StopAction;
-    let kept: Vec<String> = signals
-        .driven()
-        .filter_map(|s| match policy.on_stop.get(&s) {
-            Some(StopAction::Hold) => Some(format!("{} held", s.symbol())),
-            Some(StopAction::OffAfter(ms)) => Some(format!(
-                "{} off after {}",
-                s.symbol(),
-                crate::cell::duration_text(*ms)
-            )),
-            _ => None,
-        })
-        .collect();
-    let mut actions: Vec<Action> = signals
-        .driven()
-        .filter(|s| matches!(policy.on_stop.get(s), None | Some(StopAction::Off)))
-        .map(Action::Reset)
-        .collect();
-    actions.extend(
-        signals
-            .memories
-            .iter()
-            .filter(|m| {
-                matches!(
-                    m,
-                    Signal::CycleRequest
-                        | Signal::Busy
-                        | Signal::AutoRun
-                        | Signal::StopAt { .. }
-                        | Signal::DwellArmed(_)
-                        | Signal::InterlockZone(_)
-                        | Signal::WatchdogArmed
-                        | Signal::Homing
-                        | Signal::HomeStage(_)
-                )
-            })
-            .map(|m| Action::Reset(*m)),
-    );
-    actions.extend(
-        timers
-            .iter()
-            .filter(|t| !matches!(t, Signal::RunOn(_)))
-            .map(|t| Action::Reset(*t)),
-    );
-    actions.push(Action::Reset(Signal::Sequence));
-    rungs.push(Rung {
-        kind: RungKind::StopNow,
-        comment: format!(
-            "STOP (normally closed): stop at once, {}",
-            all_off_but(&kept)
-        ),
-        condition: vec![Literal::not(Signal::Stop)],
-        actions,
-    });
-}
-
-/// `every coil and output off`, `… off but fan (off after 20s)`.
-fn all_off_but(kept: &[String]) -> String {
-    if kept.is_empty() {
-        "every coil and output off".to_string()
-    } else {
-        format!("every coil and output off but {}", kept.join(", "))
     }
 }
