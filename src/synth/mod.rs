@@ -187,8 +187,11 @@ pub struct Synthesis {
     pub candidates_truncated: bool,
     pub table: TruthTable,
     pub equations: Vec<Equation>,
-    /// Time of the exact route (search and equations).
+    /// Time of the exact route: its sequence search (not run by `--method
+    /// ga`) and the minimal equations (always run).
     pub millis: u128,
+    /// Time of the whole synthesis, every route and the checks included.
+    pub total_millis: u128,
     /// The method used.
     pub method: Method,
     /// The GA's answer, when it ran.
@@ -343,7 +346,10 @@ pub fn synthesize(original: &Sequence) -> Result<Synthesis, SynthError> {
 pub fn synthesize_with(original: &Sequence, options: Options) -> Result<Synthesis, SynthError> {
     let started = Instant::now();
     let budget = budget::Budget::start(options.time_limit);
-    let result = synthesize_within(original, options);
+    let result = synthesize_within(original, options).map(|mut s| {
+        s.total_millis = started.elapsed().as_millis();
+        s
+    });
     drop(budget);
     match options.time_limit {
         Some(limit) if started.elapsed() >= limit => Err(SynthError::OutOfTime(format!(
@@ -431,11 +437,8 @@ fn synthesize_within(original: &Sequence, options: Options) -> Result<Synthesis,
         candidates_truncated: truncated,
         table,
         equations,
-        millis: if options.method == Method::Ga {
-            0
-        } else {
-            millis
-        },
+        millis,
+        total_millis: 0,
         method: options.method,
         ga: ga_summary.map(|g| GaSummary {
             millis: ga_millis,

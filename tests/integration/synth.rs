@@ -219,3 +219,40 @@ fn a_memory_reset_first_starts_set_in_both_programs() {
         );
     }
 }
+
+/// The time line covers the whole run: with `--method ga` the minimal
+/// equations (the exact route's second half) are timed too, and the total
+/// is at least the sum of the parts it lists.
+#[test]
+fn the_time_line_covers_the_whole_run() {
+    for method in ["ga", "both", "exact"] {
+        let output = steptable()
+            .args([
+                "synth",
+                "--sequence",
+                "A1 B1 A0 B0 C1 C0",
+                "--method",
+                method,
+            ])
+            .output()
+            .unwrap();
+        assert!(output.status.success(), "{method}");
+        let stdout = String::from_utf8(output.stdout).unwrap();
+        let line = stdout
+            .lines()
+            .find(|l| l.starts_with("time: "))
+            .unwrap_or_else(|| panic!("{method}: no time line in {stdout}"));
+        let numbers: Vec<u128> = line
+            .split(|c: char| !c.is_ascii_digit())
+            .filter_map(|n| n.parse().ok())
+            .collect();
+        let (total, parts) = numbers.split_first().expect("a total");
+        assert!(*total >= parts.iter().sum::<u128>(), "{method}: {line}");
+        let expected = match method {
+            "ga" => "ms in all (minimal equations ",
+            _ => "ms in all (exact route ",
+        };
+        assert!(line.contains(expected), "{method}: {line}");
+        assert_eq!(line.contains("GA + GP"), method != "exact", "{line}");
+    }
+}
