@@ -256,3 +256,26 @@ fn the_time_line_covers_the_whole_run() {
         assert_eq!(line.contains("GA + GP"), method != "exact", "{line}");
     }
 }
+
+/// The GA's answer is called as short as the minimum only when the exact
+/// route proved the minimum: never with `--method ga`.
+#[test]
+fn only_a_proven_minimum_is_claimed() {
+    let run = |method: &str| {
+        let output = steptable()
+            .args(["synth", "--sequence", "A1 A0 B1 B0", "--method", method])
+            .output()
+            .unwrap();
+        assert!(output.status.success(), "{method}");
+        String::from_utf8(output.stdout).unwrap()
+    };
+    let ga = run("ga");
+    assert!(
+        ga.contains("(2 inserted operation(s), 1 memory(ies)"),
+        "{ga}"
+    );
+    assert!(!ga.contains("as short as"), "{ga}");
+    assert!(ga.contains("found by the GA (not proven minimal"), "{ga}");
+    let both = run("both");
+    assert!(both.contains(": as short as the proven minimum"), "{both}");
+}
