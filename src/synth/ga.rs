@@ -146,6 +146,12 @@ pub fn run(original: &Sequence, params: GaParams) -> GaResult {
     let mut population: Vec<Individual> = (0..mu)
         .map(|_| evaluate((0..length).map(|_| random_gene(&mut rng)).collect()))
         .collect();
+    // One valid individual built by construction, so that the GA never
+    // ends without an answer where one is easy to give; the search then
+    // only has to shorten it.
+    if let Some(genes) = gray_code_genes(original, slots) {
+        population[0] = evaluate(genes);
+    }
     let mut generation = 0;
     let mut best_seen = f64::MAX;
     let mut stalled = 0;
@@ -200,6 +206,72 @@ pub fn run(original: &Sequence, params: GaParams) -> GaResult {
     }
 }
 
+/// A valid chromosome by construction: the actions are cut into groups in
+/// which no actuator moves twice (within a group every state before an
+/// action differs, as each action moves another actuator), and the
+/// memories count the groups in a cyclic Gray code, switched between
+/// groups, so that no two groups share a memory state. An odd number of
+/// groups skips one code with two switches in one gap (the skipped code
+/// is then the state between them, which no group has). `None` when the
+/// groups need more than the four memories or two slots per gap.
+fn gray_code_genes(original: &Sequence, slots: usize) -> Option<Vec<Gene>> {
+    let n = original.actions.len();
+    // The index of the last action of each group.
+    let mut ends = Vec::new();
+    let mut moved: Vec<usize> = Vec::new();
+    for (i, a) in original.actions.iter().enumerate() {
+        if moved.contains(&a.var) {
+            ends.push(i - 1);
+            moved.clear();
+        }
+        moved.push(a.var);
+    }
+    ends.push(n - 1);
+    let groups = ends.len();
+    if groups == 1 {
+        return Some(vec![Gene::Silent; n * slots]);
+    }
+    let count = groups + groups % 2;
+    let bits = (usize::BITS - (count - 1).leading_zeros()) as usize;
+    if bits > MEMORIES.len() || slots < 2 {
+        return None;
+    }
+    // A cyclic Gray code of `count` words: the first half of the reflected
+    // code on bits-1 bits, then the same half reversed with the top bit set.
+    let half: Vec<u32> = (0..count as u32 / 2).map(|k| k ^ (k >> 1)).collect();
+    let top = if bits == 0 { 0 } else { 1 << (bits - 1) };
+    let mut codes: Vec<u32> = half.clone();
+    codes.extend(half.iter().rev().map(|c| c | top));
+    if count > groups {
+        // Skip the second code: the first gap switches two memories.
+        codes.remove(1);
+    }
+    let mut genes = vec![Gene::Silent; n * slots];
+    for (g, &end) in ends.iter().enumerate() {
+        let (from, to) = (codes[g], codes[(g + 1) % groups]);
+        let changed = from ^ to;
+        let mut slot = end * slots;
+        // Switch in the order the code passes through them: the skipped
+        // code's bit first.
+        let order: Vec<u32> = if count > groups && g == 0 {
+            let skipped = half.get(1).copied().unwrap_or(0);
+            let first = skipped ^ from;
+            vec![first, changed ^ first]
+        } else {
+            (0..bits as u32)
+                .map(|b| 1 << b)
+                .filter(|b| changed & b != 0)
+                .collect()
+        };
+        for bit in order.into_iter().filter(|b| *b != 0) {
+            let memory = bit.trailing_zeros() as u8;
+            genes[slot] = Gene::Op(memory, to & bit != 0);
+            slot += 1;
+        }
+    }
+    Some(genes)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -212,6 +284,49 @@ mod tests {
         assert!((f - 0.5).abs() < 1e-9, "{f}");
         let clash = parse("A1 A0 B1 B0").unwrap();
         assert!(fitness(&clash, 12) >= 1.0);
+    }
+
+    /// The constructive individual is valid for long sequences that the
+    /// random population never solved (A1 A0 … J1 J0: eleven groups), with
+    /// an odd and an even number of groups, so the GA always answers.
+    #[test]
+    fn a_constructed_individual_keeps_the_ga_from_failing() {
+        let letters = "ABCDEFGHIJ";
+        for count in [2, 3, 4, 7, 10] {
+            let text: Vec<String> = letters[..count]
+                .chars()
+                .flat_map(|c| [format!("{c}1"), format!("{c}0")])
+                .collect();
+            let original = parse(&text.join(" ")).unwrap();
+            let genes = gray_code_genes(&original, 2).expect("at most 16 groups");
+            let built = decode(&original, &genes, 2);
+            assert!(
+                built.is_valid(),
+                "{count}: {} {:?}",
+                built.text(),
+                built.problems()
+            );
+            for seed in 1..=8 {
+                let r = run(
+                    &original,
+                    GaParams {
+                        mu: 20,
+                        generations: 5,
+                        seed,
+                        ..GaParams::default()
+                    },
+                );
+                let found = r.sequence.expect("the GA answers");
+                assert!(found.is_valid(), "{count}, seed {seed}: {}", found.text());
+            }
+        }
+        // Nineteen groups need five memories: no construction.
+        let text: Vec<String> = "ABCDEFGHI"
+            .chars()
+            .flat_map(|c| [format!("{c}1"), format!("{c}0")])
+            .collect();
+        let twice = format!("{0} {0}", text.join(" "));
+        assert_eq!(gray_code_genes(&parse(&twice).unwrap(), 2), None);
     }
 
     #[test]
