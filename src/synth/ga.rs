@@ -250,7 +250,6 @@ fn gray_code_genes(original: &Sequence, slots: usize) -> Option<Vec<Gene>> {
     for (g, &end) in ends.iter().enumerate() {
         let (from, to) = (codes[g], codes[(g + 1) % groups]);
         let changed = from ^ to;
-        let mut slot = end * slots;
         // Switch in the order the code passes through them: the skipped
         // code's bit first.
         let order: Vec<u32> = if count > groups && g == 0 {
@@ -263,10 +262,9 @@ fn gray_code_genes(original: &Sequence, slots: usize) -> Option<Vec<Gene>> {
                 .filter(|b| changed & b != 0)
                 .collect()
         };
-        for bit in order.into_iter().filter(|b| *b != 0) {
+        for (slot, bit) in (end * slots..).zip(order.into_iter().filter(|b| *b != 0)) {
             let memory = bit.trailing_zeros() as u8;
             genes[slot] = Gene::Op(memory, to & bit != 0);
-            slot += 1;
         }
     }
     Some(genes)
