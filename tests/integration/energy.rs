@@ -332,3 +332,35 @@ fn an_interlock_over_a_step_range_halts_only_there() {
             "SETTINGS!B1: error[E030]: interlock: \"guard_closed in steps 3-5\" has no step range of this table",
         ));
 }
+
+/// Names in the halt rows: `y1` is the one coil of a single-solenoid valve
+/// (C1 on 52mono), and two held inputs whose first 9 characters are the
+/// same are refused (FST keeps 9), even when neither is the table's.
+#[test]
+fn a_single_coil_is_named_y1_and_held_inputs_differ_in_nine_characters() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("mono.xlsx");
+    let table: &[&[&str]] = &[&["C1+1; Y:heater+"], &["C1-0; Y:heater-"]];
+    let write = |rows: &[&[&str]]| {
+        let mut settings: Vec<&[&str]> = rows.to_vec();
+        settings.extend_from_slice(&[&[""], &["actuator", "valve"], &["C1", "52mono"]]);
+        write_xlsx_sheets(
+            &path,
+            &[
+                ("SEQUENTIAL CONTROL DESCRIPTION", table),
+                ("SETTINGS", &settings),
+            ],
+        );
+    };
+    write(&[&["hold-safe", "y1, heater"]]);
+    steptable().arg("check").arg(&path).assert().success();
+    write(&[&["interlock", "guard_closed_a, guard_closed_b"]]);
+    steptable()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .failure()
+        .stderr(contains(
+            "interlock: guard_closed_b and guard_closed_a begin with the same 9 characters",
+        ));
+}

@@ -173,3 +173,24 @@ fn hidden_side_sheets_are_used_and_said() {
     let io = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
     assert!(io.contains("I1.0,START,"), "{io}");
 }
+
+/// The header is the row with SIGNAL and ADDRESS side by side: a note above
+/// it that starts with the word "signal" is the sheet's text, not the
+/// header (the template's ADDRESSES sheet has such notes).
+#[test]
+fn the_header_is_the_row_with_both_words() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = workbook(
+        dir.path(),
+        &[
+            &["signal"],
+            &["Pins as wired in the panel"],
+            &["SIGNAL", "ADDRESS"],
+            &["START", "I1.0"],
+        ],
+    );
+    let out = dir.path().join("out");
+    convert_for_siemens(&input, &out).success();
+    let io = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
+    assert!(io.contains("I1.0,START,"), "{io}");
+}
