@@ -354,6 +354,16 @@ fn a_single_coil_is_named_y1_and_held_inputs_differ_in_nine_characters() {
     };
     write(&[&["hold-safe", "y1, heater"]]);
     steptable().arg("check").arg(&path).assert().success();
+    // A two-coil valve's coils are y1+ and y1-.
+    let settings: &[&[&str]] = &[&["hold-safe", "y1+, y1-"]];
+    write_xlsx_sheets(
+        &path,
+        &[
+            ("SEQUENTIAL CONTROL DESCRIPTION", table),
+            ("SETTINGS", settings),
+        ],
+    );
+    steptable().arg("check").arg(&path).assert().success();
     write(&[&["interlock", "guard_closed_a, guard_closed_b"]]);
     steptable()
         .arg("check")
