@@ -374,3 +374,39 @@ fn a_single_coil_is_named_y1_and_held_inputs_differ_in_nine_characters() {
             "interlock: guard_closed_b and guard_closed_a begin with the same 9 characters",
         ));
 }
+
+/// A value right of the actuator table is W003 on the table's own rows
+/// only: a note far right on a row of the labels above it is not.
+#[test]
+fn only_the_actuator_tables_rows_report_what_lies_right_of_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("noted.xlsx");
+    let table: &[&[&str]] = &[&["C1+1"], &["C1-0"]];
+    let settings: &[&[&str]] = &[
+        &[
+            "scan time",
+            "10ms",
+            "",
+            "",
+            "",
+            "wired by the panel builder",
+        ],
+        &[""],
+        &["actuator", "extend", "retract"],
+        &["C1", "1s", "1s", "", "", "2s?"],
+    ];
+    write_xlsx_sheets(
+        &path,
+        &[
+            ("SEQUENTIAL CONTROL DESCRIPTION", table),
+            ("SETTINGS", settings),
+        ],
+    );
+    steptable()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .success()
+        .stderr(contains("SETTINGS!F4: warning[W003]"))
+        .stderr(contains("SETTINGS!F1").not());
+}
