@@ -112,11 +112,11 @@ pub struct HaltPolicy {
     /// at once, in any state: the sequence is abandoned, every coil and
     /// output goes off but those held or running on.
     pub on_stop: std::collections::BTreeMap<Signal, StopAction>,
-    /// The outputs that run on after the emergency stop or a halt (SETTINGS
-    /// `on estop`, `on halt`: `fan off after 20s`); their `off` and
-    /// `hold` are in `hold_on_estop`, `off_on_halt` and `hold_safe`.
-    pub run_on_estop: std::collections::BTreeMap<Signal, u32>,
-    pub run_on_halt: std::collections::BTreeMap<Signal, u32>,
+    /// What the emergency stop and a halt do per output (SETTINGS `on
+    /// estop`, `on halt`), as written; their `hold` and `off` are also in
+    /// `hold_on_estop`, `off_on_halt` and `hold_safe`, which the rungs read.
+    pub on_estop: std::collections::BTreeMap<Signal, StopAction>,
+    pub on_halt: std::collections::BTreeMap<Signal, StopAction>,
 }
 
 /// An input that must stay on, always or while the sequence is in a range
@@ -170,37 +170,29 @@ pub enum StopAction {
     OffAfter(u32),
 }
 
-impl std::fmt::Display for StopAction {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            StopAction::Off => f.write_str("off"),
-            StopAction::Hold => f.write_str("hold"),
-            StopAction::OffAfter(ms) => write!(f, "off after {}", crate::cell::duration_text(*ms)),
-        }
-    }
-}
-
 impl HaltPolicy {
     /// Every output that runs on after an event, by event (STOP, the
     /// emergency stop, a halt), then signal.
     pub fn run_ons(&self) -> Vec<RunOn> {
-        let on_stop = self.on_stop.iter().filter_map(|(s, a)| match a {
-            StopAction::OffAfter(ms) => Some((StopEvent::Stop, *s, *ms)),
-            _ => None,
-        });
-        let on_estop = self
-            .run_on_estop
-            .iter()
-            .map(|(s, ms)| (StopEvent::EStop, *s, *ms));
-        let on_halt = self
-            .run_on_halt
-            .iter()
-            .map(|(s, ms)| (StopEvent::Halt, *s, *ms));
-        on_stop
-            .chain(on_estop)
-            .chain(on_halt)
-            .map(|(event, output, ms)| RunOn { event, output, ms })
-            .collect()
+        [
+            (StopEvent::Stop, &self.on_stop),
+            (StopEvent::EStop, &self.on_estop),
+            (StopEvent::Halt, &self.on_halt),
+        ]
+        .into_iter()
+        .flat_map(|(event, actions)| {
+            actions
+                .iter()
+                .filter_map(move |(output, action)| match action {
+                    StopAction::OffAfter(ms) => Some(RunOn {
+                        event,
+                        output: *output,
+                        ms: *ms,
+                    }),
+                    _ => None,
+                })
+        })
+        .collect()
     }
 
     /// Whether `output` may stay on in a machine that has stopped.

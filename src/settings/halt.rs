@@ -154,16 +154,6 @@ pub fn resolve(
     };
     let on_stop = actions_of(Row::OnStop);
     let (on_estop, on_halt) = (actions_of(Row::OnEstop), actions_of(Row::OnHalt));
-    let run_ons = |actions: &BTreeMap<Signal, StopAction>| -> BTreeMap<Signal, u32> {
-        actions
-            .iter()
-            .filter_map(|(s, a)| match a {
-                StopAction::OffAfter(ms) => Some((*s, *ms)),
-                _ => None,
-            })
-            .collect()
-    };
-    let (run_on_estop, run_on_halt) = (run_ons(&on_estop), run_ons(&on_halt));
     for (signal, action) in &on_estop {
         if *action == StopAction::Hold {
             hold_on_estop.insert(*signal);
@@ -190,10 +180,20 @@ pub fn resolve(
     // The emergency stop halts: what it keeps on, a halt may not switch
     // off or time out.
     let estop_row = rows.get(&Row::OnEstop).or(rows.get(&Row::HoldOnEstop));
-    let ended_on_halt: BTreeSet<&Signal> = off.iter().chain(run_on_halt.keys()).collect();
-    let mut kept_on_estop = hold_on_estop.iter().chain(run_on_estop.keys());
-    if let (Some(row), Some(both)) = (estop_row, kept_on_estop.find(|s| ended_on_halt.contains(s)))
-    {
+    let runs_on = |actions: &BTreeMap<Signal, StopAction>| -> Vec<Signal> {
+        actions
+            .iter()
+            .filter(|(_, a)| matches!(a, StopAction::OffAfter(_)))
+            .map(|(s, _)| *s)
+            .collect()
+    };
+    let ended_on_halt: BTreeSet<Signal> = off.iter().copied().chain(runs_on(&on_halt)).collect();
+    let kept_and_ended = hold_on_estop
+        .iter()
+        .copied()
+        .chain(runs_on(&on_estop))
+        .find(|s| ended_on_halt.contains(s));
+    if let (Some(row), Some(both)) = (estop_row, kept_and_ended) {
         diags.error(
             Code::E030BadSetting,
             row.at.clone(),
@@ -203,12 +203,15 @@ pub fn resolve(
             ),
         );
     }
-    let run_on_count = on_stop
-        .values()
-        .filter(|a| matches!(a, StopAction::OffAfter(_)))
-        .count()
-        + run_on_estop.len()
-        + run_on_halt.len();
+    let policy = HaltPolicy {
+        hold_safe,
+        off_on_halt: off,
+        hold_on_estop,
+        on_stop,
+        on_estop,
+        on_halt,
+    };
+    let run_on_count = policy.run_ons().len();
     let dwells = table.dwells().count();
     if run_on_count + dwells > crate::table::MAX_DWELLS
         && let Some(row) = [Row::OnStop, Row::OnEstop, Row::OnHalt]
@@ -224,14 +227,7 @@ pub fn resolve(
             ),
         );
     }
-    HaltPolicy {
-        hold_safe,
-        off_on_halt: off,
-        hold_on_estop,
-        on_stop,
-        run_on_estop,
-        run_on_halt,
-    }
+    policy
 }
 
 /// E030 for a name that is no output of the table, with the ones it has.
