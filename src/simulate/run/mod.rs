@@ -1,10 +1,11 @@
 //! One run of the program against the plant, scan by scan: the state of
 //! the run and what each scan checks.
 
+mod cycle;
 mod drive;
 mod machine;
 
-pub(super) use drive::run;
+pub(super) use cycle::{Drive, run};
 
 use std::collections::BTreeMap;
 
@@ -39,6 +40,7 @@ impl ActiveMove {
     }
 }
 
+#[derive(Clone)]
 pub(in crate::simulate) struct Run<'a> {
     pub(in crate::simulate) program: &'a StepProgram,
     /// What the PLC's inputs read from: the plant, the operator, the machine.
@@ -84,6 +86,7 @@ pub(in crate::simulate) struct Run<'a> {
 }
 
 /// Everything the PLC's inputs are read from.
+#[derive(Clone)]
 pub(in crate::simulate) struct World {
     pub(in crate::simulate) settings: SimSettings,
     pub(in crate::simulate) pistons: Vec<Piston>,

@@ -1,0 +1,425 @@
+//! The operator's side of a run: idle, press START, watch each cycle to its
+//! end (or its stall), idle again. Kept as a state between two scans
+//! ([`Drive`]) rather than as nested loops, so that a run can be copied at
+//! any scan and resumed later under other settings (the fault analysis
+//! starts each faulty run where the healthy one stood when the fault
+//! appeared).
+
+use super::drive::{left_on_by_the_cycle, step_timeout_ms, timings};
+use super::*;
+use crate::program::{Alarm, StepKind};
+use crate::simulate::plc::PlcProgram;
+
+/// Where a run stands between two scans.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub(in crate::simulate) enum Stage {
+    /// Waiting for the press of the next cycle: nothing may happen.
+    Idle,
+    /// A cycle is under way.
+    Cycle,
+    /// After the last cycle, until `until`: nothing may move on its own.
+    Rest { until: u64 },
+    Finished,
+}
+
+/// A run between two scans: the plant and the PLC ([`Run`]) and where the
+/// operator's cycles stand.
+#[derive(Clone)]
+pub(in crate::simulate) struct Drive<'a> {
+    pub(in crate::simulate) run: Run<'a>,
+    pub(in crate::simulate) stage: Stage,
+    pub(in crate::simulate) cycle: usize,
+    cycles_wanted: usize,
+    pub(in crate::simulate) press_at: u64,
+    timeout: u64,
+    /// The cycle under way.
+    pub(in crate::simulate) report: CycleReport,
+    /// When each step of the cycle under way fired.
+    pub(in crate::simulate) fire_times: Vec<u64>,
+    pub(in crate::simulate) last_event: u64,
+    pub(in crate::simulate) cycles: Vec<CycleReport>,
+    step_positions: Vec<Vec<f64>>,
+    stalled_at: Option<usize>,
+    first_cycle_end: u64,
+    /// Runs of quiet scans stop at this time: a checkpoint of the fault
+    /// analysis wants the run as it stands then.
+    pub(in crate::simulate) horizon: u64,
+}
+
+impl<'a> Drive<'a> {
+    /// Power-up, waiting for the first press.
+    pub(in crate::simulate) fn new(
+        table: &'a StepTable,
+        program: &'a StepProgram,
+        code: &'a PlcProgram,
+        settings: &SimSettings,
+        record: Option<io::IoSignals>,
+        stepping: Stepping,
+    ) -> Self {
+        let mut run = Run::new(table, program, code, settings);
+        run.event_driven = stepping == Stepping::Events;
+        run.io = record.map(|signals| io::IoTrace {
+            scan_ms: run.world.settings.scan_ms,
+            signals,
+            scans: Vec::new(),
+        });
+        let press_at = IDLE_MS as u64;
+        let positions = run.positions();
+        Drive {
+            run,
+            stage: Stage::Idle,
+            cycle: 0,
+            cycles_wanted: settings.cycles.max(1),
+            press_at,
+            timeout: step_timeout_ms(table, program, settings),
+            report: CycleReport {
+                press_ms: press_at,
+                steps: Vec::new(),
+                cycle_ms: None,
+            },
+            fire_times: Vec::new(),
+            last_event: 0,
+            cycles: Vec::new(),
+            step_positions: vec![positions],
+            stalled_at: None,
+            first_cycle_end: u64::MAX,
+            horizon: u64::MAX,
+        }
+    }
+
+    pub(in crate::simulate) fn finished(&self) -> bool {
+        self.stage == Stage::Finished
+    }
+
+    /// One scan and what the run makes of it, then the quiet scans after
+    /// it; afterwards the next thing the run does is a scan (or nothing,
+    /// once finished).
+    pub(in crate::simulate) fn advance(&mut self) {
+        match self.stage {
+            Stage::Idle => {
+                self.run.tick();
+                if self.run.judged() {
+                    self.stage = Stage::Finished;
+                    return;
+                }
+                self.run.pass_quiet_scans(self.press_at.min(self.horizon));
+            }
+            Stage::Cycle => self.cycle_scan(),
+            Stage::Rest { until } => {
+                self.run.tick();
+                if !self.run.judged() {
+                    self.run.pass_quiet_scans(until.min(self.horizon));
+                }
+            }
+            Stage::Finished => {}
+        }
+        self.settle();
+    }
+
+    /// Moves on when the stage is over: the press comes, the idle after
+    /// the last cycle ends.
+    fn settle(&mut self) {
+        match self.stage {
+            Stage::Idle if self.run.time_ms >= self.press_at => {
+                self.report = CycleReport {
+                    press_ms: self.press_at,
+                    steps: Vec::new(),
+                    cycle_ms: None,
+                };
+                self.fire_times.clear();
+                self.last_event = self.run.time_ms;
+                self.stage = Stage::Cycle;
+            }
+            Stage::Rest { until } if self.run.time_ms >= until || self.run.judged() => {
+                self.stage = Stage::Finished;
+            }
+            _ => {}
+        }
+    }
+
+    /// One scan of a cycle under way.
+    fn cycle_scan(&mut self) {
+        let program = self.run.program;
+        // A press the PLC can see: held for two scans at least, however
+        // slow the scan.
+        let press_ms = START_PRESS_MS.max(2 * self.run.world.settings.scan_ms) as u64;
+        self.run.world.start_pressed = self.run.time_ms < self.press_at + press_ms;
+        let before = self.run.time_ms;
+        let fired = self.run.tick();
+        if self.run.judged() {
+            self.close_report();
+            self.stage = Stage::Finished;
+            return;
+        }
+        if let Some(index) = fired {
+            // A boundary of the diagram: the previous step has ended.
+            // (A closing END step is not a boundary: the cycle end is.)
+            if self.cycle == 0 && index > 0 && program.steps[index].kind == StepKind::Table {
+                self.step_positions.push(self.run.positions());
+            }
+            if index == 0 && !self.fire_times.is_empty() {
+                // Step 1 again before the cycle was seen to end.
+                self.end_cycle();
+                return;
+            }
+            self.fire_times.push(before);
+            self.last_event = self.run.time_ms;
+        }
+        // The cycle ends when the machine is at rest: a closing step
+        // fires on the home sensors while the last stroke still runs
+        // into its end stop, and START must not come before it does.
+        let run = &self.run;
+        let done = self.fire_times.len() == program.steps.len()
+            && run.plc.awaited == 0
+            && run.all_moves_ended()
+            && run.world.pistons.iter().all(plant::Piston::at_rest)
+            && run.cycle_complete();
+        if done {
+            if self.cycle == 0 {
+                self.step_positions.push(self.run.positions());
+            }
+            self.report.cycle_ms = Some(self.run.time_ms - self.press_at);
+            self.end_cycle();
+            return;
+        }
+        if self.run.time_ms - self.last_event > self.timeout {
+            self.stall();
+            return;
+        }
+        // Quiet scans pass at once until START is released or the wait
+        // could time out.
+        let scan = self.run.world.settings.scan_ms as u64;
+        let release = if self.run.world.start_pressed {
+            self.press_at + press_ms
+        } else {
+            u64::MAX
+        };
+        let timeout = (self.last_event + self.timeout + 1).saturating_sub(scan);
+        self.run
+            .pass_quiet_scans(release.min(timeout).min(self.horizon));
+    }
+
+    /// The cycle under way, timed, among the cycles.
+    fn close_report(&mut self) {
+        let mut report = std::mem::replace(
+            &mut self.report,
+            CycleReport {
+                press_ms: self.press_at,
+                steps: Vec::new(),
+                cycle_ms: None,
+            },
+        );
+        report.steps = timings(
+            self.run.program,
+            &self.fire_times,
+            self.run.time_ms,
+            self.press_at,
+            &self.run.spans,
+        );
+        self.cycles.push(report);
+    }
+
+    /// The cycle has ended (or step 1 came again): every actuator must be
+    /// home; then the next press, or the idle after the last cycle.
+    fn end_cycle(&mut self) {
+        let complete = self.report.cycle_ms.is_some();
+        if self.cycle == 0 {
+            self.first_cycle_end = self.run.time_ms;
+        }
+        if complete {
+            let window = self.run.world.settings.window;
+            let step = self.run.program.steps.last().map_or(1, |s| s.number);
+            for p in &self.run.world.pistons {
+                if !p.sensor(0, window) {
+                    self.run.problems.push(Problem {
+                        kind: ProblemKind::NotHome,
+                        time_ms: self.run.time_ms,
+                        step,
+                        actuator: Some(p.number),
+                        message: format!("C{} is not home at the end of the cycle", p.number),
+                    });
+                }
+            }
+        }
+        self.close_report();
+        if complete && self.cycle + 1 < self.cycles_wanted {
+            self.cycle += 1;
+            self.press_at = self.run.time_ms + IDLE_MS as u64;
+            self.stage = Stage::Idle;
+        } else {
+            // A short idle after the last cycle: nothing may move on its own.
+            self.run.world.start_pressed = false;
+            self.stage = Stage::Rest {
+                until: self.run.time_ms + IDLE_MS as u64,
+            };
+            self.settle();
+        }
+    }
+
+    /// Nothing has happened for longer than any step may take: the run
+    /// has stalled. Says what the awaited step waits for, which alarms are
+    /// on and what the stopped machine keeps energised.
+    fn stall(&mut self) {
+        let (program, table) = (self.run.program, self.run.table);
+        let run = &mut self.run;
+        let step_count = program.steps.len();
+        let waiting = &program.steps[run.plc.awaited];
+        // START was pressed and released; it only explains the wait when
+        // nothing else is missing. The plant stands still while the
+        // sequence waits: what is missing now is what was missing.
+        let mut missing_literals = run.missing(run.plc.awaited);
+        if missing_literals.len() > 1 {
+            missing_literals.retain(|l| l.signal != Signal::Start);
+        }
+        let missing: Vec<String> = missing_literals.iter().map(literal_text).collect();
+        let alarms: Vec<String> = [Alarm::Sensor, Alarm::Timeout, Alarm::Interlock]
+            .into_iter()
+            .map(Signal::Alarm)
+            .filter(|a| run.plc.bit(*a))
+            .map(|a| a.symbol())
+            .collect();
+        let mut message = if self.fire_times.len() == step_count {
+            format!(
+                "the cycle never ends: the moves of step {} do not finish",
+                program.steps[step_count - 1].number
+            )
+        } else {
+            format!(
+                "step {} never fires: waiting for {}",
+                waiting.number,
+                if missing.is_empty() {
+                    "its condition".to_string()
+                } else {
+                    missing.join(" AND ")
+                }
+            )
+        };
+        if !alarms.is_empty() {
+            message.push_str(&format!(" (alarm: {})", alarms.join(", ")));
+        }
+        // Waiting for the next cycle, an output the cycle leaves on (an
+        // oven's heater until STOP) is on as in a healthy machine.
+        let at_rest = run.plc.awaited == 0;
+        let energised: Vec<String> = program
+            .signals
+            .driven()
+            .filter(|s| run.plc.bit(*s) && !program.halt.may_stay_on(*s))
+            .filter(|s| !(at_rest && left_on_by_the_cycle(table, *s)))
+            .map(|s| s.symbol())
+            .collect();
+        run.problem(ProblemKind::Stall, waiting.number, message.clone());
+        if !energised.is_empty() {
+            run.problem(
+                ProblemKind::Energised,
+                waiting.number,
+                format!(
+                    "{message}; the stopped machine keeps {} on (not hold-safe)",
+                    energised.join(", ")
+                ),
+            );
+        }
+        self.stalled_at = Some(waiting.number);
+        self.close_report();
+        self.stage = Stage::Finished;
+    }
+
+    /// Runs to the end.
+    pub(in crate::simulate) fn run_to_end(&mut self) {
+        while !self.finished() {
+            self.advance();
+        }
+    }
+
+    /// The report of a finished run, and the I/O it recorded.
+    pub(in crate::simulate) fn finish(self) -> (SimReport, Option<io::IoTrace>) {
+        let Drive {
+            mut run,
+            cycles,
+            cycles_wanted,
+            step_positions,
+            stalled_at,
+            first_cycle_end,
+            ..
+        } = self;
+        let window = run.world.settings.window;
+        if let (Some(first), Some(second)) = (cycles.first(), cycles.get(1))
+            && first.cycle_ms.is_some()
+            && second.cycle_ms.is_some()
+        {
+            let durations =
+                |c: &CycleReport| c.steps.iter().map(|s| s.duration_ms).collect::<Vec<_>>();
+            if durations(first) != durations(second) {
+                run.problems.push(Problem {
+                    kind: ProblemKind::CycleDiffers,
+                    time_ms: run.time_ms,
+                    step: 1,
+                    actuator: None,
+                    message: "the second cycle's step timing differs from the first".to_string(),
+                });
+            }
+        }
+        // Say where each run-through ended: "C2 ran through x22 to x23".
+        for problem in &mut run.problems {
+            if problem.kind != ProblemKind::RanThrough {
+                continue;
+            }
+            if let Some(piston) = problem
+                .actuator
+                .and_then(|n| run.world.index_of.get(&n))
+                .map(|i| &run.world.pistons[*i])
+            {
+                let end = match piston.sensor_on(window) {
+                    Some(position) => Signal::Sensor {
+                        actuator: piston.number,
+                        position,
+                    }
+                    .symbol(),
+                    None => format!("position {:.2}", piston.position_units()),
+                };
+                problem.message =
+                    problem
+                        .message
+                        .replacen(" in step", &format!(" to {end} in step"), 1);
+            }
+        }
+        let all_cycles_done =
+            cycles.len() == cycles_wanted && cycles.iter().all(|c| c.cycle_ms.is_some());
+        run.problems.sort_by_key(|p| p.time_ms);
+        let report = SimReport {
+            alarmed: run.alarmed,
+            passed: run.problems.is_empty() && all_cycles_done,
+            cycles,
+            problems: run.problems,
+            stalled_at,
+            step_positions,
+            actuators: run
+                .table
+                .actuators
+                .iter()
+                .map(|a| (a.number, a.max_position))
+                .collect(),
+            trace: run.trace,
+            places: run.visited,
+            spans: run
+                .spans
+                .into_iter()
+                .filter(|s| s.from_ms < first_cycle_end)
+                .collect(),
+        };
+        (report, run.io)
+    }
+}
+
+/// Simulates from power-up to the end.
+pub(in crate::simulate) fn run(
+    table: &StepTable,
+    program: &StepProgram,
+    code: &PlcProgram,
+    settings: &SimSettings,
+    record: Option<io::IoSignals>,
+    stepping: Stepping,
+) -> (SimReport, Option<io::IoTrace>) {
+    let mut drive = Drive::new(table, program, code, settings, record, stepping);
+    drive.run_to_end();
+    drive.finish()
+}
