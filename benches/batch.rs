@@ -200,10 +200,10 @@ fn main() {
     let faults = steptable::faults::analyse(&table, &program, &settings.simulation, 1);
     let fault_time = t.elapsed();
     println!(
-        "  of generate: simulation {:.2} ms ({}), single-fault table {:.2} ms ({} cases)",
+        "  of generate: simulation {:.2} ms ({}), single-fault table {:.2} ms ({})",
         ms(sim),
         report.verdict(),
         ms(fault_time),
-        faults.cases.len()
+        faults.summary()
     );
 }

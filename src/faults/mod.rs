@@ -9,7 +9,11 @@ pub use phases::{Moment, Phase, moments};
 
 use crate::program::StepProgram;
 use crate::simulate::io::IoSignals;
-use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings, Simulator};
+use std::collections::HashMap;
+
+use crate::simulate::{
+    Checkpoints, Fault, ProblemKind, Resumed, SimReport, SimSettings, Simulator,
+};
 use crate::table::StepTable;
 
 /// What a fault does to the machine.
@@ -186,13 +190,46 @@ pub fn analyse(
     analyse_observed(table, program, settings, at_once, &|_, _| {})
 }
 
+/// How the fault analysis runs each case.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FaultRuns {
+    /// From a copy of the healthy run where the fault appears, stopping as
+    /// soon as the run is back in step with the healthy one (its state and
+    /// inputs the same): the rest is the case of the same fault appearing
+    /// when its input next differs, or no effect.
+    #[default]
+    Resumed,
+    /// Each from power-up to its end: the plain reference the resumed runs
+    /// are tested against.
+    FromPowerUp,
+}
+
 /// Like [`analyse`], on every core, calling `progress(done, total)` after
-/// each run (from any thread) so that a long analysis can be shown.
+/// each case (from any thread) so that a long analysis can be shown.
 pub fn analyse_observed(
     table: &StepTable,
     program: &StepProgram,
     settings: &SimSettings,
     at_once: usize,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> FaultTable {
+    analyse_runs(
+        table,
+        program,
+        settings,
+        at_once,
+        FaultRuns::Resumed,
+        progress,
+    )
+}
+
+/// Like [`analyse_observed`], running the cases as `runs` says.
+pub fn analyse_runs(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    at_once: usize,
+    runs: FaultRuns,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> FaultTable {
     use rayon::prelude::*;
@@ -213,58 +250,85 @@ pub fn analyse_observed(
     let cases_at_every_moment = sets.len() * moments.len();
     let too_long = cases_at_every_moment * table.steps.len().max(1) > MAX_PHASE_WORK;
     let mut equivalent = 0;
-    let onsets: Vec<Vec<Option<u64>>> = if too_long {
-        moments.truncate(1);
-        sets.iter().map(|_| vec![Some(0)]).collect()
-    } else {
+    // The healthy inputs scan by scan: not for a cycle too long for
+    // faults at every moment (a long table has millions of scans).
+    let inputs = (!too_long).then(|| {
         let signals = IoSignals {
             inputs: program.signals.inputs.clone(),
             outputs: Vec::new(),
         };
-        let (_, trace) = simulator.run_recording(&healthy_settings, signals);
-        let inputs = phases::HealthyInputs::new(&trace);
-        // A fault that never reads other than the healthy input (STOP
-        // stuck at 1: it is normally closed) adds nothing to a set: the set
-        // is the smaller one, already in the table.
-        let inert = |f: &Fault| inputs.divergence(std::slice::from_ref(f), 0).is_none();
-        let before = sets.len();
-        sets.retain(|set| set.len() == 1 || !set.iter().any(inert));
-        equivalent = before - sets.len();
-        // Each set at each moment, as the moment its run leaves the
-        // healthy one.
-        sets.iter()
-            .map(|set| {
-                moments
-                    .iter()
-                    .map(|m| inputs.divergence(set, m.at_ms))
-                    .collect()
-            })
-            .collect()
+        phases::HealthyInputs::new(&simulator.run_recording(&healthy_settings, signals).1)
+    });
+    let onsets: Vec<Vec<Option<u64>>> = match &inputs {
+        None => {
+            moments.truncate(1);
+            sets.iter().map(|_| vec![Some(0)]).collect()
+        }
+        Some(inputs) => {
+            // A fault that never reads other than the healthy input (STOP
+            // stuck at 1: it is normally closed) adds nothing to a set: the set
+            // is the smaller one, already in the table.
+            let inert = |f: &Fault| inputs.divergence(std::slice::from_ref(f), 0).is_none();
+            let before = sets.len();
+            sets.retain(|set| set.len() == 1 || !set.iter().any(inert));
+            equivalent = before - sets.len();
+            // Each set at each moment, as the moment its run leaves the
+            // healthy one.
+            sets.iter()
+                .map(|set| {
+                    moments
+                        .iter()
+                        .map(|m| inputs.divergence(set, m.at_ms))
+                        .collect()
+                })
+                .collect()
+        }
     };
     let phases_skipped = too_long.then_some(cases_at_every_moment);
-    let runs: Vec<(usize, u64)> = onsets
+    // Each set's distinct onsets, the latest first: an earlier case that
+    // comes back in step with the healthy run ends as a later one.
+    let planned: Vec<Vec<u64>> = onsets
         .iter()
-        .enumerate()
-        .flat_map(|(i, at)| {
+        .map(|at| {
             let mut distinct: Vec<u64> = at.iter().flatten().copied().collect();
-            distinct.sort_unstable();
+            distinct.sort_unstable_by(|a, b| b.cmp(a));
             distinct.dedup();
-            distinct.into_iter().map(move |d| (i, d))
+            distinct
         })
         .collect();
-    let total = runs.len();
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let settings = &SimSettings {
-        known_places: Some(std::sync::Arc::new(healthy.places)),
-        ..settings.clone()
+    let total = planned.iter().map(Vec::len).sum();
+    let resumed = inputs
+        .as_ref()
+        .filter(|_| runs == FaultRuns::Resumed)
+        .map(|inputs| {
+            let times: Vec<u64> = planned
+                .iter()
+                .flatten()
+                .copied()
+                .chain(inputs.change_times())
+                .collect();
+            (simulator.checkpoints(&healthy_settings, &times), inputs)
+        });
+    let cases = Cases {
+        simulator: &simulator,
+        settings: SimSettings {
+            known_places: Some(std::sync::Arc::new(healthy.places)),
+            ..settings.clone()
+        },
+        resumed: resumed.as_ref().map(|(c, inputs)| (c, *inputs)),
     };
-    let verdicts: std::collections::HashMap<(usize, u64), Verdict> = runs
-        .into_par_iter()
-        .map(|(i, onset)| {
-            let verdict = classify(&simulator, settings, &sets[i], onset);
-            let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            progress(n, total);
-            ((i, onset), verdict)
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let verdicts: Vec<HashMap<u64, Verdict>> = planned
+        .par_iter()
+        .zip(&sets)
+        .map(|(onsets, set)| {
+            let mut memo = HashMap::new();
+            for &onset in onsets {
+                cases.verdict(set, onset, &mut memo);
+                let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                progress(n, total);
+            }
+            memo
         })
         .collect();
     let no_effect = Verdict {
@@ -280,7 +344,7 @@ pub fn analyse_observed(
             let mut outcomes = Vec::with_capacity(moments.len());
             let mut worst: Option<(Phase, &Verdict)> = None;
             for (moment, onset) in moments.iter().zip(&onsets[i]) {
-                let verdict = onset.map_or(&no_effect, |d| &verdicts[&(i, d)]);
+                let verdict = onset.map_or(&no_effect, |d| &verdicts[i][&d]);
                 outcomes.push(verdict.outcome);
                 if worst.is_none_or(|(_, w)| verdict.outcome > w.outcome) {
                     worst = Some((moment.phase, verdict));
@@ -307,7 +371,11 @@ pub fn analyse_observed(
     }
 }
 
+/// Why a fault has no effect, when its run is the healthy one's.
+const AS_WITHOUT: &str = "the cycle runs as without the fault";
+
 /// What one run of a fault set says.
+#[derive(Debug, Clone)]
 struct Verdict {
     outcome: Outcome,
     step: Option<usize>,
@@ -315,26 +383,71 @@ struct Verdict {
     detected: bool,
 }
 
-fn classify(
-    simulator: &Simulator,
-    settings: &SimSettings,
-    faults: &[Fault],
-    onset: u64,
-) -> Verdict {
-    let run = SimSettings {
-        faults: faults.to_vec(),
-        fault_onset_ms: onset,
-        record_trace: false,
-        stop_at_hazard: true,
-        ..settings.clone()
-    };
-    let report = simulator.run(&run);
-    let (outcome, step, explanation) = judge(&report);
-    Verdict {
-        outcome,
-        step,
-        explanation,
-        detected: report.alarmed,
+impl Verdict {
+    fn of(report: &SimReport) -> Self {
+        let (outcome, step, explanation) = judge(report);
+        Verdict {
+            outcome,
+            step,
+            explanation,
+            detected: report.alarmed,
+        }
+    }
+}
+
+/// What every case of one analysis shares.
+struct Cases<'s, 'a> {
+    simulator: &'s Simulator<'a>,
+    /// The settings of every faulty run but its faults and their onset.
+    settings: SimSettings,
+    /// The healthy run's checkpoints and inputs, when runs are resumed.
+    resumed: Option<(&'s Checkpoints<'s>, &'s phases::HealthyInputs)>,
+}
+
+impl Cases<'_, '_> {
+    /// The verdict on `faults` appearing at `onset`, remembered in `memo`
+    /// (by onset) with the verdicts of the later onsets it turned out to
+    /// share.
+    fn verdict(&self, faults: &[Fault], onset: u64, memo: &mut HashMap<u64, Verdict>) -> Verdict {
+        let mut chain = Vec::new();
+        let mut at = onset;
+        let verdict = loop {
+            if let Some(known) = memo.get(&at) {
+                break known.clone();
+            }
+            chain.push(at);
+            let run = SimSettings {
+                faults: faults.to_vec(),
+                fault_onset_ms: at,
+                record_trace: false,
+                stop_at_hazard: true,
+                ..self.settings.clone()
+            };
+            let Some((checkpoints, inputs)) = self.resumed else {
+                break Verdict::of(&self.simulator.run(&run));
+            };
+            let in_step = |t| inputs.divergence(faults, t) != Some(t);
+            match self.simulator.resume(checkpoints, &run, &in_step) {
+                Resumed::Report(report) => break Verdict::of(&report),
+                // From here the run is the healthy one until the faulty
+                // input next differs: the case of the faults appearing then.
+                Resumed::InStep { at_ms } => match inputs.divergence(faults, at_ms) {
+                    Some(next) => at = next,
+                    None => {
+                        break Verdict {
+                            outcome: Outcome::NoEffect,
+                            step: None,
+                            explanation: AS_WITHOUT.to_string(),
+                            detected: checkpoints.report.alarmed,
+                        };
+                    }
+                },
+            }
+        };
+        for at in chain {
+            memo.insert(at, verdict.clone());
+        }
+        verdict
     }
 }
 
@@ -384,7 +497,7 @@ pub fn judge(report: &SimReport) -> (Outcome, Option<usize>, String) {
                 .find(|p| p.kind == ProblemKind::CycleDiffers)
             {
                 Some(p) => format!("runs, but {}", p.message),
-                None => "the cycle runs as without the fault".to_string(),
+                None => AS_WITHOUT.to_string(),
             };
             (Outcome::NoEffect, None, explanation)
         }

@@ -140,6 +140,14 @@ impl HealthyInputs {
         }
     }
 
+    /// Every time at which an input changes: where a faulty run that is back
+    /// in step with the healthy one may next leave it.
+    pub fn change_times(&self) -> impl Iterator<Item = u64> + '_ {
+        self.changes
+            .iter()
+            .flat_map(|(_, changes)| changes.iter().map(|(at, _)| *at))
+    }
+
     /// The time of the first scan at or after `from_ms` on which one of
     /// `faults` reads other than the healthy run did: the moment the
     /// faulty run leaves the healthy one. `None`: it never does.

@@ -12,6 +12,8 @@ pub mod plant;
 pub mod plc;
 pub mod report;
 mod run;
+
+pub use run::{Checkpoints, Resumed};
 pub mod scenario;
 mod settings;
 
@@ -81,6 +83,35 @@ impl<'a> Simulator<'a> {
             stepping,
         )
         .0
+    }
+
+    /// Runs under `settings` from power-up to the end, copying the run at
+    /// each of `times` (scan times) for [`Simulator::resume`], and
+    /// fingerprinting it at every scan.
+    pub fn checkpoints(&self, settings: &SimSettings, times: &[u64]) -> Checkpoints<'_> {
+        run::checkpoints(self.table, self.program, &self.code, settings, times)
+    }
+
+    /// Runs under `settings`, whose faults appear at
+    /// `settings.fault_onset_ms`, from the copy of the checkpointed run at
+    /// that time (from power-up when there is none): the same report as
+    /// [`Simulator::run`]. When the checkpointed run passed, it stops early
+    /// at a later scan at which `in_step` holds and it stands exactly where
+    /// that run stood, nothing found yet ([`Resumed::InStep`]).
+    pub fn resume(
+        &self,
+        checkpoints: &Checkpoints<'_>,
+        settings: &SimSettings,
+        in_step: &dyn Fn(u64) -> bool,
+    ) -> Resumed {
+        run::resume(
+            checkpoints,
+            self.table,
+            self.program,
+            &self.code,
+            settings,
+            in_step,
+        )
     }
 
     /// The same as [`simulate_recording`].

@@ -6,7 +6,7 @@ use crate::stroke::Stroke;
 use crate::valve::ValveType;
 
 /// Where the valve's spool is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Spool {
     /// Air to the + side: the piston moves towards higher positions.
     Plus,

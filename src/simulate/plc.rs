@@ -136,6 +136,13 @@ impl<'a> PlcState<'a> {
         self.index_of(signal).is_some_and(|i| self.bits[i])
     }
 
+    /// Feeds what decides the PLC's next scans (the awaited step, every
+    /// bit, every timer) to `hasher`.
+    pub fn hash_state(&self, hasher: &mut impl std::hash::Hasher) {
+        use std::hash::Hash;
+        (self.awaited, &self.bits, &self.timers).hash(hasher);
+    }
+
     /// The same by index.
     pub fn bit_at(&self, index: usize) -> bool {
         self.bits[index]

@@ -85,7 +85,7 @@ pub struct Span {
 }
 
 /// The operator's buttons and switches at one moment.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Operator {
     pub start: bool,
     pub continuous: bool,

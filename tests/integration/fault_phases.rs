@@ -5,11 +5,60 @@
 //! appear at that moment, gives; and the healthy run is never anything but
 //! a pass.
 
-use steptable::faults::{self, Outcome, judge};
+use steptable::convert::{build_program, check_path};
+use steptable::faults::{self, FaultRuns, Outcome, judge};
+use steptable::program::Safety;
 use steptable::random_table::{Shape, SplitMix64, random_rows};
+use steptable::settings::Settings;
 use steptable::simulate::{SimSettings, simulate};
 
+use crate::helpers::samples;
 use crate::stepping::random_machine;
+
+/// Resumed runs (from the healthy run's copy where the fault appears,
+/// stopping once back in step) against runs from power-up to their end:
+/// the same fault table, verdict for verdict.
+fn assert_same_table(
+    what: &str,
+    table: &steptable::table::StepTable,
+    program: &steptable::program::StepProgram,
+    sim: &SimSettings,
+    at_once: usize,
+) -> faults::FaultTable {
+    let run = |runs| faults::analyse_runs(table, program, sim, at_once, runs, &|_, _| {});
+    let (resumed, reference) = (run(FaultRuns::Resumed), run(FaultRuns::FromPowerUp));
+    for (a, b) in resumed.cases.iter().zip(&reference.cases) {
+        assert_eq!(a, b, "{what}: {}", b.fault_text());
+    }
+    assert_eq!(resumed, reference, "{what}");
+    resumed
+}
+
+#[test]
+fn resumed_fault_runs_give_the_table_of_runs_from_power_up() {
+    for path in samples() {
+        for safety in [Safety::default(), Safety::all()] {
+            let mut settings = Settings::default();
+            settings.program.safety = safety;
+            let checked = check_path(&path, &settings).expect("a sample converts");
+            let program = build_program(&checked.table, &checked.settings);
+            let pairs = path.ends_with("paper_example.xlsx");
+            let what = format!("{} {safety:?}", path.display());
+            let sim = &checked.settings.simulation;
+            assert_same_table(&what, &checked.table, &program, sim, 1 + usize::from(pairs));
+        }
+    }
+    let mut moments = 0;
+    for seed in 0..200u64 {
+        let (rows, table, program, mut sim) = random_machine(seed);
+        sim.record_trace = false;
+        let what = format!("seed {seed} {rows:?}");
+        moments += assert_same_table(&what, &table, &program, &sim, 1)
+            .moments
+            .len();
+    }
+    assert!(moments > 1000, "{moments} moments");
+}
 
 #[test]
 fn every_verdict_is_what_the_fault_alone_gives_when_it_appears_then() {

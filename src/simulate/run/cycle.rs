@@ -18,7 +18,9 @@ pub(in crate::simulate) enum Stage {
     /// A cycle is under way.
     Cycle,
     /// After the last cycle, until `until`: nothing may move on its own.
-    Rest { until: u64 },
+    Rest {
+        until: u64,
+    },
     Finished,
 }
 
@@ -38,7 +40,7 @@ pub(in crate::simulate) struct Drive<'a> {
     pub(in crate::simulate) fire_times: Vec<u64>,
     pub(in crate::simulate) last_event: u64,
     pub(in crate::simulate) cycles: Vec<CycleReport>,
-    step_positions: Vec<Vec<f64>>,
+    pub(in crate::simulate) step_positions: Vec<Vec<f64>>,
     stalled_at: Option<usize>,
     first_cycle_end: u64,
     /// Runs of quiet scans stop at this time: a checkpoint of the fault

@@ -1,11 +1,14 @@
 //! One run of the program against the plant, scan by scan: the state of
 //! the run and what each scan checks.
 
+mod checkpoint;
 mod cycle;
 mod drive;
 mod machine;
 
-pub(super) use cycle::{Drive, run};
+pub use checkpoint::{Checkpoints, Resumed};
+pub(super) use checkpoint::{checkpoints, resume};
+pub(super) use cycle::run;
 
 use std::collections::BTreeMap;
 

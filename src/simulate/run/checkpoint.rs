@@ -1,0 +1,190 @@
+//! The healthy run as the fault analysis uses it: copied at the scans where
+//! faults appear, so that each faulty run starts there instead of at
+//! power-up, and fingerprinted at every scan it ran, so that a faulty run
+//! that has come back to exactly the healthy state can stop: from there on
+//! it is the healthy run until its faulty input next reads otherwise.
+
+use std::collections::HashMap;
+use std::hash::{DefaultHasher, Hash, Hasher};
+
+use super::cycle::Drive;
+use super::*;
+
+/// Copies of one run at chosen scans, and a fingerprint of its state at
+/// every scan it ran.
+pub struct Checkpoints<'a> {
+    at: HashMap<u64, Drive<'a>>,
+    fingerprints: HashMap<u64, u64>,
+    /// The run's report.
+    pub report: SimReport,
+}
+
+/// How a resumed run ended.
+#[derive(Debug)]
+pub enum Resumed {
+    /// It ran to its end (or its first hazard).
+    Report(Box<SimReport>),
+    /// At the scan of this time it stood exactly where the healthy run
+    /// stood, with nothing found yet.
+    InStep { at_ms: u64 },
+}
+
+impl<'a> Drive<'a> {
+    /// A copy to resume from later: without what only the run's own report
+    /// needs (the diagram's trace and step positions, the dwell spans, the
+    /// places reached, the recorded I/O).
+    fn snapshot(&mut self) -> Drive<'a> {
+        let kept = (
+            std::mem::take(&mut self.run.trace),
+            std::mem::take(&mut self.run.visited),
+            std::mem::take(&mut self.run.spans),
+            std::mem::take(&mut self.step_positions),
+            self.run.io.take(),
+        );
+        let copy = self.clone();
+        (
+            self.run.trace,
+            self.run.visited,
+            self.run.spans,
+            self.step_positions,
+            self.run.io,
+        ) = kept;
+        copy
+    }
+
+    /// A hash of everything that decides what the run does from here on
+    /// and what its report will say (the time is the caller's key): two
+    /// runs with the same fingerprint at the same time, reading the same
+    /// inputs, go on alike. 64 bits: a false match is a one in 10^19 event.
+    fn fingerprint(&self) -> u64 {
+        let mut h = DefaultHasher::new();
+        (
+            self.stage,
+            self.cycle,
+            self.press_at,
+            self.last_event,
+            &self.fire_times,
+            self.report.press_ms,
+        )
+            .hash(&mut h);
+        for c in &self.cycles {
+            (c.press_ms, c.cycle_ms).hash(&mut h);
+            for s in &c.steps {
+                (s.start_ms, s.duration_ms).hash(&mut h);
+            }
+        }
+        let run = &self.run;
+        run.plc.hash_state(&mut h);
+        for p in &run.world.pistons {
+            (p.s.to_bits(), p.spool).hash(&mut h);
+        }
+        (
+            run.world.start_pressed,
+            run.world.operator,
+            &run.world.machine,
+            &run.pending,
+            &run.answered,
+            &run.dwells,
+            run.alarmed,
+            run.hazard_seen,
+        )
+            .hash(&mut h);
+        for a in run.active.iter().chain(run.last_move.iter().flatten()) {
+            (
+                a.piston,
+                a.step,
+                a.mv.actuator,
+                a.mv.from,
+                a.mv.to,
+                a.reached,
+                a.ran_through,
+            )
+                .hash(&mut h);
+        }
+        run.last_move
+            .iter()
+            .map(Option::is_some)
+            .collect::<Vec<_>>()
+            .hash(&mut h);
+        h.finish()
+    }
+}
+
+/// Runs from power-up to the end, copying the run at each of `times` (scan
+/// times; one the run never stops at is left out) and fingerprinting it at
+/// every scan.
+pub(in crate::simulate) fn checkpoints<'a>(
+    table: &'a StepTable,
+    program: &'a StepProgram,
+    code: &'a plc::PlcProgram,
+    settings: &SimSettings,
+    times: &[u64],
+) -> Checkpoints<'a> {
+    let mut times: Vec<u64> = times.to_vec();
+    times.sort_unstable();
+    times.dedup();
+    let mut times = times.into_iter().peekable();
+    let mut drive = Drive::new(table, program, code, settings, None, Stepping::Events);
+    let mut at = HashMap::new();
+    let mut fingerprints = HashMap::new();
+    while !drive.finished() {
+        let now = drive.run.time_ms;
+        while times.next_if(|t| *t < now).is_some() {}
+        if times.next_if_eq(&now).is_some() {
+            at.insert(now, drive.snapshot());
+        }
+        fingerprints.insert(now, drive.fingerprint());
+        drive.horizon = times.peek().copied().unwrap_or(u64::MAX);
+        drive.advance();
+    }
+    Checkpoints {
+        at,
+        fingerprints,
+        report: drive.finish().0,
+    }
+}
+
+/// Runs under `settings` (their faults appearing at `from_ms`) from the
+/// checkpoint at `from_ms`, or from power-up when there is none. When the
+/// checkpointed run passed, the run stops at the first later scan at which
+/// `in_step` holds (its inputs read as the healthy run's do) and its state
+/// is the healthy run's, with nothing found yet.
+pub(in crate::simulate) fn resume<'a>(
+    checkpoints: &Checkpoints<'a>,
+    table: &'a StepTable,
+    program: &'a StepProgram,
+    code: &'a plc::PlcProgram,
+    settings: &SimSettings,
+    in_step: &dyn Fn(u64) -> bool,
+) -> Resumed {
+    let from_ms = settings.fault_onset_ms;
+    let mut drive = match checkpoints.at.get(&from_ms) {
+        Some(checkpoint) => {
+            let mut drive = checkpoint.clone();
+            drive.run.world.settings = SimSettings {
+                scan_ms: drive.run.world.settings.scan_ms,
+                ..settings.clone()
+            };
+            drive.horizon = u64::MAX;
+            drive
+        }
+        None => Drive::new(table, program, code, settings, None, Stepping::Events),
+    };
+    let may_stop = checkpoints.report.passed;
+    while !drive.finished() {
+        let now = drive.run.time_ms;
+        // Not where the faulty input already differs: that would only hand
+        // the case over to a run starting at this very scan.
+        if may_stop
+            && now > from_ms
+            && drive.run.problems.is_empty()
+            && let Some(healthy) = checkpoints.fingerprints.get(&now)
+            && in_step(now)
+            && drive.fingerprint() == *healthy
+        {
+            return Resumed::InStep { at_ms: now };
+        }
+        drive.advance();
+    }
+    Resumed::Report(Box::new(drive.finish().0))
+}
