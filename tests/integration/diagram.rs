@@ -34,6 +34,8 @@ fn the_papers_diagram_has_every_lane_and_position() {
 
     let sheet = read_sheet(&out.join("paper_example.xlsx"), "DIAGRAM");
     assert_eq!(sheet[3][..5], ["STEP", "C1", "C2", "C3", "C4"]);
+    let steps: Vec<&str> = sheet[4..13].iter().map(|r| r[0].as_str()).collect();
+    assert_eq!(steps, ["1", "2", "3", "4", "5", "6", "7", "8", "9"]);
     let c2: Vec<&str> = sheet[4..13].iter().map(|r| r[2].as_str()).collect();
     // calamine prints whole numbers without decimals; middle stops sit
     // within the sensor window, so they are close to, not exactly, 1 or 2.
@@ -119,7 +121,9 @@ fn the_readme_diagram_is_current() {
 }
 
 /// The DIAGRAM sheet's charts, one per cylinder, do not cover each other:
-/// each starts below the row where the one above it ends.
+/// each starts below the row where the one above it ends. Each is tall
+/// enough to read and fits a screen, taller for more positions (C2 has
+/// four, C1 two).
 #[test]
 fn diagram_charts_do_not_overlap() {
     let dir = tempfile::tempdir().unwrap();
@@ -144,6 +148,12 @@ fn diagram_charts_do_not_overlap() {
     };
     let (from, to) = (rows("from"), rows("to"));
     assert_eq!(from.len(), 4, "{drawing}");
+    let rows_tall: Vec<u32> = from.iter().zip(&to).map(|(f, t)| t - f).collect();
+    assert!(
+        rows_tall.iter().all(|r| (6..=20).contains(r)),
+        "{rows_tall:?}"
+    );
+    assert!(rows_tall[1] > rows_tall[0], "{rows_tall:?}");
     for k in 1..from.len() {
         assert!(
             from[k] > to[k - 1],
