@@ -154,6 +154,26 @@ fn diagram_charts_do_not_overlap() {
         "{rows_tall:?}"
     );
     assert!(rows_tall[1] > rows_tall[0], "{rows_tall:?}");
+    // Beside the table of positions (STEP and C1…C4, columns 0–4), one
+    // column left free.
+    let first_col: u32 = drawing
+        .split("<xdr:col>")
+        .nth(1)
+        .and_then(|part| part.split('<').next())
+        .and_then(|col| col.parse().ok())
+        .expect("a chart's column");
+    assert_eq!(first_col, 6, "{drawing}");
+    // Each chart plots its cylinder's column over the step numbers, the
+    // table's nine rows below its header.
+    for (k, column) in ["B", "C", "D", "E"].iter().enumerate() {
+        let chart = crate::helpers::xlsx_part(&book, &format!("xl/charts/chart{}.xml", k + 1));
+        assert!(
+            chart.contains("<c:f>DIAGRAM!$A$5:$A$13</c:f>")
+                && chart.contains(&format!("<c:f>DIAGRAM!${column}$5:${column}$13</c:f>")),
+            "chart {}: {chart}",
+            k + 1
+        );
+    }
     for k in 1..from.len() {
         assert!(
             from[k] > to[k - 1],
