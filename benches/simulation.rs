@@ -47,15 +47,41 @@ fn main() {
             report.verdict()
         );
     }
-    let (t, table) = time(21, || {
-        faults::analyse(&checked.table, &program, &settings.simulation, 1)
-    });
-    println!(
-        "faults at every phase, paper example: median {:.2} ms over 21 runs ({}; {} cases)",
-        t.as_secs_f64() * 1e3,
-        table.summary(),
-        table.cases.len()
+    // Single faults resumed from the healthy run (the default) and from
+    // power-up (the reference), on the paper's example and on a 12-cylinder
+    // 60-step table with middle positions and four branches.
+    let medium_rows = random_rows(
+        7,
+        Shape {
+            actuators: 12,
+            max_position: 3,
+            branches: 4,
+            steps: 60,
+        },
     );
+    let medium = steptable::table::from_rows("medium.csv", &medium_rows).expect("valid table");
+    let medium_program = convert::build_program(&medium, &settings);
+    for (what, table, program) in [
+        ("paper example", &checked.table, &program),
+        ("12 cylinders x 60 steps", &medium, &medium_program),
+    ] {
+        let mut times = Vec::new();
+        for runs in [faults::FaultRuns::Resumed, faults::FaultRuns::FromPowerUp] {
+            let (t, analysed) = time(11, || {
+                faults::analyse_runs(table, program, &settings.simulation, 1, runs, &|_, _| {})
+            });
+            times.push(t);
+            println!(
+                "faults at every phase, {what} ({runs:?}): median {:.2} ms over 11 runs ({})",
+                t.as_secs_f64() * 1e3,
+                analysed.summary(),
+            );
+        }
+        println!(
+            "  resumed runs {:.1}x faster than runs from power-up",
+            times[1].as_secs_f64() / times[0].as_secs_f64()
+        );
+    }
     let (t, table) = time(5, || {
         faults::analyse(&checked.table, &program, &settings.simulation, 2)
     });
