@@ -411,6 +411,10 @@ impl Cases<'_, '_> {
     fn verdict(&self, faults: &[Fault], onset: u64, memo: &mut HashMap<u64, Verdict>) -> Verdict {
         let mut chain = Vec::new();
         let mut at = onset;
+        let columns = self
+            .resumed
+            .map(|(_, inputs)| inputs.columns(faults))
+            .unwrap_or_default();
         let verdict = loop {
             if let Some(known) = memo.get(&at) {
                 break known.clone();
@@ -426,12 +430,12 @@ impl Cases<'_, '_> {
             let Some((checkpoints, inputs)) = self.resumed else {
                 break Verdict::of(&self.simulator.run(&run));
             };
-            let in_step = |t| inputs.divergence(faults, t) != Some(t);
+            let in_step = |t| inputs.divergence_of(&columns, t) != Some(t);
             match self.simulator.resume(checkpoints, &run, &in_step) {
                 Resumed::Report(report) => break Verdict::of(&report),
                 // From here the run is the healthy one until the faulty
                 // input next differs: the case of the faults appearing then.
-                Resumed::InStep { at_ms } => match inputs.divergence(faults, at_ms) {
+                Resumed::InStep { at_ms } => match inputs.divergence_of(&columns, at_ms) {
                     Some(next) => at = next,
                     None => {
                         break Verdict {

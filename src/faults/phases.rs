@@ -152,14 +152,30 @@ impl HealthyInputs {
     /// `faults` reads other than the healthy run did: the moment the
     /// faulty run leaves the healthy one. `None`: it never does.
     pub fn divergence(&self, faults: &[Fault], from_ms: u64) -> Option<u64> {
+        self.divergence_of(&self.columns(faults), from_ms)
+    }
+
+    /// The faults as (input column, stuck value), for
+    /// [`HealthyInputs::divergence_of`] (a faulty run asks at every scan).
+    pub fn columns(&self, faults: &[Fault]) -> Vec<(usize, bool)> {
         faults
             .iter()
-            .filter_map(|f| self.first_difference(f, from_ms))
+            .filter_map(|f| {
+                let c = self.signals.iter().position(|s| *s == f.signal)?;
+                Some((c, f.stuck_at))
+            })
+            .collect()
+    }
+
+    /// [`HealthyInputs::divergence`] of faults given as columns.
+    pub fn divergence_of(&self, columns: &[(usize, bool)], from_ms: u64) -> Option<u64> {
+        columns
+            .iter()
+            .filter_map(|&(c, stuck_at)| self.first_difference(c, stuck_at, from_ms))
             .min()
     }
 
-    fn first_difference(&self, fault: &Fault, from_ms: u64) -> Option<u64> {
-        let c = self.signals.iter().position(|s| *s == fault.signal)?;
+    fn first_difference(&self, c: usize, stuck_at: bool, from_ms: u64) -> Option<u64> {
         // The first scan at or after `from_ms`.
         let from = self.first_ms
             + from_ms.saturating_sub(self.first_ms).div_ceil(self.scan_ms) * self.scan_ms;
@@ -173,12 +189,12 @@ impl HealthyInputs {
         } else {
             changes[seen - 1].1
         };
-        if now != fault.stuck_at {
+        if now != stuck_at {
             return Some(from);
         }
         changes[seen..]
             .iter()
-            .find(|(_, value)| *value != fault.stuck_at)
+            .find(|(_, value)| *value != stuck_at)
             .map(|(at, _)| *at)
     }
 }

@@ -14,7 +14,9 @@ use super::*;
 /// every scan it ran.
 pub struct Checkpoints<'a> {
     at: HashMap<u64, Drive<'a>>,
-    fingerprints: HashMap<u64, u64>,
+    /// By time, in order: where the cycle stood (checked first, it is
+    /// cheap) and the fingerprint.
+    fingerprints: Vec<(u64, Progress, u64)>,
     /// The run's report.
     pub report: SimReport,
 }
@@ -29,7 +31,16 @@ pub enum Resumed {
     InStep { at_ms: u64 },
 }
 
+/// Where a run's cycle stands: the cycle, the steps fired in it, the step
+/// awaited. Runs that differ here differ; runs that agree are compared by
+/// fingerprint.
+type Progress = (usize, usize, usize);
+
 impl<'a> Drive<'a> {
+    fn progress(&self) -> Progress {
+        (self.cycle, self.fire_times.len(), self.run.plc.awaited)
+    }
+
     /// A copy to resume from later: without what only the run's own report
     /// needs (the diagram's trace and step positions, the dwell spans, the
     /// places reached, the recorded I/O).
@@ -126,14 +137,14 @@ pub(in crate::simulate) fn checkpoints<'a>(
     let mut times = times.into_iter().peekable();
     let mut drive = Drive::new(table, program, code, settings, None, Stepping::Events);
     let mut at = HashMap::new();
-    let mut fingerprints = HashMap::new();
+    let mut fingerprints = Vec::new();
     while !drive.finished() {
         let now = drive.run.time_ms;
         while times.next_if(|t| *t < now).is_some() {}
         if times.next_if_eq(&now).is_some() {
             at.insert(now, drive.snapshot());
         }
-        fingerprints.insert(now, drive.fingerprint());
+        fingerprints.push((now, drive.progress(), drive.fingerprint()));
         drive.horizon = times.peek().copied().unwrap_or(u64::MAX);
         drive.advance();
     }
@@ -161,10 +172,10 @@ pub(in crate::simulate) fn resume<'a>(
     let mut drive = match checkpoints.at.get(&from_ms) {
         Some(checkpoint) => {
             let mut drive = checkpoint.clone();
-            drive.run.world.settings = SimSettings {
+            drive.run.world.settings = std::sync::Arc::new(SimSettings {
                 scan_ms: drive.run.world.settings.scan_ms,
                 ..settings.clone()
-            };
+            });
             drive.horizon = u64::MAX;
             drive
         }
@@ -178,9 +189,12 @@ pub(in crate::simulate) fn resume<'a>(
         if may_stop
             && now > from_ms
             && drive.run.problems.is_empty()
-            && let Some(healthy) = checkpoints.fingerprints.get(&now)
+            && let Ok(k) = checkpoints
+                .fingerprints
+                .binary_search_by_key(&now, |(at, _, _)| *at)
+            && checkpoints.fingerprints[k].1 == drive.progress()
             && in_step(now)
-            && drive.fingerprint() == *healthy
+            && drive.fingerprint() == checkpoints.fingerprints[k].2
         {
             return Resumed::InStep { at_ms: now };
         }

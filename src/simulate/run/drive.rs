@@ -109,7 +109,7 @@ impl<'a> Run<'a> {
         let mut run = Run {
             program,
             world: World {
-                settings: settings_scan,
+                settings: std::sync::Arc::new(settings_scan),
                 pistons,
                 index_of,
                 start_pressed: false,

@@ -91,7 +91,9 @@ pub(in crate::simulate) struct Run<'a> {
 /// Everything the PLC's inputs are read from.
 #[derive(Clone)]
 pub(in crate::simulate) struct World {
-    pub(in crate::simulate) settings: SimSettings,
+    /// Shared: a copy of the run (the fault analysis's checkpoints) keeps
+    /// them until it is resumed under others.
+    pub(in crate::simulate) settings: std::sync::Arc<SimSettings>,
     pub(in crate::simulate) pistons: Vec<Piston>,
     pub(in crate::simulate) index_of: BTreeMap<u32, usize>,
     pub(in crate::simulate) start_pressed: bool,
