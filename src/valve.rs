@@ -20,6 +20,11 @@ pub enum ValveType {
     /// 5/3 pressurised centre: no coil pressurises both chambers; the piston
     /// creeps towards the rod side (the larger area pushes).
     Pressure53,
+    /// Not a valve: an electric drive (a gantry, a conveyor axis) with
+    /// forward and reverse contactors as its + and - outputs and limit
+    /// switches as its sensors. It runs only while an output is on, so the
+    /// program cuts the drive at every target; with neither on it stands.
+    Motor,
 }
 
 impl std::str::FromStr for ValveType {
@@ -32,18 +37,19 @@ impl std::str::FromStr for ValveType {
             .to_ascii_lowercase()
             .replace(['/', ' ', '-'], "");
         ValveType::ALL.into_iter().find(|v| v.name() == t).ok_or_else(|| {
-            format!("\"{}\" is not a valve type (expected 52bi, 52mono, 53closed, 53exhaust or 53pressure)", text.trim())
+            format!("\"{}\" is not a valve type (expected 52bi, 52mono, 53closed, 53exhaust, 53pressure or motor)", text.trim())
         })
     }
 }
 
 impl ValveType {
-    pub const ALL: [ValveType; 5] = [
+    pub const ALL: [ValveType; 6] = [
         ValveType::Bistable52,
         ValveType::Mono52,
         ValveType::Closed53,
         ValveType::Exhaust53,
         ValveType::Pressure53,
+        ValveType::Motor,
     ];
 
     /// The name used in `--valve` and on the SETTINGS sheet.
@@ -54,6 +60,7 @@ impl ValveType {
             ValveType::Closed53 => "53closed",
             ValveType::Exhaust53 => "53exhaust",
             ValveType::Pressure53 => "53pressure",
+            ValveType::Motor => "motor",
         }
     }
 
@@ -61,7 +68,7 @@ impl ValveType {
     pub fn has_centre(self) -> bool {
         matches!(
             self,
-            ValveType::Closed53 | ValveType::Exhaust53 | ValveType::Pressure53
+            ValveType::Closed53 | ValveType::Exhaust53 | ValveType::Pressure53 | ValveType::Motor
         )
     }
 
@@ -169,6 +176,10 @@ mod tests {
                 .contains("not a valve type")
         );
         assert_eq!(Valves::default().of(4, 3), ValveType::Closed53);
+        // A drive stops anywhere (its outputs off) and is named motor.
+        assert_eq!("Motor".parse::<ValveType>(), Ok(ValveType::Motor));
+        assert!(ValveType::Motor.has_centre());
+        assert!(ValveType::ALL.contains(&ValveType::Motor));
         assert_eq!(Valves::default().of(4, 1), ValveType::Bistable52);
     }
 }

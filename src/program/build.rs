@@ -44,19 +44,9 @@ fn wait_literal(w: &crate::table::Wait) -> Literal {
     }
 }
 
-/// The actions that move actuator `m` (its coils, and its middle-stop request).
-fn move_actions(
-    table: &StepTable,
-    signals: &Signals,
-    middle_stops: bool,
-    m: &Move,
-    actions: &mut Vec<Action>,
-) {
-    let is_middle = |actuator: u32, position: u32| {
-        table
-            .actuator(actuator)
-            .is_some_and(|a| a.is_middle(position))
-    };
+/// The actions that move actuator `m` (its coils, and its stop request at
+/// a middle target or a drive's target).
+fn move_actions(signals: &Signals, m: &Move, actions: &mut Vec<Action>) {
     if signals.valves.contains(&Coils::Single {
         actuator: m.actuator,
     }) {
@@ -81,21 +71,17 @@ fn move_actions(
         actuator: m.actuator,
         sign: m.sign.opposite(),
     }));
-    if middle_stops {
-        // A stop request left from reaching the previous middle target
-        // must not cut this new move.
-        if is_middle(m.actuator, m.from) {
-            actions.push(Action::Reset(Signal::StopAt {
-                actuator: m.actuator,
-                position: m.from,
-            }));
-        }
-        if is_middle(m.actuator, m.to) {
-            actions.push(Action::Set(Signal::StopAt {
-                actuator: m.actuator,
-                position: m.to,
-            }));
-        }
+    // A stop request left from reaching the previous target must not cut
+    // this new move; the target's own is set (middle stops, drives).
+    let stop = |position| Signal::StopAt {
+        actuator: m.actuator,
+        position,
+    };
+    if signals.memories.contains(&stop(m.from)) {
+        actions.push(Action::Reset(stop(m.from)));
+    }
+    if signals.memories.contains(&stop(m.to)) {
+        actions.push(Action::Set(stop(m.to)));
     }
 }
 
@@ -144,9 +130,7 @@ pub fn build(
     steps.extend(end_of_cycle(table, options));
 
     let mut rungs = Vec::new();
-    if options.middle_stops {
-        rungs.extend(middle_stop_rungs(&signals));
-    }
+    rungs.extend(middle_stop_rungs(&signals));
     rungs.extend(dwell_rungs(table));
     if modes.any() {
         mode_rungs(
@@ -216,7 +200,6 @@ fn sequence_steps(
     homes: &[Literal],
     strokes: &Strokes,
 ) -> Vec<ProgramStep> {
-    let middle_stops = options.middle_stops;
     let safety = options.safety;
     let modes = &options.modes;
     let halts = options.halts();
@@ -251,7 +234,7 @@ fn sequence_steps(
 
         let mut actions = Vec::new();
         for m in &step.moves {
-            move_actions(table, signals, middle_stops, m, &mut actions);
+            move_actions(signals, m, &mut actions);
         }
         for switch in &step.switches {
             let output = Signal::MachineOutput(switch.output);
@@ -347,12 +330,20 @@ fn middle_stop_rungs(signals: &Signals) -> Vec<Rung> {
             continue;
         };
         let sensor = Signal::Sensor { actuator, position };
-        rungs.push(Rung {
-            kind: RungKind::MiddleStop,
-            comment: format!(
+        let comment = if signals.motors.contains(&actuator) {
+            format!(
+                "C{actuator} is a drive: at its limit switch {} both outputs off, it stands",
+                sensor.symbol()
+            )
+        } else {
+            format!(
                 "middle stop: C{actuator} stops at {} (both coils off, the 5/3 valve holds it)",
                 sensor.symbol()
-            ),
+            )
+        };
+        rungs.push(Rung {
+            kind: RungKind::MiddleStop,
+            comment,
             condition: vec![Literal::is(memory), Literal::is(sensor)],
             actions: vec![
                 Action::Reset(Signal::Coil {

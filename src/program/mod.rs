@@ -193,6 +193,20 @@ impl StepProgram {
 
     /// A human description of `signal` in this program: what STOP does,
     /// which output a run-on timer keeps on; the rest as the signal says.
+    /// Whether `output` may stay on in a machine that has stopped: a
+    /// cylinder's coil holds its piston, an alarm lamp tells the operator;
+    /// a drive's output keeps it running, a machine output (a heater, a
+    /// motor) does harm. The SETTINGS rows (`hold-safe`, `de-energise on
+    /// halt`, `on stop: hold`) say otherwise per output.
+    pub fn may_stay_on(&self, output: Signal) -> bool {
+        let by_default = match output {
+            Signal::Coil { actuator, .. } => !self.signals.motors.contains(&actuator),
+            Signal::SingleCoil { .. } | Signal::Alarm(_) => true,
+            _ => false,
+        };
+        self.halt.may_stay_on(output, by_default)
+    }
+
     pub fn comment(&self, signal: Signal, table: &crate::table::StepTable) -> String {
         let run_on = |n: u16| self.run_ons.get(usize::from(n).wrapping_sub(1));
         match signal {
@@ -213,6 +227,18 @@ impl StepProgram {
                 Some(r) => format!("{} runs on after {}", r.output.symbol(), r.event.text()),
                 None => signal.comment(table),
             },
+            Signal::Coil { actuator, sign } if self.signals.motors.contains(&actuator) => {
+                format!(
+                    "drive {actuator}, {} (cut at its limit switch)",
+                    match sign {
+                        crate::cell::Sign::Plus => "forward (+)",
+                        crate::cell::Sign::Minus => "reverse (-)",
+                    }
+                )
+            }
+            Signal::StopAt { actuator, position } if self.signals.motors.contains(&actuator) => {
+                format!("drive {actuator} stops at position {position}")
+            }
             other => other.comment(table),
         }
     }

@@ -166,6 +166,18 @@ pub(super) fn homing_rungs(
                 actions: drive,
             });
             let mut done = vec![Action::Reset(memory)];
+            // A drive runs as long as its output is on: cut it at home.
+            done.extend(
+                stage
+                    .iter()
+                    .filter(|a| signals.motors.contains(a))
+                    .map(|&actuator| {
+                        Action::Reset(Signal::Coil {
+                            actuator,
+                            sign: Sign::Minus,
+                        })
+                    }),
+            );
             done.push(if i + 1 < stages.len() {
                 Action::Set(Signal::HomeStage(i as u16 + 2))
             } else {

@@ -195,8 +195,9 @@ impl HaltPolicy {
         .collect()
     }
 
-    /// Whether `output` may stay on in a machine that has stopped.
-    pub fn may_stay_on(&self, output: Signal) -> bool {
+    /// Whether `output` may stay on in a machine that has stopped:
+    /// `by_default` unless the SETTINGS rows say otherwise.
+    pub fn may_stay_on(&self, output: Signal, by_default: bool) -> bool {
         if self.hold_safe.contains(&output)
             || self.hold_on_estop.contains(&output)
             || self.on_stop.get(&output) == Some(&StopAction::Hold)
@@ -206,10 +207,7 @@ impl HaltPolicy {
         if self.off_on_halt.contains(&output) {
             return false;
         }
-        matches!(
-            output,
-            Signal::Coil { .. } | Signal::SingleCoil { .. } | Signal::Alarm(_)
-        )
+        by_default
     }
 }
 

@@ -56,9 +56,12 @@ pub struct Signals {
     pub valves: Vec<Coils>,
     /// The outputs after the coils: machine outputs, then alarms.
     pub outputs: Vec<Signal>,
-    /// Middle-stop requests, then the memories of the safety checks, dwells
-    /// and modes.
+    /// Middle-stop requests (and a drive's stop at each of its targets),
+    /// then the memories of the safety checks, dwells and modes.
     pub memories: Vec<Signal>,
+    /// The actuators that are electric drives (valve type `motor`): their
+    /// outputs are cut at every target and may not stay on.
+    pub motors: Vec<u32>,
 }
 
 impl Signals {
@@ -126,21 +129,27 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
         .chain(alarms)
         .collect();
 
-    let mut stops: Vec<(u32, u32)> = if options.middle_stops {
-        table
-            .steps
-            .iter()
-            .flat_map(|s| &s.moves)
-            .filter(|m| {
-                table
-                    .actuator(m.actuator)
-                    .is_some_and(|a| a.is_middle(m.to))
-            })
-            .map(|m| (m.actuator, m.to))
-            .collect()
-    } else {
-        Vec::new()
-    };
+    let motors: Vec<u32> = table
+        .actuators
+        .iter()
+        .filter(|a| valves.of(a.number, a.max_position) == ValveType::Motor)
+        .map(|a| a.number)
+        .collect();
+    // A drive stops at every target (it runs until its output is cut);
+    // a cylinder only at a middle one.
+    let mut stops: Vec<(u32, u32)> = table
+        .steps
+        .iter()
+        .flat_map(|s| &s.moves)
+        .filter(|m| {
+            motors.contains(&m.actuator)
+                || (options.middle_stops
+                    && table
+                        .actuator(m.actuator)
+                        .is_some_and(|a| a.is_middle(m.to)))
+        })
+        .map(|m| (m.actuator, m.to))
+        .collect();
     stops.sort_unstable();
     stops.dedup();
     let mut memories: Vec<Signal> = stops
@@ -176,5 +185,6 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
         valves: coils,
         outputs,
         memories,
+        motors,
     }
 }

@@ -106,12 +106,17 @@ pub(super) fn mark_zones(options: &ProgramOptions, steps: &mut [ProgramStep]) {
     }
 }
 
-/// A halt switches off the outputs declared `de-energise on halt`: a heater
-/// or a motor must not stay on in a machine that has stopped on a fault.
+/// A halt switches off the outputs declared `de-energise on halt` and every
+/// drive's (valve type `motor`, unless `hold-safe`): a heater or a motor
+/// must not stay on in a machine that has stopped on a fault.
 pub(super) fn halt_off_rung(signals: &Signals, policy: &super::HaltPolicy) -> Option<Rung> {
+    let drive = |s: &Signal| {
+        matches!(s, Signal::Coil { actuator, .. } if signals.motors.contains(actuator))
+            && !policy.hold_safe.contains(s)
+    };
     let off: Vec<Signal> = signals
         .driven()
-        .filter(|s| policy.off_on_halt.contains(s))
+        .filter(|s| policy.off_on_halt.contains(s) || drive(s))
         .collect();
     if off.is_empty() {
         return None;
@@ -119,7 +124,15 @@ pub(super) fn halt_off_rung(signals: &Signals, policy: &super::HaltPolicy) -> Op
     let names: Vec<String> = off.iter().map(|s| s.symbol()).collect();
     Some(Rung {
         kind: RungKind::HaltOff,
-        comment: format!("HALT: {} off (de-energise on halt)", names.join(", ")),
+        comment: format!(
+            "HALT: {} off ({})",
+            names.join(", "),
+            if off.iter().any(drive) {
+                "drives, and de-energise on halt"
+            } else {
+                "de-energise on halt"
+            }
+        ),
         condition: vec![Literal::is(Signal::Halt)],
         actions: off.into_iter().map(Action::Reset).collect(),
     })

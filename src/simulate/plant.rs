@@ -132,6 +132,30 @@ impl Piston {
         plus && minus
     }
 
+    /// A drive cut (its outputs just went off, `was` driving it) while it
+    /// ran onto a limit switch coasts to the switch's point: it overruns
+    /// the trip point by its braking distance, the same every time, so
+    /// that every cycle starts where the last one ended (a cylinder does
+    /// the same against its end stop). Cut while leaving a switch, it
+    /// stands where it is.
+    pub fn settle(&mut self, was: Spool, window: f64) {
+        if self.valve != ValveType::Motor || self.spool != Spool::Centre {
+            return;
+        }
+        let Some(p) = self.sensor_on(window) else {
+            return;
+        };
+        let point = self.sensor_point(p);
+        let onto = match was {
+            Spool::Plus => self.s < point,
+            Spool::Minus => self.s > point,
+            Spool::Centre => false,
+        };
+        if onto {
+            self.s = point;
+        }
+    }
+
     /// Whether the piston has come to rest: its spool drives it against an
     /// end stop, or it sits on a centred spool (whose drift is the valve's
     /// doing, judged while the machine idles).

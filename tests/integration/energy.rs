@@ -116,8 +116,10 @@ fn a_name_that_is_no_output_of_the_table_is_an_error_at_its_cell() {
 
 /// The car wash of Quezada et al. 2016: its homing button P (RESET) shorted
 /// while the gantry travels drives the gantry whatever the other inputs,
-/// as they found; a dead end sensor stops it with the spray valve and the
-/// brush motor on, until the watchdog's halt switches them off.
+/// as they found; a dead limit switch leaves the gantry's drive (MP2, y1+),
+/// the spray valve and the brush motor on, until the watchdog's halt
+/// switches them off (a drive's outputs always, the others as SETTINGS
+/// says).
 #[test]
 fn the_carwash_flags_its_stuck_homing_button_and_its_halt_switches_the_motors_off() {
     let dir = tempfile::tempdir().unwrap();
@@ -135,13 +137,13 @@ fn the_carwash_flags_its_stuck_homing_button_and_its_halt_switches_the_motors_of
     for extra in [&[][..], &["--safety", "all"]] {
         assert_eq!(
             row(extra, "RESET_PB short circuit"),
-            "RESET_PB short circuit (stuck at 1) hazard while step 2 moves (2 of 9 moments) 5 unintended motion: C1 moves - although no step moves it that way (RESET reads pressed: the program homes the machine)",
+            "RESET_PB short circuit (stuck at 1) hazard before step 3 fires (1 of 9 moments) 5 unintended motion: C1 moves - although no step moves it that way (RESET reads pressed: the program homes the machine)",
             "{extra:?}"
         );
     }
     assert_eq!(
         row(&[], "x11 open circuit"),
-        "x11 open circuit (stuck at 0) hazard at every moment 3 step 3 never fires: waiting for x11; the stopped machine keeps spray, brush on (not hold-safe)"
+        "x11 open circuit (stuck at 0) hazard at every moment 3 step 3 never fires: waiting for x11; the stopped machine keeps y1+, spray, brush on (not hold-safe)"
     );
     assert!(
         row(&["--safety", "all"], "x11 open circuit")

@@ -23,6 +23,7 @@ mod layers;
 mod machine;
 mod messy;
 mod modes;
+mod motor;
 mod on_stop;
 mod paper;
 mod pins;

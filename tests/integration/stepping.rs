@@ -117,7 +117,7 @@ fn both_simulators_agree_on_every_sample_under_every_fault() {
 /// steps, and random plant settings.
 /// A random table with its program and the plant it runs: valves
 /// centred where a middle stop needs them, 5/2 ones (bistable or spring
-/// return) elsewhere, by the dice.
+/// return) elsewhere, or electric drives, by the dice.
 pub(crate) fn random_machine(seed: u64) -> (Vec<Vec<String>>, StepTable, StepProgram, SimSettings) {
     let (rows, mut sim, options) = random_case(seed);
     let Ok(table) = steptable::table::from_rows("random.csv", &rows) else {
@@ -125,18 +125,20 @@ pub(crate) fn random_machine(seed: u64) -> (Vec<Vec<String>>, StepTable, StepPro
     };
     let mut rng = SplitMix64::new(seed);
     for a in &table.actuators {
-        let choice = rng.range(0, 2) as usize;
+        let choice = rng.range(0, 3) as usize;
         let valve = if a.max_position > 1 {
             [
                 ValveType::Closed53,
                 ValveType::Exhaust53,
                 ValveType::Pressure53,
+                ValveType::Motor,
             ][choice]
         } else {
             [
                 ValveType::Bistable52,
                 ValveType::Mono52,
                 ValveType::Closed53,
+                ValveType::Motor,
             ][choice]
         };
         sim.valves.per_actuator.insert(a.number, valve);

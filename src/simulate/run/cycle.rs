@@ -305,7 +305,7 @@ impl<'a> Drive<'a> {
         let energised: Vec<String> = program
             .signals
             .driven()
-            .filter(|s| run.plc.bit(*s) && !program.halt.may_stay_on(*s))
+            .filter(|s| run.plc.bit(*s) && !program.may_stay_on(*s))
             .filter(|s| !(at_rest && left_on_by_the_cycle(table, *s)))
             .map(|s| s.symbol())
             .collect();

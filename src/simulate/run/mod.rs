@@ -273,12 +273,21 @@ impl Run<'_> {
             let piston = &mut self.world.pistons[i];
             let was_at_rest = piston.at_rest();
             let was_at = piston.s;
-            if piston.drive(plus, minus) {
+            let motor = piston.valve == crate::valve::ValveType::Motor;
+            let was = piston.spool;
+            let conflict = piston.drive(plus, minus);
+            piston.settle(was, self.world.settings.window);
+            if conflict {
                 let step = self.current_step();
+                let who = if motor {
+                    format!("the drive of C{number} gets forward and reverse")
+                } else {
+                    format!("the valve of C{number} sees both coils")
+                };
                 self.problem(
                     ProblemKind::CoilConflict,
                     step,
-                    format!("the valve of C{number} sees both coils y{number}+ and y{number}- in step {step}"),
+                    format!("{who} y{number}+ and y{number}- in step {step}"),
                 );
             }
             if let Some(direction) = self.world.pistons[i].advance() {
