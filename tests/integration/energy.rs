@@ -287,8 +287,8 @@ fn hold_on_estop_keeps_the_gripper_holding_through_an_emergency_stop() {
 /// travels out (step 1) or home (step 4) and at rest; the machine halts
 /// only from step 2 firing until step 4 fires. A guard that breaks at any
 /// moment halts it there (waiting for step 3 or 4), where an interlock
-/// without a range halts wherever it is. A step the table does not have is
-/// E030 at the cell.
+/// without a range halts wherever it is; a range to the last step ends with
+/// the cycle. A step the table does not have is E030 at the cell.
 #[test]
 fn an_interlock_over_a_step_range_halts_only_there() {
     let dir = tempfile::tempdir().unwrap();
@@ -323,6 +323,13 @@ fn an_interlock_over_a_step_range_halts_only_there() {
     );
     let everywhere = stalls("guard_closed");
     assert!(everywhere.contains(&Some(2)), "{everywhere:?}");
+    // A zone to the last step ends with the cycle (its own END step): the
+    // guard may be open at rest, and the next cycle halts in the zone.
+    let to_the_end = stalls("guard_closed in steps 3-4");
+    assert!(
+        to_the_end.iter().all(|s| matches!(s, Some(4 | 5))),
+        "halts only from step 3 to the end: {to_the_end:?}"
+    );
     let settings: &[&[&str]] = &[&["interlock", "guard_closed in steps 3-5"]];
     write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);
     steptable()
