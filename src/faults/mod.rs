@@ -3,18 +3,18 @@
 //! power-up and at every phase of the cycle, and classified as no effect,
 //! safe stall or hazard.
 
+mod cases;
 mod phases;
 
 pub use phases::{Moment, Phase, moments};
 
-use crate::program::StepProgram;
-use crate::simulate::io::IoSignals;
 use std::collections::HashMap;
 
-use crate::simulate::{
-    Checkpoints, Fault, ProblemKind, Resumed, SimReport, SimSettings, Simulator,
-};
+use crate::program::StepProgram;
+use crate::simulate::io::IoSignals;
+use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings, Simulator};
 use crate::table::StepTable;
+use cases::{Cases, Verdict};
 
 /// What a fault does to the machine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
@@ -372,88 +372,7 @@ pub fn analyse_runs(
 }
 
 /// Why a fault has no effect, when its run is the healthy one's.
-const AS_WITHOUT: &str = "the cycle runs as without the fault";
-
-/// What one run of a fault set says.
-#[derive(Debug, Clone)]
-struct Verdict {
-    outcome: Outcome,
-    step: Option<usize>,
-    explanation: String,
-    detected: bool,
-}
-
-impl Verdict {
-    fn of(report: &SimReport) -> Self {
-        let (outcome, step, explanation) = judge(report);
-        Verdict {
-            outcome,
-            step,
-            explanation,
-            detected: report.alarmed,
-        }
-    }
-}
-
-/// What every case of one analysis shares.
-struct Cases<'s, 'a> {
-    simulator: &'s Simulator<'a>,
-    /// The settings of every faulty run but its faults and their onset.
-    settings: SimSettings,
-    /// The healthy run's checkpoints and inputs, when runs are resumed.
-    resumed: Option<(&'s Checkpoints<'s>, &'s phases::HealthyInputs)>,
-}
-
-impl Cases<'_, '_> {
-    /// The verdict on `faults` appearing at `onset`, remembered in `memo`
-    /// (by onset) with the verdicts of the later onsets it turned out to
-    /// share.
-    fn verdict(&self, faults: &[Fault], onset: u64, memo: &mut HashMap<u64, Verdict>) -> Verdict {
-        let mut chain = Vec::new();
-        let mut at = onset;
-        let columns = self
-            .resumed
-            .map(|(_, inputs)| inputs.columns(faults))
-            .unwrap_or_default();
-        let verdict = loop {
-            if let Some(known) = memo.get(&at) {
-                break known.clone();
-            }
-            chain.push(at);
-            let run = SimSettings {
-                faults: faults.to_vec(),
-                fault_onset_ms: at,
-                record_trace: false,
-                stop_at_hazard: true,
-                ..self.settings.clone()
-            };
-            let Some((checkpoints, inputs)) = self.resumed else {
-                break Verdict::of(&self.simulator.run(&run));
-            };
-            let in_step = |t| inputs.divergence_of(&columns, t) != Some(t);
-            match self.simulator.resume(checkpoints, &run, &in_step) {
-                Resumed::Report(report) => break Verdict::of(&report),
-                // From here the run is the healthy one until the faulty
-                // input next differs: the case of the faults appearing then.
-                Resumed::InStep { at_ms } => match inputs.divergence_of(&columns, at_ms) {
-                    Some(next) => at = next,
-                    None => {
-                        break Verdict {
-                            outcome: Outcome::NoEffect,
-                            step: None,
-                            explanation: AS_WITHOUT.to_string(),
-                            detected: checkpoints.report.alarmed,
-                        };
-                    }
-                },
-            }
-        };
-        for at in chain {
-            memo.insert(at, verdict.clone());
-        }
-        verdict
-    }
-}
+pub(crate) const AS_WITHOUT: &str = "the cycle runs as without the fault";
 
 /// The verdict on one faulty run: its outcome, the step concerned and why.
 /// A hazard is the first the sequence shows (a move too early, motion no
