@@ -200,7 +200,7 @@ impl StepProgram {
     /// halt`, `on stop: hold`) say otherwise per output.
     pub fn may_stay_on(&self, output: Signal) -> bool {
         let by_default = match output {
-            Signal::Coil { actuator, .. } => !self.signals.motors.contains(&actuator),
+            Signal::Coil { .. } => !self.signals.is_drive(output),
             Signal::SingleCoil { .. } | Signal::Alarm(_) => true,
             _ => false,
         };
@@ -227,7 +227,7 @@ impl StepProgram {
                 Some(r) => format!("{} runs on after {}", r.output.symbol(), r.event.text()),
                 None => signal.comment(table),
             },
-            Signal::Coil { actuator, sign } if self.signals.motors.contains(&actuator) => {
+            Signal::Coil { actuator, sign } if self.signals.is_drive(signal) => {
                 format!(
                     "drive {actuator}, {} (cut at its limit switch)",
                     match sign {

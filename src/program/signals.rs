@@ -65,6 +65,12 @@ pub struct Signals {
 }
 
 impl Signals {
+    /// Whether `signal` is an output of an electric drive (valve type
+    /// `motor`): it runs the drive for as long as it is on.
+    pub fn is_drive(&self, signal: Signal) -> bool {
+        matches!(signal, Signal::Coil { actuator, .. } if self.motors.contains(&actuator))
+    }
+
     /// Every output the machine drives (coils and machine outputs, not
     /// alarms): extend coils, then retract coils, then machine outputs.
     pub fn driven(&self) -> impl Iterator<Item = Signal> + '_ {

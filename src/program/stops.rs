@@ -110,10 +110,7 @@ pub(super) fn mark_zones(options: &ProgramOptions, steps: &mut [ProgramStep]) {
 /// drive's (valve type `motor`, unless `hold-safe`): a heater or a motor
 /// must not stay on in a machine that has stopped on a fault.
 pub(super) fn halt_off_rung(signals: &Signals, policy: &super::HaltPolicy) -> Option<Rung> {
-    let drive = |s: &Signal| {
-        matches!(s, Signal::Coil { actuator, .. } if signals.motors.contains(actuator))
-            && !policy.hold_safe.contains(s)
-    };
+    let drive = |s: &Signal| signals.is_drive(*s) && !policy.hold_safe.contains(s);
     let off: Vec<Signal> = signals
         .driven()
         .filter(|s| policy.off_on_halt.contains(s) || drive(s))

@@ -112,11 +112,9 @@ impl<'a> Drive<'a> {
             )
                 .hash(&mut h);
         }
-        run.last_move
-            .iter()
-            .map(Option::is_some)
-            .collect::<Vec<_>>()
-            .hash(&mut h);
+        for last in &run.last_move {
+            last.is_some().hash(&mut h);
+        }
         h.finish()
     }
 }
