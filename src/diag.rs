@@ -70,6 +70,14 @@ pub enum Code {
     /// The program needs more inputs or outputs than the OpenPLC board
     /// wires, or the board is given with a target that is not OpenPLC's.
     E036BoardTooSmall,
+    /// `J:` that is not `J:<step> if I:<name>` / `J:end if I:<name>`.
+    E017BadJump,
+    /// A jump to a step the table does not have, to where the step goes
+    /// anyway, or from the last step (the cycle ends there).
+    E028JumpTarget,
+    /// A jump that leaves an actuator away from where the target step
+    /// expects it.
+    E029JumpPositions,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -121,6 +129,9 @@ impl Code {
             Code::E034NotSynthesisable => "E034",
             Code::E035BadPinnedAddress => "E035",
             Code::E036BoardTooSmall => "E036",
+            Code::E017BadJump => "E017",
+            Code::E028JumpTarget => "E028",
+            Code::E029JumpPositions => "E029",
         }
     }
 }

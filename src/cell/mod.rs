@@ -218,6 +218,30 @@ pub enum CellItem {
     Wait { input: Name, value: bool },
     /// `Y:vacuum+` / `Y:vacuum-`: switch a machine output on or off.
     Switch { output: Name, on: bool },
+    /// `J:7 if I:reject`, `J:end if I:abort`: once the step is done, the
+    /// sequence goes on at another step (or ends the cycle) when the
+    /// machine input has this value, instead of at the next step.
+    Jump {
+        target: JumpTarget,
+        input: Name,
+        value: bool,
+    },
+}
+
+/// Where a jump goes: a step of the table, or the end of the cycle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum JumpTarget {
+    Step(u32),
+    End,
+}
+
+impl fmt::Display for JumpTarget {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            JumpTarget::Step(n) => write!(f, "{n}"),
+            JumpTarget::End => f.write_str("end"),
+        }
+    }
 }
 
 impl fmt::Display for CellItem {
@@ -234,6 +258,18 @@ impl fmt::Display for CellItem {
             }
             CellItem::Switch { output, on } => {
                 write!(f, "Y:{output}{}", if *on { '+' } else { '-' })
+            }
+            CellItem::Jump {
+                target,
+                input,
+                value,
+            } => {
+                write!(f, "J:{target} if ")?;
+                CellItem::Wait {
+                    input: *input,
+                    value: *value,
+                }
+                .fmt(f)
             }
         }
     }
@@ -264,6 +300,8 @@ pub enum ItemError {
     BadDwell(String),
     /// `I:` / `Y:` with a bad name or value.
     BadName(String),
+    /// `J:` that is not `J:<step> if I:<name>` or `J:end if I:<name>`.
+    BadJump(String),
 }
 
 /// Parses one `;`-separated item.
@@ -284,6 +322,9 @@ pub fn parse_item(text: &str) -> Result<CellItem, ItemError> {
             ))
         })?;
         return Ok(CellItem::Dwell { ms });
+    }
+    if let Some(rest) = norm.strip_prefix("J:") {
+        return parse_jump(text, rest);
     }
     if let Some(rest) = norm.strip_prefix("I:") {
         let rest = rest.to_ascii_lowercase();
@@ -321,6 +362,45 @@ pub fn parse_item(text: &str) -> Result<CellItem, ItemError> {
     parse_move(text)
         .map(CellItem::Move)
         .map_err(ItemError::Move)
+}
+
+/// `J:7 if I:reject` after its `J:` (normalised: `7IFI:REJECT`).
+fn parse_jump(text: &str, rest: &str) -> Result<CellItem, ItemError> {
+    let bad = |why: &str| {
+        ItemError::BadJump(format!(
+            "\"{}\": {why} (a jump is J:<step> if I:<input>, J:<step> if I:<input>=0 or J:end if I:<input>)",
+            text.trim()
+        ))
+    };
+    let (target, condition) = rest
+        .split_once("IF")
+        .ok_or_else(|| bad("the jump says no input (if I:…)"))?;
+    let target = match target {
+        "END" => JumpTarget::End,
+        digits if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) => {
+            match digits.parse::<u32>() {
+                // The table checks that the step exists.
+                Ok(n) if n >= 1 => JumpTarget::Step(n),
+                _ => return Err(bad("no such step number")),
+            }
+        }
+        _ => return Err(bad("the target is a step number or end")),
+    };
+    if !condition.starts_with("I:") {
+        return Err(bad("the condition is a machine input, I:<name>"));
+    }
+    // The condition is read as a wait is, spaces in the name included; the
+    // first `if` is the keyword (a step number or `end` holds none).
+    let lower = text.to_ascii_lowercase();
+    let after_if = lower.find("if").map_or("", |i| &text[i + 2..]);
+    match parse_item(after_if)? {
+        CellItem::Wait { input, value } => Ok(CellItem::Jump {
+            target,
+            input,
+            value,
+        }),
+        _ => Err(bad("the condition is a machine input, I:<name>")),
+    }
 }
 
 /// Whether the name in `I:name=0` / `Y:name+` has white space inside it,
@@ -503,6 +583,7 @@ pub fn looks_like_item(text: &str) -> bool {
         || norm.starts_with("T=")
         || norm.starts_with("I:")
         || norm.starts_with("Y:")
+        || norm.starts_with("J:")
 }
 
 #[cfg(test)]

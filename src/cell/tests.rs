@@ -206,6 +206,8 @@ fn items_print_as_they_parse() {
         "Y:vacuum+",
         "Y:motor-",
         "C2+1",
+        "J:7 if I:reject",
+        "J:end if I:abort=0",
     ] {
         let item = parse_item(text).expect(text);
         assert_eq!(item.to_string(), text);
@@ -218,4 +220,49 @@ fn recognises_attempts_at_moves() {
     assert!(looks_like_move("c 1"));
     assert!(!looks_like_move("Cylinder sequence"));
     assert!(!looks_like_move("BRANCH 1"));
+}
+
+#[test]
+fn jumps_read_as_engineers_type_them() {
+    let jump = |target, input: &str, value| CellItem::Jump {
+        target,
+        input: Name::new(input).unwrap(),
+        value,
+    };
+    for (text, expected) in [
+        ("J:7 if I:reject", jump(JumpTarget::Step(7), "reject", true)),
+        (
+            "j:7 IF i:Reject=1",
+            jump(JumpTarget::Step(7), "reject", true),
+        ),
+        (
+            "J:12if I:shift_ok=0",
+            jump(JumpTarget::Step(12), "shift_ok", false),
+        ),
+        ("J: end if I:abort", jump(JumpTarget::End, "abort", true)),
+        ("J:END IF I:iffy", jump(JumpTarget::End, "iffy", true)),
+    ] {
+        assert_eq!(parse_item(text), Ok(expected), "{text}");
+    }
+    for bad in [
+        "J:7",
+        "J:7 if",
+        "J:x if I:reject",
+        "J:0 if I:reject",
+        "J:7 if Y:reject+",
+        "J:7 when I:reject",
+        "J:7 if I:reject=2",
+        "J:7 if I:re ject",
+        "J:99999999999 if I:reject",
+    ] {
+        assert!(
+            matches!(
+                parse_item(bad),
+                Err(ItemError::BadJump(_) | ItemError::BadName(_))
+            ),
+            "{bad}: {:?}",
+            parse_item(bad)
+        );
+    }
+    assert!(looks_like_item("J:7 if I:reject"));
 }

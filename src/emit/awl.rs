@@ -321,7 +321,13 @@ fn build(input: &EmitInput) -> Context {
         });
     }
     let count = program.steps.len();
-    for (k, step) in program.steps.iter().enumerate() {
+    // One transition per network: the step's jumps first, then the step.
+    let mut transition = |k: usize,
+                          condition_of: &[crate::program::Literal],
+                          fired_actions: &[Action],
+                          moves: &[crate::table::Move],
+                          next: usize,
+                          title: String| {
         let mut lines = vec![
             line(
                 w.and,
@@ -330,13 +336,12 @@ fn build(input: &EmitInput) -> Context {
             ),
             line(w.and_not, Layout::m(layout.fired), FIRED),
         ];
-        condition(&mut lines, &step.condition);
+        condition(&mut lines, condition_of);
         let skip = label(labels);
         labels += 1;
         lines.push(line(w.jump_if_not, skip.clone(), "condition not met"));
         lines.push(line("SET", "", ""));
-        actions(&mut lines, &step.actions, &step.moves);
-        let next = (k + 1) % count;
+        actions(&mut lines, fired_actions, moves);
         lines.push(line(
             "R",
             Layout::m(layout.step_flags[k]),
@@ -354,8 +359,36 @@ fn build(input: &EmitInput) -> Context {
             operand: "0".to_string(),
             comment: String::new(),
         });
-        let title = format!("STEP {}: {}", step.number, one_line(&step.title));
         networks.push(Network { title, lines });
+    };
+    for (k, step) in program.steps.iter().enumerate() {
+        for jump in &step.jumps {
+            let target = &program.steps[jump.fires];
+            let title = format!(
+                "STEP {}: {}: STEP {} in place of STEP {}",
+                step.number,
+                one_line(&jump.title),
+                target.number,
+                step.number
+            );
+            transition(
+                k,
+                &jump.condition,
+                &jump.actions,
+                &target.moves,
+                jump.next,
+                title,
+            );
+        }
+        let title = format!("STEP {}: {}", step.number, one_line(&step.title));
+        transition(
+            k,
+            &step.condition,
+            &step.actions,
+            &step.moves,
+            (k + 1) % count,
+            title,
+        );
     }
     for rung in &program.rungs {
         let mut lines = Vec::new();

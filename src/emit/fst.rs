@@ -35,6 +35,17 @@ struct StepContext {
     condition: Vec<ConditionLine>,
     actions: Vec<ActionLine>,
     last: bool,
+    /// Sentences before the step's own: each jumps away when it holds.
+    jumps: Vec<JumpContext>,
+}
+
+/// A jump's sentence: its target's actions, then `JMP TO` the step after it.
+#[derive(Serialize)]
+struct JumpContext {
+    comment: String,
+    condition: Vec<ConditionLine>,
+    actions: Vec<ActionLine>,
+    next: usize,
 }
 
 #[derive(Serialize)]
@@ -155,6 +166,22 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         .iter()
         .enumerate()
         .map(|(i, s)| StepContext {
+            jumps: s
+                .jumps
+                .iter()
+                .map(|j| {
+                    let target = &program.steps[j.fires];
+                    JumpContext {
+                        comment: one_line(&format!(
+                            "{}: STEP {} in place of STEP {}",
+                            j.title, target.number, s.number
+                        )),
+                        condition: condition(&j.condition, festo),
+                        actions: actions(&j.actions, festo, |a| action_comment(a, &target.moves)),
+                        next: program.steps.get(j.next).map_or(1, |t| t.number),
+                    }
+                })
+                .collect(),
             number: s.number,
             moves: one_line(&s.title),
             condition: condition(&s.condition, festo),

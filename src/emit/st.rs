@@ -65,6 +65,19 @@ struct StepContext {
     actions: Vec<Statement>,
     next: usize,
     last: bool,
+    /// Tested first: `IF jump THEN … ELSIF step THEN …`.
+    jumps: Vec<JumpContext>,
+}
+
+/// A jump of a step (`J:7 if I:reject`): its target fires in its place.
+#[derive(Serialize)]
+struct JumpContext {
+    title: String,
+    /// The step that fires in place of the awaited one.
+    fires: usize,
+    condition: String,
+    actions: Vec<Statement>,
+    next: usize,
 }
 
 #[derive(Serialize)]
@@ -229,11 +242,26 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
     let alloc = input.allocation;
     let program = input.program;
     let count = program.steps.len();
+    let number_at = |index: usize| program.steps.get(index).map_or(1, |s| s.number);
     let steps = program
         .steps
         .iter()
         .enumerate()
         .map(|(i, s)| StepContext {
+            jumps: s
+                .jumps
+                .iter()
+                .map(|j| {
+                    let target = &program.steps[j.fires];
+                    JumpContext {
+                        title: comment_text(&j.title),
+                        fires: target.number,
+                        condition: condition(&j.condition),
+                        actions: statements(&j.actions, |a| action_comment(a, &target.moves)),
+                        next: number_at(j.next),
+                    }
+                })
+                .collect(),
             number: s.number,
             title: comment_text(&s.title),
             condition: condition(&s.condition),

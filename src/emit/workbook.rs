@@ -29,9 +29,9 @@ pub const DIAGRAM_SHEET: &str = "DIAGRAM";
 pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
     let is_output = |a: &Action| a.signal().area() == Area::Output;
     let mut rows = Vec::new();
-    for step in &input.program.steps {
+    let split = |actions: &[Action]| -> (Vec<Action>, String) {
         let (outputs, memories): (Vec<Action>, Vec<Action>) =
-            step.actions.iter().partition(|a| is_output(a));
+            actions.iter().partition(|a| is_output(a));
         let requests = memories
             .iter()
             .map(|a| match a {
@@ -40,6 +40,23 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
             })
             .collect::<Vec<_>>()
             .join(" ");
+        (outputs, requests)
+    };
+    for step in &input.program.steps {
+        // A jump is tested before its step: `IF … THEN … GOTO STEP 8`.
+        for jump in &step.jumps {
+            let (outputs, requests) = split(&jump.actions);
+            let next = input.program.steps.get(jump.next).map_or(1, |s| s.number);
+            rows.push([
+                format!("STEP {} ({})", step.number, jump.title),
+                format!(
+                    "{} GOTO STEP {next}",
+                    paper_sentence(&jump.condition, &outputs, Signal::symbol)
+                ),
+                requests,
+            ]);
+        }
+        let (outputs, requests) = split(&step.actions);
         let label = if step.kind == crate::program::StepKind::EndOfCycle {
             format!("STEP {} (END)", step.number)
         } else {

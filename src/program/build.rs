@@ -1,6 +1,7 @@
 //! Building the step program from a checked table (DESIGN §4): the steps of
 //! the sequence, the end of the cycle, and the rungs every scan runs.
 
+use super::jumps::add_jumps;
 use super::modes::{homing_rungs, mode_rungs};
 use super::signals::{self, Coils, Signals};
 use super::stops::{
@@ -169,6 +170,28 @@ pub fn build(
     }
     rungs.extend(run_on_rungs(&run_ons));
     end_run_ons(&run_ons, &mut steps);
+    // Last: a jump fires its target's actions as they finally are.
+    add_jumps(
+        table,
+        options,
+        &mut steps,
+        |index| completion(&table.steps[index]),
+        |target| {
+            let mut literals = Vec::new();
+            if safety.precheck {
+                literals.extend(target.moves.iter().map(|m| {
+                    Literal::not(Signal::Sensor {
+                        actuator: m.actuator,
+                        position: m.to,
+                    })
+                }));
+            }
+            if options.halts() {
+                literals.push(Literal::not(Signal::Halt));
+            }
+            literals
+        },
+    );
     if modes.any() {
         homing_rungs(
             table,
@@ -274,6 +297,7 @@ fn sequence_steps(
             moves: step.moves.clone(),
             condition,
             actions,
+            jumps: Vec::new(),
         });
     }
     steps
@@ -293,7 +317,13 @@ fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramSt
     let zone_ends = options
         .zones()
         .any(|(_, i)| i.steps.is_some_and(|(_, to)| to == last.number));
-    if !(safety.watchdog || modes.any() || last_waits || zone_ends) {
+    // A jump to the end fires the closing step in place of the rest.
+    let ends_early = table
+        .steps
+        .iter()
+        .flat_map(|s| &s.jumps)
+        .any(|j| j.target.is_none());
+    if !(safety.watchdog || modes.any() || last_waits || zone_ends || ends_early) {
         return None;
     }
     // The end of the cycle is an event of its own: the watchdog must stop
@@ -318,6 +348,7 @@ fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramSt
         moves: Vec::new(),
         condition,
         actions,
+        jumps: Vec::new(),
     })
 }
 

@@ -15,6 +15,7 @@
 //! signals; one-coil valves simply get different actions.
 
 mod build;
+mod jumps;
 mod modes;
 mod options;
 mod signal;
@@ -22,6 +23,7 @@ mod signals;
 mod stops;
 
 pub use build::build;
+pub use jumps::StepJump;
 pub use options::{
     HaltPolicy, Interlock, Modes, ProgramOptions, RunOn, Safety, StopAction, StopEvent,
 };
@@ -110,6 +112,9 @@ pub struct ProgramStep {
     pub condition: Vec<Literal>,
     /// Run in order when the step fires.
     pub actions: Vec<Action>,
+    /// Jumps tested before the step while the sequence waits at it: each
+    /// fires another step in its place (`J:7 if I:reject`).
+    pub jumps: Vec<StepJump>,
 }
 
 /// What a rung is for.

@@ -32,6 +32,15 @@ struct Rule {
     actions: Vec<Op>,
 }
 
+/// A step's jump: when `rule` holds, step `fires` fires in its place and
+/// the sequence waits at `next`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct Jump {
+    rule: Rule,
+    fires: usize,
+    next: usize,
+}
+
 /// The step program compiled into signal indices, once for every run of
 /// it (the fault analysis runs one program dozens of times).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -40,6 +49,8 @@ pub struct PlcProgram {
     signals: Vec<Signal>,
     index: BTreeMap<Signal, usize>,
     steps: Vec<Rule>,
+    /// Per step, its jumps in the order they are tested.
+    jumps: Vec<Vec<Jump>>,
     rungs: Vec<Rule>,
     init: Vec<Op>,
 }
@@ -47,10 +58,12 @@ pub struct PlcProgram {
 impl PlcProgram {
     pub fn compile(program: &StepProgram) -> Self {
         // Every signal named by a condition or an action, indexed once.
+        let jumps = program.steps.iter().flat_map(|s| &s.jumps);
         let mut signals: Vec<Signal> = program
             .steps
             .iter()
             .flat_map(|s| s.condition.iter())
+            .chain(jumps.clone().flat_map(|j| &j.condition))
             .chain(program.rungs.iter().flat_map(|r| r.condition.iter()))
             .map(|l| l.signal)
             .chain(
@@ -59,6 +72,7 @@ impl PlcProgram {
                     .iter()
                     .flat_map(|s| &s.actions)
                     .chain(program.rungs.iter().flat_map(|r| &r.actions))
+                    .chain(jumps.flat_map(|j| &j.actions))
                     .chain(&program.init)
                     .map(|a| a.signal()),
             )
@@ -79,6 +93,20 @@ impl PlcProgram {
                     .iter()
                     .map(|s| (&s.condition[..], &s.actions[..])),
             ),
+            jumps: program
+                .steps
+                .iter()
+                .map(|s| {
+                    s.jumps
+                        .iter()
+                        .map(|j| Jump {
+                            rule: compile(&index, &j.condition, &j.actions),
+                            fires: j.fires,
+                            next: j.next,
+                        })
+                        .collect()
+                })
+                .collect(),
             rungs: rules(
                 &mut program
                     .rungs
@@ -265,6 +293,9 @@ fn compile(index: &BTreeMap<Signal, usize>, condition: &[Literal], actions: &[Ac
 pub struct ScanResult {
     /// Index of the step that fired in this scan, if any.
     pub fired: Option<usize>,
+    /// Index of the step the sequence waited at when one fired: the step
+    /// before it is the one that was done (a jump fires another step).
+    pub waited_at: usize,
     /// Whether the scan changed the PLC's state beyond its timers' elapsed
     /// time: a step fired, a bit went on or off, a timer started or ran out.
     /// A scan that changed nothing is repeated exactly by the next one that
@@ -279,7 +310,17 @@ pub fn scan(state: &mut PlcState, input: &dyn Fn(Signal) -> bool, scan_ms: u64) 
     let mut changed = state.advance_timers(scan_ms);
     let mut fired = None;
     let awaited = state.awaited;
-    if let Some(step) = code.steps.get(awaited)
+    // A jump is tested before the step it leaves out.
+    if let Some(jump) = code
+        .jumps
+        .get(awaited)
+        .and_then(|jumps| jumps.iter().find(|j| state.holds(&j.rule.condition, input)))
+    {
+        state.apply(&jump.rule.actions);
+        fired = Some(jump.fires);
+        changed = true;
+        state.awaited = jump.next;
+    } else if let Some(step) = code.steps.get(awaited)
         && state.holds(&step.condition, input)
     {
         state.apply(&step.actions);
@@ -292,5 +333,9 @@ pub fn scan(state: &mut PlcState, input: &dyn Fn(Signal) -> bool, scan_ms: u64) 
             changed |= state.apply(&rung.actions);
         }
     }
-    ScanResult { fired, changed }
+    ScanResult {
+        fired,
+        waited_at: awaited,
+        changed,
+    }
 }

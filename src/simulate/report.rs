@@ -104,6 +104,8 @@ pub struct CycleReport {
     pub steps: Vec<StepTiming>,
     /// From the START press to the end of the last move, when the cycle completed.
     pub cycle_ms: Option<u64>,
+    /// The jump the machine took in this cycle: its step and notation.
+    pub jump: Option<(usize, String)>,
 }
 
 /// The result of a simulation run.
@@ -209,6 +211,20 @@ pub fn step_table(report: &SimReport) -> String {
             ));
         }
         _ => {}
+    }
+    for (n, cycle) in report.cycles.iter().enumerate() {
+        let Some((step, jump)) = &cycle.jump else {
+            continue;
+        };
+        let fired: Vec<String> = cycle.steps.iter().map(|s| s.step.to_string()).collect();
+        lines.push(format!(
+            "  cycle {} (takes {jump} after step {step}): steps {}{}",
+            n + 1,
+            fired.join(", "),
+            cycle
+                .cycle_ms
+                .map_or(String::new(), |ms| format!(", cycle of {}", seconds(ms)))
+        ));
     }
     for p in &report.problems {
         lines.push(format!("  at {}: {}", seconds(p.time_ms), p.message));

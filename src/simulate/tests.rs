@@ -200,3 +200,42 @@ fn the_recorded_io_is_the_same_both_ways() {
         assert_eq!(events_io, scans_io);
     }
 }
+
+/// A jump back on an input stuck on loops for ever: the run stops after
+/// a bounded number of steps and says so, rather than running on.
+#[test]
+fn a_jump_back_that_never_ends_stops_the_run() {
+    let rows = vec![
+        vec!["C1+1"],
+        vec!["C2+1"],
+        vec!["C2-0; J:2 if I:not_gripped"],
+        vec!["C1-0"],
+    ];
+    let input = crate::cell::Name::new("not_gripped").unwrap();
+    let settings = SimSettings {
+        faults: vec![Fault {
+            signal: Signal::MachineInput(input),
+            stuck_at: true,
+        }],
+        ..SimSettings::default()
+    };
+    let report = run(&rows, ProgramOptions::default(), &settings);
+    assert!(!report.passed);
+    let stall = report
+        .problems
+        .iter()
+        .find(|p| p.kind == ProblemKind::Stall)
+        .expect("the loop is cut");
+    assert_eq!(
+        stall.message,
+        "the cycle never ends: 21 steps have fired, jumping back again and again"
+    );
+    // The jump itself, taken on a faulty input, is the hazard.
+    assert!(
+        report
+            .problems
+            .iter()
+            .any(|p| p.kind == ProblemKind::Premature
+                && p.message.contains("took J:2 if I:not_gripped after step 3"))
+    );
+}

@@ -7,8 +7,8 @@
 use std::collections::BTreeMap;
 
 use super::frame::Frame;
-use super::{Actuator, Dwell, MAX_DWELLS, Move, Step, StepTable, Switch, Wait};
-use crate::cell::{CellItem, Name, Sign};
+use super::{Actuator, Dwell, Jump, MAX_DWELLS, Move, Step, StepTable, Switch, Wait};
+use crate::cell::{CellItem, JumpTarget, Name, Sign};
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 use crate::read::Grid;
 use crate::valve::Valves;
@@ -150,6 +150,7 @@ pub(super) fn check(
             dwells: Vec::new(),
             waits: Vec::new(),
             switches: Vec::new(),
+            jumps: Vec::new(),
         };
         let mut seen: BTreeMap<u32, CellPos> = BTreeMap::new();
         for (item, pos, branch) in row {
@@ -193,6 +194,32 @@ pub(super) fn check(
                     }
                     names.use_name(input, NameKind::Input, pos, grid, diags);
                     step.waits.push(Wait {
+                        input,
+                        value,
+                        branch,
+                        cell: pos,
+                    });
+                    continue;
+                }
+                CellItem::Jump {
+                    target,
+                    input,
+                    value,
+                } => {
+                    if step.jumps.iter().any(|j| j.input == input) {
+                        diags.error(
+                            Code::E021TwiceInStep,
+                            location(pos),
+                            format!("STEP {number} already jumps on I:{input}; a step jumps on an input once"),
+                        );
+                        continue;
+                    }
+                    names.use_name(input, NameKind::Input, pos, grid, diags);
+                    step.jumps.push(Jump {
+                        target: match target {
+                            JumpTarget::Step(n) => Some(n as usize),
+                            JumpTarget::End => None,
+                        },
                         input,
                         value,
                         branch,
@@ -286,6 +313,7 @@ pub(super) fn check(
         }
     }
 
+    check_jumps(&steps, grid, diags);
     Some(StepTable {
         file: grid.file.clone(),
         sheet: grid.sheet.clone(),
@@ -301,6 +329,81 @@ pub(super) fn check(
         inputs: names.inputs,
         outputs: names.outputs,
     })
+}
+
+/// Every jump goes to a step the table has, not to where the sequence goes
+/// anyway, and finds every actuator where its target step starts from.
+fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
+    if steps.iter().all(|s| s.jumps.is_empty()) {
+        return;
+    }
+    // Where every actuator stands after each step (index 0: at power-up).
+    let mut after: Vec<BTreeMap<u32, u32>> = vec![BTreeMap::new()];
+    for step in steps {
+        let mut positions = after.last().cloned().unwrap_or_default();
+        for m in &step.moves {
+            positions.insert(m.actuator, m.to);
+        }
+        after.push(positions);
+    }
+    let count = steps.len();
+    for step in steps {
+        for jump in &step.jumps {
+            let location = grid.location(jump.cell);
+            let written = jump.notation();
+            let why = match jump.target {
+                _ if step.number == count => Some(format!(
+                    "the cycle ends after STEP {count}, the last step; a jump belongs in a step before it"
+                )),
+                Some(n) if n > count => Some(format!("the table has {count} steps")),
+                Some(1) => Some(
+                    "STEP 1 starts a cycle on START; to end the cycle early, jump to end (J:end if I:…)"
+                        .to_string(),
+                ),
+                Some(n) if n == step.number + 1 => Some(format!(
+                    "STEP {n} comes after STEP {} anyway",
+                    step.number
+                )),
+                _ => None,
+            };
+            if let Some(why) = why {
+                diags.error(
+                    Code::E028JumpTarget,
+                    location,
+                    format!("\"{written}\" in STEP {}: {why}", step.number),
+                );
+                continue;
+            }
+            // The target step's moves start from the positions after the step
+            // before it; the end of the cycle from home.
+            let (from, expected) = match jump.target {
+                Some(n) => (&after[step.number], &after[n - 1]),
+                None => (&after[step.number], &after[0]),
+            };
+            let away: Vec<String> = from
+                .iter()
+                .filter_map(|(actuator, at)| {
+                    let wanted = expected.get(actuator).copied().unwrap_or(0);
+                    (wanted != *at).then(|| format!("C{actuator} at {wanted} (it stands at {at})"))
+                })
+                .collect();
+            if !away.is_empty() {
+                diags.error(
+                    Code::E029JumpPositions,
+                    location,
+                    format!(
+                        "\"{written}\" in STEP {}: {} {}; a jump goes only where every actuator already stands (add the moves in a step before it, or jump elsewhere)",
+                        step.number,
+                        match jump.target {
+                            Some(n) => format!("step {n} starts from"),
+                            None => "the end of the cycle needs every actuator home:".to_string(),
+                        },
+                        away.join(", ")
+                    ),
+                );
+            }
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -79,6 +79,42 @@ pub struct Switch {
     pub cell: CellPos,
 }
 
+/// `J:7 if I:reject` in a branch: once the step is done, the sequence goes
+/// on at step `target` (or ends the cycle) when the input has `value`,
+/// instead of at the next step. A jump is tested before the next step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Jump {
+    /// The step whose moves come next; `None` ends the cycle.
+    pub target: Option<usize>,
+    pub input: Name,
+    pub value: bool,
+    pub branch: usize,
+    pub cell: CellPos,
+}
+
+impl Jump {
+    /// `J:7 if I:reject`.
+    pub fn notation(&self) -> String {
+        CellItem::Jump {
+            target: match self.target {
+                Some(n) => crate::cell::JumpTarget::Step(n as u32),
+                None => crate::cell::JumpTarget::End,
+            },
+            input: self.input,
+            value: self.value,
+        }
+        .to_string()
+    }
+
+    /// `step 7` or `the end of the cycle`.
+    pub fn target_text(&self) -> String {
+        match self.target {
+            Some(n) => format!("step {n}"),
+            None => "the end of the cycle".to_string(),
+        }
+    }
+}
+
 /// One step: all of its moves and switches start together; it completes
 /// when every move reached its sensor, every wait holds and every dwell ran.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -90,6 +126,8 @@ pub struct Step {
     pub dwells: Vec<Dwell>,
     pub waits: Vec<Wait>,
     pub switches: Vec<Switch>,
+    /// Where the sequence may go instead of the next step, tested in order.
+    pub jumps: Vec<Jump>,
 }
 
 impl Step {
@@ -141,7 +179,12 @@ impl Step {
             .iter()
             .filter(|d| in_branch(d.branch))
             .map(|d| crate::cell::dwell_text(d.ms));
-        switches.chain(waits).chain(dwells).collect()
+        let jumps = self
+            .jumps
+            .iter()
+            .filter(|j| in_branch(j.branch))
+            .map(Jump::notation);
+        switches.chain(waits).chain(dwells).chain(jumps).collect()
     }
 
     /// The moves of one branch (what its dwell waits for).
@@ -461,6 +504,7 @@ fn report_item_error(error: ItemError, text: &str, location: &Location, diags: &
         ),
         ItemError::BadDwell(message) => diags.error(Code::E014BadDwell, location, message),
         ItemError::BadName(message) => diags.error(Code::E015BadName, location, message),
+        ItemError::BadJump(message) => diags.error(Code::E017BadJump, location, message),
     }
 }
 

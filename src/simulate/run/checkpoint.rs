@@ -95,6 +95,7 @@ impl<'a> Drive<'a> {
             &run.world.machine,
             &run.pending,
             &run.answered,
+            run.jump_given,
             &run.dwells,
             run.alarmed,
             run.hazard_seen,

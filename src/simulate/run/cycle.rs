@@ -37,7 +37,8 @@ pub(in crate::simulate) struct Drive<'a> {
     /// The cycle under way.
     pub(in crate::simulate) report: CycleReport,
     /// When each step of the cycle under way fired.
-    pub(in crate::simulate) fire_times: Vec<u64>,
+    /// Which step fired when (a jump fires a step out of order).
+    pub(in crate::simulate) fire_times: Vec<(usize, u64)>,
     pub(in crate::simulate) last_event: u64,
     pub(in crate::simulate) cycles: Vec<CycleReport>,
     pub(in crate::simulate) step_positions: Vec<Vec<f64>>,
@@ -71,13 +72,14 @@ impl<'a> Drive<'a> {
             run,
             stage: Stage::Idle,
             cycle: 0,
-            cycles_wanted: settings.cycles.max(1),
+            cycles_wanted: settings.cycles.max(1) + jumps_to_take(table, settings).count(),
             press_at,
             timeout: step_timeout_ms(table, program, settings),
             report: CycleReport {
                 press_ms: press_at,
                 steps: Vec::new(),
                 cycle_ms: None,
+                jump: None,
             },
             fire_times: Vec::new(),
             last_event: 0,
@@ -127,10 +129,22 @@ impl<'a> Drive<'a> {
                     press_ms: self.press_at,
                     steps: Vec::new(),
                     cycle_ms: None,
+                    jump: None,
                 };
                 self.fire_times.clear();
                 self.last_event = self.run.time_ms;
                 self.stage = Stage::Cycle;
+                // After the plain cycles, one per jump takes it.
+                let plain = self.run.world.settings.cycles.max(1);
+                self.run.jump_taken = self
+                    .cycle
+                    .checked_sub(plain)
+                    .and_then(|n| jumps_to_take(self.run.table, &self.run.world.settings).nth(n));
+                self.run.jump_given = false;
+                self.report.jump = self
+                    .run
+                    .jump_taken
+                    .map(|(index, jump)| (index + 1, jump.notation()));
             }
             Stage::Rest { until } if self.run.time_ms >= until || self.run.judged() => {
                 self.stage = Stage::Finished;
@@ -153,6 +167,19 @@ impl<'a> Drive<'a> {
             self.stage = Stage::Finished;
             return;
         }
+        if self.fire_times.len() > self.most_fires() {
+            // Jumps back that never end: nothing stalls, nothing finishes.
+            let step = self.run.current_step();
+            let message = format!(
+                "the cycle never ends: {} steps have fired, jumping back again and again",
+                self.fire_times.len()
+            );
+            self.run.problem(ProblemKind::Stall, step, message);
+            self.stalled_at = Some(step);
+            self.close_report();
+            self.stage = Stage::Finished;
+            return;
+        }
         if let Some(index) = fired {
             // A boundary of the diagram: the previous step has ended.
             // (A closing END step is not a boundary: the cycle end is.)
@@ -164,14 +191,14 @@ impl<'a> Drive<'a> {
                 self.end_cycle();
                 return;
             }
-            self.fire_times.push(before);
+            self.fire_times.push((index, before));
             self.last_event = self.run.time_ms;
         }
         // The cycle ends when the machine is at rest: a closing step
         // fires on the home sensors while the last stroke still runs
         // into its end stop, and START must not come before it does.
         let run = &self.run;
-        let done = self.fire_times.len() == program.steps.len()
+        let done = self.last_step_fired()
             && run.plc.awaited == 0
             && run.all_moves_ended()
             && run.world.pistons.iter().all(plant::Piston::at_rest)
@@ -201,6 +228,64 @@ impl<'a> Drive<'a> {
             .pass_quiet_scans(release.min(timeout).min(self.horizon));
     }
 
+    /// More steps than a cycle fires with every jump back taken a few
+    /// times over.
+    fn most_fires(&self) -> usize {
+        let steps = self.run.program.steps.len();
+        let backs = self.run.table.steps.iter().flat_map(|s| &s.jumps).count();
+        steps * (1 + 4 * backs)
+    }
+
+    /// Whether the step that fired last closes the cycle (the last step,
+    /// or the closing step a jump to the end fires).
+    fn last_step_fired(&self) -> bool {
+        let last = self.run.program.steps.len() - 1;
+        self.fire_times
+            .last()
+            .is_some_and(|(index, _)| *index == last)
+    }
+
+    /// A cycle that was to take a jump took it: right after the jump's
+    /// step, its target fired.
+    fn check_jump_taken(&mut self) {
+        let Some((index, jump)) = self.run.jump_taken else {
+            return;
+        };
+        let target = jump
+            .target
+            .map_or(self.run.program.steps.len() - 1, |n| n - 1);
+        let after = self
+            .fire_times
+            .iter()
+            .position(|(i, _)| *i == index)
+            .and_then(|at| self.fire_times.get(at + 1))
+            .map(|(i, _)| *i);
+        if after == Some(target) {
+            return;
+        }
+        let number = index + 1;
+        let message = format!(
+            "cycle {} was to take {} after step {number}, but {} (the machine gives I:{} {} after its step starts)",
+            self.cycle + 1,
+            jump.notation(),
+            match after {
+                Some(i) => format!("step {} came first", self.run.program.steps[i].number),
+                None => "the cycle ended first".to_string(),
+            },
+            jump.input,
+            seconds(
+                self.run
+                    .world
+                    .settings
+                    .input_delays
+                    .get(&jump.input)
+                    .copied()
+                    .unwrap_or(DEFAULT_INPUT_DELAY_MS) as u64
+            ),
+        );
+        self.run.problem(ProblemKind::CycleDiffers, number, message);
+    }
+
     /// The cycle under way, timed, among the cycles.
     fn close_report(&mut self) {
         let mut report = std::mem::replace(
@@ -209,6 +294,7 @@ impl<'a> Drive<'a> {
                 press_ms: self.press_at,
                 steps: Vec::new(),
                 cycle_ms: None,
+                jump: None,
             },
         );
         report.steps = timings(
@@ -243,6 +329,9 @@ impl<'a> Drive<'a> {
                 }
             }
         }
+        if complete {
+            self.check_jump_taken();
+        }
         self.close_report();
         if complete && self.cycle + 1 < self.cycles_wanted {
             self.cycle += 1;
@@ -263,6 +352,7 @@ impl<'a> Drive<'a> {
     /// on and what the stopped machine keeps energised.
     fn stall(&mut self) {
         let (program, table) = (self.run.program, self.run.table);
+        let ended = self.last_step_fired();
         let run = &mut self.run;
         let step_count = program.steps.len();
         let waiting = &program.steps[run.plc.awaited];
@@ -280,7 +370,7 @@ impl<'a> Drive<'a> {
             .filter(|a| run.plc.bit(*a))
             .map(|a| a.symbol())
             .collect();
-        let mut message = if self.fire_times.len() == step_count {
+        let mut message = if ended {
             format!(
                 "the cycle never ends: the moves of step {} do not finish",
                 program.steps[step_count - 1].number
@@ -410,6 +500,21 @@ impl<'a> Drive<'a> {
         };
         (report, run.io)
     }
+}
+
+/// The jumps the run takes, one cycle each: the index of the jump's step
+/// and the jump.
+fn jumps_to_take<'t>(
+    table: &'t StepTable,
+    settings: &SimSettings,
+) -> impl Iterator<Item = (usize, crate::table::Jump)> + 't {
+    let take = settings.take_jumps;
+    table
+        .steps
+        .iter()
+        .enumerate()
+        .filter(move |_| take)
+        .flat_map(|(index, step)| step.jumps.iter().map(move |j| (index, *j)))
 }
 
 /// Simulates from power-up to the end.

@@ -130,6 +130,8 @@ impl<'a> Run<'a> {
             last_move: vec![None; table.actuators.len()],
             pending: Vec::new(),
             answered: Vec::new(),
+            jump_taken: None,
+            jump_given: false,
             table,
             dwells: Vec::new(),
             spans: Vec::new(),
@@ -189,7 +191,7 @@ impl<'a> Run<'a> {
 
 pub(in crate::simulate) fn timings(
     program: &StepProgram,
-    fire_times: &[u64],
+    fire_times: &[(usize, u64)],
     end: u64,
     press_at: u64,
     spans: &[Span],
@@ -197,9 +199,9 @@ pub(in crate::simulate) fn timings(
     fire_times
         .iter()
         .enumerate()
-        .map(|(i, t)| {
-            let next = fire_times.get(i + 1).copied().unwrap_or(end);
-            let step = &program.steps[i];
+        .map(|(i, (index, t))| {
+            let next = fire_times.get(i + 1).map_or(end, |f| f.1);
+            let step = &program.steps[*index];
             let notes: Vec<String> = spans
                 .iter()
                 .filter(|s| s.from_ms >= *t && s.from_ms < next)

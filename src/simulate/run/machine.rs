@@ -93,12 +93,19 @@ impl Run<'_> {
 
     /// What the machine does when a step fires: check the waits of the step
     /// that ended, take back old answers, schedule the new step's.
-    pub(super) fn machine_on_fire(&mut self, fired: usize) {
+    pub(super) fn machine_on_fire(&mut self, fired: usize, waited_at: usize) {
         let step = &self.program.steps[fired];
         // The step that just ended must have had its waits answered by the
         // machine: one that read true only through a fault let the sequence
-        // run on without the part.
-        if let Some(done) = fired.checked_sub(1).and_then(|i| self.table.steps.get(i)) {
+        // run on without the part. (After a jump, the step done is the
+        // jump's own, not the one before the step that fired.)
+        if fired != waited_at {
+            self.check_jump(fired, waited_at);
+        }
+        if let Some(done) = waited_at
+            .checked_sub(1)
+            .and_then(|i| self.table.steps.get(i))
+        {
             let skipped: Vec<String> = done
                 .waits
                 .iter()
@@ -164,18 +171,80 @@ impl Run<'_> {
                 }
             }
         }
+        // The cycle that takes a jump: the machine gives its input once
+        // the jump's step has fired (a part found bad, an abort pressed).
+        if let Some((index, jump)) = self.jump_taken
+            && index == fired
+            && !self.jump_given
+        {
+            self.jump_given = true;
+            let delay = self
+                .world
+                .settings
+                .input_delays
+                .get(&jump.input)
+                .copied()
+                .unwrap_or(DEFAULT_INPUT_DELAY_MS) as u64;
+            if !self.answered.contains(&jump.input) {
+                self.answered.push(jump.input);
+            }
+            self.pending
+                .push((self.time_ms + delay, jump.input, jump.value));
+        }
+    }
+}
+
+impl Run<'_> {
+    /// A jump fired: the machine must have given its input. One taken on
+    /// a faulty input sends the machine down a path nobody asked for.
+    fn check_jump(&mut self, fired: usize, waited_at: usize) {
+        let last = self.program.steps.len() - 1;
+        let Some(jump) = waited_at
+            .checked_sub(1)
+            .and_then(|i| self.table.steps.get(i))
+            .and_then(|s| {
+                s.jumps
+                    .iter()
+                    .find(|j| j.target.map_or(last, |n| n - 1) == fired)
+            })
+            .copied()
+        else {
+            return;
+        };
+        let given = self
+            .world
+            .machine
+            .get(&jump.input)
+            .copied()
+            .unwrap_or(false)
+            == jump.value;
+        if !given {
+            let number = self.program.steps[fired].number;
+            self.problem(
+                ProblemKind::Premature,
+                number,
+                format!(
+                    "the sequence took {} after step {waited_at} although the machine did not give I:{}={}",
+                    jump.notation(),
+                    jump.input,
+                    u8::from(jump.value)
+                ),
+            );
+        }
     }
 }
 
 /// What a machine input reads while no step waits for it: the opposite of
 /// what its first wait asks for (no part yet, door not yet open).
+/// An input only jumps on rests at the value that does not jump.
 pub(super) fn rest_value(table: &StepTable, input: Name) -> Option<bool> {
-    table
-        .steps
-        .iter()
-        .flat_map(|s| &s.waits)
-        .find(|w| w.input == input)
+    let waits = table.steps.iter().flat_map(|s| &s.waits);
+    let jumps = table.steps.iter().flat_map(|s| &s.jumps);
+    waits
+        .filter(|w| w.input == input)
         .map(|w| !w.value)
+        .chain(jumps.filter(|j| j.input == input).map(|j| !j.value))
+        .next()
 }
 
 /// `part_present=1`.

@@ -59,6 +59,12 @@ pub(in crate::simulate) struct Run<'a> {
     pub(in crate::simulate) pending: Vec<(u64, Name, bool)>,
     /// Inputs the machine gave for the step that fired last.
     pub(in crate::simulate) answered: Vec<Name>,
+    /// The jump the machine takes in the cycle under way: the index of its
+    /// step and the jump (its input given once that step has fired).
+    pub(in crate::simulate) jump_taken: Option<(usize, crate::table::Jump)>,
+    /// The machine has given that jump's input in this cycle (once: a
+    /// jump back must not loop for ever).
+    pub(in crate::simulate) jump_given: bool,
     pub(in crate::simulate) table: &'a StepTable,
     /// Dwell timers: PLC index, dwell number, when it started (if running).
     pub(in crate::simulate) dwells: Vec<(usize, u16, Option<u64>)>,
@@ -251,7 +257,7 @@ impl Run<'_> {
         quiet &= !result.changed;
         self.alarmed |= result.changed && self.alarm_bits.iter().any(|&i| self.plc.bit_at(i));
         if let Some(fired) = result.fired {
-            self.on_fire(fired);
+            self.on_fire(fired, result.waited_at);
         }
         self.track_dwells(now);
 
@@ -333,9 +339,9 @@ impl Run<'_> {
         self.program.steps[last_fired].number
     }
 
-    pub(in crate::simulate) fn on_fire(&mut self, fired: usize) {
+    pub(in crate::simulate) fn on_fire(&mut self, fired: usize, waited_at: usize) {
         let step = &self.program.steps[fired];
-        self.machine_on_fire(fired);
+        self.machine_on_fire(fired, waited_at);
         if fired == 0
             && !(self.world.start_pressed
                 || self.world.operator.start

@@ -11,9 +11,13 @@
 //! - operands `I w.b`, `O w.b`, `F w.b`, `T n` (on while the timer runs),
 //!   `P n` (`SET Pn` starts program n at its first step, `RESET Pn` stops it).
 //!
-//! A cycle advances the timers, runs P0's active step (its actions and the
-//! step change when its condition holds; the next step is tested in the next
-//! cycle), then every rule of P1 in order. Anything else is an error.
+//! A cycle advances the timers, runs P0's active step, then every rule of P1
+//! in order. A step's sentences (`IF … THEN …`) run in order as FST's STL
+//! defines them: one whose condition holds runs its actions, and `JMP TO`
+//! leaves the step at once; one whose condition fails passes to the next
+//! sentence, except the last, which repeats the step in the next cycle; once
+//! the last sentence has run, the next step is active (and tested in the
+//! next cycle). Anything else is an error.
 
 use std::collections::BTreeMap;
 
@@ -39,7 +43,8 @@ struct Rule {
 #[derive(Debug, Clone)]
 struct Step {
     label: String,
-    rule: Rule,
+    /// Its sentences, in order.
+    rules: Vec<Rule>,
 }
 
 #[derive(Debug, Default)]
@@ -79,18 +84,15 @@ fn parse(text: &str) -> Result<BTreeMap<u32, Program>, String> {
                 let label = words.get(1).ok_or_else(|| at("STEP without label"))?;
                 program.steps.push(Step {
                     label: label.to_string(),
-                    rule: Rule::default(),
+                    rules: Vec::new(),
                 });
                 in_condition = false;
                 continue;
             }
             "IF" => {
-                if program.steps.is_empty() {
-                    program.rules.push(Rule::default());
-                } else if !program.steps.last().unwrap().rule.condition.is_empty()
-                    || !program.steps.last().unwrap().rule.actions.is_empty()
-                {
-                    return Err(at("a second IF in one step"));
+                match program.steps.last_mut() {
+                    None => program.rules.push(Rule::default()),
+                    Some(step) => step.rules.push(Rule::default()),
                 }
                 in_condition = true;
                 if words[1..] != ["NOP"] {
@@ -136,7 +138,7 @@ fn parse(text: &str) -> Result<BTreeMap<u32, Program>, String> {
 /// last rule.
 fn rule(program: &mut Program) -> Option<&mut Rule> {
     if program.rules.is_empty() {
-        program.steps.last_mut().map(|s| &mut s.rule)
+        program.steps.last_mut().and_then(|s| s.rules.last_mut())
     } else {
         program.rules.last_mut()
     }
@@ -270,26 +272,35 @@ pub fn run(text: &str, trace: &IoTrace, festo: &Allocation) -> Result<Vec<Vec<bo
                 continue;
             }
             let step = &program.steps[active];
-            if plc.holds(&step.rule) {
-                let jump = plc.act(&step.rule)?;
-                // The step's own actions may have restarted or stopped it.
-                if plc.state[&number] == (running, active) {
-                    let next = match jump {
-                        Some(label) => program
-                            .steps
-                            .iter()
-                            .position(|s| s.label == label)
-                            .ok_or_else(|| format!("JMP TO {label}: no such step"))?,
-                        None if active + 1 < program.steps.len() => active + 1,
-                        None => {
-                            return Err(format!(
-                                "STEP {} falls off the end of P{number}",
-                                step.label
-                            ));
-                        }
-                    };
-                    plc.state.insert(number, (true, next));
+            let last = step.rules.len().saturating_sub(1);
+            for (i, sentence) in step.rules.iter().enumerate() {
+                if !plc.holds(sentence) {
+                    // The last sentence failing repeats the step; another
+                    // passes to the next sentence.
+                    continue;
                 }
+                let jump = plc.act(sentence)?;
+                // The step's own actions may have restarted or stopped it.
+                if plc.state[&number] != (running, active) {
+                    break;
+                }
+                let next = match jump {
+                    Some(label) => program
+                        .steps
+                        .iter()
+                        .position(|s| s.label == label)
+                        .ok_or_else(|| format!("JMP TO {label}: no such step"))?,
+                    None if i < last => continue,
+                    None if active + 1 < program.steps.len() => active + 1,
+                    None => {
+                        return Err(format!(
+                            "STEP {} falls off the end of P{number}",
+                            step.label
+                        ));
+                    }
+                };
+                plc.state.insert(number, (true, next));
+                break;
             }
         }
         result.push(outputs.iter().map(|o| plc.read(o)).collect());

@@ -1,0 +1,179 @@
+//! Jumps on inputs (`J:7 if I:reject`, `J:end if I:abort`): read, checked
+//! at the cell, simulated on every path, faulted, and written in every
+//! language. The engines run them in `tests/tools` (the sorting station is a
+//! sample, so it is in every differential matrix).
+
+use predicates::str::contains;
+
+use crate::helpers::{files_below, read_sheet, sample, steptable};
+
+fn csv(dir: &std::path::Path, name: &str, rows: &str) -> std::path::PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, rows).unwrap();
+    path
+}
+
+/// The sorting station runs the plain cycle twice, then one cycle per
+/// jump, and says which steps each jump cycle ran.
+#[test]
+fn every_path_of_the_sorting_station_is_simulated() {
+    steptable()
+        .args(["simulate"])
+        .arg(sample("sorting_station.xlsx"))
+        .assert()
+        .success()
+        .stdout(contains("passed: cycle time 8.32 s"))
+        .stdout(contains(
+            "cycle 3 (takes J:6 if I:reject after step 3): steps 1, 2, 3, 6, 7, 8, 9, cycle of 6.38 s",
+        ))
+        .stdout(contains(
+            "cycle 4 (takes J:end if I:no_label after step 6): steps 1, 2, 3, 4, 5, 6, 9, cycle of 5.86 s",
+        ));
+}
+
+/// A jump input that comes too late for its step is a failed proof: the
+/// path was never run.
+#[test]
+fn a_jump_whose_input_comes_after_its_step_fails_the_proof() {
+    steptable()
+        .args(["simulate", "--input-delay", "reject=3s"])
+        .arg(sample("sorting_station.xlsx"))
+        .assert()
+        .code(1)
+        .stdout(contains(
+            "cycle 3 was to take J:6 if I:reject after step 3, but step 4 came first",
+        ));
+}
+
+/// Bad jumps are errors at their cell, all at once, and nothing is written.
+#[test]
+fn bad_jumps_are_refused_at_their_cell() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = csv(
+        dir.path(),
+        "bad.csv",
+        "C1+1; J:12 if I:a\nC2+1; J:3 if I:b\nC2-0; J:6 if I:c\nC1-0; J:end if I:d\nC3+1; J:end if I:e\nC3-0; J:1 if I:f\nC1+1\nC1-0; J:2 if I:g\nJ:7 when I:h\n",
+    );
+    let expected = [
+        "bad.csv:1:1: error[E028]: \"J:12 if I:a\" in STEP 1: the table has 9 steps",
+        "bad.csv:2:1: error[E028]: \"J:3 if I:b\" in STEP 2: STEP 3 comes after STEP 2 anyway",
+        "bad.csv:3:1: error[E029]: \"J:6 if I:c\" in STEP 3: step 6 starts from C1 at 0 (it stands at 1); a jump goes only where every actuator already stands",
+        "bad.csv:5:1: error[E029]: \"J:end if I:e\" in STEP 5: the end of the cycle needs every actuator home: C3 at 0 (it stands at 1)",
+        "bad.csv:6:1: error[E028]: \"J:1 if I:f\" in STEP 6: STEP 1 starts a cycle on START",
+        "bad.csv:8:1: error[E029]: \"J:2 if I:g\" in STEP 8: step 2 starts from C1 at 1 (it stands at 0)",
+        "bad.csv:9:1: error[E017]: \"J:7 when I:h\": the jump says no input (if I:…)",
+    ];
+    let output = steptable()
+        .args(["convert"])
+        .arg(&table)
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .assert()
+        .code(1)
+        .get_output()
+        .stderr
+        .clone();
+    let stderr = String::from_utf8(output).unwrap();
+    for line in expected {
+        assert!(stderr.contains(line), "{line}\nnot in\n{stderr}");
+    }
+    // Step 4's jump to the end is right: every actuator is home by then.
+    assert!(!stderr.contains(":4:1:"), "{stderr}");
+    assert!(files_below(&dir.path().join("out")).is_empty());
+    let last = csv(dir.path(), "last.csv", "C1+1\nC1-0; J:1 if I:a\n");
+    steptable()
+        .args(["check"])
+        .arg(&last)
+        .assert()
+        .code(1)
+        .stderr(contains("the cycle ends after STEP 2, the last step"));
+}
+
+/// A jump back (a retry) is a loop the sequence may take again and again;
+/// each pass is simulated like any step.
+#[test]
+fn a_jump_back_retries_steps() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = csv(
+        dir.path(),
+        "retry.csv",
+        "C1+1\nC2+1\nC2-0; J:2 if I:not_gripped\nC1-0\n",
+    );
+    steptable()
+        .args(["simulate"])
+        .arg(&table)
+        .assert()
+        .success()
+        .stdout(contains(
+            "cycle 3 (takes J:2 if I:not_gripped after step 3): steps 1, 2, 3, 2, 3, 4",
+        ));
+}
+
+/// A jump input stuck on sends every cycle down the jump's path: the
+/// fault table calls it a hazard; stuck off, the path is lost.
+#[test]
+fn a_stuck_jump_input_is_judged() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .args(["convert", "--formats", "faults"])
+        .arg(sample("sorting_station.xlsx"))
+        .arg("-o")
+        .arg(dir.path())
+        .assert()
+        .success();
+    let faults = std::fs::read_to_string(
+        dir.path()
+            .join("sorting_station/sorting_station.faults.csv"),
+    )
+    .unwrap();
+    let row = |fault: &str| {
+        faults
+            .lines()
+            .find(|l| l.starts_with(fault))
+            .unwrap_or_else(|| panic!("{fault}: no row in\n{faults}"))
+            .to_string()
+    };
+    let stuck_on = row("reject short circuit");
+    assert!(stuck_on.contains("hazard"), "{stuck_on}");
+    assert!(
+        stuck_on.contains("the sequence took J:6 if I:reject after step 3 although the machine did not give I:reject=1"),
+        "{stuck_on}"
+    );
+    let stuck_off = row("reject open circuit");
+    assert!(stuck_off.contains("no effect"), "{stuck_off}");
+    assert!(
+        stuck_off.contains("was to take J:6 if I:reject"),
+        "{stuck_off}"
+    );
+}
+
+/// The PLC PROGRAM sheet lists each jump before its step, with where the
+/// sequence goes on.
+#[test]
+fn the_program_sheet_shows_each_jump_before_its_step() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .args(["convert", "--formats", "xlsx"])
+        .arg(sample("sorting_station.xlsx"))
+        .arg("-o")
+        .arg(dir.path())
+        .assert()
+        .success();
+    let rows = read_sheet(
+        &dir.path().join("sorting_station/sorting_station.xlsx"),
+        "PLC PROGRAM",
+    );
+    let at = |label: &str| {
+        rows.iter()
+            .position(|r| r.first().is_some_and(|c| c == label))
+            .unwrap_or_else(|| panic!("{label}: {rows:?}"))
+    };
+    let jump = at("STEP 4 (J:6 if I:reject)");
+    assert_eq!(jump + 1, at("STEP 4"));
+    assert_eq!(
+        rows[jump][1],
+        "IF x20 AND reject THEN SET y1- RESET y1+ GOTO STEP 7"
+    );
+    let end = at("STEP 7 (J:end if I:no_label)");
+    assert_eq!(rows[end][1], "IF x10 AND no_label THEN GOTO STEP 1");
+}
