@@ -407,6 +407,7 @@ fn help_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         ("T=2s", "A dwell: once the cell's other items are done (C3+1; T=2s: once C3 is at position 1) the branch waits 2 s. T=500ms, T=1.5s; 10 ms to 655 s.".into()),
         ("I:name", "Wait until the machine input name (part_present, door_closed) is 1; I:name=0 waits for 0. It gets an address after the sensors.".into()),
         ("Y:name+", "Switch the machine output name (vacuum, conveyor) on; Y:name- switches it off. It stays until switched. It gets an address after the coils.".into()),
+        ("J:7 if I:name", "A jump: once the step is done, if the machine input name is 1 (I:name=0: is 0) the sequence goes on at step 7 instead of the next step (a reject path, a retry); J:end if I:name ends the cycle. Every actuator must already stand where the target step starts from (home for end).".into()),
         ("A; B", "Several items in one cell, separated by ;, e.g. Y:vacuum+; T=500ms. A step may hold only a wait or a dwell.".into()),
         ("Names", "Letters, digits and _, starting with a letter, up to 16 characters, no spaces; the first 9 characters must differ (Festo FST keeps 9).".into()),
         ("Modes", "SETTINGS modes adds START/STOP/EMERGENCY STOP/RESET/CONTINUOUS handling and a homing sequence (home order) to every program.".into()),

@@ -71,7 +71,7 @@ fn the_template_has_its_sheets_headers_validation_and_protection() {
     }
     let help = read_sheet(&path, "HELP");
     let topics: Vec<&str> = help.iter().map(|r| r[0].as_str()).collect();
-    for topic in ["ADDRESSES", "Board"] {
+    for topic in ["ADDRESSES", "Board", "J:7 if I:name"] {
         assert!(topics.contains(&topic), "HELP explains {topic}: {topics:?}");
     }
     let sheet2 = xlsx_part(&path, "xl/worksheets/sheet2.xml");
