@@ -99,6 +99,60 @@ pub fn random_rows(seed: u64, shape: Shape) -> Vec<Vec<String>> {
     rows
 }
 
+/// Adds jumps on inputs (`J:4 if I:jmp0`, `J:end if I:jmp1=0`) where the
+/// table allows them, to half the tables, with dice of their own (seeded
+/// from `seed`, so the caller's other draws stay as they were).
+pub fn add_jumps(seed: u64, rows: &mut [Vec<String>]) {
+    let mut rng = SplitMix64::new(seed ^ 0x7a11);
+    let Ok(table) = crate::table::from_rows("random.csv", rows) else {
+        return;
+    };
+    let choices = jump_choices(&table);
+    if choices.is_empty() || rng.range(0, 1) == 0 {
+        return;
+    }
+    for n in 0..rng.range(1, 2) {
+        let (k, target) = choices[rng.range(0, choices.len() as u32 - 1) as usize];
+        let target = target.map_or("end".to_string(), |t| t.to_string());
+        let value = if rng.range(0, 1) == 0 { "" } else { "=0" };
+        rows[k - 1].push(format!("J:{target} if I:jmp{n}{value}"));
+    }
+}
+
+/// The jumps a checked table allows (`J:t if I:…` in step k): from a step
+/// before the last to a step t ≥ 2 other than the next one where every
+/// actuator stands after step k as after step t−1, or to the end (`None`)
+/// where every actuator is home after step k. As `(k, t)`, one-based.
+pub fn jump_choices(table: &crate::table::StepTable) -> Vec<(usize, Option<usize>)> {
+    let mut after = vec![std::collections::BTreeMap::new()];
+    for step in &table.steps {
+        let mut positions = after.last().cloned().unwrap_or_default();
+        for m in &step.moves {
+            positions.insert(m.actuator, m.to);
+        }
+        after.push(positions);
+    }
+    let same = |a: &std::collections::BTreeMap<u32, u32>,
+                b: &std::collections::BTreeMap<u32, u32>| {
+        a.keys()
+            .chain(b.keys())
+            .all(|k| a.get(k).copied().unwrap_or(0) == b.get(k).copied().unwrap_or(0))
+    };
+    let count = table.steps.len();
+    let mut choices = Vec::new();
+    for k in 1..count {
+        if same(&after[k], &after[0]) {
+            choices.push((k, None));
+        }
+        for t in 2..=count {
+            if t != k + 1 && same(&after[k], &after[t - 1]) {
+                choices.push((k, Some(t)));
+            }
+        }
+    }
+    choices
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -172,6 +172,7 @@ fn random_case(seed: u64) -> (Vec<Vec<String>>, SimSettings, ProgramOptions) {
     if lamp_on {
         rows[last].push("Y:lamp-".to_string());
     }
+    steptable::random_table::add_jumps(seed, &mut rows);
     let mut sim = SimSettings {
         scan_ms: [1, 3, 10, 25][rng.range(0, 3) as usize],
         window: [0.02, 0.05, 0.1][rng.range(0, 2) as usize],
@@ -207,8 +208,10 @@ fn random_case(seed: u64) -> (Vec<Vec<String>>, SimSettings, ProgramOptions) {
 #[test]
 fn both_simulators_agree_on_random_tables_and_faults() {
     let mut compared = 0;
+    let mut with_jumps = 0;
     for seed in 0..1000u64 {
         let (rows, table, program, sim) = random_machine(seed);
+        with_jumps += usize::from(table.steps.iter().any(|s| !s.jumps.is_empty()));
         // The dice go on where the valves' left off.
         let mut rng = SplitMix64::new(seed);
         for _ in &table.actuators {
@@ -240,4 +243,6 @@ fn both_simulators_agree_on_random_tables_and_faults() {
         compared += 3;
     }
     assert_eq!(compared, 3000);
+    // Jumps on inputs are among them (about a third of the tables).
+    assert!(with_jumps >= 200, "{with_jumps} tables with jumps");
 }

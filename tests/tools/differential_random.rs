@@ -84,6 +84,8 @@ fn draw(seed: u64) -> Drawn {
             add(&mut rng, format!("Y:lamp{k}{sign}"));
         }
     }
+    steptable::random_table::add_jumps(seed, &mut rows);
+    let jumps = rows.iter().flatten().any(|c| c.starts_with("J:"));
     // Highest position of each actuator, for its valve.
     let mut pmax = std::collections::BTreeMap::new();
     for cell in rows.iter().flatten() {
@@ -118,6 +120,11 @@ fn draw(seed: u64) -> Drawn {
         "--valve".into(),
         valves.join(","),
     ];
+    if jumps {
+        // The machine gives a jump's input as its step fires, before any
+        // step could be done.
+        args.extend(["--input-delay".into(), "jmp0=10ms,jmp1=10ms".into()]);
+    }
     let safety = pick(
         &mut rng,
         &["", "all", "edge,watchdog", "precheck,plausibility"],

@@ -95,6 +95,14 @@ pub fn settings_for(args: &[&str]) -> Settings {
                 valves: steptable::valve::parse_valves(v).expect("valve list"),
                 ..Given::default()
             }),
+            ["--input-delay", list] => {
+                for item in list.split(',') {
+                    let (name, time) = item.split_once('=').expect("input=time");
+                    let name = steptable::cell::Name::new(name).expect("input name");
+                    let ms = steptable::stroke::parse_duration_ms(time).expect("time");
+                    settings.simulation.input_delays.insert(name, ms);
+                }
+            }
             // Which files are written does not change the program.
             ["--formats", _] => {}
             other => panic!("settings_for does not know {other:?}"),
