@@ -374,3 +374,53 @@ impl Modes {
         table.home_stages(self.home_order.as_deref())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A run-on belongs to an event the program has: `on estop: fan off
+    /// after 20s` without the emergency stop mode gives no run-on timer.
+    #[test]
+    fn run_ons_only_for_events_the_program_has() {
+        let fan = Signal::MachineOutput(crate::cell::Name::new("fan").unwrap());
+        let mut options = ProgramOptions::default();
+        options
+            .halt
+            .on_estop
+            .insert(fan, StopAction::OffAfter(20_000));
+        assert!(options.run_ons().is_empty());
+        options.modes.estop = true;
+        assert_eq!(
+            options.run_ons(),
+            [RunOn {
+                event: StopEvent::EStop,
+                output: fan,
+                ms: 20_000
+            }]
+        );
+    }
+
+    /// Zones are numbered from 1 (`zone1`), the interlocks without a step
+    /// range left out.
+    #[test]
+    fn zones_count_from_one() {
+        let name = |n: &str| crate::cell::Name::new(n).unwrap();
+        let options = ProgramOptions {
+            interlocks: vec![
+                Interlock {
+                    input: name("guard"),
+                    steps: None,
+                },
+                Interlock {
+                    input: name("door"),
+                    steps: Some((2, 3)),
+                },
+            ],
+            ..ProgramOptions::default()
+        };
+        let zones: Vec<Signal> = options.zones().map(|(zone, _)| zone).collect();
+        assert_eq!(zones, [Signal::InterlockZone(1)]);
+        assert_eq!(zones[0].symbol(), "zone1");
+    }
+}
