@@ -109,4 +109,12 @@ impl SimSettings {
     pub fn stroke(&self, actuator: u32) -> Stroke {
         self.strokes.of(actuator)
     }
+
+    /// How long after its step starts the machine gives `input`.
+    pub fn input_delay_ms(&self, input: &Name) -> u32 {
+        self.input_delays
+            .get(input)
+            .copied()
+            .unwrap_or(DEFAULT_INPUT_DELAY_MS)
+    }
 }

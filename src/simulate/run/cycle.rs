@@ -274,13 +274,7 @@ impl<'a> Drive<'a> {
             },
             jump.input,
             seconds(
-                self.run
-                    .world
-                    .settings
-                    .input_delays
-                    .get(&jump.input)
-                    .copied()
-                    .unwrap_or(DEFAULT_INPUT_DELAY_MS) as u64
+                self.run.world.settings.input_delay_ms(&jump.input) as u64
             ),
         );
         self.run.problem(ProblemKind::CycleDiffers, number, message);

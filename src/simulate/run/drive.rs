@@ -42,11 +42,7 @@ pub(in crate::simulate) fn step_timeout_ms(
             .inputs
             .iter()
             .map(|n| {
-                settings
-                    .input_delays
-                    .get(n)
-                    .copied()
-                    .unwrap_or(DEFAULT_INPUT_DELAY_MS)
+                settings.input_delay_ms(n)
             })
             .max()
             .unwrap_or(0) as u64

@@ -6,7 +6,7 @@
 use super::{Run, sensor_symbol};
 use crate::cell::Name;
 use crate::program::StepKind;
-use crate::simulate::{DEFAULT_INPUT_DELAY_MS, ProblemKind, Span};
+use crate::simulate::{ProblemKind, Span};
 use crate::table::StepTable;
 
 impl Run<'_> {
@@ -152,13 +152,7 @@ impl Run<'_> {
             && let Some(table_step) = self.table.steps.get(fired)
         {
             for wait in &table_step.waits {
-                let delay = self
-                    .world
-                    .settings
-                    .input_delays
-                    .get(&wait.input)
-                    .copied()
-                    .unwrap_or(DEFAULT_INPUT_DELAY_MS) as u64;
+                let delay = self.world.settings.input_delay_ms(&wait.input) as u64;
                 let now = self.time_ms;
                 self.answered.push(wait.input);
                 if !self.machine_gave(wait) {
@@ -178,13 +172,7 @@ impl Run<'_> {
             && !self.jump_given
         {
             self.jump_given = true;
-            let delay = self
-                .world
-                .settings
-                .input_delays
-                .get(&jump.input)
-                .copied()
-                .unwrap_or(DEFAULT_INPUT_DELAY_MS) as u64;
+            let delay = self.world.settings.input_delay_ms(&jump.input) as u64;
             if !self.answered.contains(&jump.input) {
                 self.answered.push(jump.input);
             }
