@@ -296,6 +296,9 @@ pub struct ScanResult {
     /// Index of the step the sequence waited at when one fired: the step
     /// before it is the one that was done (a jump fires another step).
     pub waited_at: usize,
+    /// Which of that step's jumps fired it, if one did (its place among
+    /// the step's jumps, which is its place in the table's cell order).
+    pub jumped: Option<usize>,
     /// Whether the scan changed the PLC's state beyond its timers' elapsed
     /// time: a step fired, a bit went on or off, a timer started or ran out.
     /// A scan that changed nothing is repeated exactly by the next one that
@@ -310,12 +313,15 @@ pub fn scan(state: &mut PlcState, input: &dyn Fn(Signal) -> bool, scan_ms: u64) 
     let mut changed = state.advance_timers(scan_ms);
     let mut fired = None;
     let awaited = state.awaited;
+    let mut jumped = None;
     // A jump is tested before the step it leaves out.
-    if let Some(jump) = code
-        .jumps
-        .get(awaited)
-        .and_then(|jumps| jumps.iter().find(|j| state.holds(&j.rule.condition, input)))
-    {
+    if let Some((n, jump)) = code.jumps.get(awaited).and_then(|jumps| {
+        jumps
+            .iter()
+            .enumerate()
+            .find(|(_, j)| state.holds(&j.rule.condition, input))
+    }) {
+        jumped = Some(n);
         state.apply(&jump.rule.actions);
         fired = Some(jump.fires);
         changed = true;
@@ -336,6 +342,7 @@ pub fn scan(state: &mut PlcState, input: &dyn Fn(Signal) -> bool, scan_ms: u64) 
     ScanResult {
         fired,
         waited_at: awaited,
+        jumped,
         changed,
     }
 }

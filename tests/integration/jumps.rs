@@ -90,14 +90,14 @@ fn bad_jumps_are_refused_at_their_cell() {
 }
 
 /// A jump back (a retry) is a loop the sequence may take again and again;
-/// each pass is simulated like any step.
+/// each pass is simulated like any step, each jump in its own cycle.
 #[test]
 fn a_jump_back_retries_steps() {
     let dir = tempfile::tempdir().unwrap();
     let table = csv(
         dir.path(),
         "retry.csv",
-        "C1+1\nC2+1\nC2-0; J:2 if I:not_gripped\nC1-0\n",
+        "C1+1\nC2+1\nC2-0; J:2 if I:not_gripped; J:2 if I:retry\nC1-0\n",
     );
     steptable()
         .args(["simulate"])
@@ -106,6 +106,11 @@ fn a_jump_back_retries_steps() {
         .success()
         .stdout(contains(
             "cycle 3 (takes J:2 if I:not_gripped after step 3): steps 1, 2, 3, 2, 3, 4",
+        ))
+        // Two jumps of one step to one target: each is told apart by its
+        // input (the second is not mistaken for the first).
+        .stdout(contains(
+            "cycle 4 (takes J:2 if I:retry after step 3): steps 1, 2, 3, 2, 3, 4",
         ));
 }
 

@@ -273,9 +273,7 @@ impl<'a> Drive<'a> {
                 None => "the cycle ended first".to_string(),
             },
             jump.input,
-            seconds(
-                self.run.world.settings.input_delay_ms(&jump.input) as u64
-            ),
+            seconds(self.run.world.settings.input_delay_ms(&jump.input) as u64),
         );
         self.run.problem(ProblemKind::CycleDiffers, number, message);
     }

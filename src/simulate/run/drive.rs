@@ -41,9 +41,7 @@ pub(in crate::simulate) fn step_timeout_ms(
         table
             .inputs
             .iter()
-            .map(|n| {
-                settings.input_delay_ms(n)
-            })
+            .map(|n| settings.input_delay_ms(n))
             .max()
             .unwrap_or(0) as u64
     };

@@ -93,14 +93,19 @@ impl Run<'_> {
 
     /// What the machine does when a step fires: check the waits of the step
     /// that ended, take back old answers, schedule the new step's.
-    pub(super) fn machine_on_fire(&mut self, fired: usize, waited_at: usize) {
+    pub(super) fn machine_on_fire(
+        &mut self,
+        fired: usize,
+        waited_at: usize,
+        jumped: Option<usize>,
+    ) {
         let step = &self.program.steps[fired];
         // The step that just ended must have had its waits answered by the
         // machine: one that read true only through a fault let the sequence
         // run on without the part. (After a jump, the step done is the
         // jump's own, not the one before the step that fired.)
-        if fired != waited_at {
-            self.check_jump(fired, waited_at);
+        if let Some(n) = jumped {
+            self.check_jump(n, waited_at);
         }
         if let Some(done) = waited_at
             .checked_sub(1)
@@ -185,20 +190,17 @@ impl Run<'_> {
 impl Run<'_> {
     /// A jump fired: the machine must have given its input. One taken on
     /// a faulty input sends the machine down a path nobody asked for.
-    fn check_jump(&mut self, fired: usize, waited_at: usize) {
-        let last = self.program.steps.len() - 1;
+    /// `n` is the jump's place among its step's jumps.
+    fn check_jump(&mut self, n: usize, waited_at: usize) {
         let Some(jump) = waited_at
             .checked_sub(1)
             .and_then(|i| self.table.steps.get(i))
-            .and_then(|s| {
-                s.jumps
-                    .iter()
-                    .find(|j| j.target.map_or(last, |n| n - 1) == fired)
-            })
+            .and_then(|s| s.jumps.get(n))
             .copied()
         else {
             return;
         };
+        let fired = jump.target.map_or(self.program.steps.len() - 1, |t| t - 1);
         let given = self
             .world
             .machine

@@ -257,7 +257,7 @@ impl Run<'_> {
         quiet &= !result.changed;
         self.alarmed |= result.changed && self.alarm_bits.iter().any(|&i| self.plc.bit_at(i));
         if let Some(fired) = result.fired {
-            self.on_fire(fired, result.waited_at);
+            self.on_fire(fired, result.waited_at, result.jumped);
         }
         self.track_dwells(now);
 
@@ -339,9 +339,14 @@ impl Run<'_> {
         self.program.steps[last_fired].number
     }
 
-    pub(in crate::simulate) fn on_fire(&mut self, fired: usize, waited_at: usize) {
+    pub(in crate::simulate) fn on_fire(
+        &mut self,
+        fired: usize,
+        waited_at: usize,
+        jumped: Option<usize>,
+    ) {
         let step = &self.program.steps[fired];
-        self.machine_on_fire(fired, waited_at);
+        self.machine_on_fire(fired, waited_at, jumped);
         if fired == 0
             && !(self.world.start_pressed
                 || self.world.operator.start
