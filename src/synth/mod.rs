@@ -312,10 +312,14 @@ pub fn from_table(table: &crate::table::StepTable) -> Result<Sequence, SynthErro
         )));
     }
     if let Some(step) = table.steps.iter().find(|s| {
-        s.moves.len() != 1 || !s.dwells.is_empty() || !s.waits.is_empty() || !s.switches.is_empty()
+        s.moves.len() != 1
+            || !s.dwells.is_empty()
+            || !s.waits.is_empty()
+            || !s.switches.is_empty()
+            || !s.jumps.is_empty()
     }) {
         return Err(SynthError::Unsuitable(format!(
-            "STEP {} ({}) is not one cylinder move: synthesis handles sequences of moves only, without dwells, waits or machine outputs; use convert for those",
+            "STEP {} ({}) is not one cylinder move: synthesis handles sequences of moves only, without dwells, waits, machine outputs or jumps; use convert for those",
             step.number,
             step.text()
         )));

@@ -182,3 +182,24 @@ fn the_program_sheet_shows_each_jump_before_its_step() {
     let end = at("STEP 7 (J:end if I:no_label)");
     assert_eq!(rows[end][1], "IF x10 AND no_label THEN GOTO STEP 1");
 }
+
+/// Synthesis handles plain sequences of moves: a table with a jump is
+/// refused with the step that holds it, not synthesised without the jump.
+#[test]
+fn synthesis_refuses_a_table_with_a_jump() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = csv(
+        dir.path(),
+        "jump.csv",
+        "C1+1\nC2+1\nC2-0; J:6 if I:reject\nC3+1\nC3-0\nC1-0\n",
+    );
+    steptable().args(["check"]).arg(&table).assert().success();
+    steptable()
+        .args(["synth"])
+        .arg(&table)
+        .assert()
+        .code(1)
+        .stderr(contains(
+            "error[E034]: STEP 3 (C2-0; J:6 if I:reject) is not one cylinder move",
+        ));
+}
