@@ -242,8 +242,16 @@ impl Signal {
             Signal::Watchdog => "step watchdog timer".to_string(),
             Signal::WatchdogArmed => "watchdog is timing a step".to_string(),
             Signal::MachineInput(name) => {
-                let steps = steps_where(table, |s| s.waits.iter().any(|w| w.input == name));
-                format!("machine input {name}, waited for in {steps}")
+                let waits = |s: &crate::table::Step| s.waits.iter().any(|w| w.input == name);
+                let jumps = |s: &crate::table::Step| s.jumps.iter().any(|j| j.input == name);
+                let mut uses = vec![format!("machine input {name}")];
+                if table.steps.iter().any(waits) {
+                    uses.push(format!("waited for in {}", steps_where(table, waits)));
+                }
+                if table.steps.iter().any(jumps) {
+                    uses.push(format!("jumped on after {}", steps_where(table, jumps)));
+                }
+                uses.join(", ")
             }
             Signal::MachineOutput(name) => {
                 let steps = steps_where(table, |s| s.switches.iter().any(|w| w.output == name));
