@@ -32,6 +32,9 @@ pub(in crate::simulate) struct Drive<'a> {
     pub(in crate::simulate) stage: Stage,
     pub(in crate::simulate) cycle: usize,
     cycles_wanted: usize,
+    /// More steps than a cycle fires with every jump back taken a few
+    /// times over: past it, jumps back never end.
+    most_fires: usize,
     pub(in crate::simulate) press_at: u64,
     timeout: u64,
     /// The cycle under way.
@@ -73,6 +76,8 @@ impl<'a> Drive<'a> {
             stage: Stage::Idle,
             cycle: 0,
             cycles_wanted: settings.cycles.max(1) + jumps_to_take(table, settings).count(),
+            most_fires: program.steps.len()
+                * (1 + 4 * table.steps.iter().map(|s| s.jumps.len()).sum::<usize>()),
             press_at,
             timeout: step_timeout_ms(table, program, settings),
             report: CycleReport {
@@ -167,7 +172,7 @@ impl<'a> Drive<'a> {
             self.stage = Stage::Finished;
             return;
         }
-        if self.fire_times.len() > self.most_fires() {
+        if self.fire_times.len() > self.most_fires {
             // Jumps back that never end: nothing stalls, nothing finishes.
             let step = self.run.current_step();
             let message = format!(
@@ -226,14 +231,6 @@ impl<'a> Drive<'a> {
         let timeout = (self.last_event + self.timeout + 1).saturating_sub(scan);
         self.run
             .pass_quiet_scans(release.min(timeout).min(self.horizon));
-    }
-
-    /// More steps than a cycle fires with every jump back taken a few
-    /// times over.
-    fn most_fires(&self) -> usize {
-        let steps = self.run.program.steps.len();
-        let backs = self.run.table.steps.iter().flat_map(|s| &s.jumps).count();
-        steps * (1 + 4 * backs)
     }
 
     /// Whether the step that fired last closes the cycle (the last step,
