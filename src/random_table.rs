@@ -124,28 +124,15 @@ pub fn add_jumps(seed: u64, rows: &mut [Vec<String>]) {
 /// actuator stands after step k as after step t−1, or to the end (`None`)
 /// where every actuator is home after step k. As `(k, t)`, one-based.
 pub fn jump_choices(table: &crate::table::StepTable) -> Vec<(usize, Option<usize>)> {
-    let mut after = vec![std::collections::BTreeMap::new()];
-    for step in &table.steps {
-        let mut positions = after.last().cloned().unwrap_or_default();
-        for m in &step.moves {
-            positions.insert(m.actuator, m.to);
-        }
-        after.push(positions);
-    }
-    let same = |a: &std::collections::BTreeMap<u32, u32>,
-                b: &std::collections::BTreeMap<u32, u32>| {
-        a.keys()
-            .chain(b.keys())
-            .all(|k| a.get(k).copied().unwrap_or(0) == b.get(k).copied().unwrap_or(0))
-    };
+    let after = crate::table::positions_after(&table.steps);
     let count = table.steps.len();
     let mut choices = Vec::new();
     for k in 1..count {
-        if same(&after[k], &after[0]) {
+        if after[k] == after[0] {
             choices.push((k, None));
         }
         for t in 2..=count {
-            if t != k + 1 && same(&after[k], &after[t - 1]) {
+            if t != k + 1 && after[k] == after[t - 1] {
                 choices.push((k, Some(t)));
             }
         }

@@ -337,15 +337,7 @@ fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
     if steps.iter().all(|s| s.jumps.is_empty()) {
         return;
     }
-    // Where every actuator stands after each step (index 0: at power-up).
-    let mut after: Vec<BTreeMap<u32, u32>> = vec![BTreeMap::new()];
-    for step in steps {
-        let mut positions = after.last().cloned().unwrap_or_default();
-        for m in &step.moves {
-            positions.insert(m.actuator, m.to);
-        }
-        after.push(positions);
-    }
+    let after = super::positions_after(steps);
     let count = steps.len();
     for step in steps {
         for jump in &step.jumps {
@@ -380,11 +372,13 @@ fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
                 Some(n) => (&after[step.number], &after[n - 1]),
                 None => (&after[step.number], &after[0]),
             };
+            // Every actuator is in both maps, also one that has not moved yet.
             let away: Vec<String> = from
                 .iter()
-                .filter_map(|(actuator, at)| {
-                    let wanted = expected.get(actuator).copied().unwrap_or(0);
-                    (wanted != *at).then(|| format!("C{actuator} at {wanted} (it stands at {at})"))
+                .zip(expected.values())
+                .filter(|((_, at), wanted)| at != wanted)
+                .map(|((actuator, at), wanted)| {
+                    format!("C{actuator} at {wanted} (it stands at {at})")
                 })
                 .collect();
             if !away.is_empty() {

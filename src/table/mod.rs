@@ -115,6 +115,27 @@ impl Jump {
     }
 }
 
+/// Where every actuator of `steps` stands after each step: index 0 at
+/// power-up (all home), index k after step k. Every map names every
+/// actuator, so two of them compare with `==`.
+pub fn positions_after(steps: &[Step]) -> Vec<BTreeMap<u32, u32>> {
+    let home: BTreeMap<u32, u32> = steps
+        .iter()
+        .flat_map(|s| &s.moves)
+        .map(|m| (m.actuator, 0))
+        .collect();
+    let mut after = Vec::with_capacity(steps.len() + 1);
+    after.push(home);
+    for step in steps {
+        let mut positions = after[after.len() - 1].clone();
+        for m in &step.moves {
+            positions.insert(m.actuator, m.to);
+        }
+        after.push(positions);
+    }
+    after
+}
+
 /// One step: all of its moves and switches start together; it completes
 /// when every move reached its sensor, every wait holds and every dwell ran.
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -57,7 +57,7 @@ fn bad_jumps_are_refused_at_their_cell() {
     let expected = [
         "bad.csv:1:1: error[E028]: \"J:12 if I:a\" in STEP 1: the table has 9 steps",
         "bad.csv:2:1: error[E028]: \"J:3 if I:b\" in STEP 2: STEP 3 comes after STEP 2 anyway",
-        "bad.csv:3:1: error[E029]: \"J:6 if I:c\" in STEP 3: step 6 starts from C1 at 0 (it stands at 1); a jump goes only where every actuator already stands",
+        "bad.csv:3:1: error[E029]: \"J:6 if I:c\" in STEP 3: step 6 starts from C1 at 0 (it stands at 1), C3 at 1 (it stands at 0); a jump goes only where every actuator already stands",
         "bad.csv:5:1: error[E029]: \"J:end if I:e\" in STEP 5: the end of the cycle needs every actuator home: C3 at 0 (it stands at 1)",
         "bad.csv:6:1: error[E028]: \"J:1 if I:f\" in STEP 6: STEP 1 starts a cycle on START",
         "bad.csv:8:1: error[E029]: \"J:2 if I:g\" in STEP 8: step 2 starts from C1 at 1 (it stands at 0)",
@@ -80,6 +80,21 @@ fn bad_jumps_are_refused_at_their_cell() {
     // Step 4's jump to the end is right: every actuator is home by then.
     assert!(!stderr.contains(":4:1:"), "{stderr}");
     assert!(files_below(&dir.path().join("out")).is_empty());
+    // An actuator that has not moved yet stands home, and the target may
+    // need it elsewhere.
+    let unseen = csv(
+        dir.path(),
+        "unseen.csv",
+        "C1+1\nC1-0; J:4 if I:x\nC2+1\nC1+1\nC1-0\nC2-0\n",
+    );
+    steptable()
+        .args(["check"])
+        .arg(&unseen)
+        .assert()
+        .code(1)
+        .stderr(contains(
+            "unseen.csv:2:1: error[E029]: \"J:4 if I:x\" in STEP 2: step 4 starts from C2 at 1 (it stands at 0)",
+        ));
     let last = csv(dir.path(), "last.csv", "C1+1\nC1-0; J:1 if I:a\n");
     steptable()
         .args(["check"])
