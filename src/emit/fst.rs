@@ -178,7 +178,7 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
                         )),
                         condition: condition(&j.condition, festo),
                         actions: actions(&j.actions, festo, |a| action_comment(a, &target.moves)),
-                        next: program.steps.get(j.next).map_or(1, |t| t.number),
+                        next: program.number_at(j.next),
                     }
                 })
                 .collect(),

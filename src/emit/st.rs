@@ -242,7 +242,6 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
     let alloc = input.allocation;
     let program = input.program;
     let count = program.steps.len();
-    let number_at = |index: usize| program.steps.get(index).map_or(1, |s| s.number);
     let steps = program
         .steps
         .iter()
@@ -258,7 +257,7 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
                         fires: target.number,
                         condition: condition(&j.condition),
                         actions: statements(&j.actions, |a| action_comment(a, &target.moves)),
-                        next: number_at(j.next),
+                        next: program.number_at(j.next),
                     }
                 })
                 .collect(),

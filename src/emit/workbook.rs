@@ -46,7 +46,7 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
         // A jump is tested before its step: `IF … THEN … GOTO STEP 8`.
         for jump in &step.jumps {
             let (outputs, requests) = split(&jump.actions);
-            let next = input.program.steps.get(jump.next).map_or(1, |s| s.number);
+            let next = input.program.number_at(jump.next);
             rows.push([
                 format!("STEP {} ({})", step.number, jump.title),
                 format!(

@@ -38,6 +38,26 @@ fn completion(step: &Step) -> Vec<Literal> {
     literals
 }
 
+/// What a step needs besides the step before it being complete, whichever
+/// way it fires (after that step, or in place of another by a jump): its
+/// target sensors still off (a sensor on before its move starts is a lie),
+/// and no halt.
+fn guards(moves: &[Move], options: &ProgramOptions) -> Vec<Literal> {
+    let mut literals = Vec::new();
+    if options.safety.precheck {
+        literals.extend(moves.iter().map(|m| {
+            Literal::not(Signal::Sensor {
+                actuator: m.actuator,
+                position: m.to,
+            })
+        }));
+    }
+    if options.halts() {
+        literals.push(Literal::not(Signal::Halt));
+    }
+    literals
+}
+
 fn wait_literal(w: &crate::table::Wait) -> Literal {
     Literal {
         signal: Signal::MachineInput(w.input),
@@ -176,21 +196,7 @@ pub fn build(
         options,
         &mut steps,
         |index| completion(&table.steps[index]),
-        |target| {
-            let mut literals = Vec::new();
-            if safety.precheck {
-                literals.extend(target.moves.iter().map(|m| {
-                    Literal::not(Signal::Sensor {
-                        actuator: m.actuator,
-                        position: m.to,
-                    })
-                }));
-            }
-            if options.halts() {
-                literals.push(Literal::not(Signal::Halt));
-            }
-            literals
-        },
+        |target| guards(&target.moves, options),
     );
     if modes.any() {
         homing_rungs(
@@ -225,7 +231,6 @@ fn sequence_steps(
 ) -> Vec<ProgramStep> {
     let safety = options.safety;
     let modes = &options.modes;
-    let halts = options.halts();
     let mut steps = Vec::with_capacity(table.steps.len() + 1);
     for (index, step) in table.steps.iter().enumerate() {
         let mut condition: Vec<Literal> = if index == 0 {
@@ -242,18 +247,7 @@ fn sequence_steps(
         } else {
             completion(&table.steps[index - 1])
         };
-        if safety.precheck {
-            // A target sensor already on before the move starts is a lie.
-            condition.extend(step.moves.iter().map(|m| {
-                Literal::not(Signal::Sensor {
-                    actuator: m.actuator,
-                    position: m.to,
-                })
-            }));
-        }
-        if halts {
-            condition.push(Literal::not(Signal::Halt));
-        }
+        condition.extend(guards(&step.moves, options));
 
         let mut actions = Vec::new();
         for m in &step.moves {
@@ -310,7 +304,6 @@ fn sequence_steps(
 fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramStep> {
     let safety = options.safety;
     let modes = &options.modes;
-    let halts = options.halts();
     let last = table.steps.last()?;
     let last_waits = !last.waits.is_empty() || !last.dwells.is_empty();
     // An interlock zone that ends with the last step ends with the cycle.
@@ -330,9 +323,7 @@ fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramSt
     // once the last moves have finished, not run on while the machine
     // idles, and a new cycle may be asked for only now.
     let mut condition = completion(last);
-    if halts {
-        condition.push(Literal::not(Signal::Halt));
-    }
+    condition.extend(guards(&[], options));
     let mut actions = Vec::new();
     if safety.watchdog {
         actions.push(Action::Reset(Signal::Watchdog));

@@ -24,30 +24,27 @@ pub struct StepJump {
 
 /// Adds every jump of the table to the step its sequence waits at after
 /// the jump's step. `completion(k)` is what must hold for step k (0-based)
-/// to be done; `precheck(target)` the target's own literals (a target
-/// sensor already on, a halt) besides the completion of the step before it.
+/// to be done; `guards(target)` what the target needs besides the step
+/// before it being complete (its sensors still off, no halt).
 pub(super) fn add_jumps(
     table: &StepTable,
     options: &ProgramOptions,
     steps: &mut [ProgramStep],
     completion: impl Fn(usize) -> Vec<Literal>,
-    precheck: impl Fn(&ProgramStep) -> Vec<Literal>,
+    guards: impl Fn(&ProgramStep) -> Vec<Literal>,
 ) {
     let count = steps.len();
     for (index, step) in table.steps.iter().enumerate() {
         for jump in &step.jumps {
-            let fires = match jump.target {
-                Some(number) => number - 1,
-                // The closing step is there whenever a table ends early.
-                None => count - 1,
-            };
+            // The closing step is there whenever a table ends early.
+            let fires = jump.fires(count - 1);
             let target = &steps[fires];
             let mut condition = completion(index);
             condition.push(Literal {
                 signal: Signal::MachineInput(jump.input),
                 negated: !jump.value,
             });
-            condition.extend(precheck(target));
+            condition.extend(guards(target));
             let mut actions: Vec<Action> = target
                 .actions
                 .iter()

@@ -196,8 +196,12 @@ impl StepProgram {
         !self.halt.on_stop.is_empty() && self.signals.inputs.contains(&Signal::Stop)
     }
 
-    /// A human description of `signal` in this program: what STOP does,
-    /// which output a run-on timer keeps on; the rest as the signal says.
+    /// The number of the step at `index` among the steps (the sequence
+    /// awaits it next after a jump): STEP 1 past the end.
+    pub fn number_at(&self, index: usize) -> usize {
+        self.steps.get(index).map_or(1, |s| s.number)
+    }
+
     /// Whether `output` may stay on in a machine that has stopped: a
     /// cylinder's coil holds its piston, an alarm lamp tells the operator;
     /// a drive's output keeps it running, a machine output (a heater, a
@@ -212,6 +216,8 @@ impl StepProgram {
         self.halt.may_stay_on(output, by_default)
     }
 
+    /// A human description of `signal` in this program: what STOP does,
+    /// which output a run-on timer keeps on; the rest as the signal says.
     pub fn comment(&self, signal: Signal, table: &crate::table::StepTable) -> String {
         let run_on = |n: u16| self.run_ons.get(usize::from(n).wrapping_sub(1));
         match signal {

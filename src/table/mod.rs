@@ -106,6 +106,12 @@ impl Jump {
         .to_string()
     }
 
+    /// The index among a program's steps of the step this jump fires: its
+    /// target's, or for the end the closing step's (`closing`).
+    pub fn fires(&self, closing: usize) -> usize {
+        self.target.map_or(closing, |n| n - 1)
+    }
+
     /// `step 7` or `the end of the cycle`.
     pub fn target_text(&self) -> String {
         match self.target {

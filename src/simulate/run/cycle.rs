@@ -248,9 +248,7 @@ impl<'a> Drive<'a> {
         let Some((index, jump)) = self.run.jump_taken else {
             return;
         };
-        let target = jump
-            .target
-            .map_or(self.run.program.steps.len() - 1, |n| n - 1);
+        let target = jump.fires(self.run.program.steps.len() - 1);
         let after = self
             .fire_times
             .iter()

@@ -83,12 +83,12 @@ impl Run<'_> {
 
     /// Whether the machine itself (not a faulty input) gives what `wait` asks.
     pub(in crate::simulate) fn machine_gave(&self, wait: &crate::table::Wait) -> bool {
-        self.world
-            .machine
-            .get(&wait.input)
-            .copied()
-            .unwrap_or(false)
-            == wait.value
+        self.machine_gives(wait.input, wait.value)
+    }
+
+    /// Whether the machine itself (not a faulty input) gives `input` = `value`.
+    fn machine_gives(&self, input: Name, value: bool) -> bool {
+        self.world.machine.get(&input).copied().unwrap_or(false) == value
     }
 
     /// What the machine does when a step fires: check the waits of the step
@@ -105,7 +105,7 @@ impl Run<'_> {
         // run on without the part. (After a jump, the step done is the
         // jump's own, not the one before the step that fired.)
         if let Some(n) = jumped {
-            self.check_jump(n, waited_at);
+            self.check_jump(n, fired, waited_at);
         }
         if let Some(done) = waited_at
             .checked_sub(1)
@@ -191,7 +191,7 @@ impl Run<'_> {
     /// A jump fired: the machine must have given its input. One taken on
     /// a faulty input sends the machine down a path nobody asked for.
     /// `n` is the jump's place among its step's jumps.
-    fn check_jump(&mut self, n: usize, waited_at: usize) {
+    fn check_jump(&mut self, n: usize, fired: usize, waited_at: usize) {
         let Some(jump) = waited_at
             .checked_sub(1)
             .and_then(|i| self.table.steps.get(i))
@@ -200,15 +200,7 @@ impl Run<'_> {
         else {
             return;
         };
-        let fired = jump.target.map_or(self.program.steps.len() - 1, |t| t - 1);
-        let given = self
-            .world
-            .machine
-            .get(&jump.input)
-            .copied()
-            .unwrap_or(false)
-            == jump.value;
-        if !given {
+        if !self.machine_gives(jump.input, jump.value) {
             let number = self.program.steps[fired].number;
             self.problem(
                 ProblemKind::Premature,
