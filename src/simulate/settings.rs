@@ -75,10 +75,6 @@ pub struct SimSettings {
     /// The combinations a healthy run reached: reaching another is a
     /// [`ProblemKind::Collision`](super::ProblemKind::Collision).
     pub known_places: Option<std::sync::Arc<Places>>,
-    /// After the `cycles`, one more cycle per jump of the table (`J:7 if
-    /// I:reject`, in table order) in which the machine gives the jump's
-    /// input once its step has fired, so that every path is run.
-    pub take_jumps: bool,
 }
 
 /// Combinations of actuator places ([`Piston::place`](super::plant::Piston::place)), in table order.
@@ -100,7 +96,6 @@ impl Default for SimSettings {
             stop_at_hazard: false,
             record_places: false,
             known_places: None,
-            take_jumps: true,
         }
     }
 }

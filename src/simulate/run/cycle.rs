@@ -75,7 +75,7 @@ impl<'a> Drive<'a> {
             run,
             stage: Stage::Idle,
             cycle: 0,
-            cycles_wanted: settings.cycles.max(1) + jumps_to_take(table, settings).count(),
+            cycles_wanted: settings.cycles.max(1) + jumps_to_take(table).count(),
             most_fires: program.steps.len()
                 * (1 + 4 * table.steps.iter().map(|s| s.jumps.len()).sum::<usize>()),
             press_at,
@@ -144,7 +144,7 @@ impl<'a> Drive<'a> {
                 self.run.jump_taken = self
                     .cycle
                     .checked_sub(plain)
-                    .and_then(|n| jumps_to_take(self.run.table, &self.run.world.settings).nth(n));
+                    .and_then(|n| jumps_to_take(self.run.table).nth(n));
                 self.run.jump_given = false;
                 self.report.jump = self
                     .run
@@ -489,18 +489,14 @@ impl<'a> Drive<'a> {
     }
 }
 
-/// The jumps the run takes, one cycle each: the index of the jump's step
+/// The jumps the run takes after the plain `cycles`, one cycle each (in
+/// table order), so that every path is run: the index of the jump's step
 /// and the jump.
-fn jumps_to_take<'t>(
-    table: &'t StepTable,
-    settings: &SimSettings,
-) -> impl Iterator<Item = (usize, crate::table::Jump)> + 't {
-    let take = settings.take_jumps;
+fn jumps_to_take(table: &StepTable) -> impl Iterator<Item = (usize, crate::table::Jump)> + '_ {
     table
         .steps
         .iter()
         .enumerate()
-        .filter(move |_| take)
         .flat_map(|(index, step)| step.jumps.iter().map(move |j| (index, *j)))
 }
 
