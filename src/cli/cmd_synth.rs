@@ -33,9 +33,11 @@ pub(crate) struct SynthArgs {
     /// Generations of the GA (1 to 100,000).
     #[arg(long, default_value_t = 400, value_parser = parse_generations)]
     pub(crate) generations: usize,
-    /// The longest the synthesis may search (1 s to 1 h, e.g. 30s); past it,
+    /// The longest the synthesis may search (1 s to 1 h, e.g. 30s). Past it
+    /// (or on Ctrl-C) the comparison of equations keeps its best so far and
+    /// says what is proven; a search for the memories that has not ended is
     /// error E033.
-    #[arg(long, value_name = "TIME", default_value = "120s", value_parser = parse_time_limit)]
+    #[arg(long, value_name = "TIME", default_value = "5s", value_parser = parse_time_limit)]
     pub(crate) time_limit: std::time::Duration,
     /// How to print problems: human (default) or json (one object per line
     /// on stdout; the report then goes to stderr).
@@ -155,21 +157,13 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
         },
         time_limit: Some(args.time_limit),
     };
-    // A spinner on a terminal while the search runs (Ctrl-C stops it;
-    // nothing is written before the end).
-    let spinner = std::io::stderr().is_terminal().then(|| {
-        let spinner = indicatif::ProgressBar::new_spinner();
-        spinner.set_message(format!(
-            "searching (at most {} s; Ctrl-C stops)",
-            args.time_limit.as_secs()
-        ));
-        spinner.enable_steady_tick(std::time::Duration::from_millis(200));
-        spinner
+    // Ctrl-C ends the search; the comparison of equations keeps its best.
+    let _ = ctrlc::set_handler(synth::interrupt);
+    let progress = SearchProgress::new(args.time_limit);
+    let result = synth::synthesize_observed(&sequence, options, &|done, total| {
+        progress.update(done, total)
     });
-    let result = synth::synthesize_with(&sequence, options);
-    if let Some(spinner) = spinner {
-        spinner.finish_and_clear();
-    }
+    progress.finish();
     let synthesis = match result {
         Ok(s) => s,
         Err(err) => {
@@ -246,4 +240,51 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
         return EXIT_INTERNAL;
     }
     EXIT_OK
+}
+
+/// On a terminal: a spinner while the memories are searched, then a bar of
+/// the candidates compared for the smallest equations.
+struct SearchProgress {
+    bar: Option<indicatif::ProgressBar>,
+    counting: std::sync::Once,
+}
+
+impl SearchProgress {
+    fn new(limit: std::time::Duration) -> Self {
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let bar = indicatif::ProgressBar::new_spinner();
+            bar.set_message(format!(
+                "searching for the fewest memory operations (at most {} s; Ctrl-C stops)",
+                limit.as_secs()
+            ));
+            bar.enable_steady_tick(std::time::Duration::from_millis(200));
+            bar
+        });
+        SearchProgress {
+            bar,
+            counting: std::sync::Once::new(),
+        }
+    }
+
+    fn update(&self, done: usize, total: usize) {
+        let Some(bar) = &self.bar else {
+            return;
+        };
+        self.counting.call_once(|| {
+            bar.set_length(total as u64);
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{bar:30} {pos}/{len} candidates for the smallest equations, {elapsed} (Ctrl-C keeps the best so far)",
+                )
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+        });
+        bar.set_position(done as u64);
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
 }

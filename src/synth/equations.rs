@@ -6,8 +6,6 @@
 //! Size convention: every node of the tree counts — each leaf, each NOT and
 //! each binary operator. `NOT (b OR x)` has 4 nodes.
 
-use std::collections::HashSet;
-
 /// A logic expression.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub enum Expr {
@@ -124,15 +122,31 @@ impl Default for SearchLimits {
 /// reached first. Among equal sizes, NOT comes before AND, AND before OR,
 /// OR before XOR, and smaller left operands first.
 pub fn minimal(on: &[u32], off: &[u32], variables: usize, limits: SearchLimits) -> Option<Expr> {
-    let rows: Vec<u32> = on.iter().chain(off).copied().collect();
-    if rows.len() > 32 || on.is_empty() && off.is_empty() {
-        return None;
+    match smallest(on, off, variables, limits) {
+        Smallest::Found(expr) => Some(expr),
+        Smallest::Larger | Smallest::GaveUp => None,
     }
-    let full: u64 = if rows.len() == 64 {
-        u64::MAX
-    } else {
-        (1u64 << rows.len()) - 1
-    };
+}
+
+/// What the exact search of one column found.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Smallest {
+    /// The smallest tree.
+    Found(Expr),
+    /// Proven: every tree that fits has more than `max_nodes` nodes.
+    Larger,
+    /// The work limit or the synthesis's time ran out first: nothing proven.
+    GaveUp,
+}
+
+/// [`minimal`], saying why it found nothing.
+pub fn smallest(on: &[u32], off: &[u32], variables: usize, limits: SearchLimits) -> Smallest {
+    let rows: Vec<u32> = on.iter().chain(off).copied().collect();
+    if rows.len() > 63 || on.is_empty() && off.is_empty() {
+        return Smallest::GaveUp;
+    }
+    // At most 63 rows: a mask never has every bit set (MaskSet's empty mark).
+    let full: u64 = (1u64 << rows.len()) - 1;
     let target: u64 = (0..on.len()).fold(0, |m, i| m | (1 << i));
     let mut arena: Vec<Op> = Vec::new();
     let mut seen = Seen::new(rows.len());
@@ -165,7 +179,7 @@ pub fn minimal(on: &[u32], off: &[u32], variables: usize, limits: SearchLimits) 
     while found.is_none() {
         size += 1;
         if size > limits.max_nodes {
-            return None;
+            return Smallest::Larger;
         }
         let mut level = Vec::new();
         // NOT of size-1 trees.
@@ -189,7 +203,7 @@ pub fn minimal(on: &[u32], off: &[u32], variables: usize, limits: SearchLimits) 
                     let start = if left == right { li } else { 0 };
                     work += (levels[right].len() - start) as u64;
                     if work > limits.max_work || super::budget::exceeded() {
-                        return None;
+                        return Smallest::GaveUp;
                     }
                     for &(rm, rid) in &levels[right][start..] {
                         let (mask, node) = match op {
@@ -207,7 +221,10 @@ pub fn minimal(on: &[u32], off: &[u32], variables: usize, limits: SearchLimits) 
         }
         levels.push(level);
     }
-    found.map(|id| build(&arena, id))
+    match found {
+        Some(id) => Smallest::Found(build(&arena, id)),
+        None => Smallest::GaveUp,
+    }
 }
 
 fn build(arena: &[Op], id: u32) -> Expr {
@@ -221,18 +238,19 @@ fn build(arena: &[Op], id: u32) -> Expr {
 }
 
 /// The functions (masks over the care rows) already built: a bit set when
-/// the rows are few enough, a hash set otherwise.
+/// the rows are few enough, an open-addressing hash set otherwise (the
+/// standard set's hashing was most of the search's time).
 enum Seen {
     Bits(Vec<u64>),
-    Hash(HashSet<u64>),
+    Hash(MaskSet),
 }
 
 impl Seen {
     fn new(rows: usize) -> Self {
-        if rows <= 24 {
+        if rows <= 20 {
             Seen::Bits(vec![0; (1usize << rows).div_ceil(64)])
         } else {
-            Seen::Hash(HashSet::new())
+            Seen::Hash(MaskSet::new())
         }
     }
 
@@ -250,6 +268,110 @@ impl Seen {
     }
 }
 
+/// A set of masks of at most 63 rows, so `u64::MAX` never occurs and marks
+/// an empty slot; linear probing, Fibonacci hashing, at most half full.
+struct MaskSet {
+    slots: Vec<u64>,
+    len: usize,
+    shift: u32,
+}
+
+impl MaskSet {
+    const EMPTY: u64 = u64::MAX;
+
+    fn new() -> Self {
+        MaskSet {
+            slots: vec![Self::EMPTY; 1 << 12],
+            len: 0,
+            shift: 64 - 12,
+        }
+    }
+
+    fn insert(&mut self, mask: u64) -> bool {
+        if 2 * (self.len + 1) > self.slots.len() {
+            self.grow();
+        }
+        let last = self.slots.len() - 1;
+        let mut i = (mask.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> self.shift) as usize;
+        loop {
+            match self.slots[i] {
+                Self::EMPTY => {
+                    self.slots[i] = mask;
+                    self.len += 1;
+                    return true;
+                }
+                m if m == mask => return false,
+                _ => i = (i + 1) & last,
+            }
+        }
+    }
+
+    fn grow(&mut self) {
+        let doubled = vec![Self::EMPTY; 2 * self.slots.len()];
+        let old = std::mem::replace(&mut self.slots, doubled);
+        self.shift -= 1;
+        self.len = 0;
+        for mask in old.into_iter().filter(|m| *m != Self::EMPTY) {
+            self.insert(mask);
+        }
+    }
+}
+
+/// Every prime implicant of the function that is 0 on `off` and 1 or
+/// don't-care elsewhere, as (value bits, care mask), in the order of the
+/// tabular method (fewest don't-cares first, then by value and mask). Each
+/// cube is an implicant when both its halves are (one table of bits over
+/// every cube: 2^(2n) bits, 2 MB at 12 variables), and prime when no cube
+/// one don't-care larger is.
+fn prime_implicants(off: &[u32], variables: usize) -> Vec<(u32, u32)> {
+    let n = variables;
+    let all = (1u32 << n) - 1;
+    let index = |value: u32, free: u32| (value as usize) | ((free as usize) << n);
+    let mut implicant = vec![0u64; (1usize << (2 * n)).div_ceil(64)];
+    let get = |bits: &[u64], i: usize| (bits[i / 64] >> (i % 64)) & 1 == 1;
+    let mut is_off = vec![false; 1 << n];
+    for row in off {
+        is_off[*row as usize & all as usize] = true;
+    }
+    let mut primes_free: Vec<(u32, u32)> = Vec::new();
+    for free in 0..=all {
+        let fixed = all & !free;
+        let low = free & free.wrapping_neg();
+        // Every value over the fixed bits: the submasks of `fixed`.
+        let mut value = fixed;
+        loop {
+            let yes = if free == 0 {
+                !is_off[value as usize]
+            } else {
+                let half = free & !low;
+                get(&implicant, index(value, half)) && get(&implicant, index(value | low, half))
+            };
+            if yes {
+                let i = index(value, free);
+                implicant[i / 64] |= 1 << (i % 64);
+                primes_free.push((value, free));
+            }
+            if value == 0 {
+                break;
+            }
+            value = (value - 1) & fixed;
+        }
+    }
+    // Prime: no fixed bit can be freed.
+    let mut primes: Vec<(u32, u32)> = primes_free
+        .into_iter()
+        .filter(|&(value, free)| {
+            (0..n)
+                .map(|b| 1u32 << b)
+                .all(|b| free & b != 0 || !get(&implicant, index(value & !b, free | b)))
+        })
+        .map(|(value, free)| (value, all & !free))
+        .collect();
+    primes
+        .sort_unstable_by_key(|&(value, mask)| (std::cmp::Reverse(mask.count_ones()), value, mask));
+    primes
+}
+
 /// A product term: for each variable, `Some(value)` if it appears.
 type Term = Vec<Option<bool>>;
 
@@ -261,43 +383,9 @@ pub fn quine_mccluskey(on: &[u32], off: &[u32], variables: usize) -> Option<Expr
     if variables == 0 || variables > 12 || on.is_empty() {
         return None;
     }
-    let rows = 1u32 << variables;
-    let off_set: HashSet<u32> = off.iter().copied().collect();
-    // Implicants as (value bits, care mask).
-    let mut current: Vec<(u32, u32)> = (0..rows)
-        .filter(|r| !off_set.contains(r))
-        .map(|r| (r, rows - 1))
-        .collect();
-    let mut primes: Vec<(u32, u32)> = Vec::new();
-    while !current.is_empty() {
-        // Two implicants combine when they share a mask and differ in one
-        // cared-for bit: look each one's partner up instead of comparing pairs.
-        let present: HashSet<(u32, u32)> = current.iter().copied().collect();
-        let mut next: HashSet<(u32, u32)> = HashSet::new();
-        let mut combined: HashSet<(u32, u32)> = HashSet::new();
-        for &(value, mask) in &current {
-            for bit in 0..variables {
-                let b = 1u32 << bit;
-                if mask & b == 0 || value & b != 0 {
-                    continue;
-                }
-                if present.contains(&(value | b, mask)) {
-                    next.insert((value, mask & !b));
-                    combined.insert((value, mask));
-                    combined.insert((value | b, mask));
-                }
-            }
-        }
-        for imp in &current {
-            if !combined.contains(imp) {
-                primes.push(*imp);
-            }
-        }
-        let mut next: Vec<(u32, u32)> = next.into_iter().collect();
-        next.sort_unstable();
-        current = next;
-    }
+    let primes = prime_implicants(off, variables);
     // Only primes that cover some ON row matter.
+    let mut primes = primes;
     let covers = |p: &(u32, u32), r: u32| (r & p.1) == (p.0 & p.1);
     primes.retain(|p| on.iter().any(|r| covers(p, *r)));
     primes.sort_unstable_by_key(|p| {

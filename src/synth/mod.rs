@@ -11,6 +11,7 @@
 //! the proven minimum.
 
 mod budget;
+pub mod choose;
 pub mod equations;
 pub mod ga;
 pub mod gp;
@@ -20,6 +21,8 @@ pub mod sequence;
 pub mod verify;
 
 use std::time::Instant;
+
+pub use budget::interrupt;
 
 use equations::{Expr, SearchLimits};
 use sequence::{Clash, Operation, Sequence};
@@ -149,9 +152,10 @@ pub struct Options {
     pub time_limit: Option<std::time::Duration>,
 }
 
-/// The default time limit: long enough for the textbook sequences (the
-/// slowest of them, 10 cylinders and 20 actions, takes about 40 s).
-pub const DEFAULT_TIME_LIMIT: std::time::Duration = std::time::Duration::from_secs(120);
+/// The default time limit: a few seconds, in which the textbook sequences
+/// are answered in full (10 cylinders and 20 actions included); past it the
+/// comparison of equations keeps its best so far.
+pub const DEFAULT_TIME_LIMIT: std::time::Duration = std::time::Duration::from_secs(5);
 
 impl Default for Options {
     fn default() -> Self {
@@ -181,10 +185,8 @@ pub struct Synthesis {
     pub modified: Sequence,
     /// Minimal numbers of inserted operations and memories (proven).
     pub insertions: usize,
-    /// Minimal modified sequences examined for the smallest equations.
-    pub candidates: usize,
-    /// True when there were more minimal sequences than were examined.
-    pub candidates_truncated: bool,
+    /// How the exact route chose among the minimal sequences.
+    pub comparison: Option<Comparison>,
     pub table: TruthTable,
     pub equations: Vec<Equation>,
     /// Time of the exact route: its sequence search (not run by `--method
@@ -221,6 +223,45 @@ impl Synthesis {
             .iter()
             .map(|e| e.qm.as_ref().map(Expr::nodes))
             .sum()
+    }
+}
+
+/// How the smallest equations were chosen among the minimal modified
+/// sequences, and what is proven about them.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Comparison {
+    /// Minimal placements of the memory operations found.
+    pub placements: usize,
+    /// The search stopped listing placements at its limit: the comparison
+    /// and its bound cover those listed.
+    pub placements_truncated: bool,
+    /// Candidates: every polarity of the memories of every placement.
+    pub candidates: usize,
+    /// Candidates searched or ruled out by their bound.
+    pub settled: usize,
+    /// No candidate's equations have fewer nodes in all.
+    pub lower_bound: usize,
+    /// Why the comparison stopped before settling every candidate.
+    pub stopped: Option<Stopped>,
+}
+
+/// What ended a search early.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stopped {
+    TimeLimit,
+    Interrupted,
+}
+
+impl Stopped {
+    /// The budget's reason, if it has passed.
+    fn now() -> Option<Stopped> {
+        if budget::interrupted() {
+            Some(Stopped::Interrupted)
+        } else if budget::passed() {
+            Some(Stopped::TimeLimit)
+        } else {
+            None
+        }
     }
 }
 
@@ -282,25 +323,6 @@ fn equations_of(
     Some((table, equations))
 }
 
-/// Most minimal sequences (with their polarities) compared for the smallest
-/// equations.
-const MAX_COMPARED: usize = 1500;
-
-/// The sequence with every combination of memories inverted (2^memories).
-fn polarities(sequence: &Sequence) -> Vec<Sequence> {
-    (0..1u32 << sequence.memories)
-        .map(|flip| {
-            let mut s = sequence.clone();
-            for a in &mut s.actions {
-                if a.var >= s.actuators && (flip >> (a.var - s.actuators)) & 1 == 1 {
-                    a.value = !a.value;
-                }
-            }
-            s
-        })
-        .collect()
-}
-
 /// The letter sequence of a checked step table: C1 becomes A, C2 B, and so
 /// on. Refused, with the reason, for parallel branches or middle positions.
 pub fn from_table(table: &crate::table::StepTable) -> Result<Sequence, SynthError> {
@@ -348,25 +370,48 @@ pub fn synthesize(original: &Sequence) -> Result<Synthesis, SynthError> {
 /// Synthesises a controller for `original` (a sequence without memories),
 /// within `options.time_limit`.
 pub fn synthesize_with(original: &Sequence, options: Options) -> Result<Synthesis, SynthError> {
-    let started = Instant::now();
-    let budget = budget::Budget::start(options.time_limit);
-    let result = synthesize_within(original, options).map(|mut s| {
-        s.total_millis = started.elapsed().as_millis();
-        s
-    });
-    drop(budget);
-    match options.time_limit {
-        Some(limit) if started.elapsed() >= limit => Err(SynthError::OutOfTime(format!(
-            "the search ran past its time limit of {} s ({} actions of {} actuators; the time grows steeply with the length and with repeated states): raise --time-limit, or shorten the sequence",
-            limit.as_secs_f64(),
-            original.actions.len(),
-            original.actuators
-        ))),
-        _ => result,
-    }
+    synthesize_observed(original, options, &|_, _| {})
 }
 
-fn synthesize_within(original: &Sequence, options: Options) -> Result<Synthesis, SynthError> {
+/// [`synthesize_with`], telling `progress` how many of the candidates for
+/// the smallest equations are settled (from any thread). Past the time limit
+/// (or after [`interrupt`]) the search for the memories ends in
+/// [`SynthError::OutOfTime`]; the comparison of equations keeps its best so
+/// far and says what is proven.
+pub fn synthesize_observed(
+    original: &Sequence,
+    options: Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Synthesis, SynthError> {
+    let started = Instant::now();
+    let _budget = budget::Budget::start(options.time_limit);
+    let mut synthesis = synthesize_within(original, options, progress)?;
+    synthesis.total_millis = started.elapsed().as_millis();
+    Ok(synthesis)
+}
+
+/// The error of a search that found nothing before the time limit or Ctrl-C.
+fn out_of_time(original: &Sequence, options: Options) -> SynthError {
+    let why = match (Stopped::now(), options.time_limit) {
+        (Some(Stopped::Interrupted), _) => "the search was interrupted".to_string(),
+        (_, Some(limit)) => format!(
+            "the search ran past its time limit of {} s",
+            limit.as_secs_f64()
+        ),
+        (_, None) => "the search stopped".to_string(),
+    };
+    SynthError::OutOfTime(format!(
+        "{why} before it found the fewest memory operations ({} actions of {} actuators; the time grows steeply with the length and with repeated states): raise --time-limit, or shorten the sequence",
+        original.actions.len(),
+        original.actuators
+    ))
+}
+
+fn synthesize_within(
+    original: &Sequence,
+    options: Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Synthesis, SynthError> {
     if original.memories > 0 {
         return Err(SynthError::Unsuitable(
             "give the original sequence without memories (W, X, Y, Z): they are what synthesis finds".to_string(),
@@ -402,7 +447,7 @@ fn synthesize_within(original: &Sequence, options: Options) -> Result<Synthesis,
     });
     let ga_millis = ga_start.elapsed().as_millis();
     let exact_start = Instant::now();
-    let (modified, insertions, candidates, truncated) = if options.method == Method::Ga {
+    let (modified, insertions, comparison, equations) = if options.method == Method::Ga {
         let Some(s) = ga_summary.as_ref().and_then(|g| g.sequence.clone()) else {
             return Err(SynthError::NotFound(format!(
                 "the GA found no valid sequence in {} generations (try more, another --seed, or --method exact)",
@@ -410,14 +455,36 @@ fn synthesize_within(original: &Sequence, options: Options) -> Result<Synthesis,
             )));
         };
         let insertions = s.actions.len() - original.actions.len();
-        (s, insertions, 1, false)
+        let (_, equations) = equations_of(&s, false, usize::MAX).ok_or_else(|| {
+            SynthError::NotFound("the equation search reached its limits".to_string())
+        })?;
+        let trees = equations.into_iter().map(|e| e.expr).collect();
+        (s, insertions, None, trees)
     } else {
-        let (s, insertions, candidates, truncated) = exact_sequence(original)?;
-        (s, insertions, candidates, truncated)
+        let (choice, insertions, comparison) = exact_sequence(original, options, progress)?;
+        (
+            choice.sequence,
+            insertions,
+            Some(comparison),
+            choice.equations,
+        )
     };
-    let (table, mut equations) = equations_of(&modified, true, usize::MAX).ok_or_else(|| {
-        SynthError::NotFound("the equation search reached its limits".to_string())
-    })?;
+    let table = TruthTable::of(&modified);
+    let mut equations: Vec<Equation> = table
+        .columns
+        .iter()
+        .enumerate()
+        .zip(equations)
+        .map(|((c, action), expr)| {
+            let (on, off) = table.on_off(c);
+            Equation {
+                action: *action,
+                expr,
+                qm: equations::quine_mccluskey(&on, &off, modified.variables()),
+                gp: None,
+            }
+        })
+        .collect();
     let millis = exact_start.elapsed().as_millis();
     let mut ga_gp_millis = None;
     if options.method != Method::Exact {
@@ -437,8 +504,7 @@ fn synthesize_within(original: &Sequence, options: Options) -> Result<Synthesis,
         clashes,
         modified,
         insertions,
-        candidates,
-        candidates_truncated: truncated,
+        comparison,
         table,
         equations,
         millis,
@@ -453,58 +519,43 @@ fn synthesize_within(original: &Sequence, options: Options) -> Result<Synthesis,
 }
 
 /// The exhaustive route: the minimal modified sequence whose equations are
-/// smallest; with the number of insertions and of candidates compared.
-fn exact_sequence(original: &Sequence) -> Result<(Sequence, usize, usize, bool), SynthError> {
-    let minimal = search::minimal(original, search::Limits::default()).ok_or_else(|| {
-        SynthError::NotFound(
-            "no valid sequence with up to 4 memories and 12 inserted operations".to_string(),
-        )
-    })?;
-    // Among the minimal sequences, the one with the smallest equations: sum
-    // of nodes, then the largest equation, then the text (for determinism).
-    type Key = (usize, usize, usize, String);
-    let mut best: Option<(Key, Sequence)> = None;
-    // The search sets every memory first; a memory that is reset first is
-    // the same sequence with that memory inverted, but its equations differ
-    // in size (x becomes NOT x): try every polarity.
-    let mut variants: Vec<Sequence> = minimal.solutions.iter().flat_map(polarities).collect();
-    // Long sequences have thousands of minimal placements: compare a bounded
-    // number for the smallest equations (the report says when it was cut).
-    let truncated = minimal.truncated || variants.len() > MAX_COMPARED;
-    variants.truncate(MAX_COMPARED);
-    for candidate in &variants {
-        // Only a candidate at most as large as the best so far can win.
-        let bound = best.as_ref().map_or(usize::MAX, |(k, _)| k.0);
-        let Some((_, eqs)) = equations_of(candidate, false, bound) else {
-            continue;
-        };
-        // Smallest sum, then smallest largest equation, then memories set
-        // first where possible (the usual reading), then the text.
-        let resets_first = (candidate.actuators..candidate.variables())
-            .filter(|v| {
-                candidate
-                    .actions
-                    .iter()
-                    .find(|a| a.var == *v)
-                    .is_some_and(|a| !a.value)
-            })
-            .count();
-        let key = (
-            eqs.iter().map(|e| e.expr.nodes()).sum(),
-            eqs.iter().map(|e| e.expr.nodes()).max().unwrap_or(0),
-            resets_first,
-            candidate.text(),
-        );
-        if best.as_ref().is_none_or(|(k, _)| key < *k) {
-            best = Some((key, candidate.clone()));
+/// smallest, with the number of insertions and how it was chosen.
+fn exact_sequence(
+    original: &Sequence,
+    options: Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(choose::Choice, usize, Comparison), SynthError> {
+    let Some(minimal) = search::minimal(original, search::Limits::default()) else {
+        return Err(if Stopped::now().is_some() {
+            out_of_time(original, options)
+        } else {
+            SynthError::NotFound(
+                "no valid sequence with up to 4 memories and 12 inserted operations".to_string(),
+            )
+        });
+    };
+    let choice = choose::choose(&minimal.solutions, progress).ok_or_else(|| {
+        if Stopped::now().is_some() {
+            out_of_time(original, options)
+        } else {
+            SynthError::NotFound(
+                "the equation search reached its limits on every minimal sequence".to_string(),
+            )
         }
-    }
-    let (_, modified) = best.ok_or_else(|| {
-        SynthError::NotFound(
-            "the equation search reached its limits on every minimal sequence".to_string(),
-        )
     })?;
-    Ok((modified, minimal.insertions, variants.len(), truncated))
+    let comparison = Comparison {
+        placements: minimal.solutions.len(),
+        placements_truncated: minimal.truncated,
+        candidates: choice.candidates,
+        settled: choice.settled,
+        lower_bound: choice.lower_bound,
+        stopped: if choice.settled < choice.candidates {
+            Stopped::now()
+        } else {
+            None
+        },
+    };
+    Ok((choice, minimal.insertions, comparison))
 }
 
 #[cfg(test)]

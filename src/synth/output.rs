@@ -6,7 +6,7 @@ use rust_xlsxwriter::{DocProperties, ExcelDateTime, Format, Workbook, XlsxError}
 use serde_json::json;
 
 use super::verify::Verification;
-use super::{Equation, Method, Synthesis};
+use super::{Comparison, Equation, Method, Stopped, Synthesis};
 
 /// The size convention, stated next to every number.
 pub const CONVENTION: &str =
@@ -46,12 +46,10 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
         ));
     } else {
         out.push_str(&format!(
-            "modified sequence: {}\n  {} inserted operation(s), {} memory(ies): the proven minimum (exhaustive search; {} minimal sequence(s) compared{} for the smallest equations)\n",
+            "modified sequence: {}\n  {} inserted operation(s), {} memory(ies): the proven minimum (exhaustive search)\n",
             seq.text(),
             s.insertions,
             seq.memories,
-            s.candidates,
-            if s.candidates_truncated { ", list cut at the search limit" } else { "" }
         ));
     }
     if let Some(ga) = &s.ga {
@@ -132,6 +130,9 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
             .map(|n| format!("{n} nodes"))
             .unwrap_or_else(|| "not computed".to_string())
     ));
+    if let Some(c) = &s.comparison {
+        out.push_str(&format!("  {}\n", comparison_text(c, s.total_nodes())));
+    }
     out.push_str(&format!(
         "\nsimulation: {} ({} actions in {:.2} s of simulated time{})\n",
         if v.passed { "passed" } else { "FAILED" },
@@ -177,6 +178,52 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
     out
 }
 
+/// What is proven about the total: the smallest of every candidate, or the
+/// best found with the bound no candidate beats.
+pub fn comparison_text(c: &Comparison, nodes: usize) -> String {
+    let listed = if c.placements_truncated {
+        format!(", the first {} the search listed", thousands(c.placements))
+    } else {
+        String::new()
+    };
+    let candidates = format!(
+        "{} candidates ({} placement(s) of the memory operations{listed}, each memory either way round)",
+        thousands(c.candidates),
+        thousands(c.placements)
+    );
+    let why = match c.stopped {
+        Some(Stopped::Interrupted) => "when Ctrl-C stopped the search",
+        _ => "before the time limit (--time-limit)",
+    };
+    if c.settled == c.candidates {
+        format!("the smallest total of all {candidates}")
+    } else if nodes <= c.lower_bound {
+        format!(
+            "the smallest total possible: {} of {candidates} compared {why}, and none of the others can have fewer nodes",
+            thousands(c.settled)
+        )
+    } else {
+        format!(
+            "best found: {} of {candidates} compared {why}; no candidate has fewer than {} nodes",
+            thousands(c.settled),
+            c.lower_bound
+        )
+    }
+}
+
+/// 1,760.
+fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, d) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(d);
+    }
+    out
+}
+
 /// The report as JSON.
 pub fn report_json(s: &Synthesis, v: &Verification, seed: u64) -> String {
     let seq = &s.modified;
@@ -217,6 +264,18 @@ pub fn report_json(s: &Synthesis, v: &Verification, seed: u64) -> String {
         })).collect::<Vec<_>>(),
         "modified_sequence": seq.actions.iter().map(|a| seq.token(*a)).collect::<Vec<_>>(),
         "inserted_operations": s.insertions,
+        "comparison": s.comparison.as_ref().map(|c| json!({
+            "placements": c.placements,
+            "placements_truncated": c.placements_truncated,
+            "candidates": c.candidates,
+            "compared": c.settled,
+            "nodes_lower_bound": c.lower_bound,
+            "nodes_proven_smallest": s.total_nodes() <= c.lower_bound,
+            "stopped": c.stopped.map(|why| match why {
+                Stopped::TimeLimit => "time limit",
+                Stopped::Interrupted => "interrupted",
+            }),
+        })),
         "memories": memories,
         "truth_table": {"variables": variables, "columns": columns, "rows": rows},
         "equations": equations,
@@ -314,4 +373,45 @@ pub fn workbook(s: &Synthesis, v: &Verification) -> Result<Vec<u8>, XlsxError> {
         sheet.write_string(row, col, seq.token(seq.actions[k]))?;
     }
     workbook.save_to_buffer()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn comparison(settled: usize, lower_bound: usize, stopped: Option<Stopped>) -> Comparison {
+        Comparison {
+            placements: 110,
+            placements_truncated: false,
+            candidates: 1760,
+            settled,
+            lower_bound,
+            stopped,
+        }
+    }
+
+    /// The report claims the smallest total only when it is proven, and
+    /// otherwise says how far the comparison got and the bound.
+    #[test]
+    fn the_total_is_called_smallest_only_when_proven() {
+        let all = comparison_text(&comparison(1760, 95, None), 95);
+        assert!(all.starts_with("the smallest total of all 1,760 candidates (110 placement(s)"));
+        let cut = comparison_text(&comparison(367, 88, Some(Stopped::TimeLimit)), 95);
+        assert_eq!(
+            cut,
+            "best found: 367 of 1,760 candidates (110 placement(s) of the memory operations, each memory either way round) compared before the time limit (--time-limit); no candidate has fewer than 88 nodes"
+        );
+        let stopped = comparison_text(&comparison(5, 88, Some(Stopped::Interrupted)), 95);
+        assert!(
+            stopped.contains("when Ctrl-C stopped the search"),
+            "{stopped}"
+        );
+        let bounded = comparison_text(&comparison(900, 95, Some(Stopped::TimeLimit)), 95);
+        assert!(
+            bounded.starts_with("the smallest total possible: 900 of 1,760"),
+            "{bounded}"
+        );
+        assert_eq!(thousands(47232), "47,232");
+        assert_eq!(thousands(999), "999");
+    }
 }

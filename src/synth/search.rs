@@ -42,6 +42,8 @@ struct Dfs<'a> {
     memories: usize,
     budget: usize,
     initial: u32,
+    /// Operations the gaps after each gap must hold at least.
+    needed_after: Vec<usize>,
     seen: Vec<u64>,
     actions: Vec<Operation>,
     solutions: Vec<Sequence>,
@@ -73,7 +75,7 @@ impl Dfs<'_> {
             .filter(|j| (state >> (self.actuators + j)) & 1 == 1)
             .count();
         let left = self.budget - inserted;
-        if odd > left || (left - odd) % 2 == 1 {
+        if odd > left || (left - odd) % 2 == 1 || self.needed_after[pos] > left {
             return;
         }
         if pos == self.original.len() {
@@ -131,8 +133,10 @@ pub fn minimal(original: &Sequence, limits: Limits) -> Option<Minimal> {
         return None;
     }
     let initial = original.initial_state();
-    for budget in (0..=limits.max_insertions).step_by(2) {
-        for memories in 0..=limits.max_memories.min(budget / 2) {
+    let (fewest_insertions, fewest_memories) = lower_bounds(original);
+    let needed_after = needed_after(original);
+    for budget in (fewest_insertions..=limits.max_insertions).step_by(2) {
+        for memories in fewest_memories..=limits.max_memories.min(budget / 2) {
             if budget > 0 && memories == 0 {
                 continue;
             }
@@ -142,6 +146,7 @@ pub fn minimal(original: &Sequence, limits: Limits) -> Option<Minimal> {
                 memories,
                 budget,
                 initial,
+                needed_after: needed_after.clone(),
                 seen: vec![0; (1usize << (original.actuators + memories)).div_ceil(64)],
                 actions: Vec::new(),
                 solutions: Vec::new(),
@@ -152,7 +157,9 @@ pub fn minimal(original: &Sequence, limits: Limits) -> Option<Minimal> {
             // (or not) at a smaller `memories`: keep exactly this count.
             dfs.solutions.retain(|s| s.memories == memories);
             if !dfs.solutions.is_empty() {
-                let truncated = dfs.solutions.len() >= limits.max_solutions;
+                // Cut by the list's limit or by the time limit.
+                let truncated =
+                    dfs.solutions.len() >= limits.max_solutions || super::budget::passed();
                 return Some(Minimal {
                     insertions: budget,
                     memories,
@@ -163,6 +170,95 @@ pub fn minimal(original: &Sequence, limits: Limits) -> Option<Minimal> {
         }
     }
     None
+}
+
+/// The stretches of the cycle in which a memory must change, as (first
+/// gap, last gap), gap g lying before action g (gap n = gap 0, the closing
+/// one), unrolled: last < first + n; and the fewest memories.
+fn stretches(original: &Sequence) -> (Vec<(usize, usize)>, usize) {
+    let states = original.pre_states();
+    let n = states.len();
+    let mut stretches: Vec<(usize, usize)> = Vec::new();
+    let mut memories = 0;
+    for (p, state) in states.iter().enumerate() {
+        let visits: Vec<usize> = (0..n).filter(|q| states[*q] == *state).collect();
+        if visits[0] != p || visits.len() < 2 {
+            continue;
+        }
+        memories = memories.max(visits.len().next_power_of_two().trailing_zeros() as usize);
+        for (i, &from) in visits.iter().enumerate() {
+            let to = visits.get(i + 1).copied().unwrap_or(visits[0] + n);
+            stretches.push((from + 1, to));
+        }
+    }
+    (stretches, memories)
+}
+
+/// For each gap g, the fewest operations the gaps after it must hold: the
+/// stretches that lie wholly after g, cut greedily by their ends.
+fn needed_after(original: &Sequence) -> Vec<usize> {
+    let n = original.actions.len();
+    let (mut stretches, _) = stretches(original);
+    stretches.retain(|s| s.1 <= n);
+    stretches.sort_by_key(|s| s.1);
+    (0..=n)
+        .map(|g| {
+            let mut cut: Option<usize> = None;
+            let mut count = 0;
+            for &(a, b) in stretches.iter().filter(|s| s.0 > g) {
+                if cut.is_none_or(|c| c < a) {
+                    cut = Some(b);
+                    count += 1;
+                }
+            }
+            count
+        })
+        .collect()
+}
+
+/// Fewest inserted operations and memories any valid modified sequence
+/// needs, so that the search does not prove smaller counts impossible one by
+/// one. A state met k times before actions needs k memory codes (at least
+/// ⌈log2 k⌉ memories), and between two of its visits in a row a memory must
+/// change: the fewest gaps that cut every such stretch of the cycle, rounded
+/// up to even (every memory ends where it started).
+pub fn lower_bounds(original: &Sequence) -> (usize, usize) {
+    let n = original.actions.len();
+    let (stretches, memories) = stretches(original);
+    if stretches.is_empty() {
+        return (0, 0);
+    }
+    // Fewest points cutting every stretch of a circle: some cut lies in the
+    // first stretch, so try each of its gaps first and cover the rest
+    // greedily by their ends, which is optimal on a line.
+    let (first, last) = stretches[0];
+    let cuts = (first..=last)
+        .map(|start| {
+            // Unroll the circle from just after `start`.
+            let mut rest: Vec<(usize, usize)> = stretches
+                .iter()
+                .filter_map(|&(a, b)| {
+                    let shift = |g: usize| (g + 2 * n - start - 1) % n;
+                    let (a, b) = (shift(a), shift(a) + (b - a));
+                    // Contains `start` (at n - 1 once unrolled): cut already.
+                    (b < n - 1).then_some((a, b))
+                })
+                .collect();
+            rest.sort_by_key(|r| r.1);
+            let mut count = 1;
+            let mut cut: Option<usize> = None;
+            for (a, b) in rest {
+                if cut.is_none_or(|c| c < a) {
+                    cut = Some(b);
+                    count += 1;
+                }
+            }
+            count
+        })
+        .min()
+        .unwrap_or(0);
+    let insertions = cuts.max(2 * memories);
+    (insertions + insertions % 2, memories)
 }
 
 #[cfg(test)]
@@ -176,6 +272,32 @@ mod tests {
         assert_eq!((m.insertions, m.memories), (2, 1));
         assert!(m.solutions.iter().all(Sequence::is_valid));
         assert!(m.solutions.iter().any(|s| s.text() == "A1 X1 A0 B1 X0 B0"));
+    }
+
+    #[test]
+    fn the_lower_bounds_never_exceed_the_minimum() {
+        for (text, insertions, memories) in [
+            ("A1 A0 B1 B0", 2, 1),
+            ("A0 A1 C1 C0 B1 B0", 4, 2),
+            ("A1 A0 A1 A0 A1 A0 B1 B0 C1 C0", 8, 3),
+            ("A1 A0 B1 B0 C1 C0 D1 D0 E1 E0 F1 F0", 6, 3),
+            ("A1 B1 A0 B0", 0, 0),
+            ("B1 D1 B0 C1 B1 D0 B0 C0", 0, 0),
+        ] {
+            let original = parse(text).unwrap();
+            let (fewest_insertions, fewest_memories) = lower_bounds(&original);
+            assert!(
+                fewest_insertions <= insertions,
+                "{text}: {fewest_insertions}"
+            );
+            assert!(fewest_memories <= memories, "{text}: {fewest_memories}");
+            let m = minimal(&original, Limits::default()).unwrap();
+            assert_eq!((m.insertions, m.memories), (insertions, memories), "{text}");
+        }
+        // Six visits of the home state need six cuts and three memories: the
+        // bound is the answer, so nothing below it is searched.
+        let six = parse("A1 A0 B1 B0 C1 C0 D1 D0 E1 E0 F1 F0").unwrap();
+        assert_eq!(lower_bounds(&six), (6, 3));
     }
 
     #[test]

@@ -82,14 +82,14 @@ mod table5 {
             let start = std::time::Instant::now();
             let s = synthesize(&sequence::parse(text).unwrap()).unwrap();
             eprintln!(
-                "{text}: {} | +{} ops, {} memories, {} nodes (largest {}), qm {:?}, {} candidates, {} ms",
+                "{text}: {} | +{} ops, {} memories, {} nodes (largest {}), qm {:?}, {:?}, {} ms",
                 s.modified.text(),
                 s.insertions,
                 s.modified.memories,
                 s.total_nodes(),
                 s.largest(),
                 s.qm_nodes(),
-                s.candidates,
+                s.comparison,
                 start.elapsed().as_millis()
             );
             assert!(s.modified.is_valid(), "{text}");

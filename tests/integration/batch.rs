@@ -197,11 +197,7 @@ fn ctrl_c_leaves_only_complete_outputs_and_a_summary() {
     {
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-    std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    let output = child.wait_with_output().unwrap();
+    let output = crate::helpers::interrupt(child);
     let stdout = String::from_utf8_lossy(&output.stdout);
     let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
     let rows = summary.lines().count() - 1;

@@ -270,3 +270,14 @@ impl Build {
         steptable::faults::analyse(&self.table, &program, &self.settings.simulation, 1)
     }
 }
+
+/// Ctrl-C to a running steptable, as a terminal sends it; its output when it
+/// has ended.
+#[cfg(unix)]
+pub fn interrupt(child: std::process::Child) -> std::process::Output {
+    std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    child.wait_with_output().unwrap()
+}
