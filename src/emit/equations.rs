@@ -13,26 +13,19 @@ use crate::synth::equations::Expr;
 use crate::synth::output::{CONVENTION, equation_line};
 use crate::synth::{Equation, Synthesis};
 
-/// IEC identifiers of the program: sensors `a_home`/`a_end`, state `a`,
-/// coils `ya_p`/`ya_m`, memories `x`, … (IEC is case-insensitive, so coils
-/// cannot be called `A1`).
+/// IEC identifiers of the program, as the sequence names them: sensors
+/// `a_home`/`a_end`, state `a`, coils `ya_p`/`ya_m`, memories `x`, …
 struct Names<'a> {
     s: &'a Synthesis,
 }
 
 impl Names<'_> {
     fn state(&self, v: usize) -> String {
-        self.s.modified.signal_name(v).to_string()
+        self.s.modified.signal_name(v)
     }
 
     fn output(&self, e: &Equation) -> String {
-        let v = e.action.var;
-        let value = e.action.value;
-        if self.s.modified.is_memory(v) {
-            format!("{}_{}", self.state(v), if value { "set" } else { "reset" })
-        } else {
-            format!("y{}_{}", self.state(v), if value { "p" } else { "m" })
-        }
+        self.s.modified.output_name(e.action)
     }
 }
 
@@ -135,9 +128,13 @@ fn model(s: &Synthesis, title: &str, program: &'static str, temporaries: bool) -
     let bit = |n: usize| format!("{}.{}", n / 8, n % 8);
     let mut inputs = Vec::new();
     for v in 0..seq.actuators {
-        for (end, what) in [("home", "retracted"), ("end", "extended")] {
+        for (name, what) in seq
+            .input_names(v)
+            .into_iter()
+            .zip(["retracted", "extended"])
+        {
             inputs.push(Located {
-                name: format!("{}_{end}", names.state(v)),
+                name,
                 address: format!("%IX{}", bit(inputs.len())),
                 comment: format!("{} {what}", seq.var_name(v)),
             });

@@ -302,13 +302,13 @@ pub fn choose(placements: &[Sequence], progress: &(dyn Fn(usize, usize) + Sync))
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::synth::sequence::parse;
+    use crate::synth::sequence::{parse, parse_with_memories};
 
     #[test]
     fn a_column_bound_counts_the_variables_every_tree_must_read() {
         // A1 X1 A0 B1 X0 B0: A1 = NOT (b OR x) must read b and x (3 nodes
         // at least, 4 in fact); A0 = x reads one.
-        let s = parse("A1 X1 A0 B1 X0 B0").unwrap();
+        let s = parse_with_memories("A1 X1 A0 B1 X0 B0").unwrap();
         let bounds = column_bounds(&s);
         let table = TruthTable::of(&s);
         for (c, bound) in bounds.iter().enumerate() {

@@ -81,12 +81,7 @@ fn decode(original: &Sequence, genes: &[Gene], slots: usize) -> Sequence {
             }
         }
     }
-    Sequence {
-        actuators: original.actuators,
-        memories: used.len(),
-        memory_names: MEMORIES[..used.len().min(MEMORIES.len())].to_vec(),
-        actions,
-    }
+    original.with_memories(used.len(), actions)
 }
 
 /// The paper's fitness of a decoded sequence (lower is better).
@@ -277,7 +272,7 @@ mod tests {
 
     #[test]
     fn fitness_follows_the_paper() {
-        let valid = parse("A1 X1 A0 B1 X0 B0").unwrap();
+        let valid = crate::synth::sequence::parse_with_memories("A1 X1 A0 B1 X0 B0").unwrap();
         let f = fitness(&valid, 12);
         assert!((f - 0.5).abs() < 1e-9, "{f}");
         let clash = parse("A1 A0 B1 B0").unwrap();

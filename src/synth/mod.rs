@@ -323,8 +323,9 @@ fn equations_of(
     Some((table, equations))
 }
 
-/// The letter sequence of a checked step table: C1 becomes A, C2 B, and so
-/// on. Refused, with the reason, for parallel branches or middle positions.
+/// The sequence of a checked step table, its actuators named as the table
+/// names them (C1, C2, …). Refused, with the reason, for parallel branches or
+/// middle positions.
 pub fn from_table(table: &crate::table::StepTable) -> Result<Sequence, SynthError> {
     if let Some(step) = table.steps.iter().find(|s| s.moves.len() > 1) {
         return Err(SynthError::Unsuitable(format!(

@@ -77,6 +77,10 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
             )),
         }
     }
+    out.push_str("\nnames (as written; the programs' signals):\n");
+    for line in seq.name_lines() {
+        out.push_str(&format!("  {line}\n"));
+    }
     out.push_str("\ntruth table (rows: the state before each action, in sequence order; 1, 0, x = don't care):\n");
     let vars: Vec<String> = (0..seq.variables())
         .map(|v| seq.signal_name(v).to_string())

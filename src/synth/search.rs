@@ -37,6 +37,7 @@ pub struct Minimal {
 }
 
 struct Dfs<'a> {
+    sequence: &'a Sequence,
     original: &'a [Operation],
     actuators: usize,
     memories: usize,
@@ -80,12 +81,8 @@ impl Dfs<'_> {
         }
         if pos == self.original.len() {
             if inserted == self.budget && state == self.initial {
-                self.solutions.push(Sequence {
-                    actuators: self.actuators,
-                    memories: used,
-                    memory_names: MEMORIES[..used].to_vec(),
-                    actions: self.actions.clone(),
-                });
+                self.solutions
+                    .push(self.sequence.with_memories(used, self.actions.clone()));
             }
         } else {
             self.place(pos, state, inserted, used);
@@ -141,6 +138,7 @@ pub fn minimal(original: &Sequence, limits: Limits) -> Option<Minimal> {
                 continue;
             }
             let mut dfs = Dfs {
+                sequence: original,
                 original: &original.actions,
                 actuators: original.actuators,
                 memories,

@@ -1,15 +1,21 @@
-//! Sequences in letter notation (`A1 A0 B1 B0`): actuators A, B, … with
-//! sensors a, b, … (1 when extended) and auxiliary memories W, X, Y, Z. A
-//! state is a bit set over all variables; a sequence is valid for a
-//! combinational controller when every state before an action is distinct,
-//! no action changes nothing, and the cycle ends in its start state.
+//! Sequences of two-position actuators: in letter notation (`A1 A0 B1 B0`,
+//! `A+ A-`) or as a step table writes them (`C1+1 C1-0`). Each actuator
+//! keeps the name it was written with (`A`, `C1`, `W`); its sensor is the
+//! name in lower case (`a`, `c1`: 1 while extended). The auxiliary memories
+//! take letters no actuator uses (X, Y, Z, W first). A state is a bit set over
+//! all variables; a sequence is valid for a combinational controller when
+//! every state before an action is distinct, no action changes nothing, and
+//! the cycle ends in its start state.
 
 use std::fmt;
 
-/// Memory names, in the order a search introduces memories (X first, as in
-/// the textbooks and the paper's first example).
+/// Memory letters, in the order a search introduces memories (X first, as in
+/// the textbooks and the paper's first example); letters an actuator uses
+/// are skipped.
 pub const MEMORIES: [char; 4] = ['X', 'Y', 'Z', 'W'];
-/// Most actuators a sequence may have (letters A…L, clear of W…Z).
+/// Further memory letters, for sequences whose actuators use some of X…W.
+const MORE_MEMORY_LETTERS: [char; 8] = ['V', 'U', 'T', 'S', 'R', 'Q', 'P', 'M'];
+/// Most actuators a sequence may have.
 pub const MAX_ACTUATORS: usize = 12;
 
 /// One operation of a sequence: variable `var` (actuators first, then
@@ -24,6 +30,8 @@ pub struct Operation {
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub struct Sequence {
     pub actuators: usize,
+    /// Each actuator's name as written (`A`, `C1`), in variable order.
+    pub actuator_names: Vec<String>,
     pub memories: usize,
     /// The letter of each memory (`X`, `Y`, …), in variable order.
     pub memory_names: Vec<char>,
@@ -31,30 +39,107 @@ pub struct Sequence {
 }
 
 impl Sequence {
-    /// Upper-case name of a variable: `A`, `B`, … or the memory's letter.
-    pub fn var_name(&self, var: usize) -> char {
+    /// Upper-case name of a variable: the actuator's (`A`, `C1`) or the
+    /// memory's letter.
+    pub fn var_name(&self, var: usize) -> String {
         if var < self.actuators {
-            (b'A' + var as u8) as char
+            self.actuator_names
+                .get(var)
+                .cloned()
+                .unwrap_or_else(|| "?".to_string())
         } else {
             self.memory_names
                 .get(var - self.actuators)
-                .copied()
-                .unwrap_or('?')
+                .map_or_else(|| "?".to_string(), char::to_string)
         }
     }
 
-    /// Lower-case name: the sensor letter or the memory's state.
-    pub fn signal_name(&self, var: usize) -> char {
+    /// Lower-case name: the sensor (`a`, `c1`) or the memory's state.
+    pub fn signal_name(&self, var: usize) -> String {
         self.var_name(var).to_ascii_lowercase()
+    }
+
+    /// The program's output for an action: the valve coil `ya_p` / `ya_m`
+    /// (`yc1_p`), or the memory's `x_set` / `x_reset`. IEC names are not
+    /// case-sensitive, so a coil cannot be called `A1`.
+    pub fn output_name(&self, action: Operation) -> String {
+        let state = self.signal_name(action.var);
+        match (self.is_memory(action.var), action.value) {
+            (true, true) => format!("{state}_set"),
+            (true, false) => format!("{state}_reset"),
+            (false, true) => format!("y{state}_p"),
+            (false, false) => format!("y{state}_m"),
+        }
+    }
+
+    /// The program's end-switch inputs of an actuator: retracted, extended.
+    pub fn input_names(&self, var: usize) -> [String; 2] {
+        let state = self.signal_name(var);
+        [format!("{state}_home"), format!("{state}_end")]
+    }
+
+    /// What each name stands for in the programs: `C1: sensor c1 (inputs
+    /// c1_home, c1_end), coils yc1_p (C1+1) and yc1_m (C1-0)`, `X: memory x
+    /// (x_set on X1, x_reset on X0)`.
+    pub fn name_lines(&self) -> Vec<String> {
+        (0..self.variables())
+            .map(|v| {
+                let [set, reset] = [true, false].map(|value| Operation { var: v, value });
+                let (name, signal) = (self.var_name(v), self.signal_name(v));
+                let (set_name, reset_name) = (self.output_name(set), self.output_name(reset));
+                let (set_token, reset_token) = (self.token(set), self.token(reset));
+                if self.is_memory(v) {
+                    format!(
+                        "{name}: memory {signal} ({set_name} on {set_token}, {reset_name} on {reset_token})"
+                    )
+                } else {
+                    let [home, end] = self.input_names(v);
+                    format!(
+                        "{name}: sensor {signal} (inputs {home}, {end}), coils {set_name} ({set_token}) and {reset_name} ({reset_token})"
+                    )
+                }
+            })
+            .collect()
+    }
+
+    /// The letters the memories of this sequence's modified sequences take:
+    /// X, Y, Z, W unless an actuator has that name.
+    pub fn memory_letters(&self) -> Vec<char> {
+        MEMORIES
+            .iter()
+            .chain(&MORE_MEMORY_LETTERS)
+            .copied()
+            .filter(|m| !self.actuator_names.iter().any(|n| n == &m.to_string()))
+            .take(MEMORIES.len())
+            .collect()
+    }
+
+    /// This sequence (without memories) with `actions` over its actuators and
+    /// `memories` memories.
+    pub fn with_memories(&self, memories: usize, actions: Vec<Operation>) -> Sequence {
+        Sequence {
+            actuators: self.actuators,
+            actuator_names: self.actuator_names.clone(),
+            memories,
+            memory_names: self.memory_letters()[..memories.min(MEMORIES.len())].to_vec(),
+            actions,
+        }
     }
 
     pub fn variables(&self) -> usize {
         self.actuators + self.memories
     }
 
-    /// `A1`, `X0`.
+    /// `A1`, `X0`; a name ending in a digit as a step table writes the move
+    /// (`C1+1`, `C1-0`).
     pub fn token(&self, action: Operation) -> String {
-        format!("{}{}", self.var_name(action.var), u8::from(action.value))
+        let name = self.var_name(action.var);
+        let value = u8::from(action.value);
+        if name.ends_with(|c: char| c.is_ascii_digit()) {
+            format!("{name}{}{value}", if action.value { '+' } else { '-' })
+        } else {
+            format!("{name}{value}")
+        }
     }
 
     pub fn is_memory(&self, var: usize) -> bool {
@@ -187,9 +272,30 @@ pub fn apply(state: u32, action: Operation) -> u32 {
     }
 }
 
-/// Parses `A1 A0 B1 B0`, `A+ A- B+ B-` or `C1+1 C1-0 C2+1 C2-0`. Letters W…Z
-/// are memories. Returns the sequence or what is wrong with the text.
+/// Parses an original sequence: `A1 A0 B1 B0`, `A+ A- B+ B-` or `C1+1 C1-0
+/// C2+1 C2-0`. Every name is an actuator's (W…Z too) and keeps its spelling;
+/// actuators are ordered by name. Returns the sequence or what is wrong.
 pub fn parse(text: &str) -> Result<Sequence, String> {
+    read(text, false)
+}
+
+/// Parses a sequence with memories (`A1 X1 A0 B1 X0 B0`): W, X, Y, Z are
+/// memories, other letters actuators.
+pub fn parse_with_memories(text: &str) -> Result<Sequence, String> {
+    read(text, true)
+}
+
+/// A name: actuators before memories, then by letters, then by number.
+fn name_order(name: &str) -> (String, u32) {
+    let letters: String = name
+        .chars()
+        .take_while(|c| c.is_ascii_alphabetic())
+        .collect();
+    let number = name[letters.len()..].parse().unwrap_or(0);
+    (letters, number)
+}
+
+fn read(text: &str, memories_allowed: bool) -> Result<Sequence, String> {
     let tokens: Vec<&str> = text
         .split(|c: char| c.is_whitespace() || c == ',' || c == ';')
         .filter(|t| !t.is_empty())
@@ -197,7 +303,7 @@ pub fn parse(text: &str) -> Result<Sequence, String> {
     if tokens.is_empty() {
         return Err("the sequence is empty".to_string());
     }
-    let mut raw: Vec<(Result<usize, char>, bool)> = Vec::new();
+    let mut raw: Vec<(String, bool)> = Vec::new();
     for token in &tokens {
         let norm = crate::cell::normalize(token);
         let mut chars = norm.chars();
@@ -218,7 +324,7 @@ pub fn parse(text: &str) -> Result<Sequence, String> {
                             "\"{token}\": a + move must end at 1 and a - move at 0"
                         ));
                     }
-                    (Ok(m.actuator as usize - 1), value)
+                    (format!("C{}", m.actuator), value)
                 }
                 Ok(_) => {
                     return Err(format!(
@@ -237,11 +343,7 @@ pub fn parse(text: &str) -> Result<Sequence, String> {
                     ));
                 }
             };
-            if MEMORIES.contains(&first) {
-                (Err(first), value)
-            } else {
-                (Ok((first as u8 - b'A') as usize), value)
-            }
+            (first.to_string(), value)
         } else {
             return Err(format!(
                 "\"{token}\" is not an action (expected e.g. A1, A0, A+ or A-)"
@@ -249,41 +351,50 @@ pub fn parse(text: &str) -> Result<Sequence, String> {
         };
         raw.push(parsed);
     }
-    // Actuators keep their letters; memories are numbered in order of use.
-    let actuators = raw
-        .iter()
-        .filter_map(|(v, _)| v.ok())
-        .max()
-        .map_or(0, |m| m + 1);
-    if actuators > MAX_ACTUATORS {
-        return Err(format!(
-            "synthesis handles at most {MAX_ACTUATORS} actuators (A to {})",
-            (b'A' + MAX_ACTUATORS as u8 - 1) as char
-        ));
-    }
-    let mut memory_order: Vec<char> = Vec::new();
-    for (v, _) in &raw {
-        if let Err(m) = v
-            && !memory_order.contains(m)
-        {
-            memory_order.push(*m);
+    let is_memory = |name: &str| {
+        memories_allowed && name.len() == 1 && name.chars().all(|c| MEMORIES.contains(&c))
+    };
+    let mut actuator_names: Vec<String> = Vec::new();
+    let mut memory_names: Vec<char> = Vec::new();
+    for (name, _) in &raw {
+        if is_memory(name) {
+            let letter = name.chars().next().unwrap_or('X');
+            if !memory_names.contains(&letter) {
+                memory_names.push(letter);
+            }
+        } else if !actuator_names.contains(name) {
+            actuator_names.push(name.clone());
         }
     }
-    memory_order.sort_by_key(|m| MEMORIES.iter().position(|x| x == m));
+    if actuator_names.len() > MAX_ACTUATORS {
+        return Err(format!(
+            "synthesis handles at most {MAX_ACTUATORS} actuators; this sequence has {}",
+            actuator_names.len()
+        ));
+    }
+    actuator_names.sort_by_key(|n| name_order(n));
+    memory_names.sort_by_key(|m| MEMORIES.iter().position(|x| x == m));
+    let actuators = actuator_names.len();
     let actions = raw
         .iter()
-        .map(|(v, value)| Operation {
-            var: match v {
-                Ok(a) => *a,
-                Err(m) => actuators + memory_order.iter().position(|x| x == m).unwrap_or(0),
+        .map(|(name, value)| Operation {
+            var: if is_memory(name) {
+                actuators
+                    + memory_names
+                        .iter()
+                        .position(|m| name.starts_with(*m))
+                        .unwrap_or(0)
+            } else {
+                actuator_names.iter().position(|n| n == name).unwrap_or(0)
             },
             value: *value,
         })
         .collect();
     Ok(Sequence {
         actuators,
-        memories: memory_order.len(),
-        memory_names: memory_order,
+        actuator_names,
+        memories: memory_names.len(),
+        memory_names,
         actions,
     })
 }
@@ -296,8 +407,10 @@ mod tests {
     fn notations_agree() {
         let a = parse("A1 A0 B1 B0").unwrap();
         assert_eq!(parse("A+ A- B+ B-").unwrap(), a);
-        assert_eq!(parse("C1+1 C1-0 C2+1 C2-0").unwrap(), a);
+        let c = parse("C1+1 C1-0 C2+1 C2-0").unwrap();
+        assert_eq!((c.actuators, &c.actions), (a.actuators, &a.actions));
         assert_eq!(a.text(), "A1 A0 B1 B0");
+        assert_eq!(c.text(), "C1+1 C1-0 C2+1 C2-0");
         assert!(parse("C1+2 C1-0").unwrap_err().contains("two-position"));
         assert!(parse("A2").is_err());
     }
@@ -312,7 +425,7 @@ mod tests {
             clashes[0].actions,
             [(1, "A1".to_string()), (3, "B1".to_string())]
         );
-        assert!(parse("A1 X1 A0 B1 X0 B0").unwrap().is_valid());
+        assert!(parse_with_memories("A1 X1 A0 B1 X0 B0").unwrap().is_valid());
         assert!(parse("A1 B1 A0 B0").unwrap().is_valid());
     }
 }

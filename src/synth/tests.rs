@@ -6,7 +6,7 @@ fn the_papers_first_sequence_and_its_equations() {
     assert_eq!(s.modified.text(), "A1 X1 A0 B1 X0 B0");
     let name = |v: usize| s.modified.signal_name(v).to_string();
     // The paper's equations, up to operand order.
-    let paper = sequence::parse("A1 X1 A0 B1 X0 B0").unwrap();
+    let paper = sequence::parse_with_memories("A1 X1 A0 B1 X0 B0").unwrap();
     let expected = [
         ("A1", "NOT(OR(b,x))"),
         ("A0", "x"),

@@ -58,13 +58,14 @@ fn a_single_branch_table_synthesises_and_a_parallel_one_is_refused() {
         .arg(dir.path())
         .assert()
         .success()
-        .stdout(contains("sequence:          A1 B1 B0 A0 C1 C0"))
+        .stdout(contains("sequence:          C1+1 C2+1 C2-0 C1-0 C3+1 C3-0"))
         .stdout(contains("simulation: passed"));
-    assert!(
+    let st = std::fs::read_to_string(
         dir.path()
-            .join("drilling_station/drilling_station.equations.st")
-            .exists()
-    );
+            .join("drilling_station/drilling_station.equations.st"),
+    )
+    .unwrap();
+    assert!(st.contains("c1_home AT %IX0.0"), "{st}");
     steptable()
         .arg("synth")
         .arg(sample("paper_example.xlsx"))
@@ -348,4 +349,63 @@ fn ctrl_c_keeps_the_best_equations_so_far() {
         comparison["nodes_lower_bound"].as_u64().unwrap()
             < json["nodes"]["total"].as_u64().unwrap()
     );
+}
+
+/// The actuators keep their names in every output: a table's C1, C2 (moves
+/// written as the table writes them), and any letter, W to Z included (the
+/// memories then take other letters). The report maps each name to its
+/// signals.
+#[test]
+fn actuators_keep_their_names_in_every_output() {
+    let dir = tempfile::tempdir().unwrap();
+    for (sequence, modified, st_has, mapping) in [
+        (
+            "C1+1 C2+1 C2-0 C1-0",
+            "C1+1 C2+1 X0 C2-0 C1-0 X1",
+            ["c1_end AT %IX0.1", "yc2_p AT %QX", "x_set := "],
+            "C1: sensor c1 (inputs c1_home, c1_end), coils yc1_p (C1+1) and yc1_m (C1-0)",
+        ),
+        (
+            "W1 X1 X0 W0",
+            "W1 X1 Y0 X0 W0 Y1",
+            ["w_end AT %IX0.1", "yx_p AT %QX", "y_set := "],
+            "X: sensor x (inputs x_home, x_end), coils yx_p (X1) and yx_m (X0)",
+        ),
+    ] {
+        let out = dir.path().join(sequence.replace(' ', "_"));
+        let assert = steptable()
+            .args(["synth", "--sequence", sequence, "-o"])
+            .arg(&out)
+            .assert()
+            .success();
+        let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
+        assert!(
+            stdout.contains(&format!("modified sequence: {modified}\n")),
+            "{stdout}"
+        );
+        assert!(stdout.contains(mapping), "{stdout}");
+        assert!(stdout.contains("simulation: passed"), "{stdout}");
+        let st = std::fs::read_to_string(out.join("sequence/sequence.equations.st")).unwrap();
+        for text in st_has {
+            assert!(st.contains(text), "{sequence}: {text} not in\n{st}");
+        }
+        let json: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(out.join("sequence/sequence.synth.json")).unwrap(),
+        )
+        .unwrap();
+        let written: Vec<&str> = json["sequence"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| t.as_str().unwrap())
+            .collect();
+        assert_eq!(written.join(" "), sequence);
+        let sheet = crate::helpers::read_sheet(&out.join("sequence/sequence.xlsx"), "EQUATIONS");
+        assert!(
+            sheet
+                .iter()
+                .any(|r| r[0] == modified.split(' ').next().unwrap()),
+            "{sheet:?}"
+        );
+    }
 }
