@@ -243,7 +243,7 @@ pub fn choose(placements: &[Sequence], progress: &(dyn Fn(usize, usize) + Sync))
         let mut memo = Memo::new();
         loop {
             let index = next.fetch_add(1, Ordering::Relaxed);
-            if index >= candidates || budget::exceeded() {
+            if index >= candidates || budget::passed() {
                 return;
             }
             let (i, flip) = work[index];
@@ -282,7 +282,22 @@ pub fn choose(placements: &[Sequence], progress: &(dyn Fn(usize, usize) + Sync))
             scope.spawn(|_| worker());
         }
     });
-    let (key, sequence, equations) = best.into_inner().unwrap_or_else(|e| e.into_inner())?;
+    let mut best = best.into_inner().unwrap_or_else(|e| e.into_inner());
+    if best.is_none() && settled.load(Ordering::Relaxed) < candidates {
+        // Stopped before any candidate was done (a short limit on a busy
+        // machine): the one with the lowest bound, searched to the end, so
+        // that found memories always give an answer.
+        let _unlimited = budget::Budget::until(None);
+        let (i, flip) = work[0];
+        let candidate = polarity(ranked[i].2, flip);
+        if let Ok(trees) = evaluate(&candidate, &ranked[i].1, usize::MAX, &mut Memo::new()) {
+            let key = key(&candidate, &trees);
+            lower[0].store(key.0, Ordering::Relaxed);
+            settled.fetch_add(1, Ordering::Relaxed);
+            best = Some((key, candidate, trees));
+        }
+    }
+    let (key, sequence, equations) = best?;
     let lower_bound = lower
         .iter()
         .map(|l| l.load(Ordering::Relaxed))
@@ -360,6 +375,22 @@ mod tests {
             let sizes: usize = choice.equations.iter().map(Expr::nodes).sum();
             assert_eq!(sizes, choice.nodes, "{text}");
         }
+    }
+
+    /// A limit that passes before any candidate is done still gives an
+    /// answer (the candidate with the lowest bound), not called proven.
+    #[test]
+    fn a_limit_past_before_any_candidate_still_answers() {
+        let original = parse("A1 A0 A1 A0 A1 A0 B1 B0 C1 C0").unwrap();
+        let minimal =
+            crate::synth::search::minimal(&original, crate::synth::search::Limits::default())
+                .unwrap();
+        let _budget = budget::Budget::start(Some(std::time::Duration::ZERO));
+        let choice = choose(&minimal.solutions, &|_, _| {}).unwrap();
+        assert_eq!((choice.settled, choice.candidates), (1, 304));
+        assert!(choice.sequence.is_valid());
+        assert!(choice.lower_bound < choice.nodes, "{choice:?}");
+        assert!(!choice.proven());
     }
 
     #[test]
