@@ -60,6 +60,7 @@ fn main() {
                     ..gp::GpParams::default()
                 },
                 time_limit: None,
+                ..Options::default()
             };
             let start = Instant::now();
             ga_run = synth::synthesize_with(&seq, options).ok();

@@ -39,6 +39,11 @@ pub(crate) struct SynthArgs {
     /// error E033.
     #[arg(long, value_name = "TIME", default_value = "5s", value_parser = parse_time_limit)]
     pub(crate) time_limit: std::time::Duration,
+    /// Which point of the front to keep: memories (default; the proven
+    /// fewest, then their smallest equations) or nodes (the smallest
+    /// equations found with the fewest memories or one more).
+    #[arg(long, value_enum, default_value_t = PreferArg::Memories)]
+    pub(crate) prefer: PreferArg,
     /// How to print problems: human (default) or json (one object per line
     /// on stdout; the report then goes to stderr).
     #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
@@ -76,6 +81,12 @@ fn parse_ratio(text: &str) -> Result<usize, String> {
 
 fn parse_generations(text: &str) -> Result<usize, String> {
     bounded(text, 1, 100_000, "the number of generations")
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum PreferArg {
+    Memories,
+    Nodes,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -156,6 +167,10 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             ..synth::gp::GpParams::default()
         },
         time_limit: Some(args.time_limit),
+        prefer: match args.prefer {
+            PreferArg::Memories => synth::Prefer::Memories,
+            PreferArg::Nodes => synth::Prefer::Nodes,
+        },
     };
     // Ctrl-C ends the search; the comparison of equations keeps its best.
     let _ = ctrlc::set_handler(synth::interrupt);

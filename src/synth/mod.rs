@@ -13,6 +13,7 @@
 mod budget;
 pub mod choose;
 pub mod equations;
+mod exact;
 pub mod ga;
 pub mod gp;
 pub mod output;
@@ -23,6 +24,7 @@ pub mod verify;
 use std::time::Instant;
 
 pub use budget::interrupt;
+pub use exact::{Comparison, FrontPoint, Prefer, Stopped};
 
 use equations::{Expr, SearchLimits};
 use sequence::{Clash, Operation, Sequence};
@@ -150,6 +152,8 @@ pub struct Options {
     pub gp: gp::GpParams,
     /// The longest the synthesis may run; `None` for no limit.
     pub time_limit: Option<std::time::Duration>,
+    /// Which point of the front (memories against equation size) to keep.
+    pub prefer: Prefer,
 }
 
 /// The default time limit: a few seconds, in which the textbook sequences
@@ -164,6 +168,7 @@ impl Default for Options {
             ga: ga::GaParams::default(),
             gp: gp::GpParams::default(),
             time_limit: Some(DEFAULT_TIME_LIMIT),
+            prefer: Prefer::Memories,
         }
     }
 }
@@ -187,6 +192,10 @@ pub struct Synthesis {
     pub insertions: usize,
     /// How the exact route chose among the minimal sequences.
     pub comparison: Option<Comparison>,
+    /// The exact route's front: for the fewest memories and one more (at the
+    /// fewest inserted operations), the smallest equations found; one is
+    /// marked chosen.
+    pub front: Vec<FrontPoint>,
     pub table: TruthTable,
     pub equations: Vec<Equation>,
     /// Time of the exact route: its sequence search (not run by `--method
@@ -223,45 +232,6 @@ impl Synthesis {
             .iter()
             .map(|e| e.qm.as_ref().map(Expr::nodes))
             .sum()
-    }
-}
-
-/// How the smallest equations were chosen among the minimal modified
-/// sequences, and what is proven about them.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Comparison {
-    /// Minimal placements of the memory operations found.
-    pub placements: usize,
-    /// The search stopped listing placements at its limit: the comparison
-    /// and its bound cover those listed.
-    pub placements_truncated: bool,
-    /// Candidates: every polarity of the memories of every placement.
-    pub candidates: usize,
-    /// Candidates searched or ruled out by their bound.
-    pub settled: usize,
-    /// No candidate's equations have fewer nodes in all.
-    pub lower_bound: usize,
-    /// Why the comparison stopped before settling every candidate.
-    pub stopped: Option<Stopped>,
-}
-
-/// What ended a search early.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Stopped {
-    TimeLimit,
-    Interrupted,
-}
-
-impl Stopped {
-    /// The budget's reason, if it has passed.
-    fn now() -> Option<Stopped> {
-        if budget::interrupted() {
-            Some(Stopped::Interrupted)
-        } else if budget::passed() {
-            Some(Stopped::TimeLimit)
-        } else {
-            None
-        }
     }
 }
 
@@ -392,7 +362,7 @@ pub fn synthesize_observed(
 }
 
 /// The error of a search that found nothing before the time limit or Ctrl-C.
-fn out_of_time(original: &Sequence, options: Options) -> SynthError {
+pub(crate) fn out_of_time(original: &Sequence, options: Options) -> SynthError {
     let why = match (Stopped::now(), options.time_limit) {
         (Some(Stopped::Interrupted), _) => "the search was interrupted".to_string(),
         (_, Some(limit)) => format!(
@@ -448,7 +418,7 @@ fn synthesize_within(
     });
     let ga_millis = ga_start.elapsed().as_millis();
     let exact_start = Instant::now();
-    let (modified, insertions, comparison, equations) = if options.method == Method::Ga {
+    let (modified, insertions, comparison, front, equations) = if options.method == Method::Ga {
         let Some(s) = ga_summary.as_ref().and_then(|g| g.sequence.clone()) else {
             return Err(SynthError::NotFound(format!(
                 "the GA found no valid sequence in {} generations (try more, another --seed, or --method exact)",
@@ -460,13 +430,19 @@ fn synthesize_within(
             SynthError::NotFound("the equation search reached its limits".to_string())
         })?;
         let trees = equations.into_iter().map(|e| e.expr).collect();
-        (s, insertions, None, trees)
+        (s, insertions, None, Vec::new(), trees)
     } else {
-        let (choice, insertions, comparison) = exact_sequence(original, options, progress)?;
+        let exact = exact::route(original, options, progress)?;
+        let chosen = exact.front.iter().position(|p| p.chosen).unwrap_or(0);
+        let choice =
+            exact.choices.into_iter().nth(chosen).ok_or_else(|| {
+                SynthError::NotFound("the exact route found no sequence".to_string())
+            })?;
         (
             choice.sequence,
-            insertions,
-            Some(comparison),
+            exact.insertions,
+            Some(exact.front[chosen].comparison.clone()),
+            exact.front,
             choice.equations,
         )
     };
@@ -506,6 +482,7 @@ fn synthesize_within(
         modified,
         insertions,
         comparison,
+        front,
         table,
         equations,
         millis,
@@ -517,46 +494,6 @@ fn synthesize_within(
         }),
         ga_gp_millis,
     })
-}
-
-/// The exhaustive route: the minimal modified sequence whose equations are
-/// smallest, with the number of insertions and how it was chosen.
-fn exact_sequence(
-    original: &Sequence,
-    options: Options,
-    progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<(choose::Choice, usize, Comparison), SynthError> {
-    let Some(minimal) = search::minimal(original, search::Limits::default()) else {
-        return Err(if Stopped::now().is_some() {
-            out_of_time(original, options)
-        } else {
-            SynthError::NotFound(
-                "no valid sequence with up to 4 memories and 12 inserted operations".to_string(),
-            )
-        });
-    };
-    let choice = choose::choose(&minimal.solutions, progress).ok_or_else(|| {
-        if Stopped::now().is_some() {
-            out_of_time(original, options)
-        } else {
-            SynthError::NotFound(
-                "the equation search reached its limits on every minimal sequence".to_string(),
-            )
-        }
-    })?;
-    let comparison = Comparison {
-        placements: minimal.solutions.len(),
-        placements_truncated: minimal.truncated,
-        candidates: choice.candidates,
-        settled: choice.settled,
-        lower_bound: choice.lower_bound,
-        stopped: if choice.settled < choice.candidates {
-            Stopped::now()
-        } else {
-            None
-        },
-    };
-    Ok((choice, minimal.insertions, comparison))
 }
 
 #[cfg(test)]

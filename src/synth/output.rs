@@ -46,10 +46,18 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
         ));
     } else {
         out.push_str(&format!(
-            "modified sequence: {}\n  {} inserted operation(s), {} memory(ies): the proven minimum (exhaustive search)\n",
+            "modified sequence: {}\n  {}\n",
             seq.text(),
-            s.insertions,
-            seq.memories,
+            match s.front.first() {
+                Some(fewest) if fewest.memories < seq.memories => format!(
+                    "{} inserted operation(s), the proven minimum (exhaustive search); {} memory(ies), one more than the proven minimum of {}, for smaller equations (--prefer nodes)",
+                    s.insertions, seq.memories, fewest.memories
+                ),
+                _ => format!(
+                    "{} inserted operation(s), {} memory(ies): the proven minimum (exhaustive search)",
+                    s.insertions, seq.memories
+                ),
+            }
         ));
     }
     if let Some(ga) = &s.ga {
@@ -136,6 +144,22 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
     ));
     if let Some(c) = &s.comparison {
         out.push_str(&format!("  {}\n", comparison_text(c, s.total_nodes())));
+    }
+    if s.front.len() > 1 {
+        out.push_str(&format!(
+            "\nfront (fewer memories against smaller equations, at {} inserted operations; > marks the one kept, --prefer memories|nodes):\n",
+            s.insertions
+        ));
+        for p in &s.front {
+            out.push_str(&format!(
+                "  {} {} memories: {} nodes, {}\n    {}\n",
+                if p.chosen { ">" } else { " " },
+                p.memories,
+                p.nodes,
+                comparison_text(&p.comparison, p.nodes),
+                p.sequence
+            ));
+        }
     }
     out.push_str(&format!(
         "\nsimulation: {} ({} actions in {:.2} s of simulated time{})\n",
@@ -281,6 +305,15 @@ pub fn report_json(s: &Synthesis, v: &Verification, seed: u64) -> String {
             }),
         })),
         "memories": memories,
+        "front": s.front.iter().map(|p| json!({
+            "memories": p.memories,
+            "inserted_operations": p.insertions,
+            "nodes": p.nodes,
+            "nodes_lower_bound": p.comparison.lower_bound,
+            "nodes_proven_smallest": p.nodes <= p.comparison.lower_bound,
+            "modified_sequence": p.sequence.split(' ').collect::<Vec<_>>(),
+            "chosen": p.chosen,
+        })).collect::<Vec<_>>(),
         "truth_table": {"variables": variables, "columns": columns, "rows": rows},
         "equations": equations,
         "nodes": {"per_equation": nodes, "total": s.total_nodes(), "largest": s.largest(),

@@ -122,14 +122,12 @@ impl Dfs<'_> {
 /// Finds the minimal modified sequences of `original` (which has no memories).
 /// `None` when none exists within the limits.
 pub fn minimal(original: &Sequence, limits: Limits) -> Option<Minimal> {
-    if original.actions.is_empty() || original.memories > 0 {
+    if original.actions.is_empty()
+        || original.memories > 0
+        || original.actuators + limits.max_memories > 20
+    {
         return None;
     }
-    let variables = original.actuators + limits.max_memories;
-    if variables > 20 {
-        return None;
-    }
-    let initial = original.initial_state();
     let (fewest_insertions, fewest_memories) = lower_bounds(original);
     let needed_after = needed_after(original);
     for budget in (fewest_insertions..=limits.max_insertions).step_by(2) {
@@ -137,37 +135,81 @@ pub fn minimal(original: &Sequence, limits: Limits) -> Option<Minimal> {
             if budget > 0 && memories == 0 {
                 continue;
             }
-            let mut dfs = Dfs {
-                sequence: original,
-                original: &original.actions,
-                actuators: original.actuators,
-                memories,
+            let found = search(
+                original,
                 budget,
-                initial,
-                needed_after: needed_after.clone(),
-                seen: vec![0; (1usize << (original.actuators + memories)).div_ceil(64)],
-                actions: Vec::new(),
-                solutions: Vec::new(),
-                max_solutions: limits.max_solutions,
-            };
-            dfs.place(0, initial, 0, 0);
-            // A solution with fewer memories than allowed was already found
-            // (or not) at a smaller `memories`: keep exactly this count.
-            dfs.solutions.retain(|s| s.memories == memories);
-            if !dfs.solutions.is_empty() {
-                // Cut by the list's limit or by the time limit.
-                let truncated =
-                    dfs.solutions.len() >= limits.max_solutions || super::budget::passed();
-                return Some(Minimal {
-                    insertions: budget,
-                    memories,
-                    solutions: dfs.solutions,
-                    truncated,
-                });
+                memories,
+                &needed_after,
+                limits.max_solutions,
+            );
+            if found.is_some() {
+                return found;
             }
         }
     }
     None
+}
+
+/// The valid modified sequences of `original` with exactly `insertions`
+/// inserted operations of exactly `memories` memories, up to
+/// `max_solutions`; `None` when there is none (or the time ran out first).
+pub fn placements(
+    original: &Sequence,
+    insertions: usize,
+    memories: usize,
+    max_solutions: usize,
+) -> Option<Minimal> {
+    if original.memories > 0
+        || original.actuators + memories > 20
+        || memories > MEMORIES.len()
+        || insertions % 2 == 1
+    {
+        return None;
+    }
+    search(
+        original,
+        insertions,
+        memories,
+        &needed_after(original),
+        max_solutions,
+    )
+}
+
+fn search(
+    original: &Sequence,
+    budget: usize,
+    memories: usize,
+    needed_after: &[usize],
+    max_solutions: usize,
+) -> Option<Minimal> {
+    let mut dfs = Dfs {
+        sequence: original,
+        original: &original.actions,
+        actuators: original.actuators,
+        memories,
+        budget,
+        initial: original.initial_state(),
+        needed_after: needed_after.to_vec(),
+        seen: vec![0; (1usize << (original.actuators + memories)).div_ceil(64)],
+        actions: Vec::new(),
+        solutions: Vec::new(),
+        max_solutions,
+    };
+    dfs.place(0, dfs.initial, 0, 0);
+    // A solution with fewer memories than allowed is found (or not) at a
+    // smaller `memories`: keep exactly this count.
+    dfs.solutions.retain(|s| s.memories == memories);
+    if dfs.solutions.is_empty() {
+        return None;
+    }
+    // Cut by the list's limit or by the time limit.
+    let truncated = dfs.solutions.len() >= max_solutions || super::budget::passed();
+    Some(Minimal {
+        insertions: budget,
+        memories,
+        solutions: dfs.solutions,
+        truncated,
+    })
 }
 
 /// The stretches of the cycle in which a memory must change, as (first

@@ -657,6 +657,22 @@ fn all_cases() -> Vec<Case> {
         ),
         case(
             "synth",
+            "--prefer",
+            None,
+            &[
+                "--sequence",
+                "A1 A0 A1 A0 A1 A0 B1 B0 C1 C0",
+                "--prefer",
+                "nodes",
+            ],
+            &["--sequence", "A1 A0 A1 A0 A1 A0 B1 B0 C1 C0"],
+            Has(
+                Place::Stdout,
+                "4 memory(ies), one more than the proven minimum of 3",
+            ),
+        ),
+        case(
+            "synth",
             "--message-format",
             None,
             &["--sequence", "A1 A1", "--message-format", "json"],

@@ -409,3 +409,57 @@ fn actuators_keep_their_names_in_every_output() {
         );
     }
 }
+
+/// Table 5's third sequence: 3 memories (the proven fewest) give 49 nodes at
+/// best, 4 give 48. The front shows both, proven, in the report and the
+/// JSON; --prefer nodes keeps the 4-memory program, which passes its
+/// simulation, and says it is one memory more than the minimum.
+#[test]
+fn the_front_shows_fewer_memories_against_smaller_equations() {
+    let dir = tempfile::tempdir().unwrap();
+    for (prefer, chosen) in [("memories", 0), ("nodes", 1)] {
+        let out = dir.path().join(prefer);
+        let assert = steptable()
+            .args([
+                "synth",
+                "--sequence",
+                "A1 A0 A1 A0 A1 A0 B1 B0 C1 C0",
+                "--method",
+                "exact",
+                "--prefer",
+                prefer,
+                "-o",
+            ])
+            .arg(&out)
+            .assert()
+            .success();
+        let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
+        assert!(stdout.contains("simulation: passed"), "{stdout}");
+        let json: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(out.join("sequence/sequence.synth.json")).unwrap(),
+        )
+        .unwrap();
+        let front: Vec<(u64, u64, bool, bool)> = json["front"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| {
+                (
+                    p["memories"].as_u64().unwrap(),
+                    p["nodes"].as_u64().unwrap(),
+                    p["nodes_proven_smallest"].as_bool().unwrap(),
+                    p["chosen"].as_bool().unwrap(),
+                )
+            })
+            .collect();
+        assert_eq!(
+            front,
+            [(3, 49, true, chosen == 0), (4, 48, true, chosen == 1)],
+            "{prefer}"
+        );
+        let memories = json["memories"].as_array().unwrap().len();
+        assert_eq!(memories, 3 + chosen, "{prefer}");
+        assert_eq!(json["nodes"]["total"], [49, 48][chosen], "{prefer}");
+        assert!(stdout.contains("  > "), "{stdout}");
+    }
+}
