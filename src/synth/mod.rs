@@ -173,6 +173,50 @@ impl Default for Options {
     }
 }
 
+/// The fewest inserted operations and memories any valid modified sequence
+/// has: proven by the exhaustive search, or (when it could not end in time)
+/// only lower bounds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Minimum {
+    pub insertions: usize,
+    pub memories: usize,
+    pub proven: bool,
+}
+
+impl Minimum {
+    /// How `insertions` operations of `memories` memories compare with the
+    /// minimum: ": as short as the proven minimum", ": 2 inserted
+    /// operation(s) more than the proven minimum of 10", …
+    pub fn gap(&self, insertions: usize, memories: usize) -> String {
+        if !self.proven {
+            return format!(
+                " (the minimum, not proven in the time given, is at least {} inserted operation(s) of {} memory(ies))",
+                self.insertions, self.memories
+            );
+        }
+        let mut more = Vec::new();
+        if insertions > self.insertions {
+            more.push(format!(
+                "{} inserted operation(s) more than the proven minimum of {}",
+                insertions - self.insertions,
+                self.insertions
+            ));
+        }
+        if memories > self.memories {
+            more.push(format!(
+                "{} memory(ies) more than the proven minimum of {}",
+                memories - self.memories,
+                self.memories
+            ));
+        }
+        if more.is_empty() {
+            ": as short as the proven minimum".to_string()
+        } else {
+            format!(": {}", more.join(" and "))
+        }
+    }
+}
+
 /// What the GA found, for the report.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GaSummary {
@@ -188,8 +232,11 @@ pub struct Synthesis {
     pub clashes: Vec<Clash>,
     /// The modified sequence with the memory operations inserted.
     pub modified: Sequence,
-    /// Minimal numbers of inserted operations and memories (proven).
+    /// Inserted operations of `modified`.
     pub insertions: usize,
+    /// The fewest inserted operations and memories (with `--method ga` found
+    /// by the exhaustive search beside the GA, if it ends in time).
+    pub minimum: Minimum,
     /// How the exact route chose among the minimal sequences.
     pub comparison: Option<Comparison>,
     /// The exact route's front: for the fewest memories and one more (at the
@@ -446,6 +493,28 @@ fn synthesize_within(
             choice.equations,
         )
     };
+    let minimum = match front.first() {
+        Some(fewest) => Minimum {
+            insertions: fewest.insertions,
+            memories: fewest.memories,
+            proven: true,
+        },
+        None => match search::minimal(original, search::Limits::default()) {
+            Some(m) => Minimum {
+                insertions: m.insertions,
+                memories: m.memories,
+                proven: true,
+            },
+            None => {
+                let (insertions, memories) = search::lower_bounds(original);
+                Minimum {
+                    insertions,
+                    memories,
+                    proven: false,
+                }
+            }
+        },
+    };
     let table = TruthTable::of(&modified);
     let mut equations: Vec<Equation> = table
         .columns
@@ -481,6 +550,7 @@ fn synthesize_within(
         clashes,
         modified,
         insertions,
+        minimum,
         comparison,
         front,
         table,

@@ -39,10 +39,11 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
     }
     if s.method == super::Method::Ga {
         out.push_str(&format!(
-            "modified sequence: {}\n  {} inserted operation(s), {} memory(ies), found by the GA (not proven minimal: run --method exact or both)\n",
+            "modified sequence: {}\n  {} inserted operation(s), {} memory(ies), found by the GA{}\n",
             seq.text(),
             s.insertions,
-            seq.memories
+            seq.memories,
+            s.minimum.gap(s.insertions, seq.memories)
         ));
     } else {
         out.push_str(&format!(
@@ -69,15 +70,8 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
                 found.memories,
                 ga.generations,
                 ga.millis,
-                // Only the exact route knows the minimum: with --method ga
-                // `insertions` is the GA's own count.
-                if s.method != Method::Ga
-                    && found.actions.len() - s.original.actions.len() == s.insertions
-                {
-                    ": as short as the proven minimum"
-                } else {
-                    ""
-                }
+                s.minimum
+                    .gap(found.actions.len() - s.original.actions.len(), found.memories)
             )),
             None => out.push_str(&format!(
                 "  the paper's GA: no valid sequence in {} generations\n",
