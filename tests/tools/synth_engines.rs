@@ -30,12 +30,22 @@ fn located(text: &str) -> Vec<(String, String)> {
         .collect()
 }
 
+/// A move as the sequence writes it: `A1`, `A0`; `C1+1`, `C1-0` for a
+/// table's names.
+fn token(name: &str, extended: bool) -> String {
+    if name.ends_with(|c: char| c.is_ascii_digit()) {
+        format!("{name}{}", if extended { "+1" } else { "-0" })
+    } else {
+        format!("{name}{}", u8::from(extended))
+    }
+}
+
 /// Runs `file` against the plant; the moves in the order they ended
 /// (`A1`, `B0`, …), or why it failed.
 fn run(
     shared: &Path,
     file: &Path,
-    letters: &[char],
+    letters: &[String],
     start: &[bool],
     scans: usize,
 ) -> Result<Vec<String>, String> {
@@ -93,7 +103,7 @@ fn run(
                 None
             };
             if now.is_some() && now != at_end[i] {
-                moves.push(format!("{}{}", letters[i], u8::from(now == Some(true))));
+                moves.push(token(&letters[i], now == Some(true)));
             }
             if now.is_some() {
                 at_end[i] = now;
@@ -114,17 +124,43 @@ fn synthesised_programs_run_the_sequence_in_matiec() {
         "A1 B1 A0 B0",
         "A1 B1 B0 A0",
         "A1 B1 C1 C0 B0 A0",
+        // Names kept: a table's C1, C2 and letters that are memories'
+        // usual letters (the memories take others).
+        "C1+1 C2+1 C2-0 C1-0",
+        "W1 X1 X0 W0",
+        // The front's other point: 4 memories, 48 nodes.
+        "A1 A0 A1 A0 A1 A0 B1 B0 C1 C0 --prefer nodes",
     ];
     let mut checked = 0;
-    for (k, sequence) in sequences.iter().enumerate() {
+    for (k, written) in sequences.iter().enumerate() {
         let out = dir.path().join(format!("s{k}"));
+        let (sequence, flags) = written.split_once(" --").unwrap_or((written, ""));
+        let flags: Vec<String> = flags
+            .split_whitespace()
+            .enumerate()
+            .map(|(i, f)| {
+                if i == 0 {
+                    format!("--{f}")
+                } else {
+                    f.to_string()
+                }
+            })
+            .collect();
         steptable()
             .args(["synth", "--sequence", sequence, "-o"])
             .arg(&out)
+            .args(&flags)
             .assert()
             .success();
         let actions: Vec<&str> = sequence.split_whitespace().collect();
-        let mut letters: Vec<char> = actions.iter().map(|a| a.chars().next().unwrap()).collect();
+        // The name: the token without its move (`A1` → A, `C1+1` → C1).
+        let name_of = |a: &str| -> String {
+            match a.find(['+', '-']) {
+                Some(sign) => a[..sign].to_string(),
+                None => a[..a.len() - 1].to_string(),
+            }
+        };
+        let mut letters: Vec<String> = actions.iter().map(|a| name_of(a)).collect();
         letters.sort();
         letters.dedup();
         // Each cylinder starts where its first move does not go.
@@ -133,7 +169,7 @@ fn synthesised_programs_run_the_sequence_in_matiec() {
             .map(|l| {
                 actions
                     .iter()
-                    .find(|a| a.starts_with(*l))
+                    .find(|a| name_of(a) == *l)
                     .unwrap()
                     .ends_with('0')
             })
