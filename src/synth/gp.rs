@@ -109,8 +109,16 @@ fn replace(e: &Expr, index: &mut usize, with: &Expr) -> Expr {
 }
 
 /// The GP's best tree for a column that must be 1 on `on` and 0 on `off`,
-/// if it found one matching every row.
-pub fn run(on: &[u32], off: &[u32], variables: usize, params: GpParams) -> Option<Expr> {
+/// if it found one matching every row. `start`, a tree that fits (the
+/// two-level form), joins the first population, so that the GP only has to
+/// shrink it where random trees alone find nothing that fits.
+pub fn run(
+    on: &[u32],
+    off: &[u32],
+    variables: usize,
+    params: GpParams,
+    start: Option<&Expr>,
+) -> Option<Expr> {
     let rows: Vec<u32> = on.iter().chain(off).copied().collect();
     if rows.is_empty() || rows.len() > 63 || variables == 0 {
         return None;
@@ -133,6 +141,9 @@ pub fn run(on: &[u32], off: &[u32], variables: usize, params: GpParams) -> Optio
     let mu = params.mu.max(2);
     let lambda = mu * (params.ratio.max(2) - 1);
     let mut population: Vec<(f64, Expr)> = Vec::with_capacity(mu + lambda);
+    if let Some(tree) = start {
+        population.push((score(tree), tree.clone()));
+    }
     while population.len() < mu {
         let depth = 1 + rng.below(5);
         let tree = grow(&mut rng, variables, depth);
@@ -204,8 +215,33 @@ mod tests {
         // bit 0 = a, bit 1 = b, bit 2 = x: 1 where b = 0 and x = 0.
         let on = [0b000, 0b001];
         let off = [0b100, 0b101, 0b010, 0b011];
-        let e = run(&on, &off, 3, GpParams::default()).unwrap();
+        let e = run(&on, &off, 3, GpParams::default(), None).unwrap();
         assert!(on.iter().all(|s| e.eval(*s)) && off.iter().all(|s| !e.eval(*s)));
         assert_eq!(e.nodes(), 4);
+    }
+
+    /// A column no random tree of the first population fits: with the
+    /// two-level form in it, the GP answers and only shrinks from there.
+    #[test]
+    fn a_fitting_start_tree_means_an_answer() {
+        // 1 only where a, b, c, d are all 1 (a four-input AND, 7 nodes).
+        let on = [0b1111];
+        let off: Vec<u32> = (0..15).collect();
+        let tiny = GpParams {
+            mu: 2,
+            ratio: 2,
+            generations: 1,
+            max_initial_nodes: 1,
+            seed: 3,
+        };
+        assert_eq!(run(&on, &off, 4, tiny, None), None, "single leaves never fit");
+        let v = |i| Box::new(Expr::Var(i));
+        let start = Expr::And(
+            Box::new(Expr::And(v(0), v(1))),
+            Box::new(Expr::And(v(2), v(3))),
+        );
+        let e = run(&on, &off, 4, tiny, Some(&start)).unwrap();
+        assert!(e.eval(0b1111) && off.iter().all(|s| !e.eval(*s)));
+        assert!(e.nodes() <= start.nodes());
     }
 }

@@ -541,7 +541,13 @@ fn synthesize_within(
                 seed: options.gp.seed.wrapping_add(c as u64),
                 ..options.gp
             };
-            equation.gp = gp::run(&on, &off, modified.variables(), params);
+            equation.gp = gp::run(
+                &on,
+                &off,
+                modified.variables(),
+                params,
+                equation.qm.as_ref(),
+            );
         }
         ga_gp_millis = Some(ga_millis + gp_start.elapsed().as_millis());
     }
