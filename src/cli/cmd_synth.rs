@@ -286,7 +286,6 @@ impl SearchProgress {
             return;
         };
         self.counting.call_once(|| {
-            bar.set_length(total as u64);
             bar.set_style(
                 indicatif::ProgressStyle::with_template(
                     "{bar:30} {pos}/{len} candidates for the smallest equations, {elapsed} (Ctrl-C keeps the best so far)",
@@ -294,6 +293,8 @@ impl SearchProgress {
                 .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
             );
         });
+        // Set each time: the front's second comparison has its own total.
+        bar.set_length(total as u64);
         bar.set_position(done as u64);
     }
 
