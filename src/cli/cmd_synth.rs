@@ -254,6 +254,12 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
         );
         return EXIT_INTERNAL;
     }
+    if let Err(why) = &verification.modes {
+        eprintln!(
+            "internal error: the synthesised program fails its mode proof ({why}); please report this sequence"
+        );
+        return EXIT_INTERNAL;
+    }
     EXIT_OK
 }
 

@@ -53,6 +53,14 @@ struct EquationModel {
     line: String,
     /// The instruction-list code that leaves the value in the accumulator.
     il: Vec<String>,
+    /// The coil RESET drives to bring its cylinder home.
+    homes: bool,
+}
+
+#[derive(Serialize)]
+struct Term {
+    name: String,
+    value: bool,
 }
 
 #[derive(Serialize)]
@@ -71,6 +79,10 @@ struct Model {
     temporaries: Vec<String>,
     actuators: Vec<String>,
     memories: Vec<String>,
+    /// Each memory's start value, which RESET puts back.
+    memory_starts: Vec<bool>,
+    /// The start state, variable by variable: the machine is home.
+    home: Vec<Term>,
     equations: Vec<EquationModel>,
     program: &'static str,
     configuration: &'static str,
@@ -140,6 +152,27 @@ fn model(s: &Synthesis, title: &str, program: &'static str, temporaries: bool) -
             });
         }
     }
+    for (name, comment) in [
+        ("START", "push button: starts cycling, the machine home"),
+        (
+            "STOP",
+            "normally closed: cycling ends at the end of the cycle",
+        ),
+        (
+            "ESTOP",
+            "emergency stop, normally closed: every coil off until RESET",
+        ),
+        (
+            "RESET_PB",
+            "push button: memories back, every cylinder home",
+        ),
+    ] {
+        inputs.push(Located {
+            name: name.to_string(),
+            address: format!("%IX{}", bit(inputs.len())),
+            comment: comment.to_string(),
+        });
+    }
     let coils = s
         .equations
         .iter()
@@ -182,6 +215,8 @@ fn model(s: &Synthesis, title: &str, program: &'static str, temporaries: bool) -
                 expr: e.expr.text(&|v| names.state(v)),
                 line: equation_line(s, e),
                 il,
+                homes: !seq.is_memory(e.action.var)
+                    && ((initial >> e.action.var) & 1 == 1) == e.action.value,
             }
         })
         .collect();
@@ -206,6 +241,15 @@ fn model(s: &Synthesis, title: &str, program: &'static str, temporaries: bool) -
         actuators: (0..seq.actuators).map(|v| names.state(v)).collect(),
         memories: (seq.actuators..seq.variables())
             .map(|v| names.state(v))
+            .collect(),
+        memory_starts: (seq.actuators..seq.variables())
+            .map(|v| (initial >> v) & 1 == 1)
+            .collect(),
+        home: (0..seq.variables())
+            .map(|v| Term {
+                name: names.state(v),
+                value: (initial >> v) & 1 == 1,
+            })
             .collect(),
         equations,
         program,

@@ -234,7 +234,11 @@ mod tests {
             max_initial_nodes: 1,
             seed: 3,
         };
-        assert_eq!(run(&on, &off, 4, tiny, None), None, "single leaves never fit");
+        assert_eq!(
+            run(&on, &off, 4, tiny, None),
+            None,
+            "single leaves never fit"
+        );
         let v = |i| Box::new(Expr::Var(i));
         let start = Expr::And(
             Box::new(Expr::And(v(0), v(1))),

@@ -16,6 +16,7 @@ pub mod equations;
 mod exact;
 pub mod ga;
 pub mod gp;
+pub mod modes;
 pub mod output;
 pub mod search;
 pub mod sequence;

@@ -165,6 +165,12 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
             .map(|p| format!("; {p}"))
             .unwrap_or_default()
     ));
+    out.push_str(&match &v.modes {
+        Ok(moves) => format!(
+            "modes: passed (START, STOP at the end of the cycle, ESTOP refusing START until RESET, RESET home, one more cycle: {moves} moves as the program's inputs START, STOP, ESTOP, RESET_PB would give them)\n"
+        ),
+        Err(why) => format!("modes: FAILED ({why})\n"),
+    });
     let gp_total: Option<usize> = s.ga.as_ref().and_then(|_| {
         s.equations
             .iter()
@@ -325,7 +331,8 @@ pub fn report_json(s: &Synthesis, v: &Verification, seed: u64) -> String {
             "millis": g.millis,
         })),
         "gp_equations": s.ga.as_ref().map(|_| s.equations.iter().map(|e| (seq.token(e.action), json!(e.gp.as_ref().map(|g| g.text(&name_of(s)))))).collect::<serde_json::Map<_, _>>()),
-        "simulation": {"passed": v.passed, "problem": v.problem},
+        "simulation": {"passed": v.passed, "problem": v.problem,
+                       "modes": {"passed": v.modes.is_ok(), "problem": v.modes.as_ref().err()}},
     });
     serde_json::to_string_pretty(&value).unwrap_or_default() + "\n"
 }

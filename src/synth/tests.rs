@@ -136,3 +136,52 @@ mod ga_table5 {
         }
     }
 }
+
+mod modes_table5 {
+    use super::super::*;
+
+    /// Each Table 5 program with its modes: nothing moves before START,
+    /// STOP ends the cycling at the end of a cycle, the emergency stop
+    /// starts nothing new and refuses START, RESET brings everything home
+    /// and the next START runs one cycle.
+    #[test]
+    fn the_programs_obey_start_stop_estop_and_reset() {
+        for (text, ..) in super::table5::TABLE5 {
+            let s = synthesize(&sequence::parse(text).unwrap()).unwrap();
+            let trace = modes::check(&s).unwrap_or_else(|e| panic!("{text}: {e}"));
+            assert!(trace.len() > 3 * s.original.actions.len(), "{text}");
+        }
+    }
+
+    /// The proof fails a program whose START is ignored (held on from
+    /// power-up): it moves before the operator presses START.
+    #[test]
+    fn a_program_without_modes_fails_the_proof() {
+        let s = synthesize(&sequence::parse("A1 A0 B1 B0").unwrap()).unwrap();
+        let script = modes::script_for(&s);
+        let mut free = modes::Program::new(&s);
+        let trace = modes::run(
+            &s,
+            modes::STROKE_MS,
+            script.scans,
+            &|scan| script.buttons(scan),
+            &mut |ends, buttons| {
+                Ok(free.scan(
+                    ends,
+                    modes::Buttons {
+                        start: scan_start(buttons),
+                        ..modes::Buttons::default()
+                    },
+                ))
+            },
+        )
+        .unwrap();
+        let why = modes::judge(&s, &script, &trace).unwrap_err();
+        assert!(why.contains("before START"), "{why}");
+    }
+
+    /// START held on every scan: the program then cycles on regardless.
+    fn scan_start(_: modes::Buttons) -> bool {
+        true
+    }
+}

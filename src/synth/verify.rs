@@ -18,10 +18,20 @@ pub struct Verification {
     /// Time of two complete cycles, in milliseconds.
     pub millis: u64,
     pub problem: Option<String>,
+    /// The mode proof (`synth::modes`): the moves it saw, or what went wrong.
+    pub modes: Result<usize, String>,
 }
 
 /// Runs `cycles` cycles of the controller, 10 ms scans, 1 s strokes.
 pub fn verify(synthesis: &Synthesis, cycles: usize) -> Verification {
+    Verification {
+        modes: super::modes::check(synthesis).map(|trace| trace.len()),
+        ..equations(synthesis, cycles)
+    }
+}
+
+/// The equations alone, cycling from power-up (`modes` left empty).
+fn equations(synthesis: &Synthesis, cycles: usize) -> Verification {
     const SCAN_MS: u32 = 10;
     const WINDOW: f64 = 0.02;
     let seq = &synthesis.modified;
@@ -63,6 +73,7 @@ pub fn verify(synthesis: &Synthesis, cycles: usize) -> Verification {
                     observed,
                     millis: time,
                     problem: Some(format!("the valve of {} sees both coils", seq.var_name(i))),
+                    modes: Ok(0),
                 };
             }
         }
@@ -106,6 +117,7 @@ pub fn verify(synthesis: &Synthesis, cycles: usize) -> Verification {
                         )),
                         observed,
                         millis: time,
+                        modes: Ok(0),
                     };
                 }
                 observed.push(token);
@@ -124,6 +136,7 @@ pub fn verify(synthesis: &Synthesis, cycles: usize) -> Verification {
                 )),
                 observed,
                 millis: time,
+                modes: Ok(0),
             };
         }
     }
@@ -132,6 +145,7 @@ pub fn verify(synthesis: &Synthesis, cycles: usize) -> Verification {
         observed,
         millis: time,
         problem: None,
+        modes: Ok(0),
     }
 }
 

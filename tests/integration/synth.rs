@@ -35,10 +35,15 @@ fn the_classic_sequence_gives_the_papers_equations_and_every_file() {
     assert_eq!(json["seed"], 1);
     assert_eq!(json["truth_table"]["rows"][0]["cells"][0], "1");
     let st = std::fs::read_to_string(out.join("sequence.equations.st")).unwrap();
-    assert!(st.contains("ya_p := NOT (b OR x); (* A1 *)"));
+    assert!(st.contains("ya_p := (enable AND (NOT (b OR x))); (* A1 *)"));
+    assert!(st.contains("START AT %IX0.4 : BOOL;"), "{st}");
+    assert!(st.contains("RESET_PB AT %IX0.7 : BOOL;"), "{st}");
     assert!(st.contains("CONFIGURATION Config0"));
     let il = std::fs::read_to_string(out.join("sequence.equations.il")).unwrap();
-    assert!(il.contains("  LD x\n  ST ya_m\n"), "{il}");
+    assert!(
+        il.contains("  LD x\n  AND enable\n  OR homing\n  ST ya_m\n"),
+        "{il}"
+    );
     let sheet = crate::helpers::read_sheet(&out.join("sequence.xlsx"), "EQUATIONS");
     assert_eq!(sheet[4][..3], ["ACTION", "EQUATION", "NODES"]);
     assert!(

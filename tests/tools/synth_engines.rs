@@ -1,13 +1,16 @@
 //! The synthesised programs (`NAME.equations.st` and `.equations.il`), as
 //! written, compiled with matiec and run in a closed loop against
-//! steptable's plant model: two-position cylinders on bistable 5/2 valves,
-//! each starting at the complement of its first move. The moves must come in
-//! the sequence's order for two full cycles, and no valve may see both coils.
+//! steptable's plant model (two-position cylinders on bistable 5/2 valves,
+//! each starting at the complement of its first move) with the mode proof's
+//! script: nothing before START, STOP at the end of a cycle, the emergency
+//! stop, RESET and one more cycle. Every move must come at the same scan as
+//! in the model of the program (`synth::modes`), which the proof judges.
 
 use std::path::Path;
 
-use steptable::simulate::plant::Piston;
-use steptable::stroke::Stroke;
+use steptable::synth::modes::{self, Trace};
+use steptable::synth::sequence::{Operation, parse};
+use steptable::synth::{self, Synthesis};
 
 use crate::engines::matiec;
 use crate::helpers::steptable;
@@ -30,25 +33,9 @@ fn located(text: &str) -> Vec<(String, String)> {
         .collect()
 }
 
-/// A move as the sequence writes it: `A1`, `A0`; `C1+1`, `C1-0` for a
-/// table's names.
-fn token(name: &str, extended: bool) -> String {
-    if name.ends_with(|c: char| c.is_ascii_digit()) {
-        format!("{name}{}", if extended { "+1" } else { "-0" })
-    } else {
-        format!("{name}{}", u8::from(extended))
-    }
-}
-
-/// Runs `file` against the plant; the moves in the order they ended
-/// (`A1`, `B0`, …), or why it failed.
-fn run(
-    shared: &Path,
-    file: &Path,
-    letters: &[String],
-    start: &[bool],
-    scans: usize,
-) -> Result<Vec<String>, String> {
+/// Runs the written `file` in matiec against the plant with the mode
+/// proof's script: the moves it made, at their scans, or why it failed.
+fn run(shared: &Path, file: &Path, s: &Synthesis) -> Result<Trace, String> {
     let text = std::fs::read_to_string(file).unwrap();
     let vars = located(&text);
     let address = |name: &str| {
@@ -57,60 +44,36 @@ fn run(
             .map(|(_, a)| a.clone())
             .ok_or_else(|| format!("{name} is not declared"))
     };
+    let seq = &s.modified;
     let mut inputs = Vec::new();
     let mut outputs = Vec::new();
-    for l in letters {
-        let l = l.to_ascii_lowercase();
-        inputs.push(address(&format!("{l}_home"))?);
-        inputs.push(address(&format!("{l}_end"))?);
-        outputs.push(address(&format!("y{l}_p"))?);
-        outputs.push(address(&format!("y{l}_m"))?);
+    for i in 0..seq.actuators {
+        for name in seq.input_names(i) {
+            inputs.push(address(&name)?);
+        }
+        for value in [true, false] {
+            outputs.push(address(&seq.output_name(Operation { var: i, value }))?);
+        }
+    }
+    for button in ["START", "STOP", "ESTOP", "RESET_PB"] {
+        inputs.push(address(button)?);
     }
     let program = matiec::build(shared, file, 10, &inputs, &outputs)?;
     let mut live = program.live()?;
-    let stroke = Stroke {
-        extend_ms: 200,
-        retract_ms: 200,
-    };
-    let mut pistons: Vec<Piston> = (0..letters.len())
-        .map(|i| {
-            let mut p = Piston::new(i as u32 + 1, 1, stroke, 10);
-            p.s = if start[i] { 1.0 } else { 0.0 };
-            p
-        })
-        .collect();
-    let mut at_end: Vec<Option<bool>> = start.iter().map(|s| Some(*s)).collect();
-    let mut moves = Vec::new();
-    for scan in 0..scans {
-        let read: Vec<bool> = pistons
-            .iter()
-            .flat_map(|p| [p.sensor(0, 0.02), p.sensor(1, 0.02)])
-            .collect();
-        let coils = live.scan(&read)?;
-        for (i, p) in pistons.iter_mut().enumerate() {
-            if p.drive(coils[2 * i], coils[2 * i + 1]) {
-                return Err(format!(
-                    "scan {scan}: the valve of {} sees both coils",
-                    letters[i]
-                ));
-            }
-            p.advance();
-            let now = if p.sensor(1, 0.02) {
-                Some(true)
-            } else if p.sensor(0, 0.02) {
-                Some(false)
-            } else {
-                None
-            };
-            if now.is_some() && now != at_end[i] {
-                moves.push(token(&letters[i], now == Some(true)));
-            }
-            if now.is_some() {
-                at_end[i] = now;
-            }
-        }
-    }
-    Ok(moves)
+    let script = modes::script_for(s);
+    modes::run(
+        s,
+        modes::STROKE_MS,
+        script.scans,
+        &|scan| script.buttons(scan),
+        &mut |ends, buttons| {
+            let mut read: Vec<bool> = ends.iter().flat_map(|(h, e)| [*h, *e]).collect();
+            // STOP and ESTOP are normally closed: pressed reads 0.
+            read.extend([buttons.start, !buttons.stop, !buttons.estop, buttons.reset]);
+            let coils = live.scan(&read)?;
+            Ok(coils.chunks(2).map(|c| (c[0], c[1])).collect())
+        },
+    )
 }
 
 fn synthesised_programs_run_the_sequence_in_matiec() {
@@ -134,7 +97,7 @@ fn synthesised_programs_run_the_sequence_in_matiec() {
     let mut checked = 0;
     for (k, written) in sequences.iter().enumerate() {
         let out = dir.path().join(format!("s{k}"));
-        let (sequence, flags) = written.split_once(" --").unwrap_or((written, ""));
+        let (text, flags) = written.split_once(" --").unwrap_or((written, ""));
         let flags: Vec<String> = flags
             .split_whitespace()
             .enumerate()
@@ -147,49 +110,30 @@ fn synthesised_programs_run_the_sequence_in_matiec() {
             })
             .collect();
         steptable()
-            .args(["synth", "--sequence", sequence, "-o"])
+            .args(["synth", "--sequence", text, "-o"])
             .arg(&out)
             .args(&flags)
             .assert()
             .success();
-        let actions: Vec<&str> = sequence.split_whitespace().collect();
-        // The name: the token without its move (`A1` → A, `C1+1` → C1).
-        let name_of = |a: &str| -> String {
-            match a.find(['+', '-']) {
-                Some(sign) => a[..sign].to_string(),
-                None => a[..a.len() - 1].to_string(),
-            }
+        // The same synthesis in-process, for the model's trace.
+        let options = synth::Options {
+            prefer: if flags.iter().any(|f| f == "nodes") {
+                synth::Prefer::Nodes
+            } else {
+                synth::Prefer::Memories
+            },
+            ..synth::Options::default()
         };
-        let mut letters: Vec<String> = actions.iter().map(|a| name_of(a)).collect();
-        letters.sort();
-        letters.dedup();
-        // Each cylinder starts where its first move does not go.
-        let start: Vec<bool> = letters
-            .iter()
-            .map(|l| {
-                actions
-                    .iter()
-                    .find(|a| name_of(a) == *l)
-                    .unwrap()
-                    .ends_with('0')
-            })
-            .collect();
-        let expected: Vec<String> = actions
-            .iter()
-            .chain(&actions)
-            .map(|a| a.to_string())
-            .collect();
-        let scans = 2 * actions.len() * 30 + 200;
+        let s = synth::synthesize_with(&parse(text).unwrap(), options).unwrap();
+        let model = modes::check(&s).unwrap_or_else(|e| panic!("{text}: the model: {e}"));
         for file in ["sequence.equations.st", "sequence.equations.il"] {
             let path = out.join("sequence").join(file);
-            let moves = run(&shared, &path, &letters, &start, scans)
-                .unwrap_or_else(|e| panic!("{sequence}: {file}: {e}"));
-            assert!(
-                moves.len() >= expected.len() && moves[..expected.len()] == expected[..],
-                "{sequence}: {file} moved {moves:?}"
-            );
+            let trace = run(&shared, &path, &s).unwrap_or_else(|e| panic!("{text}: {file}: {e}"));
+            assert_eq!(trace, model, "{text}: {file}: matiec against the model");
             checked += 1;
         }
     }
-    eprintln!("synth: {checked} programs compiled by matiec ran their sequence twice");
+    eprintln!(
+        "synth: {checked} programs compiled by matiec ran START, STOP, ESTOP and RESET scan for scan as the model"
+    );
 }
