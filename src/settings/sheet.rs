@@ -464,6 +464,26 @@ mod tests {
         Grid::from_text_rows("t.xlsx", Some("SETTINGS"), rows)
     }
 
+    /// Deleting a letter costs one, as does each letter of a label left
+    /// over: a near-miss of a label is told from a word that merely shares
+    /// its start (two cargo mutants survivors made deletions free).
+    #[test]
+    fn the_edit_distance_counts_every_deleted_letter() {
+        let d = |a: &str, b: &str| {
+            edit_distance(
+                &a.chars().collect::<Vec<_>>(),
+                &b.chars().collect::<Vec<_>>(),
+            )
+        };
+        assert_eq!(d("ab", ""), 2);
+        assert_eq!(d("abc", "a"), 2);
+        assert_eq!(d("safety", "safty"), 1);
+        assert_eq!(d("scantime", "scan"), 4);
+        assert_eq!(d("", "abc"), 3);
+        assert!(resembles_a_label("safty"));
+        assert!(!resembles_a_label("scanner"));
+    }
+
     #[test]
     fn cells_right_of_the_actuator_table_are_named_and_labels_beside_it_read() {
         let mut diags = Diagnostics::new();
