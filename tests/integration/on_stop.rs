@@ -374,3 +374,44 @@ fn a_halt_switches_the_heater_off_and_lets_the_fan_run_on() {
             "SETTINGS!B2: error[E030]: the emergency stop keeps fan on, but a halt switches it off",
         ));
 }
+
+/// Run-on timers share the table's 255 timers with its dwells: exactly 255
+/// in all is accepted, one more is E030 at the row that asks for them
+/// (cargo mutants survivors in the count).
+#[test]
+fn run_on_timers_and_dwells_share_the_timers() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("many.xlsx");
+    let write = |dwells: usize| {
+        let mut rows: Vec<Vec<String>> = vec![vec!["Y:heater+; Y:fan+; T=1s".to_string()]];
+        rows.extend((0..dwells - 2).map(|_| vec!["T=1s".to_string()]));
+        rows.push(vec!["Y:heater-; Y:fan-; T=1s".to_string()]);
+        let table: Vec<Vec<&str>> = rows
+            .iter()
+            .map(|r| r.iter().map(String::as_str).collect())
+            .collect();
+        let table: Vec<&[&str]> = table.iter().map(Vec::as_slice).collect();
+        let settings: &[&[&str]] = &[
+            &["modes", "stop"],
+            &["on stop", "heater off after 1s, fan off after 1s"],
+        ];
+        write_xlsx_sheets(
+            &path,
+            &[
+                ("SEQUENTIAL CONTROL DESCRIPTION", &table),
+                ("SETTINGS", settings),
+            ],
+        );
+    };
+    write(253);
+    steptable().arg("check").arg(&path).assert().success();
+    write(254);
+    steptable()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .failure()
+        .stderr(contains(
+            "error[E030]: 2 run-on timers and 254 dwells need more than the 255 timers a table may use",
+        ));
+}
