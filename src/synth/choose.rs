@@ -208,6 +208,19 @@ fn evaluate(
     Ok(trees.into_iter().flatten().collect())
 }
 
+/// The smallest tree of every column of `sequence`'s truth table, in column
+/// order; `None` when a column has none within the search's limits (or the
+/// synthesis's time ran out).
+pub fn smallest_equations(sequence: &Sequence) -> Option<Vec<Expr>> {
+    evaluate(
+        sequence,
+        &column_bounds(sequence),
+        usize::MAX,
+        &mut Memo::new(),
+    )
+    .ok()
+}
+
 /// The candidate with the smallest equations among every polarity of every
 /// placement, searched until the synthesis's deadline; `progress` is told
 /// the candidates settled of all. `None` when no candidate's equations could
@@ -290,7 +303,7 @@ pub fn choose(placements: &[Sequence], progress: &(dyn Fn(usize, usize) + Sync))
         let _unlimited = budget::Budget::until(None);
         let (i, flip) = work[0];
         let candidate = polarity(ranked[i].2, flip);
-        if let Ok(trees) = evaluate(&candidate, &ranked[i].1, usize::MAX, &mut Memo::new()) {
+        if let Some(trees) = smallest_equations(&candidate) {
             let key = key(&candidate, &trees);
             lower[0].store(key.0, Ordering::Relaxed);
             settled.fetch_add(1, Ordering::Relaxed);

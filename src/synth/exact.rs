@@ -72,12 +72,13 @@ pub struct FrontPoint {
     pub chosen: bool,
 }
 
-/// What the exact route found: the front and, in the same order, each
-/// point's choice.
+/// What the exact route found: the front, and the point kept with how it
+/// was chosen.
 pub(crate) struct Exact {
     pub insertions: usize,
     pub front: Vec<FrontPoint>,
-    pub choices: Vec<Choice>,
+    pub chosen: Choice,
+    pub comparison: Comparison,
 }
 
 fn compared(found: &search::Minimal, choice: &Choice) -> Comparison {
@@ -150,9 +151,11 @@ pub(crate) fn route(
             chosen: i == chosen,
         })
         .collect();
+    let (comparison, chosen) = points.swap_remove(chosen);
     Ok(Exact {
         insertions: minimal.insertions,
         front,
-        choices: points.into_iter().map(|(_, c)| c).collect(),
+        chosen,
+        comparison,
     })
 }

@@ -27,7 +27,7 @@ use std::time::Instant;
 pub use budget::interrupt;
 pub use exact::{Comparison, FrontPoint, Prefer, Stopped};
 
-use equations::{Expr, SearchLimits};
+use equations::Expr;
 use sequence::{Clash, Operation, Sequence};
 
 /// One cell of the truth table.
@@ -265,6 +265,17 @@ impl Synthesis {
         self.equations.iter().map(|e| e.expr.nodes()).sum()
     }
 
+    /// Whether the equation of `action` is 1 in `state` (false for an
+    /// action without a column).
+    pub fn drives(&self, action: Operation, state: u32) -> bool {
+        self.table
+            .columns
+            .iter()
+            .position(|c| *c == action)
+            .and_then(|c| self.equations.get(c))
+            .is_some_and(|e| e.expr.eval(state))
+    }
+
     /// Nodes of the largest equation.
     pub fn largest(&self) -> usize {
         self.equations
@@ -302,43 +313,6 @@ impl std::fmt::Display for SynthError {
             | SynthError::OutOfTime(why) => f.write_str(why),
         }
     }
-}
-
-/// The smallest equations of a valid sequence, or `None` if an exact search
-/// hit its limits or their total would exceed `bound` nodes.
-fn equations_of(
-    sequence: &Sequence,
-    with_qm: bool,
-    bound: usize,
-) -> Option<(TruthTable, Vec<Equation>)> {
-    let table = TruthTable::of(sequence);
-    let mut equations = Vec::new();
-    let mut total = 0;
-    for (c, action) in table.columns.iter().enumerate() {
-        let (on, off) = table.on_off(c);
-        // Every later column needs at least one node.
-        let left = table.columns.len() - c - 1;
-        let limits = SearchLimits {
-            max_nodes: SearchLimits::default()
-                .max_nodes
-                .min(bound.saturating_sub(total + left)),
-            ..SearchLimits::default()
-        };
-        let expr = equations::minimal(&on, &off, sequence.variables(), limits)?;
-        total += expr.nodes();
-        let qm = if with_qm {
-            equations::quine_mccluskey(&on, &off, sequence.variables())
-        } else {
-            None
-        };
-        equations.push(Equation {
-            action: *action,
-            expr,
-            qm,
-            gp: None,
-        });
-    }
-    Some((table, equations))
 }
 
 /// The sequence of a checked step table, its actuators named as the table
@@ -474,24 +448,18 @@ fn synthesize_within(
             )));
         };
         let insertions = s.actions.len() - original.actions.len();
-        let (_, equations) = equations_of(&s, false, usize::MAX).ok_or_else(|| {
+        let trees = choose::smallest_equations(&s).ok_or_else(|| {
             SynthError::NotFound("the equation search reached its limits".to_string())
         })?;
-        let trees = equations.into_iter().map(|e| e.expr).collect();
         (s, insertions, None, Vec::new(), trees)
     } else {
         let exact = exact::route(original, options, progress)?;
-        let chosen = exact.front.iter().position(|p| p.chosen).unwrap_or(0);
-        let choice =
-            exact.choices.into_iter().nth(chosen).ok_or_else(|| {
-                SynthError::NotFound("the exact route found no sequence".to_string())
-            })?;
         (
-            choice.sequence,
+            exact.chosen.sequence,
             exact.insertions,
-            Some(exact.front[chosen].comparison.clone()),
+            Some(exact.comparison),
             exact.front,
-            choice.equations,
+            exact.chosen.equations,
         )
     };
     let minimum = match front.first() {

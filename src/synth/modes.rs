@@ -15,7 +15,6 @@
 
 use super::Synthesis;
 use super::sequence::Operation;
-use crate::simulate::plant::Piston;
 use crate::stroke::Stroke;
 
 /// The buttons in one scan, as the operator works them (`stop` and `estop`
@@ -58,14 +57,7 @@ impl<'a> Program<'a> {
     }
 
     fn equation(&self, var: usize, value: bool) -> bool {
-        let action = Operation { var, value };
-        self.s
-            .table
-            .columns
-            .iter()
-            .position(|c| *c == action)
-            .and_then(|c| self.s.equations.get(c))
-            .is_some_and(|e| e.expr.eval(self.state))
+        self.s.drives(Operation { var, value }, self.state)
     }
 
     /// One scan: `ends[i]` = (retracted, extended) switches of actuator i;
@@ -176,16 +168,7 @@ pub fn run(
         extend_ms: stroke_ms,
         retract_ms: stroke_ms,
     };
-    let mut pistons: Vec<Piston> = (0..seq.actuators)
-        .map(|i| {
-            let mut p = Piston::new(i as u32 + 1, 1, stroke, SCAN_MS);
-            if (initial >> i) & 1 == 1 {
-                p.drive(true, false);
-                p.s = 1.0;
-            }
-            p
-        })
-        .collect();
+    let mut pistons = super::verify::pistons_at_start(seq, stroke, SCAN_MS);
     let mut at_end: Vec<Option<bool>> = (0..seq.actuators)
         .map(|i| Some((initial >> i) & 1 == 1))
         .collect();

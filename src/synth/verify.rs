@@ -6,6 +6,7 @@
 //! it reaches its retracted end, so the state changes only when a move ends.
 
 use super::Synthesis;
+use super::sequence::Sequence;
 use crate::simulate::plant::Piston;
 use crate::stroke::Stroke;
 
@@ -36,17 +37,7 @@ fn equations(synthesis: &Synthesis, cycles: usize) -> Verification {
     const WINDOW: f64 = 0.02;
     let seq = &synthesis.modified;
     let initial = seq.initial_state();
-    let mut pistons: Vec<Piston> = (0..seq.actuators)
-        .map(|i| {
-            let mut p = Piston::new(i as u32 + 1, 1, Stroke::default(), SCAN_MS);
-            if (initial >> i) & 1 == 1 {
-                // Starts extended: put it there with its valve that way.
-                p.drive(true, false);
-                p.s = 1.0;
-            }
-            p
-        })
-        .collect();
+    let mut pistons = pistons_at_start(seq, Stroke::default(), SCAN_MS);
     let mut state = initial;
     let expected: Vec<String> = (0..cycles)
         .flat_map(|_| seq.actions.iter().map(|a| seq.token(*a)))
@@ -55,12 +46,7 @@ fn equations(synthesis: &Synthesis, cycles: usize) -> Verification {
     let mut since_event = 0u32;
     let mut time = 0u64;
     let timeout_scans = 3000 / SCAN_MS;
-    let column = |action| synthesis.table.columns.iter().position(|c| *c == action);
-    let value = |action, state: u32| {
-        column(action)
-            .and_then(|c| synthesis.equations.get(c))
-            .is_some_and(|e| e.expr.eval(state))
-    };
+    let value = |action, state: u32| synthesis.drives(action, state);
     while observed.len() < expected.len() {
         // Evaluate every equation on the state read at the start of the scan.
         let mut next = state;
@@ -147,6 +133,22 @@ fn equations(synthesis: &Synthesis, cycles: usize) -> Verification {
         problem: None,
         modes: Ok(0),
     }
+}
+
+/// One cylinder per actuator, each where the sequence starts it: a cylinder
+/// that starts extended is there with its valve that way.
+pub(crate) fn pistons_at_start(seq: &Sequence, stroke: Stroke, scan_ms: u32) -> Vec<Piston> {
+    let initial = seq.initial_state();
+    (0..seq.actuators)
+        .map(|i| {
+            let mut p = Piston::new(i as u32 + 1, 1, stroke, scan_ms);
+            if (initial >> i) & 1 == 1 {
+                p.drive(true, false);
+                p.s = 1.0;
+            }
+            p
+        })
+        .collect()
 }
 
 fn sequence_action(var: usize, value: bool) -> super::sequence::Operation {
