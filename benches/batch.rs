@@ -69,7 +69,53 @@ fn median(mut runs: Vec<Duration>) -> Duration {
     runs[runs.len() / 2]
 }
 
+/// `convert` of one workbook as a whole process, steptable's binary beside
+/// the floor's (this bench started again as [`floor::one_as_process`]),
+/// alternating, median of `runs` each.
+fn whole_process(input: &Path, texts: &[steptable::emit::OutputFile], dir: &Path, runs: usize) {
+    let files: Vec<String> = texts
+        .iter()
+        .map(|f| format!("{}:{}", f.name, f.bytes.len()))
+        .collect();
+    let (mut ours, mut floors) = (Vec::new(), Vec::new());
+    for i in 0..runs {
+        let out = dir.join(format!("process{i}"));
+        let start = Instant::now();
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_steptable"))
+            .arg("convert")
+            .arg(input)
+            .arg("-o")
+            .arg(&out)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .status()
+            .unwrap();
+        ours.push(start.elapsed());
+        assert!(status.success(), "steptable convert failed");
+        let start = Instant::now();
+        let status = std::process::Command::new(std::env::current_exe().unwrap())
+            .env("STEPTABLE_FLOOR_ONE", input)
+            .env("STEPTABLE_FLOOR_OUT", dir.join(format!("floor-process{i}")))
+            .env("STEPTABLE_FLOOR_FILES", files.join(","))
+            .status()
+            .unwrap();
+        floors.push(start.elapsed());
+        assert!(status.success(), "the floor process failed");
+    }
+    let (ours, floor) = (median(ours), median(floors));
+    println!(
+        "convert {} as a whole process, median of {runs}: {:.1} ms; floor {:.1} ms, ratio {:.2}x",
+        input.file_name().unwrap().to_string_lossy(),
+        ours.as_secs_f64() * 1e3,
+        floor.as_secs_f64() * 1e3,
+        ours.as_secs_f64() / floor.as_secs_f64()
+    );
+}
+
 fn main() {
+    if floor::one_as_process() {
+        return;
+    }
     let count: usize = std::env::var("STEPTABLE_BENCH_WORKBOOKS")
         .ok()
         .and_then(|v| v.parse().ok())
@@ -92,6 +138,16 @@ fn main() {
                 .collect()
         })
         .collect();
+    // The paper's example as one `convert`, process start included.
+    let paper = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/paper_example.xlsx");
+    let paper_texts: Vec<steptable::emit::OutputFile> =
+        convert::convert_path_as(&paper, "paper_example", &settings)
+            .expect("the paper's example converts")
+            .files
+            .into_iter()
+            .filter(|f| !f.name.ends_with(".xlsx") || f.name.ends_with(".tags.xlsx"))
+            .collect();
+    whole_process(&paper, &paper_texts, dir.path(), 21);
     // Floor and steptable alternate, three rounds each, so that both see
     // the same caches and the same load; medians are printed.
     let mut single = Duration::ZERO;

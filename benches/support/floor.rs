@@ -13,7 +13,7 @@ use rust_xlsxwriter::Workbook;
 use steptable::emit::OutputFile;
 
 /// One input's floor work.
-fn one(input: &Path, texts: &[OutputFile], out: &Path) {
+pub fn one(input: &Path, texts: &[OutputFile], out: &Path) {
     let mut workbook = open_workbook_auto(input).expect("a workbook");
     let sheet = workbook.sheet_names()[0].clone();
     let range = workbook.worksheet_range(&sheet).expect("a sheet");
@@ -68,4 +68,28 @@ pub fn run(inputs: &[PathBuf], texts: &[Vec<OutputFile>], out: &Path, jobs: usiz
             .for_each(|(input, texts)| one(input, texts, out));
     });
     start.elapsed()
+}
+
+/// The floor as a whole process (the bench binary started again with
+/// `STEPTABLE_FLOOR_ONE=input`, `STEPTABLE_FLOOR_OUT=folder` and
+/// `STEPTABLE_FLOOR_FILES=name:length,…`): one input's work with files of
+/// the other outputs' names and lengths. Returns whether it was asked for.
+pub fn one_as_process() -> bool {
+    let (Ok(input), Ok(out), Ok(files)) = (
+        std::env::var("STEPTABLE_FLOOR_ONE"),
+        std::env::var("STEPTABLE_FLOOR_OUT"),
+        std::env::var("STEPTABLE_FLOOR_FILES"),
+    ) else {
+        return false;
+    };
+    let texts: Vec<OutputFile> = files
+        .split(',')
+        .filter_map(|entry| entry.rsplit_once(':'))
+        .map(|(name, length)| OutputFile {
+            name: name.to_string(),
+            bytes: vec![b'x'; length.parse().unwrap_or(0)],
+        })
+        .collect();
+    one(Path::new(&input), &texts, Path::new(&out));
+    true
 }

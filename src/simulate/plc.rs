@@ -168,7 +168,15 @@ impl<'a> PlcState<'a> {
     /// bit, every timer) to `hasher`.
     pub fn hash_state(&self, hasher: &mut impl std::hash::Hasher) {
         use std::hash::Hash;
-        (self.awaited, &self.bits, &self.timers).hash(hasher);
+        // 64 bits to a word: a slice of bools hashes bit by bit otherwise.
+        for chunk in self.bits.chunks(64) {
+            let word = chunk
+                .iter()
+                .enumerate()
+                .fold(0u64, |w, (i, &on)| w | (u64::from(on) << i));
+            hasher.write_u64(word);
+        }
+        (self.awaited, self.bits.len(), &self.timers).hash(hasher);
     }
 
     /// The same by index.
