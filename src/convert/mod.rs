@@ -381,12 +381,6 @@ pub fn generate_observed(
     };
     let (program, simulation) = healthy_program(&table, settings, &sim_settings)?;
     let allocation = allocate(&program, settings, &table.file).map_err(Failure::Input)?;
-    // Only the fault table and the workbook show the fault analysis; it is
-    // most of the work on a large table, so it runs only for them.
-    let fault_table = [OutputKind::Faults, OutputKind::Workbook]
-        .iter()
-        .any(|k| settings.formats.contains(k))
-        .then(|| faults::analyse_observed(&table, &program, &settings.simulation, 1, progress));
     let festo = festo_allocation(&program, &allocation);
     let input = EmitInput {
         name,
@@ -395,15 +389,40 @@ pub fn generate_observed(
         festo: &festo,
         program: &program,
         simulation: Some(&simulation),
-        faults: fault_table.as_ref(),
+        faults: None,
         templates: &settings.templates,
         scan_ms: settings.simulation.scan_ms,
         diagram: settings.diagram,
     };
-    let files = emit::render(settings.formats.iter().copied(), input).map_err(|e| match e {
+    // Only the fault table and the workbook show the fault analysis; it is
+    // most of the work on a large table, so it runs only for them, and
+    // beside the other outputs (on a core the analysis leaves idle: its
+    // healthy and checkpoint runs are one thread's work).
+    let (early, late): (Vec<OutputKind>, Vec<OutputKind>) =
+        settings.formats.iter().partition(|k| !k.shows_faults());
+    let (fault_table, early) = rayon::join(
+        || {
+            (!late.is_empty()).then(|| {
+                faults::analyse_observed(&table, &program, &settings.simulation, 1, progress)
+            })
+        },
+        || emit::render_each(early, input),
+    );
+    let late = emit::render_each(
+        late,
+        EmitInput {
+            faults: fault_table.as_ref(),
+            ..input
+        },
+    );
+    let emitted = |e| match e {
         emit::EmitError::Template(e) => Failure::Template(e),
         emit::EmitError::Internal(why) => Failure::Internal(why),
-    })?;
+    };
+    let mut kinds = early.map_err(emitted)?;
+    kinds.extend(late.map_err(emitted)?);
+    kinds.sort_by_key(|(kind, _)| *kind);
+    let files = kinds.into_iter().flat_map(|(_, files)| files).collect();
     Ok(Conversion {
         name: name.to_string(),
         table,

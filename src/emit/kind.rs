@@ -26,6 +26,12 @@ pub enum OutputKind {
 }
 
 impl OutputKind {
+    /// The kinds that show the fault analysis (the fault table, the
+    /// workbook's FAULTS sheet): nothing else needs it.
+    pub fn shows_faults(self) -> bool {
+        matches!(self, OutputKind::Faults | OutputKind::Workbook)
+    }
+
     /// Every kind, in the order files are listed.
     pub const ALL: [OutputKind; 16] = [
         OutputKind::Workbook,

@@ -16,7 +16,7 @@ pub mod templates;
 pub mod workbook;
 
 pub use kind::OutputKind;
-pub use render::{EmitError, Renderer, render};
+pub use render::{EmitError, Renderer, render, render_each};
 
 use crate::address::Allocation;
 use crate::cell::Sign;

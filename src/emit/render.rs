@@ -34,15 +34,26 @@ pub fn render(
     kinds: impl IntoIterator<Item = OutputKind>,
     input: EmitInput<'_>,
 ) -> Result<Vec<OutputFile>, EmitError> {
+    Ok(render_each(kinds, input)?
+        .into_iter()
+        .flat_map(|(_, files)| files)
+        .collect())
+}
+
+/// Like [`render`], each kind with its files, so that kinds rendered apart
+/// (some before the fault analysis has ended) can be put back in order.
+pub fn render_each(
+    kinds: impl IntoIterator<Item = OutputKind>,
+    input: EmitInput<'_>,
+) -> Result<Vec<(OutputKind, Vec<OutputFile>)>, EmitError> {
     let mut kinds: Vec<OutputKind> = kinds.into_iter().collect();
     kinds.sort_unstable();
     kinds.dedup();
     let mut renderer = Renderer::new(input);
-    let mut files = Vec::new();
-    for kind in kinds {
-        files.extend(renderer.render(kind)?);
-    }
-    Ok(files)
+    kinds
+        .into_iter()
+        .map(|kind| Ok((kind, renderer.render(kind)?)))
+        .collect()
 }
 
 impl<'a> Renderer<'a> {
