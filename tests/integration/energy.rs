@@ -321,6 +321,13 @@ fn an_interlock_over_a_step_range_halts_only_there() {
         zoned.iter().all(|s| matches!(s, Some(3 | 4))),
         "halts only in the zone: {zoned:?}"
     );
+    // One step written alone is a zone of that step: the machine halts in
+    // step 3, waiting for step 4, whenever the guard opens.
+    let one_step = stalls("guard_closed in step 3");
+    assert!(
+        one_step.iter().all(|s| *s == Some(4)),
+        "halts only in step 3: {one_step:?}"
+    );
     let everywhere = stalls("guard_closed");
     assert!(everywhere.contains(&Some(2)), "{everywhere:?}");
     // A zone to the last step ends with the cycle (its own END step): the
