@@ -46,14 +46,67 @@ pub fn render_each(
     kinds: impl IntoIterator<Item = OutputKind>,
     input: EmitInput<'_>,
 ) -> Result<Vec<(OutputKind, Vec<OutputFile>)>, EmitError> {
+    use rayon::prelude::*;
     let mut kinds: Vec<OutputKind> = kinds.into_iter().collect();
     kinds.sort_unstable();
     kinds.dedup();
-    let mut renderer = Renderer::new(input);
-    kinds
-        .into_iter()
-        .map(|kind| Ok((kind, renderer.render(kind)?)))
-        .collect()
+    // Kinds that share a model render one after the other with one
+    // renderer; the groups render side by side.
+    let mut groups: Vec<Vec<OutputKind>> = Vec::new();
+    for kind in kinds {
+        let family = shared_model(kind);
+        match groups
+            .iter_mut()
+            .find(|g| family.is_some() && shared_model(g[0]) == family)
+        {
+            Some(group) => group.push(kind),
+            None => groups.push(vec![kind]),
+        }
+    }
+    let rendered: Vec<Result<Vec<_>, (OutputKind, EmitError)>> = groups
+        .into_par_iter()
+        .map(|group| {
+            let mut renderer = Renderer::new(input);
+            group
+                .into_iter()
+                .map(|kind| Ok((kind, renderer.render(kind).map_err(|e| (kind, e))?)))
+                .collect()
+        })
+        .collect();
+    // The failure of the first kind that failed, as one at a time would
+    // have met it (a group stops at its first).
+    let mut files = Vec::new();
+    let mut failed: Option<(OutputKind, EmitError)> = None;
+    for group in rendered {
+        match group {
+            Ok(group) => files.extend(group),
+            Err(e) => {
+                if failed.as_ref().is_none_or(|(kind, _)| e.0 < *kind) {
+                    failed = Some(e);
+                }
+            }
+        }
+    }
+    if let Some((_, e)) = failed {
+        return Err(e);
+    }
+    files.sort_by_key(|(kind, _)| *kind);
+    Ok(files)
+}
+
+/// Which model a kind's renderer builds and keeps for the kinds after it
+/// (the IEC model, the STEP 7 model), if any.
+fn shared_model(kind: OutputKind) -> Option<u8> {
+    match kind {
+        OutputKind::StructuredText
+        | OutputKind::PlcOpen
+        | OutputKind::Codesys
+        | OutputKind::Gvl
+        | OutputKind::CodesysV2
+        | OutputKind::Beremiz => Some(0),
+        OutputKind::Awl | OutputKind::SymbolTable => Some(1),
+        _ => None,
+    }
 }
 
 impl<'a> Renderer<'a> {

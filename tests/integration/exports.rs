@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use predicates::prelude::PredicateBooleanExt;
 use predicates::str::contains;
 
 use crate::helpers::{files_below, read_sheet, sample, steptable};
@@ -164,6 +165,25 @@ fn a_broken_user_template_names_file_line_and_variable() {
         .stderr(contains("program.awl.j2:3: `netwerks` is undefined"))
         .stderr(contains("nothing written"));
     assert!(files_below(&dir.path().join("out")).is_empty());
+    // Two broken: the one of the kind listed first is reported, though the
+    // outputs render side by side (the CoDeSys V2.3 export with the other
+    // IEC files, the Rockwell list alone).
+    std::fs::remove_file(templates.join("program.awl.j2")).unwrap();
+    std::fs::write(templates.join("program.exp.j2"), "{{ exp_typo }}\n").unwrap();
+    std::fs::write(templates.join("rockwell.csv.j2"), "{{ rockwell_typo }}\n").unwrap();
+    for _ in 0..5 {
+        steptable()
+            .arg("convert")
+            .arg(sample("paper_example.xlsx"))
+            .arg("--templates")
+            .arg(&templates)
+            .arg("-o")
+            .arg(dir.path().join("out"))
+            .assert()
+            .code(1)
+            .stderr(contains("rockwell.csv.j2:1: `rockwell_typo` is undefined"))
+            .stderr(contains("exp_typo").not());
+    }
 }
 
 /// The lists Windows tools import use CRLF; the CoDeSys V2.3 export has the
