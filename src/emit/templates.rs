@@ -6,6 +6,7 @@
 use std::collections::BTreeMap;
 use std::fmt;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use minijinja::syntax::SyntaxConfig;
 use minijinja::{AutoEscape, Environment, UndefinedBehavior, Value};
@@ -100,7 +101,9 @@ impl std::error::Error for TemplateError {}
 /// The set of templates of one run: defaults plus the user's overrides.
 #[derive(Clone)]
 pub struct Templates {
-    env: Environment<'static>,
+    /// Shared by every copy of the settings (a batch's conversions), so
+    /// that a default template is compiled once per run, when first used.
+    env: Arc<Environment<'static>>,
     /// Overridden template name → the user's file.
     overrides: BTreeMap<String, PathBuf>,
 }
@@ -122,7 +125,7 @@ impl PartialEq for Templates {
 impl Default for Templates {
     fn default() -> Self {
         Templates::with_overrides(BTreeMap::new()).unwrap_or_else(|_| Templates {
-            env: Environment::new(),
+            env: Arc::new(Environment::new()),
             overrides: BTreeMap::new(),
         })
     }
@@ -165,25 +168,33 @@ impl Templates {
             line: None,
             detail: e.to_string(),
         })?;
+        // The defaults compile when first rendered (a conversion renders
+        // them side by side; a `--formats st` run needs two); the user's
+        // are compiled here, so that a syntax error stops the run before
+        // any table is read. An added template comes before the loader.
+        env.set_loader(|name| {
+            Ok(DEFAULTS
+                .iter()
+                .find(|(default, _)| *default == name)
+                .map(|(_, source)| source.to_string()))
+        });
         let mut paths = BTreeMap::new();
-        for (name, source) in DEFAULTS {
-            let (source, file, user) = match overrides.get(*name) {
-                Some((path, text)) => (text.clone(), path.display().to_string(), true),
-                None => (source.to_string(), format!("templates/{name}"), false),
+        for (name, _) in DEFAULTS {
+            let Some((path, text)) = overrides.get(*name) else {
+                continue;
             };
-            env.add_template_owned(name.to_string(), source)
+            let file = path.display().to_string();
+            env.add_template_owned(name.to_string(), text.clone())
                 .map_err(|e| TemplateError {
                     file: file.clone(),
-                    user,
+                    user: true,
                     line: e.line(),
                     detail: e.detail().unwrap_or("syntax error").to_string(),
                 })?;
-            if user {
-                paths.insert(name.to_string(), PathBuf::from(file));
-            }
+            paths.insert(name.to_string(), PathBuf::from(file));
         }
         Ok(Templates {
-            env,
+            env: Arc::new(env),
             overrides: paths,
         })
     }
