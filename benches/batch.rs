@@ -69,6 +69,17 @@ fn median(mut runs: Vec<Duration>) -> Duration {
     runs[runs.len() / 2]
 }
 
+/// The outputs the floor writes as bytes (all but the workbook, which it
+/// builds itself): converted once, outside any timing.
+fn floor_texts(input: &Path, name: &str, settings: &Settings) -> Vec<steptable::emit::OutputFile> {
+    convert::convert_path_as(input, name, settings)
+        .expect("converts")
+        .files
+        .into_iter()
+        .filter(|f| !f.name.ends_with(".xlsx") || f.name.ends_with(".tags.xlsx"))
+        .collect()
+}
+
 /// `convert` of one workbook as a whole process, steptable's binary beside
 /// the floor's (this bench started again as [`floor::one_as_process`]),
 /// alternating, median of `runs` each.
@@ -131,13 +142,7 @@ fn main() {
     // The paper's example as one `convert`, process start included: first,
     // before 1,000 new workbooks give the disk write-back to do.
     let paper = Path::new(env!("CARGO_MANIFEST_DIR")).join("samples/paper_example.xlsx");
-    let paper_texts: Vec<steptable::emit::OutputFile> =
-        convert::convert_path_as(&paper, "paper_example", &settings)
-            .expect("the paper's example converts")
-            .files
-            .into_iter()
-            .filter(|f| !f.name.ends_with(".xlsx") || f.name.ends_with(".tags.xlsx"))
-            .collect();
+    let paper_texts = floor_texts(&paper, "paper_example", &settings);
     whole_process(&paper, &paper_texts, dir.path(), "disk", 31);
     if let Ok(shm) = tempfile::tempdir_in("/dev/shm") {
         whole_process(&paper, &paper_texts, shm.path(), "tmpfs", 31);
@@ -150,12 +155,7 @@ fn main() {
         .iter()
         .map(|input| {
             let name = input.file_stem().unwrap().to_string_lossy().to_string();
-            let conversion = convert::convert_path_as(input, &name, &settings).expect("converts");
-            conversion
-                .files
-                .into_iter()
-                .filter(|f| !f.name.ends_with(".xlsx") || f.name.ends_with(".tags.xlsx"))
-                .collect()
+            floor_texts(input, &name, &settings)
         })
         .collect();
     // Floor and steptable alternate, three rounds each, so that both see
