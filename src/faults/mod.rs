@@ -8,13 +8,11 @@ mod phases;
 
 pub use phases::{Moment, Phase, moments};
 
-use std::collections::HashMap;
-
 use crate::program::StepProgram;
 use crate::simulate::io::IoSignals;
 use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings, Simulator};
 use crate::table::StepTable;
-use cases::{Cases, Verdict};
+use cases::{Cases, SetRuns, Verdict};
 
 /// What a fault does to the machine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
@@ -285,13 +283,14 @@ pub fn analyse_runs(
         }
     };
     let phases_skipped = too_long.then_some(cases_at_every_moment);
-    // Each set's distinct onsets, the latest first: an earlier case that
-    // comes back in step with the healthy run ends as a later one.
+    // Each set's distinct onsets, the earliest first: a later case whose
+    // fault changed nothing until an earlier case's run stood where it
+    // stands ends as that run, found on its trail.
     let planned: Vec<Vec<u64>> = onsets
         .iter()
         .map(|at| {
             let mut distinct: Vec<u64> = at.iter().flatten().copied().collect();
-            distinct.sort_unstable_by(|a, b| b.cmp(a));
+            distinct.sort_unstable();
             distinct.dedup();
             distinct
         })
@@ -318,17 +317,17 @@ pub fn analyse_runs(
         resumed: resumed.as_ref().map(|(c, inputs)| (c, *inputs)),
     };
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let verdicts: Vec<HashMap<u64, Verdict>> = planned
+    let verdicts: Vec<SetRuns> = planned
         .par_iter()
         .zip(&sets)
         .map(|(onsets, set)| {
-            let mut memo = HashMap::new();
+            let mut runs = SetRuns::default();
             for &onset in onsets {
-                cases.verdict(set, onset, &mut memo);
+                cases.verdict(set, onset, &mut runs);
                 let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
                 progress(n, total);
             }
-            memo
+            runs
         })
         .collect();
     let no_effect = Verdict {
@@ -344,7 +343,9 @@ pub fn analyse_runs(
             let mut outcomes = Vec::with_capacity(moments.len());
             let mut worst: Option<(Phase, &Verdict)> = None;
             for (moment, onset) in moments.iter().zip(&onsets[i]) {
-                let verdict = onset.map_or(&no_effect, |d| &verdicts[i][&d]);
+                let verdict = onset.map_or(&no_effect, |d| {
+                    verdicts[i].at(d).expect("every planned onset is run")
+                });
                 outcomes.push(verdict.outcome);
                 if worst.is_none_or(|(_, w)| verdict.outcome > w.outcome) {
                     worst = Some((moment.phase, verdict));

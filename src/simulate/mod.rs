@@ -13,7 +13,7 @@ pub mod plc;
 pub mod report;
 mod run;
 
-pub use run::{Checkpoints, Resumed};
+pub use run::{Checkpoints, Course, Resumed, Trail};
 pub mod scenario;
 mod settings;
 
@@ -96,21 +96,25 @@ impl<'a> Simulator<'a> {
     /// `settings.fault_onset_ms`, from the copy of the checkpointed run at
     /// that time (from power-up when there is none): the same report as
     /// [`Simulator::run`]. When the checkpointed run passed, it stops early
-    /// at a later scan at which `in_step` holds and it stands exactly where
-    /// that run stood, nothing found yet ([`Resumed::InStep`]).
+    /// at a later scan at which the course's `in_step` holds and it stands
+    /// exactly where that run stood, nothing found yet ([`Resumed::InStep`]);
+    /// and it stops where it stands as an earlier run on the course's
+    /// trail stood ([`Resumed::Joined`]). The states it passed through,
+    /// nothing found yet, are added to `passed`, for the trail of the runs
+    /// after it.
     pub fn resume(
         &self,
-        checkpoints: &Checkpoints<'_>,
+        course: &Course<'_, '_>,
         settings: &SimSettings,
-        in_step: &dyn Fn(u64) -> bool,
+        passed: &mut Vec<(u64, u64)>,
     ) -> Resumed {
         run::resume(
-            checkpoints,
+            course,
             self.table,
             self.program,
             &self.code,
             settings,
-            in_step,
+            passed,
         )
     }
 

@@ -239,3 +239,86 @@ fn a_jump_back_that_never_ends_stops_the_run() {
                 && p.message.contains("took J:2 if I:not_gripped after step 3"))
     );
 }
+
+/// A resumed run hands the runs after it only the states it passed through
+/// once its faults had appeared and before it found anything: a later run
+/// standing there ends as it did, which would be wrong for a state reached
+/// with a collision already found, or one the faults had not yet reached.
+#[test]
+fn a_resumed_run_hands_on_only_the_states_before_its_first_finding() {
+    let table = crate::table::from_rows("t.csv", &paper()).expect("valid table");
+    let healthy_settings = SimSettings {
+        record_places: true,
+        ..SimSettings::default()
+    };
+    let program = program::build(
+        &table,
+        &ProgramOptions::default(),
+        &healthy_settings.valves,
+        &healthy_settings.strokes,
+    );
+    let simulator = Simulator::new(&table, &program);
+    let healthy = simulator.run(&healthy_settings);
+    // x21 opens while step 4 moves C2 away from it: a collision risk, and
+    // the run goes on to a stall.
+    let cycle = &healthy.cycles[0];
+    let onset = cycle.press_ms + cycle.steps[3].start_ms + u64::from(healthy_settings.scan_ms);
+    let settings = SimSettings {
+        faults: vec![Fault {
+            signal: Signal::Sensor {
+                actuator: 2,
+                position: 1,
+            },
+            stuck_at: false,
+        }],
+        fault_onset_ms: onset,
+        stop_at_hazard: true,
+        known_places: Some(std::sync::Arc::new(healthy.places.clone())),
+        ..SimSettings::default()
+    };
+    let never_in_step = |_| false;
+    // From the checkpoint at the onset, and from power-up (no checkpoint).
+    for times in [vec![onset], vec![]] {
+        let checkpoints = simulator.checkpoints(&healthy_settings, &times);
+        let course = Course {
+            checkpoints: &checkpoints,
+            in_step: &never_in_step,
+            trail: &Trail::new(),
+        };
+        let mut passed = Vec::new();
+        let Resumed::Report(report) = simulator.resume(&course, &settings, &mut passed) else {
+            panic!("nothing to stop at");
+        };
+        // What a run from power-up finds (the diagram's positions are left
+        // out of a copy).
+        assert_eq!(report.problems, simulator.run(&settings).problems);
+        let first = &report.problems[0];
+        assert!(
+            report
+                .problems
+                .iter()
+                .any(|p| p.kind == ProblemKind::Collision && p.time_ms == first.time_ms),
+            "{:?}",
+            report.problems
+        );
+        assert_eq!(report.stalled_at, Some(6), "{:?}", report.problems);
+        assert!(!passed.is_empty());
+        assert!(
+            passed
+                .iter()
+                .all(|(at, _)| (onset..=first.time_ms).contains(at)),
+            "{onset}..={}: {passed:?}",
+            first.time_ms
+        );
+        // The same faults appearing then, on that trail, end as that run.
+        let trail: Trail = passed.iter().map(|point| (*point, 7)).collect();
+        let course = Course {
+            trail: &trail,
+            ..course
+        };
+        let mut again = Vec::new();
+        let joined = simulator.resume(&course, &settings, &mut again);
+        assert!(matches!(joined, Resumed::Joined { run: 7 }), "{joined:?}");
+        assert!(again.is_empty());
+    }
+}

@@ -2,7 +2,11 @@
 //! faults appear, so that each faulty run starts there instead of at
 //! power-up, and fingerprinted at every scan it ran, so that a faulty run
 //! that has come back to exactly the healthy state can stop: from there on
-//! it is the healthy run until its faulty input next reads otherwise.
+//! it is the healthy run until its faulty input next reads otherwise. The
+//! runs of one fault set are fingerprinted too: a run that stands where an
+//! earlier run under the same faults stood at the same scan goes on as it
+//! did (a sensor stuck at a value nothing reads yet changes nothing until
+//! the step that reads it, whenever the fault appeared before).
 
 use std::collections::HashMap;
 use std::hash::{BuildHasher, Hash, Hasher};
@@ -29,7 +33,16 @@ pub enum Resumed {
     /// At the scan of this time it stood exactly where the healthy run
     /// stood, with nothing found yet.
     InStep { at_ms: u64 },
+    /// It stood where an earlier run under the same faults stood at the
+    /// same scan, nothing found yet by either: it ends as that run did.
+    /// The number is the one that run's states were kept under.
+    Joined { run: usize },
 }
+
+/// The states runs under one fault set passed through with nothing found
+/// yet: (scan time, fingerprint), each with the number of the run (the
+/// caller's) that went on from it.
+pub type Trail = HashMap<(u64, u64), usize>;
 
 /// Where a run's cycle stands: the cycle, the steps fired in it, the step
 /// awaited. Runs that differ here differ; runs that agree are compared by
@@ -156,19 +169,31 @@ pub(in crate::simulate) fn checkpoints<'a>(
     }
 }
 
+/// Where a resumed run goes: the healthy run's checkpoints, whether its
+/// inputs read as the healthy run's at a time, and the states earlier runs
+/// under the same faults passed through.
+pub struct Course<'c, 'a> {
+    pub checkpoints: &'c Checkpoints<'a>,
+    pub in_step: &'c dyn Fn(u64) -> bool,
+    pub trail: &'c Trail,
+}
+
 /// Runs under `settings` (their faults appearing at `from_ms`) from the
 /// checkpoint at `from_ms`, or from power-up when there is none. When the
 /// checkpointed run passed, the run stops at the first later scan at which
 /// `in_step` holds (its inputs read as the healthy run's do) and its state
-/// is the healthy run's, with nothing found yet.
+/// is the healthy run's, with nothing found yet; and at the first scan at
+/// which it stands where the trail says an earlier run stood. The states
+/// it passed through with nothing found are added to `passed`.
 pub(in crate::simulate) fn resume<'a>(
-    checkpoints: &Checkpoints<'a>,
+    course: &Course<'_, 'a>,
     table: &'a StepTable,
     program: &'a StepProgram,
     code: &'a plc::PlcProgram,
     settings: &SimSettings,
-    in_step: &dyn Fn(u64) -> bool,
+    passed: &mut Vec<(u64, u64)>,
 ) -> Resumed {
+    let checkpoints = course.checkpoints;
     let from_ms = settings.fault_onset_ms;
     let mut drive = match checkpoints.at.get(&from_ms) {
         Some(checkpoint) => {
@@ -185,19 +210,26 @@ pub(in crate::simulate) fn resume<'a>(
     let may_stop = checkpoints.report.passed;
     while !drive.finished() {
         let now = drive.run.time_ms;
-        // Not where the faulty input already differs: that would only hand
-        // the case over to a run starting at this very scan.
-        if may_stop
-            && now > from_ms
-            && drive.run.problems.is_empty()
-            && let Ok(k) = checkpoints
-                .fingerprints
-                .binary_search_by_key(&now, |(at, _, _)| *at)
-            && checkpoints.fingerprints[k].1 == drive.progress()
-            && in_step(now)
-            && drive.fingerprint() == checkpoints.fingerprints[k].2
-        {
-            return Resumed::InStep { at_ms: now };
+        // The faults have appeared (the next scan reads them), nothing found.
+        if now >= from_ms && drive.run.problems.is_empty() {
+            let fingerprint = drive.fingerprint();
+            // Not where the faulty input already differs: that would only hand
+            // the case over to a run starting at this very scan.
+            if may_stop
+                && now > from_ms
+                && let Ok(k) = checkpoints
+                    .fingerprints
+                    .binary_search_by_key(&now, |(at, _, _)| *at)
+                && checkpoints.fingerprints[k].1 == drive.progress()
+                && (course.in_step)(now)
+                && fingerprint == checkpoints.fingerprints[k].2
+            {
+                return Resumed::InStep { at_ms: now };
+            }
+            if let Some(&run) = course.trail.get(&(now, fingerprint)) {
+                return Resumed::Joined { run };
+            }
+            passed.push((now, fingerprint));
         }
         drive.advance();
     }

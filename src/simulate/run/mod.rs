@@ -6,7 +6,7 @@ mod cycle;
 mod drive;
 mod machine;
 
-pub use checkpoint::{Checkpoints, Resumed};
+pub use checkpoint::{Checkpoints, Course, Resumed, Trail};
 pub(super) use checkpoint::{checkpoints, resume};
 pub(super) use cycle::run;
 
