@@ -60,8 +60,9 @@ impl SetRuns {
 impl Cases<'_, '_> {
     /// Runs `faults` appearing at `onset` unless `runs` already knows the
     /// verdict, and keeps it there (with the later onsets the run turned
-    /// out to share, and the states it passed through).
-    pub(super) fn verdict(&self, faults: &[Fault], onset: u64, runs: &mut SetRuns) {
+    /// out to share, and the states it passed through at `onsets`, all the
+    /// onsets planned for these faults, in order).
+    pub(super) fn verdict(&self, faults: &[Fault], onset: u64, onsets: &[u64], runs: &mut SetRuns) {
         enum Found {
             New(Verdict),
             Known(usize),
@@ -93,6 +94,7 @@ impl Cases<'_, '_> {
                 checkpoints,
                 in_step: &in_step,
                 trail: &runs.trail,
+                marks: onsets,
             };
             match self.simulator.resume(&course, &run, &mut passed) {
                 Resumed::Report(report) => break Found::New(Verdict::of(&report)),

@@ -323,7 +323,7 @@ pub fn analyse_runs(
         .map(|(onsets, set)| {
             let mut runs = SetRuns::default();
             for &onset in onsets {
-                cases.verdict(set, onset, &mut runs);
+                cases.verdict(set, onset, onsets, &mut runs);
                 let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
                 progress(n, total);
             }

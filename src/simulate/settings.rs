@@ -66,8 +66,8 @@ pub struct SimSettings {
     /// the value the step waits for (default [`DEFAULT_INPUT_DELAY_MS`]).
     pub input_delays: BTreeMap<Name, u32>,
     /// End the run at the scan that finds the sequence's first hazard (any
-    /// but a collision): the fault analysis needs no more (the rest of the
-    /// report is then cut short).
+    /// but a collision), and report only the first collision: the fault
+    /// analysis needs no more (the rest of the report is then cut short).
     pub stop_at_hazard: bool,
     /// Record every combination of actuator places the run reaches
     /// ([`SimReport::places`]), for the collision check of later runs.

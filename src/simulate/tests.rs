@@ -277,6 +277,8 @@ fn a_resumed_run_hands_on_only_the_states_before_its_first_finding() {
         ..SimSettings::default()
     };
     let never_in_step = |_| false;
+    // States kept at every scan.
+    let every_scan: Vec<u64> = (0..2_000).map(|k| k * 10).collect();
     // From the checkpoint at the onset, and from power-up (no checkpoint).
     for times in [vec![onset], vec![]] {
         let checkpoints = simulator.checkpoints(&healthy_settings, &times);
@@ -284,6 +286,7 @@ fn a_resumed_run_hands_on_only_the_states_before_its_first_finding() {
             checkpoints: &checkpoints,
             in_step: &never_in_step,
             trail: &Trail::new(),
+            marks: &every_scan,
         };
         let mut passed = Vec::new();
         let Resumed::Report(report) = simulator.resume(&course, &settings, &mut passed) else {

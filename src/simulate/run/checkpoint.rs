@@ -171,20 +171,25 @@ pub(in crate::simulate) fn checkpoints<'a>(
 
 /// Where a resumed run goes: the healthy run's checkpoints, whether its
 /// inputs read as the healthy run's at a time, and the states earlier runs
-/// under the same faults passed through.
+/// under the same faults passed through at the marked scans.
 pub struct Course<'c, 'a> {
     pub checkpoints: &'c Checkpoints<'a>,
     pub in_step: &'c dyn Fn(u64) -> bool,
     pub trail: &'c Trail,
+    /// The scan times, in order, at which states are kept on the trail and
+    /// looked up there: the faults' onsets, where the later runs start (a
+    /// fingerprint at every scan would cost as much as the scan).
+    pub marks: &'c [u64],
 }
 
 /// Runs under `settings` (their faults appearing at `from_ms`) from the
 /// checkpoint at `from_ms`, or from power-up when there is none. When the
 /// checkpointed run passed, the run stops at the first later scan at which
 /// `in_step` holds (its inputs read as the healthy run's do) and its state
-/// is the healthy run's, with nothing found yet; and at the first scan at
-/// which it stands where the trail says an earlier run stood. The states
-/// it passed through with nothing found are added to `passed`.
+/// is the healthy run's, with nothing found yet; and at the first marked
+/// scan at which it stands where the trail says an earlier run stood. The
+/// states it passed through at marked scans, its faults appeared and
+/// nothing found yet, are added to `passed`.
 pub(in crate::simulate) fn resume<'a>(
     course: &Course<'_, 'a>,
     table: &'a StepTable,
@@ -197,6 +202,16 @@ pub(in crate::simulate) fn resume<'a>(
     let from_ms = settings.fault_onset_ms;
     let mut drive = match checkpoints.at.get(&from_ms) {
         Some(checkpoint) => {
+            // Standing where an earlier run stood from the start: no copy.
+            if checkpoint.run.problems.is_empty()
+                && course.marks.binary_search(&from_ms).is_ok()
+                && let Ok(k) = checkpoints
+                    .fingerprints
+                    .binary_search_by_key(&from_ms, |(at, _, _)| *at)
+                && let Some(&run) = course.trail.get(&(from_ms, checkpoints.fingerprints[k].2))
+            {
+                return Resumed::Joined { run };
+            }
             let mut drive = checkpoint.clone();
             drive.run.world.settings = std::sync::Arc::new(SimSettings {
                 scan_ms: drive.run.world.settings.scan_ms,
@@ -212,7 +227,8 @@ pub(in crate::simulate) fn resume<'a>(
         let now = drive.run.time_ms;
         // The faults have appeared (the next scan reads them), nothing found.
         if now >= from_ms && drive.run.problems.is_empty() {
-            let fingerprint = drive.fingerprint();
+            let mut known = None;
+            let mut fingerprint = || *known.get_or_insert_with(|| drive.fingerprint());
             // Not where the faulty input already differs: that would only hand
             // the case over to a run starting at this very scan.
             if may_stop
@@ -222,14 +238,17 @@ pub(in crate::simulate) fn resume<'a>(
                     .binary_search_by_key(&now, |(at, _, _)| *at)
                 && checkpoints.fingerprints[k].1 == drive.progress()
                 && (course.in_step)(now)
-                && fingerprint == checkpoints.fingerprints[k].2
+                && fingerprint() == checkpoints.fingerprints[k].2
             {
                 return Resumed::InStep { at_ms: now };
             }
-            if let Some(&run) = course.trail.get(&(now, fingerprint)) {
-                return Resumed::Joined { run };
+            if course.marks.binary_search(&now).is_ok() {
+                let fingerprint = fingerprint();
+                if let Some(&run) = course.trail.get(&(now, fingerprint)) {
+                    return Resumed::Joined { run };
+                }
+                passed.push((now, fingerprint));
             }
-            passed.push((now, fingerprint));
         }
         drive.advance();
     }

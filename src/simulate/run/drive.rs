@@ -136,6 +136,7 @@ impl<'a> Run<'a> {
             quiet: false,
             moving: (0..table.actuators.len()).collect(),
             hazard_seen: false,
+            collided: false,
             alarm_bits: Vec::new(),
             alarmed: false,
             places: Vec::new(),

@@ -86,6 +86,8 @@ pub(in crate::simulate) struct Run<'a> {
     pub(in crate::simulate) moving: Vec<usize>,
     /// A hazard is among the problems.
     pub(in crate::simulate) hazard_seen: bool,
+    /// A collision is among the problems.
+    pub(in crate::simulate) collided: bool,
     /// The PLC indices of the alarm outputs, and whether one came on.
     pub(in crate::simulate) alarm_bits: Vec<usize>,
     pub(in crate::simulate) alarmed: bool,
@@ -156,7 +158,9 @@ impl Run<'_> {
         let Some(known) = &self.world.settings.known_places else {
             return;
         };
-        if known.contains(&self.places) {
+        // A run judged by its first hazard is judged by its first collision
+        // (`faults::judge`): the later ones need no words.
+        if known.contains(&self.places) || (self.world.settings.stop_at_hazard && self.collided) {
             return;
         }
         let combination: Vec<String> = self
@@ -202,6 +206,7 @@ impl Run<'_> {
         }
         // A collision is judged with what the sequence does after it.
         self.hazard_seen |= kind.is_hazard() && kind != ProblemKind::Collision;
+        self.collided |= kind == ProblemKind::Collision;
         self.problems.push(Problem {
             kind,
             time_ms: self.time_ms,
