@@ -3,7 +3,7 @@
 //! faults when it comes back in step with the healthy run, and ended as an
 //! earlier run of the same faults when it stands where that one stood.
 
-use std::collections::HashMap;
+use foldhash::HashMap;
 
 use super::{AS_WITHOUT, Outcome, judge, phases};
 use crate::simulate::{

@@ -9,7 +9,6 @@ mod phases;
 pub use phases::{Moment, Phase, moments};
 
 use crate::program::StepProgram;
-use crate::simulate::io::IoSignals;
 use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings, Simulator};
 use crate::table::StepTable;
 use cases::{Cases, SetRuns, Verdict};
@@ -243,20 +242,16 @@ pub fn analyse_runs(
         faults: Vec::new(),
         ..settings.clone()
     };
-    let healthy = simulator.run(&healthy_settings);
+    // The healthy run logs when each input changes: a log, not a copy of
+    // every scan (a long table has millions).
+    let (healthy, log) =
+        simulator.run_logging_inputs(&healthy_settings, program.signals.inputs.clone());
     let mut moments = moments(&healthy, table, settings.scan_ms as u64);
     let cases_at_every_moment = sets.len() * moments.len();
     let too_long = cases_at_every_moment * table.steps.len().max(1) > MAX_PHASE_WORK;
     let mut equivalent = 0;
-    // The healthy inputs scan by scan: not for a cycle too long for
-    // faults at every moment (a long table has millions of scans).
-    let inputs = (!too_long).then(|| {
-        let signals = IoSignals {
-            inputs: program.signals.inputs.clone(),
-            outputs: Vec::new(),
-        };
-        phases::HealthyInputs::new(&simulator.run_recording(&healthy_settings, signals).1)
-    });
+    // Faults at every moment but for a cycle too long for them.
+    let inputs = (!too_long).then(|| phases::HealthyInputs::new(log));
     let onsets: Vec<Vec<Option<u64>>> = match &inputs {
         None => {
             moments.truncate(1);

@@ -11,7 +11,7 @@
 //! differs has no effect and needs no run at all).
 
 use crate::program::Signal;
-use crate::simulate::io::IoTrace;
+use crate::simulate::io::InputLog;
 use crate::simulate::{Fault, SimReport};
 use crate::table::StepTable;
 
@@ -118,25 +118,13 @@ pub struct HealthyInputs {
 }
 
 impl HealthyInputs {
-    pub fn new(trace: &IoTrace) -> Self {
-        let width = trace.signals.inputs.len();
-        let mut changes: Vec<(bool, Vec<(u64, bool)>)> = match trace.scans.first() {
-            Some(first) => first.inputs.iter().map(|v| (*v, Vec::new())).collect(),
-            None => vec![(false, Vec::new()); width],
-        };
-        for pair in trace.scans.windows(2) {
-            for (c, (was, is)) in pair[0].inputs.iter().zip(&pair[1].inputs).enumerate() {
-                if was != is {
-                    changes[c].1.push((pair[1].time_ms, *is));
-                }
-            }
-        }
+    pub fn new(log: InputLog) -> Self {
         HealthyInputs {
-            signals: trace.signals.inputs.clone(),
-            changes,
-            first_ms: trace.scans.first().map_or(0, |s| s.time_ms),
-            last_ms: trace.scans.last().map_or(0, |s| s.time_ms),
-            scan_ms: trace.scan_ms.max(1) as u64,
+            signals: log.inputs,
+            changes: log.changes,
+            first_ms: log.first_ms,
+            last_ms: log.last_ms,
+            scan_ms: u64::from(log.scan_ms.max(1)),
         }
     }
 

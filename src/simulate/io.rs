@@ -58,6 +58,64 @@ impl std::fmt::Display for Mismatch {
     }
 }
 
+/// The inputs a run read, as the scans on which each changed: what the
+/// fault analysis asks of the healthy run (when does a faulty input first
+/// read otherwise) without a copy of every scan. Quiet scans read what the
+/// scan before them read, so only the scans the run steps through are read.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct InputLog {
+    pub scan_ms: u32,
+    pub inputs: Vec<Signal>,
+    /// Per input: its value at the first scan, then `(time, value)` at
+    /// every scan on which it changed.
+    pub changes: Vec<(bool, Vec<(u64, bool)>)>,
+    /// Times of the first and the last scan (none yet: both 0).
+    pub first_ms: u64,
+    pub last_ms: u64,
+    scanned: bool,
+}
+
+impl InputLog {
+    pub fn new(scan_ms: u32, inputs: Vec<Signal>) -> Self {
+        InputLog {
+            scan_ms,
+            changes: vec![(false, Vec::new()); inputs.len()],
+            inputs,
+            ..InputLog::default()
+        }
+    }
+
+    /// The scan at `time_ms` read `read(input)` for each input.
+    pub(in crate::simulate) fn scan(&mut self, time_ms: u64, read: impl Fn(Signal) -> bool) {
+        for (input, (first, changes)) in self.inputs.iter().zip(&mut self.changes) {
+            let value = read(*input);
+            if !self.scanned {
+                *first = value;
+            } else if changes.last().map_or(*first, |c| c.1) != value {
+                changes.push((time_ms, value));
+            }
+        }
+        if !self.scanned {
+            self.first_ms = time_ms;
+            self.scanned = true;
+        }
+        self.last_ms = time_ms;
+    }
+
+    /// The log of a trace that recorded every scan's inputs.
+    #[cfg(test)]
+    pub fn of_trace(trace: &IoTrace) -> Self {
+        let mut log = InputLog::new(trace.scan_ms, trace.signals.inputs.clone());
+        for scan in &trace.scans {
+            log.scan(scan.time_ms, |s| {
+                let c = trace.signals.inputs.iter().position(|i| *i == s);
+                c.is_some_and(|c| scan.inputs[c])
+            });
+        }
+        log
+    }
+}
+
 impl IoTrace {
     /// Compares an engine's outputs, one vector per scan in the order of
     /// `signals.outputs`, with the recorded ones. A run that ended early is a

@@ -118,6 +118,16 @@ impl<'a> Simulator<'a> {
         )
     }
 
+    /// Runs under `settings`, logging the scans on which `inputs` change
+    /// (the fault analysis's healthy run).
+    pub fn run_logging_inputs(
+        &self,
+        settings: &SimSettings,
+        inputs: Vec<crate::program::Signal>,
+    ) -> (SimReport, io::InputLog) {
+        run::run_logging_inputs(self.table, self.program, &self.code, settings, inputs)
+    }
+
     /// The same as [`simulate_recording`].
     pub fn run_recording(
         &self,

@@ -153,7 +153,8 @@ fn a_long_last_stroke_ends_before_the_next_start_with_every_closing_step() {
 }
 
 /// The I/O recorded for the engines' replays is the same, scan for scan,
-/// whether the run jumps over quiet scans or steps through each.
+/// whether the run jumps over quiet scans or steps through each; and the
+/// log of the inputs' changes agrees with it.
 #[test]
 fn the_recorded_io_is_the_same_both_ways() {
     let dwells_and_waits: Vec<Vec<&str>> = vec![
@@ -198,6 +199,13 @@ fn the_recorded_io_is_the_same_both_ways() {
         let (events_io, scans_io) = (events_io.expect("recorded"), scans_io.expect("recorded"));
         assert!(scans_io.scans.len() > 500, "{}", scans_io.scans.len());
         assert_eq!(events_io, scans_io);
+        // The fault analysis's log of the inputs' changes says what the
+        // recording of every scan says.
+        let (logged, log) =
+            run::run_logging_inputs(&table, &program, &code, &settings, signals.inputs.clone());
+        assert_eq!(logged, events);
+        assert_eq!(log, io::InputLog::of_trace(&scans_io));
+        assert!(log.changes.iter().any(|(_, c)| c.len() > 1), "{log:?}");
     }
 }
 
@@ -285,7 +293,7 @@ fn a_resumed_run_hands_on_only_the_states_before_its_first_finding() {
         let course = Course {
             checkpoints: &checkpoints,
             in_step: &never_in_step,
-            trail: &Trail::new(),
+            trail: &Trail::default(),
             marks: &every_scan,
         };
         let mut passed = Vec::new();

@@ -8,7 +8,7 @@
 //! did (a sensor stuck at a value nothing reads yet changes nothing until
 //! the step that reads it, whenever the fault appeared before).
 
-use std::collections::HashMap;
+use foldhash::HashMap;
 use std::hash::{BuildHasher, Hash, Hasher};
 
 use super::cycle::Drive;
@@ -41,7 +41,8 @@ pub enum Resumed {
 
 /// The states runs under one fault set passed through with nothing found
 /// yet: (scan time, fingerprint), each with the number of the run (the
-/// caller's) that went on from it.
+/// caller's) that went on from it. foldhash, like the fingerprints: looked
+/// up at every onset of every run.
 pub type Trail = HashMap<(u64, u64), usize>;
 
 /// Where a run's cycle stands: the cycle, the steps fired in it, the step
@@ -150,7 +151,7 @@ pub(in crate::simulate) fn checkpoints<'a>(
     times.dedup();
     let mut times = times.into_iter().peekable();
     let mut drive = Drive::new(table, program, code, settings, None, Stepping::Events);
-    let mut at = HashMap::new();
+    let mut at = HashMap::default();
     let mut fingerprints = Vec::new();
     while !drive.finished() {
         let now = drive.run.time_ms;

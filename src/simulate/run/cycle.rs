@@ -500,6 +500,26 @@ fn jumps_to_take(table: &StepTable) -> impl Iterator<Item = (usize, crate::table
         .flat_map(|(index, step)| step.jumps.iter().map(move |j| (index, *j)))
 }
 
+/// Simulates from power-up to the end, logging when `inputs` change.
+pub(in crate::simulate) fn run_logging_inputs(
+    table: &StepTable,
+    program: &StepProgram,
+    code: &PlcProgram,
+    settings: &SimSettings,
+    inputs: Vec<crate::program::Signal>,
+) -> (SimReport, io::InputLog) {
+    let mut drive = Drive::new(table, program, code, settings, None, Stepping::Events);
+    drive.run.input_log = Some(io::InputLog::new(drive.run.world.settings.scan_ms, inputs));
+    drive.run_to_end();
+    let mut log = drive.run.input_log.take().unwrap_or_default();
+    // The last scan: quiet ones after the last the run stepped through read
+    // what it read.
+    log.last_ms = log
+        .last_ms
+        .max(drive.run.time_ms.saturating_sub(u64::from(log.scan_ms)));
+    (drive.finish().0, log)
+}
+
 /// Simulates from power-up to the end.
 pub(in crate::simulate) fn run(
     table: &StepTable,

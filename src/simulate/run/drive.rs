@@ -132,6 +132,7 @@ impl<'a> Run<'a> {
             trace: Vec::new(),
             coils: Vec::new(),
             io: None,
+            input_log: None,
             event_driven: false,
             quiet: false,
             moving: (0..table.actuators.len()).collect(),

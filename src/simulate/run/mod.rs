@@ -8,7 +8,7 @@ mod machine;
 
 pub use checkpoint::{Checkpoints, Course, Resumed, Trail};
 pub(super) use checkpoint::{checkpoints, resume};
-pub(super) use cycle::run;
+pub(super) use cycle::{run, run_logging_inputs};
 
 use std::collections::BTreeMap;
 
@@ -74,6 +74,8 @@ pub(in crate::simulate) struct Run<'a> {
     pub(in crate::simulate) coils: Vec<(Option<usize>, Option<usize>, Option<usize>)>,
     /// The I/O of every scan, when recorded for a replay in another engine.
     pub(in crate::simulate) io: Option<io::IoTrace>,
+    /// The inputs' changes, when logged for the fault analysis.
+    pub(in crate::simulate) input_log: Option<io::InputLog>,
     /// Jump over scans in which nothing can change (see [`Run::pass_quiet_scans`]);
     /// off, the run steps every scan (the reference it is tested against).
     pub(in crate::simulate) event_driven: bool,
@@ -238,6 +240,9 @@ impl Run<'_> {
         let mut quiet = self.pending.len() == waiting;
         let world = &self.world;
         let read = |s: Signal| read_input(s, world);
+        if let Some(log) = self.input_log.as_mut() {
+            log.scan(now, read);
+        }
         let recorded_inputs = self.io.as_ref().map(|io| {
             io.signals
                 .inputs
