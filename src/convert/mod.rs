@@ -397,23 +397,26 @@ pub fn generate_observed(
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them, and
     // beside the other outputs (on a core the analysis leaves idle: its
-    // healthy and checkpoint runs are one thread's work).
+    // healthy and checkpoint runs are one thread's work). The outputs that
+    // show it render as soon as it is done, beside the others still
+    // rendering, not after them.
     let (early, late): (Vec<OutputKind>, Vec<OutputKind>) =
         settings.formats.iter().partition(|k| !k.shows_faults());
-    let (fault_table, early) = rayon::join(
+    let ((fault_table, late), early) = rayon::join(
         || {
-            (!late.is_empty()).then(|| {
+            let fault_table = (!late.is_empty()).then(|| {
                 faults::analyse_observed(&table, &program, &settings.simulation, 1, progress)
-            })
+            });
+            let late = emit::render_each(
+                late,
+                EmitInput {
+                    faults: fault_table.as_ref(),
+                    ..input
+                },
+            );
+            (fault_table, late)
         },
         || emit::render_each(early, input),
-    );
-    let late = emit::render_each(
-        late,
-        EmitInput {
-            faults: fault_table.as_ref(),
-            ..input
-        },
     );
     let emitted = |e| match e {
         emit::EmitError::Template(e) => Failure::Template(e),
