@@ -94,7 +94,7 @@ impl<'a> Drive<'a> {
             self.report.press_ms,
         )
             .hash(&mut h);
-        for c in &self.cycles {
+        for c in self.cycles.iter() {
             (c.press_ms, c.cycle_ms).hash(&mut h);
             for s in &c.steps {
                 (s.start_ms, s.duration_ms).hash(&mut h);

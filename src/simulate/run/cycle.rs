@@ -43,7 +43,9 @@ pub(in crate::simulate) struct Drive<'a> {
     /// Which step fired when (a jump fires a step out of order).
     pub(in crate::simulate) fire_times: Vec<(usize, u64)>,
     pub(in crate::simulate) last_event: u64,
-    pub(in crate::simulate) cycles: Vec<CycleReport>,
+    /// The cycles ended, shared by the copies of the run (the fault
+    /// analysis copies it hundreds of times; a cycle's steps are strings).
+    pub(in crate::simulate) cycles: std::sync::Arc<Vec<CycleReport>>,
     pub(in crate::simulate) step_positions: Vec<Vec<f64>>,
     stalled_at: Option<usize>,
     first_cycle_end: u64,
@@ -88,7 +90,7 @@ impl<'a> Drive<'a> {
             },
             fire_times: Vec::new(),
             last_event: 0,
-            cycles: Vec::new(),
+            cycles: Default::default(),
             step_positions: vec![positions],
             stalled_at: None,
             first_cycle_end: u64::MAX,
@@ -291,7 +293,7 @@ impl<'a> Drive<'a> {
             self.press_at,
             &self.run.spans,
         );
-        self.cycles.push(report);
+        std::sync::Arc::make_mut(&mut self.cycles).push(report);
     }
 
     /// The cycle has ended (or step 1 came again): every actuator must be
@@ -421,6 +423,7 @@ impl<'a> Drive<'a> {
             ..
         } = self;
         let window = run.world.settings.window;
+        let cycles = std::sync::Arc::unwrap_or_clone(cycles);
         if let (Some(first), Some(second)) = (cycles.first(), cycles.get(1))
             && first.cycle_ms.is_some()
             && second.cycle_ms.is_some()

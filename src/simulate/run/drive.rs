@@ -91,7 +91,7 @@ impl<'a> Run<'a> {
                 )
             })
             .collect();
-        let index_of = pistons
+        let index_of: BTreeMap<u32, usize> = pistons
             .iter()
             .enumerate()
             .map(|(i, p)| (p.number, i))
@@ -105,7 +105,7 @@ impl<'a> Run<'a> {
             world: World {
                 settings: std::sync::Arc::new(settings_scan),
                 pistons,
-                index_of,
+                index_of: std::sync::Arc::new(index_of),
                 start_pressed: false,
                 operator: Operator::default(),
                 machine: table

@@ -105,7 +105,8 @@ pub(in crate::simulate) struct World {
     /// them until it is resumed under others.
     pub(in crate::simulate) settings: std::sync::Arc<SimSettings>,
     pub(in crate::simulate) pistons: Vec<Piston>,
-    pub(in crate::simulate) index_of: BTreeMap<u32, usize>,
+    /// Each actuator's piston, by number (shared by the run's copies).
+    pub(in crate::simulate) index_of: std::sync::Arc<BTreeMap<u32, usize>>,
     pub(in crate::simulate) start_pressed: bool,
     /// Buttons other than START (the standard proof leaves them alone).
     pub(in crate::simulate) operator: Operator,
