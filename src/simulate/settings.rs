@@ -78,7 +78,9 @@ pub struct SimSettings {
 }
 
 /// Combinations of actuator places ([`Piston::place`](super::plant::Piston::place)), in table order.
-pub type Places = std::collections::BTreeSet<Vec<u32>>;
+/// A hash set (foldhash): every faulty run looks its combination up at
+/// every change of place.
+pub type Places = foldhash::HashSet<Vec<u32>>;
 
 impl Default for SimSettings {
     fn default() -> Self {

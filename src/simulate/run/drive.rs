@@ -141,7 +141,7 @@ impl<'a> Run<'a> {
             alarm_bits: Vec::new(),
             alarmed: false,
             places: Vec::new(),
-            visited: Places::new(),
+            visited: Places::default(),
         };
         run.dwells = table
             .dwells()
