@@ -252,15 +252,23 @@ impl Templates {
                 detail: format!("{detail}{what}"),
             }
         })?;
-        // Trailing spaces come from padded empty columns; no output wants them.
-        let mut out: String = text
-            .lines()
-            .map(str::trim_end)
-            .collect::<Vec<_>>()
-            .join("\n");
-        out.push('\n');
-        Ok(out)
+        Ok(without_trailing_spaces(&text))
     }
+}
+
+/// `text` with every line's trailing white space cut and one newline at
+/// the end: trailing spaces come from padded empty columns, and no output
+/// wants them.
+fn without_trailing_spaces(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() + 1);
+    for line in text.lines() {
+        out.push_str(line.trim_end());
+        out.push('\n');
+    }
+    if out.is_empty() {
+        out.push('\n');
+    }
+    out
 }
 
 /// How many steps one template may take to render.
@@ -318,6 +326,14 @@ mod tests {
         assert_eq!(templates.render("gvl.txt.j2", empty).unwrap(), "one 2\n");
         let err = Templates::from_sources([("progam.st.j2", "typo")]).unwrap_err();
         assert!(err.detail.contains("no template has this name"), "{err}");
+    }
+
+    #[test]
+    fn lines_lose_their_trailing_spaces_and_end_in_one_newline() {
+        assert_eq!(without_trailing_spaces("a  \n\n b\t\r\nc "), "a\n\n b\nc\n");
+        assert_eq!(without_trailing_spaces("a\n"), "a\n");
+        assert_eq!(without_trailing_spaces(""), "\n");
+        assert_eq!(without_trailing_spaces("   "), "\n");
     }
 
     #[test]

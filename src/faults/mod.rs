@@ -193,7 +193,9 @@ pub enum FaultRuns {
     /// From a copy of the healthy run where the fault appears, stopping as
     /// soon as the run is back in step with the healthy one (its state and
     /// inputs the same): the rest is the case of the same fault appearing
-    /// when its input next differs, or no effect.
+    /// when its input next differs, or no effect. A run also stops where an
+    /// earlier run of the same faults stood at one of their onsets: the
+    /// rest is that run's.
     #[default]
     Resumed,
     /// Each from power-up to its end: the plain reference the resumed runs
