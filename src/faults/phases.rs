@@ -10,7 +10,6 @@
 //! which the faulty input differs from the healthy one (a fault that never
 //! differs has no effect and needs no run at all).
 
-use crate::program::Signal;
 use crate::simulate::io::InputLog;
 use crate::simulate::{Fault, SimReport};
 use crate::table::StepTable;
@@ -104,34 +103,22 @@ pub fn moments(healthy: &SimReport, table: &StepTable, scan_ms: u64) -> Vec<Mome
     moments
 }
 
-/// The healthy run's inputs, as the times each changes, to tell when a
-/// fault first makes a difference.
+/// The healthy run's inputs, as the times each changes ([`InputLog`]), to
+/// tell when a fault first makes a difference.
 pub struct HealthyInputs {
-    signals: Vec<Signal>,
-    /// Per input: its value at the first scan, then `(time, value)` at
-    /// every scan on which it changed.
-    changes: Vec<(bool, Vec<(u64, bool)>)>,
-    /// Times of the first and the last scan, and the scan time.
-    first_ms: u64,
-    last_ms: u64,
-    scan_ms: u64,
+    log: InputLog,
 }
 
 impl HealthyInputs {
     pub fn new(log: InputLog) -> Self {
-        HealthyInputs {
-            signals: log.inputs,
-            changes: log.changes,
-            first_ms: log.first_ms,
-            last_ms: log.last_ms,
-            scan_ms: u64::from(log.scan_ms.max(1)),
-        }
+        HealthyInputs { log }
     }
 
     /// Every time at which an input changes: where a faulty run that is back
     /// in step with the healthy one may next leave it.
     pub fn change_times(&self) -> impl Iterator<Item = u64> + '_ {
-        self.changes
+        self.log
+            .changes
             .iter()
             .flat_map(|(_, changes)| changes.iter().map(|(at, _)| *at))
     }
@@ -149,7 +136,7 @@ impl HealthyInputs {
         faults
             .iter()
             .filter_map(|f| {
-                let c = self.signals.iter().position(|s| *s == f.signal)?;
+                let c = self.log.inputs.iter().position(|s| *s == f.signal)?;
                 Some((c, f.stuck_at))
             })
             .collect()
@@ -165,12 +152,13 @@ impl HealthyInputs {
 
     fn first_difference(&self, c: usize, stuck_at: bool, from_ms: u64) -> Option<u64> {
         // The first scan at or after `from_ms`.
-        let from = self.first_ms
-            + from_ms.saturating_sub(self.first_ms).div_ceil(self.scan_ms) * self.scan_ms;
-        if from > self.last_ms {
+        let (first_ms, last_ms) = (self.log.first_ms, self.log.last_ms);
+        let scan_ms = u64::from(self.log.scan_ms.max(1));
+        let from = first_ms + from_ms.saturating_sub(first_ms).div_ceil(scan_ms) * scan_ms;
+        if from > last_ms {
             return None;
         }
-        let (initial, changes) = &self.changes[c];
+        let (initial, changes) = &self.log.changes[c];
         let seen = changes.partition_point(|(at, _)| *at <= from);
         let now = if seen == 0 {
             *initial
