@@ -183,6 +183,32 @@ pub struct Course<'c, 'a> {
     pub marks: &'c [u64],
 }
 
+impl Course<'_, '_> {
+    /// Whether states are kept and looked up at the scan of `at_ms`.
+    fn marked(&self, at_ms: u64) -> bool {
+        self.marks.binary_search(&at_ms).is_ok()
+    }
+
+    /// The earlier run that stood at the scan of `at_ms` in the state of
+    /// `fingerprint`, if one did.
+    fn earlier_run(&self, at_ms: u64, fingerprint: u64) -> Option<usize> {
+        self.trail.get(&(at_ms, fingerprint)).copied()
+    }
+}
+
+impl Checkpoints<'_> {
+    /// Where the run's cycle stood at the scan of `at_ms`, and its
+    /// fingerprint, if it ran that scan.
+    fn state_at(&self, at_ms: u64) -> Option<(Progress, u64)> {
+        let k = self
+            .fingerprints
+            .binary_search_by_key(&at_ms, |(at, _, _)| *at)
+            .ok()?;
+        let (_, progress, fingerprint) = self.fingerprints[k];
+        Some((progress, fingerprint))
+    }
+}
+
 /// Runs under `settings` (their faults appearing at `from_ms`) from the
 /// checkpoint at `from_ms`, or from power-up when there is none. When the
 /// checkpointed run passed, the run stops at the first later scan at which
@@ -203,13 +229,12 @@ pub(in crate::simulate) fn resume<'a>(
     let from_ms = settings.fault_onset_ms;
     let mut drive = match checkpoints.at.get(&from_ms) {
         Some(checkpoint) => {
-            // Standing where an earlier run stood from the start: no copy.
+            // Standing where an earlier run stood from the start (the
+            // checkpoint's fingerprint is the copy's): no copy.
             if checkpoint.run.problems.is_empty()
-                && course.marks.binary_search(&from_ms).is_ok()
-                && let Ok(k) = checkpoints
-                    .fingerprints
-                    .binary_search_by_key(&from_ms, |(at, _, _)| *at)
-                && let Some(&run) = course.trail.get(&(from_ms, checkpoints.fingerprints[k].2))
+                && course.marked(from_ms)
+                && let Some((_, fingerprint)) = checkpoints.state_at(from_ms)
+                && let Some(run) = course.earlier_run(from_ms, fingerprint)
             {
                 return Resumed::Joined { run };
             }
@@ -234,18 +259,16 @@ pub(in crate::simulate) fn resume<'a>(
             // the case over to a run starting at this very scan.
             if may_stop
                 && now > from_ms
-                && let Ok(k) = checkpoints
-                    .fingerprints
-                    .binary_search_by_key(&now, |(at, _, _)| *at)
-                && checkpoints.fingerprints[k].1 == drive.progress()
+                && let Some((progress, healthy)) = checkpoints.state_at(now)
+                && progress == drive.progress()
                 && (course.in_step)(now)
-                && fingerprint() == checkpoints.fingerprints[k].2
+                && fingerprint() == healthy
             {
                 return Resumed::InStep { at_ms: now };
             }
-            if course.marks.binary_search(&now).is_ok() {
+            if course.marked(now) {
                 let fingerprint = fingerprint();
-                if let Some(&run) = course.trail.get(&(now, fingerprint)) {
+                if let Some(run) = course.earlier_run(now, fingerprint) {
                     return Resumed::Joined { run };
                 }
                 passed.push((now, fingerprint));
