@@ -247,7 +247,7 @@ fn main() {
         steptable::write::write_files(
             &dir.path().join(format!("w{i}")),
             &conversion.files,
-            &[],
+            &steptable::write::Inputs::none(),
             steptable::write::Durability::Rename,
         )
         .unwrap();

@@ -224,6 +224,7 @@ pub fn run(
     on_done: &(dyn Fn(&Outcome) + Sync),
 ) -> Vec<Outcome> {
     let names = convert::output_names(inputs);
+    let kept = write::Inputs::new(inputs);
     let convert_one = |(input, name): (&PathBuf, &String)| {
         let outcome = if stop.load(Ordering::SeqCst) {
             Outcome {
@@ -237,7 +238,7 @@ pub fn run(
                 millis: 0,
             }
         } else {
-            convert_one(input, name, out, settings, inputs)
+            convert_one(input, name, out, settings, &kept)
         };
         on_done(&outcome);
         outcome
@@ -258,7 +259,7 @@ fn convert_one(
     name: &str,
     out: &Path,
     settings: &Settings,
-    all_inputs: &[PathBuf],
+    all_inputs: &write::Inputs,
 ) -> Outcome {
     let start = Instant::now();
     let mut outcome = Outcome {

@@ -8,6 +8,7 @@
 //! batch's time on a busy disk. Like cargo and git, steptable leaves that to
 //! the operating system unless asked ([`Durability::Sync`], `--sync`).
 
+use std::collections::HashSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -45,21 +46,42 @@ pub enum Durability {
     Sync,
 }
 
+/// The files a run reads, which its outputs never replace: resolved once per
+/// run (links and `..` followed), not once per folder written, which for a
+/// batch of n workbooks resolved n² paths.
+#[derive(Debug, Clone, Default)]
+pub struct Inputs {
+    real: HashSet<PathBuf>,
+}
+
+impl Inputs {
+    /// The inputs among `paths` that exist now.
+    pub fn new(paths: &[PathBuf]) -> Self {
+        Self {
+            real: paths
+                .iter()
+                .filter_map(|p| std::fs::canonicalize(p).ok())
+                .collect(),
+        }
+    }
+
+    /// No inputs to keep (outputs made from nothing the user named).
+    pub fn none() -> Self {
+        Self::default()
+    }
+}
+
 /// Writes `files` into `folder` (created if missing). Returns the paths written.
 pub fn write_files(
     folder: &Path,
     files: &[OutputFile],
-    inputs: &[PathBuf],
+    inputs: &Inputs,
     durability: Durability,
 ) -> Result<Vec<PathBuf>, WriteError> {
-    let inputs: Vec<PathBuf> = inputs
-        .iter()
-        .filter_map(|p| std::fs::canonicalize(p).ok())
-        .collect();
     if let Ok(existing) = std::fs::canonicalize(folder) {
         for file in files {
             let target = existing.join(&file.name);
-            if inputs.contains(&target) {
+            if inputs.real.contains(&target) {
                 return Err(WriteError::WouldOverwriteInput {
                     path: folder.join(&file.name).display().to_string(),
                 });

@@ -141,9 +141,12 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
                     file.name
                 ));
             }
-            if let Err(err) =
-                write::write_files(&args.output, &[file], &inputs, settings.durability)
-            {
+            if let Err(err) = write::write_files(
+                &args.output,
+                &[file],
+                &write::Inputs::new(&inputs),
+                settings.durability,
+            ) {
                 eprintln!("error: {err}");
                 code = EXIT_INTERNAL;
             }

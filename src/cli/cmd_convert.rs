@@ -72,6 +72,7 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
     };
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
+    let kept = write::Inputs::new(&args.inputs);
     for (input, name) in args.inputs.iter().zip(&names) {
         let progress = super::progress::Progress::new("fault cases", false);
         let converted = convert::check_path(input, &settings)
@@ -109,12 +110,7 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         };
         report.diagnostics(&conversion.warnings);
         let folder = args.output.join(&conversion.name);
-        match write::write_files(
-            &folder,
-            &conversion.files,
-            &args.inputs,
-            settings.durability,
-        ) {
+        match write::write_files(&folder, &conversion.files, &kept, settings.durability) {
             Ok(_) => {
                 // As the files lie in the folder: `NAME.beremiz/plc.xml`.
                 let names: Vec<String> = conversion.files.iter().map(|f| f.name.clone()).collect();

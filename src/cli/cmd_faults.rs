@@ -29,6 +29,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
     args.sim.apply(&mut settings);
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
+    let kept = write::Inputs::new(&args.inputs);
     for (input, name) in args.inputs.iter().zip(&names) {
         let checked = match convert::check_path(input, &settings) {
             Ok(c) => c,
@@ -108,7 +109,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         if let Err(err) = write::write_files(
             &args.output.join(name),
             &[file],
-            &args.inputs,
+            &kept,
             write::Durability::Rename,
         ) {
             eprintln!("error: {err}");

@@ -29,6 +29,7 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
     settings.program.middle_stops = !args.no_middle_stop;
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
+    let kept = write::Inputs::new(&args.inputs);
     for (input, name) in args.inputs.iter().zip(&names) {
         let checked = match convert::check_path(input, &settings) {
             Ok(c) => c,
@@ -57,12 +58,7 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
                 name: format!("{name}.time.svg"),
                 bytes: svg.into_bytes(),
             };
-            match write::write_files(
-                &dir.join(name),
-                &[file],
-                &args.inputs,
-                write::Durability::Rename,
-            ) {
+            match write::write_files(&dir.join(name), &[file], &kept, write::Durability::Rename) {
                 Ok(paths) => diagram = Some(paths),
                 Err(err) => {
                     eprintln!("error: {err}");

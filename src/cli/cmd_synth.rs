@@ -241,7 +241,7 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
     if let Err(err) = write::write_files(
         &args.output.join(&name),
         &files,
-        &inputs,
+        &write::Inputs::new(&inputs),
         write::Durability::Rename,
     ) {
         eprintln!("error: {err}");

@@ -81,7 +81,7 @@ pub(crate) fn run_template(args: &TemplateArgs) -> i32 {
     match write::write_files(
         &folder,
         &[steptable::emit::OutputFile { name, bytes }],
-        &[],
+        &write::Inputs::none(),
         write::Durability::Rename,
     ) {
         Ok(_) => {

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use crate::emit::OutputFile;
 use crate::emit::templates::{DEFAULTS, TemplateError, Templates};
-use crate::write::{Durability, WriteError, write_files};
+use crate::write::{Durability, Inputs, WriteError, write_files};
 
 /// The defaults, with every file of `dir` that has a template's name in
 /// its place. A file in `dir` that is no template's name is an error, so
@@ -88,7 +88,7 @@ pub fn export_defaults(dir: &Path, force: bool) -> Result<Vec<PathBuf>, ExportEr
             bytes: source.as_bytes().to_vec(),
         })
         .collect();
-    write_files(dir, &files, &[], Durability::Rename).map_err(ExportError::Write)
+    write_files(dir, &files, &Inputs::none(), Durability::Rename).map_err(ExportError::Write)
 }
 
 /// Why `templates export` wrote nothing.

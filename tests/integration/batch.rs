@@ -317,6 +317,44 @@ fn batch_into_its_own_input_folder() {
     }
 }
 
+/// A table named where its own output would go (`OUT/NAME/NAME.xlsx`, here
+/// through `..`) is kept, and reported; the batch's other tables still land.
+#[test]
+fn a_batch_never_overwrites_an_input() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("cell")).unwrap();
+    let kept = dir.path().join("cell/cell.xlsx");
+    std::fs::copy(sample("paper_example.xlsx"), &kept).unwrap();
+    std::fs::copy(sample("paper_example.xlsx"), dir.path().join("other.xlsx")).unwrap();
+    let before = std::fs::read(&kept).unwrap();
+    let output = steptable()
+        .current_dir(dir.path())
+        .args([
+            "batch",
+            "cell/../cell/cell.xlsx",
+            "other.xlsx",
+            "-j",
+            "1",
+            "-o",
+            ".",
+        ])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(!output.status.success(), "{stdout}");
+    assert!(stdout.contains("1 converted, 1 failed"), "{stdout}");
+    assert!(
+        stdout.contains("refusing to overwrite an input file"),
+        "{stdout}"
+    );
+    assert_eq!(std::fs::read(&kept).unwrap(), before);
+    assert_eq!(files_below(&dir.path().join("cell")), [kept]);
+    assert_eq!(
+        files_below(&dir.path().join("other")).len(),
+        crate::helpers::all_files()
+    );
+}
+
 /// A folder with symbolic links to itself is walked once, and an absurd
 /// `-j` is capped with a note instead of starting 100,000 threads.
 #[cfg(unix)]
