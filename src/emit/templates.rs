@@ -3,6 +3,7 @@
 //! with `--templates DIR`. Strict about undefined variables, blocks trimmed.
 //! Templates only lay out: names, addresses and operators come from Rust.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::fmt;
 use std::path::PathBuf;
@@ -277,10 +278,25 @@ pub const TEMPLATE_FUEL: u64 = 200_000_000;
 /// Widest column `pad` makes (Rust's formatter refuses widths past 65,535).
 const MAX_PAD: usize = 1000;
 
-/// `{{ text | pad(8) }}`: left-justify to a column width (at most 1,000).
-fn pad(value: String, width: usize) -> String {
+/// `{{ text | pad(8) }}`: left-justify to a column width (at most 1,000),
+/// counting characters. Called for three columns of every AWL line: a
+/// string is read where it lies, not copied in, and one as wide as the
+/// column already is handed back as it is.
+fn pad(value: &Value, width: usize) -> Result<Value, minijinja::Error> {
+    // Strict, as for any other use of an undefined value.
+    if value.is_undefined() {
+        return Err(minijinja::Error::from(minijinja::ErrorKind::UndefinedError));
+    }
     let width = width.min(MAX_PAD);
-    format!("{value:<width$}")
+    let text = value.as_str().map_or_else(|| value.to_string().into(), Cow::Borrowed);
+    let chars = text.chars().count();
+    if chars >= width && value.as_str().is_some() && !value.is_safe() {
+        return Ok(value.clone());
+    }
+    let mut padded = String::with_capacity(text.len() + width.saturating_sub(chars));
+    padded.push_str(&text);
+    padded.extend(std::iter::repeat_n(' ', width.saturating_sub(chars)));
+    Ok(Value::from(padded))
 }
 
 /// `{{ text | csv }}`: one CSV field, quoted when it must be.
@@ -341,5 +357,26 @@ mod tests {
         assert_eq!(csv_field("x10".into()), "x10");
         assert_eq!(csv_field("a, b".into()), "\"a, b\"");
         assert_eq!(csv_field("say \"hi\"".into()), "\"say \"\"hi\"\"\"");
+    }
+
+    /// `pad` counts characters, never cuts, caps the width, pads what is not
+    /// a string as it prints, escapes in XML, and refuses what is undefined.
+    #[test]
+    fn pad_left_justifies_to_a_column() {
+        let render = |name: &str, source: &str| {
+            let templates = Templates::from_sources([(name, source)]).unwrap();
+            templates.render(name, Value::from(BTreeMap::from([("x", "<ü>")])))
+        };
+        let text = |source: &str| render("gvl.txt.j2", source).unwrap();
+        assert_eq!(text("[{{ x | pad(5) }}]"), "[<ü>  ]\n");
+        assert_eq!(text("[{{ x | pad(2) }}]"), "[<ü>]\n");
+        assert_eq!(text("[{{ 42 | pad(4) }}]"), "[42  ]\n");
+        assert_eq!(text("[{{ '' | pad(5000) }}]").len(), 1 + 1000 + 2);
+        assert_eq!(
+            render("codesys.xml.j2", "[{{ x | pad(1) }}][{{ x | safe | pad(1) }}]").unwrap(),
+            "[&lt;ü&gt;][&lt;ü&gt;]\n"
+        );
+        let err = render("gvl.txt.j2", "{{ y | pad(3) }}").unwrap_err();
+        assert!(err.detail.contains("undefined"), "{err}");
     }
 }
