@@ -26,6 +26,25 @@ const COLORS: [&str; 6] = [
     "#1f5fa8", "#c0392b", "#1e8449", "#8e44ad", "#b9770e", "#117a65",
 ];
 
+/// A coordinate as `{:.1}` writes it, without the formatter's exact path,
+/// which for most coordinates falls back to big-number arithmetic (a
+/// diagram has thousands): the tenths as a whole number. Near a tie, where
+/// the product may have rounded the other way, the formatter decides.
+struct Tenths(f64);
+
+impl std::fmt::Display for Tenths {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let scaled = self.0.abs() * 10.0;
+        let fraction = scaled - scaled.trunc();
+        if scaled.is_nan() || scaled >= 1e12 || (fraction - 0.5).abs() < 1e-6 {
+            return write!(f, "{:.1}", self.0);
+        }
+        let tenths = scaled.round() as u64;
+        let sign = if self.0.is_sign_negative() { "-" } else { "" };
+        write!(f, "{sign}{}.{}", tenths / 10, tenths % 10)
+    }
+}
+
 fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
@@ -205,7 +224,7 @@ pub fn render_svg(name: &str, report: &SimReport, kind: DiagramKind) -> String {
                 y + 4.0
             );
         }
-        let points: Vec<String> = match kind {
+        let points: Vec<(f64, f64)> = match kind {
             DiagramKind::Step => report
                 .step_positions
                 .iter()
@@ -213,7 +232,7 @@ pub fn render_svg(name: &str, report: &SimReport, kind: DiagramKind) -> String {
                 .filter_map(|(k, positions)| {
                     positions
                         .get(i)
-                        .map(|p| format!("{:.1},{:.1}", x_of(k as f64), y_of(p.round_to_level())))
+                        .map(|p| (x_of(k as f64), y_of(p.round_to_level())))
                 })
                 .collect(),
             DiagramKind::Time => report
@@ -222,14 +241,18 @@ pub fn render_svg(name: &str, report: &SimReport, kind: DiagramKind) -> String {
                 .filter_map(|(t, positions)| {
                     positions
                         .get(i)
-                        .map(|p| format!("{:.1},{:.1}", x_of(*t as f64 / 1000.0), y_of(*p)))
+                        .map(|p| (x_of(*t as f64 / 1000.0), y_of(*p)))
                 })
                 .collect(),
         };
+        svg.push_str(r#"<polyline points=""#);
+        for (k, (x, y)) in points.into_iter().enumerate() {
+            let gap = if k == 0 { "" } else { " " };
+            let _ = write!(svg, "{gap}{},{}", Tenths(x), Tenths(y));
+        }
         let _ = writeln!(
             svg,
-            r#"<polyline points="{}" fill="none" stroke="{color}" stroke-width="3" stroke-linejoin="round"/>"#,
-            points.join(" ")
+            r#"" fill="none" stroke="{color}" stroke-width="3" stroke-linejoin="round"/>"#
         );
     }
     // Legend.
@@ -293,6 +316,25 @@ mod tests {
                 (x.parse().unwrap(), text.to_string())
             })
             .collect()
+    }
+
+    /// `Tenths` writes exactly what `{:.1}` writes: ties both ways, values
+    /// just beside them, negatives, zeros, and a sweep of a diagram's range.
+    #[test]
+    fn tenths_are_written_as_the_formatter_writes_them() {
+        let mut values = vec![
+            0.0, -0.0, 0.05, 0.15, 0.25, 0.35, 1.45, 2.5, -0.05, -1.25, 0.049_999, 0.150_001,
+            1e11, 1e13, f64::NAN, f64::INFINITY, -f64::INFINITY, 123.456, 99.95, 99.949_999,
+        ];
+        let mut x = 0.0_f64;
+        while x < 5000.0 {
+            values.push(x);
+            values.push(-x);
+            x += 0.013_7;
+        }
+        for v in values {
+            assert_eq!(Tenths(v).to_string(), format!("{v:.1}"), "{v:e}");
+        }
     }
 
     #[test]
