@@ -288,7 +288,9 @@ fn pad(value: &Value, width: usize) -> Result<Value, minijinja::Error> {
         return Err(minijinja::Error::from(minijinja::ErrorKind::UndefinedError));
     }
     let width = width.min(MAX_PAD);
-    let text = value.as_str().map_or_else(|| value.to_string().into(), Cow::Borrowed);
+    let text = value
+        .as_str()
+        .map_or_else(|| value.to_string().into(), Cow::Borrowed);
     let chars = text.chars().count();
     if chars >= width && value.as_str().is_some() && !value.is_safe() {
         return Ok(value.clone());
@@ -373,7 +375,11 @@ mod tests {
         assert_eq!(text("[{{ 42 | pad(4) }}]"), "[42  ]\n");
         assert_eq!(text("[{{ '' | pad(5000) }}]").len(), 1 + 1000 + 2);
         assert_eq!(
-            render("codesys.xml.j2", "[{{ x | pad(1) }}][{{ x | safe | pad(1) }}]").unwrap(),
+            render(
+                "codesys.xml.j2",
+                "[{{ x | pad(1) }}][{{ x | safe | pad(1) }}]"
+            )
+            .unwrap(),
             "[&lt;ü&gt;][&lt;ü&gt;]\n"
         );
         let err = render("gvl.txt.j2", "{{ y | pad(3) }}").unwrap_err();
