@@ -271,9 +271,10 @@ pub fn analyse_runs(
             // healthy one.
             sets.iter()
                 .map(|set| {
+                    let columns = inputs.columns(set);
                     moments
                         .iter()
-                        .map(|m| inputs.divergence(set, m.at_ms))
+                        .map(|m| inputs.divergence_of(&columns, m.at_ms))
                         .collect()
                 })
                 .collect()
