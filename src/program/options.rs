@@ -369,7 +369,7 @@ impl Modes {
     }
 
     /// The homing stages for a table: the given order, checked against the
-    /// table, or by default the reverse order of the last moves.
+    /// table, or by default the order the cycle returns them home.
     pub fn home_stages(&self, table: &StepTable) -> Result<Vec<Vec<u32>>, String> {
         table.home_stages(self.home_order.as_deref())
     }

@@ -261,8 +261,9 @@ pub struct StepTable {
 
 impl StepTable {
     /// The homing stages RESET uses: `order`, checked to name every actuator
-    /// once, or by default the reverse order of the last moves (actuators
-    /// whose last move is in the same step go home together).
+    /// once, or by default the order in which the cycle itself returns them
+    /// home: each actuator's last move, earliest first (actuators whose last
+    /// move is in the same step go home together).
     pub fn home_stages(&self, order: Option<&[Vec<u32>]>) -> Result<Vec<Vec<u32>>, String> {
         if let Some(order) = order {
             let mut named: Vec<u32> = order.iter().flatten().copied().collect();
@@ -289,12 +290,13 @@ impl StepTable {
                 last.insert(m.actuator, step.number);
             }
         }
-        let mut stages: BTreeMap<std::cmp::Reverse<usize>, Vec<u32>> = BTreeMap::new();
+        // The cycle's own return order: an actuator's last move is its
+        // return home, and the cycle returns them in this order for a
+        // reason (the punch lifts before the clamp opens). Homing the other
+        // way round would undo the machine's safeguards.
+        let mut stages: BTreeMap<usize, Vec<u32>> = BTreeMap::new();
         for (actuator, step) in last {
-            stages
-                .entry(std::cmp::Reverse(step))
-                .or_default()
-                .push(actuator);
+            stages.entry(step).or_default().push(actuator);
         }
         Ok(stages.into_values().collect())
     }

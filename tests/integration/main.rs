@@ -18,6 +18,7 @@ mod fault_phases;
 mod flags;
 mod fuzz_regressions;
 mod helpers;
+mod homing;
 mod hostile;
 mod jumps;
 mod layers;
