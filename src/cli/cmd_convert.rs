@@ -121,6 +121,9 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
                     folder.display(),
                     names.join(", ")
                 ));
+                for line in &conversion.findings {
+                    report.say(&format!("  {line}"));
+                }
             }
             Err(err) => {
                 eprintln!("error: {err}");

@@ -1,6 +1,7 @@
 //! The pipeline, end to end and in memory: read → table → addresses → program
 //! → every output file. Writing to disk is [`crate::write`]'s job.
 
+mod findings;
 mod physics;
 mod pins;
 
@@ -43,6 +44,10 @@ pub struct Conversion {
     pub faults: Option<FaultTable>,
     pub files: Vec<OutputFile>,
     pub warnings: Vec<Diagnostic>,
+    /// What the conversion found, a line each: the verdict and cycle time,
+    /// the hazards, the homing order, a program without STOP (see
+    /// [`findings::lines`]).
+    pub findings: Vec<String>,
 }
 
 /// Why a conversion produced nothing.
@@ -426,7 +431,14 @@ pub fn generate_observed(
     kinds.extend(late.map_err(emitted)?);
     kinds.sort_by_key(|(kind, _)| *kind);
     let files = kinds.into_iter().flat_map(|(_, files)| files).collect();
+    let findings = findings::lines(
+        &table,
+        &settings.program.modes,
+        &simulation,
+        fault_table.as_ref(),
+    );
     Ok(Conversion {
+        findings,
         name: name.to_string(),
         table,
         allocation,

@@ -292,7 +292,7 @@ pub struct Modes {
     /// A RESET button homes every actuator.
     pub reset: bool,
     /// Homing stages, each a set of actuators homed together; `None` is the
-    /// default (reverse order of the last moves).
+    /// default (the order the cycle returns them home).
     pub home_order: Option<Vec<Vec<u32>>>,
 }
 

@@ -15,6 +15,7 @@ mod energy;
 mod excel_formula;
 mod exports;
 mod fault_phases;
+mod findings;
 mod flags;
 mod fuzz_regressions;
 mod helpers;
