@@ -4,10 +4,11 @@
 //!
 //! The pipeline, one module per stage, data flowing one way:
 //! [`read`] (file → grid of cells) → [`table`] (grid → checked steps and moves)
-//! → [`address`] (signals → addresses per PLC dialect) → [`program`] (the step
-//! program every output is rendered from) → [`emit`] (one file per output
-//! language). [`convert`] runs the whole pipeline in memory and [`output`]
-//! writes the result atomically.
+//! → [`program`] (the step program every output is rendered from) →
+//! [`address`] (the program's signals → addresses per PLC dialect) → [`emit`]
+//! (one file per output language); [`simulate`] and [`faults`] run the
+//! program, [`synth`] stands beside. [`convert`] runs the whole pipeline in
+//! memory and [`write`] writes the result atomically.
 
 pub mod address;
 pub mod batch;
@@ -22,6 +23,7 @@ pub mod program;
 pub mod random_table;
 pub mod read;
 pub mod settings;
+pub mod sheets;
 pub mod simulate;
 pub mod stroke;
 pub mod synth;

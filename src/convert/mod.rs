@@ -1,4 +1,4 @@
-//! The pipeline, end to end and in memory: read → table → addresses → program
+//! The pipeline, end to end and in memory: read → table → program → addresses
 //! → every output file. Writing to disk is [`crate::write`]'s job.
 
 mod findings;

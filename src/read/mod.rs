@@ -24,13 +24,7 @@ pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
 /// Largest size a zipped workbook (.xlsx, .xlsm, .ods) may unpack to.
 pub const MAX_UNPACKED_BYTES: u64 = 256 * 1024 * 1024;
 
-/// The sheet name of the published method's table.
-pub const TABLE_SHEET: &str = "SEQUENTIAL CONTROL DESCRIPTION";
-
-/// The sheet name of the engineer's settings, when a workbook has one.
-pub const SETTINGS_SHEET: &str = "SETTINGS";
-/// The sheet name of the signals pinned to the wiring's addresses.
-pub const ADDRESSES_SHEET: &str = "ADDRESSES";
+pub use crate::sheets::{ADDRESSES_SHEET, SETTINGS_SHEET, TABLE_SHEET};
 
 /// What was read from one input file: the step table's sheet and, for a
 /// workbook that has one, its SETTINGS sheet.
