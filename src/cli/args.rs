@@ -152,7 +152,7 @@ pub(crate) struct CommonArgs {
     /// Operating modes in the generated program: continuous, stop, estop, reset (or all).
     #[arg(long, value_name = "LIST", value_parser = parse_modes)]
     pub(crate) modes: Option<Modes>,
-    /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: reverse order of the last moves).
+    /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: the order the cycle itself returns them home).
     #[arg(long, value_name = "ORDER", value_parser = parse_home_order)]
     pub(crate) home_order: Option<HomeOrder>,
 }

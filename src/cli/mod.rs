@@ -88,7 +88,7 @@ pub fn run() -> i32 {
             };
         }
     };
-    match cli.command {
+    let code = match cli.command {
         Command::Convert(args) => run_convert(&args),
         Command::Check(args) => run_check(&args),
         Command::Simulate(args) => run_simulate(&args),
@@ -120,14 +120,39 @@ pub fn run() -> i32 {
                 }
             }
         }
+    };
+    with_stdout(code)
+}
+
+/// What became of standard output: written, closed by its reader, or
+/// failed (a full disk). Set once, read when the command ends.
+static STDOUT: std::sync::Mutex<Option<std::io::Error>> = std::sync::Mutex::new(None);
+
+/// Prints to stdout. After the first failure nothing more is printed, and
+/// the command still ends with the exit code its work earned: a closed pipe
+/// (`steptable check … | head`) is quiet and changes nothing, any other
+/// failure (`> /dev/full`) is an I/O error at the end (exit 2).
+pub(crate) fn out(line: &str) {
+    let mut failed = STDOUT.lock().unwrap_or_else(|e| e.into_inner());
+    if failed.is_some() {
+        return;
+    }
+    let mut stdout = std::io::stdout().lock();
+    if let Err(err) = writeln!(stdout, "{line}").and_then(|()| stdout.flush()) {
+        *failed = Some(err);
     }
 }
 
-/// Prints to stdout; a closed pipe (`steptable check … | head`) is not an error.
-pub(crate) fn out(line: &str) {
-    let mut stdout = std::io::stdout().lock();
-    if writeln!(stdout, "{line}").is_err() {
-        std::process::exit(EXIT_OK);
+/// The exit code of a command that earned `code`, once standard output's
+/// fate is known.
+fn with_stdout(code: i32) -> i32 {
+    let failed = STDOUT.lock().unwrap_or_else(|e| e.into_inner());
+    match failed.as_ref() {
+        Some(err) if err.kind() != std::io::ErrorKind::BrokenPipe => {
+            eprintln!("error: cannot write to standard output: {err}");
+            code.max(EXIT_INTERNAL)
+        }
+        _ => code,
     }
 }
 

@@ -35,6 +35,7 @@ mod properties;
 mod safety;
 mod simulate;
 mod snapshots;
+mod stdout;
 mod stepping;
 mod stray_cells;
 mod synth;
