@@ -41,6 +41,12 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
         };
         reporter.diagnostics(&checked.warnings);
         let (table, mut settings) = (checked.table, checked.settings);
+        let lucky = convert::lucky_middle_stops(&table, &settings);
+        if !lucky.is_empty() {
+            reporter.diagnostics(&lucky);
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
         settings.simulation.record_trace = args.diagram.is_some();
         let program = convert::build_program(&table, &settings);
         let report = steptable::simulate::simulate(&table, &program, &settings.simulation);

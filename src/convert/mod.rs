@@ -3,6 +3,7 @@
 
 mod findings;
 mod physics;
+pub use physics::lucky_middle_stops;
 mod pins;
 
 use std::path::Path;
@@ -261,7 +262,15 @@ pub fn healthy_program(
     settings: &Settings,
     sim: &SimSettings,
 ) -> Result<(StepProgram, SimReport), Failure> {
+    let lucky = physics::lucky_middle_stops(table, settings);
+    if !lucky.is_empty() {
+        return Err(Failure::Input(lucky));
+    }
     let program = build_program(table, settings);
+    let beyond = physics::watchdogs_beyond_timers(table, &program);
+    if !beyond.is_empty() {
+        return Err(Failure::Input(beyond));
+    }
     let simulation = simulate::simulate(table, &program, sim);
     if simulation.passed {
         Ok((program, simulation))

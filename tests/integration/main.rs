@@ -24,6 +24,7 @@ mod hostile;
 mod jumps;
 mod layers;
 mod machine;
+mod machine_limits;
 mod messy;
 mod modes;
 mod motor;
