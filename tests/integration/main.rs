@@ -19,6 +19,7 @@ mod flags;
 mod fuzz_regressions;
 mod helpers;
 mod hostile;
+mod jump_paths;
 mod jumps;
 mod layers;
 mod machine;
