@@ -37,5 +37,6 @@ mod snapshots;
 mod stepping;
 mod stray_cells;
 mod synth;
+mod synth_short;
 mod template;
 mod valves;
