@@ -4,6 +4,7 @@
 
 mod batch;
 mod boards;
+mod budgets;
 mod broken;
 mod codes;
 // The binary's command-line definition, for the test of every flag.
