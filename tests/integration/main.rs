@@ -4,8 +4,8 @@
 
 mod batch;
 mod boards;
-mod budgets;
 mod broken;
+mod budgets;
 mod codes;
 // The binary's command-line definition, for the test of every flag.
 #[allow(dead_code, unused_imports)]
