@@ -14,7 +14,7 @@ pub(crate) struct SimArgs {
     /// PLC scan time of the simulation and of the generated task.
     #[arg(long, value_name = "TIME", value_parser = parse_scan)]
     pub(crate) scan: Option<u32>,
-    /// How long the machine takes to give a waited-for input: part_present=2s (default 0.5s).
+    /// How long the machine takes to give a waited-for input: part_present=2s (default 0.5s; a jump's input comes as its step starts unless named here).
     #[arg(long, value_name = "LIST", value_parser = parse_input_delays)]
     pub(crate) input_delay: Option<InputDelays>,
 }

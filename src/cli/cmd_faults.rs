@@ -85,6 +85,13 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
             code = code.max(EXIT_BAD_INPUT);
             continue;
         }
+        if let Some(why) =
+            steptable::faults::over_budget(&table, &program, &settings.simulation, at_once)
+        {
+            report.diagnostics(&[convert::budget_error(&table, why)]);
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
         let progress = super::progress::Progress::new("fault cases", false);
         let result = steptable::faults::analyse_observed(
             &table,

@@ -49,6 +49,12 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
         }
         settings.simulation.record_trace = args.diagram.is_some();
         let program = convert::build_program(&table, &settings);
+        if let Some(why) = steptable::simulate::over_budget(&table, &program, &settings.simulation)
+        {
+            reporter.diagnostics(&[convert::budget_error(&table, why)]);
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
         let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
         // The diagram is written before anything is printed: with stdout
         // closed, printing ends the process (quietly), and the file the user

@@ -193,6 +193,21 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
     let verification = synth::verify::verify(&synthesis, 2);
     let report = synth_out::report_text(&synthesis, &verification);
     reporter.say(&report);
+    // A program that fails its proof is not written: the report above
+    // says why.
+    if !verification.passed {
+        eprintln!(
+            "internal error: the synthesised controller fails its simulation ({}); please report this sequence",
+            verification.problem.as_deref().unwrap_or_default()
+        );
+        return EXIT_INTERNAL;
+    }
+    if let Err(why) = &verification.modes {
+        eprintln!(
+            "internal error: the synthesised program fails its mode proof ({why}); please report this sequence"
+        );
+        return EXIT_INTERNAL;
+    }
     let workbook = match synth_out::workbook(&synthesis, &verification) {
         Ok(b) => b,
         Err(err) => {
@@ -245,19 +260,6 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
         write::Durability::Rename,
     ) {
         eprintln!("error: {err}");
-        return EXIT_INTERNAL;
-    }
-    if !verification.passed {
-        eprintln!(
-            "internal error: the synthesised controller fails its simulation ({}); please report this sequence",
-            verification.problem.unwrap_or_default()
-        );
-        return EXIT_INTERNAL;
-    }
-    if let Err(why) = &verification.modes {
-        eprintln!(
-            "internal error: the synthesised program fails its mode proof ({why}); please report this sequence"
-        );
         return EXIT_INTERNAL;
     }
     EXIT_OK

@@ -271,11 +271,28 @@ pub fn healthy_program(
     if !beyond.is_empty() {
         return Err(Failure::Input(beyond));
     }
+    if let Some(why) = simulate::over_budget(table, &program, sim) {
+        return Err(Failure::Input(vec![budget_error(table, why)]));
+    }
     let simulation = simulate::simulate(table, &program, sim);
     if simulation.passed {
         Ok((program, simulation))
     } else {
         Err(physics::explain(table, settings, &simulation))
+    }
+}
+
+/// Error E033 for `table`: the work it asks for is beyond the budget.
+pub fn budget_error(table: &StepTable, why: String) -> Diagnostic {
+    Diagnostic {
+        severity: crate::diag::Severity::Error,
+        code: Code::E033OverBudget,
+        location: Location {
+            file: table.file.clone(),
+            sheet: None,
+            cell: None,
+        },
+        message: why,
     }
 }
 
@@ -416,6 +433,16 @@ pub fn generate_observed(
     // rendering, not after them.
     let (early, late): (Vec<OutputKind>, Vec<OutputKind>) =
         settings.formats.iter().partition(|k| !k.shows_faults());
+    if !late.is_empty()
+        && let Some(why) = faults::over_budget(&table, &program, &settings.simulation, 1)
+    {
+        let shown: Vec<&str> = late.iter().map(|k| k.name()).collect();
+        let why = format!(
+            "{why}, or leave out the outputs that show the fault table (--formats without {})",
+            shown.join(", ")
+        );
+        return Err(Failure::Input(vec![budget_error(&table, why)]));
+    }
     let ((fault_table, late), early) = rayon::join(
         || {
             let fault_table = (!late.is_empty()).then(|| {

@@ -111,6 +111,16 @@ fn changes(table: &StepTable, settings: &Settings) -> Vec<Change> {
             s.simulation.strokes.default = Stroke::default()
         });
     }
+    // A jump's input given later than its step lasts leaves the path
+    // untaken; by default the machine gives it as the step starts.
+    for name in sim.input_delays.keys() {
+        with(
+            format!("I:{name} at its default time (without --input-delay {name}=…)"),
+            &|s| {
+                s.simulation.input_delays.remove(name);
+            },
+        );
+    }
     let default_scan = simulate::SimSettings::default().scan_ms;
     if sim.scan_ms != default_scan {
         with(format!("a {default_scan} ms scan"), &|s| {

@@ -358,6 +358,7 @@ fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
                 )),
                 _ => None,
             };
+            let why = why.or_else(|| waited_jump(step, jump));
             if let Some(why) = why {
                 diags.error(
                     Code::E028JumpTarget,
@@ -398,6 +399,42 @@ fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
             }
         }
     }
+}
+
+/// A jump is tested once its step is done, and a step is done only when
+/// its waits are met: a jump on an input its own step waits for is then
+/// certain (the steps it leaves out never run) or impossible (its path
+/// never runs). Both are refused rather than proven on a path that cannot
+/// happen.
+fn waited_jump(step: &Step, jump: &Jump) -> Option<String> {
+    let wait = step.waits.iter().find(|w| w.input == jump.input)?;
+    let waited = format!(
+        "STEP {} waits for I:{}={}",
+        step.number,
+        jump.input,
+        u8::from(wait.value)
+    );
+    Some(if wait.value == jump.value {
+        let skipped = match jump.target {
+            Some(n) if n > step.number + 1 => {
+                format!("steps {}–{} never run", step.number + 1, n - 1)
+            }
+            Some(n) => format!(
+                "steps {n}–{} repeat for ever (the cycle never ends)",
+                step.number
+            ),
+            None => format!("the steps after STEP {} never run", step.number),
+        };
+        format!(
+            "{waited}, so once the step is done the jump is always taken and {skipped}; jump on another input, or take the wait out"
+        )
+    } else {
+        format!(
+            "{waited}, so I:{} is {} whenever the jump is tested and the jump is never taken; jump on another input, or take the wait out",
+            jump.input,
+            u8::from(wait.value)
+        )
+    })
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -5,12 +5,14 @@
 mod batch;
 mod boards;
 mod broken;
+mod budgets;
 mod codes;
 // The binary's command-line definition, for the test of every flag.
 #[allow(dead_code, unused_imports)]
 #[path = "../../src/cli/mod.rs"]
 mod cli;
 mod diagram;
+mod drive_coasting;
 mod energy;
 mod excel_formula;
 mod exports;
@@ -21,6 +23,7 @@ mod fuzz_regressions;
 mod helpers;
 mod homing;
 mod hostile;
+mod jump_paths;
 mod jumps;
 mod layers;
 mod machine;
@@ -40,5 +43,6 @@ mod stdout;
 mod stepping;
 mod stray_cells;
 mod synth;
+mod synth_short;
 mod template;
 mod valves;
