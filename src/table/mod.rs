@@ -268,10 +268,8 @@ impl StepTable {
         if let Some(order) = order {
             let mut named: Vec<u32> = order.iter().flatten().copied().collect();
             named.sort_unstable();
-            let before = named.len();
-            named.dedup();
-            if named.len() != before {
-                return Err("the home order names an actuator twice".to_string());
+            if let Some(twice) = named.windows(2).find(|w| w[0] == w[1]) {
+                return Err(format!("the home order names C{} twice", twice[0]));
             }
             let all: Vec<u32> = self.actuators.iter().map(|a| a.number).collect();
             if let Some(extra) = named.iter().find(|n| !all.contains(n)) {

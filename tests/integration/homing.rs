@@ -101,3 +101,26 @@ fn the_programs_say_the_homing_order() {
     let stage = |text: &str| st.find(text).unwrap_or_else(|| panic!("{text} in {st}"));
     assert!(stage("homing stage 1: C2 home") < stage("homing stage 2: C1 home"));
 }
+
+/// A home order that names an actuator twice says which one.
+#[test]
+fn a_home_order_naming_an_actuator_twice_says_which() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .args([
+            "convert",
+            "--modes",
+            "all",
+            "--home-order",
+            "C2&C3&C4, C1, C3",
+            "-o",
+        ])
+        .arg(dir.path().join("out"))
+        .arg(crate::helpers::sample("paper_example.csv"))
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "error[E030]: the home order names C3 twice",
+        ));
+    assert!(!dir.path().join("out").exists());
+}
