@@ -16,6 +16,7 @@ pub mod convert;
 pub mod diag;
 pub mod emit;
 pub mod faults;
+pub mod manifest;
 pub mod names;
 pub mod program;
 #[cfg(feature = "testing")]

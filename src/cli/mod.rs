@@ -115,8 +115,7 @@ pub fn run() -> i32 {
                     EXIT_BAD_INPUT
                 }
                 Err(ExportError::Write(err)) => {
-                    eprintln!("error: {err}");
-                    EXIT_INTERNAL
+                    write_failed(&Reporter::for_format(MessageFormat::Human), &err)
                 }
             }
         }
@@ -181,6 +180,21 @@ impl Reporter {
             eprintln!("{line}");
         } else {
             out(line);
+        }
+    }
+}
+
+/// Says why outputs were not written; the exit code: 1 when something of
+/// the engineer's is in their place (E040), 2 for an I/O failure.
+pub(crate) fn write_failed(report: &Reporter, err: &write::WriteError) -> i32 {
+    match err {
+        write::WriteError::Taken(problems) => {
+            report.diagnostics(problems);
+            EXIT_BAD_INPUT
+        }
+        write::WriteError::Io { .. } => {
+            eprintln!("error: {err}");
+            EXIT_INTERNAL
         }
     }
 }
