@@ -2,8 +2,8 @@
 //! the folder's `.steptable-manifest` records it; anything else in an
 //! output's place is E040, exit 1, with nothing written for that input; a
 //! folder walk skips a table only when a manifest vouches for it. Also a
-//! folder given where a table file goes (E001), and the output budget of a
-//! template.
+//! folder given where a table file goes (E001), the output budget of a
+//! template, and commands and format names that lead to the right one.
 
 use std::path::{Path, PathBuf};
 
@@ -452,4 +452,83 @@ fn a_template_that_writes_without_end_stops_at_the_budget() {
         assert!(started.elapsed() < std::time::Duration::from_secs(30));
         assert!(!out.exists(), "nothing written");
     }
+}
+
+/// `--formats tags` points to `tia`; `template export` to `templates
+/// export`, and `templates` with the workbook's options to `template`;
+/// nothing is written by any of them.
+#[test]
+fn mistaken_names_lead_to_the_command_and_format_meant() {
+    let dir = tempfile::tempdir().unwrap();
+    let work = dir.path();
+    table(&work.join("x.csv"));
+    steptable()
+        .current_dir(work)
+        .args(["convert", "x.csv", "--formats", "st,tags", "-o", "out"])
+        .assert()
+        .code(1)
+        .stderr(contains("did you mean tia (writes NAME.tags.xlsx)?"));
+    steptable()
+        .current_dir(work)
+        .args(["template", "export", "layouts"])
+        .assert()
+        .code(1)
+        .stderr(contains(
+            "did you mean `steptable templates export layouts`?",
+        ));
+    steptable()
+        .current_dir(work)
+        .args(["templates", "-o", "t.xlsx"])
+        .assert()
+        .code(1)
+        .stderr(contains("did you mean `steptable template`"));
+    assert_eq!(files_below(work), [work.join("x.csv")]);
+    // Each command's help says which is which.
+    let help = steptable().arg("--help").output().unwrap();
+    let help = String::from_utf8_lossy(&help.stdout);
+    let line = |name: &str| {
+        help.lines()
+            .find(|l| l.trim_start().starts_with(&format!("{name} ")))
+            .unwrap_or_default()
+            .to_string()
+    };
+    assert!(line("template").contains("not `templates`"), "{help}");
+    assert!(line("templates").contains("not `template`"), "{help}");
+}
+
+/// The values `--help` lists for `--formats` and `--valve` are the
+/// library's own lists, all of them.
+#[test]
+fn help_lists_every_format_and_valve() {
+    use clap::CommandFactory;
+    let mut cli = crate::cli::Cli::command();
+    cli.build();
+    let help_of = |command: &str, flag: &str| -> String {
+        let sub = cli.find_subcommand(command).unwrap();
+        let arg = sub.get_arguments().find(|a| a.get_id() == flag).unwrap();
+        arg.get_help().unwrap().to_string()
+    };
+    let listed = |help: &str, after: &str, before: &str| -> Vec<String> {
+        let start = help.find(after).unwrap() + after.len();
+        let end = start + help[start..].find(before).unwrap();
+        help[start..end].split(", ").map(str::to_string).collect()
+    };
+    let kinds: Vec<String> = steptable::emit::OutputKind::ALL
+        .iter()
+        .map(|k| k.name().to_string())
+        .collect();
+    for command in ["convert", "batch"] {
+        let help = help_of(command, "formats");
+        assert_eq!(
+            listed(&help, "comma-separated: ", " (default"),
+            kinds,
+            "{help}"
+        );
+    }
+    let valves: Vec<String> = steptable::valve::ValveType::ALL
+        .iter()
+        .map(|v| v.name().to_string())
+        .collect();
+    let help = help_of("convert", "valve");
+    assert_eq!(listed(&help, "C2=53closed (", ")"), valves, "{help}");
 }
