@@ -10,6 +10,7 @@
 //! writes the result atomically.
 
 pub mod address;
+pub mod alloc_guard;
 pub mod batch;
 pub mod cell;
 pub mod convert;

@@ -258,7 +258,11 @@ impl Templates {
             budget: self.budget,
             over: false,
         };
+        // A user's template may not build values far past its output budget.
+        let scope =
+            user.then(|| crate::alloc_guard::Scope::enter(&file, self.budget.saturating_mul(4)));
         let rendered = template.render_captured_to(context, &mut sink).map(drop);
+        drop(scope);
         if sink.over {
             return Err(TemplateError {
                 file,
