@@ -113,6 +113,7 @@ pub fn write_outputs(
     } else {
         Found::None
     };
+    let found_none = found == Found::None;
     let mut recorded = match found {
         Found::Manifest(m) => m,
         Found::None => Manifest::default(),
@@ -123,6 +124,12 @@ pub fn write_outputs(
             ));
             Manifest::default()
         }
+    };
+    // Without a manifest the folder may be an older version's outputs.
+    let unrecorded = if found_none {
+        "an output goes here, and no steptable run recorded writing this file (the folder has no record: if a steptable before manifests wrote it, delete those old outputs once)"
+    } else {
+        "an output goes here, and no steptable run recorded writing this file"
     };
     for file in files {
         let target = folder.join(&file.name);
@@ -142,7 +149,7 @@ pub fn write_outputs(
             let why = if recorded.files.contains_key(&file.name) {
                 "an output goes here, and this file changed since steptable wrote it (it may hold your edits)"
             } else {
-                "an output goes here, and no steptable run recorded writing this file"
+                unrecorded
             };
             problems.push(taken(
                 &target,

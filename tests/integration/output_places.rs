@@ -211,6 +211,22 @@ fn cases() -> Vec<Case> {
             kept: &["out/x/x.faults.csv"],
         },
         Case {
+            name: "an output folder of a version without manifests, with other bytes",
+            setup: |w| {
+                table(&w.join("x.csv"));
+                steptable()
+                    .current_dir(w)
+                    .args(["convert", "x.csv", "--target", "iec", "-o", "out"])
+                    .assert()
+                    .success();
+                std::fs::remove_file(w.join("out/x/.steptable-manifest")).unwrap();
+                s(&["convert", "x.csv", "-o", "out"])
+            },
+            code: 1,
+            error: Some(("E040", "out/x/x.st")),
+            kept: &["out/x/x.st", "out/x/x.io.csv"],
+        },
+        Case {
             name: "a rerun replaces what the first run wrote",
             setup: |w| {
                 table(&w.join("x.csv"));
