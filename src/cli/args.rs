@@ -143,10 +143,10 @@ pub(crate) struct CommonArgs {
     pub(crate) message_format: MessageFormat,
     #[arg(long, value_name = "LIST", value_parser = parse_valves, help = valves_help())]
     pub(crate) valve: Option<std::collections::BTreeMap<u32, steptable::valve::ValveType>>,
-    /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all).
+    /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all, or none).
     #[arg(long, value_name = "LIST", value_parser = parse_safety)]
     pub(crate) safety: Option<Safety>,
-    /// Operating modes in the generated program: continuous, stop, estop, reset (or all).
+    /// Operating modes in the generated program: continuous, stop, estop, reset (or all, or none).
     #[arg(long, value_name = "LIST", value_parser = parse_modes)]
     pub(crate) modes: Option<Modes>,
     /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: reverse order of the last moves).
