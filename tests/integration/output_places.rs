@@ -399,7 +399,9 @@ fn batch_into_its_own_folder_reruns_on_the_same_tables() {
 }
 
 /// A workbook named like an output is a table like any other when no
-/// manifest says a run wrote it: it converts (into another folder).
+/// manifest vouches for it (`plant/press/press.xlsx`, and a run's workbook
+/// the engineer replaced since): both convert. The run's other outputs in
+/// the walk, vouched for byte for byte, are left out and counted.
 #[test]
 fn tables_named_like_outputs_are_converted() {
     let dir = tempfile::tempdir().unwrap();
@@ -410,12 +412,39 @@ fn tables_named_like_outputs_are_converted() {
         work.join("plant/press/press.xlsx"),
     )
     .unwrap();
+    table(&work.join("src/drill.csv"));
     steptable()
         .current_dir(work)
-        .args(["batch", "plant", "-o", "out"])
+        .args(["convert", "src/drill.csv", "-o", "plant"])
         .assert()
-        .success()
-        .stdout(contains("1 converted, 0 failed"));
+        .success();
+    std::fs::copy(
+        sample("paper_example.xlsx"),
+        work.join("plant/drill/drill.xlsx"),
+    )
+    .unwrap();
+    let output = steptable()
+        .current_dir(work)
+        .args(["batch", "plant", "-o", "out"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success(), "{stdout}");
+    assert!(stdout.contains("2 converted, 0 failed"), "{stdout}");
+    // The four CSV lists and the TIA tag table of the run.
+    assert!(
+        stdout.contains("note: 5 table(s) in the folders are outputs of an earlier run"),
+        "{stdout}"
+    );
+    let summary = std::fs::read_to_string(work.join("out/summary.csv")).unwrap();
+    assert!(
+        summary.contains("plant/drill/drill.xlsx,converted"),
+        "{summary}"
+    );
+    assert!(
+        summary.contains("plant/press/press.xlsx,converted"),
+        "{summary}"
+    );
 }
 
 /// A folder where a table file goes is E001 (not E002, "not a workbook"),
