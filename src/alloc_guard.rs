@@ -6,7 +6,8 @@
 //! concatenation: forty doublings ask for a terabyte, and a refused
 //! allocation aborts the process with a backtrace. The binary's allocator
 //! ([`Guard`], registered in `main.rs`) watches the threads rendering a
-//! user's template ([`Scope`]): an allocation past the scope's limit, or
+//! user's template or compiling it ([`Scope`]: compiling folds constant
+//! expressions such as `'x' * 100000000`): an allocation past the scope's limit, or
 //! one the system refuses, ends the run with exit 1 and a message naming
 //! the template, instead of the abort. Nothing was written for it (outputs
 //! are written after every file is rendered). Outside a scope the allocator
@@ -73,7 +74,7 @@ fn refuse(size: usize, (limit, name, len): (usize, *const u8, usize)) -> ! {
     let _ = err.write_all(name);
     let _ = err.write_all(b": the template asked for a value of ");
     let _ = err.write_all(digits(size >> 20, &mut number));
-    let _ = err.write_all(b" MiB while rendering (the most is ");
+    let _ = err.write_all(b" MiB (the most is ");
     let _ = err.write_all(digits(limit >> 20, &mut number));
     let _ = err.write_all(b" MiB, four times its output budget); stopped, nothing written\n");
     let _ = err.flush();

@@ -188,6 +188,9 @@ impl Templates {
                 continue;
             };
             let file = path.display().to_string();
+            // Compiling folds constants (`'x' * 100000000` is built here):
+            // bounded as a render is.
+            let _scope = crate::alloc_guard::Scope::enter(&file, OUTPUT_BUDGET.saturating_mul(4));
             env.add_template_owned(name.to_string(), text.clone())
                 .map_err(|e| TemplateError {
                     file: file.clone(),

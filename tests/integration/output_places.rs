@@ -483,11 +483,11 @@ fn a_template_that_writes_without_end_stops_at_the_budget() {
             "{% for a in range(100000) %}{% for b in range(1000) %}xxxxxxxxxx{% endfor %}{% endfor %}\n",
             "program.awl.j2: the output passed",
         ),
-        // minijinja's own bound on a repeated string (100 MB, built when
-        // the template is read): the output budget stops its writing.
+        // A value built when the template is read (minijinja folds the
+        // constant; 100 MB aborted under `ulimit -v`).
         (
             "{{ 'x' * 100000000 }}\n",
-            "program.awl.j2: the output passed",
+            "program.awl.j2: the template asked for a value of",
         ),
         // A value doubled inside the render: bounded at four budgets, where
         // it ended in an abort with a backtrace (under `ulimit -v`) or asked
@@ -510,7 +510,7 @@ fn a_template_that_writes_without_end_stops_at_the_budget() {
             .assert()
             .code(1)
             .stderr(contains(said))
-            .stderr(contains("16 MiB").or(contains("65 MiB")))
+            .stderr(contains(" MiB"))
             .stderr(contains("panicked").not())
             .stderr(contains("backtrace").not());
         assert!(started.elapsed() < std::time::Duration::from_secs(30));
