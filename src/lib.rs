@@ -11,12 +11,14 @@
 //! memory and [`write`] writes the result atomically.
 
 pub mod address;
+pub mod alloc_guard;
 pub mod batch;
 pub mod cell;
 pub mod convert;
 pub mod diag;
 pub mod emit;
 pub mod faults;
+pub mod manifest;
 pub mod names;
 pub mod program;
 #[cfg(feature = "testing")]

@@ -66,9 +66,7 @@ pub(crate) struct FileArgs {
     /// Horizontal axis of NAME.diagram.svg: step (displacement-step) or time.
     #[arg(long, value_enum, default_value_t = DiagramArg::Step)]
     pub(crate) diagram: DiagramArg,
-    /// Files to write: xlsx, st, fst, io, diagram, faults, plcopen, codesys,
-    /// gvl, tia, awl, sdf, fst-alloc, rockwell (default all).
-    #[arg(long, value_name = "LIST", value_parser = parse_formats)]
+    #[arg(long, value_name = "LIST", value_parser = parse_formats, help = formats_help())]
     pub(crate) formats: Option<std::collections::BTreeSet<OutputKind>>,
     /// Folder of templates that replace the built-in ones by file name
     /// (start from `steptable templates export DIR`).
@@ -143,13 +141,12 @@ pub(crate) struct CommonArgs {
     /// How to print problems: human (default) or json (one object per line on stdout).
     #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
     pub(crate) message_format: MessageFormat,
-    /// Valve per actuator: C1=52mono,C2=53closed (52bi, 52mono, 53closed, 53exhaust, 53pressure).
-    #[arg(long, value_name = "LIST", value_parser = parse_valves)]
+    #[arg(long, value_name = "LIST", value_parser = parse_valves, help = valves_help())]
     pub(crate) valve: Option<std::collections::BTreeMap<u32, steptable::valve::ValveType>>,
-    /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all).
+    /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all, or none).
     #[arg(long, value_name = "LIST", value_parser = parse_safety)]
     pub(crate) safety: Option<Safety>,
-    /// Operating modes in the generated program: continuous, stop, estop, reset (or all).
+    /// Operating modes in the generated program: continuous, stop, estop, reset (or all, or none).
     #[arg(long, value_name = "LIST", value_parser = parse_modes)]
     pub(crate) modes: Option<Modes>,
     /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: the order the cycle itself returns them home).
@@ -168,6 +165,27 @@ pub(crate) fn parse_modes(text: &str) -> Result<Modes, String> {
 
 pub(crate) fn parse_home_order(text: &str) -> Result<HomeOrder, String> {
     Modes::parse_home_order(text).map(HomeOrder)
+}
+
+/// `--formats` help: every kind the library writes, from its own list.
+pub(crate) fn formats_help() -> String {
+    let names: Vec<&str> = OutputKind::ALL.iter().map(|k| k.name()).collect();
+    format!(
+        "Files to write, comma-separated: {} (default all)",
+        names.join(", ")
+    )
+}
+
+/// `--valve` help: every valve type, from the library's list.
+pub(crate) fn valves_help() -> String {
+    let names: Vec<&str> = steptable::valve::ValveType::ALL
+        .iter()
+        .map(|v| v.name())
+        .collect();
+    format!(
+        "Valve per actuator: C1=52mono,C2=53closed ({})",
+        names.join(", ")
+    )
 }
 
 pub(crate) fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<OutputKind>, String> {

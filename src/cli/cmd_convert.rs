@@ -70,6 +70,10 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
     let Some(settings) = output_settings(&args.common, &args.sim, &args.files) else {
         return EXIT_BAD_INPUT;
     };
+    if let Some(problem) = write::output_folder_problem(&args.output) {
+        report.diagnostics(&[problem]);
+        return EXIT_BAD_INPUT;
+    }
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
     let kept = write::Inputs::new(&args.inputs);
@@ -110,7 +114,7 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         };
         report.diagnostics(&conversion.warnings);
         let folder = args.output.join(&conversion.name);
-        match write::write_files(&folder, &conversion.files, &kept, settings.durability) {
+        match write::write_outputs(&folder, &conversion.files, &kept, settings.durability) {
             Ok(_) => {
                 // As the files lie in the folder: `NAME.beremiz/plc.xml`.
                 let names: Vec<String> = conversion.files.iter().map(|f| f.name.clone()).collect();
@@ -126,8 +130,8 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
                 }
             }
             Err(err) => {
-                eprintln!("error: {err}");
-                code = EXIT_INTERNAL;
+                code = code.max(write_failed(&report, &err));
+                eprintln!("{}: not converted, nothing written", display_name(input));
             }
         }
     }

@@ -113,14 +113,13 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
                 }
             },
         };
-        if let Err(err) = write::write_files(
+        if let Err(err) = write::write_outputs(
             &args.output.join(name),
             &[file],
             &kept,
             write::Durability::Rename,
         ) {
-            eprintln!("error: {err}");
-            code = EXIT_INTERNAL;
+            code = code.max(write_failed(&report, &err));
         }
         report.say(&format!("{}: {}", display_name(input), result.summary()));
         let rows = steptable::faults::rows(&result);

@@ -70,12 +70,9 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
                 name: format!("{name}.time.svg"),
                 bytes: svg.into_bytes(),
             };
-            match write::write_files(&dir.join(name), &[file], &kept, write::Durability::Rename) {
+            match write::write_outputs(&dir.join(name), &[file], &kept, write::Durability::Rename) {
                 Ok(paths) => diagram = Some(paths),
-                Err(err) => {
-                    eprintln!("error: {err}");
-                    code = EXIT_INTERNAL;
-                }
+                Err(err) => code = code.max(write_failed(&reporter, &err)),
             }
         }
         reporter.say(&format!("{}: {}", display_name(input), report.verdict()));

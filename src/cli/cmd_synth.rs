@@ -253,14 +253,13 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             bytes: workbook,
         },
     ];
-    if let Err(err) = write::write_files(
+    if let Err(err) = write::write_outputs(
         &args.output.join(&name),
         &files,
         &write::Inputs::new(&inputs),
         write::Durability::Rename,
     ) {
-        eprintln!("error: {err}");
-        return EXIT_INTERNAL;
+        return write_failed(&reporter, &err);
     }
     EXIT_OK
 }

@@ -62,10 +62,12 @@ pub(crate) enum Command {
     Simulate(SimulateArgs),
     /// Tabulate what every sensor fault (stuck at 1 or 0) does to the machine.
     Faults(FaultsArgs),
-    /// Work with the output templates.
+    /// Export the output templates (the layouts of the PLC program files) to
+    /// edit and use with --templates; not `template`, the empty workbook.
     #[command(subcommand)]
     Templates(TemplatesCommand),
-    /// Write an empty step-table workbook to fill in Excel or LibreOffice.
+    /// Write an empty step-table workbook to fill in Excel or LibreOffice;
+    /// not `templates`, the layouts of the output files.
     Template(TemplateArgs),
     /// Convert many workbooks at once, in parallel, with a summary.
     Batch(BatchArgs),
@@ -79,6 +81,15 @@ pub fn run() -> i32 {
         Ok(cli) => cli,
         Err(err) => {
             let _ = err.print();
+            let args: Vec<String> = std::env::args_os()
+                .skip(1)
+                .map(|a| a.to_string_lossy().to_string())
+                .collect();
+            if err.use_stderr()
+                && let Some(tip) = confused_command(&args)
+            {
+                eprintln!("\n{tip}");
+            }
             // A wrong option is wrong input, like a wrong cell: exit 1 (2
             // stays for internal and I/O failures); --help and --version 0.
             return if err.use_stderr() {
@@ -115,8 +126,7 @@ pub fn run() -> i32 {
                     EXIT_BAD_INPUT
                 }
                 Err(ExportError::Write(err)) => {
-                    eprintln!("error: {err}");
-                    EXIT_INTERNAL
+                    write_failed(&Reporter::for_format(MessageFormat::Human), &err)
                 }
             }
         }
@@ -153,6 +163,29 @@ fn with_stdout(code: i32) -> i32 {
             code.max(EXIT_INTERNAL)
         }
         _ => code,
+    }
+}
+
+/// The command meant when `template` (the empty workbook) and `templates`
+/// (the output layouts) were swapped: `template export DIR`, or
+/// `templates` with the workbook's options.
+pub(crate) fn confused_command(args: &[String]) -> Option<String> {
+    let rest = &args[1.min(args.len())..];
+    match args.first().map(String::as_str) {
+        Some("template") if rest.first().is_some_and(|a| a == "export") => Some(format!(
+            "tip: did you mean `steptable templates {}`? `template` writes the empty step-table workbook; `templates export DIR` writes the layouts of the output files",
+            rest.join(" ")
+        )),
+        Some("templates")
+            if !rest
+                .first()
+                .is_some_and(|a| ["export", "help", "-h", "--help"].contains(&a.as_str())) =>
+        {
+            Some(
+                "tip: did you mean `steptable template` (the empty step-table workbook, `-o FILE.xlsx`)? `templates export DIR` writes the layouts of the output files".to_string(),
+            )
+        }
+        _ => None,
     }
 }
 
@@ -206,6 +239,21 @@ impl Reporter {
             eprintln!("{line}");
         } else {
             out(line);
+        }
+    }
+}
+
+/// Says why outputs were not written; the exit code: 1 when something of
+/// the engineer's is in their place (E040), 2 for an I/O failure.
+pub(crate) fn write_failed(report: &Reporter, err: &write::WriteError) -> i32 {
+    match err {
+        write::WriteError::Taken(problems) => {
+            report.diagnostics(problems);
+            EXIT_BAD_INPUT
+        }
+        write::WriteError::Io { .. } => {
+            eprintln!("error: {err}");
+            EXIT_INTERNAL
         }
     }
 }

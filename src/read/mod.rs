@@ -71,6 +71,27 @@ pub fn read_path(path: &Path, sheet: Option<&str>, diags: &mut Diagnostics) -> O
         sheet: None,
         cell: None,
     };
+    // A folder or a missing file is E001 whatever its name ends in (a
+    // folder `line.xlsx`, a missing `notes` are no unknown file types).
+    let meta = match std::fs::metadata(path) {
+        Ok(meta) => meta,
+        Err(err) => {
+            diags.error(
+                Code::E001Unreadable,
+                whole_file,
+                format!("cannot read file: {err}"),
+            );
+            return None;
+        }
+    };
+    if meta.is_dir() {
+        diags.error(
+            Code::E001Unreadable,
+            whole_file,
+            "is a folder, not a table file; to convert every table in a folder, use `steptable batch FOLDER -o DIR`",
+        );
+        return None;
+    }
     let Some(format) = Format::from_path(path) else {
         diags.error(
             Code::E002NotAWorkbook,
@@ -79,24 +100,17 @@ pub fn read_path(path: &Path, sheet: Option<&str>, diags: &mut Diagnostics) -> O
         );
         return None;
     };
-    match std::fs::metadata(path) {
-        Ok(meta) if meta.len() > MAX_FILE_BYTES => {
-            diags.error(
-                Code::E005TooLarge,
-                whole_file,
-                format!(
-                    "file is {} MiB; the limit is {} MiB",
-                    meta.len() / (1024 * 1024),
-                    MAX_FILE_BYTES / (1024 * 1024)
-                ),
-            );
-            return None;
-        }
-        Ok(meta) if meta.is_dir() => {
-            diags.error(Code::E001Unreadable, whole_file, "is a folder, not a file");
-            return None;
-        }
-        _ => {}
+    if meta.len() > MAX_FILE_BYTES {
+        diags.error(
+            Code::E005TooLarge,
+            whole_file,
+            format!(
+                "file is {} MiB; the limit is {} MiB",
+                meta.len() / (1024 * 1024),
+                MAX_FILE_BYTES / (1024 * 1024)
+            ),
+        );
+        return None;
     }
     match std::fs::read(path) {
         Ok(bytes) => read_bytes(&file, format, bytes, sheet, diags),

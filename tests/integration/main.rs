@@ -32,6 +32,7 @@ mod messy;
 mod modes;
 mod motor;
 mod on_stop;
+mod output_places;
 mod paper;
 mod pins;
 mod promise_map;
