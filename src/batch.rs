@@ -273,7 +273,7 @@ fn convert_one(
             outcome.steps = Some(conversion.table.steps.len());
             outcome.actuators = Some(conversion.table.actuators.len());
             outcome.diagnostics = conversion.warnings;
-            match write::write_outputs(
+            match write::write_conversion(
                 &out.join(name),
                 &conversion.files,
                 all_inputs,

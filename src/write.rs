@@ -183,6 +183,58 @@ pub fn write_outputs(
     Ok(written)
 }
 
+/// Writes a conversion's whole set of files, as [`write_outputs`] does, and
+/// then removes the files an earlier run recorded writing into the folder
+/// that this run did not write (a rerun with fewer `--formats`, or after
+/// `faults -o` wrote beside it), where they are still as written: a folder
+/// never holds a program beside the lists of another table. A file changed
+/// since is left alone. Returns the paths written and those removed.
+pub fn write_conversion(
+    folder: &Path,
+    files: &[OutputFile],
+    inputs: &Inputs,
+    durability: Durability,
+) -> Result<(Vec<PathBuf>, Vec<PathBuf>), WriteError> {
+    let before = match folder.is_dir().then(|| Manifest::read(folder)) {
+        Some(Found::Manifest(m)) => m,
+        _ => Manifest::default(),
+    };
+    let stale: Vec<String> = before
+        .files
+        .keys()
+        .filter(|name| !files.iter().any(|f| &f.name == *name))
+        .filter(|name| before.vouches_for(folder, name))
+        .cloned()
+        .collect();
+    let written = write_outputs(folder, files, inputs, durability)?;
+    if stale.is_empty() {
+        return Ok((written, Vec::new()));
+    }
+    let Found::Manifest(mut record) = Manifest::read(folder) else {
+        return Ok((written, Vec::new()));
+    };
+    let mut removed = Vec::new();
+    for name in stale {
+        let path = folder.join(&name);
+        if std::fs::remove_file(&path).is_ok() {
+            record.files.remove(&name);
+            // A project folder (`NAME.beremiz/`) emptied goes too; one that
+            // still holds anything stays.
+            if let Some(parent) = path.parent().filter(|p| *p != folder) {
+                let _ = std::fs::remove_dir(parent);
+            }
+            removed.push(path);
+        }
+    }
+    let bytes = record.to_bytes();
+    stage_and_rename(
+        folder,
+        &[(manifest::FILE_NAME, bytes.as_slice())],
+        durability,
+    )?;
+    Ok((written, removed))
+}
+
 /// Writes `files` into `folder` (created if missing), replacing what is
 /// there except an input: for a caller that decided already what may be
 /// replaced (`--force`). Returns the paths written.

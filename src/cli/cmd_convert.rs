@@ -114,8 +114,8 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         };
         report.diagnostics(&conversion.warnings);
         let folder = args.output.join(&conversion.name);
-        match write::write_outputs(&folder, &conversion.files, &kept, settings.durability) {
-            Ok(_) => {
+        match write::write_conversion(&folder, &conversion.files, &kept, settings.durability) {
+            Ok((_, removed)) => {
                 // As the files lie in the folder: `NAME.beremiz/plc.xml`.
                 let names: Vec<String> = conversion.files.iter().map(|f| f.name.clone()).collect();
                 report.say(&format!(
@@ -127,6 +127,17 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
                 ));
                 for line in &conversion.findings {
                     report.say(&format!("  {line}"));
+                }
+                if !removed.is_empty() {
+                    let names: Vec<String> = removed
+                        .iter()
+                        .filter_map(|p| p.strip_prefix(&folder).ok())
+                        .map(|p| p.display().to_string())
+                        .collect();
+                    report.say(&format!(
+                        "  removed what an earlier run wrote there and this one did not: {}",
+                        names.join(", ")
+                    ));
                 }
             }
             Err(err) => {

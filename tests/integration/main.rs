@@ -37,6 +37,7 @@ mod paper;
 mod pins;
 mod promise_map;
 mod properties;
+mod rerun;
 mod safety;
 mod simulate;
 mod snapshots;

@@ -231,6 +231,7 @@ fn a_memory_reset_first_starts_set_in_both_programs() {
 /// is at least the sum of the parts it lists.
 #[test]
 fn the_time_line_covers_the_whole_run() {
+    let dir = tempfile::tempdir().unwrap();
     for method in ["ga", "both", "exact"] {
         let output = steptable()
             .args([
@@ -239,7 +240,9 @@ fn the_time_line_covers_the_whole_run() {
                 "A1 B1 A0 B0 C1 C0",
                 "--method",
                 method,
+                "-o",
             ])
+            .arg(dir.path())
             .output()
             .unwrap();
         assert!(output.status.success(), "{method}");
@@ -268,9 +271,18 @@ fn the_time_line_covers_the_whole_run() {
 /// the GA to know the minimum).
 #[test]
 fn only_a_proven_minimum_is_claimed() {
+    let dir = tempfile::tempdir().unwrap();
     let run = |method: &str| {
         let output = steptable()
-            .args(["synth", "--sequence", "A1 A0 B1 B0", "--method", method])
+            .args([
+                "synth",
+                "--sequence",
+                "A1 A0 B1 B0",
+                "--method",
+                method,
+                "-o",
+            ])
+            .arg(dir.path())
             .output()
             .unwrap();
         assert!(output.status.success(), "{method}");
