@@ -36,34 +36,37 @@ pub fn check_machine(table: &StepTable, machine: &Machine, grid: &Grid, diags: &
 }
 
 /// A machine input or output may be called `stop` unless the program has a
-/// STOP button of that name (and likewise for the other buttons), also as
-/// Festo FST cuts it.
+/// STOP button of that name (and likewise for the other buttons): what the
+/// buttons add to the one name check ([`crate::names::signal_problem`]),
+/// which the table's own build ran without them. Said at the name's first
+/// cell, whether a wait, a jump or an output switch.
 fn check_button_names(table: &StepTable, buttons: &[String], grid: &Grid, diags: &mut Diagnostics) {
-    let first_cell = |name: Name| {
-        table.steps.iter().find_map(|s| {
-            s.waits
-                .iter()
-                .find(|w| w.input == name)
-                .map(|w| w.cell)
-                .or_else(|| s.switches.iter().find(|w| w.output == name).map(|w| w.cell))
-        })
-    };
     for name in table.inputs.iter().chain(&table.outputs) {
-        let clash = buttons.iter().find(|b| {
-            b.as_str() == name.as_str()
-                || crate::names::fst_stem(b) == crate::names::fst_stem(name.as_str())
-        });
-        if let (Some(button), Some(cell)) = (clash, first_cell(*name)) {
-            diags.error(
-                Code::E015BadName,
-                grid.location(cell),
-                format!(
-                    "\"{name}\" cannot name a machine signal while the program has the operating-mode button {}: rename the signal, or leave that mode out",
-                    button.to_ascii_uppercase()
-                ),
-            );
+        let name = name.as_str();
+        if crate::names::signal_problem(name, &[]).is_some() {
+            continue;
+        }
+        if let (Some(why), Some(cell)) = (
+            crate::names::signal_problem(name, buttons),
+            first_use(table, name),
+        ) {
+            diags.error(Code::E015BadName, grid.location(cell), why);
         }
     }
+}
+
+/// The first cell (in step order) that names a machine input or output.
+fn first_use(table: &StepTable, name: &str) -> Option<CellPos> {
+    table.steps.iter().find_map(|s| {
+        let waits = s.waits.iter().filter(|w| w.input.as_str() == name);
+        let jumps = s.jumps.iter().filter(|j| j.input.as_str() == name);
+        let switches = s.switches.iter().filter(|w| w.output.as_str() == name);
+        waits
+            .map(|w| w.cell)
+            .chain(jumps.map(|j| j.cell))
+            .chain(switches.map(|w| w.cell))
+            .min()
+    })
 }
 
 /// A home order is checked against the table whether or not it is used,
@@ -443,26 +446,13 @@ impl Names {
             }
             return;
         }
-        let stem = |n: &Name| crate::names::fst_stem(n.as_str());
-        if let Some(reason) = crate::names::reserved_name(name.as_str()) {
-            diags.error(
-                Code::E015BadName,
-                grid.location(pos),
-                format!("\"{name}\" cannot name a machine signal: {reason}"),
-            );
-        } else if let Some(reason) = crate::names::reserved_name(&stem(&name)) {
-            // FST keeps 9 characters: the cut name must not be taken either.
-            diags.error(
-                Code::E015BadName,
-                grid.location(pos),
-                format!(
-                    "\"{name}\" cannot name a machine signal: Festo FST keeps its first 9 characters, \"{}\", and {reason}",
-                    stem(&name)
-                ),
-            );
+        if let Some(why) = crate::names::signal_problem(name.as_str(), &[]) {
+            diags.error(Code::E015BadName, grid.location(pos), why);
         }
-        if let Some((other, (_, other_pos))) =
-            self.first.iter().find(|(n, _)| stem(n) == stem(&name))
+        if let Some((other, (_, other_pos))) = self
+            .first
+            .iter()
+            .find(|(n, _)| crate::names::same_in_fst(n.as_str(), name.as_str()))
         {
             diags.error(
                 Code::E025NameClash,

@@ -25,6 +25,7 @@ mod machine;
 mod messy;
 mod modes;
 mod motor;
+mod name_check;
 mod on_stop;
 mod paper;
 mod pins;

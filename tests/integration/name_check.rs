@@ -1,0 +1,224 @@
+//! Issue 37, names: one name check at every place a name enters (table
+//! cells, SETTINGS rows, synth's letters). Each row runs the binary: exit
+//! code, code, cell, message, nothing written.
+
+use std::path::Path;
+
+use predicates::str::contains;
+
+use crate::helpers::{files_below, steptable, write_xlsx_sheets};
+
+/// A table whose STEP 2 cell (CSV 3:2) holds `item` beside `C1-0`; STEP 3
+/// is a dwell so that `J:4` has somewhere to jump.
+fn table_with(item: &str, off: &str) -> String {
+    format!(
+        ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0; {item}\nSTEP 3,T=1s\nSTEP 4,C2+1{off}\nSTEP 5,C2-0\n"
+    )
+}
+
+/// Runs `convert` on `input` with `args` into a fresh folder: the exit
+/// code, stderr, and whether anything was written.
+fn convert(input: &Path, args: &[&str]) -> (i32, String, bool) {
+    let out = input.with_extension("out");
+    let output = steptable()
+        .arg("convert")
+        .arg(input)
+        .args(args)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr).to_string();
+    (
+        output.status.code().unwrap_or(-1),
+        stderr,
+        !files_below(&out).is_empty(),
+    )
+}
+
+/// Every entry point × every kind of collision: E015 at its cell, exit 1,
+/// nothing written; and the same names where nothing collides pass.
+#[test]
+fn every_entry_point_refuses_every_kind_of_name_collision() {
+    let dir = tempfile::tempdir().unwrap();
+    // (what, item in STEP 2 or SETTINGS rows, modes, expected code, needle)
+    let table_rows: &[(&str, &str, &str, i32, &str)] = &[
+        // Mode buttons, only while their mode is on, in any case.
+        (
+            "jump on estop",
+            "J:4 if I:estop",
+            "estop",
+            1,
+            "button ESTOP",
+        ),
+        ("jump on EStop", "J:4 if I:EStop", "all", 1, "button ESTOP"),
+        ("jump on stop", "J:4 if I:stop=0", "stop", 1, "button STOP"),
+        ("jump on cont", "J:end if I:cont", "all", 1, "button CONT"),
+        (
+            "wait on reset_pb",
+            "I:reset_pb",
+            "reset",
+            1,
+            "button RESET_PB",
+        ),
+        ("output stop", "Y:stop+", "stop", 1, "button STOP"),
+        ("wait on estop", "I:estop", "estop", 1, "button ESTOP"),
+        ("jump on estop, no mode", "J:4 if I:estop", "none", 0, ""),
+        ("wait on stop, no mode", "I:stop", "estop", 0, ""),
+        // IL operators and the FB inputs IL reads as operators.
+        ("wait on ld", "I:ld", "none", 1, "instruction-list operator"),
+        (
+            "jump on st",
+            "J:4 if I:st",
+            "none",
+            1,
+            "instruction-list operator",
+        ),
+        ("output s1", "Y:s1+", "none", 1, "instruction-list operator"),
+        ("wait on in", "I:in", "none", 1, "instruction-list operator"),
+        ("wait on pt", "I:PT", "none", 1, "instruction-list operator"),
+        (
+            "wait on clk",
+            "I:clk",
+            "none",
+            1,
+            "instruction-list operator",
+        ),
+        (
+            "jump on cal",
+            "J:4 if I:cal",
+            "none",
+            1,
+            "instruction-list operator",
+        ),
+        (
+            "output ret",
+            "Y:ret+",
+            "none",
+            1,
+            "instruction-list operator",
+        ),
+        ("wait on s", "I:s", "none", 1, "instruction-list operator"),
+        // Keywords, standard functions and blocks.
+        ("wait on if", "I:if", "none", 1, "keyword"),
+        ("output ctu", "Y:ctu+", "none", 1, "standard function"),
+        (
+            "jump on max",
+            "J:4 if I:max",
+            "none",
+            1,
+            "standard function",
+        ),
+        // Addresses of STEP 7 and FST, the program's own names.
+        ("wait on mw10", "I:mw10", "none", 1, "addresses such as I0"),
+        (
+            "jump on fw2",
+            "J:4 if I:fw2",
+            "none",
+            1,
+            "addresses such as I0",
+        ),
+        (
+            "output x11",
+            "Y:x11+",
+            "none",
+            1,
+            "generated program uses it",
+        ),
+        (
+            "wait on dwell1",
+            "I:dwell1",
+            "none",
+            1,
+            "generated program uses it",
+        ),
+        (
+            "jump on active_step",
+            "J:4 if I:active_step",
+            "none",
+            1,
+            "uses it",
+        ),
+        (
+            "output steptable_main",
+            "Y:steptable_main+",
+            "none",
+            1,
+            "uses it",
+        ),
+        // What FST keeps of a name.
+        (
+            "jump on cycle_req_lamp",
+            "J:4 if I:cycle_req_lamp",
+            "none",
+            1,
+            "first 9",
+        ),
+    ];
+    for (what, item, modes, code, needle) in table_rows {
+        let off = match item.strip_prefix("Y:").and_then(|n| n.strip_suffix('+')) {
+            Some(name) => format!("; Y:{name}-"),
+            None => String::new(),
+        };
+        let input = dir
+            .path()
+            .join(format!("{}.csv", what.replace([' ', ','], "_")));
+        std::fs::write(&input, table_with(item, &off)).unwrap();
+        let (got, stderr, wrote) = convert(&input, &["--modes", modes, "--formats", "st"]);
+        assert_eq!(got, *code, "{what}: {stderr}");
+        if *code == 1 {
+            assert!(
+                stderr.contains(":3:2: error[E015]: ") && stderr.contains(needle),
+                "{what}: {stderr}"
+            );
+            assert!(!wrote, "{what}: written although refused");
+        }
+    }
+
+    // SETTINGS rows: the same check, the buttons of the sheet's own modes.
+    let table: &[&[&str]] = &[&["", "BRANCH 1"], &["STEP 1", "C1+1"], &["STEP 2", "C1-0"]];
+    let settings_rows: &[(&str, &[&[&str]], &str)] = &[
+        (
+            "permissive estop",
+            &[&["modes", "estop"], &["start permissive", "estop"]],
+            "SETTINGS!B2: error[E015]: start permissive: \"estop\" cannot name a machine signal while the program has the operating-mode button ESTOP",
+        ),
+        (
+            "interlock STOP",
+            &[&["modes", "stop"], &["interlock", "STOP"]],
+            "SETTINGS!B2: error[E015]: interlock: \"stop\" cannot name a machine signal while the program has the operating-mode button STOP",
+        ),
+        (
+            "permissive ld",
+            &[&["start permissive", "ld"]],
+            "SETTINGS!B1: error[E015]: start permissive: \"ld\" cannot name a machine signal: it is an instruction-list operator",
+        ),
+        (
+            "interlock cycle_req_lamp",
+            &[&["interlock", "cycle_req_lamp"]],
+            "SETTINGS!B1: error[E015]: interlock: \"cycle_req_lamp\" cannot name a machine signal: Festo FST keeps its first 9 characters",
+        ),
+    ];
+    for (what, settings, message) in settings_rows {
+        let input = dir.path().join(format!("{}.xlsx", what.replace(' ', "_")));
+        write_xlsx_sheets(&input, &[("TABLE", table), ("SETTINGS", settings)]);
+        let (got, stderr, wrote) = convert(&input, &["--formats", "st"]);
+        assert_eq!(got, 1, "{what}: {stderr}");
+        assert!(stderr.contains(message), "{what}: {stderr}");
+        assert!(!wrote, "{what}: written although refused");
+    }
+
+    // synth's letters: R and S are IL operators; memories skip them.
+    for sequence in ["R1 R0 S1 S0", "A+ A- R+ R-"] {
+        let out = dir.path().join("synth");
+        steptable()
+            .args(["synth", "--sequence", sequence, "-o"])
+            .arg(&out)
+            .assert()
+            .code(1)
+            .stderr(contains(
+                "--sequence: error[E015]: R cannot name an actuator for synthesis: its signal r is an instruction-list operator",
+            ));
+        assert!(files_below(&out).is_empty(), "{sequence}");
+    }
+}
