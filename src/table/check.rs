@@ -121,11 +121,38 @@ fn check_valves(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut Dia
     }
 }
 
+/// The actuators whose position a refused cell leaves unknown, from the
+/// step (index) of that cell on: a move checked against a position the
+/// refused `C2+l` would have given is no error of its own (no cascade).
+#[derive(Debug, Default)]
+pub(super) struct Refused {
+    from: BTreeMap<u32, usize>,
+    /// A refused move of an actuator nobody can tell (`Cx+1`).
+    any_from: Option<usize>,
+}
+
+impl Refused {
+    pub(super) fn add(&mut self, actuator: Option<u32>, step: usize) {
+        let slot = match actuator {
+            Some(a) => self.from.entry(a).or_insert(step),
+            None => self.any_from.get_or_insert(step),
+        };
+        *slot = (*slot).min(step);
+    }
+
+    /// Whether the position of `actuator` is unknown at step index `step`.
+    fn unknown(&self, actuator: u32, step: usize) -> bool {
+        self.any_from.is_some_and(|s| s <= step)
+            || self.from.get(&actuator).is_some_and(|s| *s <= step)
+    }
+}
+
 /// Resolves positions and checks the rules of DESIGN §2.
 pub(super) fn check(
     grid: &Grid,
     frame: &Frame,
     parsed: Vec<Vec<(CellItem, CellPos, usize)>>,
+    refused: &Refused,
     diags: &mut Diagnostics,
 ) -> Option<StepTable> {
     // pmax(i): the highest position written for Ci; at least 1.
@@ -273,7 +300,7 @@ pub(super) fn check(
                 Sign::Plus => to > from,
                 Sign::Minus => to < from,
             };
-            if !ok {
+            if !ok && !refused.unknown(m.actuator, index) {
                 let (need, verb) = match m.sign {
                     Sign::Plus => ("higher", "a + move extends"),
                     Sign::Minus => ("lower", "a - move retracts"),
@@ -301,7 +328,7 @@ pub(super) fn check(
     }
 
     for (actuator, (position, last_cell)) in &current {
-        if *position != 0 {
+        if *position != 0 && !refused.unknown(*actuator, usize::MAX) {
             let loc = match last_cell {
                 Some(pos) => location(*pos),
                 None => grid.sheet_location(),
@@ -316,7 +343,7 @@ pub(super) fn check(
         }
     }
 
-    check_jumps(&steps, grid, diags);
+    check_jumps(&steps, refused, grid, diags);
     Some(StepTable {
         file: grid.file.clone(),
         sheet: grid.sheet.clone(),
@@ -336,7 +363,7 @@ pub(super) fn check(
 
 /// Every jump goes to a step the table has, not to where the sequence goes
 /// anyway, and finds every actuator where its target step starts from.
-fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
+fn check_jumps(steps: &[Step], refused: &Refused, grid: &Grid, diags: &mut Diagnostics) {
     if steps.iter().all(|s| s.jumps.is_empty()) {
         return;
     }
@@ -379,7 +406,9 @@ fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
             let away: Vec<String> = from
                 .iter()
                 .zip(expected.values())
-                .filter(|((_, at), wanted)| at != wanted)
+                .filter(|((actuator, at), wanted)| {
+                    at != wanted && !refused.unknown(**actuator, usize::MAX)
+                })
                 .map(|((actuator, at), wanted)| {
                     format!("C{actuator} at {wanted} (it stands at {at})")
                 })

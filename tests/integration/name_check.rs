@@ -1,6 +1,7 @@
-//! Issue 37, names: one name check at every place a name enters (table
-//! cells, SETTINGS rows, synth's letters). Each row runs the binary: exit
-//! code, code, cell, message, nothing written.
+//! Issue 37, names and cell messages: one name check at every place a name
+//! enters (table cells, SETTINGS rows, synth's letters), no second error
+//! caused by a refused cell, and E010 shaped by what the cell looks like.
+//! Each row runs the binary: exit code, code, cell, message, nothing written.
 
 use std::path::Path;
 
@@ -221,4 +222,135 @@ fn every_entry_point_refuses_every_kind_of_name_collision() {
             ));
         assert!(files_below(&out).is_empty(), "{sequence}");
     }
+}
+
+/// A refused cell makes no second error in the cells that are only wrong
+/// because of it; an unrelated error is still said.
+#[test]
+fn a_refused_cell_causes_no_second_error() {
+    let dir = tempfile::tempdir().unwrap();
+    // (what, rows from STEP 1, the only errors expected: "line:col code")
+    let rows: &[(&str, &[&str], &[&str])] = &[
+        (
+            "letter l for 1",
+            &["C1+1", "C2+l; T=1s", "C2-0", "C1-0"],
+            &["3:2 E010"],
+        ),
+        ("letter I in C1", &["CI+1", "C1-0"], &["2:2 E010"]),
+        (
+            "position out of range",
+            &["C2+99", "C2-1", "C2-0"],
+            &["2:2 E012"],
+        ),
+        ("actuator unknown", &["Cx+1", "C2-0"], &["2:2 E010"]),
+        // Never back home: nothing to say for C2, whose moves are unknown.
+        ("refused home move", &["C2+1", "C2-l"], &["3:2 E010"]),
+        // C1 wrong on its own still is: one refused C2 move hides nothing else.
+        (
+            "unrelated error still said",
+            &["C1+1", "C2+l", "C1+1", "C2-0", "C1-0"],
+            &["3:2 E010", "4:2 E020"],
+        ),
+    ];
+    for (what, steps, expected) in rows {
+        let mut text = ",BRANCH 1\n".to_string();
+        for (i, cell) in steps.iter().enumerate() {
+            text.push_str(&format!("STEP {},\"{cell}\"\n", i + 1));
+        }
+        let input = dir.path().join(format!("{}.csv", what.replace(' ', "_")));
+        std::fs::write(&input, text).unwrap();
+        let (code, stderr, wrote) = convert(&input, &["--formats", "st"]);
+        assert_eq!(code, 1, "{what}: {stderr}");
+        assert!(!wrote, "{what}");
+        let errors: Vec<String> = stderr
+            .lines()
+            .filter(|l| l.contains(": error["))
+            .map(|l| {
+                let cell = l.split(": error[").next().unwrap();
+                let cell = cell.split_once(".csv:").map_or(cell, |(_, c)| c);
+                let code = &l[l.find("error[").unwrap() + 6..][..4];
+                format!("{cell} {code}")
+            })
+            .collect();
+        assert_eq!(&errors, expected, "{what}: {stderr}");
+    }
+}
+
+/// E010 says what a cell was probably meant to be, at its cell.
+#[test]
+fn e010_says_what_the_cell_probably_meant() {
+    let dir = tempfile::tempdir().unwrap();
+    for (cell, says) in [
+        (
+            "C2+l",
+            "\"C2+l\" is not a move (did you mean C2+1? A letter stands where a digit belongs)",
+        ),
+        ("CI+1", "did you mean C1+1?"),
+        ("C1+O", "did you mean C1+0?"),
+        (
+            "T 1s",
+            "\"T 1s\" is not a move (did you mean T=1s? A dwell is written T=<time>, e.g. T=2s)",
+        ),
+        ("T:1s", "did you mean T=1s?"),
+        ("I part", "did you mean I:part? A wait is written I:<input>"),
+        (
+            "Y vac+",
+            "did you mean Y:vac+? An output is switched with Y:<output>+",
+        ),
+        (
+            "J 3 if I:part",
+            "did you mean J:3 if I:part? A jump is written",
+        ),
+        ("C1+1, T=1s", "separate items with `;`, not `,`: C1+1; T=1s"),
+        (
+            "A+",
+            "a table writes moves as C<number>+<position>, e.g. C1+1 and C1-0; letter notation (A+, A1, B0) is for synth --sequence",
+        ),
+        ("A1", "letter notation (A+, A1, B0) is for synth --sequence"),
+        ("B0", "letter notation (A+, A1, B0) is for synth --sequence"),
+        (
+            "C2+x",
+            "\"C2+x\" is not a move (expected C<number>+<position>, e.g. C2+1)",
+        ),
+    ] {
+        let input = dir.path().join("t.csv");
+        std::fs::write(
+            &input,
+            format!(",BRANCH 1\nSTEP 1,\"{cell}\"\nSTEP 2,C3+1\nSTEP 3,C3-0\n"),
+        )
+        .unwrap();
+        let (code, stderr, wrote) = convert(&input, &["--formats", "st"]);
+        assert_eq!(code, 1, "{cell}: {stderr}");
+        assert!(
+            stderr.contains("t.csv:2:2: error[E010]: ") && stderr.contains(says),
+            "{cell}: {stderr}"
+        );
+        assert!(!wrote, "{cell}");
+    }
+
+    // A valve typed out in full on the SETTINGS sheet.
+    let input = dir.path().join("valve.xlsx");
+    write_xlsx_sheets(
+        &input,
+        &[
+            (
+                "TABLE",
+                &[&["", "BRANCH 1"], &["STEP 1", "C1+1"], &["STEP 2", "C1-0"]],
+            ),
+            (
+                "SETTINGS",
+                &[
+                    &["actuator", "extend", "retract", "valve"],
+                    &["C1", "1s", "1s", "5/2 monostable"],
+                ],
+            ),
+        ],
+    );
+    let (code, stderr, wrote) = convert(&input, &["--formats", "st"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("SETTINGS!D2: error[E030]: valve of C1: \"5/2 monostable\" is not a valve type: did you mean 52mono?"),
+        "{stderr}"
+    );
+    assert!(!wrote);
 }
