@@ -455,11 +455,14 @@ fn parse_cell(
             );
             return Vec::new();
         }
-        CellValue::Date(d) => {
+        CellValue::Date(_) => {
             diags.error(
                 Code::E010NotAMove,
                 location,
-                format!("the date {d} is not a move (expected text such as C2+1; format the cell as text)"),
+                format!(
+                    "{} is not a move: the spreadsheet took what was typed for a date or time; format the cell as text and type the move, e.g. C2+1",
+                    raw.value.describe()
+                ),
             );
             return Vec::new();
         }

@@ -6,6 +6,7 @@
 use std::path::Path;
 
 use predicates::str::contains;
+use rust_xlsxwriter::{ExcelDateTime, Format, Workbook};
 
 use crate::helpers::{files_below, steptable, write_xlsx_sheets};
 
@@ -350,6 +351,73 @@ fn e010_says_what_the_cell_probably_meant() {
     assert_eq!(code, 1, "{stderr}");
     assert!(
         stderr.contains("SETTINGS!D2: error[E030]: valve of C1: \"5/2 monostable\" is not a valve type: did you mean 52mono?"),
+        "{stderr}"
+    );
+    assert!(!wrote);
+}
+
+/// A date or time cell is named as the engineer sees it, not as the
+/// serial number the spreadsheet stores.
+#[test]
+fn a_date_cell_is_described_as_a_date() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("dated.xlsx");
+    let mut workbook = Workbook::new();
+    let sheet = workbook.add_worksheet();
+    sheet.set_name("TABLE").unwrap();
+    let date = Format::new().set_num_format("yyyy-mm-dd");
+    let time = Format::new().set_num_format("hh:mm");
+    sheet.write_string(0, 1, "BRANCH 1").unwrap();
+    for (row, label) in ["STEP 1", "STEP 2", "STEP 3"].iter().enumerate() {
+        sheet.write_string(row as u32 + 1, 0, *label).unwrap();
+    }
+    // 2024-01-03 is the serial number 45294.
+    let day = ExcelDateTime::from_ymd(2024, 1, 3).unwrap();
+    sheet.write_datetime_with_format(1, 1, &day, &date).unwrap();
+    let noon = ExcelDateTime::from_hms(12, 30, 0).unwrap();
+    sheet
+        .write_datetime_with_format(2, 1, &noon, &time)
+        .unwrap();
+    sheet.write_string(3, 1, "C1+1").unwrap();
+    workbook.save(&input).unwrap();
+    let (code, stderr, wrote) = convert(&input, &["--formats", "st"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("TABLE!B2: error[E010]: the date 2024-01-03 is not a move")
+            && stderr.contains("format the cell as text"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("TABLE!B3: error[E010]: the time 12:30:00 is not a move"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("45294"), "{stderr}");
+    assert!(!wrote);
+}
+
+/// A move typed in the row below the last STEP, with no label, is named at
+/// its own row with what to do, not blamed on the step above it.
+#[test]
+fn an_unlabelled_row_below_the_last_step_is_named_as_such() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("below.xlsx");
+    write_xlsx_sheets(
+        &input,
+        &[(
+            "TABLE",
+            &[
+                &["", "BRANCH 1"],
+                &["STEP 1", "C1+1"],
+                &["STEP 2", "C2+1"],
+                &["STEP 3", "C2-0"],
+                &["", "C1-0"],
+            ],
+        )],
+    );
+    let (code, stderr, wrote) = convert(&input, &["--formats", "st"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("TABLE!B5: error[E010]: \"C1-0\" lies outside the table and would be lost: its row 5 has no STEP label, and it lies below the table's last step, STEP 3 (row 4); add the label STEP 4 in A5 to make it a step"),
         "{stderr}"
     );
     assert!(!wrote);
