@@ -136,8 +136,8 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             reporter.diagnostics(&checked.warnings);
             match synth::from_table(&checked.table) {
                 Ok(s) => (s, convert::output_name(input), vec![input.clone()]),
-                Err(why) => {
-                    reporter.error(&source, Code::E034NotSynthesisable, why.to_string());
+                Err(diagnostic) => {
+                    reporter.diagnostics(&[diagnostic]);
                     return EXIT_BAD_INPUT;
                 }
             }

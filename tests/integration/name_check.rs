@@ -422,3 +422,53 @@ fn an_unlabelled_row_below_the_last_step_is_named_as_such() {
     );
     assert!(!wrote);
 }
+
+/// synth's E034 on a table names the cell to blame.
+#[test]
+fn synth_refuses_a_table_at_the_cell_to_blame() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: &[(&str, &[&[&str]], &str)] = &[
+        (
+            "dwell",
+            &[
+                &["", "BRANCH 1"],
+                &["STEP 1", "C1+1"],
+                &["STEP 2", "C1-0; T=1s"],
+            ],
+            "TABLE!B3: error[E034]: STEP 2 (C1-0; T=1s) is not one cylinder move",
+        ),
+        (
+            "parallel",
+            &[
+                &["", "BRANCH 1", "BRANCH 2"],
+                &["STEP 1", "C1+1", "C2+1"],
+                &["STEP 2", "C1-0", "C2-0"],
+            ],
+            "TABLE!C2: error[E034]: STEP 1 moves 2 actuators at once",
+        ),
+        (
+            "middle",
+            &[
+                &["", "BRANCH 1"],
+                &["STEP 1", "C1+2"],
+                &["STEP 2", "C1-1"],
+                &["STEP 3", "C1-0"],
+            ],
+            "TABLE!B3: error[E034]: C1 has middle positions",
+        ),
+    ];
+    for (what, rows, cell) in cases {
+        let input = dir.path().join(format!("{what}.xlsx"));
+        write_xlsx_sheets(&input, &[("TABLE", rows)]);
+        let out = dir.path().join(format!("{what}-out"));
+        steptable()
+            .arg("synth")
+            .arg(&input)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .code(1)
+            .stderr(contains(*cell));
+        assert!(files_below(&out).is_empty(), "{what}");
+    }
+}
