@@ -5,6 +5,7 @@
 
 use std::path::Path;
 
+use predicates::prelude::PredicateBooleanExt;
 use predicates::str::contains;
 use rust_xlsxwriter::{ExcelDateTime, Format, Workbook};
 
@@ -471,4 +472,33 @@ fn synth_refuses_a_table_at_the_cell_to_blame() {
             .stderr(contains(*cell));
         assert!(files_below(&out).is_empty(), "{what}");
     }
+}
+
+/// An option that names an input the table does not have is said, not
+/// dropped: `--input-delay` for a misspelt or reserved name is W006.
+#[test]
+fn an_input_delay_for_no_input_of_the_table_is_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("wait.csv");
+    std::fs::write(&input, ",BRANCH 1\nSTEP 1,C1+1; I:part\nSTEP 2,C1-0\n").unwrap();
+    for name in ["prat", "ld", "estop"] {
+        steptable()
+            .arg("simulate")
+            .arg(&input)
+            .args(["--input-delay", &format!("{name}=2s")])
+            .assert()
+            .success()
+            .stderr(contains(format!(
+                "wait.csv: warning[W006]: --input-delay {name}=…: {name} is no machine input of this table (its inputs: part); nothing is delayed"
+            )));
+    }
+    // The input the table has: delayed, and nothing said.
+    steptable()
+        .arg("simulate")
+        .arg(&input)
+        .args(["--input-delay", "part=2s"])
+        .assert()
+        .success()
+        .stdout(contains("(I:part came after 2.00 s)"))
+        .stderr(predicates::str::contains("W006").not());
 }
