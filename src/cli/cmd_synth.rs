@@ -136,8 +136,8 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             reporter.diagnostics(&checked.warnings);
             match synth::from_table(&checked.table) {
                 Ok(s) => (s, convert::output_name(input), vec![input.clone()]),
-                Err(why) => {
-                    reporter.error(&source, Code::E034NotSynthesisable, why.to_string());
+                Err(diagnostic) => {
+                    reporter.diagnostics(&[diagnostic]);
                     return EXIT_BAD_INPUT;
                 }
             }
@@ -147,6 +147,15 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             return EXIT_BAD_INPUT;
         }
     };
+    // The one name check, as for a table's signals: a name whose signals
+    // the programs cannot declare (`R`: `r` is an IL operator) is E015.
+    let problems = sequence.name_problems();
+    if !problems.is_empty() {
+        for why in problems {
+            reporter.error(&source, Code::E015BadName, why);
+        }
+        return EXIT_BAD_INPUT;
+    }
     let options = synth::Options {
         method: match args.method {
             MethodArg::Exact => synth::Method::Exact,

@@ -131,6 +131,25 @@ fn finish_check(
         );
         effective.program.interlocks =
             halt::resolve_interlocks(table, &buttons, named.get(&Row::Interlock), &mut diags);
+        // A delay for an input the table does not have would be dropped
+        // without a word (a batch may give one for some of its tables).
+        for name in effective.simulation.input_delays.keys() {
+            if !table.inputs.contains(name) {
+                let inputs: Vec<&str> = table.inputs.iter().map(|n| n.as_str()).collect();
+                diags.warning(
+                    Code::W006NoEffect,
+                    input.table.sheet_location(),
+                    format!(
+                        "--input-delay {name}=…: {name} is no machine input of this table ({}); nothing is delayed",
+                        if inputs.is_empty() {
+                            "it waits for none".to_string()
+                        } else {
+                            format!("its inputs: {}", inputs.join(", "))
+                        }
+                    ),
+                );
+            }
+        }
         // A row about an event the program does not have does nothing.
         let program = &effective.program;
         let no_estop =

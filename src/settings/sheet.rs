@@ -336,10 +336,11 @@ fn read_actuator_row<'g>(
             Ok(valve) => {
                 settings.valves.insert(actuator, valve);
             }
-            Err(_) => diags.error(
+            // The parser's message says what was probably meant.
+            Err(why) => diags.error(
                 Code::E030BadSetting,
                 grid.location(cell.pos),
-                format!("valve of C{actuator}: \"{text}\" is not a valve type (expected 52bi, 52mono, 53closed, 53exhaust or 53pressure)"),
+                format!("valve of C{actuator}: {why}"),
             ),
         }
     }

@@ -31,6 +31,7 @@ mod machine_limits;
 mod messy;
 mod modes;
 mod motor;
+mod name_check;
 mod on_stop;
 mod output_places;
 mod paper;
