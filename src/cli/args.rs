@@ -31,7 +31,11 @@ pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
             .map_err(|e| format!("\"{item}\": {e}"))?;
         let ms = steptable::stroke::parse_duration_ms(value)
             .ok_or_else(|| format!("\"{item}\": expected a time such as 2s or 300ms"))?;
-        delays.insert(name, ms);
+        if delays.insert(name, ms).is_some() {
+            return Err(format!(
+                "\"{item}\": {name} is given twice; give each input once"
+            ));
+        }
     }
     Ok(delays)
 }
@@ -66,9 +70,8 @@ pub(crate) struct FileArgs {
     /// Horizontal axis of NAME.diagram.svg: step (displacement-step) or time.
     #[arg(long, value_enum, default_value_t = DiagramArg::Step)]
     pub(crate) diagram: DiagramArg,
-    /// Files to write: xlsx, st, fst, io, diagram, faults, plcopen, codesys,
-    /// gvl, tia, awl, sdf, fst-alloc, rockwell (default all).
-    #[arg(long, value_name = "LIST", value_parser = parse_formats)]
+    /// Files to write: some of the formats (default all).
+    #[arg(long, value_name = "LIST", value_parser = parse_formats, help = formats_help())]
     pub(crate) formats: Option<std::collections::BTreeSet<OutputKind>>,
     /// Folder of templates that replace the built-in ones by file name
     /// (start from `steptable templates export DIR`).
@@ -143,18 +146,48 @@ pub(crate) struct CommonArgs {
     /// How to print problems: human (default) or json (one object per line on stdout).
     #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
     pub(crate) message_format: MessageFormat,
-    /// Valve per actuator: C1=52mono,C2=53closed (52bi, 52mono, 53closed, 53exhaust, 53pressure).
-    #[arg(long, value_name = "LIST", value_parser = parse_valves)]
+    /// Valve per actuator: C1=52mono,C2=53closed (one of the valve types).
+    #[arg(long, value_name = "LIST", value_parser = parse_valves, help = valve_help())]
     pub(crate) valve: Option<std::collections::BTreeMap<u32, steptable::valve::ValveType>>,
-    /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all).
-    #[arg(long, value_name = "LIST", value_parser = parse_safety)]
+    /// Safety checks in the generated program (some of the checks, or all).
+    #[arg(long, value_name = "LIST", value_parser = parse_safety, help = safety_help())]
     pub(crate) safety: Option<Safety>,
-    /// Operating modes in the generated program: continuous, stop, estop, reset (or all).
-    #[arg(long, value_name = "LIST", value_parser = parse_modes)]
+    /// Operating modes in the generated program (some of the modes, or all).
+    #[arg(long, value_name = "LIST", value_parser = parse_modes, help = modes_help())]
     pub(crate) modes: Option<Modes>,
     /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: reverse order of the last moves).
     #[arg(long, value_name = "ORDER", value_parser = parse_home_order)]
     pub(crate) home_order: Option<HomeOrder>,
+}
+
+/// `--formats`' help, listing every format there is.
+fn formats_help() -> String {
+    let names: Vec<&str> = OutputKind::ALL.iter().map(|k| k.name()).collect();
+    format!("Files to write: {} (default all)", names.join(", "))
+}
+
+/// `--valve`'s help, listing every valve type there is.
+fn valve_help() -> String {
+    format!(
+        "Valve per actuator: C1=52mono,C2=53closed ({})",
+        steptable::diag::or_list(&steptable::valve::ValveType::names())
+    )
+}
+
+/// `--safety`'s help, listing every check there is.
+fn safety_help() -> String {
+    format!(
+        "Safety checks in the generated program: {} (or all)",
+        Safety::NAMES.join(", ")
+    )
+}
+
+/// `--modes`' help, listing every mode there is.
+fn modes_help() -> String {
+    format!(
+        "Operating modes in the generated program: {} (or all)",
+        Modes::NAMES.join(", ")
+    )
 }
 
 /// Homing stages, each a list of actuator numbers. A type of its own: clap
