@@ -244,7 +244,7 @@ fn main() {
         let conversion = convert::generate("line", checked).ok().unwrap();
         generate_t.push(t.elapsed());
         let t = Instant::now();
-        steptable::write::write_files(
+        steptable::write::write_outputs(
             &dir.path().join(format!("w{i}")),
             &conversion.files,
             &steptable::write::Inputs::none(),

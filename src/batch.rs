@@ -11,6 +11,7 @@ use rayon::prelude::*;
 use crate::convert::{self, Failure};
 use crate::diag::{Diagnostic, Severity};
 use crate::emit::OutputFile;
+use crate::manifest;
 use crate::read::Format;
 use crate::settings::Settings;
 use crate::write;
@@ -73,31 +74,44 @@ impl Outcome {
     }
 }
 
+/// The inputs of a batch: the files and patterns given, expanded.
+#[derive(Debug, Clone, Default)]
+pub struct Expanded {
+    pub found: Vec<PathBuf>,
+    /// Paths that are neither a file, a folder nor a pattern matching something.
+    pub missing: Vec<PathBuf>,
+    /// Tables in the folders walked that a run wrote (its manifest says so,
+    /// and they are unchanged since): left out, and counted to be said.
+    pub outputs_skipped: Vec<PathBuf>,
+}
+
 /// The files and patterns to convert, expanded. Folders are walked
 /// recursively for `.xlsx .xlsm .xls .ods .csv`, skipping hidden files, Excel
-/// lock files (`~$…`) and what an earlier run wrote into the output folder
-/// `out` (`OUT/NAME/NAME.*` and its own `summary.csv`), so a rerun does not
-/// convert its own outputs while the tables beside them still count. A path
-/// that is neither a file, a folder nor a pattern matching something is
-/// returned in the second list.
-pub fn expand_inputs(paths: &[PathBuf], out: &Path) -> (Vec<PathBuf>, Vec<PathBuf>) {
-    let out = std::fs::canonicalize(out).ok();
-    let excluded = |p: &Path| {
-        let (Some(out), Ok(path)) = (out.as_ref(), std::fs::canonicalize(p)) else {
-            return false;
-        };
-        written_by_steptable(out, &path)
+/// lock files (`~$…`) and the files a run wrote, as the manifest of their
+/// folder records them byte for byte — never by their names alone — so a
+/// rerun, even `batch . -o .`, does not convert its own outputs while an
+/// engineer's table named like one still counts. A file named outright is
+/// always an input.
+pub fn expand_inputs(paths: &[PathBuf]) -> Expanded {
+    let mut manifests = std::collections::BTreeMap::new();
+    let mut expanded = Expanded::default();
+    let mut keep = |files: Vec<PathBuf>, expanded: &mut Expanded| {
+        for file in files {
+            if manifest::written_by_a_run(&file, &mut manifests) {
+                expanded.outputs_skipped.push(file);
+            } else {
+                expanded.found.push(file);
+            }
+        }
     };
-    let mut found = Vec::new();
-    let mut missing = Vec::new();
     for path in paths {
         if path.is_dir() {
             let mut files = Vec::new();
             walk(path, &mut files);
             files.sort();
-            found.extend(files.into_iter().filter(|f| !excluded(f)));
+            keep(files, &mut expanded);
         } else if path.is_file() {
-            found.push(path.clone());
+            expanded.found.push(path.clone());
         } else {
             let pattern = path.to_string_lossy();
             let matches: Vec<PathBuf> = glob::glob(&pattern)
@@ -109,27 +123,31 @@ pub fn expand_inputs(paths: &[PathBuf], out: &Path) -> (Vec<PathBuf>, Vec<PathBu
                 })
                 .unwrap_or_default();
             if matches.is_empty() {
-                missing.push(path.clone());
+                expanded.missing.push(path.clone());
             }
-            found.extend(matches.into_iter().filter(|f| !excluded(f)));
+            keep(matches, &mut expanded);
         }
     }
     // The same file named twice (a folder and a pattern) is converted once.
     let mut seen = std::collections::BTreeSet::new();
-    found.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
-    (found, missing)
+    expanded
+        .found
+        .retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
+    expanded.outputs_skipped.sort();
+    expanded.outputs_skipped.dedup();
+    expanded
 }
 
 /// The file name for the batch summary in `out`: `summary.csv`, unless a
-/// file of that name is there that is not an earlier summary (a user's
-/// table): then `steptable-summary.csv`, so that nothing the user wrote is
-/// overwritten.
+/// file of that name is there that no run recorded writing (a user's
+/// table, or a summary of a version without manifests): then
+/// `steptable-summary.csv`, so that nothing the user wrote is overwritten.
 pub fn summary_name(out: &Path) -> &'static str {
-    let path = out.join("summary.csv");
-    let ours = match (std::fs::canonicalize(out), std::fs::canonicalize(&path)) {
-        (Ok(out), Ok(path)) => written_by_steptable(&out, &path),
-        _ => true,
-    };
+    let ours = std::fs::symlink_metadata(out.join("summary.csv")).is_err()
+        || match manifest::Manifest::read(out) {
+            manifest::Found::Manifest(m) => m.vouches_for(out, "summary.csv"),
+            _ => false,
+        };
     if ours {
         "summary.csv"
     } else {
@@ -147,28 +165,6 @@ const SUMMARY_HEADER: [&str; 7] = [
     "actuators",
     "milliseconds",
 ];
-
-/// Whether `path` (canonical) is a file a steptable run wrote into the
-/// output folder `out` (canonical): `OUT/NAME/NAME.*`, or a summary
-/// (`OUT/summary.csv`, `OUT/steptable-summary.csv`) with its own header.
-fn written_by_steptable(out: &Path, path: &Path) -> bool {
-    let Some(parent) = path.parent() else {
-        return false;
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().to_string())
-        .unwrap_or_default();
-    if parent == out && (name == "summary.csv" || name == "steptable-summary.csv") {
-        let first = std::fs::read_to_string(path)
-            .ok()
-            .and_then(|t| t.lines().next().map(str::to_string))
-            .unwrap_or_default();
-        return first == SUMMARY_HEADER.join(",");
-    }
-    let folder = parent.file_name().map(|n| n.to_string_lossy().to_string());
-    parent.parent() == Some(out) && folder.is_some_and(|f| name.starts_with(&format!("{f}.")))
-}
 
 fn walk(dir: &Path, files: &mut Vec<PathBuf>) {
     walk_once(dir, files, &mut std::collections::BTreeSet::new());
@@ -277,14 +273,22 @@ fn convert_one(
             outcome.steps = Some(conversion.table.steps.len());
             outcome.actuators = Some(conversion.table.actuators.len());
             outcome.diagnostics = conversion.warnings;
-            if let Err(err) = write::write_files(
+            match write::write_conversion(
                 &out.join(name),
                 &conversion.files,
                 all_inputs,
                 settings.durability,
             ) {
-                outcome.status = Status::Internal;
-                outcome.message = Some(err.to_string());
+                Ok(_) => {}
+                // Something of the engineer's is in the way: said, kept.
+                Err(write::WriteError::Taken(problems)) => {
+                    outcome.status = Status::Failed;
+                    outcome.diagnostics.extend(problems);
+                }
+                Err(err) => {
+                    outcome.status = Status::Internal;
+                    outcome.message = Some(err.to_string());
+                }
             }
         }
         Err(Failure::Input(diagnostics)) => {

@@ -78,6 +78,10 @@ pub enum Code {
     /// A jump that leaves an actuator away from where the target step
     /// expects it.
     E029JumpPositions,
+    /// Something steptable did not write is where an output goes (a file of
+    /// the engineer's, a folder, a file where the output folder goes, an
+    /// input of the run): nothing is written for that input.
+    E040OutputTaken,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -132,6 +136,7 @@ impl Code {
             Code::E017BadJump => "E017",
             Code::E028JumpTarget => "E028",
             Code::E029JumpPositions => "E029",
+            Code::E040OutputTaken => "E040",
         }
     }
 }

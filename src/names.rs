@@ -15,6 +15,88 @@ pub fn fst_stem(name: &str) -> String {
     name.chars().take(FST_SYMBOL_CHARS).collect()
 }
 
+/// Instruction-list operators and the function-block inputs IL names as
+/// operators (`S1`, `IN`, `PT`): matiec refuses a variable of one of these
+/// names in IL (checked one by one), so no signal may have them.
+#[rustfmt::skip]
+pub const IL_OPERATORS: &[&str] = &[
+    "LD", "LDN", "ST", "STN", "S", "R", "S1", "R1", "AND", "ANDN", "OR", "ORN", "XOR", "XORN",
+    "NOT", "ADD", "SUB", "MUL", "DIV", "MOD", "GT", "GE", "EQ", "NE", "LE", "LT", "JMP", "JMPC",
+    "JMPCN", "CAL", "CALC", "CALCN", "RET", "RETC", "RETCN", "IN", "PT", "CLK", "CU", "CD", "PV",
+];
+
+/// The identifiers the synthesised programs (`NAME.equations.st`/`.il`)
+/// declare for themselves, beside each variable's `a`, `a_home`, `a_end`,
+/// `ya_p`, `ya_m` (or `x`, `x_set`, `x_reset`) and the IL scratch `t1`, `t2`…;
+/// a unit test reads them back from the template.
+#[rustfmt::skip]
+pub const SYNTH_OWN: &[&str] = &[
+    "start", "stop", "estop", "reset_pb", "home", "start_edge", "start_last", "resetting",
+    "normal", "halted", "homing", "running", "stopping", "away", "cycle_end", "stopped", "enable",
+    "cyclic_task", "main_instance", "synth_main", "synth_il",
+];
+
+/// Why a machine input or output may not have this (lower-case) name in a
+/// program with the operating-mode buttons `buttons` (lower case: `stop`,
+/// `estop`, `cont`, `reset_pb`): the one check every place a name enters
+/// goes through (table cells, SETTINGS rows). The name is refused when it,
+/// or the 9 characters Festo FST keeps of it, is reserved, or when either
+/// reads as a button in any case.
+pub fn signal_problem(name: &str, buttons: &[String]) -> Option<String> {
+    let name = name.to_ascii_lowercase();
+    let stem = fst_stem(&name);
+    if let Some(reason) = reserved_name(&name) {
+        return Some(format!("\"{name}\" cannot name a machine signal: {reason}"));
+    }
+    if let Some(reason) = reserved_name(&stem) {
+        return Some(format!(
+            "\"{name}\" cannot name a machine signal: Festo FST keeps its first {FST_SYMBOL_CHARS} characters, \"{stem}\", and {reason}"
+        ));
+    }
+    let button = buttons
+        .iter()
+        .find(|b| b.eq_ignore_ascii_case(&name) || same_in_fst(b, &name))?;
+    Some(format!(
+        "\"{name}\" cannot name a machine signal while the program has the operating-mode button {} (IEC names ignore case): rename the signal, or leave that mode out",
+        button.to_ascii_uppercase()
+    ))
+}
+
+/// Whether two names are one symbol to Festo FST, which keeps only their
+/// first [`FST_SYMBOL_CHARS`] characters (and ignores case).
+pub fn same_in_fst(a: &str, b: &str) -> bool {
+    fst_stem(&a.to_ascii_lowercase()) == fst_stem(&b.to_ascii_lowercase())
+}
+
+/// Why an actuator or memory of a synthesised program may not have this
+/// name (`R`, `C1`): one of the identifiers it gives (`r`, `r_home`,
+/// `yr_p`, …) is a keyword, an IL operator, a standard function or one of
+/// the synthesised program's own names.
+pub fn synth_problem(name: &str, identifiers: &[String]) -> Option<String> {
+    identifiers.iter().find_map(|id| {
+        let lower = id.to_ascii_lowercase();
+        let upper = lower.to_ascii_uppercase();
+        let why = if IL_OPERATORS.contains(&upper.as_str()) {
+            "an instruction-list operator (matiec would read it as one)"
+        } else if KEYWORDS.contains(&upper.as_str()) {
+            "a keyword of a PLC language"
+        } else if is_standard_library_name(&upper) {
+            "a standard function, function block or data type of IEC 61131-3"
+        } else if SYNTH_OWN.contains(&lower.as_str())
+            || lower
+                .strip_prefix('t')
+                .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+        {
+            "a name the synthesised program uses for itself"
+        } else {
+            return None;
+        };
+        Some(format!(
+            "{name} cannot name an actuator for synthesis: its signal {lower} is {why}; use another letter"
+        ))
+    })
+}
+
 /// IEC 61131-3 keywords (and the common vendor ones) no identifier may be.
 #[rustfmt::skip]
 pub const KEYWORDS: &[&str] = &[
@@ -39,6 +121,9 @@ pub fn reserved_name(name: &str) -> Option<String> {
     let upper = name.to_ascii_uppercase();
     if KEYWORDS.contains(&upper.as_str()) {
         return Some("it is a keyword of a PLC language".to_string());
+    }
+    if IL_OPERATORS.contains(&upper.as_str()) {
+        return Some("it is an instruction-list operator (matiec reads it as one)".to_string());
     }
     if is_standard_library_name(&upper) {
         return Some(
@@ -67,6 +152,11 @@ pub fn reserved_name(name: &str) -> Option<String> {
         FIRED,
         STEP_COUNTER,
         "sequence",
+        // The program, task and instance of the Structured Text (matiec
+        // refuses a variable named like its program).
+        "steptable_main",
+        "cyclic_task",
+        "main_instance",
     ];
     // Followed by a digit these read as the program's own names or as an
     // address of STEP 7 (I0, MW2, DB1, T3, Z4) or FST (FW1, TP0, R3, V10).
@@ -348,6 +438,48 @@ mod tests {
             "int_to_bin",
         ] {
             assert_eq!(reserved_name(name), None, "{name}");
+        }
+    }
+
+    #[test]
+    fn il_operators_and_mode_buttons_are_refused_in_any_case() {
+        for name in [
+            "ld", "st", "s", "r", "s1", "r1", "in", "pt", "clk", "cal", "ret", "jmpc",
+        ] {
+            assert!(signal_problem(name, &[]).is_some(), "{name}");
+        }
+        let buttons = ["estop".to_string(), "stop".to_string()];
+        assert!(signal_problem("estop", &buttons).unwrap().contains("ESTOP"));
+        assert!(signal_problem("EStop", &buttons).is_some());
+        assert_eq!(signal_problem("estop", &[]), None);
+        assert_eq!(signal_problem("stop_lamp", &buttons), None);
+        assert_eq!(signal_problem("vacuum", &buttons), None);
+    }
+
+    #[test]
+    fn synthesis_names_clash_with_il_and_the_programs_own() {
+        let ids = |n: &str| vec![n.to_string(), format!("{n}_home"), format!("y{n}_p")];
+        for letter in ["r", "s"] {
+            assert!(synth_problem(letter, &ids(letter)).is_some(), "{letter}");
+        }
+        for letter in ["a", "b", "q", "t", "c1", "x"] {
+            assert_eq!(synth_problem(letter, &ids(letter)), None, "{letter}");
+        }
+        assert!(synth_problem("home", &["home".to_string()]).is_some());
+    }
+
+    #[test]
+    fn the_synthesised_programs_own_names_are_all_listed() {
+        let vars = include_str!("../templates/equations_vars.j2");
+        let declared: Vec<&str> = vars
+            .lines()
+            .filter(|l| !l.contains("{{"))
+            .filter_map(|l| l.trim().split_once(" : BOOL"))
+            .map(|(name, _)| name)
+            .collect();
+        assert!(declared.len() > 10, "{declared:?}");
+        for name in declared {
+            assert!(SYNTH_OWN.contains(&name), "{name}");
         }
     }
 

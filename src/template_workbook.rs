@@ -9,7 +9,7 @@ use rust_xlsxwriter::{
 };
 
 use crate::cell::{MAX_ACTUATOR, MAX_POSITION};
-use crate::read::{ADDRESSES_SHEET, SETTINGS_SHEET, TABLE_SHEET};
+use crate::sheets::{ADDRESSES_SHEET, SETTINGS_SHEET, TABLE_SHEET};
 use crate::table::{MAX_BRANCHES, MAX_STEPS};
 
 /// Sheet with the paper's example.

@@ -40,8 +40,15 @@ impl std::str::FromStr for ValveType {
             .into_iter()
             .find(|v| v.name() == t)
             .ok_or_else(|| {
+                // `5/2 monostable`, `5/3 closed centre`: the name is its start.
+                let meant = ValveType::ALL
+                    .into_iter()
+                    .filter(|v| t.starts_with(v.name()))
+                    .max_by_key(|v| v.name().len())
+                    .map(|v| format!(": did you mean {v}?"))
+                    .unwrap_or_default();
                 format!(
-                    "\"{}\" is not a valve type (expected {})",
+                    "\"{}\" is not a valve type{meant} (expected {})",
                     text.trim(),
                     crate::diag::or_list(&ValveType::names())
                 )
@@ -198,6 +205,10 @@ mod tests {
                 .unwrap_err()
                 .contains("not a valve type")
         );
+        let monostable = "5/2 monostable".parse::<ValveType>().unwrap_err();
+        assert!(monostable.contains("did you mean 52mono?"), "{monostable}");
+        let closed = "5/3 closed centre".parse::<ValveType>().unwrap_err();
+        assert!(closed.contains("did you mean 53closed?"), "{closed}");
         assert_eq!(Valves::default().of(4, 3), ValveType::Closed53);
         // A drive stops anywhere (its outputs off) and is named motor.
         assert_eq!("Motor".parse::<ValveType>(), Ok(ValveType::Motor));

@@ -1,6 +1,9 @@
 //! Writing outputs: all files of one conversion land complete or not at all.
 //! Each is written to a temporary file in its destination folder and renamed
 //! into place only after every file was written; an input is never overwritten.
+//! Outputs ([`write_outputs`]) replace only files a run recorded writing in
+//! the folder's manifest (see [`crate::manifest`]); anything else in their
+//! place (an engineer's file, a folder) refuses the whole write, E040.
 //!
 //! The rename is what makes a file appear whole; flushing each file to the
 //! disk as well (fsync) is durability against a power cut, which generated
@@ -12,7 +15,9 @@ use std::collections::HashSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use crate::diag::{Code, Diagnostic, Location, Severity};
 use crate::emit::OutputFile;
+use crate::manifest::{self, Found, Manifest, Stamp};
 
 /// Why outputs could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -23,8 +28,24 @@ pub enum WriteError {
         #[source]
         source: std::io::Error,
     },
-    #[error("{path}: refusing to overwrite an input file; choose another output folder with -o")]
-    WouldOverwriteInput { path: String },
+    /// Something that is not a run's output is where an output would go
+    /// (E040, one per path): nothing was written.
+    #[error("{}", .0.iter().map(|d| d.to_string()).collect::<Vec<_>>().join("\n"))]
+    Taken(Vec<Diagnostic>),
+}
+
+/// E040 about `path`.
+fn taken(path: &Path, message: impl Into<String>) -> Diagnostic {
+    Diagnostic {
+        severity: Severity::Error,
+        code: Code::E040OutputTaken,
+        location: Location {
+            file: crate::read::display_name(path),
+            sheet: None,
+            cell: None,
+        },
+        message: message.into(),
+    }
 }
 
 fn io_error(path: &Path, source: std::io::Error) -> WriteError {
@@ -71,28 +92,236 @@ impl Inputs {
     }
 }
 
-/// Writes `files` into `folder` (created if missing). Returns the paths written.
+/// Writes the outputs `files` into `folder` (created if missing) and records
+/// them in its manifest. A file already in an output's place is replaced
+/// only if the manifest says a run wrote it and it is unchanged since, or
+/// if it holds the very bytes about to be written (nothing is lost; an
+/// output folder of a version without manifests reruns so). Anything else
+/// there — an engineer's file, a link, a folder, a file where a folder must
+/// be, an input of this run — is E040 for each, and nothing is written.
+/// Returns the paths written.
+pub fn write_outputs(
+    folder: &Path,
+    files: &[OutputFile],
+    inputs: &Inputs,
+    durability: Durability,
+) -> Result<Vec<PathBuf>, WriteError> {
+    let mut problems = folder_problems(folder, files, inputs);
+    // A folder that is not there (or is a file: said above) has no record.
+    let found = if folder.is_dir() {
+        Manifest::read(folder)
+    } else {
+        Found::None
+    };
+    let found_none = found == Found::None;
+    let mut recorded = match found {
+        Found::Manifest(m) => m,
+        Found::None => Manifest::default(),
+        Found::Foreign => {
+            problems.push(taken(
+                &folder.join(manifest::FILE_NAME),
+                "steptable records its outputs in a file of this name, and this one is not such a record; nothing written: move it, or choose another output folder with -o",
+            ));
+            Manifest::default()
+        }
+    };
+    // Without a manifest the folder may be an older version's outputs.
+    let unrecorded = if found_none {
+        "an output goes here, and no steptable run recorded writing this file (the folder has no record: if a steptable before manifests wrote it, delete those old outputs once)"
+    } else {
+        "an output goes here, and no steptable run recorded writing this file"
+    };
+    for file in files {
+        let target = folder.join(&file.name);
+        let shown = crate::read::display_name(&target);
+        let Ok(meta) = std::fs::symlink_metadata(&target) else {
+            continue;
+        };
+        if problems.iter().any(|d| d.location.file == shown) {
+            continue; // said already (an input)
+        }
+        if meta.is_dir() {
+            problems.push(taken(
+                &target,
+                "an output file goes here, and this is a folder; nothing written: move or rename the folder, or choose another output folder with -o",
+            ));
+        } else if !recorded.vouches_for(folder, &file.name) && !same_bytes(&meta, &target, file) {
+            let why = if recorded.files.contains_key(&file.name) {
+                "an output goes here, and this file changed since steptable wrote it (it may hold your edits)"
+            } else {
+                unrecorded
+            };
+            problems.push(taken(
+                &target,
+                format!(
+                    "{why}; nothing written: move it, or choose another output folder with -o (see {})",
+                    manifest::FILE_NAME
+                ),
+            ));
+        }
+    }
+    if !problems.is_empty() {
+        return Err(WriteError::Taken(problems));
+    }
+    // Entries whose files are gone are dropped; the rest stay ours.
+    recorded
+        .files
+        .retain(|name, _| std::fs::symlink_metadata(folder.join(name)).is_ok());
+    for file in files {
+        recorded
+            .files
+            .insert(file.name.clone(), Stamp::of(&file.bytes));
+    }
+    // First, so that a file of this run is never seen in place before the
+    // record that vouches for it (a second run into the folder at the
+    // same time replaces it then, rather than taking it for a user's).
+    let record = recorded.to_bytes();
+    let mut all = vec![(manifest::FILE_NAME, record.as_slice())];
+    all.extend(files.iter().map(|f| (f.name.as_str(), f.bytes.as_slice())));
+    let mut written = stage_and_rename(folder, &all, durability)?;
+    written.remove(0);
+    Ok(written)
+}
+
+/// Writes a conversion's whole set of files, as [`write_outputs`] does, and
+/// then removes the files an earlier run recorded writing into the folder
+/// that this run did not write (a rerun with fewer `--formats`, or after
+/// `faults -o` wrote beside it), where they are still as written: a folder
+/// never holds a program beside the lists of another table. A file changed
+/// since is left alone. Returns the paths written and those removed.
+pub fn write_conversion(
+    folder: &Path,
+    files: &[OutputFile],
+    inputs: &Inputs,
+    durability: Durability,
+) -> Result<(Vec<PathBuf>, Vec<PathBuf>), WriteError> {
+    let before = match folder.is_dir().then(|| Manifest::read(folder)) {
+        Some(Found::Manifest(m)) => m,
+        _ => Manifest::default(),
+    };
+    let stale: Vec<String> = before
+        .files
+        .keys()
+        .filter(|name| !files.iter().any(|f| &f.name == *name))
+        .filter(|name| before.vouches_for(folder, name))
+        .cloned()
+        .collect();
+    let written = write_outputs(folder, files, inputs, durability)?;
+    if stale.is_empty() {
+        return Ok((written, Vec::new()));
+    }
+    let Found::Manifest(mut record) = Manifest::read(folder) else {
+        return Ok((written, Vec::new()));
+    };
+    let mut removed = Vec::new();
+    for name in stale {
+        let path = folder.join(&name);
+        if std::fs::remove_file(&path).is_ok() {
+            record.files.remove(&name);
+            // A project folder (`NAME.beremiz/`) emptied goes too; one that
+            // still holds anything stays.
+            if let Some(parent) = path.parent().filter(|p| *p != folder) {
+                let _ = std::fs::remove_dir(parent);
+            }
+            removed.push(path);
+        }
+    }
+    let bytes = record.to_bytes();
+    stage_and_rename(
+        folder,
+        &[(manifest::FILE_NAME, bytes.as_slice())],
+        durability,
+    )?;
+    Ok((written, removed))
+}
+
+/// Writes `files` into `folder` (created if missing), replacing what is
+/// there except an input: for a caller that decided already what may be
+/// replaced (`--force`). Returns the paths written.
 pub fn write_files(
     folder: &Path,
     files: &[OutputFile],
     inputs: &Inputs,
     durability: Durability,
 ) -> Result<Vec<PathBuf>, WriteError> {
+    let problems = folder_problems(folder, files, inputs);
+    if !problems.is_empty() {
+        return Err(WriteError::Taken(problems));
+    }
+    let all: Vec<(&str, &[u8])> = files
+        .iter()
+        .map(|f| (f.name.as_str(), f.bytes.as_slice()))
+        .collect();
+    stage_and_rename(folder, &all, durability)
+}
+
+/// Whether the file at `target` (not a link) already holds `file`'s bytes:
+/// replacing it loses nothing.
+fn same_bytes(meta: &std::fs::Metadata, target: &Path, file: &OutputFile) -> bool {
+    meta.is_file()
+        && meta.len() == file.bytes.len() as u64
+        && std::fs::read(target).is_ok_and(|b| b == file.bytes)
+}
+
+/// E040 when the nearest part of `folder` that exists is no folder (`-o`
+/// names a file, or a file stands where an output's folder goes).
+pub fn output_folder_problem(folder: &Path) -> Option<Diagnostic> {
+    let existing = folder
+        .ancestors()
+        .filter(|a| !a.as_os_str().is_empty())
+        .find(|a| std::fs::metadata(a).is_ok())?;
+    (!existing.is_dir()).then(|| {
+        taken(
+            existing,
+            "is a file, and outputs go into a folder of this name; nothing written: choose another output folder with -o, or move the file",
+        )
+    })
+}
+
+/// What stands where the folders of the outputs must be (a file where a
+/// folder goes), and outputs that would replace an input of the run.
+fn folder_problems(folder: &Path, files: &[OutputFile], inputs: &Inputs) -> Vec<Diagnostic> {
+    let mut problems = Vec::new();
+    let mut parents: Vec<PathBuf> = files
+        .iter()
+        .filter_map(|f| folder.join(&f.name).parent().map(Path::to_path_buf))
+        .collect();
+    parents.push(folder.to_path_buf());
+    parents.sort();
+    parents.dedup();
+    for parent in parents {
+        if let Some(problem) = output_folder_problem(&parent)
+            && !problems.contains(&problem)
+        {
+            problems.push(problem);
+        }
+    }
     if let Ok(existing) = std::fs::canonicalize(folder) {
         for file in files {
             let target = existing.join(&file.name);
             if inputs.real.contains(&target) {
-                return Err(WriteError::WouldOverwriteInput {
-                    path: folder.join(&file.name).display().to_string(),
-                });
+                problems.push(taken(
+                    &folder.join(&file.name),
+                    "is an input of this run, and an output would replace it; nothing written: choose another output folder with -o",
+                ));
             }
         }
     }
+    problems
+}
+
+/// Every file to a temporary file beside its place, then all renamed into
+/// place: all land, or none.
+fn stage_and_rename(
+    folder: &Path,
+    files: &[(&str, &[u8])],
+    durability: Durability,
+) -> Result<Vec<PathBuf>, WriteError> {
     std::fs::create_dir_all(folder).map_err(|e| io_error(folder, e))?;
 
     let mut staged = Vec::with_capacity(files.len());
-    for file in files {
-        let target = folder.join(&file.name);
+    for (name, bytes) in files {
+        let target = folder.join(name);
         // A project folder's files (`NAME.beremiz/plc.xml`) go below it.
         let parent = target.parent().unwrap_or(folder);
         std::fs::create_dir_all(parent).map_err(|e| io_error(parent, e))?;
@@ -108,7 +337,7 @@ pub fn write_files(
         let mut temp = builder
             .tempfile_in(parent)
             .map_err(|e| io_error(&target, e))?;
-        temp.write_all(&file.bytes)
+        temp.write_all(bytes)
             .and_then(|_| match durability {
                 Durability::Sync => temp.as_file().sync_all(),
                 Durability::Rename => Ok(()),

@@ -4,6 +4,9 @@
 
 use std::fmt;
 
+mod hint;
+pub use hint::{move_attempt, not_a_move_hint};
+
 /// Largest actuator number accepted (`C999`).
 pub const MAX_ACTUATOR: u32 = 999;
 /// Largest position number accepted (`C1+63`).
@@ -467,9 +470,13 @@ pub fn parse_duration_in(text: &str, range: std::ops::RangeInclusive<u32>) -> Op
 /// Splits a cell on `;` (also the full-width `；`) and parses each part.
 /// Empty parts (a trailing `;`) are ignored.
 pub fn parse_items(text: &str) -> Vec<Result<CellItem, ItemError>> {
+    item_texts(text).into_iter().map(parse_item).collect()
+}
+
+/// The parts of a cell that [`parse_items`] parses, in order.
+pub fn item_texts(text: &str) -> Vec<&str> {
     text.split([';', '\u{FF1B}'])
         .filter(|part| !normalize(part).is_empty())
-        .map(parse_item)
         .collect()
 }
 

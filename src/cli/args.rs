@@ -14,7 +14,7 @@ pub(crate) struct SimArgs {
     /// PLC scan time of the simulation and of the generated task.
     #[arg(long, value_name = "TIME", value_parser = parse_scan)]
     pub(crate) scan: Option<u32>,
-    /// How long the machine takes to give a waited-for input: part_present=2s (default 0.5s).
+    /// How long the machine takes to give a waited-for input: part_present=2s (default 0.5s; a jump's input comes as its step starts unless named here).
     #[arg(long, value_name = "LIST", value_parser = parse_input_delays)]
     pub(crate) input_delay: Option<InputDelays>,
 }
@@ -70,7 +70,6 @@ pub(crate) struct FileArgs {
     /// Horizontal axis of NAME.diagram.svg: step (displacement-step) or time.
     #[arg(long, value_enum, default_value_t = DiagramArg::Step)]
     pub(crate) diagram: DiagramArg,
-    /// Files to write: some of the formats (default all).
     #[arg(long, value_name = "LIST", value_parser = parse_formats, help = formats_help())]
     pub(crate) formats: Option<std::collections::BTreeSet<OutputKind>>,
     /// Folder of templates that replace the built-in ones by file name
@@ -146,38 +145,21 @@ pub(crate) struct CommonArgs {
     /// How to print problems: human (default) or json (one object per line on stdout).
     #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
     pub(crate) message_format: MessageFormat,
-    /// Valve per actuator: C1=52mono,C2=53closed (one of the valve types).
-    #[arg(long, value_name = "LIST", value_parser = parse_valves, help = valve_help())]
+    #[arg(long, value_name = "LIST", value_parser = parse_valves, help = valves_help())]
     pub(crate) valve: Option<std::collections::BTreeMap<u32, steptable::valve::ValveType>>,
-    /// Safety checks in the generated program (some of the checks, or all).
     #[arg(long, value_name = "LIST", value_parser = parse_safety, help = safety_help())]
     pub(crate) safety: Option<Safety>,
-    /// Operating modes in the generated program (some of the modes, or all).
     #[arg(long, value_name = "LIST", value_parser = parse_modes, help = modes_help())]
     pub(crate) modes: Option<Modes>,
-    /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: reverse order of the last moves).
+    /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: the order the cycle itself returns them home).
     #[arg(long, value_name = "ORDER", value_parser = parse_home_order)]
     pub(crate) home_order: Option<HomeOrder>,
-}
-
-/// `--formats`' help, listing every format there is.
-fn formats_help() -> String {
-    let names: Vec<&str> = OutputKind::ALL.iter().map(|k| k.name()).collect();
-    format!("Files to write: {} (default all)", names.join(", "))
-}
-
-/// `--valve`'s help, listing every valve type there is.
-fn valve_help() -> String {
-    format!(
-        "Valve per actuator: C1=52mono,C2=53closed ({})",
-        steptable::diag::or_list(&steptable::valve::ValveType::names())
-    )
 }
 
 /// `--safety`'s help, listing every check there is.
 fn safety_help() -> String {
     format!(
-        "Safety checks in the generated program: {} (or all)",
+        "Safety checks in the generated program: {} (or all, or none)",
         Safety::NAMES.join(", ")
     )
 }
@@ -185,7 +167,7 @@ fn safety_help() -> String {
 /// `--modes`' help, listing every mode there is.
 fn modes_help() -> String {
     format!(
-        "Operating modes in the generated program: {} (or all)",
+        "Operating modes in the generated program: {} (or all, or none)",
         Modes::NAMES.join(", ")
     )
 }
@@ -201,6 +183,27 @@ pub(crate) fn parse_modes(text: &str) -> Result<Modes, String> {
 
 pub(crate) fn parse_home_order(text: &str) -> Result<HomeOrder, String> {
     Modes::parse_home_order(text).map(HomeOrder)
+}
+
+/// `--formats` help: every kind the library writes, from its own list.
+pub(crate) fn formats_help() -> String {
+    let names: Vec<&str> = OutputKind::ALL.iter().map(|k| k.name()).collect();
+    format!(
+        "Files to write, comma-separated: {} (default all)",
+        names.join(", ")
+    )
+}
+
+/// `--valve` help: every valve type, from the library's list.
+pub(crate) fn valves_help() -> String {
+    let names: Vec<&str> = steptable::valve::ValveType::ALL
+        .iter()
+        .map(|v| v.name())
+        .collect();
+    format!(
+        "Valve per actuator: C1=52mono,C2=53closed ({})",
+        names.join(", ")
+    )
 }
 
 pub(crate) fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<OutputKind>, String> {

@@ -32,13 +32,27 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
     let Some(settings) = output_settings(&args.common, &args.sim, &args.files) else {
         return EXIT_BAD_INPUT;
     };
+    // An output folder that is a file: one clear refusal, before any work.
+    if let Some(problem) = write::output_folder_problem(&args.output) {
+        report.diagnostics(&[problem]);
+        return EXIT_BAD_INPUT;
+    }
     let started = std::time::Instant::now();
-    let (inputs, missing) = batch::expand_inputs(&args.paths, &args.output);
+    let expanded = batch::expand_inputs(&args.paths);
+    let (inputs, missing) = (expanded.found, expanded.missing);
     for path in &missing {
         eprintln!(
             "{}: error: no such file or folder, and no file matches it as a pattern",
             path.display()
         );
+    }
+    if !expanded.outputs_skipped.is_empty() {
+        report.say(&format!(
+            "note: {} table(s) in the folders are outputs of an earlier run (listed in their folder's {}) and are not converted again, e.g. {}",
+            expanded.outputs_skipped.len(),
+            steptable::manifest::FILE_NAME,
+            display_name(&expanded.outputs_skipped[0])
+        ));
     }
     let mut jobs = args
         .jobs
@@ -141,14 +155,13 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
                     file.name
                 ));
             }
-            if let Err(err) = write::write_files(
+            if let Err(err) = write::write_outputs(
                 &args.output,
                 &[file],
                 &write::Inputs::new(&inputs),
                 settings.durability,
             ) {
-                eprintln!("error: {err}");
-                code = EXIT_INTERNAL;
+                code = code.max(write_failed(&report, &err));
             }
         }
         Err(err) => {

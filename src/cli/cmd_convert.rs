@@ -70,6 +70,10 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
     let Some(settings) = output_settings(&args.common, &args.sim, &args.files) else {
         return EXIT_BAD_INPUT;
     };
+    if let Some(problem) = write::output_folder_problem(&args.output) {
+        report.diagnostics(&[problem]);
+        return EXIT_BAD_INPUT;
+    }
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
     let kept = write::Inputs::new(&args.inputs);
@@ -110,8 +114,8 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         };
         report.diagnostics(&conversion.warnings);
         let folder = args.output.join(&conversion.name);
-        match write::write_files(&folder, &conversion.files, &kept, settings.durability) {
-            Ok(_) => {
+        match write::write_conversion(&folder, &conversion.files, &kept, settings.durability) {
+            Ok((_, removed)) => {
                 // As the files lie in the folder: `NAME.beremiz/plc.xml`.
                 let names: Vec<String> = conversion.files.iter().map(|f| f.name.clone()).collect();
                 report.say(&format!(
@@ -121,10 +125,24 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
                     folder.display(),
                     names.join(", ")
                 ));
+                for line in &conversion.findings {
+                    report.say(&format!("  {line}"));
+                }
+                if !removed.is_empty() {
+                    let names: Vec<String> = removed
+                        .iter()
+                        .filter_map(|p| p.strip_prefix(&folder).ok())
+                        .map(|p| p.display().to_string())
+                        .collect();
+                    report.say(&format!(
+                        "  removed what an earlier run wrote there and this one did not: {}",
+                        names.join(", ")
+                    ));
+                }
             }
             Err(err) => {
-                eprintln!("error: {err}");
-                code = EXIT_INTERNAL;
+                code = code.max(write_failed(&report, &err));
+                eprintln!("{}: not converted, nothing written", display_name(input));
             }
         }
     }

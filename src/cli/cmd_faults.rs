@@ -85,6 +85,13 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
             code = code.max(EXIT_BAD_INPUT);
             continue;
         }
+        if let Some(why) =
+            steptable::faults::over_budget(&table, &program, &settings.simulation, at_once)
+        {
+            report.diagnostics(&[convert::budget_error(&table, why)]);
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
         let progress = super::progress::Progress::new("fault cases", false);
         let result = steptable::faults::analyse_observed(
             &table,
@@ -106,14 +113,13 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
                 }
             },
         };
-        if let Err(err) = write::write_files(
+        if let Err(err) = write::write_outputs(
             &args.output.join(name),
             &[file],
             &kept,
             write::Durability::Rename,
         ) {
-            eprintln!("error: {err}");
-            code = EXIT_INTERNAL;
+            code = code.max(write_failed(&report, &err));
         }
         report.say(&format!("{}: {}", display_name(input), result.summary()));
         let rows = steptable::faults::rows(&result);

@@ -41,8 +41,20 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
         };
         reporter.diagnostics(&checked.warnings);
         let (table, mut settings) = (checked.table, checked.settings);
+        let lucky = convert::lucky_middle_stops(&table, &settings);
+        if !lucky.is_empty() {
+            reporter.diagnostics(&lucky);
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
         settings.simulation.record_trace = args.diagram.is_some();
         let program = convert::build_program(&table, &settings);
+        if let Some(why) = steptable::simulate::over_budget(&table, &program, &settings.simulation)
+        {
+            reporter.diagnostics(&[convert::budget_error(&table, why)]);
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
         let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
         // The diagram is written before anything is printed: with stdout
         // closed, printing ends the process (quietly), and the file the user
@@ -58,12 +70,9 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
                 name: format!("{name}.time.svg"),
                 bytes: svg.into_bytes(),
             };
-            match write::write_files(&dir.join(name), &[file], &kept, write::Durability::Rename) {
+            match write::write_outputs(&dir.join(name), &[file], &kept, write::Durability::Rename) {
                 Ok(paths) => diagram = Some(paths),
-                Err(err) => {
-                    eprintln!("error: {err}");
-                    code = EXIT_INTERNAL;
-                }
+                Err(err) => code = code.max(write_failed(&reporter, &err)),
             }
         }
         reporter.say(&format!("{}: {}", display_name(input), report.verdict()));

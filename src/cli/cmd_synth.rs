@@ -136,8 +136,8 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             reporter.diagnostics(&checked.warnings);
             match synth::from_table(&checked.table) {
                 Ok(s) => (s, convert::output_name(input), vec![input.clone()]),
-                Err(why) => {
-                    reporter.error(&source, Code::E034NotSynthesisable, why.to_string());
+                Err(diagnostic) => {
+                    reporter.diagnostics(&[diagnostic]);
                     return EXIT_BAD_INPUT;
                 }
             }
@@ -147,6 +147,15 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             return EXIT_BAD_INPUT;
         }
     };
+    // The one name check, as for a table's signals: a name whose signals
+    // the programs cannot declare (`R`: `r` is an IL operator) is E015.
+    let problems = sequence.name_problems();
+    if !problems.is_empty() {
+        for why in problems {
+            reporter.error(&source, Code::E015BadName, why);
+        }
+        return EXIT_BAD_INPUT;
+    }
     let options = synth::Options {
         method: match args.method {
             MethodArg::Exact => synth::Method::Exact,
@@ -193,6 +202,21 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
     let verification = synth::verify::verify(&synthesis, 2);
     let report = synth_out::report_text(&synthesis, &verification);
     reporter.say(&report);
+    // A program that fails its proof is not written: the report above
+    // says why.
+    if !verification.passed {
+        eprintln!(
+            "internal error: the synthesised controller fails its simulation ({}); please report this sequence",
+            verification.problem.as_deref().unwrap_or_default()
+        );
+        return EXIT_INTERNAL;
+    }
+    if let Err(why) = &verification.modes {
+        eprintln!(
+            "internal error: the synthesised program fails its mode proof ({why}); please report this sequence"
+        );
+        return EXIT_INTERNAL;
+    }
     let workbook = match synth_out::workbook(&synthesis, &verification) {
         Ok(b) => b,
         Err(err) => {
@@ -238,27 +262,13 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
             bytes: workbook,
         },
     ];
-    if let Err(err) = write::write_files(
+    if let Err(err) = write::write_outputs(
         &args.output.join(&name),
         &files,
         &write::Inputs::new(&inputs),
         write::Durability::Rename,
     ) {
-        eprintln!("error: {err}");
-        return EXIT_INTERNAL;
-    }
-    if !verification.passed {
-        eprintln!(
-            "internal error: the synthesised controller fails its simulation ({}); please report this sequence",
-            verification.problem.unwrap_or_default()
-        );
-        return EXIT_INTERNAL;
-    }
-    if let Err(why) = &verification.modes {
-        eprintln!(
-            "internal error: the synthesised program fails its mode proof ({why}); please report this sequence"
-        );
-        return EXIT_INTERNAL;
+        return write_failed(&reporter, &err);
     }
     EXIT_OK
 }

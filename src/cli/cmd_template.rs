@@ -94,9 +94,6 @@ pub(crate) fn run_template(args: &TemplateArgs) -> i32 {
             ));
             EXIT_OK
         }
-        Err(err) => {
-            eprintln!("error: {err}");
-            EXIT_INTERNAL
-        }
+        Err(err) => write_failed(&Reporter::for_format(MessageFormat::Human), &err),
     }
 }

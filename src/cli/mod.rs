@@ -62,10 +62,12 @@ pub(crate) enum Command {
     Simulate(SimulateArgs),
     /// Tabulate what every sensor fault (stuck at 1 or 0) does to the machine.
     Faults(FaultsArgs),
-    /// Work with the output templates.
+    /// Export the output templates (the layouts of the PLC program files) to
+    /// edit and use with --templates; not `template`, the empty workbook.
     #[command(subcommand)]
     Templates(TemplatesCommand),
-    /// Write an empty step-table workbook to fill in Excel or LibreOffice.
+    /// Write an empty step-table workbook to fill in Excel or LibreOffice;
+    /// not `templates`, the layouts of the output files.
     Template(TemplateArgs),
     /// Convert many workbooks at once, in parallel, with a summary.
     Batch(BatchArgs),
@@ -79,6 +81,15 @@ pub fn run() -> i32 {
         Ok(cli) => cli,
         Err(err) => {
             let _ = err.print();
+            let args: Vec<String> = std::env::args_os()
+                .skip(1)
+                .map(|a| a.to_string_lossy().to_string())
+                .collect();
+            if err.use_stderr()
+                && let Some(tip) = confused_command(&args)
+            {
+                eprintln!("\n{tip}");
+            }
             // A wrong option is wrong input, like a wrong cell: exit 1 (2
             // stays for internal and I/O failures); --help and --version 0.
             return if err.use_stderr() {
@@ -88,7 +99,7 @@ pub fn run() -> i32 {
             };
         }
     };
-    match cli.command {
+    let code = match cli.command {
         Command::Convert(args) => run_convert(&args),
         Command::Check(args) => run_check(&args),
         Command::Simulate(args) => run_simulate(&args),
@@ -115,19 +126,66 @@ pub fn run() -> i32 {
                     EXIT_BAD_INPUT
                 }
                 Err(ExportError::Write(err)) => {
-                    eprintln!("error: {err}");
-                    EXIT_INTERNAL
+                    write_failed(&Reporter::for_format(MessageFormat::Human), &err)
                 }
             }
         }
+    };
+    with_stdout(code)
+}
+
+/// What became of standard output: written, closed by its reader, or
+/// failed (a full disk). Set once, read when the command ends.
+static STDOUT: std::sync::Mutex<Option<std::io::Error>> = std::sync::Mutex::new(None);
+
+/// Prints to stdout. After the first failure nothing more is printed, and
+/// the command still ends with the exit code its work earned: a closed pipe
+/// (`steptable check … | head`) is quiet and changes nothing, any other
+/// failure (`> /dev/full`) is an I/O error at the end (exit 2).
+pub(crate) fn out(line: &str) {
+    let mut failed = STDOUT.lock().unwrap_or_else(|e| e.into_inner());
+    if failed.is_some() {
+        return;
+    }
+    let mut stdout = std::io::stdout().lock();
+    if let Err(err) = writeln!(stdout, "{line}").and_then(|()| stdout.flush()) {
+        *failed = Some(err);
     }
 }
 
-/// Prints to stdout; a closed pipe (`steptable check … | head`) is not an error.
-pub(crate) fn out(line: &str) {
-    let mut stdout = std::io::stdout().lock();
-    if writeln!(stdout, "{line}").is_err() {
-        std::process::exit(EXIT_OK);
+/// The exit code of a command that earned `code`, once standard output's
+/// fate is known.
+fn with_stdout(code: i32) -> i32 {
+    let failed = STDOUT.lock().unwrap_or_else(|e| e.into_inner());
+    match failed.as_ref() {
+        Some(err) if err.kind() != std::io::ErrorKind::BrokenPipe => {
+            eprintln!("error: cannot write to standard output: {err}");
+            code.max(EXIT_INTERNAL)
+        }
+        _ => code,
+    }
+}
+
+/// The command meant when `template` (the empty workbook) and `templates`
+/// (the output layouts) were swapped: `template export DIR`, or
+/// `templates` with the workbook's options.
+pub(crate) fn confused_command(args: &[String]) -> Option<String> {
+    let rest = &args[1.min(args.len())..];
+    match args.first().map(String::as_str) {
+        Some("template") if rest.first().is_some_and(|a| a == "export") => Some(format!(
+            "tip: did you mean `steptable templates {}`? `template` writes the empty step-table workbook; `templates export DIR` writes the layouts of the output files",
+            rest.join(" ")
+        )),
+        Some("templates")
+            if !rest
+                .first()
+                .is_some_and(|a| ["export", "help", "-h", "--help"].contains(&a.as_str())) =>
+        {
+            Some(
+                "tip: did you mean `steptable template` (the empty step-table workbook, `-o FILE.xlsx`)? `templates export DIR` writes the layouts of the output files".to_string(),
+            )
+        }
+        _ => None,
     }
 }
 
@@ -181,6 +239,21 @@ impl Reporter {
             eprintln!("{line}");
         } else {
             out(line);
+        }
+    }
+}
+
+/// Says why outputs were not written; the exit code: 1 when something of
+/// the engineer's is in their place (E040), 2 for an I/O failure.
+pub(crate) fn write_failed(report: &Reporter, err: &write::WriteError) -> i32 {
+    match err {
+        write::WriteError::Taken(problems) => {
+            report.diagnostics(problems);
+            EXIT_BAD_INPUT
+        }
+        write::WriteError::Io { .. } => {
+            eprintln!("error: {err}");
+            EXIT_INTERNAL
         }
     }
 }

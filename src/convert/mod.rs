@@ -1,7 +1,9 @@
-//! The pipeline, end to end and in memory: read → table → addresses → program
+//! The pipeline, end to end and in memory: read → table → program → addresses
 //! → every output file. Writing to disk is [`crate::write`]'s job.
 
+mod findings;
 mod physics;
+pub use physics::lucky_middle_stops;
 mod pins;
 
 use std::path::Path;
@@ -43,6 +45,10 @@ pub struct Conversion {
     pub faults: Option<FaultTable>,
     pub files: Vec<OutputFile>,
     pub warnings: Vec<Diagnostic>,
+    /// What the conversion found, a line each: the verdict and cycle time,
+    /// the hazards, the homing order, a program without STOP (see
+    /// [`findings::lines`]).
+    pub findings: Vec<String>,
 }
 
 /// Why a conversion produced nothing.
@@ -129,6 +135,25 @@ fn finish_check(
         );
         effective.program.interlocks =
             halt::resolve_interlocks(table, &buttons, named.get(&Row::Interlock), &mut diags);
+        // A delay for an input the table does not have would be dropped
+        // without a word (a batch may give one for some of its tables).
+        for name in effective.simulation.input_delays.keys() {
+            if !table.inputs.contains(name) {
+                let inputs: Vec<&str> = table.inputs.iter().map(|n| n.as_str()).collect();
+                diags.warning(
+                    Code::W006NoEffect,
+                    input.table.sheet_location(),
+                    format!(
+                        "--input-delay {name}=…: {name} is no machine input of this table ({}); nothing is delayed",
+                        if inputs.is_empty() {
+                            "it waits for none".to_string()
+                        } else {
+                            format!("its inputs: {}", inputs.join(", "))
+                        }
+                    ),
+                );
+            }
+        }
         // A row about an event the program does not have does nothing.
         let program = &effective.program;
         let no_estop =
@@ -260,12 +285,37 @@ pub fn healthy_program(
     settings: &Settings,
     sim: &SimSettings,
 ) -> Result<(StepProgram, SimReport), Failure> {
+    let lucky = physics::lucky_middle_stops(table, settings);
+    if !lucky.is_empty() {
+        return Err(Failure::Input(lucky));
+    }
     let program = build_program(table, settings);
+    let beyond = physics::watchdogs_beyond_timers(table, &program);
+    if !beyond.is_empty() {
+        return Err(Failure::Input(beyond));
+    }
+    if let Some(why) = simulate::over_budget(table, &program, sim) {
+        return Err(Failure::Input(vec![budget_error(table, why)]));
+    }
     let simulation = simulate::simulate(table, &program, sim);
     if simulation.passed {
         Ok((program, simulation))
     } else {
         Err(physics::explain(table, settings, &simulation))
+    }
+}
+
+/// Error E033 for `table`: the work it asks for is beyond the budget.
+pub fn budget_error(table: &StepTable, why: String) -> Diagnostic {
+    Diagnostic {
+        severity: crate::diag::Severity::Error,
+        code: Code::E033OverBudget,
+        location: Location {
+            file: table.file.clone(),
+            sheet: None,
+            cell: None,
+        },
+        message: why,
     }
 }
 
@@ -415,6 +465,16 @@ pub fn generate_observed(
     // rendering, not after them.
     let (early, late): (Vec<OutputKind>, Vec<OutputKind>) =
         settings.formats.iter().partition(|k| !k.shows_faults());
+    if !late.is_empty()
+        && let Some(why) = faults::over_budget(&table, &program, &settings.simulation, 1)
+    {
+        let shown: Vec<&str> = late.iter().map(|k| k.name()).collect();
+        let why = format!(
+            "{why}, or leave out the outputs that show the fault table (--formats without {})",
+            shown.join(", ")
+        );
+        return Err(Failure::Input(vec![budget_error(&table, why)]));
+    }
     let ((fault_table, late), early) = rayon::join(
         || {
             let fault_table = (!late.is_empty()).then(|| {
@@ -439,7 +499,14 @@ pub fn generate_observed(
     kinds.extend(late.map_err(emitted)?);
     kinds.sort_by_key(|(kind, _)| *kind);
     let files = kinds.into_iter().flat_map(|(_, files)| files).collect();
+    let findings = findings::lines(
+        &table,
+        &settings.program.modes,
+        &simulation,
+        fault_table.as_ref(),
+    );
     Ok(Conversion {
+        findings,
         name: name.to_string(),
         table,
         allocation,

@@ -8,6 +8,7 @@
 
 use super::{Failure, build_program};
 use crate::diag::{Code, Diagnostic, Location, Severity};
+use crate::program::{Action, Signal, StepProgram};
 use crate::settings::Settings;
 use crate::simulate::{self, SimReport, plant::Piston};
 use crate::stroke::Stroke;
@@ -110,6 +111,16 @@ fn changes(table: &StepTable, settings: &Settings) -> Vec<Change> {
             s.simulation.strokes.default = Stroke::default()
         });
     }
+    // A jump's input given later than its step lasts leaves the path
+    // untaken; by default the machine gives it as the step starts.
+    for name in sim.input_delays.keys() {
+        with(
+            format!("I:{name} at its default time (without --input-delay {name}=…)"),
+            &|s| {
+                s.simulation.input_delays.remove(name);
+            },
+        );
+    }
     let default_scan = simulate::SimSettings::default().scan_ms;
     if sim.scan_ms != default_scan {
         with(format!("a {default_scan} ms scan"), &|s| {
@@ -117,6 +128,105 @@ fn changes(table: &StepTable, settings: &Settings) -> Vec<Change> {
         });
     }
     changes
+}
+
+/// Middle stops that only luck would make: the PLC sees a sensor at most
+/// one scan after the piston reaches it and switches the valve at the end
+/// of the scan that saw it, so a middle stop holds on every scan phase
+/// only when its sensor stays in view for two scans. A shorter glimpse may
+/// pass the simulation's one phase and overrun on the machine (whose scan
+/// jitters), so it is refused before the simulation, at the move's cell.
+pub fn lucky_middle_stops(table: &StepTable, settings: &Settings) -> Vec<Diagnostic> {
+    let sim = &settings.simulation;
+    let mut refused = Vec::new();
+    if !settings.program.middle_stops {
+        // Without middle stops the program does not try to stop there.
+        return refused;
+    }
+    let mut said = std::collections::BTreeSet::new();
+    for step in &table.steps {
+        for m in &step.moves {
+            let Some(actuator) = table.actuator(m.actuator) else {
+                continue;
+            };
+            if m.to == 0 || m.to >= actuator.max_position || !said.insert((m.actuator, m.sign)) {
+                continue;
+            }
+            let stroke = sim.strokes.of(m.actuator);
+            let piston = Piston::new(m.actuator, actuator.max_position, stroke, sim.scan_ms);
+            let full_ms = match m.sign {
+                crate::cell::Sign::Plus => stroke.extend_ms,
+                crate::cell::Sign::Minus => stroke.retract_ms,
+            } as f64;
+            let in_view = 2.0 * piston.window(sim.window) * full_ms;
+            if in_view >= 2.0 * sim.scan_ms as f64 {
+                continue;
+            }
+            let n = m.actuator;
+            let sensor = crate::program::Signal::Sensor {
+                actuator: n,
+                position: m.to,
+            }
+            .symbol();
+            let (way, flag) = match m.sign {
+                crate::cell::Sign::Plus => ("out", "extend"),
+                crate::cell::Sign::Minus => ("back", "retract"),
+            };
+            refused.push(Diagnostic {
+                severity: Severity::Error,
+                code: Code::E032MachineCannotRun,
+                location: Location {
+                    file: table.file.clone(),
+                    sheet: table.sheet.clone(),
+                    cell: Some(m.cell),
+                },
+                message: format!(
+                    "C{n} stops at its middle position {} in step {}, but its sensor {sensor} is in view for only {in_view:.1} ms of a {full_ms:.0} ms stroke {way}, less than two {} ms scans (one to see it, one to switch the valve): whether it stops there would depend on the scan's timing; give C{n} a slower {flag} stroke (--stroke, or the SETTINGS actuator table) or a shorter scan",
+                    m.to,
+                    step.number,
+                    sim.scan_ms,
+                ),
+            });
+        }
+    }
+    refused
+}
+
+/// Watchdog presets no PLC timer of every target holds: FST counts 1/100 s
+/// in a 16-bit word (655.35 s at most), and a larger preset would wrap
+/// round to a short one there. Refused at the step's first cell.
+pub fn watchdogs_beyond_timers(table: &StepTable, program: &StepProgram) -> Vec<Diagnostic> {
+    let mut refused = Vec::new();
+    for step in &program.steps {
+        let Some(ms) = step.actions.iter().find_map(|a| match a {
+            Action::StartTimer(Signal::Watchdog, ms) => Some(*ms),
+            _ => None,
+        }) else {
+            continue;
+        };
+        if ms <= crate::cell::MAX_DWELL_MS {
+            continue;
+        }
+        let cell = table.steps.get(step.number.wrapping_sub(1)).and_then(|s| {
+            let moves = s.moves.iter().map(|m| m.cell);
+            moves.chain(s.dwells.iter().map(|d| d.cell)).next()
+        });
+        refused.push(Diagnostic {
+            severity: Severity::Error,
+            code: Code::E032MachineCannotRun,
+            location: Location {
+                file: table.file.clone(),
+                sheet: table.sheet.clone(),
+                cell,
+            },
+            message: format!(
+                "step {}'s watchdog would need {:.1} s (twice its longest move, plus its dwell, plus 1 s), more than the 655.35 s a PLC timer holds on every target (FST counts 1/100 s in a 16-bit word): shorten the step's stroke or dwell, or leave the watchdog out of --safety",
+                step.number,
+                ms as f64 / 1000.0
+            ),
+        });
+    }
+    refused
 }
 
 fn all_defaults(settings: &Settings) -> Settings {

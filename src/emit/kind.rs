@@ -127,8 +127,17 @@ impl OutputKind {
                 }
                 None => {
                     let names: Vec<&str> = OutputKind::ALL.iter().map(|k| k.name()).collect();
+                    let hint = OutputKind::suggest(&item)
+                        .map(|kinds| {
+                            let kinds: Vec<String> = kinds
+                                .iter()
+                                .map(|k| format!("{} (writes NAME{})", k.name(), k.suffix()))
+                                .collect();
+                            format!("; did you mean {}?", kinds.join(" or "))
+                        })
+                        .unwrap_or_default();
                     return Err(format!(
-                        "\"{item}\" is not an output format (expected some of: {}, or all)",
+                        "\"{item}\" is not an output format{hint} (expected some of: {}, or all)",
                         names.join(", ")
                     ));
                 }
@@ -138,5 +147,65 @@ impl OutputKind {
             return Err("no output format given".to_string());
         }
         Ok(kinds)
+    }
+
+    /// The kinds a mistaken `--formats` item may mean: those whose file
+    /// name has it as a part (`tags` → tia, for `NAME.tags.xlsx`; `csv` →
+    /// the four CSV lists), else the names a letter or two off.
+    pub fn suggest(item: &str) -> Option<Vec<OutputKind>> {
+        let by_file: Vec<OutputKind> = OutputKind::ALL
+            .into_iter()
+            .filter(|k| k.suffix().split(['.', '-', '/']).any(|part| part == item))
+            .collect();
+        if !by_file.is_empty() {
+            return Some(by_file);
+        }
+        let near: Vec<OutputKind> = OutputKind::ALL
+            .into_iter()
+            // At most one letter in four wrong: `plcopn`, not `pdf` for sdf.
+            .filter(|k| edit_distance(item, k.name()) * 4 <= k.name().len().max(item.len()))
+            .collect();
+        (!near.is_empty()).then_some(near)
+    }
+}
+
+/// Levenshtein distance, by characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != *cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_mistaken_format_is_pointed_to_the_kind_meant() {
+        let err = OutputKind::parse_list("st,tags").unwrap_err();
+        assert!(
+            err.contains("did you mean tia (writes NAME.tags.xlsx)?"),
+            "{err}"
+        );
+        let err = OutputKind::parse_list("plcopn").unwrap_err();
+        assert!(err.contains("did you mean plcopen"), "{err}");
+        let err = OutputKind::parse_list("csv").unwrap_err();
+        for kind in ["io", "faults", "fst-alloc", "rockwell"] {
+            assert!(err.contains(&format!("{kind} (writes")), "{err}");
+        }
+        let err = OutputKind::parse_list("pdf").unwrap_err();
+        assert!(!err.contains("did you mean"), "{err}");
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
     }
 }

@@ -47,6 +47,15 @@ pub fn render_each(
     input: EmitInput<'_>,
 ) -> Result<Vec<(OutputKind, Vec<OutputFile>)>, EmitError> {
     use rayon::prelude::*;
+    // Every text this table gives has a budget that grows with the table.
+    let budgeted = input.templates.with_budget(super::templates::output_budget(
+        input.table.steps.len(),
+        input.table.branches,
+    ));
+    let input = EmitInput {
+        templates: &budgeted,
+        ..input
+    };
     let mut kinds: Vec<OutputKind> = kinds.into_iter().collect();
     kinds.sort_unstable();
     kinds.dedup();

@@ -107,6 +107,8 @@ pub struct Templates {
     env: Arc<Environment<'static>>,
     /// Overridden template name → the user's file.
     overrides: BTreeMap<String, PathBuf>,
+    /// Most bytes one render may write (see [`Templates::with_budget`]).
+    budget: usize,
 }
 
 impl fmt::Debug for Templates {
@@ -128,6 +130,7 @@ impl Default for Templates {
         Templates::with_overrides(BTreeMap::new()).unwrap_or_else(|_| Templates {
             env: Arc::new(Environment::new()),
             overrides: BTreeMap::new(),
+            budget: OUTPUT_BUDGET,
         })
     }
 }
@@ -185,6 +188,9 @@ impl Templates {
                 continue;
             };
             let file = path.display().to_string();
+            // Compiling folds constants (`'x' * 100000000` is built here):
+            // bounded as a render is.
+            let _scope = crate::alloc_guard::Scope::enter(&file, OUTPUT_BUDGET.saturating_mul(4));
             env.add_template_owned(name.to_string(), text.clone())
                 .map_err(|e| TemplateError {
                     file: file.clone(),
@@ -197,6 +203,7 @@ impl Templates {
         Ok(Templates {
             env: Arc::new(env),
             overrides: paths,
+            budget: OUTPUT_BUDGET,
         })
     }
 
@@ -221,7 +228,23 @@ impl Templates {
         Templates::with_overrides(overrides)
     }
 
-    /// Renders template `name` with `context`.
+    /// The same templates, each render allowed `bytes` of output.
+    pub fn with_budget(&self, bytes: usize) -> Templates {
+        Templates {
+            budget: bytes,
+            ..self.clone()
+        }
+    }
+
+    /// Most bytes one render may write.
+    pub fn budget(&self) -> usize {
+        self.budget
+    }
+
+    /// Renders template `name` with `context`. The output is written into
+    /// a buffer that refuses bytes past the budget, so a template that
+    /// writes without end stops there, naming itself, before the text is
+    /// large enough to exhaust memory.
     pub fn render(&self, name: &str, context: Value) -> Result<String, TemplateError> {
         let (file, user) = match self.overrides.get(name) {
             Some(path) => (path.display().to_string(), true),
@@ -233,7 +256,29 @@ impl Templates {
             line: None,
             detail: e.to_string(),
         })?;
-        let text = template.render(context).map_err(|e| {
+        let mut sink = Budgeted {
+            bytes: Vec::new(),
+            budget: self.budget,
+            over: false,
+        };
+        // A user's template may not build values far past its output budget.
+        let scope =
+            user.then(|| crate::alloc_guard::Scope::enter(&file, self.budget.saturating_mul(4)));
+        let rendered = template.render_captured_to(context, &mut sink).map(drop);
+        drop(scope);
+        if sink.over {
+            return Err(TemplateError {
+                file,
+                user,
+                line: None,
+                detail: format!(
+                    "the output passed {} bytes ({}), the most a template may write for this table; stopped, nothing written",
+                    self.budget,
+                    mebibytes(self.budget)
+                ),
+            });
+        }
+        rendered.map_err(|e| {
             // Name what was undefined: the source text the error points at.
             let source = template.source();
             let detail = e
@@ -247,14 +292,70 @@ impl Templates {
                 .map(|s| format!(" (`{s}`)"))
                 .unwrap_or_default();
             TemplateError {
-                file,
+                file: file.clone(),
                 user,
                 line: e.line(),
                 detail: format!("{detail}{what}"),
             }
         })?;
+        let text = String::from_utf8(sink.bytes).map_err(|e| TemplateError {
+            file,
+            user,
+            line: None,
+            detail: format!("output is not UTF-8: {e}"),
+        })?;
         Ok(without_trailing_spaces(&text))
     }
+}
+
+/// A render's output, refused past `budget` bytes.
+struct Budgeted {
+    bytes: Vec<u8>,
+    budget: usize,
+    over: bool,
+}
+
+impl std::io::Write for Budgeted {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if self.bytes.len().saturating_add(buf.len()) > self.budget {
+            self.over = true;
+            return Err(std::io::Error::other("output budget exceeded"));
+        }
+        self.bytes.extend_from_slice(buf);
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// `16 MiB`, or bytes below one MiB.
+fn mebibytes(bytes: usize) -> String {
+    if bytes >= 1 << 20 {
+        format!("{} MiB", bytes >> 20)
+    } else {
+        format!("{bytes} bytes")
+    }
+}
+
+/// The output budget of a render with no table behind it (synthesis, a
+/// test): far above any sequence synthesis handles.
+pub const OUTPUT_BUDGET: usize = 16 << 20;
+
+/// Output budget per cell of a table (steps × branches): the built-in
+/// templates write about 250 bytes per cell (a 1,000-step, 4-branch table's
+/// largest file, the AWL, is 0.96 MB; 10,000 × 64 cells, 107 MB), so 16 KiB
+/// leaves a user's template sixty times room.
+pub const OUTPUT_BUDGET_PER_CELL: usize = 16 << 10;
+
+/// The budget of each rendered file of a table of `steps` × `branches`:
+/// [`OUTPUT_BUDGET`] plus [`OUTPUT_BUDGET_PER_CELL`] for every cell.
+pub fn output_budget(steps: usize, branches: usize) -> usize {
+    steps
+        .saturating_mul(branches.max(1))
+        .saturating_mul(OUTPUT_BUDGET_PER_CELL)
+        .saturating_add(OUTPUT_BUDGET)
 }
 
 /// `text` with every line's trailing white space cut and one newline at
@@ -344,6 +445,28 @@ mod tests {
         assert_eq!(templates.render("gvl.txt.j2", empty).unwrap(), "one 2\n");
         let err = Templates::from_sources([("progam.st.j2", "typo")]).unwrap_err();
         assert!(err.detail.contains("no template has this name"), "{err}");
+    }
+
+    /// A render stops once it would write past its budget, naming the
+    /// template and the limit; up to the budget it is whole. The budget
+    /// grows with the table.
+    #[test]
+    fn a_render_past_its_budget_stops() {
+        let templates = Templates::from_sources([(
+            "gvl.txt.j2",
+            "{% for i in range(n) %}0123456789{% endfor %}",
+        )])
+        .unwrap()
+        .with_budget(100);
+        let render =
+            |n: u32| templates.render("gvl.txt.j2", Value::from(BTreeMap::from([("n", n)])));
+        assert_eq!(render(10).unwrap().len(), 101);
+        let err = render(11).unwrap_err();
+        assert!(err.user && err.file == "gvl.txt.j2", "{err}");
+        assert!(err.detail.contains("passed 100 bytes"), "{err}");
+        assert_eq!(Templates::default().budget(), OUTPUT_BUDGET);
+        assert_eq!(output_budget(1000, 4), (16 << 20) + 4000 * (16 << 10));
+        assert_eq!(output_budget(usize::MAX, 256), usize::MAX);
     }
 
     #[test]

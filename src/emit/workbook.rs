@@ -12,7 +12,7 @@ use crate::address::Assigned;
 use crate::faults::FaultTable;
 use crate::program::{Action, paper_sentence};
 use crate::program::{Area, Signal};
-use crate::read::TABLE_SHEET;
+use crate::sheets::TABLE_SHEET;
 use crate::simulate::SimReport;
 
 pub const INPUT_SHEET: &str = "INPUT ADDRESSES";

@@ -119,6 +119,34 @@ impl FaultTable {
 /// faults appear at power-up only, and the summary says so.
 pub const MAX_PHASE_WORK: usize = 1_000_000;
 
+/// The most steps one fault analysis may fire, over all its runs (about
+/// ten seconds of work): faulty runs from power-up go through every cycle,
+/// each jump's too.
+pub const MAX_FAULT_STEPS: usize = 10_000_000;
+
+/// Why the fault analysis of `program` with `at_once` faults is beyond
+/// the budget, when it is: the count and what to do instead (E033).
+/// Counted before any simulation: each case from power-up fires up to
+/// every step of every cycle, a jump's cycles included.
+pub fn over_budget(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    at_once: usize,
+) -> Option<String> {
+    let cases = case_count(program, at_once);
+    let run = crate::simulate::run_steps(table, program, settings);
+    let steps = cases.saturating_mul(run);
+    let jumps: usize = table.steps.iter().map(|s| s.jumps.len()).sum();
+    (steps > MAX_FAULT_STEPS).then(|| {
+        format!(
+            "the fault analysis would fire {steps} steps ({cases} fault cases, each run through {run} steps: {} plain cycles and {jumps} jump cycles of up to {} steps); steptable fires at most {MAX_FAULT_STEPS}: split the table, or give it fewer jumps",
+            settings.cycles.max(1),
+            program.steps.len()
+        )
+    })
+}
+
 /// Every single fault of every input (START, each sensor, machine inputs
 /// and buttons), in address order.
 pub fn single_faults(program: &StepProgram) -> Vec<Fault> {
@@ -250,7 +278,12 @@ pub fn analyse_runs(
         simulator.run_logging_inputs(&healthy_settings, program.signals.inputs.clone());
     let mut moments = moments(&healthy, table, settings.scan_ms as u64);
     let cases_at_every_moment = sets.len() * moments.len();
-    let too_long = cases_at_every_moment * table.steps.len().max(1) > MAX_PHASE_WORK;
+    // A jump's cycle is one more cycle each run may go through.
+    let jumps: usize = table.steps.iter().map(|s| s.jumps.len()).sum();
+    let too_long = cases_at_every_moment
+        .saturating_mul(table.steps.len().max(1))
+        .saturating_mul(1 + jumps)
+        > MAX_PHASE_WORK;
     let mut equivalent = 0;
     // Faults at every moment but for a cycle too long for them.
     let inputs = (!too_long).then(|| phases::HealthyInputs::new(log));

@@ -304,7 +304,7 @@ pub struct Modes {
     /// A RESET button homes every actuator.
     pub reset: bool,
     /// Homing stages, each a set of actuators homed together; `None` is the
-    /// default (reverse order of the last moves).
+    /// default (the order the cycle returns them home).
     pub home_order: Option<Vec<Vec<u32>>>,
 }
 
@@ -393,7 +393,7 @@ impl Modes {
     }
 
     /// The homing stages for a table: the given order, checked against the
-    /// table, or by default the reverse order of the last moves.
+    /// table, or by default the order the cycle returns them home.
     pub fn home_stages(&self, table: &StepTable) -> Result<Vec<Vec<u32>>, String> {
         table.home_stages(self.home_order.as_deref())
     }

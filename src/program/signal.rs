@@ -329,7 +329,7 @@ fn pair(actuator: u32, position: u32) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::names::{KEYWORDS, reserved_name};
+    use crate::names::{KEYWORDS, reserved_name, signal_problem};
 
     #[test]
     fn symbols_are_unambiguous_identifiers() {
@@ -430,12 +430,19 @@ mod tests {
                 "{id} is a keyword"
             );
             // No table may name a machine signal like one of the program's
-            // own (the mode buttons' names are taken only while their mode is
-            // on, which the table check knows).
+            // own; the mode buttons' names are taken only while their mode is
+            // on, and then in any case.
             if matches!(
                 signal,
                 Signal::Continuous | Signal::Stop | Signal::EStop | Signal::Reset
             ) {
+                let buttons: Vec<String> = crate::program::Modes::parse("all")
+                    .unwrap()
+                    .buttons()
+                    .map(|b| b.ident().to_ascii_lowercase())
+                    .collect();
+                assert!(signal_problem(&id, &buttons).is_some(), "{id}");
+                assert!(signal_problem(&id, &[]).is_none(), "{id}");
                 continue;
             }
             assert!(

@@ -31,7 +31,9 @@ impl CellValue {
             }
             CellValue::Number(n) => format!("the number {n}"),
             CellValue::Bool(b) => format!("the value {}", if *b { "TRUE" } else { "FALSE" }),
-            CellValue::Date(d) => format!("the date {d}"),
+            // A time of day or a duration has no `-` (2024-01-03 has).
+            CellValue::Date(d) if d.contains('-') => format!("the date {d}"),
+            CellValue::Date(d) => format!("the time {d}"),
             CellValue::Error(e) => format!("the error {e}"),
             CellValue::Uncomputed(f) => format!("the formula {f} (never computed)"),
         }

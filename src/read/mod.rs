@@ -24,13 +24,7 @@ pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
 /// Largest size a zipped workbook (.xlsx, .xlsm, .ods) may unpack to.
 pub const MAX_UNPACKED_BYTES: u64 = 256 * 1024 * 1024;
 
-/// The sheet name of the published method's table.
-pub const TABLE_SHEET: &str = "SEQUENTIAL CONTROL DESCRIPTION";
-
-/// The sheet name of the engineer's settings, when a workbook has one.
-pub const SETTINGS_SHEET: &str = "SETTINGS";
-/// The sheet name of the signals pinned to the wiring's addresses.
-pub const ADDRESSES_SHEET: &str = "ADDRESSES";
+pub use crate::sheets::{ADDRESSES_SHEET, SETTINGS_SHEET, TABLE_SHEET};
 
 /// What was read from one input file: the step table's sheet and, for a
 /// workbook that has one, its SETTINGS sheet.
@@ -77,6 +71,27 @@ pub fn read_path(path: &Path, sheet: Option<&str>, diags: &mut Diagnostics) -> O
         sheet: None,
         cell: None,
     };
+    // A folder or a missing file is E001 whatever its name ends in (a
+    // folder `line.xlsx`, a missing `notes` are no unknown file types).
+    let meta = match std::fs::metadata(path) {
+        Ok(meta) => meta,
+        Err(err) => {
+            diags.error(
+                Code::E001Unreadable,
+                whole_file,
+                format!("cannot read file: {err}"),
+            );
+            return None;
+        }
+    };
+    if meta.is_dir() {
+        diags.error(
+            Code::E001Unreadable,
+            whole_file,
+            "is a folder, not a table file; to convert every table in a folder, use `steptable batch FOLDER -o DIR`",
+        );
+        return None;
+    }
     let Some(format) = Format::from_path(path) else {
         diags.error(
             Code::E002NotAWorkbook,
@@ -85,24 +100,17 @@ pub fn read_path(path: &Path, sheet: Option<&str>, diags: &mut Diagnostics) -> O
         );
         return None;
     };
-    match std::fs::metadata(path) {
-        Ok(meta) if meta.len() > MAX_FILE_BYTES => {
-            diags.error(
-                Code::E005TooLarge,
-                whole_file,
-                format!(
-                    "file is {} MiB; the limit is {} MiB",
-                    meta.len() / (1024 * 1024),
-                    MAX_FILE_BYTES / (1024 * 1024)
-                ),
-            );
-            return None;
-        }
-        Ok(meta) if meta.is_dir() => {
-            diags.error(Code::E001Unreadable, whole_file, "is a folder, not a file");
-            return None;
-        }
-        _ => {}
+    if meta.len() > MAX_FILE_BYTES {
+        diags.error(
+            Code::E005TooLarge,
+            whole_file,
+            format!(
+                "file is {} MiB; the limit is {} MiB",
+                meta.len() / (1024 * 1024),
+                MAX_FILE_BYTES / (1024 * 1024)
+            ),
+        );
+        return None;
     }
     match std::fs::read(path) {
         Ok(bytes) => read_bytes(&file, format, bytes, sheet, diags),

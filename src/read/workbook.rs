@@ -426,10 +426,35 @@ fn cell_value(data: &Data) -> Option<CellValue> {
         Data::Int(i) => CellValue::Number(*i as f64),
         Data::Float(f) => CellValue::Number(*f),
         Data::Bool(b) => CellValue::Bool(*b),
-        Data::DateTime(dt) => CellValue::Date(dt.to_string()),
+        Data::DateTime(dt) => CellValue::Date(date_text(dt)),
         Data::DateTimeIso(s) | Data::DurationIso(s) => CellValue::Date(s.clone()),
         Data::Error(e) => CellValue::Error(e.to_string()),
     })
+}
+
+/// A date cell as the engineer saw it (`2024-01-03`, `12:30:00`,
+/// `2024-01-03 08:15:00`), not as the serial number calamine's `Display`
+/// prints (45294).
+fn date_text(dt: &calamine::ExcelDateTime) -> String {
+    let (year, month, day, hour, minute, second, _) = dt.to_ymd_hms_milli();
+    let time = format!("{hour:02}:{minute:02}:{second:02}");
+    let serial = dt.as_f64();
+    if dt.is_duration() && serial.is_finite() {
+        // A duration may pass 24 hours: its hours are counted whole.
+        let seconds = (serial * 86_400.0).round().clamp(0.0, 1e12) as u64;
+        format!(
+            "{}:{:02}:{:02}",
+            seconds / 3600,
+            seconds / 60 % 60,
+            seconds % 60
+        )
+    } else if (0.0..1.0).contains(&serial) {
+        time
+    } else if (hour, minute, second) == (0, 0, 0) {
+        format!("{year:04}-{month:02}-{day:02}")
+    } else {
+        format!("{year:04}-{month:02}-{day:02} {time}")
+    }
 }
 
 fn grid_from_range(file: &str, sheet: &str, range: &Range<Data>) -> Grid {

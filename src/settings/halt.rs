@@ -511,7 +511,7 @@ pub fn resolve_interlocks(
 /// machine inputs the table does not wait for, that must be on for a cycle
 /// to start, or stay on. Each must be a name a machine input may have, and
 /// neither an output nor an input the table waits for (that one's value
-/// belongs to its step); else E030 at the cell.
+/// belongs to its step); else E015 (the name) or E030 at the cell.
 pub fn resolve_held_inputs(
     table: &StepTable,
     buttons: &[String],
@@ -526,54 +526,53 @@ pub fn resolve_held_inputs(
     let mut names: Vec<crate::cell::Name> = Vec::new();
     for text in &row.names {
         let lower = text.to_ascii_lowercase();
-        let mut bad = |why: String| {
-            diags.error(
-                Code::E030BadSetting,
-                row.at.clone(),
-                format!("{label}: {why}"),
-            )
+        // A name an input may not have is E015, as in a table cell (the one
+        // name check, the program's buttons included); the rest is E030.
+        let (code, why) = match crate::cell::Name::new(&lower) {
+            Err(why) => (Code::E015BadName, why),
+            Ok(name) => match crate::names::signal_problem(&lower, buttons) {
+                Some(why) => (Code::E015BadName, why),
+                None if names.contains(&name) => {
+                    (Code::E030BadSetting, format!("{lower} is named twice"))
+                }
+                None => match held_input_problem(table, &names, name) {
+                    Some(why) => (Code::E030BadSetting, why),
+                    None => {
+                        names.push(name);
+                        continue;
+                    }
+                },
+            },
         };
-        let name = match crate::cell::Name::new(&lower) {
-            Ok(name) => name,
-            Err(why) => {
-                bad(why);
-                continue;
-            }
-        };
-        let stem = crate::names::fst_stem(&lower);
-        if let Some(reason) =
-            crate::names::reserved_name(&lower).or_else(|| crate::names::reserved_name(&stem))
-        {
-            bad(format!(
-                "\"{lower}\" cannot name a machine signal: {reason}"
-            ));
-        } else if buttons.contains(&lower) {
-            bad(format!(
-                "\"{lower}\" is the program's own operating-mode button"
-            ));
-        } else if table.outputs.contains(&name) {
-            bad(format!(
-                "{lower} is a machine output of the table, not an input"
-            ));
-        } else if table.inputs.contains(&name) {
-            bad(format!(
-                "the table waits for {lower} in a step; name an input no step waits for"
-            ));
-        } else if let Some(other) = table
-            .inputs
-            .iter()
-            .chain(&table.outputs)
-            .chain(&names)
-            .find(|o| **o != name && crate::names::fst_stem(o.as_str()) == stem)
-        {
-            bad(format!(
-                "{lower} and {other} begin with the same 9 characters, which is all Festo FST keeps of a symbol"
-            ));
-        } else if names.contains(&name) {
-            bad(format!("{lower} is named twice"));
-        } else {
-            names.push(name);
-        }
+        diags.error(code, row.at.clone(), format!("{label}: {why}"));
     }
     names
+}
+
+/// Why a valid name cannot be a held input: an output, an input a step
+/// waits for, or one FST cannot tell from another name.
+fn held_input_problem(
+    table: &StepTable,
+    names: &[crate::cell::Name],
+    name: crate::cell::Name,
+) -> Option<String> {
+    if table.outputs.contains(&name) {
+        return Some(format!(
+            "{name} is a machine output of the table, not an input"
+        ));
+    }
+    if table.inputs.contains(&name) {
+        return Some(format!(
+            "the table waits for {name} in a step; name an input no step waits for"
+        ));
+    }
+    let other = table
+        .inputs
+        .iter()
+        .chain(&table.outputs)
+        .chain(names)
+        .find(|o| **o != name && crate::names::same_in_fst(o.as_str(), name.as_str()))?;
+    Some(format!(
+        "{name} and {other} begin with the same 9 characters, which is all Festo FST keeps of a symbol"
+    ))
 }

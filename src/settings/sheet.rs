@@ -638,13 +638,11 @@ fn read_actuator_row<'g>(
             Ok(valve) => {
                 settings.valves.insert(actuator, valve);
             }
-            Err(_) => diags.error(
+            // The parser's message says what was probably meant.
+            Err(why) => diags.error(
                 Code::E030BadSetting,
                 grid.location(cell.pos),
-                format!(
-                    "valve of C{actuator}: \"{text}\" is not a valve type (expected {})",
-                    or_list(&ValveType::names())
-                ),
+                format!("valve of C{actuator}: {why}"),
             ),
         }
     }

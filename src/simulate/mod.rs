@@ -36,6 +36,39 @@ pub enum Stepping {
     EveryScan,
 }
 
+/// The most steps one proof may fire (about three seconds of work): its
+/// plain cycles and one cycle per jump, each of up to every step, so a
+/// table of many steps and many jumps grows with their product.
+pub const MAX_PROOF_STEPS: usize = 2_000_000;
+
+/// The steps a run of `program` fires at most: every step in each plain
+/// cycle and in each jump's cycle. The unit the budgets count in.
+pub fn run_steps(table: &StepTable, program: &StepProgram, settings: &SimSettings) -> usize {
+    let jumps: usize = table.steps.iter().map(|s| s.jumps.len()).sum();
+    program
+        .steps
+        .len()
+        .saturating_mul(settings.cycles.max(1) + jumps)
+}
+
+/// Why a proof of `program` is beyond the budget, when it is: the count
+/// and what to do instead (error E033).
+pub fn over_budget(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+) -> Option<String> {
+    let steps = run_steps(table, program, settings);
+    (steps > MAX_PROOF_STEPS).then(|| {
+        let jumps: usize = table.steps.iter().map(|s| s.jumps.len()).sum();
+        format!(
+            "proving this table would fire {steps} steps ({} steps in each of {} plain cycles and {jumps} jump cycles, one per jump); steptable fires at most {MAX_PROOF_STEPS}: split the table, or give it fewer jumps",
+            program.steps.len(),
+            settings.cycles.max(1)
+        )
+    })
+}
+
 /// Simulates `program` (built from `table`) against the plant.
 pub fn simulate(table: &StepTable, program: &StepProgram, settings: &SimSettings) -> SimReport {
     simulate_stepping(table, program, settings, Stepping::Events)

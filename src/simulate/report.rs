@@ -106,6 +106,9 @@ pub struct CycleReport {
     pub cycle_ms: Option<u64>,
     /// The jump the machine took in this cycle: its step and notation.
     pub jump: Option<(usize, String)>,
+    /// The jumps tested and not taken in this cycle: the step they leave
+    /// (one-based) and their notation, each once, in the order tested.
+    pub declined: Vec<(usize, String)>,
 }
 
 /// The result of a simulation run.
@@ -212,6 +215,38 @@ pub fn step_table(report: &SimReport) -> String {
         }
         _ => {}
     }
+    // Each jump both ways: the plain cycles leave every jump they test
+    // (said once: a jump cycle's list would grow with the square of the
+    // jumps), the jump cycles take one each.
+    let not_taken = |cycle: &CycleReport| {
+        let jumps: Vec<String> = cycle
+            .declined
+            .iter()
+            .map(|(step, jump)| format!("{jump} after step {step}"))
+            .collect();
+        if jumps.is_empty() {
+            String::new()
+        } else {
+            format!("; not taken: {}", jumps.join(", "))
+        }
+    };
+    let plain: Vec<String> = report
+        .cycles
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| c.jump.is_none() && !c.declined.is_empty())
+        .map(|(n, _)| (n + 1).to_string())
+        .collect();
+    if let Some(first) = report.cycles.iter().find(|c| c.jump.is_none())
+        && !plain.is_empty()
+    {
+        lines.push(format!(
+            "  cycle{} {} (take no jump){}",
+            if plain.len() > 1 { "s" } else { "" },
+            plain.join(", "),
+            not_taken(first)
+        ));
+    }
     for (n, cycle) in report.cycles.iter().enumerate() {
         let Some((step, jump)) = &cycle.jump else {
             continue;
@@ -223,7 +258,7 @@ pub fn step_table(report: &SimReport) -> String {
             fired.join(", "),
             cycle
                 .cycle_ms
-                .map_or(String::new(), |ms| format!(", cycle of {}", seconds(ms)))
+                .map_or(String::new(), |ms| format!(", cycle of {}", seconds(ms))),
         ));
     }
     for p in &report.problems {

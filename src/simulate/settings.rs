@@ -63,7 +63,8 @@ pub struct SimSettings {
     /// Record every actuator's position at every scan (for the time diagram).
     pub record_trace: bool,
     /// Per machine input, how long after its step starts the machine gives
-    /// the value the step waits for (default [`DEFAULT_INPUT_DELAY_MS`]).
+    /// the value the step waits for (default [`DEFAULT_INPUT_DELAY_MS`]),
+    /// or the value of a jump the cycle takes (default: as its step starts).
     pub input_delays: BTreeMap<Name, u32>,
     /// End the run at the scan that finds the sequence's first hazard (any
     /// but a collision), and report only the first collision: the fault

@@ -316,15 +316,29 @@ impl std::fmt::Display for SynthError {
 }
 
 /// The sequence of a checked step table, its actuators named as the table
-/// names them (C1, C2, …). Refused, with the reason, for parallel branches or
-/// middle positions.
-pub fn from_table(table: &crate::table::StepTable) -> Result<Sequence, SynthError> {
+/// names them (C1, C2, …). Refused (E034) at the cell to blame, with the
+/// reason, for parallel branches, middle positions, dwells, waits, outputs
+/// or jumps.
+pub fn from_table(table: &crate::table::StepTable) -> Result<Sequence, crate::diag::Diagnostic> {
+    let refuse = |cell: Option<crate::diag::CellPos>, why: String| crate::diag::Diagnostic {
+        severity: crate::diag::Severity::Error,
+        code: crate::diag::Code::E034NotSynthesisable,
+        location: crate::diag::Location {
+            file: table.file.clone(),
+            sheet: table.sheet.clone(),
+            cell,
+        },
+        message: why,
+    };
     if let Some(step) = table.steps.iter().find(|s| s.moves.len() > 1) {
-        return Err(SynthError::Unsuitable(format!(
-            "STEP {} moves {} actuators at once: synthesis handles single-branch sequences only; use convert for parallel branches",
-            step.number,
-            step.moves.len()
-        )));
+        return Err(refuse(
+            step.moves.get(1).map(|m| m.cell),
+            format!(
+                "STEP {} moves {} actuators at once: synthesis handles single-branch sequences only; use convert for parallel branches",
+                step.number,
+                step.moves.len()
+            ),
+        ));
     }
     if let Some(step) = table.steps.iter().find(|s| {
         s.moves.len() != 1
@@ -333,17 +347,38 @@ pub fn from_table(table: &crate::table::StepTable) -> Result<Sequence, SynthErro
             || !s.switches.is_empty()
             || !s.jumps.is_empty()
     }) {
-        return Err(SynthError::Unsuitable(format!(
-            "STEP {} ({}) is not one cylinder move: synthesis handles sequences of moves only, without dwells, waits, machine outputs or jumps; use convert for those",
-            step.number,
-            step.text()
-        )));
+        // The first item that is not a move; its cell also holds the move.
+        let cell = step
+            .dwells
+            .iter()
+            .map(|d| d.cell)
+            .chain(step.waits.iter().map(|w| w.cell))
+            .chain(step.switches.iter().map(|w| w.cell))
+            .chain(step.jumps.iter().map(|j| j.cell))
+            .min();
+        return Err(refuse(
+            cell,
+            format!(
+                "STEP {} ({}) is not one cylinder move: synthesis handles sequences of moves only, without dwells, waits, machine outputs or jumps; use convert for those",
+                step.number,
+                step.text()
+            ),
+        ));
     }
     if let Some(a) = table.actuators.iter().find(|a| a.max_position > 1) {
-        return Err(SynthError::Unsuitable(format!(
-            "C{} has middle positions: synthesis handles two-position actuators only; use convert for middle stops",
-            a.number
-        )));
+        let cell = table
+            .steps
+            .iter()
+            .flat_map(|s| &s.moves)
+            .find(|m| m.actuator == a.number && a.is_middle(m.to))
+            .map(|m| m.cell);
+        return Err(refuse(
+            cell,
+            format!(
+                "C{} has middle positions: synthesis handles two-position actuators only; use convert for middle stops",
+                a.number
+            ),
+        ));
     }
     let text: Vec<String> = table
         .steps
@@ -351,7 +386,7 @@ pub fn from_table(table: &crate::table::StepTable) -> Result<Sequence, SynthErro
         .flat_map(|s| &s.moves)
         .map(|m| format!("C{}{}{}", m.actuator, m.sign.symbol(), m.to))
         .collect();
-    sequence::parse(&text.join(" ")).map_err(SynthError::Unsuitable)
+    sequence::parse(&text.join(" ")).map_err(|why| refuse(None, why))
 }
 
 /// Synthesises a controller for `original` with the default options (both

@@ -250,7 +250,9 @@ impl Script {
             start_before_reset: release + 10,
             reset: release + 40,
             last_start,
-            last_stop: last_start + 50,
+            // Within the first cycle's first stroke: a two-action cycle
+            // (`A1 A0`, 40 scans) is over 50 scans after its START.
+            last_stop: last_start + 10,
             scans: last_start + 2 * cycle + 100,
         }
     }

@@ -13,8 +13,13 @@ use std::fmt;
 /// the textbooks and the paper's first example); letters an actuator uses
 /// are skipped.
 pub const MEMORIES: [char; 4] = ['X', 'Y', 'Z', 'W'];
-/// Further memory letters, for sequences whose actuators use some of X…W.
-const MORE_MEMORY_LETTERS: [char; 8] = ['V', 'U', 'T', 'S', 'R', 'Q', 'P', 'M'];
+/// Further memory letters, for sequences whose actuators use some of X…W;
+/// enough that [`MAX_ACTUATORS`] actuators leave four after the name check
+/// has taken out S and R.
+const MORE_MEMORY_LETTERS: [char; 22] = [
+    'V', 'U', 'T', 'S', 'R', 'Q', 'P', 'M', 'N', 'L', 'K', 'J', 'H', 'G', 'F', 'E', 'D', 'C', 'B',
+    'A', 'O', 'I',
+];
 /// Most actuators a sequence may have.
 pub const MAX_ACTUATORS: usize = 12;
 
@@ -105,12 +110,44 @@ impl Sequence {
     /// The letters the memories of this sequence's modified sequences take:
     /// X, Y, Z, W unless an actuator has that name.
     pub fn memory_letters(&self) -> Vec<char> {
-        MEMORIES
+        // S and R are among the spare letters: the name check keeps the IL
+        // operators out, once (the GA decodes a sequence per individual).
+        static ALLOWED: std::sync::OnceLock<Vec<char>> = std::sync::OnceLock::new();
+        let allowed = ALLOWED.get_or_init(|| {
+            MEMORIES
+                .iter()
+                .chain(&MORE_MEMORY_LETTERS)
+                .copied()
+                .filter(|m| {
+                    let name = m.to_string();
+                    crate::names::synth_problem(&name, &memory_identifiers(&name)).is_none()
+                })
+                .collect()
+        });
+        allowed
             .iter()
-            .chain(&MORE_MEMORY_LETTERS)
             .copied()
             .filter(|m| !self.actuator_names.iter().any(|n| n == &m.to_string()))
             .take(MEMORIES.len())
+            .collect()
+    }
+
+    /// Why the names of this sequence's actuators cannot be the programs'
+    /// (`R`: its sensor `r` is an IL operator), one line per name.
+    pub fn name_problems(&self) -> Vec<String> {
+        self.actuator_names
+            .iter()
+            .filter_map(|name| {
+                let state = name.to_ascii_lowercase();
+                let ids = [
+                    state.clone(),
+                    format!("{state}_home"),
+                    format!("{state}_end"),
+                    format!("y{state}_p"),
+                    format!("y{state}_m"),
+                ];
+                crate::names::synth_problem(name, &ids)
+            })
             .collect()
     }
 
@@ -285,6 +322,17 @@ pub fn parse_with_memories(text: &str) -> Result<Sequence, String> {
     read(text, true)
 }
 
+/// The identifiers a memory named `name` gives the programs: its state and
+/// its set and reset outputs.
+fn memory_identifiers(name: &str) -> [String; 3] {
+    let state = name.to_ascii_lowercase();
+    [
+        state.clone(),
+        format!("{state}_set"),
+        format!("{state}_reset"),
+    ]
+}
+
 /// A name: actuators before memories, then by letters, then by number.
 fn name_order(name: &str) -> (String, u32) {
     let letters: String = name
@@ -427,5 +475,15 @@ mod tests {
         );
         assert!(parse_with_memories("A1 X1 A0 B1 X0 B0").unwrap().is_valid());
         assert!(parse("A1 B1 A0 B0").unwrap().is_valid());
+    }
+
+    #[test]
+    fn memories_skip_the_letters_il_reserves() {
+        let s = parse("W1 W0 X1 X0 Y1 Y0 Z1 Z0 V1 V0 U1 U0 T1 T0").unwrap();
+        // S and R follow T among the spare letters; Q, P, M, N come instead.
+        assert_eq!(s.memory_letters(), ['Q', 'P', 'M', 'N']);
+        assert_eq!(s.name_problems(), Vec::<String>::new());
+        let r = parse("R1 R0 S1 S0").unwrap();
+        assert_eq!(r.name_problems().len(), 2, "{:?}", r.name_problems());
     }
 }

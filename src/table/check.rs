@@ -39,34 +39,37 @@ pub fn check_machine(table: &StepTable, machine: &Machine, grid: &Grid, diags: &
 }
 
 /// A machine input or output may be called `stop` unless the program has a
-/// STOP button of that name (and likewise for the other buttons), also as
-/// Festo FST cuts it.
+/// STOP button of that name (and likewise for the other buttons): what the
+/// buttons add to the one name check ([`crate::names::signal_problem`]),
+/// which the table's own build ran without them. Said at the name's first
+/// cell, whether a wait, a jump or an output switch.
 fn check_button_names(table: &StepTable, buttons: &[String], grid: &Grid, diags: &mut Diagnostics) {
-    let first_cell = |name: Name| {
-        table.steps.iter().find_map(|s| {
-            s.waits
-                .iter()
-                .find(|w| w.input == name)
-                .map(|w| w.cell)
-                .or_else(|| s.switches.iter().find(|w| w.output == name).map(|w| w.cell))
-        })
-    };
     for name in table.inputs.iter().chain(&table.outputs) {
-        let clash = buttons.iter().find(|b| {
-            b.as_str() == name.as_str()
-                || crate::names::fst_stem(b) == crate::names::fst_stem(name.as_str())
-        });
-        if let (Some(button), Some(cell)) = (clash, first_cell(*name)) {
-            diags.error(
-                Code::E015BadName,
-                grid.location(cell),
-                format!(
-                    "\"{name}\" cannot name a machine signal while the program has the operating-mode button {}: rename the signal, or leave that mode out",
-                    button.to_ascii_uppercase()
-                ),
-            );
+        let name = name.as_str();
+        if crate::names::signal_problem(name, &[]).is_some() {
+            continue;
+        }
+        if let (Some(why), Some(cell)) = (
+            crate::names::signal_problem(name, buttons),
+            first_use(table, name),
+        ) {
+            diags.error(Code::E015BadName, grid.location(cell), why);
         }
     }
+}
+
+/// The first cell (in step order) that names a machine input or output.
+fn first_use(table: &StepTable, name: &str) -> Option<CellPos> {
+    table.steps.iter().find_map(|s| {
+        let waits = s.waits.iter().filter(|w| w.input.as_str() == name);
+        let jumps = s.jumps.iter().filter(|j| j.input.as_str() == name);
+        let switches = s.switches.iter().filter(|w| w.output.as_str() == name);
+        waits
+            .map(|w| w.cell)
+            .chain(jumps.map(|j| j.cell))
+            .chain(switches.map(|w| w.cell))
+            .min()
+    })
 }
 
 /// A home order is checked against the table whether or not it is used,
@@ -134,11 +137,38 @@ fn check_valves(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut Dia
     }
 }
 
+/// The actuators whose position a refused cell leaves unknown, from the
+/// step (index) of that cell on: a move checked against a position the
+/// refused `C2+l` would have given is no error of its own (no cascade).
+#[derive(Debug, Default)]
+pub(super) struct Refused {
+    from: BTreeMap<u32, usize>,
+    /// A refused move of an actuator nobody can tell (`Cx+1`).
+    any_from: Option<usize>,
+}
+
+impl Refused {
+    pub(super) fn add(&mut self, actuator: Option<u32>, step: usize) {
+        let slot = match actuator {
+            Some(a) => self.from.entry(a).or_insert(step),
+            None => self.any_from.get_or_insert(step),
+        };
+        *slot = (*slot).min(step);
+    }
+
+    /// Whether the position of `actuator` is unknown at step index `step`.
+    fn unknown(&self, actuator: u32, step: usize) -> bool {
+        self.any_from.is_some_and(|s| s <= step)
+            || self.from.get(&actuator).is_some_and(|s| *s <= step)
+    }
+}
+
 /// Resolves positions and checks the rules of DESIGN §2.
 pub(super) fn check(
     grid: &Grid,
     frame: &Frame,
     parsed: Vec<Vec<(CellItem, CellPos, usize)>>,
+    refused: &Refused,
     diags: &mut Diagnostics,
 ) -> Option<StepTable> {
     // pmax(i): the highest position written for Ci; at least 1.
@@ -286,7 +316,7 @@ pub(super) fn check(
                 Sign::Plus => to > from,
                 Sign::Minus => to < from,
             };
-            if !ok {
+            if !ok && !refused.unknown(m.actuator, index) {
                 let (need, verb) = match m.sign {
                     Sign::Plus => ("higher", "a + move extends"),
                     Sign::Minus => ("lower", "a - move retracts"),
@@ -314,7 +344,7 @@ pub(super) fn check(
     }
 
     for (actuator, (position, last_cell)) in &current {
-        if *position != 0 {
+        if *position != 0 && !refused.unknown(*actuator, usize::MAX) {
             let loc = match last_cell {
                 Some(pos) => location(*pos),
                 None => grid.sheet_location(),
@@ -329,7 +359,7 @@ pub(super) fn check(
         }
     }
 
-    check_jumps(&steps, grid, diags);
+    check_jumps(&steps, refused, grid, diags);
     Some(StepTable {
         file: grid.file.clone(),
         sheet: grid.sheet.clone(),
@@ -349,7 +379,7 @@ pub(super) fn check(
 
 /// Every jump goes to a step the table has, not to where the sequence goes
 /// anyway, and finds every actuator where its target step starts from.
-fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
+fn check_jumps(steps: &[Step], refused: &Refused, grid: &Grid, diags: &mut Diagnostics) {
     if steps.iter().all(|s| s.jumps.is_empty()) {
         return;
     }
@@ -374,6 +404,7 @@ fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
                 )),
                 _ => None,
             };
+            let why = why.or_else(|| waited_jump(step, jump));
             if let Some(why) = why {
                 diags.error(
                     Code::E028JumpTarget,
@@ -392,7 +423,9 @@ fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
             let away: Vec<String> = from
                 .iter()
                 .zip(expected.values())
-                .filter(|((_, at), wanted)| at != wanted)
+                .filter(|((actuator, at), wanted)| {
+                    at != wanted && !refused.unknown(**actuator, usize::MAX)
+                })
                 .map(|((actuator, at), wanted)| {
                     format!("C{actuator} at {wanted} (it stands at {at})")
                 })
@@ -414,6 +447,42 @@ fn check_jumps(steps: &[Step], grid: &Grid, diags: &mut Diagnostics) {
             }
         }
     }
+}
+
+/// A jump is tested once its step is done, and a step is done only when
+/// its waits are met: a jump on an input its own step waits for is then
+/// certain (the steps it leaves out never run) or impossible (its path
+/// never runs). Both are refused rather than proven on a path that cannot
+/// happen.
+fn waited_jump(step: &Step, jump: &Jump) -> Option<String> {
+    let wait = step.waits.iter().find(|w| w.input == jump.input)?;
+    let waited = format!(
+        "STEP {} waits for I:{}={}",
+        step.number,
+        jump.input,
+        u8::from(wait.value)
+    );
+    Some(if wait.value == jump.value {
+        let skipped = match jump.target {
+            Some(n) if n > step.number + 1 => {
+                format!("steps {}–{} never run", step.number + 1, n - 1)
+            }
+            Some(n) => format!(
+                "steps {n}–{} repeat for ever (the cycle never ends)",
+                step.number
+            ),
+            None => format!("the steps after STEP {} never run", step.number),
+        };
+        format!(
+            "{waited}, so once the step is done the jump is always taken and {skipped}; jump on another input, or take the wait out"
+        )
+    } else {
+        format!(
+            "{waited}, so I:{} is {} whenever the jump is tested and the jump is never taken; jump on another input, or take the wait out",
+            jump.input,
+            u8::from(wait.value)
+        )
+    })
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -459,26 +528,13 @@ impl Names {
             }
             return;
         }
-        let stem = |n: &Name| crate::names::fst_stem(n.as_str());
-        if let Some(reason) = crate::names::reserved_name(name.as_str()) {
-            diags.error(
-                Code::E015BadName,
-                grid.location(pos),
-                format!("\"{name}\" cannot name a machine signal: {reason}"),
-            );
-        } else if let Some(reason) = crate::names::reserved_name(&stem(&name)) {
-            // FST keeps 9 characters: the cut name must not be taken either.
-            diags.error(
-                Code::E015BadName,
-                grid.location(pos),
-                format!(
-                    "\"{name}\" cannot name a machine signal: Festo FST keeps its first 9 characters, \"{}\", and {reason}",
-                    stem(&name)
-                ),
-            );
+        if let Some(why) = crate::names::signal_problem(name.as_str(), &[]) {
+            diags.error(Code::E015BadName, grid.location(pos), why);
         }
-        if let Some((other, (_, other_pos))) =
-            self.first.iter().find(|(n, _)| stem(n) == stem(&name))
+        if let Some((other, (_, other_pos))) = self
+            .first
+            .iter()
+            .find(|(n, _)| crate::names::same_in_fst(n.as_str(), name.as_str()))
         {
             diags.error(
                 Code::E025NameClash,

@@ -258,17 +258,29 @@ pub(super) fn report_unused(grid: &Grid, frame: &Frame, diags: &mut Diagnostics)
             Some(match last_label(row) {
                 Some(k) if frame.labelled => {
                     format!(
-                        "its row (between STEP {k} and STEP {}) has no STEP label",
+                        "its row (between STEP {k} and STEP {}) has no STEP label; give it one, or move the cell into a step's row",
                         k + 1
                     )
                 }
                 _ => "its row is not a step of the table".to_string(),
             })
         } else if in_cols && below_header && row > last_row {
-            Some(format!(
-                "it lies below the table's last step (row {})",
-                last_row + 1
-            ))
+            // Its own row is named, not the last step's: that one is fine.
+            Some(match frame.label_col.filter(|_| frame.labelled) {
+                Some(col) => format!(
+                    "its row {} has no STEP label, and it lies below the table's last step, STEP {} (row {}); add the label STEP {} in {} to make it a step",
+                    row + 1,
+                    frame.step_rows.len(),
+                    last_row + 1,
+                    frame.step_rows.len() + 1,
+                    grid.cell_name(CellPos::new(row, col))
+                ),
+                None => format!(
+                    "its row {} lies below the table's last step (row {})",
+                    row + 1,
+                    last_row + 1
+                ),
+            })
         } else {
             None
         };

@@ -14,7 +14,8 @@ pub use dialect::choose_reading;
 use frame::find_frame;
 
 use crate::cell::{
-    CellError, CellItem, ItemError, MAX_ACTUATOR, MAX_POSITION, Name, Sign, parse_items,
+    CellError, CellItem, ItemError, MAX_ACTUATOR, MAX_POSITION, Name, Sign, item_texts,
+    move_attempt, not_a_move_hint, parse_items,
 };
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 use crate::read::{CellValue, Grid};
@@ -261,16 +262,15 @@ pub struct StepTable {
 
 impl StepTable {
     /// The homing stages RESET uses: `order`, checked to name every actuator
-    /// once, or by default the reverse order of the last moves (actuators
-    /// whose last move is in the same step go home together).
+    /// once, or by default the order in which the cycle itself returns them
+    /// home: each actuator's last move, earliest first (actuators whose last
+    /// move is in the same step go home together).
     pub fn home_stages(&self, order: Option<&[Vec<u32>]>) -> Result<Vec<Vec<u32>>, String> {
         if let Some(order) = order {
             let mut named: Vec<u32> = order.iter().flatten().copied().collect();
             named.sort_unstable();
-            let before = named.len();
-            named.dedup();
-            if named.len() != before {
-                return Err("the home order names an actuator twice".to_string());
+            if let Some(twice) = named.windows(2).find(|w| w[0] == w[1]) {
+                return Err(format!("the home order names C{} twice", twice[0]));
             }
             let all: Vec<u32> = self.actuators.iter().map(|a| a.number).collect();
             if let Some(extra) = named.iter().find(|n| !all.contains(n)) {
@@ -289,12 +289,13 @@ impl StepTable {
                 last.insert(m.actuator, step.number);
             }
         }
-        let mut stages: BTreeMap<std::cmp::Reverse<usize>, Vec<u32>> = BTreeMap::new();
+        // The cycle's own return order: an actuator's last move is its
+        // return home, and the cycle returns them in this order for a
+        // reason (the punch lifts before the clamp opens). Homing the other
+        // way round would undo the machine's safeguards.
+        let mut stages: BTreeMap<usize, Vec<u32>> = BTreeMap::new();
         for (actuator, step) in last {
-            stages
-                .entry(std::cmp::Reverse(step))
-                .or_default()
-                .push(actuator);
+            stages.entry(step).or_default().push(actuator);
         }
         Ok(stages.into_values().collect())
     }
@@ -375,10 +376,12 @@ pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
 
     // Parse every cell.
     let mut parsed: Vec<Vec<(CellItem, CellPos, usize)>> = Vec::with_capacity(rows.len());
-    for row in &rows {
+    let mut refused = check::Refused::default();
+    for (step, row) in rows.iter().enumerate() {
         let mut items = Vec::new();
         for raw in row {
-            for item in parse_cell(grid, raw, diags) {
+            let mut refuse = |actuator| refused.add(actuator, step);
+            for item in parse_cell(grid, raw, diags, &mut refuse) {
                 items.push((item, raw.pos, raw.branch));
             }
         }
@@ -414,7 +417,7 @@ pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
     }
     parsed.truncate(last_with_moves + 1);
 
-    let table = check::check(grid, &frame, parsed, diags);
+    let table = check::check(grid, &frame, parsed, &refused, diags);
     if diags.error_count() > errors_before {
         None
     } else {
@@ -422,7 +425,14 @@ pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
     }
 }
 
-fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Vec<CellItem> {
+/// The items of a cell; each refused move-like item is told to `refuse`
+/// with the actuator it was probably about.
+fn parse_cell(
+    grid: &Grid,
+    raw: &RawCell,
+    diags: &mut Diagnostics,
+    refuse: &mut dyn FnMut(Option<u32>),
+) -> Vec<CellItem> {
     let location = grid.location(raw.pos);
     let text = match &raw.value {
         CellValue::Text(t) => t,
@@ -445,11 +455,14 @@ fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Vec<CellIt
             );
             return Vec::new();
         }
-        CellValue::Date(d) => {
+        CellValue::Date(_) => {
             diags.error(
                 Code::E010NotAMove,
                 location,
-                format!("the date {d} is not a move (expected text such as C2+1; format the cell as text)"),
+                format!(
+                    "{} is not a move: the spreadsheet took what was typed for a date or time; format the cell as text and type the move, e.g. C2+1",
+                    raw.value.describe()
+                ),
             );
             return Vec::new();
         }
@@ -493,24 +506,38 @@ fn parse_cell(grid: &Grid, raw: &RawCell, diags: &mut Diagnostics) -> Vec<CellIt
         );
     }
     let mut items = Vec::with_capacity(results.len());
-    for result in results {
+    for (part, result) in item_texts(text).into_iter().zip(results) {
         match result {
             Ok(item) => items.push(item),
-            Err(error) => report_item_error(error, text, &location, diags),
+            Err(error) => {
+                if let Some(actuator) = move_attempt(part) {
+                    refuse(actuator);
+                }
+                report_item_error(error, text, part, &location, diags)
+            }
         }
     }
     items
 }
 
-fn report_item_error(error: ItemError, text: &str, location: &Location, diags: &mut Diagnostics) {
+/// Reports a refused item of the cell `text`: E010 quotes the item
+/// (`part`) and says what it was probably meant to be.
+fn report_item_error(
+    error: ItemError,
+    text: &str,
+    part: &str,
+    location: &Location,
+    diags: &mut Diagnostics,
+) {
     let location = location.clone();
     match error {
         ItemError::Move(CellError::NotAMove) => diags.error(
             Code::E010NotAMove,
             location,
             format!(
-                "\"{}\" is not a move (expected C<number>+<position>, e.g. C2+1)",
-                text.trim()
+                "\"{}\" is not a move ({})",
+                part.trim(),
+                not_a_move_hint(part)
             ),
         ),
         ItemError::Move(CellError::BadActuator(n)) => diags.error(

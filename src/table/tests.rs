@@ -62,7 +62,9 @@ fn reads_a_bare_grid() {
 fn reports_every_error_with_its_cell() {
     let errs = errors(&[
         &["", "BRANCH 1", "BRANCH 2"],
-        &["STEP 1", "C1+1", "C2+x"],
+        // C3, not C2: a refused move of C2 would leave C2's position
+        // unknown, and its E022 below unsaid (no cascade).
+        &["STEP 1", "C1+1", "C3+x"],
         &["STEP 2", "C1+1", ""],
         &["STEP 3", "C2+1", "C2-0"],
         &["STEP 4", "", ""],
@@ -70,7 +72,7 @@ fn reports_every_error_with_its_cell() {
     ]);
     let joined = errs.join("\n");
     assert!(
-        joined.contains("S!C2: error[E010]: \"C2+x\" is not a move"),
+        joined.contains("S!C2: error[E010]: \"C3+x\" is not a move"),
         "{joined}"
     );
     assert!(joined.contains("S!B3: error[E020]"), "{joined}");

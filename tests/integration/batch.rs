@@ -28,7 +28,8 @@ fn folder_of_inputs(dir: &std::path::Path) -> std::path::PathBuf {
     std::fs::copy(sample("drilling_station.xlsx"), input.join("drill.xlsx")).unwrap();
     std::fs::write(
         input.join("bad.csv"),
-        ",BRANCH 1\nSTEP 1,C1+x\nSTEP 2,C1-0\n",
+        // Two errors of their own: C2-0 is wrong whatever C1+x meant.
+        ",BRANCH 1\nSTEP 1,C1+x\nSTEP 2,C2-0\n",
     )
     .unwrap();
     std::fs::write(input.join("notes.txt"), "not a table").unwrap();
@@ -344,7 +345,7 @@ fn a_batch_never_overwrites_an_input() {
     assert!(!output.status.success(), "{stdout}");
     assert!(stdout.contains("1 converted, 1 failed"), "{stdout}");
     assert!(
-        stdout.contains("refusing to overwrite an input file"),
+        stdout.contains("error[E040]: is an input of this run"),
         "{stdout}"
     );
     assert_eq!(std::fs::read(&kept).unwrap(), before);

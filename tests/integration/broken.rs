@@ -234,8 +234,8 @@ fn an_input_is_never_overwritten() {
         .arg("-o")
         .arg(dir.path())
         .assert()
-        .code(2)
-        .stderr(contains("refusing to overwrite an input file"));
+        .code(1)
+        .stderr(contains("error[E040]: is an input of this run"));
     assert_eq!(std::fs::read(&input).unwrap(), before);
     assert_eq!(files_below(dir.path()), [input]);
 }

@@ -183,14 +183,15 @@ fn a_start_permissive_is_an_input_a_cycle_needs_to_start() {
         stdout.contains("air_ok short circuit (stuck at 1) no effect at every moment the input never reads other than without the fault"),
         "{stdout}"
     );
-    // Not a name an input may have, an output, an input a step waits for.
-    for (name, why) in [
-        ("start", "cannot name a machine signal"),
+    // Not a name an input may have (E015, as in a table cell), an output.
+    for (name, code, why) in [
+        ("start", "E015", "cannot name a machine signal"),
         (
             "heater",
+            "E030",
             "heater is a machine output of the table, not an input",
         ),
-        ("air ok", "is not a name"),
+        ("air ok", "E015", "is not a name"),
     ] {
         let input = workbook(dir.path(), &[&["start permissive", name]]);
         steptable()
@@ -198,7 +199,9 @@ fn a_start_permissive_is_an_input_a_cycle_needs_to_start() {
             .arg(&input)
             .assert()
             .code(1)
-            .stderr(contains("SETTINGS!B1: error[E030]: start permissive: "))
+            .stderr(contains(format!(
+                "SETTINGS!B1: error[{code}]: start permissive: "
+            )))
             .stderr(contains(why));
     }
 }

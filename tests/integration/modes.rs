@@ -263,13 +263,14 @@ fn reset_brings_every_actuator_home_from_any_step() {
 }
 
 #[test]
-fn default_home_order_is_the_reverse_of_the_last_moves() {
+fn default_home_order_is_the_cycles_own_return_order() {
     let table = paper();
     let modes = Modes::parse("reset").unwrap();
-    // C1's last move is in step 8, C2, C3 and C4's in step 7.
+    // C2, C3 and C4's last moves are in step 7, C1's in step 8: the cycle
+    // returns C2-C4 first, and so does RESET.
     assert_eq!(
         modes.home_stages(&table).unwrap(),
-        vec![vec![1], vec![2, 3, 4]]
+        vec![vec![2, 3, 4], vec![1]]
     );
     let custom = Modes {
         home_order: Some(Modes::parse_home_order("C3&C4, C2, C1").unwrap()),

@@ -156,6 +156,8 @@ fn a_dead_limit_switch_leaves_the_drive_running_until_a_halt_cuts_it() {
             .args(["faults", "--valve"])
             .args(extra)
             .arg(&table)
+            .arg("-o")
+            .arg(dir.path().join("out"))
             .assert()
             .success();
         line_with(&squeezed_stdout(&assert), "x11 open circuit")

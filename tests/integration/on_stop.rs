@@ -347,7 +347,8 @@ fn a_halt_switches_the_heater_off_and_lets_the_fan_run_on() {
         let assert = steptable()
             .arg("faults")
             .arg(&path)
-            .args(["--safety", "watchdog"])
+            .args(["--safety", "watchdog", "-o"])
+            .arg(dir.path().join("out"))
             .assert()
             .success();
         line_with(&squeezed_stdout(&assert), "x11 open circuit")

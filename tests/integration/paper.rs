@@ -196,7 +196,23 @@ fn outputs_are_byte_stable_and_reruns_replace_them() {
         .iter()
         .map(|p| std::fs::read(p).unwrap())
         .collect();
-    std::fs::write(out.join("paper_example.st"), "stale").unwrap();
+    // A run with other settings replaces them (its manifest vouches for
+    // them), and so does the next; an output edited by hand is refused
+    // instead (`output_places.rs`).
+    steptable()
+        .arg("convert")
+        .arg(sample("paper_example.xlsx"))
+        .args(["--target", "iec", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    assert_ne!(
+        std::fs::read(out.join("paper_example.st")).unwrap(),
+        first[crate::helpers::files_below(&out)
+            .iter()
+            .position(|p| p.ends_with("paper_example.st"))
+            .unwrap()]
+    );
     convert_paper(dir.path());
     let second: Vec<Vec<u8>> = crate::helpers::files_below(&out)
         .iter()

@@ -1,16 +1,64 @@
 //! Every function, function block and type of the IEC libraries matiec and
 //! OpenPLC compile against is refused as a machine signal name (E015): a
-//! signal named like one would not compile.
+//! signal named like one would not compile. And every letter synth takes
+//! gives programs matiec compiles; the letters it refuses are the ones
+//! that would not (R and S, IL operators).
 
 use steptable::names::reserved_name;
 
+use crate::engines::matiec;
+use crate::helpers::steptable;
 use crate::{Check, Tool, shared};
 
-pub const CHECKS: &[Check] = &[Check::new(
-    "names::every_iec_library_name_is_reserved",
-    &[Tool::Shared],
-    every_iec_library_name_is_reserved,
-)];
+pub const CHECKS: &[Check] = &[
+    Check::new(
+        "names::every_iec_library_name_is_reserved",
+        &[Tool::Shared],
+        every_iec_library_name_is_reserved,
+    ),
+    Check::new(
+        "names::every_letter_synth_takes_compiles_in_matiec",
+        &[Tool::Shared],
+        every_letter_synth_takes_compiles_in_matiec,
+    ),
+];
+
+/// Each letter as an actuator (with K, or J beside K), and the memories a
+/// sequence of W, X, Y, Z, V, U takes instead (T, Q, P: S and R skipped):
+/// synth refuses (E015) or writes ST and IL that matiec compiles.
+fn every_letter_synth_takes_compiles_in_matiec() {
+    let shared = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let mut sequences: Vec<String> = ('A'..='Z')
+        .map(|l| {
+            let other = if l == 'K' { 'J' } else { 'K' };
+            format!("{l}1 {l}0 {other}1 {other}0")
+        })
+        .collect();
+    sequences.push("W1 W0 X1 X0 Y1 Y0 Z1 Z0 V1 V0 U1 U0".to_string());
+    let mut refused = Vec::new();
+    for (k, text) in sequences.iter().enumerate() {
+        let out = dir.path().join(format!("s{k}"));
+        let output = steptable()
+            .args(["synth", "--sequence", text, "--method", "exact", "-o"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        if output.status.code() == Some(1) && stderr.contains("error[E015]") {
+            refused.push(text[..1].to_string());
+            continue;
+        }
+        assert!(output.status.success(), "{text}: {stderr}");
+        for file in ["sequence.equations.st", "sequence.equations.il"] {
+            let work = dir.path().join(format!("c{k}-{file}"));
+            std::fs::create_dir_all(&work).unwrap();
+            let path = out.join("sequence").join(file);
+            matiec::compile(&shared, &path, &work).unwrap_or_else(|e| panic!("{text}: {e}"));
+        }
+    }
+    assert_eq!(refused, ["R", "S"]);
+}
 
 fn every_iec_library_name_is_reserved() {
     let shared = shared();

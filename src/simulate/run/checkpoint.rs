@@ -112,6 +112,7 @@ impl<'a> Drive<'a> {
             &run.pending,
             &run.answered,
             run.jump_given,
+            &run.declined,
             &run.dwells,
             run.alarmed,
             run.hazard_seen,

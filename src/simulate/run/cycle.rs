@@ -87,6 +87,7 @@ impl<'a> Drive<'a> {
                 steps: Vec::new(),
                 cycle_ms: None,
                 jump: None,
+                declined: Vec::new(),
             },
             fire_times: Vec::new(),
             last_event: 0,
@@ -137,6 +138,7 @@ impl<'a> Drive<'a> {
                     steps: Vec::new(),
                     cycle_ms: None,
                     jump: None,
+                    declined: Vec::new(),
                 };
                 self.fire_times.clear();
                 self.last_event = self.run.time_ms;
@@ -148,6 +150,7 @@ impl<'a> Drive<'a> {
                     .checked_sub(plain)
                     .and_then(|n| jumps_to_take(self.run.table).nth(n));
                 self.run.jump_given = false;
+                self.run.declined.clear();
                 self.report.jump = self
                     .run
                     .jump_taken
@@ -262,7 +265,7 @@ impl<'a> Drive<'a> {
         }
         let number = index + 1;
         let message = format!(
-            "cycle {} was to take {} after step {number}, but {} (the machine gives I:{} {} after its step starts)",
+            "cycle {} was to take {} after step {number}, but {} (the machine gives I:{} {})",
             self.cycle + 1,
             jump.notation(),
             match after {
@@ -270,7 +273,10 @@ impl<'a> Drive<'a> {
                 None => "the cycle ended first".to_string(),
             },
             jump.input,
-            seconds(self.run.world.settings.input_delay_ms(&jump.input) as u64),
+            match self.run.world.settings.input_delays.get(&jump.input) {
+                Some(&ms) => format!("{} after its step starts", seconds(u64::from(ms))),
+                None => "as its step starts".to_string(),
+            },
         );
         self.run.problem(ProblemKind::CycleDiffers, number, message);
     }
@@ -284,8 +290,14 @@ impl<'a> Drive<'a> {
                 steps: Vec::new(),
                 cycle_ms: None,
                 jump: None,
+                declined: Vec::new(),
             },
         );
+        let mut declined = std::mem::take(&mut self.run.declined);
+        // A jump back tests its jumps again: each once.
+        let mut seen = std::collections::BTreeSet::new();
+        declined.retain(|d| seen.insert(d.clone()));
+        report.declined = declined;
         report.steps = timings(
             self.run.program,
             &self.fire_times,

@@ -126,6 +126,7 @@ impl<'a> Run<'a> {
             answered: Vec::new(),
             jump_taken: None,
             jump_given: false,
+            declined: Vec::new(),
             table,
             dwells: Vec::new(),
             spans: Vec::new(),

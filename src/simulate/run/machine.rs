@@ -170,19 +170,38 @@ impl Run<'_> {
                 }
             }
         }
-        // The cycle that takes a jump: the machine gives its input once
-        // the jump's step has fired (a part found bad, an abort pressed).
-        if let Some((index, jump)) = self.jump_taken
-            && index == fired
-            && !self.jump_given
+        // Every jump of the step that fired is tested once the step is
+        // done: the machine gives each jump input the value this cycle's
+        // path needs, from the step's start (a step shorter than the input
+        // delay must still see it) unless `--input-delay` names the input.
+        // The cycle that takes a jump gives its value once (a jump back
+        // must not loop for ever); every other jump is not taken.
+        if step.kind == StepKind::Table
+            && let Some(table_step) = self.table.steps.get(fired)
         {
-            self.jump_given = true;
-            let delay = self.world.settings.input_delay_ms(&jump.input) as u64;
-            if !self.answered.contains(&jump.input) {
-                self.answered.push(jump.input);
+            for jump in &table_step.jumps {
+                let take = !self.jump_given && self.jump_taken == Some((fired, *jump));
+                self.jump_given |= take;
+                let value = if take { jump.value } else { !jump.value };
+                self.pending.retain(|(_, n, _)| *n != jump.input);
+                if !self.answered.contains(&jump.input) {
+                    self.answered.push(jump.input);
+                }
+                let delay = self.world.settings.input_delays.get(&jump.input);
+                match delay {
+                    Some(&ms) if take && ms > 0 => {
+                        self.world.machine.insert(jump.input, !value);
+                        self.pending
+                            .push((self.time_ms + u64::from(ms), jump.input, value));
+                    }
+                    _ => {
+                        self.world.machine.insert(jump.input, value);
+                    }
+                }
+                if !take {
+                    self.declined.push((fired + 1, jump.notation()));
+                }
             }
-            self.pending
-                .push((self.time_ms + delay, jump.input, jump.value));
         }
     }
 }

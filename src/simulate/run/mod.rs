@@ -65,6 +65,9 @@ pub(in crate::simulate) struct Run<'a> {
     /// The machine has given that jump's input in this cycle (once: a
     /// jump back must not loop for ever).
     pub(in crate::simulate) jump_given: bool,
+    /// The jumps tested and not taken in the cycle under way (the step
+    /// they leave, one-based, and the jump): the other side of each path.
+    pub(in crate::simulate) declined: Vec<(usize, String)>,
     pub(in crate::simulate) table: &'a StepTable,
     /// Dwell timers: PLC index, dwell number, when it started (if running).
     pub(in crate::simulate) dwells: Vec<(usize, u16, Option<u64>)>,

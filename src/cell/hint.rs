@@ -1,0 +1,149 @@
+//! What a table item that is not a move was probably meant to be: a dwell,
+//! wait or output written without its `=` or `:`, items split by `,`
+//! instead of `;`, a letter typed for a digit (`C2+l`), or the letter
+//! notation of `synth --sequence`. E010 says it in the engineer's terms, and
+//! the table check knows which actuator a refused move was about.
+
+use super::{normalize, parse_dwell, parse_item, parse_move};
+
+/// Why `item` is not a move, shaped by what it looks like: "did you mean
+/// C2+1? …", or the grammar when nothing fits better.
+pub fn not_a_move_hint(item: &str) -> String {
+    let text = item.trim();
+    let norm = normalize(text);
+    if let Some(items) = split_by_comma(text) {
+        return format!("separate items with `;`, not `,`: {}", items.join("; "));
+    }
+    if let Some(fixed) = digit_for_letter(&norm) {
+        return format!("did you mean {fixed}? A letter stands where a digit belongs");
+    }
+    if let Some(rest) = norm.strip_prefix('T') {
+        let rest = rest
+            .trim_start_matches([':', '-', '.'])
+            .to_ascii_lowercase();
+        if parse_dwell(&rest).is_some() {
+            return format!("did you mean T={rest}? A dwell is written T=<time>, e.g. T=2s");
+        }
+    }
+    if let Some(fixed) = missing_colon(text) {
+        let how = match fixed.as_bytes()[0] {
+            b'I' => "A wait is written I:<input>, e.g. I:part_present",
+            b'Y' => "An output is switched with Y:<output>+ or Y:<output>-",
+            _ => "A jump is written J:<step> if I:<input>",
+        };
+        return format!("did you mean {fixed}? {how}");
+    }
+    if is_letter_notation(&norm) {
+        return "a table writes moves as C<number>+<position>, e.g. C1+1 and C1-0; letter notation (A+, A1, B0) is for synth --sequence".to_string();
+    }
+    "expected C<number>+<position>, e.g. C2+1".to_string()
+}
+
+/// What a refused item did to an actuator: `None` when it is no move at
+/// all (a dwell typo), `Some(Some(n))` when it was a move of Cn (`C2+l`,
+/// `C2+99`), `Some(None)` when it was a move of an actuator nobody can
+/// tell (`Cx+1`).
+pub fn move_attempt(item: &str) -> Option<Option<u32>> {
+    let norm = normalize(item);
+    if let Some(fixed) = digit_for_letter(&norm) {
+        return Some(parse_move(&fixed).ok().map(|m| m.actuator));
+    }
+    let rest = norm.strip_prefix('C')?;
+    if !rest.contains(['+', '-']) {
+        return None;
+    }
+    let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
+    Some(digits.parse().ok())
+}
+
+/// `C1+1, T=1s`: items that each parse, split by a comma.
+fn split_by_comma(text: &str) -> Option<Vec<String>> {
+    let parts: Vec<String> = text
+        .split([',', '\u{FF0C}'])
+        .map(|p| p.trim().to_string())
+        .filter(|p| !p.is_empty())
+        .collect();
+    (parts.len() > 1 && parts.iter().all(|p| parse_item(p).is_ok())).then_some(parts)
+}
+
+/// `C2+l`, `CI+1`, `C1+O` read with 1 and 0 for the look-alike letters,
+/// when that makes a move.
+fn digit_for_letter(norm: &str) -> Option<String> {
+    let rest = norm.strip_prefix('C')?;
+    let fixed: String = rest
+        .chars()
+        .map(|c| match c {
+            'L' | 'I' | '|' => '1',
+            'O' => '0',
+            other => other,
+        })
+        .collect();
+    let fixed = format!("C{fixed}");
+    (fixed != norm && parse_move(&fixed).is_ok()).then_some(fixed)
+}
+
+/// `I part`, `Y vac+`, `J 6 if I:x`: a wait, output or jump without its
+/// colon, when the colon makes it one.
+fn missing_colon(text: &str) -> Option<String> {
+    let mut chars = text.chars();
+    let letter = chars.next()?.to_ascii_uppercase();
+    if !matches!(letter, 'I' | 'Y' | 'J') {
+        return None;
+    }
+    let rest = chars.as_str();
+    // A separator, not a colon, after the letter (`Idle` is a word).
+    if !rest.starts_with(|c: char| c.is_whitespace() || matches!(c, '=' | '.' | '-')) {
+        return None;
+    }
+    let rest = rest.trim_start().trim_start_matches(['=', '.', '-']).trim();
+    let fixed = format!("{letter}:{rest}");
+    parse_item(&fixed).is_ok().then_some(fixed)
+}
+
+/// `A+`, `A1`, `B0`: one letter and a direction, as `synth --sequence`
+/// writes a move.
+fn is_letter_notation(norm: &str) -> bool {
+    let mut chars = norm.chars();
+    matches!(
+        (chars.next(), chars.next(), chars.next()),
+        (Some('A'..='Z'), Some('0' | '1' | '+' | '-'), None)
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_typo_gets_its_own_hint() {
+        for (item, hint) in [
+            ("C2+l", "did you mean C2+1?"),
+            ("CI+1", "did you mean C1+1?"),
+            ("C1+O", "did you mean C1+0?"),
+            ("T 1s", "did you mean T=1s? A dwell"),
+            ("T:1.5s", "did you mean T=1.5s?"),
+            ("I part", "did you mean I:part? A wait"),
+            ("Y vac+", "did you mean Y:vac+? An output"),
+            ("C1+1, T=1s", "separate items with `;`, not `,`: C1+1; T=1s"),
+            ("A+", "a table writes moves as C<number>+<position>"),
+            ("b0", "a table writes moves as C<number>+<position>"),
+            ("C2+x", "expected C<number>+<position>, e.g. C2+1"),
+            ("=C1+1", "expected C<number>+<position>"),
+            ("T=1,5s", "expected C<number>+<position>"),
+            ("Idle", "expected C<number>+<position>"),
+        ] {
+            let got = not_a_move_hint(item);
+            assert!(got.starts_with(hint), "{item}: {got}");
+        }
+    }
+
+    #[test]
+    fn a_refused_move_names_its_actuator() {
+        assert_eq!(move_attempt("C2+l"), Some(Some(2)));
+        assert_eq!(move_attempt("CI+1"), Some(Some(1)));
+        assert_eq!(move_attempt("C2+99"), Some(Some(2)));
+        assert_eq!(move_attempt("Cx+1"), Some(None));
+        assert_eq!(move_attempt("T 1s"), None);
+        assert_eq!(move_attempt("I part"), None);
+    }
+}

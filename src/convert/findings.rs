@@ -1,0 +1,93 @@
+//! What a conversion found, in the few lines `convert` prints under each
+//! input: the simulation's verdict and cycle time, the fault table's
+//! hazards with the first one's cause, the order RESET homes in, and — for
+//! a program without operating modes — that it has no STOP or EMERGENCY
+//! STOP and which option adds them. The engineer should not have to open
+//! seventeen files to learn what steptable already knows.
+
+use crate::faults::{FaultTable, Outcome};
+use crate::program::Modes;
+use crate::simulate::SimReport;
+use crate::table::StepTable;
+
+/// The lines, most important first, without the input's name.
+pub fn lines(
+    table: &StepTable,
+    modes: &Modes,
+    simulation: &SimReport,
+    faults: Option<&FaultTable>,
+) -> Vec<String> {
+    let mut lines = vec![format!("simulation {}", simulation.verdict())];
+    if let Some(faults) = faults {
+        lines.push(hazards(faults));
+    }
+    if modes.reset
+        && let Ok(stages) = modes.home_stages(table)
+    {
+        lines.push(format!("RESET homes {}", stages_text(&stages)));
+    }
+    let missing: Vec<&str> = [(modes.stop, "STOP"), (modes.estop, "EMERGENCY STOP")]
+        .into_iter()
+        .filter_map(|(has, name)| (!has).then_some(name))
+        .collect();
+    if !missing.is_empty() {
+        lines.push(format!(
+            "note: the program has no {} button (--modes all, or a `modes` row on SETTINGS, adds STOP, EMERGENCY STOP, RESET and continuous operation)",
+            missing.join(" or ")
+        ));
+    }
+    lines
+}
+
+/// `fault table: 3 hazard(s) among 24 fault case(s); first: x22 open
+/// circuit (stuck at 0) in step 5: …`, or that there is none.
+fn hazards(faults: &FaultTable) -> String {
+    let count = faults.count(Outcome::Hazard);
+    let cases = faults.cases.len();
+    let Some(first) = faults.cases.iter().find(|c| c.outcome == Outcome::Hazard) else {
+        return format!("fault table: no hazard among {cases} fault case(s)");
+    };
+    let step = first
+        .step
+        .map(|s| format!(" in step {s}"))
+        .unwrap_or_default();
+    format!(
+        "fault table: {count} hazard(s) among {cases} fault case(s); first: {}{step}: {}",
+        first.fault_text(),
+        first.explanation
+    )
+}
+
+/// `C2, C3 & C4, then C1`: stages in order, actuators of a stage together.
+fn stages_text(stages: &[Vec<u32>]) -> String {
+    let stage = |s: &Vec<u32>| {
+        let names: Vec<String> = s.iter().map(|n| format!("C{n}")).collect();
+        match names.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} & {last}", rest.join(", ")),
+            _ => names.join(""),
+        }
+    };
+    let texts: Vec<String> = stages.iter().map(stage).collect();
+    match texts.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{}, then {last}", rest.join(", then ")),
+        _ => texts.join(""),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stages_read_in_order() {
+        assert_eq!(
+            stages_text(&[vec![2, 3, 4], vec![1]]),
+            "C2, C3 & C4, then C1"
+        );
+        assert_eq!(stages_text(&[vec![1]]), "C1");
+        assert_eq!(
+            stages_text(&[vec![2], vec![1], vec![3]]),
+            "C2, then C1, then C3"
+        );
+    }
+}

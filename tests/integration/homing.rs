@@ -1,0 +1,126 @@
+//! RESET's default homing order is the cycle's own return order: a stamping
+//! station whose cycle lifts the punch before it opens the clamp must not
+//! release the part under the tool when RESET homes it mid-cycle.
+
+use steptable::simulate::scenario::{ScenarioReport, scenario};
+use steptable::simulate::{Operator, SimSettings};
+use steptable::table::from_rows;
+
+use crate::helpers::{Build, steptable};
+
+/// Clamp C1, punch C2 with a dwell, ejector C3, feeder C4.
+const STAMPING: [&str; 9] = [
+    "C1+1", "C2+1", "T=2s", "C2-0", "C1-0", "C3+1", "C3-0", "C4+1", "C4-0",
+];
+
+const IDLE: Operator = Operator {
+    start: false,
+    continuous: false,
+    stop: false,
+    estop: false,
+    reset: false,
+};
+
+fn position(report: &ScenarioReport, time_ms: u64, actuator: usize) -> f64 {
+    report.at(time_ms).expect("sampled").positions[actuator]
+}
+
+#[test]
+fn reset_lifts_the_punch_before_it_opens_the_clamp() {
+    let rows: Vec<Vec<String>> = STAMPING.iter().map(|c| vec![c.to_string()]).collect();
+    let table = from_rows("stamping.csv", &rows).unwrap();
+    let build = Build {
+        table: table.clone(),
+        settings: steptable::settings::Settings::new(),
+    }
+    .modes("estop,reset");
+    let program = build.program();
+    let settings = SimSettings::default();
+    // START at 0.5 s; C1 clamps (1 s), C2 punches (1 s), then 2 s dwell:
+    // at 3.5 s the punch is down in the dwell. ESTOP there, RESET after.
+    let script = vec![
+        (
+            500,
+            Operator {
+                start: true,
+                ..IDLE
+            },
+        ),
+        (600, IDLE),
+        (
+            3_500,
+            Operator {
+                estop: true,
+                ..IDLE
+            },
+        ),
+        (3_700, IDLE),
+        (
+            4_000,
+            Operator {
+                reset: true,
+                ..IDLE
+            },
+        ),
+        (4_100, IDLE),
+    ];
+    let report = scenario(&table, &program, &settings, &script, 10_000);
+    assert!(
+        position(&report, 3_500, 0) > 0.95 && position(&report, 3_500, 1) > 0.95,
+        "clamped and punched before the stop: {:?}",
+        report.at(3_500)
+    );
+    // The first moment after RESET at which the clamp has left its end.
+    let opened = report
+        .samples
+        .iter()
+        .find(|s| s.time_ms > 4_000 && s.positions[0] < 0.95)
+        .expect("RESET opens the clamp");
+    assert!(
+        opened.positions[1] < 0.05,
+        "the clamp opened at {} ms with the punch at {:.2}",
+        opened.time_ms,
+        opened.positions[1]
+    );
+    assert!(position(&report, 9_900, 0) < 0.05 && position(&report, 9_900, 1) < 0.05);
+}
+
+/// The order RESET homes in is written into the program as its comment.
+#[test]
+fn the_programs_say_the_homing_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("stamping.csv");
+    std::fs::write(&csv, STAMPING.join("\n")).unwrap();
+    steptable()
+        .args(["convert", "--modes", "all", "--formats", "st", "-o"])
+        .arg(dir.path().join("out"))
+        .arg(&csv)
+        .assert()
+        .success();
+    let st = std::fs::read_to_string(dir.path().join("out/stamping/stamping.st")).unwrap();
+    let stage = |text: &str| st.find(text).unwrap_or_else(|| panic!("{text} in {st}"));
+    assert!(stage("homing stage 1: C2 home") < stage("homing stage 2: C1 home"));
+}
+
+/// A home order that names an actuator twice says which one.
+#[test]
+fn a_home_order_naming_an_actuator_twice_says_which() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .args([
+            "convert",
+            "--modes",
+            "all",
+            "--home-order",
+            "C2&C3&C4, C1, C3",
+            "-o",
+        ])
+        .arg(dir.path().join("out"))
+        .arg(crate::helpers::sample("paper_example.csv"))
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "error[E030]: the home order names C3 twice",
+        ));
+    assert!(!dir.path().join("out").exists());
+}
