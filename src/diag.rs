@@ -141,6 +141,24 @@ impl Code {
     }
 }
 
+/// `a, b or c`: the valid values of a setting, as messages, `--help` and
+/// the template list them (each list is built from its type's own list of
+/// values, so a value added there is never left out here).
+pub fn or_list<S: AsRef<str>>(items: &[S]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.as_ref().to_string(),
+        [rest @ .., last] => format!(
+            "{} or {}",
+            rest.iter()
+                .map(|s| s.as_ref())
+                .collect::<Vec<_>>()
+                .join(", "),
+            last.as_ref()
+        ),
+    }
+}
+
 /// Where a cell is: zero-based absolute row and column on its sheet.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct CellPos {

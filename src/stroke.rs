@@ -65,13 +65,13 @@ pub fn parse_strokes(text: &str) -> Result<BTreeMap<u32, Stroke>, String> {
                 format!("\"{item}\": \"{t}\" is not a stroke time such as 1.5s or 800ms")
             })
         };
-        strokes.insert(
-            actuator,
-            Stroke {
-                extend_ms: parse(extend)?,
-                retract_ms: parse(retract)?,
-            },
-        );
+        let stroke = Stroke {
+            extend_ms: parse(extend)?,
+            retract_ms: parse(retract)?,
+        };
+        if strokes.insert(actuator, stroke).is_some() {
+            return Err(crate::valve::given_twice(item, actuator));
+        }
     }
     Ok(strokes)
 }

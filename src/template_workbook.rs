@@ -89,28 +89,54 @@ fn table_layout(
 }
 
 /// The custom validation rule of one move cell (relative to its top-left
-/// cell B4): empty, or `C` (also Cyrillic or full-width) then a digit (also
-/// subscript or full-width), spaces aside, with a sign somewhere (+, -, the
-/// minus sign, dashes, full-width and raised or lowered signs: every spelling
-/// the reader accepts), or a cell starting with a dwell `T=`, a wait `I:` or
-/// an output `Y:`. The tool's own check is stricter; this catches typing
-/// slips while typing.
+/// cell B4), accepting every cell the reader accepts. With the white space
+/// the reader ignores left out (`squeezed`): empty, or starting with a `;`
+/// (an empty first item; `FIND("", …)` is 1, so a cell of only white space
+/// passes here too); a first item that is a move — `C` (also Cyrillic or
+/// full-width) then a digit (also subscript, superscript or full-width),
+/// with a sign somewhere (+, -, the minus sign, dashes, full-width and
+/// raised or lowered signs); or one that starts with a dwell `T=`, a wait
+/// `I:`, an output `Y:` or a jump `J:`. The tool's own check is stricter;
+/// this catches typing slips while typing.
 fn move_rule() -> Formula {
+    let squeezed = squeezed();
     let signs: String = MOVE_SIGNS
         .chars()
         .map(|c| format!("ISNUMBER(FIND(\"{c}\",B4))"))
         .collect::<Vec<_>>()
         .join(",");
+    let starts = ITEM_STARTS.join("|");
     Formula::new(format!(
-        "=OR(TRIM(B4)=\"\",AND(ISNUMBER(FIND(LEFT(TRIM(B4),1),\"{MOVE_LETTERS}\")),\
-         OR(ISNUMBER(VALUE(MID({SQUEEZED},2,1))),ISNUMBER(FIND(MID({SQUEEZED},2,1),\"{MOVE_DIGITS}\"))),\
+        "=OR(TRIM(B4)=\"\",ISNUMBER(FIND(LEFT({squeezed},1),\";\u{FF1B}\")),\
+         AND(ISNUMBER(FIND(LEFT({squeezed},1),\"{MOVE_LETTERS}\")),\
+         ISNUMBER(FIND(MID({squeezed},2,1),\"0123456789{MOVE_DIGITS}\")),\
          OR({signs})),\
-         LEFT(UPPER(TRIM(B4)),2)=\"T=\",LEFT(UPPER(TRIM(B4)),2)=\"I:\",LEFT(UPPER(TRIM(B4)),2)=\"Y:\")"
+         ISNUMBER(FIND(\"|\"&LEFT(UPPER({squeezed}),2)&\"|\",\"|{starts}|\")))"
     ))
 }
 
-/// The cell without spaces (also no-break ones), to find its second character.
-const SQUEEZED: &str = "SUBSTITUTE(SUBSTITUTE(TRIM(B4),\" \",\"\"),\"\u{00A0}\",\"\")";
+/// The cell without the white space the reader ignores (every character
+/// `cell::normalize` drops): `CLEAN` takes out the control characters (tab,
+/// line breaks), `SUBSTITUTE` each other one by its code (`UNICHAR`), so
+/// that no unusual character is written into the formula.
+fn squeezed() -> String {
+    let mut text = "CLEAN(B4)".to_string();
+    for c in IGNORED_SPACES.iter().filter(|c| **c as u32 > 31) {
+        text = format!("SUBSTITUTE({text},UNICHAR({}),\"\")", *c as u32);
+    }
+    text
+}
+
+/// Every character the reader ignores in a cell: Unicode's white space
+/// (`char::is_whitespace`) and the zero-width ones (a test checks this
+/// against `cell::normalize` over every character).
+pub const IGNORED_SPACES: [char; 30] = [
+    '\t', '\n', '\u{B}', '\u{C}', '\r', ' ', '\u{85}', '\u{A0}', '\u{1680}', '\u{2000}',
+    '\u{2001}', '\u{2002}', '\u{2003}', '\u{2004}', '\u{2005}', '\u{2006}', '\u{2007}', '\u{2008}',
+    '\u{2009}', '\u{200A}', '\u{2028}', '\u{2029}', '\u{202F}', '\u{205F}', '\u{3000}', '\u{200B}',
+    '\u{200C}', '\u{200D}', '\u{2060}', '\u{FEFF}',
+];
+
 /// The letters a move cell may start with: C, Cyrillic Es, full-width C.
 const MOVE_LETTERS: &str = "Cc\u{0421}\u{0441}\u{FF23}\u{FF43}";
 /// Digits other than 0-9 the reader accepts: subscript, superscript and
@@ -120,6 +146,8 @@ const MOVE_DIGITS: &str = "\u{2070}\u{00B9}\u{00B2}\u{00B3}\u{2074}\u{2075}\u{20
 /// dashes U+2010 to U+2015, full-width, superscript and subscript signs.
 const MOVE_SIGNS: &str = "+-\u{2212}\u{2010}\u{2011}\u{2012}\u{2013}\u{2014}\u{2015}\u{FF0B}\u{FF0D}\u{207A}\u{207B}\u{208A}\u{208B}\u{FE62}\u{FE63}";
 
+/// How the items other than moves start: a dwell, a wait, an output, a jump.
+const ITEM_STARTS: [&str; 4] = ["T=", "I:", "Y:", "J:"];
 /// Builds the template workbook with `branches` × `steps` move cells.
 pub fn template_workbook(branches: u16, steps: u32) -> Result<Vec<u8>, XlsxError> {
     let branches = branches.clamp(1, MAX_BRANCHES as u16);
@@ -147,12 +175,12 @@ pub fn template_workbook(branches: u16, steps: u32) -> Result<Vec<u8>, XlsxError
         .set_input_title("Move")?
         .set_input_message(
             "C2+1: cylinder 2 out to position 1; C1-0: cylinder 1 home. T=2s: dwell; \
-             I:name: wait for an input; Y:name+ / Y:name-: output on / off. Several joined \
-             by ; (C3+1; T=2s). Empty: nothing in this branch.",
+             I:name: wait for an input; Y:name+ / Y:name-: output on / off; J:6 if I:name: \
+             jump. Several joined by ; (C3+1; T=2s). Empty: nothing in this branch.",
         )?
         .set_error_title("Not a move")?
         .set_error_message(
-            "Expected C<number>+<position> or C<number>-<position>, e.g. C2+1, or T=2s, I:name, Y:name+.",
+            "Expected C<number>+<position> or C<number>-<position>, e.g. C2+1, or T=2s, I:name, Y:name+, J:6 if I:name.",
         )?;
     sheet.add_data_validation(FIRST_STEP_ROW, 1, last_row, branches, &validation)?;
     sheet.write_string(
@@ -222,15 +250,30 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     for (col, header) in [(0, "SETTING"), (1, "VALUE"), (3, "WHAT IT MEANS")] {
         sheet.write_string_with_format(3, col, header, &f.header)?;
     }
-    let boards: Vec<&str> = std::iter::once("none")
-        .chain(crate::address::BOARDS.iter().map(|b| b.name))
-        .collect();
+    // Every list from its type's own, so a value added there is offered
+    // here (a test compares them).
+    let choices = |first: &[&'static str], rest: &[&'static str]| -> Vec<&'static str> {
+        first.iter().chain(rest).copied().collect()
+    };
+    let boards = choices(&["none"], &crate::address::BOARDS.map(|b| b.name));
+    let targets = choices(&["default"], &crate::address::Target::NAMES);
+    let mnemonics = crate::address::Mnemonic::names();
+    let safety = choices(&["none", "all"], &crate::program::Safety::NAMES);
+    let modes = choices(&["none", "all"], &crate::program::Modes::NAMES);
+    let safety_text = format!(
+        "Safety checks built into the program: none, all, or a list of {} (e.g. edge, watchdog).",
+        crate::program::Safety::NAMES.join(", ")
+    );
+    let modes_text = format!(
+        "Operating modes in the program: none, all, or a list of {} (estop brings reset).",
+        crate::program::Modes::NAMES.join(", ")
+    );
     let rows: [(&str, &str, &str, Option<&[&str]>); 15] = [
         (
             "target",
-            "festo",
-            "Address style: festo (I0.0 / O0.0, 16-bit words, the paper's layout), iec or openplc (%IX0.0 / %QX0.0, CODESYS and OpenPLC) or siemens (I0.0 / Q0.0).",
-            Some(&["festo", "iec", "openplc", "siemens"]),
+            "default",
+            "Address style: default (festo, or iec when a board is chosen), festo (I0.0 / O0.0, 16-bit words, the paper's layout), iec or openplc (%IX0.0 / %QX0.0, CODESYS and OpenPLC) or siemens (I0.0 / Q0.0).",
+            Some(&targets),
         ),
         (
             "board",
@@ -242,7 +285,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             "mnemonic",
             "en",
             "Operand letters for Siemens and STEP 7: en (I, Q; A, AN) or de (E, A; U, UN).",
-            Some(&["en", "de"]),
+            Some(&mnemonics),
         ),
         (
             "scan time",
@@ -250,25 +293,8 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             "PLC cycle of the generated task and of the simulation, from 1ms to 1s.",
             None,
         ),
-        (
-            "safety",
-            "none",
-            "Safety checks built into the program: none, all, or a list of edge, precheck, plausibility, watchdog (e.g. edge, watchdog).",
-            Some(&[
-                "none",
-                "all",
-                "edge",
-                "precheck",
-                "plausibility",
-                "watchdog",
-            ]),
-        ),
-        (
-            "modes",
-            "none",
-            "Operating modes in the program: none, all, or a list of continuous, stop, estop, reset (estop brings reset).",
-            Some(&["none", "all", "continuous", "stop", "estop", "reset"]),
-        ),
+        ("safety", "none", &safety_text, Some(&safety)),
+        ("modes", "none", &modes_text, Some(&modes)),
         (
             "hold-safe",
             "none",
@@ -374,7 +400,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             .allow_list_strings(&valves)?
             .set_input_title("valve")?
             .set_input_message(
-                "Empty: 52bi (two positions) or 53closed (middle positions). 52mono: one coil, spring return.",
+                "Empty: 52bi (two positions) or 53closed (middle positions). 52mono: one coil, spring return; motor: an electric drive.",
             )?,
     )?;
     sheet.set_column_width(0, 14)?;

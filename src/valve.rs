@@ -36,16 +36,23 @@ impl std::str::FromStr for ValveType {
             .trim()
             .to_ascii_lowercase()
             .replace(['/', ' ', '-'], "");
-        ValveType::ALL.into_iter().find(|v| v.name() == t).ok_or_else(|| {
-            // `5/2 monostable`, `5/3 closed centre`: the name is its start.
-            let meant = ValveType::ALL
-                .into_iter()
-                .filter(|v| t.starts_with(v.name()))
-                .max_by_key(|v| v.name().len())
-                .map(|v| format!(": did you mean {v}?"))
-                .unwrap_or_default();
-            format!("\"{}\" is not a valve type{meant} (expected 52bi, 52mono, 53closed, 53exhaust, 53pressure or motor)", text.trim())
-        })
+        ValveType::ALL
+            .into_iter()
+            .find(|v| v.name() == t)
+            .ok_or_else(|| {
+                // `5/2 monostable`, `5/3 closed centre`: the name is its start.
+                let meant = ValveType::ALL
+                    .into_iter()
+                    .filter(|v| t.starts_with(v.name()))
+                    .max_by_key(|v| v.name().len())
+                    .map(|v| format!(": did you mean {v}?"))
+                    .unwrap_or_default();
+                format!(
+                    "\"{}\" is not a valve type{meant} (expected {})",
+                    text.trim(),
+                    crate::diag::or_list(&ValveType::names())
+                )
+            })
     }
 }
 
@@ -58,6 +65,11 @@ impl ValveType {
         ValveType::Pressure53,
         ValveType::Motor,
     ];
+
+    /// Every valve type's name, as `--valve` and the SETTINGS sheet write it.
+    pub fn names() -> Vec<&'static str> {
+        ValveType::ALL.map(ValveType::name).to_vec()
+    }
 
     /// The name used in `--valve` and on the SETTINGS sheet.
     pub fn name(self) -> &'static str {
@@ -121,6 +133,13 @@ pub fn parse_load(text: &str) -> Option<f64> {
         .filter(|l| (0.0..=10.0).contains(l))
 }
 
+/// An option's list that gives one actuator twice (`--valve
+/// C1=52mono,C1=52bi`): refused, as the SETTINGS sheet refuses a row twice,
+/// rather than the later value silently winning.
+pub fn given_twice(item: &str, actuator: u32) -> String {
+    format!("\"{item}\": C{actuator} is given twice; give each actuator once")
+}
+
 /// Parses `--load C2=0.1,C3=0.05`.
 pub fn parse_loads(text: &str) -> Result<BTreeMap<u32, f64>, String> {
     let mut loads = BTreeMap::new();
@@ -133,7 +152,9 @@ pub fn parse_loads(text: &str) -> Result<BTreeMap<u32, f64>, String> {
         let load = parse_load(value).ok_or_else(|| {
             format!("\"{item}\": expected a drift from 0 to 10 stroke per second")
         })?;
-        loads.insert(actuator, load);
+        if loads.insert(actuator, load).is_some() {
+            return Err(given_twice(item, actuator));
+        }
     }
     Ok(loads)
 }
@@ -148,7 +169,9 @@ pub fn parse_valves(text: &str) -> Result<BTreeMap<u32, ValveType>, String> {
         let actuator = crate::cell::parse_actuator(name)
             .ok_or_else(|| format!("\"{item}\": expected an actuator such as C1 before ="))?;
         let valve: ValveType = valve.parse().map_err(|e| format!("\"{item}\": {e}"))?;
-        valves.insert(actuator, valve);
+        if valves.insert(actuator, valve).is_some() {
+            return Err(given_twice(item, actuator));
+        }
     }
     Ok(valves)
 }

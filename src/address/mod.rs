@@ -415,13 +415,21 @@ impl std::str::FromStr for Target {
             .into_iter()
             .find(|t| t.name() == lower)
             .ok_or_else(|| {
-                format!("\"{text}\" is not a target (expected festo, iec, openplc or siemens)")
+                format!(
+                    "\"{text}\" is not a target (expected {})",
+                    crate::diag::or_list(&Target::NAMES)
+                )
             })
     }
 }
 
 impl Mnemonic {
     pub const ALL: [Mnemonic; 2] = [Mnemonic::En, Mnemonic::De];
+
+    /// Every mnemonic's name, as `--mnemonic` and the SETTINGS sheet write it.
+    pub fn names() -> Vec<&'static str> {
+        Mnemonic::ALL.map(Mnemonic::name).to_vec()
+    }
 
     pub fn name(self) -> &'static str {
         match self {
@@ -440,7 +448,12 @@ impl std::str::FromStr for Mnemonic {
         Mnemonic::ALL
             .into_iter()
             .find(|m| m.name() == lower)
-            .ok_or_else(|| format!("\"{text}\" is not a mnemonic (expected en or de)"))
+            .ok_or_else(|| {
+                format!(
+                    "\"{text}\" is not a mnemonic (expected {})",
+                    crate::diag::or_list(&Mnemonic::names())
+                )
+            })
     }
 }
 

@@ -31,7 +31,11 @@ pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
             .map_err(|e| format!("\"{item}\": {e}"))?;
         let ms = steptable::stroke::parse_duration_ms(value)
             .ok_or_else(|| format!("\"{item}\": expected a time such as 2s or 300ms"))?;
-        delays.insert(name, ms);
+        if delays.insert(name, ms).is_some() {
+            return Err(format!(
+                "\"{item}\": {name} is given twice; give each input once"
+            ));
+        }
     }
     Ok(delays)
 }
@@ -143,15 +147,29 @@ pub(crate) struct CommonArgs {
     pub(crate) message_format: MessageFormat,
     #[arg(long, value_name = "LIST", value_parser = parse_valves, help = valves_help())]
     pub(crate) valve: Option<std::collections::BTreeMap<u32, steptable::valve::ValveType>>,
-    /// Safety checks in the generated program: edge, precheck, plausibility, watchdog (or all, or none).
-    #[arg(long, value_name = "LIST", value_parser = parse_safety)]
+    #[arg(long, value_name = "LIST", value_parser = parse_safety, help = safety_help())]
     pub(crate) safety: Option<Safety>,
-    /// Operating modes in the generated program: continuous, stop, estop, reset (or all, or none).
-    #[arg(long, value_name = "LIST", value_parser = parse_modes)]
+    #[arg(long, value_name = "LIST", value_parser = parse_modes, help = modes_help())]
     pub(crate) modes: Option<Modes>,
     /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: the order the cycle itself returns them home).
     #[arg(long, value_name = "ORDER", value_parser = parse_home_order)]
     pub(crate) home_order: Option<HomeOrder>,
+}
+
+/// `--safety`'s help, listing every check there is.
+fn safety_help() -> String {
+    format!(
+        "Safety checks in the generated program: {} (or all, or none)",
+        Safety::NAMES.join(", ")
+    )
+}
+
+/// `--modes`' help, listing every mode there is.
+fn modes_help() -> String {
+    format!(
+        "Operating modes in the generated program: {} (or all, or none)",
+        Modes::NAMES.join(", ")
+    )
 }
 
 /// Homing stages, each a list of actuator numbers. A type of its own: clap

@@ -112,9 +112,13 @@ fn finish_check(
             .buttons()
             .map(|b| b.ident().to_ascii_lowercase())
             .collect();
+        // A home order from the SETTINGS sheet is blamed on its cell; one
+        // from the command line on the file, naming the option.
+        let home_order_at = effective.cells.get("home order").cloned();
         let machine = table::Machine {
             valves: &effective.simulation.valves,
             home_order: modes.home_order.as_deref(),
+            home_order_at: home_order_at.as_ref(),
             reset: modes.reset,
             buttons: &buttons,
         };
@@ -333,13 +337,22 @@ pub fn allocate(
     if let Some(board) = settings.board
         && settings.target != Target::Iec
     {
+        // At the board's cell when the SETTINGS sheet names it, else the
+        // target's; the message says where each came from.
+        let at = ["board", "target"]
+            .iter()
+            .find_map(|label| settings.cells.get(label))
+            .cloned()
+            .unwrap_or_else(whole_file);
         diags.error(
             Code::E036BoardTooSmall,
-            whole_file(),
+            at,
             format!(
-                "the {} board is OpenPLC's, whose addresses are %IX/%QX, but the target is {}: make the target iec (or openplc), or leave it out",
+                "the {} board is OpenPLC's, whose addresses are %IX/%QX, but the target is {}: make the target iec (or openplc, or default), or leave it out (the board from {}, the target from {})",
                 board.name,
-                settings.target.name()
+                settings.target.name(),
+                settings.origin("board"),
+                settings.origin("target"),
             ),
         );
         return Err(diags.into_sorted());

@@ -15,12 +15,14 @@ pub fn resolve(
     board: Option<Board>,
     diags: &mut Diagnostics,
 ) -> Vec<Assigned> {
+    // Every input and output of the allocation list: the alarm lamps too.
     let signals: Vec<Signal> = program
         .signals
         .inputs
         .iter()
         .copied()
         .chain(program.signals.driven())
+        .chain(program.signals.alarms())
         .collect();
     let mut pins: Vec<(Assigned, &PinRow)> = Vec::new();
     for row in rows {

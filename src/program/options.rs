@@ -251,6 +251,10 @@ impl Safety {
         }
     }
 
+    /// The checks by name, as `--safety` and the SETTINGS sheet write
+    /// them (besides `all` and `none`).
+    pub const NAMES: [&str; 4] = ["edge", "precheck", "plausibility", "watchdog"];
+
     /// Parses `edge,precheck,plausibility,watchdog` (any subset; `all`, `none`).
     pub fn parse(text: &str) -> Result<Safety, String> {
         let mut safety = Safety::default();
@@ -264,12 +268,20 @@ impl Safety {
                 "watchdog" => safety.watchdog = true,
                 other => {
                     return Err(format!(
-                        "\"{other}\" is not a safety check (expected edge, precheck, plausibility, watchdog, all or none)"
+                        "\"{other}\" is not a safety check (expected {})",
+                        Safety::expected()
                     ));
                 }
             }
         }
         Ok(safety)
+    }
+
+    /// What `--safety` and the SETTINGS row accept, for messages.
+    pub fn expected() -> String {
+        let mut all = Safety::NAMES.to_vec();
+        all.extend(["all", "none"]);
+        crate::diag::or_list(&all)
     }
 
     /// Whether the program has a `halt` memory: a check that stops the
@@ -297,6 +309,17 @@ pub struct Modes {
 }
 
 impl Modes {
+    /// The modes by name, as `--modes` and the SETTINGS sheet write them
+    /// (besides `all` and `none`).
+    pub const NAMES: [&str; 4] = ["continuous", "stop", "estop", "reset"];
+
+    /// What `--modes` and the SETTINGS row accept, for messages.
+    pub fn expected() -> String {
+        let mut all = Modes::NAMES.to_vec();
+        all.extend(["all", "none"]);
+        crate::diag::or_list(&all)
+    }
+
     /// Parses `continuous,stop,estop,reset` (any subset; `all`, `none`). An
     /// emergency stop needs RESET as its way out, so `estop` brings `reset`.
     pub fn parse(text: &str) -> Result<Modes, String> {
@@ -316,7 +339,8 @@ impl Modes {
                 "reset" => modes.reset = true,
                 other => {
                     return Err(format!(
-                        "\"{other}\" is not an operating mode (expected continuous, stop, estop, reset, all or none)"
+                        "\"{other}\" is not an operating mode (expected {})",
+                        Modes::expected()
                     ));
                 }
             }

@@ -123,90 +123,199 @@ fn outputs_named(table: &StepTable, valves: &Valves, name: &str) -> Option<Vec<S
     }
 }
 
+/// Where a setting is, for a message that names a second place: the sheet
+/// and cell (`SETTINGS!B3`), or the command line.
+pub fn place(at: &Location) -> String {
+    match (&at.sheet, at.cell) {
+        (Some(sheet), Some(cell)) => format!("{sheet}!{}", cell.a1()),
+        (None, Some(cell)) => format!("{}:{}", cell.row + 1, cell.col + 1),
+        (Some(sheet), None) => sheet.clone(),
+        (None, None) => "the command line".to_string(),
+    }
+}
+
+/// What a row says `output` does, in words: `keeps vacuum on`.
+fn verb(action: StopAction, output: &str) -> String {
+    match action {
+        StopAction::Hold => format!("keeps {output} on"),
+        StopAction::Off => format!("switches {output} off"),
+        StopAction::OffAfter(ms) => format!(
+            "switches {output} off after {}",
+            crate::cell::duration_text(ms)
+        ),
+    }
+}
+
+/// What each output does at one event (a halt, the emergency stop), with
+/// the row that says so: two rows that say different things of one output
+/// are E030 at the later one, naming both cells.
+struct EventActions<'r> {
+    /// `at a halt`, `at an emergency stop`.
+    event: &'static str,
+    said: BTreeMap<Signal, (StopAction, Row, &'r NamedList)>,
+}
+
+impl<'r> EventActions<'r> {
+    fn new(event: &'static str) -> Self {
+        EventActions {
+            event,
+            said: BTreeMap::new(),
+        }
+    }
+
+    fn say(
+        &mut self,
+        row: Row,
+        list: &'r NamedList,
+        actions: &BTreeMap<Signal, StopAction>,
+        diags: &mut Diagnostics,
+    ) {
+        for (signal, action) in actions {
+            match self.said.get(signal) {
+                Some((other, other_row, other_list)) if *other_row != row && other != action => {
+                    diags.error(
+                        Code::E030BadSetting,
+                        list.at.clone(),
+                        format!(
+                            "{}: this row {} {}, but {} at {} {}; say one or the other",
+                            row.label(),
+                            verb(*action, &signal.symbol()),
+                            self.event,
+                            other_row.label(),
+                            place(&other_list.at),
+                            verb(*other, "it")
+                        ),
+                    );
+                }
+                Some(_) => {}
+                None => {
+                    self.said.insert(*signal, (*action, row, list));
+                }
+            }
+        }
+    }
+
+    /// The outputs given `wanted`.
+    fn with(&self, wanted: impl Fn(StopAction) -> bool) -> BTreeSet<Signal> {
+        self.said
+            .iter()
+            .filter(|(_, (action, _, _))| wanted(*action))
+            .map(|(signal, _)| *signal)
+            .collect()
+    }
+}
+
+/// The outputs a row of plain names (`hold-safe`, `de-energise on halt`,
+/// `hold on estop`) lists, each doing `action`; an unknown name, or an
+/// output named twice, is E030 at the row's cell.
+fn listed(
+    table: &StepTable,
+    valves: &Valves,
+    row: Row,
+    list: &NamedList,
+    action: StopAction,
+    diags: &mut Diagnostics,
+) -> BTreeMap<Signal, StopAction> {
+    let mut actions = BTreeMap::new();
+    for name in &list.names {
+        match outputs_named(table, valves, name) {
+            Some(signals) => {
+                for signal in signals {
+                    if actions.insert(signal, action).is_some() {
+                        twice(row, list, signal, diags);
+                    }
+                }
+            }
+            None => not_an_output(table, valves, row, list, name, diags),
+        }
+    }
+    actions
+}
+
+/// E030: one row names an output twice (`vacuum, vacuum`; `C1, y1+`).
+fn twice(row: Row, list: &NamedList, signal: Signal, diags: &mut Diagnostics) {
+    diags.error(
+        Code::E030BadSetting,
+        list.at.clone(),
+        format!("{}: {} is named twice", row.label(), signal.symbol()),
+    );
+}
+
 /// The halt policy the rows give (`hold-safe`, `de-energise on halt`,
 /// `hold on estop`, and `on stop`, `on estop`, `on halt` with an action per
-/// output); an unknown name, or an output both kept and switched off by
-/// one event, is an E030 at its row's cell.
+/// output). An unknown name, an output named twice in a row, and two rows
+/// that say different things of one output at one event (`hold on estop |
+/// vacuum` beside `on estop | vacuum off`; `hold-safe | heater` beside `on
+/// halt | heater off`) are E030 at the row's cell, naming the other's.
 pub fn resolve(
     table: &StepTable,
     valves: &Valves,
     rows: &NamedRows,
     diags: &mut Diagnostics,
 ) -> HaltPolicy {
-    let mut sets: [BTreeSet<Signal>; 3] = Default::default();
-    for (set, row) in sets
-        .iter_mut()
-        .zip([Row::HoldSafe, Row::OffOnHalt, Row::HoldOnEstop])
-    {
-        let Some(list) = rows.get(&row) else { continue };
-        for name in &list.names {
-            match outputs_named(table, valves, name) {
-                Some(signals) => set.extend(signals),
-                None => not_an_output(table, valves, row, list, name, diags),
+    let actions_of =
+        |row: Row, diags: &mut Diagnostics| -> Option<(&NamedList, BTreeMap<Signal, StopAction>)> {
+            let list = rows.get(&row)?;
+            let actions = match row {
+                Row::HoldSafe | Row::HoldOnEstop => {
+                    listed(table, valves, row, list, StopAction::Hold, diags)
+                }
+                Row::OffOnHalt => listed(table, valves, row, list, StopAction::Off, diags),
+                _ => stop_actions(table, valves, row, list, diags),
+            };
+            Some((list, actions))
+        };
+    // A halt: hold-safe is `hold`, de-energise on halt is `off`.
+    let mut halt = EventActions::new("at a halt");
+    let mut on_halt = BTreeMap::new();
+    for row in [Row::HoldSafe, Row::OffOnHalt, Row::OnHalt] {
+        if let Some((list, actions)) = actions_of(row, diags) {
+            halt.say(row, list, &actions, diags);
+            if row == Row::OnHalt {
+                on_halt = actions;
             }
         }
     }
-    let [mut hold_safe, mut off, mut hold_on_estop] = sets;
-    let mut actions_of = |row: Row| {
-        rows.get(&row)
-            .map(|list| stop_actions(table, valves, row, list, diags))
-            .unwrap_or_default()
-    };
-    let on_stop = actions_of(Row::OnStop);
-    let (on_estop, on_halt) = (actions_of(Row::OnEstop), actions_of(Row::OnHalt));
-    for (signal, action) in &on_estop {
-        if *action == StopAction::Hold {
-            hold_on_estop.insert(*signal);
+    let mut estop = EventActions::new("at an emergency stop");
+    let mut on_estop = BTreeMap::new();
+    for row in [Row::HoldOnEstop, Row::OnEstop] {
+        if let Some((list, actions)) = actions_of(row, diags) {
+            estop.say(row, list, &actions, diags);
+            if row == Row::OnEstop {
+                on_estop = actions;
+            }
         }
     }
-    for (signal, action) in &on_halt {
-        match action {
-            StopAction::Off => off.insert(*signal),
-            StopAction::Hold => hold_safe.insert(*signal),
-            StopAction::OffAfter(_) => false,
+    let on_stop = actions_of(Row::OnStop, diags)
+        .map(|(_, actions)| actions)
+        .unwrap_or_default();
+    // The emergency stop halts: what it keeps on (or lets run on), a halt
+    // may not switch off or time out.
+    for (signal, (kept, estop_row, estop_list)) in &estop.said {
+        let Some((ended, halt_row, halt_list)) = halt.said.get(signal) else {
+            continue;
         };
-    }
-    let halt_row = rows.get(&Row::OnHalt).or(rows.get(&Row::OffOnHalt));
-    if let (Some(row), Some(both)) = (halt_row, hold_safe.intersection(&off).next()) {
-        diags.error(
-            Code::E030BadSetting,
-            row.at.clone(),
-            format!(
-                "de-energise on halt: {} is also hold-safe; say one or the other",
-                both.symbol()
-            ),
-        );
-    }
-    // The emergency stop halts: what it keeps on, a halt may not switch
-    // off or time out.
-    let estop_row = rows.get(&Row::OnEstop).or(rows.get(&Row::HoldOnEstop));
-    let runs_on = |actions: &BTreeMap<Signal, StopAction>| -> Vec<Signal> {
-        actions
-            .iter()
-            .filter(|(_, a)| matches!(a, StopAction::OffAfter(_)))
-            .map(|(s, _)| *s)
-            .collect()
-    };
-    let ended_on_halt: BTreeSet<Signal> = off.iter().copied().chain(runs_on(&on_halt)).collect();
-    let kept_and_ended = hold_on_estop
-        .iter()
-        .copied()
-        .chain(runs_on(&on_estop))
-        .find(|s| ended_on_halt.contains(s));
-    if let (Some(row), Some(both)) = (estop_row, kept_and_ended) {
-        diags.error(
-            Code::E030BadSetting,
-            row.at.clone(),
-            format!(
-                "the emergency stop keeps {} on, but a halt switches it off, and the emergency stop halts; say one or the other",
-                both.symbol()
-            ),
-        );
+        if *kept != StopAction::Off && *ended != StopAction::Hold {
+            diags.error(
+                Code::E030BadSetting,
+                estop_list.at.clone(),
+                format!(
+                    "the emergency stop keeps {} on, but a halt switches it off, and the emergency stop halts ({} at {} {}, {} at {} {}); say one or the other",
+                    signal.symbol(),
+                    estop_row.label(),
+                    place(&estop_list.at),
+                    verb(*kept, "it"),
+                    halt_row.label(),
+                    place(&halt_list.at),
+                    verb(*ended, "it"),
+                ),
+            );
+        }
     }
     let policy = HaltPolicy {
-        hold_safe,
-        off_on_halt: off,
-        hold_on_estop,
+        hold_safe: halt.with(|a| a == StopAction::Hold),
+        off_on_halt: halt.with(|a| a == StopAction::Off),
+        hold_on_estop: estop.with(|a| a == StopAction::Hold),
         on_stop,
         on_estop,
         on_halt,
@@ -316,8 +425,11 @@ fn stop_actions(
 }
 
 /// The SETTINGS row `interlock`: inputs that must stay on, each always or
-/// in a range of steps (`guard_closed in steps 3-5`, `door in step 2`); a
-/// step the table does not have, or a range backwards, is E030 at the cell.
+/// in a range of steps (`guard_closed in steps 3-5`, `door in step 2`).
+/// Every item is kept: one input may hold over several ranges (`guard in
+/// steps 2-3, guard in steps 5-6`), and over the whole cycle beside a range,
+/// each its own interlock. A step the table does not have, a range
+/// backwards, or an item written twice is E030 at the cell.
 pub fn resolve_interlocks(
     table: &StepTable,
     buttons: &[String],
@@ -328,48 +440,69 @@ pub fn resolve_interlocks(
         return Vec::new();
     };
     let last = table.steps.len();
-    let mut ranges: Vec<(String, Option<(usize, usize)>)> = Vec::new();
+    let mut items: Vec<(String, Option<(usize, usize)>)> = Vec::new();
     for text in &row.names {
         let lower = text.to_ascii_lowercase();
-        let Some((name, range)) = lower.split_once(" in step") else {
-            ranges.push((lower, None));
-            continue;
-        };
-        let range = range.trim_start_matches('s').trim();
-        let numbers: Vec<Option<usize>> = range
-            .split(['-', '–'])
-            .map(|n| n.trim().trim_matches('.').parse().ok())
-            .collect();
-        let steps = match numbers.as_slice() {
-            [Some(a)] => Some((*a, *a)),
-            [Some(a), Some(b)] => Some((*a, *b)),
-            _ => None,
-        };
-        match steps {
-            Some((a, b)) if (1..=b).contains(&a) && b <= last => {
-                ranges.push((name.trim().to_string(), Some((a, b))));
+        let item = match lower.split_once(" in step") {
+            None => Some((lower.trim().to_string(), None)),
+            Some((name, range)) => {
+                let range = range.trim_start_matches('s').trim();
+                let numbers: Vec<Option<usize>> = range
+                    .split(['-', '\u{2013}'])
+                    .map(|n| n.trim().trim_matches('.').parse().ok())
+                    .collect();
+                let steps = match numbers.as_slice() {
+                    [Some(a)] => Some((*a, *a)),
+                    [Some(a), Some(b)] => Some((*a, *b)),
+                    _ => None,
+                };
+                match steps {
+                    Some((a, b)) if (1..=b).contains(&a) && b <= last => {
+                        Some((name.trim().to_string(), Some((a, b))))
+                    }
+                    _ => {
+                        diags.error(
+                            Code::E030BadSetting,
+                            row.at.clone(),
+                            format!(
+                                "interlock: \"{text}\" has no step range of this table (expected e.g. guard_closed in steps 2-{last}, or guard_closed in step 2; steps 1 to {last})"
+                            ),
+                        );
+                        None
+                    }
+                }
             }
-            _ => diags.error(
+        };
+        let Some(item) = item else { continue };
+        if items.contains(&item) {
+            diags.error(
                 Code::E030BadSetting,
                 row.at.clone(),
-                format!(
-                    "interlock: \"{text}\" has no step range of this table (expected e.g. guard_closed in steps 2-{last}, or guard_closed in step 2; steps 1 to {last})"
-                ),
-            ),
+                format!("interlock: \"{}\" is named twice", text.trim()),
+            );
+            continue;
+        }
+        items.push(item);
+    }
+    let mut distinct: Vec<String> = Vec::new();
+    for (name, _) in &items {
+        if !distinct.contains(name) {
+            distinct.push(name.clone());
         }
     }
     let names = NamedList {
-        names: ranges.iter().map(|(n, _)| n.clone()).collect(),
+        names: distinct,
         at: row.at.clone(),
     };
-    resolve_held_inputs(table, buttons, Row::Interlock, Some(&names), diags)
-        .into_iter()
-        .map(|input| Interlock {
-            input,
-            steps: ranges
-                .iter()
-                .find(|(n, _)| n.as_str() == input.as_str())
-                .and_then(|(_, steps)| *steps),
+    let inputs = resolve_held_inputs(table, buttons, Row::Interlock, Some(&names), diags);
+    items
+        .iter()
+        .filter_map(|(name, steps)| {
+            let input = inputs.iter().find(|i| i.as_str() == name.as_str())?;
+            Some(Interlock {
+                input: *input,
+                steps: *steps,
+            })
         })
         .collect()
 }
@@ -399,12 +532,13 @@ pub fn resolve_held_inputs(
             Err(why) => (Code::E015BadName, why),
             Ok(name) => match crate::names::signal_problem(&lower, buttons) {
                 Some(why) => (Code::E015BadName, why),
+                None if names.contains(&name) => {
+                    (Code::E030BadSetting, format!("{lower} is named twice"))
+                }
                 None => match held_input_problem(table, &names, name) {
                     Some(why) => (Code::E030BadSetting, why),
                     None => {
-                        if !names.contains(&name) {
-                            names.push(name);
-                        }
+                        names.push(name);
                         continue;
                     }
                 },

@@ -46,9 +46,26 @@ pub struct Given {
     /// The rows that name outputs or inputs (`hold-safe`, `on stop`, …),
     /// as written: checked against the table once it is read.
     pub named: halt::NamedRows,
+    /// Where each labelled setting was read (a SETTINGS sheet's value
+    /// cells, by label), for the messages about it.
+    pub cells: BTreeMap<&'static str, crate::diag::Location>,
 }
 
 impl Given {
+    /// Whether this source gives the setting of `label` (a SETTINGS label).
+    pub fn gives(&self, label: &str) -> bool {
+        match label {
+            "target" => self.target.is_some(),
+            "board" => self.board.is_some(),
+            "mnemonic" => self.mnemonic.is_some(),
+            "scan time" => self.scan_ms.is_some(),
+            "safety" => self.safety.is_some(),
+            "modes" => self.modes.is_some(),
+            "home order" => self.home_order.is_some(),
+            other => halt::Row::from_label(other).is_some_and(|row| self.named.contains_key(&row)),
+        }
+    }
+
     /// A source that names a board and no target means OpenPLC's
     /// addresses (a board beside another target is the conflict
     /// `convert::allocate` reports).
@@ -81,6 +98,13 @@ impl Given {
             valves: merged(&self.valves, &other.valves),
             loads: merged(&self.loads, &other.loads),
             named: merged(&self.named, &other.named),
+            cells: other
+                .cells
+                .iter()
+                .filter(|(label, _)| !self.gives(label))
+                .chain(&self.cells)
+                .map(|(label, at)| (*label, at.clone()))
+                .collect(),
         }
     }
 }
@@ -115,9 +139,22 @@ pub struct Settings {
     /// `program.halt`, `program.permissive` and `program.interlocks` once
     /// checked against the table.
     pub named: halt::NamedRows,
+    /// Where the settings in force that a SETTINGS sheet gave were read, by
+    /// label (the others came from the command line or are defaults).
+    pub cells: BTreeMap<&'static str, crate::diag::Location>,
 }
 
 impl Settings {
+    /// Where the setting of `label` in force comes from, for a message:
+    /// its SETTINGS cell (`SETTINGS!B5`), or the command line's option.
+    pub fn origin(&self, label: &str) -> String {
+        match self.cells.get(label) {
+            Some(at) => halt::place(at),
+            None if self.given.gives(label) => format!("--{}", label.replace(' ', "-")),
+            None => "the default".to_string(),
+        }
+    }
+
     /// Takes `given` as the command line's word (over what it said before)
     /// and puts it in force.
     pub fn give(&mut self, given: Given) {
@@ -144,6 +181,12 @@ impl Settings {
         }
         self.named
             .extend(layer.named.iter().map(|(row, list)| (*row, list.clone())));
+        for (label, at) in &layer.cells {
+            self.cells.insert(label, at.clone());
+        }
+        // What the command line gives, no cell of the sheet says.
+        let given = self.given.clone();
+        self.cells.retain(|label, _| !given.gives(label));
         if let Some(mnemonic) = layer.mnemonic {
             self.mnemonic = mnemonic;
         }

@@ -19,53 +19,73 @@ pub struct PinRow {
     pub address_at: Location,
 }
 
-/// The rows of the sheet: the first two used columns, signal then address.
-/// A row `SIGNAL | ADDRESS` is the header: what stands above it is the
-/// sheet's title and notes (the template workbook's). Any cell right of the
-/// two columns below the header is reported, not dropped silently.
+/// The rows of the sheet: the two columns of the `SIGNAL | ADDRESS`
+/// header (or, without one, the first two used columns), signal then
+/// address. What stands above the header is the sheet's title and notes
+/// (the template workbook's), except in the address column and on the row
+/// just above the header, where a cell would be a pin or a header that is
+/// not read. Any other cell — right or left of the two columns, right of
+/// the header — is reported, never dropped silently.
 pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Vec<PinRow> {
-    let Some(first_col) = grid.cells.iter().map(|c| c.pos.col).min() else {
-        return Vec::new();
-    };
     let text = |value: &CellValue| match value {
         CellValue::Text(t) => t.trim().to_string(),
         other => other.describe(),
     };
-    let is = |cell: &crate::read::GridCell, col: u32, word: &str| {
-        cell.pos.col == col && text(&cell.value).eq_ignore_ascii_case(word)
-    };
-    let header = grid
+    let cells: Vec<&crate::read::GridCell> = grid
         .cells
         .iter()
-        .filter(|c| is(c, first_col, "signal"))
-        .map(|c| c.pos.row)
-        .find(|row| {
-            grid.cells
-                .iter()
-                .any(|c| c.pos.row == *row && is(c, first_col + 1, "address"))
-        });
+        .filter(|c| !matches!(&c.value, CellValue::Text(t) if t.trim().is_empty()))
+        .collect();
+    let is =
+        |cell: &crate::read::GridCell, word: &str| text(&cell.value).eq_ignore_ascii_case(word);
+    // Looked up by position: a sheet of many cells is read in linear time.
+    let addresses: std::collections::BTreeSet<crate::diag::CellPos> = cells
+        .iter()
+        .filter(|c| is(c, "address"))
+        .map(|c| c.pos)
+        .collect();
+    let header = cells.iter().find(|c| {
+        is(c, "signal") && addresses.contains(&crate::diag::CellPos::new(c.pos.row, c.pos.col + 1))
+    });
+    let Some(first_col) = header
+        .map(|h| h.pos.col)
+        .or_else(|| cells.iter().map(|c| c.pos.col).min())
+    else {
+        return Vec::new();
+    };
+    let header_row = header.map(|h| h.pos.row);
     let mut rows: std::collections::BTreeMap<u32, [Option<(String, Location)>; 2]> =
         std::collections::BTreeMap::new();
-    for cell in grid
-        .cells
-        .iter()
-        .filter(|c| header.is_none_or(|h| c.pos.row > h))
-    {
+    for cell in &cells {
         let at = grid.location(cell.pos);
-        match cell.pos.col - first_col {
-            column @ (0 | 1) => {
-                rows.entry(cell.pos.row).or_default()[column as usize] =
-                    Some((text(&cell.value), at));
-            }
-            _ => diags.warning(
-                Code::W003Ignored,
-                at,
-                format!(
+        let column = cell.pos.col.checked_sub(first_col);
+        let why = match header_row {
+            // The header's own two cells.
+            Some(h) if cell.pos.row == h && matches!(column, Some(0 | 1)) => continue,
+            Some(h) if cell.pos.row == h => format!(
+                "{} heads no column steptable reads: the ADDRESSES sheet has two columns, SIGNAL and ADDRESS",
+                cell.value.describe()
+            ),
+            // Title and notes above the header, but in the address column
+            // or just above the header.
+            Some(h) if cell.pos.row + 1 < h && column != Some(1) => continue,
+            Some(h) if cell.pos.row < h => format!(
+                "{} is above the SIGNAL | ADDRESS header, where nothing is read (a pin goes in a row below it)",
+                cell.value.describe()
+            ),
+            _ => match column {
+                Some(column @ (0 | 1)) => {
+                    rows.entry(cell.pos.row).or_default()[column as usize] =
+                        Some((text(&cell.value), at));
+                    continue;
+                }
+                _ => format!(
                     "{} is not read: the ADDRESSES sheet has two columns, signal and address",
                     cell.value.describe()
                 ),
-            ),
-        }
+            },
+        };
+        diags.warning(Code::W003Ignored, at, why);
     }
     let mut pins = Vec::new();
     for row in rows.into_values() {
@@ -98,6 +118,9 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Vec<PinRow> {
 mod tests {
     use super::*;
 
+    /// Rows under the header are read; above it lie the title and notes,
+    /// but for the address column and the row just above the header; a cell
+    /// right of the header, or right or left of the two columns, is named.
     #[test]
     fn rows_header_and_strays() {
         let grid = Grid::from_text_rows(
@@ -105,11 +128,13 @@ mod tests {
             Some("ADDRESSES"),
             &[
                 vec!["", "ADDRESSES", "", "a title"],
-                vec!["", "SIGNAL", "ADDRESS"],
+                vec!["", "a note", "START | I0.0 is a pin"],
+                vec![],
+                vec!["", "SIGNAL", "ADDRESS", "comment"],
                 vec!["", "START", "I0.0", "note"],
                 vec!["", "y1+", ""],
                 vec!["", "", "Q0.1"],
-                vec!["", " x11 ", " I0.2 "],
+                vec!["x", " x11 ", " I0.2 "],
             ],
         );
         let mut diags = Diagnostics::new();
@@ -127,12 +152,30 @@ mod tests {
                 ("x11", "I0.2")
             ]
         );
-        assert_eq!(pins[3].address_at.cell.map(|c| c.a1()), Some("C6".into()));
+        assert_eq!(pins[3].address_at.cell.map(|c| c.a1()), Some("C8".into()));
         let found: Vec<String> = diags
             .into_sorted()
             .iter()
             .map(|d| format!("{} {}", d.code.as_str(), d.location.cell.unwrap().a1()))
             .collect();
-        assert_eq!(found, ["W003 D3"]);
+        assert_eq!(found, ["W003 C2", "W003 D4", "W003 D5", "W003 A8"]);
+        // The row just above the header is checked whole.
+        let grid = Grid::from_text_rows(
+            "t.xlsx",
+            Some("ADDRESSES"),
+            &[
+                vec!["Pins"],
+                vec!["SIGNAL", "ADDRESS"],
+                vec!["START", "I0.0"],
+            ],
+        );
+        let mut diags = Diagnostics::new();
+        assert_eq!(parse(&grid, &mut diags).len(), 1);
+        let found = diags.into_sorted();
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(
+            found[0].location.cell,
+            Some(crate::diag::CellPos::new(0, 0))
+        );
     }
 }

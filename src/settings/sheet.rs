@@ -5,10 +5,22 @@
 //! Layout: a label in any cell (`target`, `mnemonic`, `scan time`, `safety`)
 //! with its value in the next filled cell to the right; and a small table
 //! headed `actuator | extend | retract` with rows such as `C2 | 1.5s | 0.8s`.
+//! A header row `SETTING | VALUE | WHAT IT MEANS` (the template's) makes the
+//! column under a notes header (`what it means`, `notes`, `comment`, …) the
+//! labels' notes.
+//!
+//! Every filled cell is read or named: a setting given twice is E030 at the
+//! second, naming the first; a cell beside a setting, a row of the actuator
+//! table outside it, an unknown label are named (W003, or E030 where values
+//! would be lost). Only the sheet's title and notes above the first setting
+//! (and the actuator table's one-cell caption right above its header) are
+//! left alone.
+
+use std::collections::{BTreeMap, BTreeSet};
 
 use super::Given;
 use crate::address::{Mnemonic, Target};
-use crate::diag::{CellPos, Code, Diagnostics};
+use crate::diag::{CellPos, Code, Diagnostics, or_list};
 use crate::program::{Modes, Safety};
 use crate::read::{CellValue, Grid, GridCell};
 use crate::stroke::{Stroke, parse_duration_ms, parse_scan};
@@ -22,6 +34,8 @@ struct ActuatorColumns {
     retract: Option<u32>,
     valve: Option<u32>,
     load: Option<u32>,
+    /// The last column with a header (read or named) on the header row.
+    last_col: u32,
 }
 
 /// The labels of the settings, as written on the sheet.
@@ -46,6 +60,23 @@ pub const LABELS: [&str; 15] = [
 /// The columns an actuator table may have, after `actuator`.
 const COLUMNS: [&str; 4] = ["extend", "retract", "valve", "load"];
 
+/// Headers of a column of notes beside the settings (the template's `WHAT
+/// IT MEANS`): its cells on the labels' rows are the engineer's, not read.
+const NOTE_HEADERS: [&str; 9] = [
+    "what it means",
+    "meaning",
+    "note",
+    "notes",
+    "comment",
+    "comments",
+    "remark",
+    "remarks",
+    "description",
+];
+
+/// The words of a settings header row besides the notes headers.
+const TITLE_WORDS: [&str; 3] = ["setting", "settings", "value"];
+
 fn text_of(value: &CellValue) -> String {
     match value {
         CellValue::Text(t) => t.trim().to_string(),
@@ -60,6 +91,29 @@ fn label_of(value: &CellValue) -> Option<String> {
         CellValue::Text(t) => Some(t.trim().trim_end_matches(':').trim().to_ascii_lowercase()),
         _ => None,
     }
+}
+
+/// The known label a cell holds (`Target:` is `target`).
+fn known_label(value: &CellValue) -> Option<&'static str> {
+    let label = label_of(value)?;
+    LABELS.into_iter().find(|known| *known == label)
+}
+
+/// A cell that holds a label and its value together (`target: iec`,
+/// `scan time = 20ms`): the label it starts with.
+fn setting_in_one_cell(value: &CellValue) -> Option<&'static str> {
+    let CellValue::Text(text) = value else {
+        return None;
+    };
+    let lower = text.trim().to_ascii_lowercase();
+    LABELS.into_iter().find(|label| {
+        lower.strip_prefix(label).is_some_and(|rest| {
+            rest.starts_with([':', '=', ' ', '\t'])
+                && !rest
+                    .trim_matches(|c: char| c == ':' || c == '=' || c.is_whitespace())
+                    .is_empty()
+        })
+    })
 }
 
 /// The value of a cell as text, or `None` (reported) for a formula that was
@@ -78,118 +132,310 @@ fn value_text(grid: &Grid, cell: &GridCell, diags: &mut Diagnostics) -> Option<S
     Some(text_of(&cell.value))
 }
 
-/// Reads the settings sheet. Problems go to `diags` with their cells;
-/// a row or column that looks meant for steptable but is not read is named.
-pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
-    let mut settings = Given::default();
-    let value_right_of = |pos: CellPos| {
-        grid.cells
+/// The sheet as it is read: its filled cells, and which of them have been
+/// read or named so far (every other one is named at the end).
+struct Reader<'g> {
+    grid: &'g Grid,
+    /// The filled cells, row by row (text of only white space is empty).
+    cells: Vec<&'g GridCell>,
+    /// The same, by row: every look-up is within a row, so that a sheet
+    /// of many cells is read in time that grows with them, not their square.
+    rows: BTreeMap<u32, Vec<&'g GridCell>>,
+    seen: BTreeSet<CellPos>,
+    settings: Given,
+}
+
+impl<'g> Reader<'g> {
+    fn new(grid: &'g Grid) -> Self {
+        let cells: Vec<&GridCell> = grid
+            .cells
             .iter()
-            .filter(|c| c.pos.row == pos.row && c.pos.col > pos.col)
+            .filter(|c| !matches!(&c.value, CellValue::Text(t) if t.trim().is_empty()))
+            .collect();
+        let mut rows: BTreeMap<u32, Vec<&GridCell>> = BTreeMap::new();
+        for cell in &cells {
+            rows.entry(cell.pos.row).or_default().push(cell);
+        }
+        Reader {
+            grid,
+            cells,
+            rows,
+            seen: BTreeSet::new(),
+            settings: Given::default(),
+        }
+    }
+
+    fn row(&self, row: u32) -> impl Iterator<Item = &'g GridCell> + '_ {
+        self.rows.get(&row).into_iter().flatten().copied()
+    }
+
+    fn at(&self, pos: CellPos) -> Option<&'g GridCell> {
+        self.row(pos.row).find(|c| c.pos == pos)
+    }
+
+    /// The next filled cell right of `pos` on its row.
+    fn right_of(&self, pos: CellPos) -> Option<&'g GridCell> {
+        self.row(pos.row)
+            .filter(|c| c.pos.col > pos.col)
             .min_by_key(|c| c.pos.col)
+    }
+
+    fn warn(&mut self, pos: CellPos, message: String, diags: &mut Diagnostics) {
+        self.seen.insert(pos);
+        diags.warning(Code::W003Ignored, self.grid.location(pos), message);
+    }
+
+    fn error(&mut self, pos: CellPos, message: String, diags: &mut Diagnostics) {
+        self.seen.insert(pos);
+        diags.error(Code::E030BadSetting, self.grid.location(pos), message);
+    }
+}
+
+/// What the structure of the sheet is, found before its values are read.
+struct Layout {
+    /// The columns under a notes header.
+    notes: BTreeSet<u32>,
+    /// Rows of `SETTING | VALUE | …` headers.
+    header_rows: BTreeSet<u32>,
+    /// The actuator tables, by header.
+    tables: Vec<ActuatorColumns>,
+    /// The rows of their headers.
+    table_rows: BTreeSet<u32>,
+}
+
+/// Reads the settings sheet. Problems go to `diags` with their cells; every
+/// filled cell is read or named.
+pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
+    let mut reader = Reader::new(grid);
+    let mut layout = settings_headers(&mut reader, diags);
+    let headers: Vec<CellPos> = reader
+        .cells
+        .iter()
+        .filter(|c| label_of(&c.value).as_deref() == Some("actuator"))
+        .map(|c| c.pos)
+        .collect();
+    for header in headers {
+        layout.table_rows.insert(header.row);
+        layout
+            .tables
+            .push(actuator_columns(&mut reader, header, diags));
+    }
+    let label_rows = read_labels(&mut reader, &layout, diags);
+    let mut first_rows: BTreeMap<u32, CellPos> = BTreeMap::new();
+    for columns in &layout.tables {
+        read_actuator_rows(&mut reader, columns, &layout, &mut first_rows, diags);
+    }
+    name_the_rest(&mut reader, &layout, &label_rows, diags);
+    reader.settings.with_board_target()
+}
+
+/// The rows `SETTING | VALUE | WHAT IT MEANS`: the columns under a notes
+/// header hold the labels' notes; any other header is named.
+fn settings_headers(reader: &mut Reader, diags: &mut Diagnostics) -> Layout {
+    let mut layout = Layout {
+        notes: BTreeSet::new(),
+        header_rows: BTreeSet::new(),
+        tables: Vec::new(),
+        table_rows: BTreeSet::new(),
     };
-    let mut stroke_header: Option<ActuatorColumns> = None;
-    let mut label_cols: Vec<u32> = Vec::new();
-    // Label cells and their values, which may sit beside the actuator table.
-    let mut read_elsewhere: Vec<CellPos> = Vec::new();
-    for cell in &grid.cells {
-        let Some(label) = label_of(&cell.value) else {
+    let rows: BTreeSet<u32> = reader
+        .cells
+        .iter()
+        .filter(|c| label_of(&c.value).as_deref() == Some("value"))
+        .filter(|value| {
+            reader.row(value.pos.row).any(|c| {
+                c.pos.col < value.pos.col
+                    && matches!(label_of(&c.value).as_deref(), Some("setting" | "settings"))
+            })
+        })
+        .map(|c| c.pos.row)
+        .collect();
+    for row in &rows {
+        let cells: Vec<&GridCell> = reader.row(*row).collect();
+        // Each of SETTING and VALUE heads one column.
+        let mut headed: Vec<String> = Vec::new();
+        for cell in cells {
+            let label = label_of(&cell.value).unwrap_or_default();
+            let word = label.trim_end_matches('s').to_string();
+            if NOTE_HEADERS.contains(&label.as_str()) {
+                layout.notes.insert(cell.pos.col);
+                reader.seen.insert(cell.pos);
+            } else if TITLE_WORDS.contains(&label.as_str()) && !headed.contains(&word) {
+                headed.push(word);
+                reader.seen.insert(cell.pos);
+            } else {
+                reader.warn(
+                    cell.pos,
+                    format!(
+                        "{} heads no column steptable reads (expected SETTING, VALUE, and a column of notes headed {}); its column was not read",
+                        cell.value.describe(),
+                        or_list(&NOTE_HEADERS.map(str::to_uppercase))
+                    ),
+                    diags,
+                );
+            }
+        }
+    }
+    layout.header_rows = rows;
+    layout
+}
+
+/// Reads every labelled setting; returns the rows that hold a label, each
+/// with its first. A label given twice is E030 at the second.
+fn read_labels(
+    reader: &mut Reader,
+    layout: &Layout,
+    diags: &mut Diagnostics,
+) -> BTreeMap<u32, &'static str> {
+    let grid = reader.grid;
+    let mut label_rows: BTreeMap<u32, &'static str> = BTreeMap::new();
+    let mut first: BTreeMap<&'static str, CellPos> = BTreeMap::new();
+    let labels: Vec<(&GridCell, &'static str)> = reader
+        .cells
+        .iter()
+        .filter_map(|c| known_label(&c.value).map(|l| (*c, l)))
+        .collect();
+    for (cell, label) in labels {
+        reader.seen.insert(cell.pos);
+        label_rows.entry(cell.pos.row).or_insert(label);
+        // The notes beside a label are the engineer's.
+        let notes: Vec<CellPos> = reader
+            .row(cell.pos.row)
+            .filter(|c| layout.notes.contains(&c.pos.col))
+            .map(|c| c.pos)
+            .collect();
+        reader.seen.extend(notes);
+        // A label with nothing but a note or another label beside it
+        // gives nothing (the value left blank): said, so that a value
+        // typed in the wrong column is not lost without a word.
+        let Some(value_cell) = reader.right_of(cell.pos).filter(|v| {
+            !layout.notes.contains(&v.pos.col)
+                && known_label(&v.value).is_none()
+                && label_of(&v.value).as_deref() != Some("actuator")
+        }) else {
+            reader.warn(
+                cell.pos,
+                format!(
+                    "{label} has no value in the cell right of it; nothing was read for it (write the value there)"
+                ),
+                diags,
+            );
             continue;
         };
-        if label == "actuator" {
-            stroke_header = Some(actuator_columns(grid, cell.pos, diags));
+        reader.seen.insert(value_cell.pos);
+        if let Some(earlier) = first.get(label) {
+            reader.error(
+                value_cell.pos,
+                format!(
+                    "{label} is given twice: here and at {}; remove one (this one was not read)",
+                    grid.cell_name(*earlier)
+                ),
+                diags,
+            );
             continue;
         }
-        if !LABELS.contains(&label.as_str()) {
-            continue;
-        }
-        label_cols.push(cell.pos.col);
-        read_elsewhere.push(cell.pos);
-        let Some(value_cell) = value_right_of(cell.pos) else {
-            continue;
-        };
-        read_elsewhere.push(value_cell.pos);
+        first.insert(label, value_cell.pos);
         let Some(value) = value_text(grid, value_cell, diags) else {
             continue;
         };
+        let at = grid.location(value_cell.pos);
+        reader.settings.cells.insert(label, at.clone());
         let lower = value.to_ascii_lowercase();
-        let mut bad = |expected: &str| {
+        let settings = &mut reader.settings;
+        let mut bad = |expected: String| {
             diags.error(
                 Code::E030BadSetting,
-                grid.location(value_cell.pos),
+                at.clone(),
                 format!("{label}: \"{value}\" is not valid (expected {expected})"),
             );
         };
-        match label.as_str() {
+        match label {
+            // `default`: festo, or iec when a board is named (the
+            // template's own value, so that its board list never
+            // conflicts with its target).
+            "target" if lower == "default" => {}
             "target" => match value.parse::<Target>() {
                 Ok(target) => settings.target = Some(target),
-                Err(_) => bad("festo, iec, openplc or siemens"),
+                Err(_) => {
+                    let mut names = vec!["default"];
+                    names.extend(Target::NAMES);
+                    bad(or_list(&names))
+                }
             },
             "board" if lower == "none" => {}
             "board" => match value.parse::<crate::address::Board>() {
                 Ok(board) => settings.board = Some(board),
-                Err(_) => bad(&format!(
+                Err(_) => bad(format!(
                     "none or one of {}",
                     crate::address::BOARDS.map(|b| b.name).join(", ")
                 )),
             },
             "mnemonic" => match value.parse::<Mnemonic>() {
                 Ok(mnemonic) => settings.mnemonic = Some(mnemonic),
-                Err(_) => bad("en or de"),
+                Err(_) => bad(or_list(&Mnemonic::names())),
             },
             "scan time" => match parse_scan(&value) {
                 Ok(ms) => settings.scan_ms = Some(ms),
-                Err(_) => bad("a scan time from 1ms to 1s, such as 10ms"),
+                Err(_) => bad("a scan time from 1ms to 1s, such as 10ms".to_string()),
             },
             "safety" => match value.parse::<Safety>() {
                 Ok(safety) => settings.safety = Some(safety),
-                Err(_) => bad("none, all, or some of edge, precheck, plausibility, watchdog"),
+                Err(_) => bad(format!(
+                    "none, all, or some of {}",
+                    Safety::NAMES.join(", ")
+                )),
             },
             "modes" => match value.parse::<Modes>() {
                 Ok(modes) => settings.modes = Some(modes),
-                Err(_) => bad("none, all, or some of continuous, stop, estop, reset"),
+                Err(_) => bad(format!("none, all, or some of {}", Modes::NAMES.join(", "))),
             },
-            // The rows that list outputs or inputs by name: read as a list
-            // here, checked against the table once it is read.
-            other if super::halt::Row::from_label(other).is_some() => {
-                let row = super::halt::Row::from_label(other).expect("matched");
-                if lower != "none" {
-                    settings.named.insert(
-                        row,
-                        super::halt::NamedList::parse(&value, grid.location(value_cell.pos)),
-                    );
-                }
-            }
             "home order" if lower == "default" => {}
             "home order" => match Modes::parse_home_order(&value) {
                 Ok(order) => settings.home_order = Some(order),
-                Err(_) => bad("stages of actuators such as C3&C4, C2, C1"),
+                Err(_) => bad("stages of actuators such as C3&C4, C2, C1".to_string()),
             },
-            _ => {}
+            // The rows that list outputs or inputs by name: read as a list
+            // here, checked against the table once it is read.
+            other => {
+                if let Some(row) = super::halt::Row::from_label(other)
+                    && lower != "none"
+                {
+                    settings
+                        .named
+                        .insert(row, super::halt::NamedList::parse(&value, at.clone()));
+                }
+            }
         }
     }
-    report_unknown_labels(grid, &label_cols, stroke_header.as_ref(), diags);
-    if let Some(columns) = stroke_header {
-        read_actuator_rows(grid, &columns, &read_elsewhere, &mut settings, diags);
-    }
-    settings.with_board_target()
+    label_rows
 }
 
 /// The columns of the actuator table headed at `header`; a header cell
 /// that is none of them is named, since its column would not be read.
-fn actuator_columns(grid: &Grid, header: CellPos, diags: &mut Diagnostics) -> ActuatorColumns {
+fn actuator_columns(
+    reader: &mut Reader,
+    header: CellPos,
+    diags: &mut Diagnostics,
+) -> ActuatorColumns {
     let mut columns = ActuatorColumns {
         header,
         extend: None,
         retract: None,
         valve: None,
         load: None,
+        last_col: header.col,
     };
-    for cell in grid
-        .cells
-        .iter()
-        .filter(|c| c.pos.row == header.row && c.pos.col > header.col)
-    {
+    reader.seen.insert(header);
+    let cells: Vec<&GridCell> = reader
+        .row(header.row)
+        .filter(|c| c.pos.col > header.col)
+        .collect();
+    for cell in cells {
+        // A label beside the table is a setting of its own.
+        if known_label(&cell.value).is_some() {
+            break;
+        }
+        columns.last_col = cell.pos.col;
         let label = label_of(&cell.value).unwrap_or_default();
         let slot = match label.as_str() {
             "extend" => &mut columns.extend,
@@ -197,86 +443,109 @@ fn actuator_columns(grid: &Grid, header: CellPos, diags: &mut Diagnostics) -> Ac
             "valve" => &mut columns.valve,
             "load" => &mut columns.load,
             _ => {
-                diags.warning(
-                    Code::W003Ignored,
-                    grid.location(cell.pos),
+                reader.warn(
+                    cell.pos,
                     format!(
                         "{} heads no column steptable reads (expected {}); its column was not read",
                         cell.value.describe(),
                         COLUMNS.join(", ")
                     ),
+                    diags,
                 );
                 continue;
             }
         };
-        slot.get_or_insert(cell.pos.col);
+        if slot.is_some() {
+            reader.error(
+                cell.pos,
+                format!(
+                    "the actuator table has two {label} columns; remove one (this one was not read)"
+                ),
+                diags,
+            );
+            continue;
+        }
+        reader.seen.insert(cell.pos);
+        *slot = Some(cell.pos.col);
     }
     columns
 }
 
-/// The rows of the actuator table: from the header down to the first row
-/// with nothing in the table's columns. A row whose first cell is no
-/// actuator (`C2`, `C2 (clamp)`) is an error when it holds values, which
-/// would otherwise be lost.
+/// The rows of an actuator table: from the header down, blank rows
+/// included, to a row that starts with a label, another table's header or
+/// a note (named). A row whose first cell is no actuator (`C2`, `C2
+/// (clamp)`) is an error when it holds values, which would otherwise be
+/// lost; an actuator given twice (in any actuator table) is an error at
+/// the second, naming the first.
 fn read_actuator_rows(
-    grid: &Grid,
+    reader: &mut Reader,
     columns: &ActuatorColumns,
-    read_elsewhere: &[CellPos],
-    settings: &mut Given,
+    layout: &Layout,
+    first_rows: &mut BTreeMap<u32, CellPos>,
     diags: &mut Diagnostics,
 ) {
+    let grid = reader.grid;
     let header = columns.header;
     let value_cols: Vec<u32> = [columns.extend, columns.retract, columns.valve, columns.load]
         .into_iter()
         .flatten()
         .collect();
-    // Every headed column counts, so a value under a header we do not read is named.
-    let last_col = grid
-        .cells
-        .iter()
-        .filter(|c| c.pos.row == header.row)
-        .map(|c| c.pos.col)
-        .max()
-        .unwrap_or(header.col);
-    let in_table = |c: &&GridCell| (header.col..=last_col).contains(&c.pos.col);
-    let mut row = header.row + 1;
-    loop {
-        let cells: Vec<&GridCell> = grid
-            .cells
-            .iter()
-            .filter(|c| c.pos.row == row)
-            .filter(in_table)
-            .collect();
-        if cells.is_empty() {
+
+    let in_table = |c: &GridCell| (header.col..=columns.last_col).contains(&c.pos.col);
+    let mut rows_read = 0;
+    let mut ended_by_note = false;
+    // Row by row below the header, blank rows skipped (each next row found
+    // in the index: a sheet of many tables is read in time).
+    let mut row = header.row;
+    while let Some(next) = reader.rows.range(row + 1..).next().map(|(r, _)| *r) {
+        row = next;
+        if layout.header_rows.contains(&row) || layout.table_rows.contains(&row) {
             break;
         }
+        let cells: Vec<&GridCell> = reader
+            .row(row)
+            .filter(|c| in_table(c) && !reader.seen.contains(&c.pos))
+            .collect();
+        let name_cell = cells.iter().copied().find(|c| c.pos.col == header.col);
+        // A label in the table's first column: the settings go on below.
+        if reader
+            .at(CellPos::new(row, header.col))
+            .is_some_and(|c| known_label(&c.value).is_some())
+        {
+            break;
+        }
+        if cells.is_empty() {
+            continue;
+        }
+        rows_read += 1;
         // Right of the last headed column, on a row of the table: a value
         // that would otherwise be lost.
-        for cell in grid.cells.iter().filter(|c| {
-            c.pos.row == row && c.pos.col > last_col && !read_elsewhere.contains(&c.pos)
-        }) {
-            diags.warning(
-                Code::W003Ignored,
-                grid.location(cell.pos),
+        let beyond: Vec<&GridCell> = reader
+            .row(row)
+            .filter(|c| c.pos.col > columns.last_col && !reader.seen.contains(&c.pos))
+            .collect();
+        for cell in beyond {
+            reader.warn(
+                cell.pos,
                 format!(
                     "{} is right of the actuator table, in a column without a header (expected {}); it was not read",
                     cell.value.describe(),
                     COLUMNS.join(", ")
                 ),
+                diags,
             );
         }
-        row += 1;
-        let at = |col: u32| cells.iter().copied().find(|c| c.pos.col == col);
         let values: Vec<&GridCell> = cells
             .iter()
             .copied()
             .filter(|c| c.pos.col != header.col)
             .collect();
-        let Some(name_cell) = at(header.col) else {
-            diags.error(
-                Code::E030BadSetting,
-                grid.location(values[0].pos),
+        let Some(name_cell) = name_cell else {
+            reader.seen.extend(values.iter().map(|c| c.pos));
+            reader.error(
+                values[0].pos,
                 "this row of the actuator table names no actuator in its first column; write C1, C2, … there".to_string(),
+                diags,
             );
             continue;
         };
@@ -284,40 +553,73 @@ fn read_actuator_rows(
         let Some(actuator) = crate::cell::actuator_name(&name) else {
             if values.is_empty() && !crate::cell::looks_like_move(&name) {
                 // A note under the table ends it.
-                diags.warning(
-                    Code::W003Ignored,
-                    grid.location(name_cell.pos),
+                reader.warn(
+                    name_cell.pos,
                     format!(
                         "{} is not an actuator; the actuator table ends above it",
                         name_cell.value.describe()
                     ),
+                    diags,
                 );
+                ended_by_note = true;
                 break;
             }
-            diags.error(
-                Code::E030BadSetting,
-                grid.location(name_cell.pos),
+            reader.seen.extend(values.iter().map(|c| c.pos));
+            reader.error(
+                name_cell.pos,
                 format!(
                     "\"{name}\" is not an actuator (expected C1 to C{}, optionally with a comment: C1 (clamp)); the row's values were not read",
                     crate::cell::MAX_ACTUATOR
                 ),
+                diags,
             );
             continue;
         };
+        reader.seen.extend(values.iter().map(|c| c.pos));
+        if values.is_empty() {
+            reader.warn(
+                name_cell.pos,
+                format!("C{actuator} has nothing beside it in the actuator table; nothing was read for it"),
+                diags,
+            );
+            continue;
+        }
+        reader.seen.insert(name_cell.pos);
+        if let Some(earlier) = first_rows.get(&actuator) {
+            reader.error(
+                name_cell.pos,
+                format!(
+                    "C{actuator} is given twice in the actuator table: here and at {}; remove one (this row was not read)",
+                    grid.cell_name(*earlier)
+                ),
+                diags,
+            );
+            continue;
+        }
+        first_rows.insert(actuator, name_cell.pos);
         for cell in &values {
             if !value_cols.contains(&cell.pos.col) {
-                diags.warning(
-                    Code::W003Ignored,
-                    grid.location(cell.pos),
+                reader.warn(
+                    cell.pos,
                     format!(
                         "{} of C{actuator} is in a column without a header (expected {}); it was not read",
                         cell.value.describe(),
                         COLUMNS.join(", ")
                     ),
+                    diags,
                 );
             }
         }
-        read_actuator_row(grid, actuator, columns, &at, settings, diags);
+        let at = |col: u32| cells.iter().copied().find(|c| c.pos.col == col);
+        read_actuator_row(grid, actuator, columns, &at, &mut reader.settings, diags);
+    }
+    // Only a note ended it: no row at all.
+    if rows_read <= usize::from(ended_by_note) {
+        reader.warn(
+            header,
+            "this actuator table has no row of an actuator with values below its header; nothing was read from it".to_string(),
+            diags,
+        );
     }
 }
 
@@ -387,15 +689,136 @@ fn read_actuator_row<'g>(
     );
 }
 
-/// `scan-time`, `Safty`, `homeorder`: a label within two letters of one
-/// steptable knows.
-fn resembles_a_label(label: &str) -> bool {
-    let letters = |t: &str| -> Vec<char> { t.chars().filter(|c| c.is_alphabetic()).collect() };
-    let label = letters(label);
-    LABELS
+/// Names every filled cell not read so far. Above the first setting (not
+/// on the row just above it) a row of one cell is the sheet's title or a
+/// note, named only when it holds a setting and its value in one cell or
+/// is spelt like a label; a one-cell row right above an actuator table's
+/// header is its caption.
+fn name_the_rest(
+    reader: &mut Reader,
+    layout: &Layout,
+    label_rows: &BTreeMap<u32, &'static str>,
+    diags: &mut Diagnostics,
+) {
+    let first_row = label_rows
+        .keys()
+        .chain(&layout.header_rows)
+        .copied()
+        .chain(layout.tables.iter().map(|t| t.header.row))
+        .min();
+    let captions: BTreeSet<u32> = layout
+        .tables
         .iter()
-        .chain(["actuator"].iter())
-        .any(|known| edit_distance(&label, &letters(known)) <= 2)
+        .filter_map(|t| t.header.row.checked_sub(1))
+        .collect();
+    let rows: Vec<u32> = reader.rows.keys().copied().collect();
+    for row in rows {
+        let cells: Vec<&GridCell> = reader.row(row).collect();
+        let lone_text = cells.len() == 1 && matches!(cells[0].value, CellValue::Text(_));
+        let note = lone_text
+            && (captions.contains(&row) || first_row.is_some_and(|first| row + 1 < first));
+        for cell in &cells {
+            if reader.seen.contains(&cell.pos) {
+                continue;
+            }
+            let word = label_of(&cell.value).unwrap_or_default();
+            if let Some(label) = setting_in_one_cell(&cell.value) {
+                reader.warn(
+                    cell.pos,
+                    format!(
+                        "{} holds the setting {label} and its value in one cell; write the value in the cell right of \"{label}\" (it was not read)",
+                        cell.value.describe()
+                    ),
+                    diags,
+                );
+                continue;
+            }
+            if note && closest_label(&word).is_none() {
+                // The sheet's title and notes, the table's caption.
+                continue;
+            }
+            match unread_cell(&layout.table_rows, cell, &cells, label_rows) {
+                Unread::Row(message) => {
+                    reader.seen.extend(cells.iter().map(|c| c.pos));
+                    reader.warn(cell.pos, message, diags);
+                }
+                Unread::Lost(message) => {
+                    reader.seen.extend(cells.iter().map(|c| c.pos));
+                    reader.error(cell.pos, message, diags);
+                }
+                Unread::Ignored(message) => reader.warn(cell.pos, message, diags),
+            }
+        }
+    }
+}
+
+/// What is said of a cell nothing read.
+enum Unread {
+    /// Values that would be lost (E030): a row of the actuator table
+    /// outside it.
+    Lost(String),
+    /// W003 for a whole row: an unknown label with its values.
+    Row(String),
+    /// W003: a value beside a setting's, any other cell.
+    Ignored(String),
+}
+
+fn unread_cell(
+    table_rows: &BTreeSet<u32>,
+    cell: &GridCell,
+    row: &[&GridCell],
+    label_rows: &BTreeMap<u32, &'static str>,
+) -> Unread {
+    let describe = cell.value.describe();
+    let first_on_row = row.first().is_some_and(|c| c.pos == cell.pos);
+    let text = text_of(&cell.value);
+    if first_on_row && row.len() > 1 && crate::cell::actuator_name(&text).is_some() {
+        let table = if table_rows
+            .first()
+            .is_some_and(|first| *first < cell.pos.row)
+        {
+            "it is below the end of the actuator table (a label, a note or another table ends it)"
+        } else {
+            "no actuator | extend | retract header is above it"
+        };
+        return Unread::Lost(format!(
+            "{describe} reads as a row of the actuator table, but {table}; its values were not read"
+        ));
+    }
+    if let Some(label) = label_rows.get(&cell.pos.row) {
+        return Unread::Ignored(format!(
+            "{describe} is beside the setting {label}, in a column steptable does not read (notes go under a WHAT IT MEANS header); it was not read"
+        ));
+    }
+    let closest = label_of(&cell.value)
+        .and_then(|label| closest_label(&label))
+        .map(|known| format!(" (did you mean {known}?)"))
+        .unwrap_or_default();
+    if first_on_row && row.len() > 1 && !closest.is_empty() {
+        return Unread::Row(format!(
+            "{describe} is not a setting steptable knows{closest} ({}); its row was not read",
+            LABELS.join(", ")
+        ));
+    }
+    Unread::Ignored(format!(
+        "{describe} is not a setting steptable knows{closest}, a setting's value or a row of the actuator table; it was not read"
+    ))
+}
+
+/// `scan-time`, `Safty`, `homeorder`: the label steptable knows within two
+/// letters of `label`, the closest.
+fn closest_label(label: &str) -> Option<&'static str> {
+    LABELS
+        .into_iter()
+        .chain(["actuator"])
+        .map(|known| (edit_distance(&letters(label), &letters(known)), known))
+        .min()
+        .filter(|(distance, _)| *distance <= 2)
+        .map(|(_, known)| known)
+}
+
+fn letters(text: &str) -> Vec<char> {
+    text.chars().filter(|c| c.is_alphabetic()).collect()
 }
 
 /// Levenshtein distance, for the few short labels above.
@@ -413,48 +836,6 @@ fn edit_distance(a: &[char], b: &[char]) -> usize {
         }
     }
     row[b.len()]
-}
-
-/// A label with a value beside it, in the column of the known labels or
-/// spelt like one, that is no setting (`scan-time`, `safty`): its row would
-/// be ignored.
-fn report_unknown_labels(
-    grid: &Grid,
-    label_cols: &[u32],
-    actuators: Option<&ActuatorColumns>,
-    diags: &mut Diagnostics,
-) {
-    let actuator_rows = actuators.map(|a| a.header.row);
-    for cell in &grid.cells {
-        if actuator_rows.is_some_and(|r| cell.pos.row >= r) {
-            continue;
-        }
-        let Some(label) = label_of(&cell.value) else {
-            continue;
-        };
-        if !label_cols.contains(&cell.pos.col) && !resembles_a_label(&label) {
-            continue;
-        }
-        let has_value = grid
-            .cells
-            .iter()
-            .any(|c| c.pos.row == cell.pos.row && c.pos.col == cell.pos.col + 1);
-        if !has_value
-            || LABELS.contains(&label.as_str())
-            || matches!(label.as_str(), "setting" | "settings")
-        {
-            continue;
-        }
-        diags.warning(
-            Code::W003Ignored,
-            grid.location(cell.pos),
-            format!(
-                "{} is not a setting steptable knows ({}); its row was not read",
-                cell.value.describe(),
-                LABELS.join(", ")
-            ),
-        );
-    }
 }
 
 #[cfg(test)]
@@ -481,8 +862,8 @@ mod tests {
         assert_eq!(d("safety", "safty"), 1);
         assert_eq!(d("scantime", "scan"), 4);
         assert_eq!(d("", "abc"), 3);
-        assert!(resembles_a_label("safty"));
-        assert!(!resembles_a_label("scanner"));
+        assert_eq!(closest_label("safty"), Some("safety"));
+        assert_eq!(closest_label("scanner"), None);
     }
 
     #[test]
@@ -505,8 +886,10 @@ mod tests {
         assert_eq!(found[0].location.cell, Some(CellPos::new(1, 6)));
     }
 
+    /// On a sheet without a single known setting, every label with a value
+    /// is named, the closest known one offered when it is spelt like one.
     #[test]
-    fn labels_within_two_letters_of_a_known_one_are_named_others_left_alone() {
+    fn unknown_labels_are_named_with_the_closest_known_one() {
         let mut diags = Diagnostics::new();
         parse(
             &grid(&[
@@ -520,20 +903,32 @@ mod tests {
             &mut diags,
         );
         let found = diags.into_sorted();
-        let cells: Vec<_> = found.iter().map(|d| d.location.cell).collect();
+        let cells: Vec<String> = found
+            .iter()
+            .map(|d| d.location.cell.unwrap().a1())
+            .collect();
+        // A label spelt like a known one is named once for its row; other
+        // words and their values each.
         assert_eq!(
             cells,
-            [
-                Some(CellPos::new(0, 0)),
-                Some(CellPos::new(1, 0)),
-                Some(CellPos::new(2, 0))
-            ],
+            ["A1", "A2", "A3", "A4", "B4", "A5", "B5", "A6", "B6"],
             "{found:?}"
         );
+        assert!(
+            found[0].message.contains("did you mean scan time?"),
+            "{found:?}"
+        );
+        assert!(
+            found[1].message.contains("did you mean safety?"),
+            "{found:?}"
+        );
+        assert!(!found[3].message.contains("did you mean"), "{found:?}");
     }
 
+    /// Below the first setting nothing is a note: an unknown label, a lone
+    /// word, a row of cells are each named (the row once, at its first cell).
     #[test]
-    fn an_unknown_label_in_the_column_of_the_known_ones_is_named() {
+    fn every_cell_below_the_first_setting_is_read_or_named() {
         let mut diags = Diagnostics::new();
         parse(
             &grid(&[
@@ -545,8 +940,11 @@ mod tests {
             &mut diags,
         );
         let found = diags.into_sorted();
-        let cells: Vec<_> = found.iter().map(|d| d.location.cell).collect();
-        assert_eq!(cells, [Some(CellPos::new(1, 0))], "{found:?}");
+        let cells: Vec<String> = found
+            .iter()
+            .map(|d| d.location.cell.unwrap().a1())
+            .collect();
+        assert_eq!(cells, ["A2", "B2", "A3", "A4", "C4", "D4"], "{found:?}");
     }
 
     #[test]
@@ -640,7 +1038,10 @@ mod tests {
             s.strokes[&3].extend_ms, 1000,
             "rows after a bad one are still read"
         );
-        assert!(!s.strokes.contains_key(&4), "the table ends at a blank row");
+        assert_eq!(
+            s.strokes[&4].extend_ms, 1000,
+            "a blank row does not end the table"
+        );
         let expected = [
             "SETTINGS!A1: warning[W003]: \"scan-time\" is not a setting",
             "SETTINGS!E4: warning[W003]: \"remark\" heads no column",
@@ -651,6 +1052,161 @@ mod tests {
         assert_eq!(all.len(), expected.len(), "{all:#?}");
         for (got, want) in all.iter().zip(expected) {
             assert!(got.contains(want), "{got}\n{want}");
+        }
+    }
+
+    fn cells_and_messages(diags: Diagnostics) -> Vec<(String, String)> {
+        diags
+            .into_sorted()
+            .iter()
+            .map(|d| {
+                (
+                    format!("{} {}", d.code.as_str(), d.location.cell.unwrap().a1()),
+                    d.message.clone(),
+                )
+            })
+            .collect()
+    }
+
+    /// A setting given twice is E030 at the second, naming the first, and
+    /// the first is the one read: a label twice, an actuator twice (in the
+    /// table, or in a second table), a column header twice.
+    #[test]
+    fn a_setting_given_twice_is_an_error_naming_both_cells() {
+        let mut diags = Diagnostics::new();
+        let s = parse(
+            &grid(&[
+                &["target", "iec"],
+                &["target", "siemens"],
+                &["actuator", "extend", "retract", "valve", "valve"],
+                &["C1", "1s", "1s", "52mono"],
+                &["C1 (clamp)", "2s", "2s", "52bi"],
+                &["C2"],
+                &["C2", "3s"],
+            ]),
+            &mut diags,
+        );
+        assert_eq!(s.target, Some(Target::Iec));
+        assert_eq!(s.valves.get(&1), Some(&ValveType::Mono52));
+        assert_eq!(s.strokes[&2].extend_ms, 3000, "a name alone gives nothing");
+        let found = cells_and_messages(diags);
+        let codes: Vec<&str> = found.iter().map(|(c, _)| c.as_str()).collect();
+        assert_eq!(
+            codes,
+            ["E030 B2", "E030 E3", "E030 A5", "W003 A6"],
+            "{found:#?}"
+        );
+        assert!(found[0].1.contains("target is given twice: here and at B1"));
+        assert!(found[1].1.contains("two valve columns"));
+        assert!(
+            found[2]
+                .1
+                .contains("C1 is given twice in the actuator table: here and at A4")
+        );
+    }
+
+    /// The template's layout: `SETTING | VALUE | | WHAT IT MEANS`, notes in
+    /// the last column, a caption above the actuator table; nothing named.
+    /// A value in a column no header reads is named.
+    #[test]
+    fn notes_under_a_notes_header_are_the_engineers_and_other_cells_named() {
+        let mut diags = Diagnostics::new();
+        let s = parse(
+            &grid(&[
+                &["SETTINGS"],
+                &["Used by steptable convert for this workbook."],
+                &[],
+                &["SETTING", "VALUE", "", "WHAT IT MEANS"],
+                &["target", "default", "", "Address style"],
+                &["board", "rpi", "", "The board"],
+                &["mnemonic", "", "", "Operand letters"],
+                &[],
+                &["Stroke times per actuator."],
+                &["actuator", "extend", "retract", "valve"],
+                &["C1", "1s", "1s"],
+            ]),
+            &mut diags,
+        );
+        assert_eq!(s.target, Some(Target::Iec), "the board decides");
+        assert_eq!(s.mnemonic, None, "a blank value gives nothing");
+        let found = cells_and_messages(diags);
+        assert_eq!(found.len(), 1, "{found:#?}");
+        assert_eq!(found[0].0, "W003 A7", "only the blank value is said");
+        let mut diags = Diagnostics::new();
+        parse(
+            &grid(&[
+                &["target", "iec", "oops"],
+                &["scan time: 20ms"],
+                &["mnemonic", "de", "", "", "far right"],
+            ]),
+            &mut diags,
+        );
+        let found = cells_and_messages(diags);
+        let codes: Vec<&str> = found.iter().map(|(c, _)| c.as_str()).collect();
+        assert_eq!(codes, ["W003 C1", "W003 A2", "W003 E3"], "{found:#?}");
+        assert!(found[0].1.contains("beside the setting target"));
+        assert!(
+            found[1]
+                .1
+                .contains("holds the setting scan time and its value in one cell")
+        );
+    }
+
+    /// An actuator row outside the actuator table — with no header above
+    /// it, or below a note that ends the table — would lose its values:
+    /// E030. A blank row does not end the table.
+    #[test]
+    fn an_actuator_row_outside_the_table_is_an_error() {
+        let mut diags = Diagnostics::new();
+        let s = parse(
+            &grid(&[
+                &["C9", "2s", "2s"],
+                &["safety", "all"],
+                &[],
+                &["actuator", "extend", "retract"],
+                &["C1", "1s", "1s"],
+                &[],
+                &["C2", "2s", "2s"],
+                &["spare cylinders:"],
+                &["C3", "3s", "3s"],
+            ]),
+            &mut diags,
+        );
+        assert_eq!(s.strokes[&2].extend_ms, 2000);
+        assert!(!s.strokes.contains_key(&3) && !s.strokes.contains_key(&9));
+        let found = cells_and_messages(diags);
+        let codes: Vec<&str> = found.iter().map(|(c, _)| c.as_str()).collect();
+        assert_eq!(codes, ["E030 A1", "W003 A8", "E030 A9"], "{found:#?}");
+        assert!(
+            found[0]
+                .1
+                .contains("no actuator | extend | retract header is above it")
+        );
+        assert!(found[2].1.contains("below the end of the actuator table"));
+    }
+
+    /// A sheet of many cells is read in time that grows with them: 50,000
+    /// rows of actuators, of actuator tables, of settings with a stray
+    /// beside them (each look-up is within a row, and the next row of a
+    /// table is found in the index, not by scanning). Read whole for every
+    /// table or every row, the tables alone took 80 s for 100,000.
+    #[test]
+    fn a_sheet_of_many_cells_is_read_in_linear_time() {
+        for row in [
+            ["C1", "1s", "1s"],
+            ["actuator", "x", ""],
+            ["target", "iec", "oops"],
+        ] {
+            let mut rows: Vec<[&str; 3]> = vec![["actuator", "extend", "retract"]];
+            rows.extend(std::iter::repeat_n(row, 50_000));
+            let grid = grid(&rows.iter().map(|r| &r[..]).collect::<Vec<_>>());
+            let start = std::time::Instant::now();
+            parse(&grid, &mut Diagnostics::new());
+            assert!(
+                start.elapsed().as_secs() < 10,
+                "{row:?}: {:?}",
+                start.elapsed()
+            );
         }
     }
 }

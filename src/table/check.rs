@@ -19,6 +19,9 @@ use crate::valve::Valves;
 pub struct Machine<'a> {
     pub valves: &'a Valves,
     pub home_order: Option<&'a [Vec<u32>]>,
+    /// Where the home order was given: its SETTINGS cell, or `None` for
+    /// the command line (`--home-order`).
+    pub home_order_at: Option<&'a Location>,
     /// Whether the program has the reset mode, which uses the home order.
     pub reset: bool,
     /// The (lower-case) names of the operating-mode buttons the program has
@@ -31,7 +34,7 @@ pub struct Machine<'a> {
 /// names the operating modes take.
 pub fn check_machine(table: &StepTable, machine: &Machine, grid: &Grid, diags: &mut Diagnostics) {
     check_valves(table, machine.valves, grid, diags);
-    check_home_order(table, machine.home_order, machine.reset, grid, diags);
+    check_home_order(table, machine, grid, diags);
     check_button_names(table, machine.buttons, grid, diags);
 }
 
@@ -72,23 +75,30 @@ fn first_use(table: &StepTable, name: &str) -> Option<CellPos> {
 /// A home order is checked against the table whether or not it is used,
 /// and a home order without the reset mode that uses it is said, so that a
 /// forgotten `reset` is not silently a no-op.
-fn check_home_order(
-    table: &StepTable,
-    home_order: Option<&[Vec<u32>]>,
-    reset: bool,
-    grid: &Grid,
-    diags: &mut Diagnostics,
-) {
-    if home_order.is_some() {
-        if let Err(message) = table.home_stages(home_order) {
-            diags.error(Code::E030BadSetting, grid.sheet_location(), message);
-        } else if !reset {
-            diags.warning(
-                Code::W006NoEffect,
-                grid.sheet_location(),
-                "the home order is used by the reset mode only, which is not on: add reset to the modes, or leave the home order out",
-            );
-        }
+fn check_home_order(table: &StepTable, machine: &Machine, grid: &Grid, diags: &mut Diagnostics) {
+    let Some(order) = machine.home_order else {
+        return;
+    };
+    // On its SETTINGS cell, or on the file for `--home-order`.
+    let (at, source) = match machine.home_order_at {
+        Some(at) => (at.clone(), ""),
+        None => (
+            Location {
+                file: grid.file.clone(),
+                sheet: None,
+                cell: None,
+            },
+            " (--home-order)",
+        ),
+    };
+    if let Err(message) = table.home_stages(Some(order)) {
+        diags.error(Code::E030BadSetting, at, format!("{message}{source}"));
+    } else if !machine.reset {
+        diags.warning(
+            Code::W006NoEffect,
+            at,
+            format!("the home order is used by the reset mode only, which is not on: add reset to the modes, or leave the home order out{source}"),
+        );
     }
 }
 
@@ -108,14 +118,20 @@ fn check_valves(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut Dia
         else {
             continue;
         };
+        let centred: Vec<&str> = crate::valve::ValveType::ALL
+            .into_iter()
+            .filter(|v| v.has_centre())
+            .map(|v| v.name())
+            .collect();
         diags.error(
             Code::E031ValveCannotStop,
             grid.location(m.cell),
             format!(
-                "\"{}\" stops C{} at middle position {}, but its valve is {valve}, which cannot stop a piston between its ends (use 53closed, 53exhaust or 53pressure)",
+                "\"{}\" stops C{} at middle position {}, but its valve is {valve}, which cannot stop a piston between its ends (use {})",
                 m.notation(),
                 actuator.number,
-                m.to
+                m.to,
+                crate::diag::or_list(&centred)
             ),
         );
     }

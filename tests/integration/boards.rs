@@ -190,3 +190,37 @@ fn the_settings_sheet_names_the_board_and_pins_stay_on_it() {
         .code(1)
         .stderr(contains("SETTINGS!B1: error[E030]: board: \"beaglebone\" is not valid (expected none or one of rpi, uno,"));
 }
+
+/// A board with enough inputs but too few outputs is refused for its
+/// outputs alone: three inputs fit the Uno's five, five outputs do not fit
+/// its four.
+#[test]
+fn a_table_with_more_outputs_than_the_board_is_refused_with_the_counts() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("lamps.csv");
+    std::fs::write(
+        &csv,
+        "C1+1; Y:lamp+; Y:horn+; Y:fan+\nC1-0; Y:lamp-; Y:horn-; Y:fan-\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    steptable()
+        .arg("convert")
+        .arg(&csv)
+        .args(["--board", "uno", "-o"])
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(contains(
+            "error[E036]: the program needs 5 outputs, but the uno board (Arduino Uno) wires 4 outputs (%QX0.0 … %QX0.3)",
+        ))
+        .stderr(contains("inputs, but").not());
+    assert!(!out.exists(), "nothing is written");
+    steptable()
+        .arg("check")
+        .arg(&csv)
+        .args(["--board", "nano-every"])
+        .assert()
+        .success()
+        .stdout(contains("3 inputs, 5 outputs"));
+}

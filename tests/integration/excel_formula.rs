@@ -1,7 +1,8 @@
 //! A small evaluator of the Excel formula subset the template's cell
 //! validation uses (OR, AND, TRIM, LEFT, MID, UPPER, FIND, ISNUMBER, VALUE,
-//! SUBSTITUTE, string literals, numbers, `=` and one cell reference), so a
-//! test can ask what the written rule says of a cell without Excel.
+//! SUBSTITUTE, CLEAN, UNICHAR, string literals, numbers, `&`, `=` and one
+//! cell reference), so a test can ask what the written rule says of a cell
+//! without Excel.
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum V {
@@ -47,15 +48,26 @@ impl Parser<'_> {
         self.chars.get(self.at).copied()
     }
     fn expr(&mut self) -> V {
-        let left = self.term();
+        let left = self.concat();
         if self.peek() == Some('=') {
             self.at += 1;
-            let right = self.term();
+            let right = self.concat();
             // Excel compares text without regard to case.
             return V::Bool(left.text().to_uppercase() == right.text().to_uppercase());
         }
         left
     }
+    /// `a & b & …`: text joined, binding tighter than `=`.
+    fn concat(&mut self) -> V {
+        let mut value = self.term();
+        while self.peek() == Some('&') {
+            self.at += 1;
+            let right = self.term();
+            value = V::Str(value.text() + &right.text());
+        }
+        value
+    }
+
     fn term(&mut self) -> V {
         match self.peek() {
             Some('"') => {
@@ -93,11 +105,13 @@ impl Parser<'_> {
                 let start = self.at;
                 while self
                     .peek()
-                    .is_some_and(|c| c.is_ascii_alphanumeric() || c == '_')
+                    .is_some_and(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.')
                 {
                     self.at += 1;
                 }
                 let name: String = self.chars[start..self.at].iter().collect();
+                // Functions newer than Excel 2007 are written `_xlfn.NAME`.
+                let name = name.trim_start_matches("_xlfn.").to_string();
                 if self.peek() != Some('(') {
                     assert_eq!(name, "B4", "only the cell B4 is known");
                     return V::Str(self.cell.to_string());
@@ -129,6 +143,9 @@ fn call(name: &str, a: &[V]) -> V {
                 .join(" "),
         ),
         "UPPER" => V::Str(s(0).to_uppercase()),
+        // The control characters 0 to 31 taken out.
+        "CLEAN" => V::Str(s(0).chars().filter(|c| *c as u32 > 31).collect()),
+        "UNICHAR" => char::from_u32(a[0].num() as u32).map_or(V::Err, |c| V::Str(c.to_string())),
         "LEFT" => V::Str(s(0).chars().take(a[1].num() as usize).collect()),
         "MID" => V::Str(
             s(0).chars()

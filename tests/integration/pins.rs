@@ -194,3 +194,75 @@ fn the_header_is_the_row_with_both_words() {
     let io = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
     assert!(io.contains("I1.0,START,"), "{io}");
 }
+
+/// On Festo the unpinned outputs keep their order around a pinned one and
+/// take the free bits from where Festo's layout starts (`O0.1`): the `+`
+/// coils, then the `-` coils, packed; the pinned coil keeps its address.
+#[test]
+fn on_festo_the_unpinned_outputs_are_laid_out_around_a_pin() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = workbook(dir.path(), &[&["SIGNAL", "ADDRESS"], &["y2+", "O2.0"]]);
+    let out = dir.path().join("out");
+    steptable()
+        .arg("convert")
+        .arg(&input)
+        .args(["--formats", "io", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let io = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
+    let outputs: Vec<(String, String)> = io_rows(&io)
+        .into_iter()
+        .filter(|(a, _)| a.starts_with('O'))
+        .collect();
+    let expected = [
+        ("O0.1", "y1+"),
+        ("O0.2", "y3+"),
+        ("O0.3", "y4+"),
+        ("O0.4", "y1-"),
+        ("O0.5", "y2-"),
+        ("O0.6", "y3-"),
+        ("O0.7", "y4-"),
+        ("O2.0", "y2+"),
+    ];
+    let expected: Vec<(String, String)> = expected
+        .iter()
+        .map(|(a, s)| (a.to_string(), s.to_string()))
+        .collect();
+    assert_eq!(outputs, expected, "{io}");
+}
+
+/// Every output of the allocation list can be pinned: an alarm lamp too.
+#[test]
+fn an_alarm_output_can_be_pinned() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = workbook(
+        dir.path(),
+        &[
+            &["SIGNAL", "ADDRESS"],
+            &["alarm_wd", "Q3.7"],
+            &["alarm_pl", "Q3.6"],
+        ],
+    );
+    let out = dir.path().join("out");
+    steptable()
+        .arg("convert")
+        .arg(&input)
+        .args([
+            "--target",
+            "siemens",
+            "--safety",
+            "all",
+            "--formats",
+            "io,st",
+            "-o",
+        ])
+        .arg(&out)
+        .assert()
+        .success();
+    let io = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
+    assert!(io.contains("Q3.7,alarm_wd,alarm"), "{io}");
+    assert!(io.contains("Q3.6,alarm_pl,alarm"), "{io}");
+    let st = std::fs::read_to_string(out.join("line/line.st")).unwrap();
+    assert!(st.contains("AT %QX3.7"), "{st}");
+}

@@ -158,3 +158,199 @@ proptest! {
         }
     }
 }
+
+/// What an engineer may leave on the SETTINGS sheet: notes, values,
+/// labels, actuators, a label and its value in one cell, a misspelt label,
+/// the words of the headers.
+const SETTINGS_STRAY: [&str; 15] = [
+    "remark",
+    "C7",
+    "C2 (lift)",
+    "1s",
+    "52mono",
+    "target",
+    "iec",
+    "x",
+    "scan time: 20ms",
+    "42",
+    "actuator",
+    "value",
+    "extend",
+    "load",
+    "Safty",
+];
+
+/// A generated SETTINGS sheet: its rows, its region (the header row, the
+/// last row and the last column) and the rows of its settings, whose notes
+/// column (D) holds the engineer's notes.
+struct SettingsSheet {
+    rows: Vec<Vec<String>>,
+    top: usize,
+    last_row: usize,
+    last_col: usize,
+    label_rows: Vec<usize>,
+}
+
+/// A SETTINGS sheet laid out as the template's (title, notes, `SETTING |
+/// VALUE | | WHAT IT MEANS`, settings with their notes, a caption, the
+/// actuator table), with `seed` choosing which settings and how many
+/// actuators, and whether a blank row splits the actuator table.
+fn settings_sheet(seed: u64) -> SettingsSheet {
+    let settings: [(&str, &str); 6] = [
+        ("target", "iec"),
+        ("mnemonic", "de"),
+        ("scan time", "20ms"),
+        ("safety", "watchdog"),
+        ("modes", "none"),
+        ("home order", "default"),
+    ];
+    let text = |cells: &[&str]| cells.iter().map(|c| c.to_string()).collect::<Vec<_>>();
+    let mut rows = vec![
+        text(&["SETTINGS"]),
+        text(&["Used by steptable convert for this workbook."]),
+        vec![],
+        text(&["SETTING", "VALUE", "", "WHAT IT MEANS"]),
+    ];
+    let top = rows.len() - 1;
+    let mut label_rows = Vec::new();
+    for (i, (label, value)) in settings.iter().enumerate() {
+        if seed >> i & 1 == 1 {
+            label_rows.push(rows.len());
+            rows.push(text(&[label, value, "", "what it does"]));
+        }
+    }
+    rows.push(vec![]);
+    rows.push(text(&["Stroke times and valves per actuator."]));
+    rows.push(text(&["actuator", "extend", "retract", "valve", "load"]));
+    let actuators = 1 + (seed >> 6) % 4;
+    for n in 1..=actuators {
+        if n == 2 && seed >> 8 & 1 == 1 {
+            rows.push(vec![]);
+        }
+        rows.push(text(&[&format!("C{n}"), "1s", "0.8s", "", "0.1"]));
+    }
+    let last_row = rows.len() - 1;
+    SettingsSheet {
+        rows,
+        top,
+        last_row,
+        last_col: 4,
+        label_rows,
+    }
+}
+
+/// True when reading the sheet names `pos`, or what it gives differs from
+/// what it gives without the stray (the stray was read).
+fn settings_seen(rows: &[Vec<String>], clean: &[Vec<String>], pos: CellPos) -> Result<(), String> {
+    let parse = |rows: &[Vec<String>]| {
+        let grid = Grid::from_text_rows("t.xlsx", Some("SETTINGS"), rows);
+        let mut diags = Diagnostics::new();
+        let given = steptable::settings::parse(&grid, &mut diags);
+        (given, diags.into_sorted())
+    };
+    let (given, all) = parse(rows);
+    if all.iter().any(|d| d.location.cell == Some(pos)) {
+        return Ok(());
+    }
+    let (without, _) = parse(clean);
+    if given != without {
+        return Ok(());
+    }
+    Err(format!(
+        "{} at {} was neither read nor reported; diagnostics: {:#?}",
+        text_at(rows, pos.row as usize, pos.col as usize),
+        pos.a1(),
+        all.iter().map(|d| d.to_string()).collect::<Vec<_>>()
+    ))
+}
+
+/// A SIGNAL | ADDRESS table (its header in column A or B) with a title and
+/// a note above, and pins below. Returns the rows, the region (header row,
+/// first column, last row) .
+fn addresses_sheet(seed: u64) -> (Vec<Vec<String>>, (usize, usize, usize)) {
+    let left = (seed % 2) as usize;
+    let pad = |cells: &[&str]| {
+        let mut row = vec![String::new(); left];
+        row.extend(cells.iter().map(|c| c.to_string()));
+        row
+    };
+    let mut rows = vec![
+        vec!["ADDRESSES".to_string()],
+        vec!["Pins as wired in the panel.".to_string()],
+        vec![],
+        pad(&["SIGNAL", "ADDRESS"]),
+    ];
+    let header = rows.len() - 1;
+    let pins = [
+        ("START", "I0.0"),
+        ("x11", "I0.2"),
+        ("y1+", "Q0.1"),
+        ("vacuum", "Q1.0"),
+    ];
+    for (signal, address) in pins.iter().take(1 + (seed >> 1) as usize % pins.len()) {
+        rows.push(pad(&[signal, address]));
+    }
+    let last = rows.len() - 1;
+    (rows, (header, left, last))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    /// Every cell of a SETTINGS sheet in or one cell around its settings
+    /// and its actuator table is read or named (but for the notes column of
+    /// the settings' rows, which is the engineer's). Broken on purpose by
+    /// letting a label without a value pass silently, it failed at once
+    /// (`target` left in a blank row).
+    #[test]
+    fn a_stray_cell_on_the_settings_sheet_is_read_or_named(
+        seed in 0u64..1024,
+        row_pick in 0usize..1000,
+        col_pick in 0usize..1000,
+        stray in 0usize..SETTINGS_STRAY.len(),
+    ) {
+        let SettingsSheet { rows: clean, top, last_row, last_col, label_rows } = settings_sheet(seed);
+        // The empty cells in the region or one cell around it, but for the
+        // notes column of the settings' rows (the engineer's) and, for
+        // `remark`, the SETTING | VALUE header row, where it heads another
+        // column of notes.
+        let empty: Vec<(usize, usize)> = (top - 1..=last_row + 1)
+            .flat_map(|r| (0..=last_col + 1).map(move |c| (r, c)))
+            .filter(|(r, c)| text_at(&clean, *r, *c).is_empty())
+            .filter(|(r, c)| !(*c == 3 && label_rows.contains(r)))
+            .filter(|(r, _)| !(*r == top && SETTINGS_STRAY[stray] == "remark"))
+            .collect();
+        let (row, col) = empty[(row_pick * 1000 + col_pick) % empty.len()];
+        let mut rows = clean.clone();
+        set(&mut rows, row, col, SETTINGS_STRAY[stray]);
+        if let Err(why) = settings_seen(&rows, &clean, CellPos::new(row as u32, col as u32)) {
+            prop_assert!(false, "{}", why);
+        }
+    }
+
+    /// Every cell of an ADDRESSES sheet on or below its header, or just
+    /// above it, one column around the two, is read as a pin or named.
+    #[test]
+    fn a_stray_cell_on_the_addresses_sheet_is_read_or_named(
+        seed in 0u64..64,
+        row_pick in 0usize..1000,
+        col_pick in 0usize..1000,
+        stray in 0usize..SETTINGS_STRAY.len(),
+    ) {
+        let (mut rows, (header, left, last_row)) = addresses_sheet(seed);
+        let empty: Vec<(usize, usize)> = (header - 1..=last_row + 1)
+            .flat_map(|r| (left.saturating_sub(1)..=left + 2).map(move |c| (r, c)))
+            .filter(|(r, c)| text_at(&rows, *r, *c).is_empty())
+            .collect();
+        let (row, col) = empty[(row_pick * 1000 + col_pick) % empty.len()];
+        let stray = SETTINGS_STRAY[stray];
+        set(&mut rows, row, col, stray);
+        let grid = Grid::from_text_rows("t.xlsx", Some("ADDRESSES"), &rows);
+        let mut diags = Diagnostics::new();
+        let pins = steptable::settings::pins::parse(&grid, &mut diags);
+        let pos = CellPos::new(row as u32, col as u32);
+        let named = diags.into_sorted().iter().any(|d| d.location.cell == Some(pos));
+        let read = pins.iter().any(|p| p.signal_at.cell == Some(pos) || p.address_at.cell == Some(pos));
+        prop_assert!(named || read, "{} at {} was neither read nor reported", stray, pos.a1());
+    }
+}

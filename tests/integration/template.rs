@@ -274,11 +274,241 @@ fn the_templates_validation_accepts_what_the_reader_accepts() {
             "the template refuses {cell:?}"
         );
     }
-    for cell in ["hello", "2+1", "X2+1", "C+1", "Cx-1", "C21"] {
+    for cell in ["hello", "2+1", "X2+1", "C+1", "Cx-1", "C21", "K:6 if I:x"] {
         assert!(
             !crate::excel_formula::evaluate(&formula, cell),
             "the template accepts {cell:?}"
         );
+    }
+    assert!(
+        formula.len() < 8192,
+        "within Excel's formula length: {}",
+        formula.len()
+    );
+    for cell in accepted_by_the_reader() {
+        assert!(
+            crate::excel_formula::evaluate(&formula, &cell),
+            "the template refuses {cell:?}, which the reader accepts"
+        );
+    }
+}
+
+/// One sample per kind of item the reader knows: a new kind fails to
+/// compile here until it has one (and so is tried against the template).
+fn sample_of(item: &steptable::cell::CellItem) -> &'static str {
+    use steptable::cell::CellItem;
+    match item {
+        CellItem::Move(_) => "C2+1",
+        CellItem::Dwell { .. } => "T=2s",
+        CellItem::Wait { .. } => "I:part=0",
+        CellItem::Switch { .. } => "Y:lamp+",
+        CellItem::Jump { .. } => "J:6 if I:reject",
+    }
+}
+
+/// Cells the reader accepts, built from what it accepts: every kind of
+/// item (alone, in any case, after another item, after an empty one), with
+/// every character `cell::normalize` ignores put in at each place, and
+/// every character it reads as a C, a digit or a sign in its place. Of
+/// these candidates, the ones the reader parses (a space inside a name it
+/// refuses).
+fn accepted_by_the_reader() -> Vec<String> {
+    use steptable::cell::{normalize, parse_item, parse_items};
+    let kinds = [
+        "C2+1",
+        "T=2s",
+        "I:part=0",
+        "Y:lamp+",
+        "J:6 if I:reject",
+        "J:end if I:x",
+    ];
+    for kind in kinds {
+        let item = parse_item(kind).expect("a sample item");
+        let sample = parse_item(sample_of(&item)).expect("a sample item");
+        assert_eq!(
+            std::mem::discriminant(&item),
+            std::mem::discriminant(&sample)
+        );
+    }
+    let mut candidates: Vec<String> = Vec::new();
+    for kind in kinds {
+        candidates.extend([
+            kind.to_string(),
+            kind.to_lowercase(),
+            format!("I:a; {kind}"),
+            format!("; {kind}"),
+            format!("\u{FF1B}{kind}"),
+        ]);
+    }
+    for code in 0..=0x10FFFFu32 {
+        let Some(c) = char::from_u32(code) else {
+            continue;
+        };
+        let mapped = normalize(&c.to_string());
+        if mapped.is_empty() {
+            for kind in kinds {
+                let chars: Vec<char> = kind.chars().collect();
+                for at in 0..=chars.len() {
+                    let mut cell = chars.clone();
+                    cell.insert(at, c);
+                    candidates.push(cell.into_iter().collect());
+                }
+            }
+        } else if mapped == "C" {
+            candidates.push(format!("{c}2+1"));
+        } else if mapped == "+" || mapped == "-" {
+            candidates.push(format!("C2{c}1"));
+        } else if mapped.len() == 1 && mapped.as_bytes()[0].is_ascii_digit() {
+            candidates.push(format!("C{c}+1"));
+        }
+    }
+    let accepted: Vec<String> = candidates
+        .into_iter()
+        .filter(|cell| {
+            let items = parse_items(cell);
+            !items.is_empty() && items.iter().all(|i| i.is_ok())
+        })
+        .collect();
+    // Every ignored character, at the front of each kind, is among them.
+    assert!(accepted.len() > 30 * kinds.len(), "{}", accepted.len());
+    accepted
+}
+
+/// What the template offers as a value, per SETTINGS label: the lists of
+/// its cells' data validation, read from the written workbook.
+pub fn template_lists(path: &std::path::Path) -> std::collections::BTreeMap<String, Vec<String>> {
+    let xml = crate::helpers::xlsx_part(path, "xl/worksheets/sheet2.xml");
+    let settings = read_sheet(path, "SETTINGS");
+    let mut lists = std::collections::BTreeMap::new();
+    for validation in xml.split("<dataValidation ").skip(1) {
+        if !validation.contains(r#"type="list""#) {
+            continue;
+        }
+        let sqref = validation
+            .split(r#"sqref=""#)
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap();
+        let first = sqref.split(':').next().unwrap();
+        let row: usize = first
+            .trim_start_matches(char::is_alphabetic)
+            .parse()
+            .unwrap();
+        let choices = validation
+            .split("<formula1>")
+            .nth(1)
+            .and_then(|f| f.split("</formula1>").next())
+            .unwrap()
+            .replace("&quot;", "")
+            .replace('"', "")
+            .split(',')
+            .map(str::to_string)
+            .collect();
+        // A setting's value (column B): its label; an actuator column's
+        // cells: the header above them.
+        let col = (first.as_bytes()[0] - b'A') as usize;
+        let label = if col == 1 {
+            settings[row - 1][0].clone()
+        } else {
+            settings[row - 2][col].clone()
+        };
+        lists.insert(label, choices);
+    }
+    lists
+}
+
+/// The template's own choices never conflict: its target (`default`)
+/// with every board of its list, and every target of its list with no
+/// board, convert its EXAMPLE.
+#[test]
+fn the_templates_own_choices_never_conflict() {
+    let dir = tempfile::tempdir().unwrap();
+    let template = dir.path().join("t.xlsx");
+    steptable()
+        .arg("template")
+        .arg("-o")
+        .arg(&template)
+        .assert()
+        .success();
+    let lists = template_lists(&template);
+    let sheets: Vec<(String, Vec<Vec<String>>)> = [
+        "SEQUENTIAL CONTROL DESCRIPTION",
+        "SETTINGS",
+        "ADDRESSES",
+        "HELP",
+        "EXAMPLE",
+    ]
+    .iter()
+    .map(|name| (name.to_string(), read_sheet(&template, name)))
+    .collect();
+    let value_of = |rows: &[Vec<String>], label: &str| {
+        rows.iter()
+            .find(|r| r[0] == label)
+            .map(|r| r[1].clone())
+            .unwrap()
+    };
+    assert_eq!(value_of(&sheets[1].1, "target"), "default");
+    assert_eq!(value_of(&sheets[1].1, "board"), "none");
+    let mut choices: Vec<(String, String)> = lists["board"]
+        .iter()
+        .map(|board| ("default".to_string(), board.clone()))
+        .collect();
+    choices.extend(
+        lists["target"]
+            .iter()
+            .map(|t| (t.clone(), "none".to_string())),
+    );
+    for (target, board) in choices {
+        let path = dir.path().join("filled.xlsx");
+        let mut sheets = sheets.clone();
+        for row in sheets[1].1.iter_mut() {
+            if row[0] == "target" {
+                row[1] = target.clone();
+            }
+            if row[0] == "board" {
+                row[1] = board.clone();
+            }
+        }
+        let texts: Vec<Vec<Vec<&str>>> = sheets
+            .iter()
+            .map(|(_, rows)| {
+                rows.iter()
+                    .map(|r| r.iter().map(String::as_str).collect())
+                    .collect()
+            })
+            .collect();
+        let slices: Vec<Vec<&[&str]>> = texts
+            .iter()
+            .map(|rows| rows.iter().map(Vec::as_slice).collect())
+            .collect();
+        let named: Vec<(&str, &[&[&str]])> = sheets
+            .iter()
+            .zip(&slices)
+            .map(|((name, _), rows)| (name.as_str(), rows.as_slice()))
+            .collect();
+        crate::helpers::write_xlsx_sheets(&path, &named);
+        let check = steptable()
+            .arg("check")
+            .arg(&path)
+            .args(["--sheet", "EXAMPLE"])
+            .assert()
+            .stderr(contains("OpenPLC's, whose addresses").not())
+            .stderr(contains("warning").not());
+        // The example needs 12 inputs and 8 outputs: a board with fewer
+        // refuses it for its size, not for the target.
+        let fits = board == "none"
+            || steptable::address::BOARDS
+                .iter()
+                .any(|b| b.name == board && b.inputs >= 12 && b.outputs >= 8);
+        if fits {
+            check.success();
+        } else {
+            check
+                .code(1)
+                .stderr(contains("error[E036]: the program needs"));
+        }
     }
 }
 
