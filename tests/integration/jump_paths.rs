@@ -23,38 +23,38 @@ struct Row {
 const ROWS: &[Row] = &[
     Row {
         what: "a jump on the input its step waits for, with that value: certain",
-        table: "C1+1\nC2+1\n\"C2-0; I:r; J:6 if I:r\"\nC3+1\nC3-0\nC1-0\n",
+        table: "C1+1\nC2+1\n\"C2-0; I:rdy; J:6 if I:rdy\"\nC3+1\nC3-0\nC1-0\n",
         args: &[],
         code: 1,
         expected: &[
-            "t.csv:3:1: error[E028]: \"J:6 if I:r\" in STEP 3: STEP 3 waits for I:r=1, so once the step is done the jump is always taken and steps 4–5 never run",
+            "t.csv:3:1: error[E028]: \"J:6 if I:rdy\" in STEP 3: STEP 3 waits for I:rdy=1, so once the step is done the jump is always taken and steps 4–5 never run",
         ],
     },
     Row {
         what: "a jump on the input its step waits for, with the other value: impossible",
-        table: "C1+1\nC2+1\n\"C2-0; I:r; J:6 if I:r=0\"\nC3+1\nC3-0\nC1-0\n",
+        table: "C1+1\nC2+1\n\"C2-0; I:rdy; J:6 if I:rdy=0\"\nC3+1\nC3-0\nC1-0\n",
         args: &[],
         code: 1,
         expected: &[
-            "t.csv:3:1: error[E028]: \"J:6 if I:r=0\" in STEP 3: STEP 3 waits for I:r=1, so I:r is 1 whenever the jump is tested and the jump is never taken",
+            "t.csv:3:1: error[E028]: \"J:6 if I:rdy=0\" in STEP 3: STEP 3 waits for I:rdy=1, so I:rdy is 1 whenever the jump is tested and the jump is never taken",
         ],
     },
     Row {
         what: "the wait in another branch of the same step, waiting for 0",
-        table: "C1+1,\nC2+1,\n\"C2-0; J:6 if I:r=0\",I:r=0\nC3+1,\nC3-0,\nC1-0,\n",
+        table: "C1+1,\nC2+1,\n\"C2-0; J:6 if I:rdy=0\",I:rdy=0\nC3+1,\nC3-0,\nC1-0,\n",
         args: &[],
         code: 1,
         expected: &[
-            "t.csv:3:1: error[E028]: \"J:6 if I:r=0\" in STEP 3: STEP 3 waits for I:r=0, so once the step is done the jump is always taken",
+            "t.csv:3:1: error[E028]: \"J:6 if I:rdy=0\" in STEP 3: STEP 3 waits for I:rdy=0, so once the step is done the jump is always taken",
         ],
     },
     Row {
         what: "a certain jump back: the cycle never ends",
-        table: "C1+1\nC2+1\n\"C2-0; I:r; J:2 if I:r\"\nC1-0\n",
+        table: "C1+1\nC2+1\n\"C2-0; I:rdy; J:2 if I:rdy\"\nC1-0\n",
         args: &[],
         code: 1,
         expected: &[
-            "t.csv:3:1: error[E028]: \"J:2 if I:r\" in STEP 3: STEP 3 waits for I:r=1, so once the step is done the jump is always taken and steps 2–3 repeat for ever",
+            "t.csv:3:1: error[E028]: \"J:2 if I:rdy\" in STEP 3: STEP 3 waits for I:rdy=1, so once the step is done the jump is always taken and steps 2–3 repeat for ever",
         ],
     },
     Row {
@@ -69,10 +69,10 @@ const ROWS: &[Row] = &[
     },
     Row {
         what: "the same jump twice in a step",
-        table: "C1+1\nC2+1\n\"C2-0; J:6 if I:r; J:6 if I:r\"\nC3+1\nC3-0\nC1-0\n",
+        table: "C1+1\nC2+1\n\"C2-0; J:6 if I:rdy; J:6 if I:rdy\"\nC3+1\nC3-0\nC1-0\n",
         args: &[],
         code: 1,
-        expected: &["t.csv:3:1: error[E021]: STEP 3 already jumps on I:r"],
+        expected: &["t.csv:3:1: error[E021]: STEP 3 already jumps on I:rdy"],
     },
     Row {
         what: "a jump on an input named like one the program makes",
@@ -83,19 +83,19 @@ const ROWS: &[Row] = &[
     },
     Row {
         what: "a jump past the table's end",
-        table: "C1+1\n\"C1-0; J:9 if I:r\"\nC2+1\nC2-0\n",
+        table: "C1+1\n\"C1-0; J:9 if I:rdy\"\nC2+1\nC2-0\n",
         args: &[],
         code: 1,
-        expected: &["t.csv:2:1: error[E028]: \"J:9 if I:r\" in STEP 2: the table has 4 steps"],
+        expected: &["t.csv:2:1: error[E028]: \"J:9 if I:rdy\" in STEP 2: the table has 4 steps"],
     },
     Row {
         what: "a wait in an earlier step on the jump's input: both sides proven",
-        table: "\"C1+1; I:r\"\nC2+1\n\"C2-0; J:6 if I:r=0\"\nC3+1\nC3-0\nC1-0\n",
+        table: "\"C1+1; I:rdy\"\nC2+1\n\"C2-0; J:6 if I:rdy=0\"\nC3+1\nC3-0\nC1-0\n",
         args: &[],
         code: 0,
         expected: &[
-            "cycles 1, 2 (take no jump); not taken: J:6 if I:r=0 after step 3",
-            "cycle 3 (takes J:6 if I:r=0 after step 3): steps 1, 2, 3, 6,",
+            "cycles 1, 2 (take no jump); not taken: J:6 if I:rdy=0 after step 3",
+            "cycle 3 (takes J:6 if I:rdy=0 after step 3): steps 1, 2, 3, 6,",
         ],
     },
     Row {
