@@ -78,6 +78,18 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
         reporter.say(&format!("{}: {}", display_name(input), report.verdict()));
         reporter.say(&steptable::simulate::report::step_table(&report));
         if !report.passed {
+            // A script reading JSON sees why the run failed, as convert
+            // reports the same machine.
+            if reporter.json {
+                reporter.error(
+                    &table.file,
+                    steptable::diag::Code::E032MachineCannotRun,
+                    format!(
+                        "the generated program fails its simulation: {}",
+                        report.reason()
+                    ),
+                );
+            }
             code = code.max(EXIT_BAD_INPUT);
         }
         for path in diagram.into_iter().flatten() {

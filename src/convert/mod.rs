@@ -83,6 +83,82 @@ pub fn check_bytes(
     finish_check(input, diags, settings)
 }
 
+/// A valve type, stroke, load or input delay for an actuator or input the
+/// table does not have does nothing: a typo (C8 for C3) would leave the
+/// real actuator on its default valve without a word. Each is E030 at the
+/// SETTINGS cell that names it, or naming the command-line option; a
+/// SETTINGS row giving only the default stroke (the template's C1 to C8)
+/// loses nothing and passes.
+fn settings_without_their_actuator(
+    table: &StepTable,
+    settings: &Settings,
+    sheet: Option<(&read::Grid, &crate::settings::Given)>,
+    file: &str,
+    diags: &mut Diagnostics,
+) {
+    let has: Vec<String> = table
+        .actuators
+        .iter()
+        .map(|a| format!("C{}", a.number))
+        .collect();
+    let has = if has.is_empty() {
+        "it has none".to_string()
+    } else {
+        format!("it has {}", has.join(", "))
+    };
+    let option = Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: None,
+    };
+    // The template's actuator table lists C1 to C8 at the default 1s / 1s:
+    // a row saying only the default loses nothing.
+    let keys = |given: &crate::settings::Given, all: bool| -> Vec<(u32, &'static str)> {
+        let mut keys: Vec<(u32, &'static str)> = Vec::new();
+        keys.extend(given.valves.keys().map(|n| (*n, "valve")));
+        keys.extend(
+            given
+                .strokes
+                .iter()
+                .filter(|(_, s)| all || **s != crate::stroke::Stroke::default())
+                .map(|(n, _)| (*n, "stroke")),
+        );
+        keys.extend(given.loads.keys().map(|n| (*n, "load")));
+        keys.retain(|(n, _)| table.actuator(*n).is_none());
+        keys
+    };
+    for (n, what) in keys(&settings.given, true) {
+        diags.error(
+            Code::E030BadSetting,
+            option.clone(),
+            format!("--{what} C{n}=…: the table has no actuator C{n} ({has}); the setting would do nothing"),
+        );
+    }
+    if let Some((grid, given)) = sheet {
+        let mut named: Vec<u32> = keys(given, false).into_iter().map(|(n, _)| n).collect();
+        named.sort_unstable();
+        named.dedup();
+        for n in named {
+            let cell = grid.cells.iter().find(|c| match &c.value {
+                read::CellValue::Text(t) => {
+                    let head = t.split(['(', ' ']).next().unwrap_or("");
+                    crate::cell::actuator_name(head) == Some(n)
+                }
+                _ => false,
+            });
+            let at = match cell {
+                Some(cell) => grid.location(cell.pos),
+                None => grid.location(crate::diag::CellPos::new(0, 0)),
+            };
+            diags.error(
+                Code::E030BadSetting,
+                at,
+                format!("the actuator table names C{n}, which the table does not have ({has}); its settings would do nothing"),
+            );
+        }
+    }
+}
+
 fn finish_check(
     input: Option<read::Input>,
     mut diags: Diagnostics,
@@ -91,8 +167,12 @@ fn finish_check(
     let Some(input) = input else {
         return Err(diags.into_sorted());
     };
-    let mut effective = match &input.settings {
-        Some(sheet) => settings.with_sheet(&crate::settings::parse(sheet, &mut diags)),
+    let sheet_given = input
+        .settings
+        .as_ref()
+        .map(|sheet| crate::settings::parse(sheet, &mut diags));
+    let mut effective = match &sheet_given {
+        Some(given) => settings.with_sheet(given),
         None => settings.clone(),
     };
     let mut input = input;
@@ -123,6 +203,8 @@ fn finish_check(
             buttons: &buttons,
         };
         table::check_machine(table, &machine, &input.table, &mut diags);
+        let sheet = input.settings.as_ref().zip(sheet_given.as_ref());
+        settings_without_their_actuator(table, settings, sheet, &input.table.file, &mut diags);
         let named = &effective.named;
         effective.program.halt =
             halt::resolve(table, &effective.simulation.valves, named, &mut diags);

@@ -240,13 +240,19 @@ fn count_line_breaks(bytes: &[u8]) -> u64 {
 
 /// Decodes CSV bytes: UTF-8 (BOM optional), UTF-16 with a BOM (what Excel's
 /// "Unicode text" writes), or else Windows-1252 (what older Excel writes in
-/// Europe), which is reported. Returns the text and, if it was not UTF-8, the
+/// Europe), which is reported; UTF-32 (by its BOM) is refused. Returns the text and, if it was not UTF-8, the
 /// encoding found.
 fn decode_text(bytes: &[u8]) -> Result<(String, Option<&'static str>), String> {
     if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]) {
         return String::from_utf8(rest.to_vec())
             .map(|t| (t, None))
             .map_err(|_| "starts with a UTF-8 byte order mark but is not valid UTF-8".to_string());
+    }
+    // A UTF-32 BOM begins with UTF-16's little-endian one: read as UTF-16,
+    // the text would be every other character a NUL and no table found.
+    if bytes.starts_with(&[0xFF, 0xFE, 0x00, 0x00]) || bytes.starts_with(&[0x00, 0x00, 0xFE, 0xFF])
+    {
+        return Err("UTF-32 text (its byte order mark says so), which steptable does not read; save the CSV as \"CSV UTF-8\" or UTF-16".to_string());
     }
     let utf16 = |rest: &[u8], little: bool| -> Result<(String, Option<&'static str>), String> {
         let units: Vec<u16> = rest

@@ -278,14 +278,18 @@ pub fn resolve(
     }
     let mut estop = EventActions::new("at an emergency stop");
     let mut on_estop = BTreeMap::new();
+    let mut held_at_estop = BTreeSet::new();
     for row in [Row::HoldOnEstop, Row::OnEstop] {
         if let Some((list, actions)) = actions_of(row, diags) {
             estop.say(row, list, &actions, diags);
             if row == Row::OnEstop {
                 on_estop = actions;
+            } else {
+                held_at_estop = actions.keys().copied().collect();
             }
         }
     }
+    refuse_motion_through_estop(table, valves, rows, &held_at_estop, &on_estop, diags);
     let on_stop = actions_of(Row::OnStop, diags)
         .map(|(_, actions)| actions)
         .unwrap_or_default();
@@ -337,6 +341,61 @@ pub fn resolve(
         );
     }
     policy
+}
+
+/// The emergency stop must stop every motion. What it may leave on is what
+/// holds a part and moves nothing: a machine output (a vacuum, a clamp the
+/// table switches as `Y:clamp`). A valve coil it left on would drive its
+/// piston on from wherever it was when the button was pressed (the program
+/// cannot know it is at its end), and a drive's contactor would keep the
+/// drive running; each is E030 at the row's cell, saying why. A clamp on a
+/// 5/2 bistable valve keeps its position with both coils off.
+fn refuse_motion_through_estop(
+    table: &StepTable,
+    valves: &Valves,
+    rows: &NamedRows,
+    hold_on_estop: &BTreeSet<Signal>,
+    on_estop: &BTreeMap<Signal, StopAction>,
+    diags: &mut Diagnostics,
+) {
+    let kept = [Row::HoldOnEstop, Row::OnEstop]
+        .into_iter()
+        .flat_map(|row| {
+            let signals: Vec<Signal> = match row {
+                Row::HoldOnEstop => hold_on_estop.iter().copied().collect(),
+                _ => on_estop.keys().copied().collect(),
+            };
+            signals.into_iter().map(move |s| (row, s))
+        });
+    let mut named = BTreeSet::new();
+    for (row, signal) in kept {
+        let actuator = match signal {
+            Signal::Coil { actuator, .. } | Signal::SingleCoil { actuator } => actuator,
+            _ => continue,
+        };
+        // `hold on estop` lists the same coil the `on estop` row may repeat.
+        if !named.insert((row, actuator)) {
+            continue;
+        }
+        let Some(list) = rows.get(&row) else { continue };
+        let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
+        let why = if valves.of(actuator, pmax) == ValveType::Motor {
+            format!(
+                "{} is a contactor of drive C{actuator} (valve type motor): left on, it keeps the drive running through the EMERGENCY STOP; every drive stops",
+                signal.symbol()
+            )
+        } else {
+            format!(
+                "{} is a valve coil of C{actuator}: left on, it drives the piston on from wherever it stood when the EMERGENCY STOP came; only a machine output that holds a part (a vacuum, a clamp as Y:clamp) may stay on, and a clamp on a 52bi valve keeps its position with both coils off",
+                signal.symbol()
+            )
+        };
+        diags.error(
+            Code::E030BadSetting,
+            list.at.clone(),
+            format!("{}: {why}", row.label()),
+        );
+    }
 }
 
 /// E030 for a name that is no output of the table, with the ones it has.

@@ -23,6 +23,8 @@ mod fuzz_regressions;
 mod helpers;
 mod homing;
 mod hostile;
+mod hostile_messages;
+mod hostile_settings;
 mod jump_paths;
 mod jumps;
 mod layers;

@@ -139,6 +139,7 @@ impl<'a> Run<'a> {
             moving: (0..table.actuators.len()).collect(),
             hazard_seen: false,
             collided: false,
+            fired_any: false,
             alarm_bits: Vec::new(),
             alarmed: false,
             places: Vec::new(),

@@ -93,6 +93,9 @@ pub(in crate::simulate) struct Run<'a> {
     pub(in crate::simulate) hazard_seen: bool,
     /// A collision is among the problems.
     pub(in crate::simulate) collided: bool,
+    /// A step has fired in this run: before the first, the machine stands
+    /// at power-up and no step is under way.
+    pub(in crate::simulate) fired_any: bool,
     /// The PLC indices of the alarm outputs, and whether one came on.
     pub(in crate::simulate) alarm_bits: Vec<usize>,
     pub(in crate::simulate) alarmed: bool,
@@ -181,8 +184,13 @@ impl Run<'_> {
             ProblemKind::Collision,
             step,
             format!(
-                "collision risk: {} (during step {step}), positions the healthy cycle never has together",
-                combination.join(", ")
+                "collision risk: {} ({}), positions the healthy cycle never has together",
+                combination.join(", "),
+                if self.fired_any {
+                    format!("during step {step}")
+                } else {
+                    "at power-up, before step 1 fires".to_string()
+                }
             ),
         );
     }
@@ -359,6 +367,7 @@ impl Run<'_> {
         waited_at: usize,
         jumped: Option<usize>,
     ) {
+        self.fired_any = true;
         let step = &self.program.steps[fired];
         self.machine_on_fire(fired, waited_at, jumped);
         if fired == 0
@@ -431,6 +440,8 @@ impl Run<'_> {
                 && (self.plc.bit(Signal::Homing) || read_input(Signal::Reset, &self.world));
             let when = if homing {
                 "RESET reads pressed: the program homes the machine".to_string()
+            } else if !self.fired_any {
+                "at power-up, before step 1 fires".to_string()
             } else {
                 format!("during step {step}")
             };

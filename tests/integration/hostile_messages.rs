@@ -1,0 +1,118 @@
+//! Hostile inputs whose failure must be said plainly: a UTF-32 CSV, an
+//! event at power-up, a failed simulation read as JSON. Table-driven through
+//! the binary: exit code, code, where, and what the message says.
+
+use predicates::str::contains;
+
+use crate::helpers::steptable;
+
+struct Case {
+    what: &'static str,
+    bytes: Vec<u8>,
+    args: &'static [&'static str],
+    exit: i32,
+    /// Expected on stderr (human) or stdout (JSON).
+    stderr: &'static str,
+    stdout: &'static str,
+}
+
+const TWO: &str = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n";
+
+fn utf32(text: &str, little: bool) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    let bom: u32 = 0xFEFF;
+    for c in std::iter::once(bom).chain(text.chars().map(u32::from)) {
+        bytes.extend(if little {
+            c.to_le_bytes()
+        } else {
+            c.to_be_bytes()
+        });
+    }
+    bytes
+}
+
+#[test]
+fn failures_are_said_plainly() {
+    let cases = [
+        Case {
+            what: "UTF-32 little-endian",
+            bytes: utf32(TWO, true),
+            args: &["check"],
+            exit: 1,
+            stderr: "t.csv: error[E002]: UTF-32 text (its byte order mark says so), which steptable does not read",
+            stdout: "",
+        },
+        Case {
+            what: "UTF-32 big-endian",
+            bytes: utf32(TWO, false),
+            args: &["check"],
+            exit: 1,
+            stderr: "error[E002]: UTF-32 text",
+            stdout: "",
+        },
+        Case {
+            what: "a piston creeping at power-up is not during step 2",
+            bytes: TWO.as_bytes().to_vec(),
+            args: &["simulate", "--valve", "C1=53pressure"],
+            exit: 1,
+            stderr: "",
+            stdout: "at 0.00 s: unintended motion: C1 moves + although no step moves it that way (at power-up, before step 1 fires)",
+        },
+        Case {
+            what: "a failed simulation in JSON",
+            bytes: TWO.as_bytes().to_vec(),
+            args: &[
+                "simulate",
+                "--valve",
+                "C1=53pressure",
+                "--message-format",
+                "json",
+            ],
+            exit: 1,
+            stderr: "FAILED",
+            stdout: "\"code\":\"E032\",\"column\":null,\"file\":",
+        },
+        Case {
+            what: "a UTF-16 CSV still reads",
+            bytes: {
+                let mut b = vec![0xFF, 0xFE];
+                b.extend(TWO.encode_utf16().flat_map(u16::to_le_bytes));
+                b
+            },
+            args: &["check"],
+            exit: 0,
+            stderr: "W001",
+            stdout: "ok",
+        },
+    ];
+    for case in &cases {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.csv");
+        std::fs::write(&path, &case.bytes).unwrap();
+        let (command, rest) = case.args.split_first().unwrap();
+        let assert = steptable()
+            .arg(command)
+            .arg(&path)
+            .args(rest)
+            .assert()
+            .code(case.exit)
+            .stderr(contains(case.stderr))
+            .stdout(contains(case.stdout));
+        if case.args.contains(&"json") {
+            let stdout = String::from_utf8(assert.get_output().stdout.clone()).unwrap();
+            let line = stdout
+                .lines()
+                .next()
+                .unwrap_or_else(|| panic!("{}: no JSON", case.what));
+            let v: serde_json::Value = serde_json::from_str(line).unwrap();
+            assert!(
+                v["message"]
+                    .as_str()
+                    .unwrap()
+                    .contains("fails its simulation"),
+                "{}: {v}",
+                case.what
+            );
+        }
+    }
+}
