@@ -202,6 +202,7 @@ pub fn write_conversion(
     let stale: Vec<String> = before
         .files
         .keys()
+        .filter(|name| inside(name))
         .filter(|name| !files.iter().any(|f| &f.name == *name))
         .filter(|name| before.vouches_for(folder, name))
         .cloned()
@@ -233,6 +234,17 @@ pub fn write_conversion(
         durability,
     )?;
     Ok((written, removed))
+}
+
+/// Whether a manifest's file name stays inside its folder: plain names
+/// only, no `..`, no root. A manifest is a file anyone can edit; only what
+/// lies in the folder is ever removed on its word.
+fn inside(name: &str) -> bool {
+    let path = Path::new(name);
+    !name.is_empty()
+        && path
+            .components()
+            .all(|c| matches!(c, std::path::Component::Normal(_)))
 }
 
 /// Writes `files` into `folder` (created if missing), replacing what is

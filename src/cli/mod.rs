@@ -18,6 +18,16 @@ use steptable::read::display_name;
 use steptable::settings::{Given, Settings};
 use steptable::write;
 
+/// `eprintln!` that never panics: with standard error closed or full
+/// (`2>/dev/full`, `2>&1 | head`) std's panics (exit 101); the message is
+/// lost either way, and the exit code must stay what the work earned.
+macro_rules! eprintln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 mod args;
 mod cmd_batch;
 mod cmd_convert;

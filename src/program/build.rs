@@ -512,5 +512,13 @@ fn watchdog_preset_ms(table: &StepTable, step: &Step, strokes: &Strokes) -> u32 
         .max()
         .unwrap_or(0);
     let preset = 2 * longest + dwell + 1000;
-    (preset.div_ceil(100) * 100).min(u32::MAX as u64) as u32
+    // Rounding up never pushes a preset a timer holds past what it holds.
+    let most = crate::cell::MAX_DWELL_MS as u64;
+    let rounded = preset.div_ceil(100) * 100;
+    let rounded = if preset <= most {
+        rounded.min(most)
+    } else {
+        rounded
+    };
+    rounded.min(u32::MAX as u64) as u32
 }

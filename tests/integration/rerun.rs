@@ -60,3 +60,39 @@ fn a_rerun_with_fewer_formats_removes_the_earlier_runs_other_files() {
         .success()
         .stdout(predicates::str::contains("removed").not());
 }
+
+/// A manifest is a file anyone can edit: an entry that leads out of the
+/// output folder (`../`, an absolute path) never removes anything there.
+#[test]
+fn a_manifest_entry_outside_the_folder_removes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("p.csv");
+    std::fs::copy(sample("paper_example.csv"), &input).unwrap();
+    let precious = dir.path().join("precious.txt");
+    let absolute = dir.path().join("absolute.txt");
+    std::fs::write(&precious, "precious\n").unwrap();
+    std::fs::write(&absolute, "precious\n").unwrap();
+    let out = dir.path().join("out");
+    let convert = || {
+        steptable()
+            .args(["convert", "--formats", "st", "-o"])
+            .arg(&out)
+            .arg(&input)
+            .assert()
+            .success()
+    };
+    convert();
+    // The stamp of "precious\n" (9 bytes), as the manifest writes it.
+    let manifest = out.join("p/.steptable-manifest");
+    let mut text = std::fs::read_to_string(&manifest).unwrap();
+    let stamp = steptable::manifest::Stamp::of(b"precious\n");
+    for name in [
+        "../../precious.txt".to_string(),
+        absolute.display().to_string(),
+    ] {
+        text.push_str(&format!("{} {:016x} {name}\n", stamp.size, stamp.hash));
+    }
+    std::fs::write(&manifest, text).unwrap();
+    convert().stdout(contains("removed").not());
+    assert!(precious.exists() && absolute.exists());
+}

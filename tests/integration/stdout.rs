@@ -68,3 +68,34 @@ fn a_full_disk_on_stdout_is_an_io_error() {
         "the problems still reach stderr: {stderr}"
     );
 }
+
+/// Standard error closed or full never turns into a panic (exit 101): the
+/// problems are lost, the exit code is still the work's.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_stderr_keeps_the_exit_code_of_the_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let full = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap()
+    };
+    let status = Command::new(assert_cmd::cargo::cargo_bin("steptable"))
+        .arg("convert")
+        .arg(bad_table(dir.path()))
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .stdout(Stdio::null())
+        .stderr(full())
+        .status()
+        .unwrap();
+    assert_eq!(status.code(), Some(1));
+    let status = Command::new(assert_cmd::cargo::cargo_bin("steptable"))
+        .args(["templates", "-o", "x"])
+        .stdout(Stdio::null())
+        .stderr(full())
+        .status()
+        .unwrap();
+    assert_eq!(status.code(), Some(1), "a wrong command line stays exit 1");
+}
