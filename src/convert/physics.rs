@@ -154,11 +154,12 @@ pub fn lucky_middle_stops(table: &StepTable, settings: &Settings) -> Vec<Diagnos
             }
             let stroke = sim.strokes.of(m.actuator);
             let piston = Piston::new(m.actuator, actuator.max_position, stroke, sim.scan_ms);
-            let full_ms = match m.sign {
-                crate::cell::Sign::Plus => stroke.extend_ms,
-                crate::cell::Sign::Minus => stroke.retract_ms,
-            } as f64;
-            let in_view = 2.0 * piston.window(sim.window) * full_ms;
+            let (full_ms, way, flag) = match m.sign {
+                crate::cell::Sign::Plus => (stroke.extend_ms, "out", "extend"),
+                crate::cell::Sign::Minus => (stroke.retract_ms, "back", "retract"),
+            };
+            let full_ms = full_ms as f64;
+            let in_view = in_view_ms(&piston, sim.window, full_ms);
             if in_view >= 2.0 * sim.scan_ms as f64 {
                 continue;
             }
@@ -168,10 +169,6 @@ pub fn lucky_middle_stops(table: &StepTable, settings: &Settings) -> Vec<Diagnos
                 position: m.to,
             }
             .symbol();
-            let (way, flag) = match m.sign {
-                crate::cell::Sign::Plus => ("out", "extend"),
-                crate::cell::Sign::Minus => ("back", "retract"),
-            };
             refused.push(Diagnostic {
                 severity: Severity::Error,
                 code: Code::E032MachineCannotRun,
@@ -190,6 +187,12 @@ pub fn lucky_middle_stops(table: &StepTable, settings: &Settings) -> Vec<Diagnos
         }
     }
     refused
+}
+
+/// How long a middle sensor sees a piston that crosses the whole stroke
+/// in `full_ms`: its window spans twice its half-width.
+fn in_view_ms(piston: &Piston, window: f64, full_ms: f64) -> f64 {
+    2.0 * piston.window(window) * full_ms
 }
 
 /// Watchdog presets no PLC timer of every target holds: FST counts 1/100 s
@@ -251,9 +254,7 @@ fn why(table: &StepTable, settings: &Settings) -> String {
             let stroke = sim.strokes.of(a.number);
             let piston = Piston::new(a.number, a.max_position, stroke, sim.scan_ms);
             let fastest = stroke.extend_ms.min(stroke.retract_ms) as f64;
-            // The window spans twice its half-width; the piston crosses the
-            // whole stroke in `fastest` ms.
-            (a.number, 2.0 * piston.window(sim.window) * fastest)
+            (a.number, in_view_ms(&piston, sim.window, fastest))
         })
         .filter(|(_, ms)| *ms < sim.scan_ms as f64)
         .min_by(|a, b| a.1.total_cmp(&b.1));
