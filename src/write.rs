@@ -106,7 +106,36 @@ pub fn write_outputs(
     inputs: &Inputs,
     durability: Durability,
 ) -> Result<Vec<PathBuf>, WriteError> {
-    let mut problems = folder_problems(folder, files, inputs);
+    write_recorded(folder, files, inputs, durability, Links::Refused)
+}
+
+/// As [`write_outputs`], into the folder the user named with `-o` (the
+/// batch summary): that folder may be a link the user made (a share, a
+/// folder on another disk); the folders steptable makes below it may not.
+pub fn write_into_named_folder(
+    folder: &Path,
+    files: &[OutputFile],
+    inputs: &Inputs,
+    durability: Durability,
+) -> Result<Vec<PathBuf>, WriteError> {
+    write_recorded(folder, files, inputs, durability, Links::FolderItself)
+}
+
+/// Whether the output folder itself may be a link.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Links {
+    Refused,
+    FolderItself,
+}
+
+fn write_recorded(
+    folder: &Path,
+    files: &[OutputFile],
+    inputs: &Inputs,
+    durability: Durability,
+    links: Links,
+) -> Result<Vec<PathBuf>, WriteError> {
+    let mut problems = folder_problems(folder, files, inputs, links);
     // A folder that is not there (or is a file: said above) has no record.
     let found = if folder.is_dir() {
         Manifest::read(folder)
@@ -140,7 +169,9 @@ pub fn write_outputs(
         if problems.iter().any(|d| d.location.file == shown) {
             continue; // said already (an input)
         }
-        if meta.is_dir() {
+        if meta.file_type().is_symlink() {
+            problems.push(taken(&target, LINKED_FILE));
+        } else if meta.is_dir() {
             problems.push(taken(
                 &target,
                 "an output file goes here, and this is a folder; nothing written: move or rename the folder, or choose another output folder with -o",
@@ -256,7 +287,7 @@ pub fn write_files(
     inputs: &Inputs,
     durability: Durability,
 ) -> Result<Vec<PathBuf>, WriteError> {
-    let problems = folder_problems(folder, files, inputs);
+    let problems = folder_problems(folder, files, inputs, Links::FolderItself);
     if !problems.is_empty() {
         return Err(WriteError::Taken(problems));
     }
@@ -292,7 +323,12 @@ pub fn output_folder_problem(folder: &Path) -> Option<Diagnostic> {
 
 /// What stands where the folders of the outputs must be (a file where a
 /// folder goes), and outputs that would replace an input of the run.
-fn folder_problems(folder: &Path, files: &[OutputFile], inputs: &Inputs) -> Vec<Diagnostic> {
+fn folder_problems(
+    folder: &Path,
+    files: &[OutputFile],
+    inputs: &Inputs,
+    links: Links,
+) -> Vec<Diagnostic> {
     let mut problems = Vec::new();
     let mut parents: Vec<PathBuf> = files
         .iter()
@@ -302,7 +338,16 @@ fn folder_problems(folder: &Path, files: &[OutputFile], inputs: &Inputs) -> Vec<
     parents.sort();
     parents.dedup();
     for parent in parents {
-        if let Some(problem) = output_folder_problem(&parent)
+        // Writing through a linked folder would put (and on a rerun,
+        // remove) files wherever the link points.
+        let linked = (links == Links::Refused || parent != folder)
+            && std::fs::symlink_metadata(&parent).is_ok_and(|m| m.file_type().is_symlink());
+        let problem = if linked {
+            Some(taken(&parent, LINKED_FOLDER))
+        } else {
+            output_folder_problem(&parent)
+        };
+        if let Some(problem) = problem
             && !problems.contains(&problem)
         {
             problems.push(problem);
@@ -321,6 +366,10 @@ fn folder_problems(folder: &Path, files: &[OutputFile], inputs: &Inputs) -> Vec<
     }
     problems
 }
+
+const LINKED_FILE: &str = "an output goes here, and this is a link; steptable never writes through a link nor replaces one (it would change the file it points to, or undo your link); nothing written: remove the link, or choose another output folder with -o";
+
+const LINKED_FOLDER: &str = "outputs go into this folder, and it is a link; steptable never writes through a linked folder it makes (its files would land, and a rerun would remove them, wherever the link points); nothing written: remove the link, or name the linked folder itself with -o";
 
 /// Every file to a temporary file beside its place, then all renamed into
 /// place: all land, or none.

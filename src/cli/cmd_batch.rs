@@ -155,7 +155,7 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
                     file.name
                 ));
             }
-            if let Err(err) = write::write_outputs(
+            if let Err(err) = write::write_into_named_folder(
                 &args.output,
                 &[file],
                 &write::Inputs::new(&inputs),

@@ -89,24 +89,24 @@ pub(crate) enum Command {
 pub fn run() -> i32 {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
+        Err(err) if !err.use_stderr() => {
+            // --help and --version: through `out`, so that a full disk or
+            // a failed stdout is exit 2 like any other output's failure.
+            out(err.render().to_string().trim_end());
+            return with_stdout(EXIT_OK);
+        }
         Err(err) => {
             let _ = err.print();
             let args: Vec<String> = std::env::args_os()
                 .skip(1)
                 .map(|a| a.to_string_lossy().to_string())
                 .collect();
-            if err.use_stderr()
-                && let Some(tip) = confused_command(&args)
-            {
+            if let Some(tip) = confused_command(&args) {
                 eprintln!("\n{tip}");
             }
             // A wrong option is wrong input, like a wrong cell: exit 1 (2
-            // stays for internal and I/O failures); --help and --version 0.
-            return if err.use_stderr() {
-                EXIT_BAD_INPUT
-            } else {
-                EXIT_OK
-            };
+            // stays for internal and I/O failures).
+            return EXIT_BAD_INPUT;
         }
     };
     let code = match cli.command {

@@ -178,9 +178,10 @@ pub fn lucky_middle_stops(table: &StepTable, settings: &Settings) -> Vec<Diagnos
                     cell: Some(m.cell),
                 },
                 message: format!(
-                    "C{n} stops at its middle position {} in step {}, but its sensor {sensor} is in view for only {in_view:.1} ms of a {full_ms:.0} ms stroke {way}, less than two {} ms scans (one to see it, one to switch the valve): whether it stops there would depend on the scan's timing; give C{n} a slower {flag} stroke (--stroke, or the SETTINGS actuator table) or a shorter scan",
+                    "C{n} stops at its middle position {} in step {}, but its sensor {sensor} is in view for only {} ms of a {full_ms:.0} ms stroke {way}, less than two {} ms scans (one to see it, one to switch the valve): whether it stops there would depend on the scan's timing; give C{n} a slower {flag} stroke (--stroke, or the SETTINGS actuator table) or a shorter scan",
                     m.to,
                     step.number,
+                    tenths_below(in_view),
                     sim.scan_ms,
                 ),
             });
@@ -260,9 +261,28 @@ fn why(table: &StepTable, settings: &Settings) -> String {
         .min_by(|a, b| a.1.total_cmp(&b.1));
     match glimpses {
         Some((n, ms)) => format!(
-            " (C{n}'s middle sensor is in view for {ms:.1} ms of its stroke, less than one {} ms scan: the PLC cannot stop it there)",
+            " (C{n}'s middle sensor is in view for {} ms of its stroke, less than one {} ms scan: the PLC cannot stop it there)",
+            tenths_below(ms),
             sim.scan_ms
         ),
         None => String::new(),
+    }
+}
+
+/// A time shown to a tenth, rounded down: these messages say a time is
+/// *less than* a limit, and 19.96 ms rounded to "20.0" would read as not.
+fn tenths_below(ms: f64) -> String {
+    format!("{:.1}", (ms * 10.0).floor() / 10.0)
+}
+
+#[cfg(test)]
+mod tests {
+    /// Rounded to the nearest tenth, 19.96 ms would print as the 20 ms it
+    /// is said to be less than.
+    #[test]
+    fn times_said_to_be_below_a_limit_are_rounded_down() {
+        assert_eq!(super::tenths_below(19.96), "19.9");
+        assert_eq!(super::tenths_below(9.0), "9.0");
+        assert_eq!(super::tenths_below(0.04), "0.0");
     }
 }

@@ -258,20 +258,14 @@ impl Safety {
     /// Parses `edge,precheck,plausibility,watchdog` (any subset; `all`, `none`).
     pub fn parse(text: &str) -> Result<Safety, String> {
         let mut safety = Safety::default();
-        for item in text.split(',').map(|s| s.trim().to_ascii_lowercase()) {
-            match item.as_str() {
-                "" | "none" => {}
+        for item in named_set(text, &Safety::NAMES, "a safety check", Safety::expected)? {
+            match item {
                 "all" => safety = Safety::all(),
                 "edge" => safety.edge = true,
                 "precheck" => safety.precheck = true,
                 "plausibility" => safety.plausibility = true,
                 "watchdog" => safety.watchdog = true,
-                other => {
-                    return Err(format!(
-                        "\"{other}\" is not a safety check (expected {})",
-                        Safety::expected()
-                    ));
-                }
+                _ => {}
             }
         }
         Ok(safety)
@@ -290,6 +284,57 @@ impl Safety {
     pub fn halts(self, modes: &Modes) -> bool {
         self.plausibility || self.watchdog || modes.estop
     }
+}
+
+/// The items of a `--safety` / `--modes` list, lower-cased, each checked:
+/// one of `names`, `all` or `none`. An empty item, a name given twice, or
+/// `all`/`none` beside another name is refused rather than read one way
+/// silently (`none,stop` could mean either).
+fn named_set(
+    text: &str,
+    names: &[&'static str],
+    what: &str,
+    expected: fn() -> String,
+) -> Result<Vec<&'static str>, String> {
+    let mut items: Vec<&'static str> = Vec::new();
+    // Nothing at all (`--modes ""`, a script's empty variable) is none.
+    if text.trim().is_empty() {
+        return Ok(items);
+    }
+    for raw in text.split(',') {
+        let item = raw.trim();
+        let known = names
+            .iter()
+            .chain(&["all", "none"])
+            .find(|name| name.eq_ignore_ascii_case(item));
+        let Some(&name) = known else {
+            return Err(if item.is_empty() {
+                format!(
+                    "\"{}\" has an empty item; write each name once between commas (expected {})",
+                    text.trim(),
+                    expected()
+                )
+            } else {
+                format!("\"{item}\" is not {what} (expected {})", expected())
+            });
+        };
+        if items.contains(&name) {
+            return Err(format!(
+                "\"{name}\" is given twice in \"{}\"; give each once",
+                text.trim()
+            ));
+        }
+        items.push(name);
+    }
+    if items.len() > 1
+        && let Some(alone) = items.iter().find(|name| ["all", "none"].contains(name))
+    {
+        return Err(format!(
+            "\"{alone}\" stands alone; \"{}\" also names others (write {alone}, or the names)",
+            text.trim()
+        ));
+    }
+    Ok(items)
 }
 
 /// The operating modes a generated program carries (`--modes`).
@@ -324,9 +369,8 @@ impl Modes {
     /// emergency stop needs RESET as its way out, so `estop` brings `reset`.
     pub fn parse(text: &str) -> Result<Modes, String> {
         let mut modes = Modes::default();
-        for item in text.split(',').map(|s| s.trim().to_ascii_lowercase()) {
-            match item.as_str() {
-                "" | "none" => {}
+        for item in named_set(text, &Modes::NAMES, "an operating mode", Modes::expected)? {
+            match item {
                 "all" => {
                     modes.continuous = true;
                     modes.stop = true;
@@ -337,12 +381,7 @@ impl Modes {
                 "stop" => modes.stop = true,
                 "estop" => modes.estop = true,
                 "reset" => modes.reset = true,
-                other => {
-                    return Err(format!(
-                        "\"{other}\" is not an operating mode (expected {})",
-                        Modes::expected()
-                    ));
-                }
+                _ => {}
             }
         }
         if modes.estop {
@@ -365,12 +404,14 @@ impl Modes {
                     .ok_or_else(|| format!("\"{item}\" is not an actuator (expected C1, C2, …)"))?;
                 actuators.push(number);
             }
-            if !actuators.is_empty() {
-                stages.push(actuators);
+            // `C2,,C1` or a trailing `,`: a stage was left out or a name lost.
+            if actuators.is_empty() {
+                return Err(format!(
+                    "the home order \"{}\" has an empty stage between its commas; name each stage's actuators (e.g. C3&C4,C2,C1)",
+                    text.trim()
+                ));
             }
-        }
-        if stages.is_empty() {
-            return Err("the home order names no actuator (expected e.g. C3&C4,C2,C1)".to_string());
+            stages.push(actuators);
         }
         Ok(stages)
     }

@@ -342,13 +342,15 @@ fn read_labels(
         reader.settings.cells.insert(label, at.clone());
         let lower = value.to_ascii_lowercase();
         let settings = &mut reader.settings;
-        let mut bad = |expected: String| {
+        let mut said = |message: String| {
             diags.error(
                 Code::E030BadSetting,
                 at.clone(),
-                format!("{label}: \"{value}\" is not valid (expected {expected})"),
+                format!("{label}: {message}"),
             );
         };
+        let mut bad =
+            |expected: String| said(format!("\"{value}\" is not valid (expected {expected})"));
         match label {
             // `default`: festo, or iec when a board is named (the
             // template's own value, so that its board list never
@@ -378,21 +380,19 @@ fn read_labels(
                 Ok(ms) => settings.scan_ms = Some(ms),
                 Err(_) => bad("a scan time from 1ms to 1s, such as 10ms".to_string()),
             },
+            // The parsers say which item is wrong (unknown, twice, empty).
             "safety" => match value.parse::<Safety>() {
                 Ok(safety) => settings.safety = Some(safety),
-                Err(_) => bad(format!(
-                    "none, all, or some of {}",
-                    Safety::NAMES.join(", ")
-                )),
+                Err(why) => said(why),
             },
             "modes" => match value.parse::<Modes>() {
                 Ok(modes) => settings.modes = Some(modes),
-                Err(_) => bad(format!("none, all, or some of {}", Modes::NAMES.join(", "))),
+                Err(why) => said(why),
             },
             "home order" if lower == "default" => {}
             "home order" => match Modes::parse_home_order(&value) {
                 Ok(order) => settings.home_order = Some(order),
-                Err(_) => bad("stages of actuators such as C3&C4, C2, C1".to_string()),
+                Err(why) => said(why),
             },
             // The rows that list outputs or inputs by name: read as a list
             // here, checked against the table once it is read.

@@ -596,3 +596,59 @@ fn help_lists_every_format_and_valve() {
     let help = help_of("convert", "valve");
     assert_eq!(listed(&help, "C2=53closed (", ")"), valves, "{help}");
 }
+
+/// A linked folder where steptable makes one (`DIR/NAME/`, or
+/// `NAME.beremiz/`) is refused, and nothing lands where it points; a link
+/// the user names with `-o` is written into (a share, another disk).
+#[cfg(unix)]
+#[test]
+fn a_linked_output_folder_is_refused_but_a_linked_dash_o_is_not() {
+    let dir = tempfile::tempdir().unwrap();
+    let work = dir.path();
+    table(&work.join("x.csv"));
+    std::fs::create_dir_all(work.join("elsewhere")).unwrap();
+    std::fs::create_dir_all(work.join("out")).unwrap();
+    std::os::unix::fs::symlink(work.join("elsewhere"), work.join("out/x")).unwrap();
+    steptable()
+        .current_dir(work)
+        .args(["convert", "x.csv", "-o", "out"])
+        .assert()
+        .code(1)
+        .stderr(contains("out/x: error[E040]").and(contains("it is a link")));
+    assert!(files_below(&work.join("elsewhere")).is_empty());
+    // The project folder below the output folder, too.
+    std::fs::remove_file(work.join("out/x")).unwrap();
+    std::fs::create_dir_all(work.join("out/x")).unwrap();
+    std::os::unix::fs::symlink(work.join("elsewhere"), work.join("out/x/x.beremiz")).unwrap();
+    steptable()
+        .current_dir(work)
+        .args(["convert", "x.csv", "-o", "out", "--formats", "beremiz"])
+        .assert()
+        .code(1)
+        .stderr(contains("x.beremiz: error[E040]").and(contains("it is a link")));
+    assert!(files_below(&work.join("elsewhere")).is_empty());
+    // `-o` naming a link: the user's choice, written into.
+    std::os::unix::fs::symlink(work.join("elsewhere"), work.join("linked")).unwrap();
+    steptable()
+        .current_dir(work)
+        .args(["convert", "x.csv", "-o", "linked", "--formats", "st"])
+        .assert()
+        .success();
+    assert!(work.join("elsewhere/x/x.st").is_file());
+    // A link in a file's place says it is a link, not that it changed.
+    std::fs::write(work.join("mine.st"), "mine\n").unwrap();
+    std::fs::remove_file(work.join("elsewhere/x/x.st")).unwrap();
+    std::os::unix::fs::symlink(work.join("mine.st"), work.join("elsewhere/x/x.st")).unwrap();
+    steptable()
+        .current_dir(work)
+        .args(["convert", "x.csv", "-o", "linked", "--formats", "st"])
+        .assert()
+        .code(1)
+        .stderr(contains(
+            "x.st: error[E040]: an output goes here, and this is a link",
+        ));
+    assert_eq!(
+        std::fs::read_to_string(work.join("mine.st")).unwrap(),
+        "mine\n"
+    );
+}

@@ -405,3 +405,62 @@ fn errors_about_settings_name_their_cells() {
             .and(contains("(--home-order)")),
     );
 }
+
+/// A `modes` / `safety` / `home order` list that gives a name twice, leaves
+/// an item empty, or puts `all`/`none` beside names is refused, on the
+/// SETTINGS sheet (E030 at the cell) and on the command line (exit 1,
+/// nothing written) — read one way it would be silently wrong.
+#[test]
+fn list_items_given_twice_empty_or_beside_all_are_refused() {
+    let cases: &[(&str, &str, &str)] = &[
+        ("modes", "stop, stop", "\"stop\" is given twice"),
+        ("modes", "stop,,estop", "has an empty item"),
+        ("modes", "stop,", "has an empty item"),
+        ("modes", "none, stop", "\"none\" stands alone"),
+        ("modes", "all, reset", "\"all\" stands alone"),
+        ("modes", "STOP, stop", "\"stop\" is given twice"),
+        ("safety", "edge, edge", "\"edge\" is given twice"),
+        ("safety", "edge, , watchdog", "has an empty item"),
+        ("safety", "all, none", "\"all\" stands alone"),
+        ("home order", "C3,,C2,C1", "has an empty stage"),
+        ("home order", "C3, C2, C1,", "has an empty stage"),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    for (label, value, message) in cases {
+        let settings: &[&[&str]] = &[&["modes", "reset"], &[label, value]];
+        let rows = if *label == "modes" {
+            &settings[1..]
+        } else {
+            settings
+        };
+        let path = workbook(dir.path(), SIX, rows);
+        let cell = format!("SETTINGS!B{}: error[E030]", rows.len());
+        refused(&path, &[], &[cell.as_str(), message]);
+        let flag = format!("--{}", label.replace(' ', "-"));
+        let plain = dir.path().join("plain.xlsx");
+        write_xlsx_sheets(&plain, &[("TABLE", SIX)]);
+        let mut extra = vec![flag.as_str(), value];
+        if *label != "modes" {
+            extra.extend(["--modes", "reset"]);
+        }
+        let (assert, out) = convert(&plain, &extra);
+        assert.code(1).stderr(contains(*message));
+        assert!(files_below(&out).is_empty(), "{flag} {value}");
+    }
+    // The forms that stay: one name, all, none, and spaces around commas.
+    for (flag, value) in [
+        ("--modes", "none"),
+        ("--modes", "all"),
+        ("--modes", " stop , estop "),
+        ("--safety", "none"),
+        ("--home-order", "C3 & C2, C1"),
+    ] {
+        let plain = dir.path().join("plain.xlsx");
+        write_xlsx_sheets(&plain, &[("TABLE", SIX)]);
+        let mut extra = vec![flag, value];
+        if flag != "--modes" {
+            extra.extend(["--modes", "reset"]);
+        }
+        convert(&plain, &extra).0.success();
+    }
+}

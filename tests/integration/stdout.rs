@@ -99,3 +99,37 @@ fn a_full_stderr_keeps_the_exit_code_of_the_work() {
         .unwrap();
     assert_eq!(status.code(), Some(1), "a wrong command line stays exit 1");
 }
+
+/// `--help` and `--version` that cannot be written are an I/O error (exit
+/// 2), like any other output; written, they print in full and exit 0.
+#[cfg(target_os = "linux")]
+#[test]
+fn help_and_version_into_a_full_disk_fail() {
+    for args in [&["--help"][..], &["--version"], &["convert", "--help"]] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let output = Command::new(assert_cmd::cargo::cargo_bin("steptable"))
+            .args(args)
+            .stdout(full)
+            .output()
+            .unwrap();
+        assert_eq!(output.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            stderr.contains("cannot write to standard output"),
+            "{stderr}"
+        );
+        let output = Command::new(assert_cmd::cargo::cargo_bin("steptable"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert_eq!(output.status.code(), Some(0), "{args:?}");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert!(
+            stdout.contains("steptable") && stdout.ends_with('\n'),
+            "{stdout}"
+        );
+    }
+}
