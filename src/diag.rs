@@ -94,6 +94,9 @@ pub enum Code {
     W005Delimiter,
     /// A setting that the other settings make ineffective.
     W006NoEffect,
+    /// A value read under an assumption the engineer did not write (a dwell
+    /// without a unit, read as seconds).
+    W007Assumed,
 }
 
 impl Code {
@@ -126,6 +129,7 @@ impl Code {
             Code::W004SheetChoice => "W004",
             Code::W005Delimiter => "W005",
             Code::W006NoEffect => "W006",
+            Code::W007Assumed => "W007",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",

@@ -508,7 +508,33 @@ fn parse_cell(
     let mut items = Vec::with_capacity(results.len());
     for (part, result) in item_texts(text).into_iter().zip(results) {
         match result {
-            Ok(item) => items.push(item),
+            Ok(item) => {
+                if let CellItem::Dwell { ms } = item
+                    && dwell_without_unit(part)
+                {
+                    let number = part.split_once('=').map_or("", |(_, n)| n.trim());
+                    let seconds = crate::cell::duration_text(ms);
+                    let millis = match number.parse::<u32>() {
+                        Ok(n)
+                            if (crate::cell::MIN_DWELL_MS..=crate::cell::MAX_DWELL_MS)
+                                .contains(&n) =>
+                        {
+                            format!(", or T={n}ms if milliseconds were meant")
+                        }
+                        _ => String::new(),
+                    };
+                    diags.warning(
+                        Code::W007Assumed,
+                        location.clone(),
+                        format!(
+                            "\"{}\" has no unit and is read as {} seconds: write T={seconds}{millis}",
+                            part.trim(),
+                            seconds.trim_end_matches('s'),
+                        ),
+                    );
+                }
+                items.push(item)
+            }
             Err(error) => {
                 if let Some(actuator) = move_attempt(part) {
                     refuse(actuator);
@@ -518,6 +544,12 @@ fn parse_cell(
         }
     }
     items
+}
+
+/// `T=500`: a dwell whose number has no unit (read as seconds, which a
+/// PLC programmer used to milliseconds may not have meant).
+fn dwell_without_unit(item: &str) -> bool {
+    item.trim().ends_with(|c: char| c.is_ascii_digit())
 }
 
 /// Reports a refused item of the cell `text`: E010 quotes the item

@@ -116,3 +116,46 @@ fn failures_are_said_plainly() {
         }
     }
 }
+
+/// A dwell without a unit is read as seconds and said (W007 at its cell,
+/// with both spellings); with a unit nothing is said.
+#[test]
+fn a_dwell_without_a_unit_is_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (
+            "T=500",
+            Some(
+                "\"T=500\" has no unit and is read as 500 seconds: write T=500s, or T=500ms if milliseconds were meant",
+            ),
+        ),
+        (
+            "T = 2",
+            Some("\"T = 2\" has no unit and is read as 2 seconds: write T=2s"),
+        ),
+        (
+            "T=1.5",
+            Some("\"T=1.5\" has no unit and is read as 1.5 seconds: write T=1.5s"),
+        ),
+        ("T=500ms", None),
+        ("T=2s", None),
+    ];
+    for (dwell, message) in cases {
+        let path = dir.path().join("t.csv");
+        std::fs::write(
+            &path,
+            format!(",BRANCH 1\nSTEP 1,\"C1+1; {dwell}\"\nSTEP 2,C1-0\n"),
+        )
+        .unwrap();
+        let output = steptable().arg("check").arg(&path).output().unwrap();
+        assert_eq!(output.status.code(), Some(0), "{dwell}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        match message {
+            Some(message) => assert!(
+                stderr.contains(&format!("t.csv:2:2: warning[W007]: {message}")),
+                "{stderr}"
+            ),
+            None => assert!(!stderr.contains("W007"), "{stderr}"),
+        }
+    }
+}
