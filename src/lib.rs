@@ -8,7 +8,16 @@
 //! [`address`] (the program's signals → addresses per PLC dialect) → [`emit`]
 //! (one file per output language); [`simulate`] and [`faults`] run the
 //! program, [`synth`] stands beside. [`convert`] runs the whole pipeline in
-//! memory and [`write`] writes the result atomically.
+//! memory, [`write`] writes the result atomically (replacing only what a
+//! [`manifest`] records), and [`batch`] converts many inputs in parallel.
+//! [`settings`] holds a run's choices, from the command line, the workbook's
+//! SETTINGS sheet and the defaults; [`diag`] the diagnostics every stage
+//! collects. The command line (`src/main.rs`, `src/cli/`) is the binary's,
+//! a thin layer over this library.
+//!
+//! `ARCHITECTURE.md` at the repository root says what each module owns,
+//! which imports `tests/integration/layers.rs` forbids, and where to add an
+//! output language, an actuator kind, a setting or an error code.
 
 pub mod address;
 pub mod alloc_guard;

@@ -1,6 +1,7 @@
 //! The pipeline's shape, checked on the source: which module may import
-//! which (README, "Module map"). Data flows one way; a new `use` that closes
-//! a circle or crosses a forbidden line fails here, naming the file.
+//! which (ARCHITECTURE.md, "The rules between modules"). Data flows one way;
+//! a new `use` that closes a circle or crosses a forbidden line fails here,
+//! naming the file.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;

@@ -12,6 +12,7 @@ mod codes;
 #[path = "../../src/cli/mod.rs"]
 mod cli;
 mod diagram;
+mod docs;
 mod drive_coasting;
 mod energy;
 mod excel_formula;
