@@ -159,6 +159,39 @@ fn settings_without_their_actuator(
     }
 }
 
+/// A load only moves a piston whose valve lets it (an exhausted or a
+/// pressurised centre); given for another valve it would be dropped
+/// without a word: W006 at the file, naming the actuator and its valve.
+fn loads_without_effect(
+    table: &StepTable,
+    settings: &Settings,
+    grid: &read::Grid,
+    diags: &mut Diagnostics,
+) {
+    use crate::valve::ValveType;
+    let valves = &settings.simulation.valves;
+    for (&n, load) in &settings.simulation.loads {
+        let Some(actuator) = table.actuator(n) else {
+            continue; // E030 already
+        };
+        let valve = valves.of(n, actuator.max_position);
+        if !matches!(valve, ValveType::Exhaust53 | ValveType::Pressure53) {
+            let source = if settings.given.loads.contains_key(&n) {
+                "--load"
+            } else {
+                "the actuator table's load"
+            };
+            diags.warning(
+                Code::W006NoEffect,
+                grid.sheet_location(),
+                format!(
+                    "{source} C{n}={load}: C{n}'s valve is {valve}, which holds the piston (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing"
+                ),
+            );
+        }
+    }
+}
+
 fn finish_check(
     input: Option<read::Input>,
     mut diags: Diagnostics,
@@ -205,6 +238,7 @@ fn finish_check(
         table::check_machine(table, &machine, &input.table, &mut diags);
         let sheet = input.settings.as_ref().zip(sheet_given.as_ref());
         settings_without_their_actuator(table, settings, sheet, &input.table.file, &mut diags);
+        loads_without_effect(table, &effective, &input.table, &mut diags);
         let named = &effective.named;
         effective.program.halt =
             halt::resolve(table, &effective.simulation.valves, named, &mut diags);

@@ -141,6 +141,17 @@ pub fn read_bytes(
 ) -> Option<Input> {
     match format {
         Format::Csv => {
+            if let Some(name) = sheet {
+                diags.warning(
+                    Code::W006NoEffect,
+                    Location {
+                        file: file.to_string(),
+                        sheet: None,
+                        cell: None,
+                    },
+                    format!("--sheet {name} has no effect on a CSV file, which has no sheets; the file was read as it is"),
+                );
+            }
             let mut readings = csv::read_csv(file, &bytes, diags)?;
             if readings.len() == 1 {
                 let only = readings.remove(0);

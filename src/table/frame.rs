@@ -47,6 +47,7 @@ pub(super) fn find_frame(grid: &Grid, diags: &mut Diagnostics) -> Option<Frame> 
         let branch_cols: Vec<u32> = sorted_unique(branch_headers.iter().map(|p| p.col));
         let first_branch = *branch_cols.first()?;
         let last_branch = *branch_cols.last()?;
+        warn_on_branch_numbers(grid, header_row, &branch_cols, diags);
         let labels: Vec<CellPos> = step_labels
             .iter()
             .copied()
@@ -196,6 +197,37 @@ fn warn_on_label_numbers(grid: &Grid, label_col: u32, step_rows: &[u32], diags: 
                 ),
             );
             // One warning tells the story; the rows below are shifted alike.
+            return;
+        }
+    }
+}
+
+/// Branches are numbered by their order too: a `BRANCH n` header that says
+/// otherwise (a copied column: `BRANCH 1, BRANCH 1`) is worth a warning,
+/// since every output names branches by their place.
+fn warn_on_branch_numbers(
+    grid: &Grid,
+    header_row: u32,
+    branch_cols: &[u32],
+    diags: &mut Diagnostics,
+) {
+    for (k, col) in branch_cols.iter().enumerate() {
+        let pos = CellPos::new(header_row, *col);
+        let Some(CellValue::Text(t)) = grid.cells.iter().find(|c| c.pos == pos).map(|c| &c.value)
+        else {
+            continue;
+        };
+        if let Some(Header::Branch(n)) = header_kind(t)
+            && n as usize != k + 1
+        {
+            diags.warning(
+                Code::W002StepNumber,
+                grid.location(pos),
+                format!(
+                    "this column is headed BRANCH {n} but is branch {} of the table; branches are numbered by their order",
+                    k + 1
+                ),
+            );
             return;
         }
     }

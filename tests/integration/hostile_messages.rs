@@ -159,3 +159,52 @@ fn a_dwell_without_a_unit_is_said() {
         }
     }
 }
+
+/// What would be dropped without a word is said: `--load` for a valve that
+/// holds its piston, `--sheet` for a CSV file (W006), and a copied BRANCH
+/// header (W002 at its cell); the run goes on.
+#[test]
+fn options_and_headers_that_do_nothing_are_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.csv");
+    std::fs::write(
+        &path,
+        ",BRANCH 1,BRANCH 1\nSTEP 1,C1+1,C2+1\nSTEP 2,C1-0,C2-0\n",
+    )
+    .unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &[],
+            "t.csv:1:3: warning[W002]: this column is headed BRANCH 1 but is branch 2 of the table",
+        ),
+        (
+            &["--valve", "C1=52bi", "--load", "C1=0.5"],
+            "t.csv: warning[W006]: --load C1=0.5: C1's valve is 52bi, which holds the piston",
+        ),
+        (&["--load", "C2=0.5"], "--load C2=0.5: C2's valve is 52bi"),
+        (
+            &["--sheet", "EXAMPLE"],
+            "t.csv: warning[W006]: --sheet EXAMPLE has no effect on a CSV file",
+        ),
+    ];
+    for (args, message) in cases {
+        let output = steptable()
+            .arg("simulate")
+            .arg(&path)
+            .args(*args)
+            .output()
+            .unwrap();
+        assert_eq!(output.status.code(), Some(0), "{args:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+    }
+    // Where the load moves the piston, nothing is said.
+    let output = steptable()
+        .arg("simulate")
+        .arg(&path)
+        .args(["--valve", "C1=53exhaust", "--load", "C1=0.5"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("W006"), "{stderr}");
+}
