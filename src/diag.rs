@@ -82,6 +82,8 @@ pub enum Code {
     /// the engineer's, a folder, a file where the output folder goes, an
     /// input of the run): nothing is written for that input.
     E040OutputTaken,
+    /// The command line itself is wrong: an unknown option, a bad value.
+    E041BadCommandLine,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -141,6 +143,7 @@ impl Code {
             Code::E028JumpTarget => "E028",
             Code::E029JumpPositions => "E029",
             Code::E040OutputTaken => "E040",
+            Code::E041BadCommandLine => "E041",
         }
     }
 }

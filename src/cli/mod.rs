@@ -96,11 +96,15 @@ pub fn run() -> i32 {
             return with_stdout(EXIT_OK);
         }
         Err(err) => {
-            let _ = err.print();
             let args: Vec<String> = std::env::args_os()
                 .skip(1)
                 .map(|a| a.to_string_lossy().to_string())
                 .collect();
+            // A script that asked for JSON gets the reason as JSON too.
+            if asks_for_json(&args) {
+                out(&command_line_json(&err.render().to_string()));
+            }
+            let _ = err.print();
             if let Some(tip) = confused_command(&args) {
                 eprintln!("\n{tip}");
             }
@@ -142,6 +146,32 @@ pub fn run() -> i32 {
         }
     };
     with_stdout(code)
+}
+
+/// Whether the command line asks for `--message-format json`, read from
+/// the raw words, since it could not be parsed.
+fn asks_for_json(args: &[String]) -> bool {
+    args.windows(2)
+        .any(|w| w[0] == "--message-format" && w[1] == "json")
+        || args.iter().any(|a| a == "--message-format=json")
+}
+
+/// Clap's error as one JSON diagnostic (E041): its first line, without the
+/// `error: ` prefix; no file, sheet or cell.
+fn command_line_json(rendered: &str) -> String {
+    let first = rendered.lines().next().unwrap_or("");
+    let message = first.strip_prefix("error: ").unwrap_or(first);
+    serde_json::json!({
+        "file": null,
+        "sheet": null,
+        "cell": null,
+        "row": null,
+        "column": null,
+        "severity": "error",
+        "code": steptable::diag::Code::E041BadCommandLine.as_str(),
+        "message": message,
+    })
+    .to_string()
 }
 
 /// What became of standard output: written, closed by its reader, or

@@ -208,3 +208,47 @@ fn options_and_headers_that_do_nothing_are_said() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!stderr.contains("W006"), "{stderr}");
 }
+
+/// A wrong command line under `--message-format json` is one JSON object
+/// (E041, the parser's reason) on stdout, exit 1; without it stdout stays
+/// empty.
+#[test]
+fn a_wrong_command_line_is_json_when_json_is_asked() {
+    for args in [
+        &[
+            "check",
+            "x.csv",
+            "--message-format",
+            "json",
+            "--valve",
+            "C1=bogus",
+        ][..],
+        &[
+            "convert",
+            "x.csv",
+            "--message-format=json",
+            "--modes",
+            "stop,stop",
+        ],
+        &["simulate", "x.csv", "--message-format", "json", "--bogus"],
+    ] {
+        let output = steptable().args(args).output().unwrap();
+        assert_eq!(output.status.code(), Some(1), "{args:?}");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        let value: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+        assert_eq!(value["code"], "E041", "{stdout}");
+        assert_eq!(value["severity"], "error");
+        assert!(value["file"].is_null());
+        let message = value["message"].as_str().unwrap();
+        assert!(
+            !message.is_empty() && !message.starts_with("error:"),
+            "{message}"
+        );
+    }
+    let output = steptable()
+        .args(["check", "x.csv", "--bogus"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    assert!(output.stdout.is_empty());
+}
