@@ -63,8 +63,39 @@ pub fn scenario(
     script: &[(u64, Operator)],
     until_ms: u64,
 ) -> ScenarioReport {
+    run_script(table, program, settings, script, until_ms, None).0
+}
+
+/// Like [`scenario`], and records `signals` at every scan, so that the
+/// written program can be replayed in its own engine with the operator's
+/// presses (STOP, EMERGENCY STOP, RESET) and compared scan by scan.
+pub fn scenario_recording(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    script: &[(u64, Operator)],
+    until_ms: u64,
+    signals: super::io::IoSignals,
+) -> (ScenarioReport, super::io::IoTrace) {
+    let (report, trace) = run_script(table, program, settings, script, until_ms, Some(signals));
+    (report, trace.unwrap_or_default())
+}
+
+fn run_script(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    script: &[(u64, Operator)],
+    until_ms: u64,
+    record: Option<super::io::IoSignals>,
+) -> (ScenarioReport, Option<super::io::IoTrace>) {
     let code = PlcProgram::compile(program);
     let mut run = Run::new(table, program, &code, settings);
+    run.io = record.map(|signals| super::io::IoTrace {
+        scan_ms: run.world.settings.scan_ms,
+        signals,
+        scans: Vec::new(),
+    });
     let outputs: Vec<(usize, Signal)> = program
         .steps
         .iter()
@@ -103,9 +134,10 @@ pub fn scenario(
             homing: run.plc.bit(Signal::Homing),
         });
     }
-    ScenarioReport {
+    let report = ScenarioReport {
         fired,
         samples,
         problems: run.problems,
-    }
+    };
+    (report, run.io)
 }

@@ -17,6 +17,7 @@ mod differential_timing;
 mod engines;
 mod exports;
 mod halt;
+mod homing;
 mod libreoffice;
 mod names;
 mod pinned;
@@ -135,6 +136,7 @@ fn main() {
         names::CHECKS,
         pinned::CHECKS,
         halt::CHECKS,
+        homing::CHECKS,
         sync::CHECKS,
         synth_engines::CHECKS,
     ]
