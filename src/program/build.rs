@@ -41,9 +41,20 @@ fn completion(step: &Step) -> Vec<Literal> {
 /// What a step needs besides the step before it being complete, whichever
 /// way it fires (after that step, or in place of another by a jump): its
 /// target sensors still off (a sensor on before its move starts is a lie),
-/// and no halt.
-fn guards(moves: &[Move], options: &ProgramOptions) -> Vec<Literal> {
+/// no halt, and every interlock that covers the step closed: the interlock
+/// rung halts only later in the scan, and a step fired in the scan its
+/// guard opens would start its moves behind the open guard.
+fn guards(moves: &[Move], number: usize, options: &ProgramOptions) -> Vec<Literal> {
     let mut literals = Vec::new();
+    for interlock in &options.interlocks {
+        let covers = interlock
+            .steps
+            .is_none_or(|(first, last)| (first..=last).contains(&number));
+        let literal = Literal::is(Signal::MachineInput(interlock.input));
+        if covers && !literals.contains(&literal) {
+            literals.push(literal);
+        }
+    }
     if options.safety.precheck {
         literals.extend(moves.iter().map(|m| {
             Literal::not(Signal::Sensor {
@@ -196,18 +207,10 @@ pub fn build(
         options,
         &mut steps,
         |index| completion(&table.steps[index]),
-        |target| guards(&target.moves, options),
+        |target| guards(&target.moves, target.number, options),
     );
     if modes.any() {
-        homing_rungs(
-            table,
-            &signals,
-            &timers,
-            modes,
-            &options.halt.hold_on_estop,
-            &run_ons,
-            &mut rungs,
-        );
+        homing_rungs(table, &signals, &timers, options, &run_ons, &mut rungs);
     }
     StepProgram {
         init,
@@ -247,7 +250,7 @@ fn sequence_steps(
         } else {
             completion(&table.steps[index - 1])
         };
-        condition.extend(guards(&step.moves, options));
+        condition.extend(guards(&step.moves, step.number, options));
 
         let mut actions = Vec::new();
         for m in &step.moves {
@@ -323,7 +326,7 @@ fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramSt
     // once the last moves have finished, not run on while the machine
     // idles, and a new cycle may be asked for only now.
     let mut condition = completion(last);
-    condition.extend(guards(&[], options));
+    condition.extend(guards(&[], last.number + 1, options));
     let mut actions = Vec::new();
     if safety.watchdog {
         actions.push(Action::Reset(Signal::Watchdog));

@@ -84,11 +84,13 @@ pub(super) fn homing_rungs(
     table: &StepTable,
     signals: &Signals,
     timers: &[Signal],
-    modes: &Modes,
-    hold_on_estop: &std::collections::BTreeSet<Signal>,
+    options: &super::ProgramOptions,
     run_ons: &[super::RunOn],
     rungs: &mut Vec<Rung>,
 ) {
+    let modes = &options.modes;
+    let hold_on_estop = &options.halt.hold_on_estop;
+    let (interlocks, halts) = (&options.interlocks, options.halts());
     let outputs: Vec<Signal> = signals.driven().collect();
     let memories = &signals.memories;
     if modes.reset {
@@ -97,6 +99,13 @@ pub(super) fn homing_rungs(
         if modes.estop {
             condition.push(Literal::is(Signal::EStop));
         }
+        // Homing moves every actuator: not behind an open guard.
+        condition.extend(
+            interlocks
+                .iter()
+                .filter(|i| i.steps.is_none())
+                .map(|i| Literal::is(Signal::MachineInput(i.input))),
+        );
         let mut actions: Vec<Action> = outputs.iter().map(|s| Action::Reset(*s)).collect();
         // Forget the interrupted cycle: requests, stops, dwells, alarms.
         actions.extend(
@@ -159,10 +168,17 @@ pub(super) fn homing_rungs(
                     position: 0,
                 }));
             }
+            // A halt while homing (an interlock opening, a plausibility
+            // fault) stops driving: the halt's own rungs then hold or
+            // de-energise the outputs as for any halt.
+            let mut condition = vec![Literal::is(memory)];
+            if halts {
+                condition.push(Literal::not(Signal::Halt));
+            }
             rungs.push(Rung {
                 kind: RungKind::Homing,
                 comment: format!("homing stage {}: {} home", i + 1, names.join(", ")),
-                condition: vec![Literal::is(memory)],
+                condition,
                 actions: drive,
             });
             let mut done = vec![Action::Reset(memory)];

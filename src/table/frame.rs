@@ -397,10 +397,15 @@ mod tests {
             "{all:?}"
         );
         assert!(
-            all[1].contains("S!B2: error[E010]: \"C1+1\" lies outside"),
+            all[2].contains("S!B2: error[E010]: \"C1+1\" lies outside"),
             "{all:?}"
         );
-        assert!(all[2].contains("S!B3: error[E010]"), "{all:?}");
+        assert!(all[3].contains("S!B3: error[E010]"), "{all:?}");
+        // The column left is headed BRANCH 2 but is the table's first.
+        assert!(
+            all.iter().any(|d| d.contains("S!C1: warning[W002]")),
+            "{all:?}"
+        );
     }
 
     #[test]

@@ -124,3 +124,101 @@ fn a_home_order_naming_an_actuator_twice_says_which() {
         ));
     assert!(!dir.path().join("out").exists());
 }
+
+/// RESET does not home behind an open guard: a whole-cycle interlock opens
+/// mid-cycle (the machine halts), RESET is pressed with it still open, and
+/// no homing coil comes on; nor does a step start a move in the scan the
+/// guard opens. Closed again, the next RESET homes.
+#[test]
+fn reset_does_not_home_behind_an_open_guard() {
+    use steptable::program::Signal;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("guarded.xlsx");
+    let table: &[&[&str]] = &[&["C1+1"], &["C2+1"], &["C2-0"], &["C1-0"]];
+    let settings: &[&[&str]] = &[
+        &["interlock", "guard"],
+        &["modes", "reset"],
+        &["de-energise on halt", "C1, C2"],
+    ];
+    crate::helpers::write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);
+    let build = Build::path(&path);
+    let program = build.program();
+    let mut simulation = build.settings.simulation.clone();
+    // The guard opens at 1.8 s (C2 on its way out) and stays open.
+    simulation.faults = vec![steptable::simulate::Fault {
+        signal: Signal::MachineInput(steptable::cell::Name::new("guard").unwrap()),
+        stuck_at: false,
+    }];
+    simulation.fault_onset_ms = 1_800;
+    let press = |at: u64, operator: Operator| [(at, operator), (at + 100, IDLE)];
+    let script = [
+        press(
+            500,
+            Operator {
+                start: true,
+                ..IDLE
+            },
+        ),
+        press(
+            3_000,
+            Operator {
+                reset: true,
+                ..IDLE
+            },
+        ),
+    ]
+    .concat();
+    let report = scenario(&build.table, &program, &simulation, &script, 8_000);
+    let homing_coils = [
+        Signal::Coil {
+            actuator: 1,
+            sign: steptable::cell::Sign::Minus,
+        },
+        Signal::Coil {
+            actuator: 2,
+            sign: steptable::cell::Sign::Minus,
+        },
+    ];
+    let driven: Vec<u64> = report
+        .samples
+        .iter()
+        .filter(|s| s.time_ms >= 3_000 && s.outputs_on.iter().any(|o| homing_coils.contains(o)))
+        .map(|s| s.time_ms)
+        .collect();
+    assert!(
+        driven.is_empty(),
+        "homing coils on behind the open guard at {driven:?} ms"
+    );
+    assert!(
+        report
+            .samples
+            .iter()
+            .filter(|s| s.time_ms >= 3_000)
+            .all(|s| !s.homing),
+        "RESET with the guard open does not start homing"
+    );
+    // Healthy guard: the same RESET homes.
+    simulation.faults.clear();
+    let script = [
+        press(
+            500,
+            Operator {
+                start: true,
+                ..IDLE
+            },
+        ),
+        press(
+            1_800,
+            Operator {
+                reset: true,
+                ..IDLE
+            },
+        ),
+    ]
+    .concat();
+    let report = scenario(&build.table, &program, &simulation, &script, 8_000);
+    assert!(
+        report.samples.iter().any(|s| s.homing),
+        "RESET homes with the guard closed"
+    );
+}
