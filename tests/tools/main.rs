@@ -20,6 +20,7 @@ mod halt;
 mod libreoffice;
 mod names;
 mod pinned;
+mod step_numbers;
 mod sync;
 mod synth_engines;
 
@@ -134,6 +135,7 @@ fn main() {
         libreoffice::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
+        step_numbers::CHECKS,
         halt::CHECKS,
         sync::CHECKS,
         synth_engines::CHECKS,
