@@ -56,9 +56,12 @@ pub fn run(
     )?))
 }
 
+/// A memory bit: byte and bit.
+type Bit = (u32, u32);
+
 /// The step flags of the `.sdf` beside `awl`, as its symbol table names
 /// them: `step_3` at `M 1.3` is `(3, (1, 3))`.
-fn step_flags(awl: &Path) -> Result<Vec<(usize, (u32, u32))>, String> {
+fn step_flags(awl: &Path) -> Result<Vec<(usize, Bit)>, String> {
     let sdf = awl.with_extension("sdf");
     let text = std::fs::read_to_string(&sdf).map_err(|e| format!("{}: {e}", sdf.display()))?;
     let mut flags = Vec::new();
@@ -97,7 +100,7 @@ pub fn run_stepped(
     allocation: &Allocation,
 ) -> Result<Stepped, String> {
     let flags = step_flags(awl)?;
-    let bits: Vec<(u32, u32)> = flags.iter().map(|f| f.1).collect();
+    let bits: Vec<Bit> = flags.iter().map(|f| f.1).collect();
     let text = replay(python, awl, mnemonic, trace, allocation, &bits)?;
     stepped_lines(&text, |shown| {
         let on: Vec<usize> = shown
@@ -121,7 +124,7 @@ fn replay(
     mnemonic: Mnemonic,
     trace: &IoTrace,
     allocation: &Allocation,
-    probe: &[(u32, u32)],
+    probe: &[Bit],
 ) -> Result<String, String> {
     let probe: Vec<String> = probe.iter().map(|(b, i)| format!("{b}.{i}")).collect();
     let mut child = Command::new(python)
