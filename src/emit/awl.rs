@@ -1,6 +1,7 @@
 //! STEP 7 statement list source (`NAME.awl`, organisation block OB 1) and its
-//! symbol table (`NAME.sdf`). One NETWORK per step: a step flag marks the step
-//! the sequence waits to fire, and a `fired` flag lets at most one step fire
+//! symbol table (`NAME.sdf`). One NETWORK per transition: a step flag marks
+//! the step the program is in (`step_0` at rest, `step_k` while table step
+//! k's moves run, as in SFC), and a `fired` flag lets at most one step fire
 //! per cycle, as the step program says. English (`A`, `AN`, `JCN`, `I`, `Q`)
 //! or German (`U`, `UN`, `SPBN`, `E`, `A`) mnemonics follow `--mnemonic`.
 
@@ -11,7 +12,7 @@ use serde::Serialize;
 use super::{EmitInput, action_comment, one_line, templates};
 use crate::address::Mnemonic;
 use crate::names::FIRED;
-use crate::program::{Action, Literal};
+use crate::program::{Action, INITIAL_STEP, Literal};
 use crate::program::{Area, Signal};
 
 /// The AWL words of one mnemonic set.
@@ -76,6 +77,8 @@ struct Context {
     source: String,
     mnemonics: &'static str,
     step_flags: String,
+    /// What the step flags mean, for the header.
+    step_note: Vec<String>,
     networks: Vec<Network>,
     symbols: Vec<Symbol>,
 }
@@ -235,6 +238,9 @@ fn build(input: &EmitInput) -> Context {
     let layout = Layout::new(input);
     let w = &layout.words;
     let program = input.program;
+    // The flag of the step the program is in while it waits at
+    // `program.steps[k]`: `step_0` at rest, `step_3` while step 3's moves run.
+    let flag_name = |k: usize| format!("step_{}", program.step_in(k));
     let condition = |lines: &mut Vec<Line>, literals: &[Literal]| {
         for l in literals {
             let op = if l.negated { w.and_not } else { w.and };
@@ -246,14 +252,14 @@ fn build(input: &EmitInput) -> Context {
             let comment = action_comment(*a, moves);
             match *a {
                 Action::Reset(Signal::Sequence) => {
-                    // Back to STEP 1: every step flag off, the first on.
+                    // Back to the initial step: every step flag off, its own on.
                     for (k, flag) in layout.step_flags.iter().enumerate() {
-                        lines.push(line("R", Layout::m(*flag), format!("step_{}", k + 1)));
+                        lines.push(line("R", Layout::m(*flag), flag_name(k)));
                     }
                     lines.push(line(
                         "S",
                         Layout::m(layout.step_flags[0]),
-                        "step_1: back to STEP 1",
+                        format!("{}: back to STEP {INITIAL_STEP}", flag_name(0)),
                     ));
                 }
                 Action::Set(s) => lines.push(line("S", layout.operand(input, s), comment)),
@@ -280,15 +286,16 @@ fn build(input: &EmitInput) -> Context {
     let mut networks = Vec::new();
     let mut labels = 0usize;
 
-    // With no step flag set (first cycle after a cold start) wait at STEP 1.
+    // With no step flag set (first cycle after a cold start) the sequence
+    // is in the initial step.
     let mut init = Vec::new();
     for (k, flag) in layout.step_flags.iter().enumerate() {
-        init.push(line(w.and_not, Layout::m(*flag), format!("step_{}", k + 1)));
+        init.push(line(w.and_not, Layout::m(*flag), flag_name(k)));
     }
-    init.push(line("S", Layout::m(layout.step_flags[0]), "step_1"));
+    init.push(line("S", Layout::m(layout.step_flags[0]), flag_name(0)));
     actions(&mut init, &program.init, &[]);
     networks.push(Network {
-        title: "start: no step flag set, so wait at STEP 1".to_string(),
+        title: format!("start: no step flag set, so the sequence is in STEP {INITIAL_STEP}"),
         lines: init,
     });
     networks.push(Network {
@@ -329,11 +336,7 @@ fn build(input: &EmitInput) -> Context {
                           next: usize,
                           title: String| {
         let mut lines = vec![
-            line(
-                w.and,
-                Layout::m(layout.step_flags[k]),
-                format!("step_{}", k + 1),
-            ),
+            line(w.and, Layout::m(layout.step_flags[k]), flag_name(k)),
             line(w.and_not, Layout::m(layout.fired), FIRED),
         ];
         condition(&mut lines, condition_of);
@@ -342,15 +345,11 @@ fn build(input: &EmitInput) -> Context {
         lines.push(line(w.jump_if_not, skip.clone(), "condition not met"));
         lines.push(line("SET", "", ""));
         actions(&mut lines, fired_actions, moves);
-        lines.push(line(
-            "R",
-            Layout::m(layout.step_flags[k]),
-            format!("step_{}", k + 1),
-        ));
+        lines.push(line("R", Layout::m(layout.step_flags[k]), flag_name(k)));
         lines.push(line(
             "S",
             Layout::m(layout.step_flags[next]),
-            format!("step_{}", next + 1),
+            flag_name(next),
         ));
         lines.push(line("S", Layout::m(layout.fired), FIRED));
         lines.push(Line {
@@ -362,14 +361,16 @@ fn build(input: &EmitInput) -> Context {
         networks.push(Network { title, lines });
     };
     for (k, step) in program.steps.iter().enumerate() {
+        let in_step = format!(
+            "STEP {}: {}",
+            program.step_in(k),
+            one_line(&program.title_in(k))
+        );
         for jump in &step.jumps {
             let target = &program.steps[jump.fires];
             let title = format!(
-                "STEP {}: {}: STEP {} in place of STEP {}",
-                step.number,
-                one_line(&jump.title),
-                target.number,
-                step.number
+                "{in_step}; {}",
+                one_line(&super::jump_comment(program, k, jump))
             );
             transition(
                 k,
@@ -380,7 +381,7 @@ fn build(input: &EmitInput) -> Context {
                 title,
             );
         }
-        let title = format!("STEP {}: {}", step.number, one_line(&step.title));
+        let title = format!("{in_step}; {}", one_line(&super::entry_comment(program, k)));
         transition(
             k,
             &step.condition,
@@ -440,13 +441,14 @@ fn build(input: &EmitInput) -> Context {
         .collect();
     for (k, flag) in layout.step_flags.iter().enumerate() {
         symbols.push(Symbol {
-            symbol: format!("step_{}", k + 1),
+            symbol: flag_name(k),
             address: sdf_address(&Layout::m(*flag)),
             data_type: "BOOL",
-            comment: format!(
-                "the sequence waits to fire STEP {}",
-                program.steps[k].number
-            ),
+            comment: one_line(&format!(
+                "STEP {} is active: {}",
+                program.step_in(k),
+                program.title_in(k)
+            )),
         });
     }
     symbols.push(Symbol {
@@ -497,6 +499,10 @@ fn build(input: &EmitInput) -> Context {
             Mnemonic::De => "German (U, UN, SPBN; E, A)",
         },
         step_flags: format!("{} to {}", Layout::m(first_flag), Layout::m(last_flag)),
+        step_note: super::step_numbering_note("the number of the step flag that is on (step_k)")
+            .iter()
+            .map(|l| one_line(l))
+            .collect(),
         networks,
         symbols,
     }

@@ -11,7 +11,7 @@ use serde::Serialize;
 use super::{EmitInput, action_comment, one_line, templates};
 use crate::address::Allocation;
 use crate::program::Signal;
-use crate::program::{Action, Literal};
+use crate::program::{Action, Literal, StepKind};
 
 #[derive(Serialize)]
 struct ConditionLine {
@@ -28,18 +28,25 @@ struct ActionLine {
     comment: String,
 }
 
+/// One FST step: the SFC step the program is in (its label), the sentence
+/// that waits for it to be done and runs the actions of the step it enters.
 #[derive(Serialize)]
 struct StepContext {
-    number: usize,
+    /// The label: 0 at rest, else the table step whose moves run.
+    label: usize,
+    /// What that step does.
     moves: String,
+    /// The step entered and what it does.
+    entry: String,
     condition: Vec<ConditionLine>,
     actions: Vec<ActionLine>,
-    last: bool,
+    /// The closing sentence, which jumps back to the initial step.
+    closing: Option<usize>,
     /// Sentences before the step's own: each jumps away when it holds.
     jumps: Vec<JumpContext>,
 }
 
-/// A jump's sentence: its target's actions, then `JMP TO` the step after it.
+/// A jump's sentence: its target's actions, then `JMP TO` the target's step.
 #[derive(Serialize)]
 struct JumpContext {
     comment: String,
@@ -60,6 +67,8 @@ struct Context {
     title: String,
     version: &'static str,
     source: String,
+    /// What the step labels mean, for the header.
+    step_note: Vec<String>,
     /// Actions of the INIT step (start P1, initial memory values).
     init: Vec<ActionLine>,
     steps: Vec<StepContext>,
@@ -123,7 +132,10 @@ fn actions(
                 lines.push((
                     "SET",
                     "P0".to_string(),
-                    "and start it again at STEP 1".to_string(),
+                    format!(
+                        "and start it again at STEP {}",
+                        crate::program::INITIAL_STEP
+                    ),
                 ));
             }
             Action::Set(_) => lines.push(("SET", operand, comment)),
@@ -159,9 +171,7 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
     for (i, line) in init.iter_mut().enumerate() {
         line.first = i == 0;
     }
-    let count = input.program.steps.len();
-    let steps = input
-        .program
+    let steps = program
         .steps
         .iter()
         .enumerate()
@@ -172,21 +182,19 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
                 .map(|j| {
                     let target = &program.steps[j.fires];
                     JumpContext {
-                        comment: one_line(&format!(
-                            "{}: STEP {} in place of STEP {}",
-                            j.title, target.number, s.number
-                        )),
+                        comment: one_line(&super::jump_comment(program, i, j)),
                         condition: condition(&j.condition, festo),
                         actions: actions(&j.actions, festo, |a| action_comment(a, &target.moves)),
-                        next: program.number_at(j.next),
+                        next: program.step_entered(j.fires),
                     }
                 })
                 .collect(),
-            number: s.number,
-            moves: one_line(&s.title),
+            label: program.step_in(i),
+            moves: one_line(&program.title_in(i)),
+            entry: one_line(&super::entry_comment(program, i)),
             condition: condition(&s.condition, festo),
             actions: actions(&s.actions, festo, |a| action_comment(a, &s.moves)),
-            last: i + 1 == count,
+            closing: (s.kind == StepKind::EndOfCycle).then(|| program.step_entered(i)),
         })
         .collect();
     let rungs = input
@@ -203,6 +211,10 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         title: one_line(input.name),
         version: env!("CARGO_PKG_VERSION"),
         source: one_line(&input.source()),
+        step_note: super::step_numbering_note("the active STEP label")
+            .iter()
+            .map(|l| one_line(l))
+            .collect(),
         init,
         steps,
         rungs,

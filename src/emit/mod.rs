@@ -122,10 +122,61 @@ pub fn action_comment(action: Action, moves: &[Move]) -> String {
         }
         Action::Reset(Signal::StopAt { .. }) => format!("{symbol} off: stop request cleared"),
         Action::StartTimer(s, ms) => format!("start {} for {ms} ms", s.symbol()),
-        Action::Reset(Signal::Sequence) => "the sequence goes back to STEP 1".to_string(),
+        Action::Reset(Signal::Sequence) => format!(
+            "the sequence goes back to STEP {}",
+            crate::program::INITIAL_STEP
+        ),
         Action::Set(s) => format!("{} on", s.symbol()),
         Action::Reset(s) => format!("{} off", s.symbol()),
     }
+}
+
+/// What the step number of a program means, for its header, in lines of
+/// at most 72 characters: `what` is how the language shows it
+/// (`active_step`, `the step flag on`).
+pub fn step_numbering_note(what: &str) -> Vec<String> {
+    let initial = crate::program::INITIAL_STEP;
+    let text = format!(
+        "Steps are numbered as in SFC: {what} is {initial} at rest (the initial step, waiting for START) and k while table step k's moves run. Each step waits until it is done (its moves' sensors on, its waits and dwells over), then runs the actions of the step it enters; after the last step the sequence is back in step {initial}."
+    );
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split(' ') {
+        match lines.last_mut() {
+            Some(line) if line.len() + 1 + word.len() <= 72 => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
+/// The comment on the transition `program.steps[index]`: the step it
+/// enters and what that step does, or the end of the cycle.
+pub fn entry_comment(program: &crate::program::StepProgram, index: usize) -> String {
+    let enters = program.step_entered(index);
+    match program.steps.get(index) {
+        Some(step) if step.kind == crate::program::StepKind::Table => {
+            format!("on to STEP {enters}: {}", step.title)
+        }
+        _ => format!("end of cycle: back to STEP {enters}"),
+    }
+}
+
+/// The comment on a jump tested while the program waits at
+/// `program.steps[index]`: the step it enters in place of the next one.
+pub fn jump_comment(
+    program: &crate::program::StepProgram,
+    index: usize,
+    jump: &crate::program::StepJump,
+) -> String {
+    format!(
+        "{}: on to STEP {} in place of STEP {}",
+        jump.title,
+        program.step_entered(jump.fires),
+        program.step_entered(index)
+    )
 }
 
 /// Text on one line: control characters (a newline in a file name) become spaces.

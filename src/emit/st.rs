@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use super::{EmitInput, action_comment, templates};
 use crate::address::Assigned;
-use crate::program::{Action, Literal, condition_text};
+use crate::program::{Action, INITIAL_STEP, Literal, condition_text};
 use crate::program::{Area, Signal};
 
 /// Identifiers of the program's own parts. `step` is an IEC keyword, so the
@@ -57,27 +57,32 @@ struct Statement {
     comment: String,
 }
 
+/// One branch of the `CASE`: the SFC step the program is in, and the
+/// transitions that leave it with the actions of the step each enters.
 #[derive(Serialize)]
 struct StepContext {
-    number: usize,
-    title: String,
+    /// The step the program is in (`active_step`): 0 at rest, else the
+    /// table step whose moves run.
+    active: usize,
+    active_title: String,
+    /// The step entered and what it does, for the transition's comment.
+    entry: String,
     condition: String,
     actions: Vec<Statement>,
-    next: usize,
-    last: bool,
+    /// The step entered: the next table step, 0 after the last.
+    enters: usize,
     /// Tested first: `IF jump THEN … ELSIF step THEN …`.
     jumps: Vec<JumpContext>,
 }
 
-/// A jump of a step (`J:7 if I:reject`): its target fires in its place.
+/// A jump of a step (`J:7 if I:reject`): its target is entered in place of
+/// the next step.
 #[derive(Serialize)]
 struct JumpContext {
-    title: String,
-    /// The step that fires in place of the awaited one.
-    fires: usize,
+    comment: String,
     condition: String,
     actions: Vec<Statement>,
-    next: usize,
+    enters: usize,
 }
 
 #[derive(Serialize)]
@@ -104,6 +109,8 @@ struct Context {
     target: String,
     timestamp: &'static str,
     program_name: &'static str,
+    /// What `active_step` means, for the header.
+    step_note: Vec<String>,
     /// Inputs and outputs, with addresses.
     located: Vec<Var>,
     /// Internal variables: step counter, memories, timer flags and instances.
@@ -201,7 +208,7 @@ fn condition(literals: &[Literal]) -> String {
 
 fn statement(action: Action) -> String {
     match action {
-        Action::Reset(Signal::Sequence) => format!("{STEP_VAR} := 1;"),
+        Action::Reset(Signal::Sequence) => format!("{STEP_VAR} := {INITIAL_STEP};"),
         // Called with IN off then on, the TON restarts now: its time runs
         // from this scan, as the step program's timer does (a TON first
         // called with IN on in the next scan would end one scan late).
@@ -241,7 +248,6 @@ fn located(a: &Assigned, input: &EmitInput) -> Var {
 fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::TemplateError> {
     let alloc = input.allocation;
     let program = input.program;
-    let count = program.steps.len();
     let steps = program
         .steps
         .iter()
@@ -253,20 +259,19 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
                 .map(|j| {
                     let target = &program.steps[j.fires];
                     JumpContext {
-                        title: comment_text(&j.title),
-                        fires: target.number,
+                        comment: comment_text(&super::jump_comment(program, i, j)),
                         condition: condition(&j.condition),
                         actions: statements(&j.actions, |a| action_comment(a, &target.moves)),
-                        next: program.number_at(j.next),
+                        enters: program.step_entered(j.fires),
                     }
                 })
                 .collect(),
-            number: s.number,
-            title: comment_text(&s.title),
+            active: program.step_in(i),
+            active_title: comment_text(&program.title_in(i)),
+            entry: comment_text(&super::entry_comment(program, i)),
             condition: condition(&s.condition),
             actions: statements(&s.actions, |a| action_comment(a, &s.moves)),
-            next: if i + 1 == count { 1 } else { s.number + 1 },
-            last: i + 1 == count,
+            enters: program.step_entered(i),
         })
         .collect();
     let rungs = program
@@ -283,8 +288,10 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
         ident: STEP_VAR.to_string(),
         data_type: "INT",
         derived: false,
-        initial: Some("1".to_string()),
-        comment: "the step the sequence waits to fire".to_string(),
+        initial: Some(INITIAL_STEP.to_string()),
+        comment: format!(
+            "the active step: {INITIAL_STEP} = initial step (at rest, waiting for START), k = table step k, whose moves run"
+        ),
     }];
     internals.extend(alloc.memories.iter().map(|m| {
         Internal {
@@ -355,6 +362,10 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
         target: alloc.target.name().to_string(),
         timestamp: TIMESTAMP,
         program_name: PROGRAM_NAME,
+        step_note: super::step_numbering_note(STEP_VAR)
+            .iter()
+            .map(|l| comment_text(l))
+            .collect(),
         located: alloc
             .inputs
             .iter()

@@ -10,7 +10,7 @@ use rust_xlsxwriter::{
 use super::EmitInput;
 use crate::address::Assigned;
 use crate::faults::FaultTable;
-use crate::program::{Action, paper_sentence};
+use crate::program::{Action, StepKind, paper_sentence};
 use crate::program::{Area, Signal};
 use crate::sheets::TABLE_SHEET;
 use crate::simulate::SimReport;
@@ -23,10 +23,15 @@ pub const FAULTS_SHEET: &str = "FAULTS";
 pub const DIAGRAM_SHEET: &str = "DIAGRAM";
 
 /// The rows of the PLC PROGRAM sheet: `[label, sentence, memories and timers]`.
-/// The sentence holds the step's condition and its output actions in the
-/// paper's notation; the third column holds what it does to memories (the
-/// middle-stop requests) and timers.
+/// Each row is labelled with the step the program is in while it waits (as
+/// in SFC: STEP 0 at rest, STEP k while table step k's moves run, the FST
+/// file's labels); its sentence holds that step's completion and the output
+/// actions of the step it enters, in the paper's notation, ending in `GOTO
+/// STEP n` where the sequence does not simply go on to the next row (a jump,
+/// the end of the cycle). The third column holds what it does to memories
+/// (the middle-stop requests) and timers.
 pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
+    let program = input.program;
     let is_output = |a: &Action| a.signal().area() == Area::Output;
     let mut rows = Vec::new();
     let split = |actions: &[Action]| -> (Vec<Action>, String) {
@@ -42,33 +47,28 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
             .join(" ");
         (outputs, requests)
     };
-    for step in &input.program.steps {
-        // A jump is tested before its step: `IF … THEN … GOTO STEP 8`.
+    for (i, step) in program.steps.iter().enumerate() {
+        let label = format!("STEP {}", program.step_in(i));
+        // A jump is tested before its step: `IF … THEN … GOTO STEP 6`.
         for jump in &step.jumps {
             let (outputs, requests) = split(&jump.actions);
-            let next = input.program.number_at(jump.next);
             rows.push([
-                format!("STEP {} ({})", step.number, jump.title),
+                format!("{label} ({})", jump.title),
                 format!(
-                    "{} GOTO STEP {next}",
-                    paper_sentence(&jump.condition, &outputs, Signal::symbol)
+                    "{} GOTO STEP {}",
+                    paper_sentence(&jump.condition, &outputs, Signal::symbol),
+                    program.step_entered(jump.fires)
                 ),
                 requests,
             ]);
         }
         let (outputs, requests) = split(&step.actions);
-        let label = if step.kind == crate::program::StepKind::EndOfCycle {
-            format!("STEP {} (END)", step.number)
-        } else {
-            format!("STEP {}", step.number)
-        };
-        rows.push([
-            label,
-            paper_sentence(&step.condition, &outputs, Signal::symbol),
-            requests,
-        ]);
+        let mut sentence = paper_sentence(&step.condition, &outputs, Signal::symbol);
+        if step.kind == StepKind::EndOfCycle {
+            sentence.push_str(&format!(" GOTO STEP {}", program.step_entered(i)));
+        }
+        rows.push([label, sentence, requests]);
     }
-    rows.push([String::new(), "JMP TO STEP 1".to_string(), String::new()]);
     for rung in &input.program.rungs {
         rows.push([
             rung.kind.label().to_string(),

@@ -300,28 +300,17 @@ fn sequence_steps(
     steps
 }
 
-/// The end of the cycle is a step of its own when something must notice it
-/// (the watchdog, the modes) or when the last step ends on more than its
-/// moves: STEP 1 cannot wait for the last step's machine inputs, which
-/// nothing gives at power-up.
+/// The closing transition: once the last step is done the sequence is
+/// back in the initial step 0, as an SFC's last transition leads back to
+/// its initial step. Every program has it, so that the step the program
+/// shows is 0 only at rest and the last step's number while its moves
+/// run; it also stops the watchdog, ends `busy` for the modes, and waits
+/// for the last step's inputs and dwells (STEP 1 cannot wait for those,
+/// which nothing gives at power-up).
 fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramStep> {
     let safety = options.safety;
     let modes = &options.modes;
     let last = table.steps.last()?;
-    let last_waits = !last.waits.is_empty() || !last.dwells.is_empty();
-    // An interlock zone that ends with the last step ends with the cycle.
-    let zone_ends = options
-        .zones()
-        .any(|(_, i)| i.steps.is_some_and(|(_, to)| to == last.number));
-    // A jump to the end fires the closing step in place of the rest.
-    let ends_early = table
-        .steps
-        .iter()
-        .flat_map(|s| &s.jumps)
-        .any(|j| j.target.is_none());
-    if !(safety.watchdog || modes.any() || last_waits || zone_ends || ends_early) {
-        return None;
-    }
     // The end of the cycle is an event of its own: the watchdog must stop
     // once the last moves have finished, not run on while the machine
     // idles, and a new cycle may be asked for only now.

@@ -2,12 +2,23 @@
 //! rendered from and the simulator executes (DESIGN §4).
 //!
 //! Execution model, per PLC scan:
-//! 1. The sequence waits at one step (step 1 after power-up). If that step's
-//!    condition (an AND of literals) holds, its actions run in order and the
-//!    sequence waits at the next step; after the last step it waits at step 1.
-//!    At most one step fires per scan.
+//! 1. The sequence waits at one transition (the first after power-up). If
+//!    its condition (an AND of literals) holds, its actions run in order and
+//!    the sequence waits at the next; after the last, the closing `end of
+//!    cycle`, it waits at the first again. At most one fires per scan.
 //! 2. Then every rung runs: if its condition holds, its actions run. Rungs are
 //!    the logic that must act while the sequence waits, such as middle stops.
+//!
+//! Step numbers are those of SFC, GRAFCET and S7-GRAPH, and every output
+//! shows these and no others: step 0 is the initial step (at rest, waiting
+//! for START), step k is active while table step k's moves run. Each
+//! [`ProgramStep`] is the transition that *enters* its step: it waits in
+//! [`StepProgram::step_in`] (the step before it, 0 for the first) and its
+//! actions are those of the step it enters ([`StepProgram::step_entered`]);
+//! the closing transition re-enters step 0. Actions are stored (SET/RESET)
+//! and run once, as the step is entered, in the scan its transition fires,
+//! which is why they are written under the transition that leaves the step
+//! before.
 //!
 //! Conditions are conjunctions of (possibly negated) signals and actions are
 //! SET / RESET of outputs or memories, which is what every target language has
@@ -31,6 +42,13 @@ pub use signal::{Alarm, Area, Signal};
 pub use signals::{Coils, Signals};
 
 use crate::table::Move;
+
+/// The SFC initial step: the machine at rest, waiting for START (and where
+/// RESET, a STOP that acts at once and power-up leave the sequence).
+pub const INITIAL_STEP: usize = 0;
+
+/// What the initial step is, in every program's comments.
+pub const INITIAL_TITLE: &str = "initial step: at rest, waits for START";
 
 /// A signal in a condition, possibly negated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -93,14 +111,17 @@ impl Action {
 pub enum StepKind {
     /// A row of the table.
     Table,
-    /// The closing step that notices the end of the cycle (watchdog, modes).
+    /// The closing transition: the last step is done, the sequence is back
+    /// in the initial step 0.
     EndOfCycle,
 }
 
-/// One step of the sequence.
+/// One transition of the sequence with the actions of the step it enters
+/// (the table's sentence `STEP k IF … THEN …`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ProgramStep {
-    /// One-based step number, as in the table.
+    /// One-based number of the table step it fires, as in the table; the
+    /// closing transition has the number after the last step.
     pub number: usize,
     pub kind: StepKind,
     /// What the step does in the table's notation (`C1+1, C2+1; T=2s`), or
@@ -112,8 +133,8 @@ pub struct ProgramStep {
     pub condition: Vec<Literal>,
     /// Run in order when the step fires.
     pub actions: Vec<Action>,
-    /// Jumps tested before the step while the sequence waits at it: each
-    /// fires another step in its place (`J:7 if I:reject`).
+    /// Jumps tested before it while the sequence waits at it: each fires
+    /// another step in its place (`J:7 if I:reject`).
     pub jumps: Vec<StepJump>,
 }
 
@@ -196,10 +217,34 @@ impl StepProgram {
         !self.halt.on_stop.is_empty() && self.signals.inputs.contains(&Signal::Stop)
     }
 
-    /// The number of the step at `index` among the steps (the sequence
-    /// awaits it next after a jump): STEP 1 past the end.
-    pub fn number_at(&self, index: usize) -> usize {
-        self.steps.get(index).map_or(1, |s| s.number)
+    /// The SFC step the program is in while it waits at the transition
+    /// `steps[index]`: the table step fired before it, or the initial step
+    /// 0 before the first (and past the end: the closing transition leads
+    /// back there).
+    pub fn step_in(&self, index: usize) -> usize {
+        match index.checked_sub(1).and_then(|i| self.steps.get(i)) {
+            Some(before) if before.kind == StepKind::Table => before.number,
+            _ => INITIAL_STEP,
+        }
+    }
+
+    /// The SFC step entered when `steps[index]` fires: its table step, or
+    /// the initial step for the closing transition.
+    pub fn step_entered(&self, index: usize) -> usize {
+        match self.steps.get(index) {
+            Some(step) if step.kind == StepKind::Table => step.number,
+            _ => INITIAL_STEP,
+        }
+    }
+
+    /// What the step the program is in while it waits at `steps[index]`
+    /// does: the table step's notation (`C1+1, C2+1; T=2s`), or what the
+    /// initial step waits for.
+    pub fn title_in(&self, index: usize) -> String {
+        match index.checked_sub(1).and_then(|i| self.steps.get(i)) {
+            Some(before) if before.kind == StepKind::Table => before.title.clone(),
+            _ => INITIAL_TITLE.to_string(),
+        }
     }
 
     /// Whether `output` may stay on in a machine that has stopped: a
@@ -266,7 +311,7 @@ pub fn paper_sentence(
     text.push_str(" THEN");
     for action in actions {
         if *action == Action::Reset(Signal::Sequence) {
-            text.push_str(" GOTO STEP 1");
+            text.push_str(&format!(" GOTO STEP {INITIAL_STEP}"));
             continue;
         }
         text.push_str(&format!(" {} {}", action.verb(), name(action.signal())));
@@ -322,6 +367,7 @@ pub(crate) mod tests {
         let lines: Vec<String> = program
             .steps
             .iter()
+            .filter(|s| s.kind == StepKind::Table)
             .map(|s| {
                 let outputs: Vec<Action> = s
                     .actions
@@ -345,6 +391,33 @@ pub(crate) mod tests {
                 "IF x30 AND x20 AND x40 THEN SET y1- RESET y1+",
             ]
         );
+    }
+
+    /// SFC numbering: the program is in step 0 until START, in step k while
+    /// table step k's moves run, and the closing transition (step 8 done:
+    /// C1 home at x10) leads back to step 0.
+    #[test]
+    fn steps_are_numbered_as_in_sfc() {
+        let table = paper_table();
+        let program = build(
+            &table,
+            &ProgramOptions::default(),
+            &Valves::default(),
+            &Strokes::default(),
+        );
+        assert_eq!(program.steps.len(), 9);
+        let waits_in: Vec<usize> = (0..9).map(|i| program.step_in(i)).collect();
+        assert_eq!(waits_in, [0, 1, 2, 3, 4, 5, 6, 7, 8]);
+        let enters: Vec<usize> = (0..9).map(|i| program.step_entered(i)).collect();
+        assert_eq!(enters, [1, 2, 3, 4, 5, 6, 7, 8, INITIAL_STEP]);
+        let closing = &program.steps[8];
+        assert_eq!(closing.kind, StepKind::EndOfCycle);
+        assert_eq!(
+            paper_sentence(&closing.condition, &closing.actions, Signal::symbol),
+            "IF x10 THEN"
+        );
+        assert_eq!(program.title_in(0), INITIAL_TITLE);
+        assert_eq!(program.title_in(4), "C3+2, C2+2");
     }
 
     #[test]

@@ -24,6 +24,10 @@ pub struct ScanIo {
     pub time_ms: u64,
     pub inputs: Vec<bool>,
     pub outputs: Vec<bool>,
+    /// The step the program is in at the end of the scan, as it shows it
+    /// (`active_step`, the AWL step flags, the FST step): 0 at rest, k while
+    /// table step k's moves run.
+    pub step: usize,
 }
 
 /// Every scan of a run.
@@ -184,6 +188,7 @@ mod tests {
                     time_ms: i * 10,
                     inputs: vec![i == 1],
                     outputs: vec![i >= 1],
+                    step: usize::from(i >= 1),
                 })
                 .collect(),
         }

@@ -20,8 +20,9 @@ pub struct Sample {
     pub positions: Vec<f64>,
     /// Outputs switched on (coils, machine outputs, alarms).
     pub outputs_on: Vec<Signal>,
-    /// Number of the step the sequence waits to fire.
-    pub awaited: usize,
+    /// The step the program is in (its `active_step`): 0 at rest, k while
+    /// table step k's moves run.
+    pub step: usize,
     /// Homing runs (the `homing` memory is set).
     pub homing: bool,
 }
@@ -130,7 +131,7 @@ fn run_script(
                 .filter(|(i, _)| run.plc.bit_at(*i))
                 .map(|(_, s)| *s)
                 .collect(),
-            awaited: program.steps.get(run.plc.awaited).map_or(1, |s| s.number),
+            step: program.step_in(run.plc.awaited),
             homing: run.plc.bit(Signal::Homing),
         });
     }

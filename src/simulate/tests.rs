@@ -236,7 +236,7 @@ fn a_jump_back_that_never_ends_stops_the_run() {
         .expect("the loop is cut");
     assert_eq!(
         stall.message,
-        "the cycle never ends: 21 steps have fired, jumping back again and again"
+        "the cycle never ends: 26 steps have fired, jumping back again and again"
     );
     // The jump itself, taken on a faulty input, is the hazard.
     assert!(

@@ -1,7 +1,9 @@
 """Replays a recorded input trace through an AWL source in awlsim, scan by scan.
 
-Usage: awlsim_replay.py FILE.awl en|de SCAN_MS INPUTS OUTPUTS < trace
-INPUTS and OUTPUTS are comma-separated byte.bit addresses (I and Q areas).
+Usage: awlsim_replay.py FILE.awl en|de SCAN_MS INPUTS OUTPUTS [MEMORY] < trace
+INPUTS and OUTPUTS are comma-separated byte.bit addresses (I and Q areas);
+MEMORY, if given, byte.bit addresses of memory bits (the step flags) printed
+after the outputs and a space, as an online view of them would show.
 Each line of the trace holds one character 0/1 per input; for each line one
 OB1 cycle runs at a virtual time of (line number x SCAN_MS) and one line of
 0/1 per output is printed. Time is virtual: awlsim's clock is replaced, so
@@ -22,6 +24,7 @@ def bits(text):
 
 def main():
     path, mnemonics, scan_ms, inputs, outputs = sys.argv[1:6]
+    memory = bits(sys.argv[6]) if len(sys.argv) > 6 else []
     scan = int(scan_ms) / 1000.0
     inputs, outputs = bits(inputs), bits(outputs)
     project = Project.fromProjectOrRawAwlFile(path)
@@ -57,6 +60,10 @@ def main():
         sim.runCycle()
         q = {b: cpu.fetchOutputByte(b) for b in out_bytes}
         out.write("".join("1" if (q[b] >> bit) & 1 else "0" for b, bit in outputs))
+        if memory:
+            out.write(" ")
+            flags = cpu.flags.getRawDataBytes()
+            out.write("".join("1" if (flags[b] >> bit) & 1 else "0" for b, bit in memory))
         out.write("\n")
 
 

@@ -137,7 +137,7 @@ fn the_carwash_flags_its_stuck_homing_button_and_its_halt_switches_the_motors_of
     for extra in [&[][..], &["--safety", "all"]] {
         assert_eq!(
             row(extra, "RESET_PB short circuit"),
-            "RESET_PB short circuit (stuck at 1) hazard before step 3 fires (1 of 9 moments) 5 unintended motion: C1 moves - although no step moves it that way (RESET reads pressed: the program homes the machine)",
+            "RESET_PB short circuit (stuck at 1) hazard before step 3 fires (1 of 8 moments) 5 unintended motion: C1 moves - although no step moves it that way (RESET reads pressed: the program homes the machine)",
             "{extra:?}"
         );
     }

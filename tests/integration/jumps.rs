@@ -24,10 +24,10 @@ fn every_path_of_the_sorting_station_is_simulated() {
         .success()
         .stdout(contains("passed: cycle time 8.32 s"))
         .stdout(contains(
-            "cycle 3 (takes J:6 if I:reject after step 3): steps 1, 2, 3, 6, 7, 8, 9, cycle of 6.38 s",
+            "cycle 3 (takes J:6 if I:reject after step 3): steps 1, 2, 3, 6, 7, 8, cycle of 6.38 s",
         ))
         .stdout(contains(
-            "cycle 4 (takes J:end if I:no_label after step 6): steps 1, 2, 3, 4, 5, 6, 9, cycle of 5.86 s",
+            "cycle 4 (takes J:end if I:no_label after step 6): steps 1, 2, 3, 4, 5, 6, cycle of 5.86 s",
         ));
 }
 
@@ -188,14 +188,15 @@ fn the_program_sheet_shows_each_jump_before_its_step() {
             .position(|r| r.first().is_some_and(|c| c == label))
             .unwrap_or_else(|| panic!("{label}: {rows:?}"))
     };
-    let jump = at("STEP 4 (J:6 if I:reject)");
-    assert_eq!(jump + 1, at("STEP 4"));
+    // The jump of step 3 sits in step 3 (SFC numbering) and enters step 6.
+    let jump = at("STEP 3 (J:6 if I:reject)");
+    assert_eq!(jump + 1, at("STEP 3"));
     assert_eq!(
         rows[jump][1],
-        "IF x20 AND reject THEN SET y1- RESET y1+ GOTO STEP 7"
+        "IF x20 AND reject THEN SET y1- RESET y1+ GOTO STEP 6"
     );
-    let end = at("STEP 7 (J:end if I:no_label)");
-    assert_eq!(rows[end][1], "IF x10 AND no_label THEN GOTO STEP 1");
+    let end = at("STEP 6 (J:end if I:no_label)");
+    assert_eq!(rows[end][1], "IF x10 AND no_label THEN GOTO STEP 0");
 }
 
 /// Synthesis handles plain sequences of moves: a table with a jump is

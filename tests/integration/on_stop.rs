@@ -172,7 +172,7 @@ fn stop_mid_travel_abandons_the_cycle_until_reset_homes() {
     let report = scenario(table, &program, &build.settings.simulation, &script, 16_000);
     let sample = report.at(1_620).expect("sampled");
     assert_eq!(sample.outputs_on, [held], "only the held coil stays on");
-    assert_eq!(sample.awaited, 1, "back at STEP 1");
+    assert_eq!(sample.step, 0, "back in the initial step");
     let frozen = report.at(2_900).unwrap().positions.clone();
     assert!(
         frozen[1] > 0.1 && frozen[1] < 0.9,

@@ -31,27 +31,31 @@ const DESIGN_OUTPUTS: [(&str, &str); 8] = [
     ("O1.4", "y4-"),
 ];
 
-const DESIGN_PROGRAM: [(&str, &str); 8] = [
+/// DESIGN §4's program, each sentence labelled with the step the program
+/// is in while it waits (SFC numbering: 0 at rest), and the closing
+/// transition back to step 0.
+const DESIGN_PROGRAM: [(&str, &str); 9] = [
     (
-        "STEP 1",
+        "STEP 0",
         "IF START AND x10 AND x20 AND x30 AND x40 THEN SET y1+ RESET y1-",
     ),
-    ("STEP 2", "IF x11 THEN SET y2+ RESET y2-"),
-    ("STEP 3", "IF x23 THEN SET y2- RESET y2+"),
-    ("STEP 4", "IF x21 THEN SET y3+ RESET y3- SET y2+ RESET y2-"),
+    ("STEP 1", "IF x11 THEN SET y2+ RESET y2-"),
+    ("STEP 2", "IF x23 THEN SET y2- RESET y2+"),
+    ("STEP 3", "IF x21 THEN SET y3+ RESET y3- SET y2+ RESET y2-"),
     (
-        "STEP 5",
+        "STEP 4",
         "IF x32 AND x22 THEN SET y3- RESET y3+ SET y2- RESET y2+",
     ),
     (
-        "STEP 6",
+        "STEP 5",
         "IF x30 AND x21 THEN SET y3+ RESET y3- SET y2+ RESET y2- SET y4+ RESET y4-",
     ),
     (
-        "STEP 7",
+        "STEP 6",
         "IF x31 AND x22 AND x41 THEN SET y3- RESET y3+ SET y2- RESET y2+ SET y4- RESET y4+",
     ),
-    ("STEP 8", "IF x30 AND x20 AND x40 THEN SET y1- RESET y1+"),
+    ("STEP 7", "IF x30 AND x20 AND x40 THEN SET y1- RESET y1+"),
+    ("STEP 8", "IF x10 THEN GOTO STEP 0"),
 ];
 
 fn convert_paper(dir: &std::path::Path) -> std::path::PathBuf {
@@ -94,8 +98,9 @@ fn program_sheet_is_exactly_the_papers_with_middle_stops() {
     for (row, (label, sentence)) in program[1..].iter().zip(DESIGN_PROGRAM) {
         assert_eq!((row[0].as_str(), row[1].as_str()), (label, sentence));
     }
-    assert_eq!(program[9][1], "JMP TO STEP 1");
-    // Step 4 sends C2 to its middle position 2: it requests the stop there.
+    assert_eq!(program.len(), 10 + 3, "{program:?}");
+    // Step 4 sends C2 to its middle position 2: it requests the stop there,
+    // on the row of step 3, whose completion enters step 4.
     assert_eq!(program[4][2], "RESET m2_1 SET m2_2");
     let stops: Vec<&str> = program[10..]
         .iter()
@@ -180,9 +185,16 @@ fn workbook_agrees_with_io_csv_and_fst() {
             .filter(|w| !matches!(*w, "IF" | "AND" | "THEN"))
             .map(|w| address.get(w).cloned().unwrap_or_else(|| w.to_string()))
             .collect();
+        let mut expected = expected;
         let mut got = fst_steps.get(&row[0]).cloned().unwrap_or_default();
+        // The closing transition: `GOTO STEP 0` on the sheet, `JMP TO 0`
+        // in FST.
         if row[0] == "STEP 8" {
-            assert_eq!(got.split_off(got.len() - 3), ["JMP", "TO", "1"]);
+            assert_eq!(
+                expected.split_off(expected.len() - 3),
+                ["GOTO", "STEP", "0"]
+            );
+            assert_eq!(got.split_off(got.len() - 3), ["JMP", "TO", "0"]);
         }
         assert_eq!(got, expected, "{}", row[0]);
     }

@@ -181,9 +181,10 @@ fn convert_with_safety_lists_alarms_and_passes_simulation() {
     // The PLC PROGRAM sheet shows each step starting its watchdog timer,
     // with the preset, beside the memories it sets.
     let program = read_sheet(&out.join("paper_example.xlsx"), "PLC PROGRAM");
+    // Step 1's actions are on the row of step 0, whose START enters it.
     let step1 = program
         .iter()
-        .find(|r| r[0] == "STEP 1")
+        .find(|r| r[0] == "STEP 0")
         .unwrap_or_else(|| panic!("{program:?}"));
     assert!(
         step1[2].contains("START watchdog (") && step1[2].contains(" ms)"),
@@ -193,7 +194,7 @@ fn convert_with_safety_lists_alarms_and_passes_simulation() {
     // x31 remain; the other hazards need the fault to appear mid-cycle.
     let faults = read_sheet(&out.join("paper_example.xlsx"), "FAULTS");
     assert!(
-        faults[1][0].starts_with("24 fault case(s) at 18 moments of the cycle"),
+        faults[1][0].starts_with("24 fault case(s) at 17 moments of the cycle"),
         "{:?}",
         faults[1]
     );

@@ -4,7 +4,8 @@
 //! upload compile, awlsim for the `.awl` in both mnemonic sets, an FST
 //! interpreter for the `.fst.txt` — on the inputs steptable's simulation of
 //! the same table recorded, and its outputs must equal the simulation's at
-//! every scan of two full cycles.
+//! every scan of two full cycles, and so must the step it shows (ST's
+//! `active_step`, the AWL step flag that is on, the FST step label).
 //!
 //! Matrix: every sample × festo/iec/siemens × plain / `--safety all` /
 //! `--modes all --safety all` (AWL also × `--mnemonic de`). Without
@@ -112,9 +113,9 @@ fn structured_text_runs_in_matiec_as_simulated() {
     let dir = tempfile::tempdir().unwrap();
     let cases = matrix(dir.path(), &["--formats", "st"]);
     run_all(&cases, |c| {
-        c.check(
+        c.check_stepped(
             "matiec .st",
-            matiec::run(&shared, &c.file(".st"), &c.trace, &c.allocation),
+            matiec::run_stepped(&shared, &c.file(".st"), &c.trace, &c.allocation),
         )
     });
     eprintln!("matiec: {} .st files run, traces equal", cases.len());
@@ -135,9 +136,9 @@ fn st_inside_plcopen_codesys_and_exp_runs_in_matiec_as_simulated() {
             let st = st.map_err(|e| format!("{}: {suffix}: {e}", c.label))?;
             let path = c.dir.join(format!("{}{suffix}.st", c.name));
             std::fs::write(&path, st).unwrap();
-            c.check(
+            c.check_stepped(
                 &format!("matiec {suffix}"),
-                matiec::run(&shared, &path, &c.trace, &c.allocation),
+                matiec::run_stepped(&shared, &path, &c.trace, &c.allocation),
             )?;
         }
         Ok(())
@@ -180,9 +181,9 @@ fn awl_runs_in_awlsim_as_simulated_in_both_mnemonic_sets() {
         let dir = tempfile::tempdir().unwrap();
         let cases = matrix(dir.path(), &["--formats", "awl", "--mnemonic", mnemonic]);
         run_all(&cases, |c| {
-            c.check(
+            c.check_stepped(
                 &format!("awlsim ({mnemonic})"),
-                awlsim::run(
+                awlsim::run_stepped(
                     &python,
                     &c.file(".awl"),
                     c.mnemonic,
@@ -203,7 +204,10 @@ fn fst_runs_in_the_interpreter_as_simulated() {
     let cases = matrix(dir.path(), &["--formats", "fst"]);
     run_all(&cases, |c| {
         let text = std::fs::read_to_string(c.file(".fst.txt")).unwrap();
-        c.check("FST interpreter", fst::run(&text, &c.trace, &c.festo))
+        c.check_stepped(
+            "FST interpreter",
+            fst::run_stepped(&text, &c.trace, &c.festo),
+        )
     });
     eprintln!("fst: {} .fst.txt files run, traces equal", cases.len());
 }
@@ -220,9 +224,10 @@ fn press_case(dir: &Path) -> Case {
 fn a_wrong_fst_file_is_caught_with_its_scan_and_signal() {
     let dir = tempfile::tempdir().unwrap();
     let case = press_case(dir.path());
-    // y2+ where the program says y2- (O1.2 → O0.2 in STEP 4).
+    // y2+ where the program says y2- (O1.2 → O0.2 as STEP 3 hands over
+    // to STEP 4, C2-0).
     let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
-    let swapped = swap_first_after(&text, "STEP 4", "SET     O1.2", "SET     O0.2");
+    let swapped = swap_first_after(&text, "STEP 3", "SET     O1.2", "SET     O0.2");
     let err = case
         .check("FST", fst::run(&swapped, &case.trace, &case.festo))
         .unwrap_err();
@@ -234,7 +239,7 @@ fn a_wrong_st_file_is_caught_by_matiec() {
     let dir = tempfile::tempdir().unwrap();
     let case = press_case(dir.path());
     let st = std::fs::read_to_string(case.file(".st")).unwrap();
-    let swapped = swap_first_after(&st, "4: (*", "y2m := TRUE;", "y2p := TRUE;");
+    let swapped = swap_first_after(&st, "3: (*", "y2m := TRUE;", "y2p := TRUE;");
     let path: PathBuf = case.dir.join("swapped.st");
     std::fs::write(&path, swapped).unwrap();
     let err = case

@@ -21,6 +21,7 @@ mod homing;
 mod libreoffice;
 mod names;
 mod pinned;
+mod step_numbers;
 mod sync;
 mod synth_engines;
 
@@ -135,6 +136,7 @@ fn main() {
         libreoffice::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
+        step_numbers::CHECKS,
         halt::CHECKS,
         homing::CHECKS,
         sync::CHECKS,

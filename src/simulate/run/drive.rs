@@ -194,6 +194,13 @@ pub(in crate::simulate) fn timings(
     press_at: u64,
     spans: &[Span],
 ) -> Vec<StepTiming> {
+    // The table's steps only: the closing transition is no step of its own
+    // (it leads back to step 0), so the last step lasts until the cycle ends.
+    let fire_times: Vec<(usize, u64)> = fire_times
+        .iter()
+        .copied()
+        .filter(|(index, _)| program.steps[*index].kind == StepKind::Table)
+        .collect();
     fire_times
         .iter()
         .enumerate()
@@ -220,11 +227,7 @@ pub(in crate::simulate) fn timings(
                 step: step.number,
                 start_ms: t - press_at,
                 duration_ms: next - t,
-                // The closing step moves nothing (its row stays blank, as it always has).
-                moves: match step.kind {
-                    StepKind::Table => step.title.clone(),
-                    StepKind::EndOfCycle => String::new(),
-                },
+                moves: step.title.clone(),
                 notes: notes.join("; "),
             }
         })

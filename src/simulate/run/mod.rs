@@ -274,6 +274,7 @@ impl Run<'_> {
                 time_ms: now,
                 inputs,
                 outputs,
+                step: self.program.step_in(self.plc.awaited),
             });
         }
         quiet &= !result.changed;
@@ -393,6 +394,12 @@ impl Run<'_> {
                 )
             })
             .collect();
+        // The closing transition starts nothing: the last step's moves are
+        // still watched, and a step that then starts before they finish is
+        // the hazard (judge the machine, not the sequence).
+        if step.kind == crate::program::StepKind::EndOfCycle {
+            return;
+        }
         if !unfinished.is_empty() {
             self.problem(
                 ProblemKind::Premature,

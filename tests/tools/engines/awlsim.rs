@@ -9,7 +9,7 @@ use steptable::address::{Allocation, Mnemonic};
 use steptable::program::Signal;
 use steptable::simulate::io::IoTrace;
 
-use super::{input_lines, output_lines};
+use super::{Stepped, input_lines, output_lines, stepped_lines};
 use crate::helpers::root;
 
 /// The Python that has awlsim: the one beside `awlsim-test` (a venv).
@@ -46,6 +46,87 @@ pub fn run(
     trace: &IoTrace,
     allocation: &Allocation,
 ) -> Result<Vec<Vec<bool>>, String> {
+    Ok(output_lines(&replay(
+        python,
+        awl,
+        mnemonic,
+        trace,
+        allocation,
+        &[],
+    )?))
+}
+
+/// A memory bit: byte and bit.
+type Bit = (u32, u32);
+
+/// The step flags of the `.sdf` beside `awl`, as its symbol table names
+/// them: `step_3` at `M 1.3` is `(3, (1, 3))`.
+fn step_flags(awl: &Path) -> Result<Vec<(usize, Bit)>, String> {
+    let sdf = awl.with_extension("sdf");
+    let text = std::fs::read_to_string(&sdf).map_err(|e| format!("{}: {e}", sdf.display()))?;
+    let mut flags = Vec::new();
+    for line in text.lines() {
+        let fields: Vec<&str> = line.split('"').collect();
+        let (Some(symbol), Some(address)) = (fields.get(1), fields.get(3)) else {
+            continue;
+        };
+        let Some(number) = symbol.trim().strip_prefix("step_") else {
+            continue;
+        };
+        let number = number
+            .parse()
+            .map_err(|_| format!("a step flag {symbol}"))?;
+        let bit = address
+            .trim()
+            .strip_prefix('M')
+            .and_then(|b| b.trim().split_once('.'))
+            .and_then(|(byte, bit)| Some((byte.parse().ok()?, bit.parse().ok()?)))
+            .ok_or_else(|| format!("step flag {symbol} at {address}"))?;
+        flags.push((number, bit));
+    }
+    if flags.is_empty() {
+        return Err(format!("no step flag in {}", sdf.display()));
+    }
+    Ok(flags)
+}
+
+/// Runs `awl` on the recorded inputs; the outputs and the step whose flag
+/// is on (the flags as the `.sdf` beside it names them) at every scan.
+pub fn run_stepped(
+    python: &Path,
+    awl: &Path,
+    mnemonic: Mnemonic,
+    trace: &IoTrace,
+    allocation: &Allocation,
+) -> Result<Stepped, String> {
+    let flags = step_flags(awl)?;
+    let bits: Vec<Bit> = flags.iter().map(|f| f.1).collect();
+    let text = replay(python, awl, mnemonic, trace, allocation, &bits)?;
+    stepped_lines(&text, |shown| {
+        let on: Vec<usize> = shown
+            .chars()
+            .zip(&flags)
+            .filter(|(c, _)| *c == '1')
+            .map(|(_, f)| f.0)
+            .collect();
+        match on[..] {
+            [step] => Ok(step),
+            _ => Err(format!("step flags on: {on:?} (exactly one must be)")),
+        }
+    })
+}
+
+/// Runs `awl` in awlsim; what the replay printed (outputs, then the
+/// memory bits `probe` after a space when there are any).
+fn replay(
+    python: &Path,
+    awl: &Path,
+    mnemonic: Mnemonic,
+    trace: &IoTrace,
+    allocation: &Allocation,
+    probe: &[Bit],
+) -> Result<String, String> {
+    let probe: Vec<String> = probe.iter().map(|(b, i)| format!("{b}.{i}")).collect();
     let mut child = Command::new(python)
         .arg(root().join("tests/engines/awlsim_replay.py"))
         .arg(awl)
@@ -56,6 +137,7 @@ pub fn run(
         .arg(trace.scan_ms.to_string())
         .arg(addresses(&trace.signals.inputs, allocation)?)
         .arg(addresses(&trace.signals.outputs, allocation)?)
+        .arg(probe.join(","))
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -75,5 +157,5 @@ pub fn run(
             String::from_utf8_lossy(&output.stderr)
         ));
     }
-    Ok(output_lines(&String::from_utf8_lossy(&output.stdout)))
+    Ok(String::from_utf8_lossy(&output.stdout).into_owned())
 }

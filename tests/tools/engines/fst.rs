@@ -24,6 +24,8 @@ use std::collections::BTreeMap;
 use steptable::address::Allocation;
 use steptable::simulate::io::IoTrace;
 
+use super::Stepped;
+
 #[derive(Debug, Clone, PartialEq)]
 enum Action {
     Set(String),
@@ -221,6 +223,32 @@ impl Plc {
 /// Runs `text` on the recorded inputs (operands from the Festo allocation);
 /// the outputs of every scan.
 pub fn run(text: &str, trace: &IoTrace, festo: &Allocation) -> Result<Vec<Vec<bool>>, String> {
+    execute(text, trace, festo).map(|(outputs, _)| outputs)
+}
+
+/// Like [`run`], with the step P0 is in at the end of every scan (its
+/// label). `STEP INIT`, which runs once as P0 starts (setting P1 going and
+/// the memories' first values), is part of the initial step 0.
+pub fn run_stepped(text: &str, trace: &IoTrace, festo: &Allocation) -> Result<Stepped, String> {
+    let (outputs, labels) = execute(text, trace, festo)?;
+    let steps = labels
+        .iter()
+        .map(|label| match label.as_str() {
+            "INIT" => Ok(steptable::program::INITIAL_STEP),
+            other => other
+                .parse()
+                .map_err(|_| format!("STEP {other} is not a step number")),
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(Stepped { outputs, steps })
+}
+
+/// The outputs and P0's active step label of every scan.
+fn execute(
+    text: &str,
+    trace: &IoTrace,
+    festo: &Allocation,
+) -> Result<(Vec<Vec<bool>>, Vec<String>), String> {
     let programs = parse(text)?;
     let operand = |s| {
         festo
@@ -249,6 +277,7 @@ pub fn run(text: &str, trace: &IoTrace, festo: &Allocation) -> Result<Vec<Vec<bo
         state: programs.keys().map(|&n| (n, (n == 0, 0))).collect(),
     };
     let mut result = Vec::with_capacity(trace.scans.len());
+    let mut labels = Vec::with_capacity(trace.scans.len());
     for scan in &trace.scans {
         for (op, value) in inputs.iter().zip(&scan.inputs) {
             plc.bits.insert(op.clone(), *value);
@@ -304,8 +333,13 @@ pub fn run(text: &str, trace: &IoTrace, festo: &Allocation) -> Result<Vec<Vec<bo
             }
         }
         result.push(outputs.iter().map(|o| plc.read(o)).collect());
+        let p0 = programs
+            .get(&0)
+            .zip(plc.state.get(&0))
+            .and_then(|(program, (_, active))| program.steps.get(*active));
+        labels.push(p0.map_or_else(String::new, |step| step.label.clone()));
     }
-    Ok(result)
+    Ok((result, labels))
 }
 
 /// The interpreter refuses what it does not know rather than guessing.

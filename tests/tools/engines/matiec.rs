@@ -10,7 +10,7 @@ use std::process::{Command, Stdio};
 use steptable::address::Allocation;
 use steptable::simulate::io::IoTrace;
 
-use super::{input_lines, output_lines};
+use super::{Stepped, input_lines, output_lines, stepped_lines};
 
 /// The C name matiec gives a located variable: `%QX2.1` → `__QX2_1`.
 fn located_name(iec: &str) -> String {
@@ -19,11 +19,16 @@ fn located_name(iec: &str) -> String {
 
 /// The harness: storage for every located variable the program declares
 /// (Beremiz's way, from `LOCATED_VARIABLES.h`), then one scan per input line
-/// (`%IX0.1` order as given), printing the outputs after each.
-fn harness(scan_ms: u32, inputs: &[String], outputs: &[String]) -> String {
-    let mut c = String::from(
-        "#include <stdio.h>\n#include \"iec_std_lib.h\"\n\
-         #define __LOCATED_VAR(type, name, ...) type __##name;\n#include \"LOCATED_VARIABLES.h\"\n#undef __LOCATED_VAR\n\
+/// (`%IX0.1` order as given), printing the outputs after each. With `probe`
+/// (the program instance's C name) it also prints the instance's
+/// `active_step` after the outputs, as an online view would show it.
+fn harness(scan_ms: u32, inputs: &[String], outputs: &[String], probe: Option<&str>) -> String {
+    let mut c = String::from("#include <stdio.h>\n#include \"iec_std_lib.h\"\n");
+    if let Some(instance) = probe {
+        writeln!(c, "#include \"POUS.h\"\nextern STEPTABLE_MAIN {instance};").unwrap();
+    }
+    c.push_str(
+        "#define __LOCATED_VAR(type, name, ...) type __##name;\n#include \"LOCATED_VARIABLES.h\"\n#undef __LOCATED_VAR\n\
          #define __LOCATED_VAR(type, name, ...) type* name = &__##name;\n#include \"LOCATED_VARIABLES.h\"\n#undef __LOCATED_VAR\n\
          TIME __CURRENT_TIME;\nBOOL __DEBUG;\nvoid config_init__(void);\nvoid config_run__(unsigned long tick);\n\
          int main(void) {\n  char line[4096];\n  unsigned long tick = 0;\n  config_init__();\n\
@@ -40,6 +45,9 @@ fn harness(scan_ms: u32, inputs: &[String], outputs: &[String]) -> String {
     c.push_str("    config_run__(tick++);\n");
     for address in outputs {
         writeln!(c, "    putchar(*{} ? '1' : '0');", located_name(address)).unwrap();
+    }
+    if let Some(instance) = probe {
+        writeln!(c, "    printf(\" %d\", (int){instance}.ACTIVE_STEP.value);").unwrap();
     }
     c.push_str("    putchar('\\n');\n    fflush(stdout);\n  }\n  return 0;\n}\n");
     c
@@ -102,11 +110,49 @@ pub fn build(
     inputs: &[String],
     outputs: &[String],
 ) -> Result<Program, String> {
+    build_with(shared, st, scan_ms, inputs, outputs, false)
+}
+
+/// The C name matiec gives the instance of `steptable_main` (its resource
+/// file declares `STEPTABLE_MAIN RES0__MAIN_INSTANCE;`).
+fn instance_name(dir: &Path) -> Result<String, String> {
+    for entry in std::fs::read_dir(dir).map_err(|e| e.to_string())? {
+        let path = entry.map_err(|e| e.to_string())?.path();
+        if path.extension().is_none_or(|e| e != "c") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).map_err(|e| e.to_string())?;
+        if let Some(name) = text.lines().find_map(|l| {
+            l.strip_prefix("STEPTABLE_MAIN ")
+                .and_then(|rest| rest.strip_suffix(';'))
+        }) {
+            return Ok(name.trim().to_string());
+        }
+    }
+    Err("no instance of steptable_main in the C matiec wrote".to_string())
+}
+
+fn build_with(
+    shared: &Path,
+    st: &Path,
+    scan_ms: u32,
+    inputs: &[String],
+    outputs: &[String],
+    probe: bool,
+) -> Result<Program, String> {
     let work = tempfile::tempdir().map_err(|e| e.to_string())?;
     let dir = work.path();
     compile(shared, st, dir)?;
-    std::fs::write(dir.join("harness.c"), harness(scan_ms, inputs, outputs))
-        .map_err(|e| e.to_string())?;
+    let instance = if probe {
+        Some(instance_name(dir)?)
+    } else {
+        None
+    };
+    std::fs::write(
+        dir.join("harness.c"),
+        harness(scan_ms, inputs, outputs, instance.as_deref()),
+    )
+    .map_err(|e| e.to_string())?;
     // The resource file includes POUS.c; the configuration file is the other.
     let mut sources: Vec<String> = std::fs::read_dir(dir)
         .map_err(|e| e.to_string())?
@@ -137,6 +183,11 @@ pub fn build(
 impl Program {
     /// Runs every input line at once; the outputs of every scan.
     pub fn replay(&self, lines: String) -> Result<Vec<Vec<bool>>, String> {
+        Ok(output_lines(&self.replay_text(lines)?))
+    }
+
+    /// Runs every input line at once; what the harness printed.
+    fn replay_text(&self, lines: String) -> Result<String, String> {
         let mut child = Command::new(&self.exe)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
@@ -152,7 +203,7 @@ impl Program {
         if !output.status.success() {
             return Err(format!("the compiled program crashed: {}", output.status));
         }
-        Ok(output_lines(&String::from_utf8_lossy(&output.stdout)))
+        Ok(String::from_utf8_lossy(&output.stdout).into_owned())
     }
 
     /// Starts the program for a closed loop: one scan per [`Live::scan`].
@@ -210,4 +261,20 @@ pub fn run(
 ) -> Result<Vec<Vec<bool>>, String> {
     let (inputs, outputs) = addresses(trace, allocation)?;
     build(shared, st, trace.scan_ms, &inputs, &outputs)?.replay(input_lines(trace))
+}
+
+/// Runs `st` on the recorded inputs; the outputs and the program's
+/// `active_step` at the end of every scan.
+pub fn run_stepped(
+    shared: &Path,
+    st: &Path,
+    trace: &IoTrace,
+    allocation: &Allocation,
+) -> Result<Stepped, String> {
+    let (inputs, outputs) = addresses(trace, allocation)?;
+    let program = build_with(shared, st, trace.scan_ms, &inputs, &outputs, true)?;
+    stepped_lines(&program.replay_text(input_lines(trace))?, |text| {
+        text.parse()
+            .map_err(|_| format!("not a step number: {text}"))
+    })
 }

@@ -139,6 +139,57 @@ pub fn prepare(input: &Path, args: &[&str], out: &Path) -> Case {
     )
 }
 
+/// An engine's run of a step program: per scan, the outputs and the step
+/// the program shows at the end of the scan (`active_step`, the AWL step
+/// flag that is on, the FST step label).
+pub struct Stepped {
+    pub outputs: Vec<Vec<bool>>,
+    pub steps: Vec<usize>,
+}
+
+/// An engine's printed scans, one line each: the outputs as 0/1, a space,
+/// then what tells the step, read by `step`.
+pub fn stepped_lines(
+    text: &str,
+    step: impl Fn(&str) -> Result<usize, String>,
+) -> Result<Stepped, String> {
+    let mut run = Stepped {
+        outputs: Vec::new(),
+        steps: Vec::new(),
+    };
+    for line in text.lines().filter(|l| !l.is_empty()) {
+        let (outputs, shown) = line
+            .split_once(' ')
+            .ok_or_else(|| format!("no step after the outputs: {line}"))?;
+        run.outputs
+            .push(outputs.chars().map(|c| c == '1').collect());
+        run.steps.push(step(shown.trim())?);
+    }
+    Ok(run)
+}
+
+impl Case {
+    /// Like [`Case::check`], and the step the program shows must be the
+    /// simulation's at every scan.
+    pub fn check_stepped(&self, engine: &str, run: Result<Stepped, String>) -> Result<(), String> {
+        let run = run.map_err(|e| format!("{}: {engine}: {e}", self.label))?;
+        self.check(engine, Ok(run.outputs))?;
+        for (scan, recorded) in self.trace.scans.iter().enumerate() {
+            let shown = run.steps.get(scan).copied();
+            if shown != Some(recorded.step) {
+                return Err(format!(
+                    "{}: {engine}: scan {scan} ({} ms): the program shows step {}, the simulation is in step {}",
+                    self.label,
+                    recorded.time_ms,
+                    shown.map_or("none".to_string(), |s| s.to_string()),
+                    recorded.step
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Simulates a checked table and records its I/O (the files must already be
 /// in `dir`); the run must pass.
 pub fn record(
