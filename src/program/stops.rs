@@ -163,10 +163,23 @@ pub(super) fn stop_now_rungs(
         .filter(|s| matches!(policy.on_stop.get(s), None | Some(StopAction::Off)))
         .map(Action::Reset)
         .collect();
+    // An actuator whose coil or contactor stays on keeps its stop requests:
+    // without them a drive runs past its limit switch and a piston past
+    // the middle position it was heading for.
+    let still_driven = |actuator: u32| {
+        signals.driven().any(|s| {
+            matches!(s, Signal::Coil { actuator: a, .. } | Signal::SingleCoil { actuator: a } if a == actuator)
+                && !matches!(policy.on_stop.get(&s), None | Some(StopAction::Off))
+        })
+    };
     actions.extend(
         signals
             .memories
             .iter()
+            .filter(|m| match m {
+                Signal::StopAt { actuator, .. } => !still_driven(*actuator),
+                _ => true,
+            })
             .filter(|m| {
                 matches!(
                     m,

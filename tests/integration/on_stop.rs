@@ -416,3 +416,49 @@ fn run_on_timers_and_dwells_share_the_timers() {
             "error[E030]: 2 run-on timers and 254 dwells need more than the 255 timers a table may use",
         ));
 }
+
+/// A drive whose contactor `on stop` holds keeps its cut at the limit
+/// switch: STOP while C1 runs towards its middle switch x11 lets it run on
+/// to x11 and no further (before, the stop request was cleared and the
+/// drive ran on to x12).
+#[test]
+fn a_held_drive_still_stops_at_its_limit_switch() {
+    let mut build = Build::rows("t.csv", &[&["C1+1"], &["C1+2"], &["C1-0"]]).modes("stop,reset");
+    let held = Signal::Coil {
+        actuator: 1,
+        sign: Sign::Plus,
+    };
+    build.settings.program.halt.on_stop = [(held, StopAction::Hold)].into();
+    build
+        .settings
+        .simulation
+        .valves
+        .per_actuator
+        .insert(1, steptable::valve::ValveType::Motor);
+    let (table, program) = (&build.table, build.program());
+    let script = vec![
+        (
+            100,
+            Operator {
+                start: true,
+                ..IDLE
+            },
+        ),
+        (200, IDLE),
+        // C1 runs 0 → 1 from about 0.1 s; STOP a little after.
+        (300, Operator { stop: true, ..IDLE }),
+        (400, IDLE),
+    ];
+    let report = scenario(table, &program, &build.settings.simulation, &script, 6_000);
+    let end = &report.samples.last().unwrap();
+    assert!(
+        (end.positions[0] - 1.0).abs() < 0.1,
+        "the held drive stops at its limit switch x11: {:?}",
+        end.positions
+    );
+    assert!(
+        end.outputs_on.is_empty(),
+        "cut at the switch: {:?}",
+        end.outputs_on
+    );
+}
