@@ -155,8 +155,9 @@ pub fn summary_name(out: &Path) -> &'static str {
     }
 }
 
-/// The header of `summary.csv`.
-const SUMMARY_HEADER: [&str; 7] = [
+/// The header of `summary.csv`. `folder` came last, so that a script
+/// reading the earlier columns by place reads them still.
+const SUMMARY_HEADER: [&str; 8] = [
     "file",
     "status",
     "errors",
@@ -164,6 +165,7 @@ const SUMMARY_HEADER: [&str; 7] = [
     "steps",
     "actuators",
     "milliseconds",
+    "folder",
 ];
 
 fn walk(dir: &Path, files: &mut Vec<PathBuf>) {
@@ -313,7 +315,8 @@ fn convert_one(
 }
 
 /// `summary.csv`: file, status, error count, first error, steps, actuators,
-/// milliseconds — one row per input, in input order.
+/// milliseconds, and the folder in the output folder its files went to
+/// (empty where nothing was written) — one row per input, in input order.
 pub fn summary_csv(outcomes: &[Outcome]) -> Result<OutputFile, csv::Error> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record(SUMMARY_HEADER)?;
@@ -326,6 +329,11 @@ pub fn summary_csv(outcomes: &[Outcome]) -> Result<OutputFile, csv::Error> {
             o.steps.map(|s| s.to_string()).unwrap_or_default(),
             o.actuators.map(|s| s.to_string()).unwrap_or_default(),
             o.millis.to_string(),
+            if o.status == Status::Converted {
+                o.name.clone()
+            } else {
+                String::new()
+            },
         ])?;
     }
     let bytes = writer

@@ -28,6 +28,7 @@ pub mod diag;
 pub mod emit;
 pub mod faults;
 pub mod manifest;
+pub mod named_set;
 pub mod names;
 pub mod program;
 #[cfg(feature = "testing")]

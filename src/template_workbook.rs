@@ -304,7 +304,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         (
             "de-energise on halt",
             "none",
-            "Outputs the program switches off when a safety check or the emergency stop halts the machine (a heater, a motor), e.g. heater, brush. C2 names both coils of C2.",
+            "Outputs the program switches off when a safety check, the emergency stop or an interlock halts the machine (a heater, a motor), e.g. heater, brush. C2 names both coils of C2.",
             None,
         ),
         (
@@ -316,7 +316,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         (
             "hold on estop",
             "none",
-            "Outputs the EMERGENCY STOP leaves on (a vacuum gripper keeps its part, a clamp its workpiece), e.g. vacuum. Every other coil and output goes off.",
+            "Outputs the EMERGENCY STOP leaves on (a vacuum gripper keeps its part, a clamp its workpiece), e.g. vacuum. Every other coil and output goes off. Only a machine output that moves nothing: a valve coil or a drive is refused.",
             None,
         ),
         (
@@ -328,7 +328,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         (
             "on estop",
             "none",
-            "What the EMERGENCY STOP does to each output, as for on stop: off (the default), hold, or off after a time (a fan cooling a heater), e.g. fan off after 20s.",
+            "What the EMERGENCY STOP does to each output, as for on stop: off (the default), hold, or off after a time (a fan cooling a heater), e.g. fan off after 20s. Hold and off after only for a machine output that moves nothing: a valve coil or a drive is refused.",
             None,
         ),
         (
@@ -346,7 +346,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         (
             "home order",
             "default",
-            "Homing stages for RESET, first to last, e.g. C3&C4, C2, C1. default: the reverse order of the last moves.",
+            "Homing stages for RESET, first to last, e.g. C3&C4, C2, C1. default: the order the cycle itself returns the actuators home (each actuator's last move, earliest first; those whose last moves share a step go together).",
             None,
         ),
     ];
@@ -428,7 +428,7 @@ fn help_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         ("Empty", "An empty cell means no move in that branch; empty STEP rows after the last move are ignored.".into()),
         ("Rule", "Every actuator starts at position 0 and is back at 0 after the last step.".into()),
         ("Rule", "A + move goes to a higher position than the actuator stands at, a - move to a lower one.".into()),
-        ("Rule", "An actuator moves at most once per step; a step between two steps needs at least one move.".into()),
+        ("Rule", "An actuator moves at most once per step; a step between two steps needs at least one item (a move, or only a wait or a dwell).".into()),
         ("Limits", limits),
         ("T=2s", "A dwell: once the cell's other items are done (C3+1; T=2s: once C3 is at position 1) the branch waits 2 s. T=500ms, T=1.5s; 10 ms to 655 s.".into()),
         ("I:name", "Wait until the machine input name (part_present, door_closed) is 1; I:name=0 waits for 0. It gets an address after the sensors.".into()),

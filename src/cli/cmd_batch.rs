@@ -10,8 +10,8 @@ pub(crate) struct BatchArgs {
     /// Output folder: one folder per input, and summary.csv.
     #[arg(short, long, value_name = "DIR")]
     pub(crate) output: PathBuf,
-    /// Conversions at once (default: all cores).
-    #[arg(short, long, value_name = "N")]
+    /// Conversions at once, 1 to 64 (default: all cores).
+    #[arg(short, long, value_name = "N", value_parser = parse_jobs)]
     pub(crate) jobs: Option<usize>,
     /// No progress bar.
     #[arg(short, long)]
@@ -22,6 +22,24 @@ pub(crate) struct BatchArgs {
     pub(crate) common: CommonArgs,
     #[command(flatten)]
     pub(crate) sim: SimArgs,
+}
+
+/// `-j N`: 0 would run nothing, and reading it as one job or as every core
+/// would be a guess either way (`xargs -P 0` means as many as possible,
+/// `make -j 0` is refused): refused, with what to write instead. More than
+/// the most steptable runs is a note at the run, not an error.
+fn parse_jobs(text: &str) -> Result<usize, String> {
+    match text.trim().parse::<usize>() {
+        Ok(0) => Err(format!(
+            "-j takes 1 to {} jobs; 0 runs nothing (leave -j out for one job per core)",
+            steptable::batch::MAX_JOBS
+        )),
+        Ok(jobs) => Ok(jobs),
+        Err(_) => Err(format!(
+            "\"{text}\" is not a number of jobs; -j takes 1 to {}",
+            steptable::batch::MAX_JOBS
+        )),
+    }
 }
 
 pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
@@ -40,12 +58,22 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
     let started = std::time::Instant::now();
     let expanded = batch::expand_inputs(&args.paths);
     let (inputs, missing) = (expanded.found, expanded.missing);
-    for path in &missing {
-        eprintln!(
-            "{}: error: no such file or folder, and no file matches it as a pattern",
-            path.display()
-        );
-    }
+    // A path that names nothing is a file that cannot be read: E001, as
+    // convert says it, so a script reading the JSON sees it too.
+    let unmatched: Vec<Diagnostic> = missing
+        .iter()
+        .map(|path| Diagnostic {
+            severity: Severity::Error,
+            code: steptable::diag::Code::E001Unreadable,
+            location: steptable::diag::Location {
+                file: display_name(path),
+                sheet: None,
+                cell: None,
+            },
+            message: "no such file or folder, and no file matches it as a pattern".to_string(),
+        })
+        .collect();
+    report.diagnostics(&unmatched);
     if !expanded.outputs_skipped.is_empty() {
         report.say(&format!(
             "note: {} table(s) in the folders are outputs of an earlier run (listed in their folder's {}) and are not converted again, e.g. {}",
@@ -56,8 +84,7 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
     }
     let mut jobs = args
         .jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
-        .max(1);
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     if jobs > batch::MAX_JOBS {
         report.say(&format!(
             "note: -j {jobs} is more than steptable runs at once; running {} jobs",
@@ -105,6 +132,18 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
             Status::Failed => code = code.max(EXIT_BAD_INPUT),
             Status::Internal => code = EXIT_INTERNAL,
             Status::Skipped => {}
+        }
+    }
+    // Inputs sharing a name go to other folders than their own (the rule
+    // convert uses too): said here and in summary.csv's `folder` column.
+    for o in &outcomes {
+        if o.status == Status::Converted && steptable::convert::renamed(&o.input, &o.name) {
+            report.say(&format!(
+                "note: {} -> {}/ (another input has the name {})",
+                display_name(&o.input),
+                args.output.join(&o.name).display(),
+                steptable::convert::output_name(&o.input)
+            ));
         }
     }
     let failed: Vec<&batch::Outcome> = outcomes

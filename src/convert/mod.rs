@@ -351,30 +351,56 @@ pub fn output_name(path: &Path) -> String {
     }
 }
 
-/// Distinct output names for several inputs, in order: the file stem, or
-/// `stem-ext` when another input already has that stem (`line.csv` beside
-/// `line.xlsx`), or `stem-2`, `stem-3`, … when that is taken too.
+/// Distinct output names for several inputs, returned in the inputs'
+/// order: the one rule `convert` and `batch` share, so that a set of inputs
+/// gets the same folders whichever command converts it and in whatever
+/// order it is given (a shell's glob and a folder walk sort differently).
+/// An input whose stem no other input has keeps it; so does the first of
+/// inputs sharing a stem (in path order, letters compared without case).
+/// The others get `stem-ext` (`line.xlsx` beside `line.csv`), or `stem-2`,
+/// `stem-3`, … when that is taken — never a name that is another input's
+/// own stem (`line-xlsx.xlsx` keeps `line-xlsx`). Where a name differs from
+/// the stem, the commands say so (see [`renamed`]).
 pub fn output_names(paths: &[impl AsRef<Path>]) -> Vec<String> {
+    let stems: Vec<String> = paths.iter().map(|p| output_name(p.as_ref())).collect();
+    let mut order: Vec<usize> = (0..paths.len()).collect();
+    let key = |i: &usize| {
+        let path = paths[*i].as_ref().to_string_lossy();
+        (path.to_lowercase(), path.to_string())
+    };
+    order.sort_by_key(key);
+    // Each input's own stem is claimed first, by the first input to have it.
     let mut taken = std::collections::BTreeSet::new();
-    let mut names = Vec::with_capacity(paths.len());
-    for path in paths {
-        let path = path.as_ref();
-        let stem = output_name(path);
-        let mut name = stem.clone();
-        if taken.contains(&name.to_lowercase()) {
-            if let Some(ext) = path.extension() {
-                name = format!("{stem}-{}", ext.to_string_lossy().to_lowercase());
-            }
-            let mut n = 2;
-            while taken.contains(&name.to_lowercase()) {
-                name = format!("{stem}-{n}");
-                n += 1;
-            }
+    let mut names: Vec<Option<String>> = vec![None; paths.len()];
+    for &i in &order {
+        if taken.insert(stems[i].to_lowercase()) {
+            names[i] = Some(stems[i].clone());
+        }
+    }
+    for &i in &order {
+        if names[i].is_some() {
+            continue;
+        }
+        let stem = &stems[i];
+        let mut name = match paths[i].as_ref().extension() {
+            Some(ext) => format!("{stem}-{}", ext.to_string_lossy().to_lowercase()),
+            None => stem.clone(),
+        };
+        let mut n = 2;
+        while taken.contains(&name.to_lowercase()) {
+            name = format!("{stem}-{n}");
+            n += 1;
         }
         taken.insert(name.to_lowercase());
-        names.push(name);
+        names[i] = Some(name);
     }
-    names
+    names.into_iter().map(Option::unwrap_or_default).collect()
+}
+
+/// Whether `name` is not the stem `path` alone would get: another input
+/// took it, and the commands say where this one went instead.
+pub fn renamed(path: &Path, name: &str) -> bool {
+    output_name(path) != name
 }
 
 /// Converts one file completely, in memory; outputs are named after its stem.
@@ -676,5 +702,37 @@ mod tests {
             "other.ods",
         ]);
         assert_eq!(names, ["line", "line-xlsx", "line-csv", "LINE-2", "other"]);
+    }
+
+    #[test]
+    fn names_depend_on_the_inputs_not_their_order() {
+        let inputs = [
+            "c/line.xlsx",
+            "c/line.csv",
+            "c/line-csv.xlsx",
+            "c/line-xlsx.xlsx",
+        ];
+        let named = |order: &[usize]| {
+            let paths: Vec<&str> = order.iter().map(|&i| inputs[i]).collect();
+            let names = output_names(&paths);
+            let mut pairs: Vec<(&str, String)> = paths.into_iter().zip(names).collect();
+            pairs.sort();
+            pairs
+        };
+        let first = named(&[0, 1, 2, 3]);
+        assert_eq!(
+            first,
+            [
+                ("c/line-csv.xlsx", "line-csv".to_string()),
+                ("c/line-xlsx.xlsx", "line-xlsx".to_string()),
+                ("c/line.csv", "line".to_string()),
+                ("c/line.xlsx", "line-2".to_string()),
+            ]
+        );
+        for order in [[3, 2, 1, 0], [2, 0, 3, 1], [1, 3, 0, 2]] {
+            assert_eq!(named(&order), first, "{order:?}");
+        }
+        assert!(renamed(Path::new("c/line.xlsx"), "line-2"));
+        assert!(!renamed(Path::new("c/line.csv"), "line"));
     }
 }

@@ -113,34 +113,39 @@ impl OutputKind {
         }
     }
 
-    /// Parses `--formats st,plcopen,awl` (`all` for every kind).
+    /// Parses `--formats st,plcopen,awl` (`all` for every kind) with the
+    /// list reader `--modes` and `--safety` use: a kind given twice
+    /// (`st,ST`) or `all` beside a kind (`all,st`) is refused, not read one
+    /// way silently.
     pub fn parse_list(text: &str) -> Result<BTreeSet<OutputKind>, String> {
+        let names = OutputKind::ALL.map(OutputKind::name);
+        let expected = format!("some of: {}, or all", names.join(", "));
+        let items = crate::named_set::NameList {
+            names: &names,
+            alone: &["all"],
+            expected: &expected,
+        }
+        .parse(text, |item| {
+            let item = item.to_ascii_lowercase();
+            let hint = OutputKind::suggest(&item)
+                .map(|kinds| {
+                    let kinds: Vec<String> = kinds
+                        .iter()
+                        .map(|k| format!("{} (writes NAME{})", k.name(), k.suffix()))
+                        .collect();
+                    format!("; did you mean {}?", kinds.join(" or "))
+                })
+                .unwrap_or_default();
+            format!("\"{item}\" is not an output format{hint} (expected {expected})")
+        })?;
         let mut kinds = BTreeSet::new();
-        for item in text.split(',').map(|s| s.trim().to_ascii_lowercase()) {
-            if item == "all" {
-                kinds.extend(OutputKind::ALL);
-                continue;
-            }
-            match OutputKind::ALL.iter().find(|k| k.name() == item) {
+        for item in items {
+            match OutputKind::ALL.into_iter().find(|k| k.name() == item) {
                 Some(kind) => {
-                    kinds.insert(*kind);
+                    kinds.insert(kind);
                 }
-                None => {
-                    let names: Vec<&str> = OutputKind::ALL.iter().map(|k| k.name()).collect();
-                    let hint = OutputKind::suggest(&item)
-                        .map(|kinds| {
-                            let kinds: Vec<String> = kinds
-                                .iter()
-                                .map(|k| format!("{} (writes NAME{})", k.name(), k.suffix()))
-                                .collect();
-                            format!("; did you mean {}?", kinds.join(" or "))
-                        })
-                        .unwrap_or_default();
-                    return Err(format!(
-                        "\"{item}\" is not an output format{hint} (expected some of: {}, or all)",
-                        names.join(", ")
-                    ));
-                }
+                // `all`, the only other item the list accepts.
+                None => kinds.extend(OutputKind::ALL),
             }
         }
         if kinds.is_empty() {
@@ -206,6 +211,18 @@ mod tests {
         }
         let err = OutputKind::parse_list("pdf").unwrap_err();
         assert!(!err.contains("did you mean"), "{err}");
+        // The same list reader as --modes and --safety: twice, or beside all.
+        for (list, said) in [
+            ("st,st", "\"st\" is given twice in \"st,st\""),
+            ("st,ST", "\"st\" is given twice in \"st,ST\""),
+            ("all,st", "\"all\" stands alone"),
+            ("st,,awl", "has an empty item"),
+        ] {
+            let err = OutputKind::parse_list(list).unwrap_err();
+            assert!(err.contains(said), "{list}: {err}");
+        }
+        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 16);
+        assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(edit_distance("kitten", "sitting"), 3);
     }
 }

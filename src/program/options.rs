@@ -286,55 +286,24 @@ impl Safety {
     }
 }
 
-/// The items of a `--safety` / `--modes` list, lower-cased, each checked:
-/// one of `names`, `all` or `none`. An empty item, a name given twice, or
-/// `all`/`none` beside another name is refused rather than read one way
-/// silently (`none,stop` could mean either).
+/// The items of a `--safety` / `--modes` list, lower-cased, each checked
+/// by the one list reader every option shares (`crate::named_set`): one of
+/// `names`, `all` or `none`, each once, `all`/`none` alone.
 fn named_set(
     text: &str,
     names: &[&'static str],
     what: &str,
     expected: fn() -> String,
 ) -> Result<Vec<&'static str>, String> {
-    let mut items: Vec<&'static str> = Vec::new();
-    // Nothing at all (`--modes ""`, a script's empty variable) is none.
-    if text.trim().is_empty() {
-        return Ok(items);
+    let expected = expected();
+    crate::named_set::NameList {
+        names,
+        alone: &["all", "none"],
+        expected: &expected,
     }
-    for raw in text.split(',') {
-        let item = raw.trim();
-        let known = names
-            .iter()
-            .chain(&["all", "none"])
-            .find(|name| name.eq_ignore_ascii_case(item));
-        let Some(&name) = known else {
-            return Err(if item.is_empty() {
-                format!(
-                    "\"{}\" has an empty item; write each name once between commas (expected {})",
-                    text.trim(),
-                    expected()
-                )
-            } else {
-                format!("\"{item}\" is not {what} (expected {})", expected())
-            });
-        };
-        if items.contains(&name) {
-            return Err(format!(
-                "\"{name}\" is given twice in \"{}\"; give each once",
-                text.trim()
-            ));
-        }
-        items.push(name);
-    }
-    if items.len() > 1
-        && let Some(alone) = items.iter().find(|name| ["all", "none"].contains(name))
-    {
-        return Err(format!(
-            "\"{alone}\" stands alone; \"{}\" also names others (write {alone}, or the names)",
-            text.trim()
-        ));
-    }
-    Ok(items)
+    .parse(text, |item| {
+        format!("\"{item}\" is not {what} (expected {expected})")
+    })
 }
 
 /// The operating modes a generated program carries (`--modes`).

@@ -123,29 +123,53 @@ pub(super) fn read_workbook(
         }
     };
 
-    // A side sheet (SETTINGS, ADDRESSES) is found by its name in any case;
-    // one that is hidden is used all the same, and said so.
-    let side_sheet =
-        |workbook: &mut Box<dyn SheetSource>, wanted: &str, used: &str, diags: &mut Diagnostics| {
-            let name = names
-                .iter()
-                .find(|n| n.trim().eq_ignore_ascii_case(wanted))?
-                .clone();
-            let grid = read_sheet(workbook, &name, diags)?;
-            if workbook.hidden().contains(&name) {
-                diags.warning(
-                    Code::W004SheetChoice,
-                    grid.sheet_location(),
-                    format!("the {wanted} sheet is hidden but {used} are used"),
-                );
-            }
-            Some(grid)
-        };
-    let settings = side_sheet(&mut workbook, SETTINGS_SHEET, "its settings", diags);
+    // A side sheet (SETTINGS, ADDRESSES) is found by its name in any case
+    // and without the spaces around it; one that is hidden is used all the
+    // same, and said so. Two sheets that both match (`SETTINGS` and
+    // `Settings `) are an error naming both: reading one would drop the
+    // other's rows without a word. `code` is the code of that sheet's rows.
+    let side_sheet = |workbook: &mut Box<dyn SheetSource>,
+                      wanted: &str,
+                      used: &str,
+                      code: Code,
+                      diags: &mut Diagnostics| {
+        let matching: Vec<&String> = names.iter().filter(|n| is_side(n, wanted)).collect();
+        let name = (*matching.first()?).clone();
+        if matching.len() > 1 {
+            let quoted: Vec<String> = matching.iter().map(|n| format!("\"{n}\"")).collect();
+            diags.error(
+                code,
+                whole_file.clone(),
+                format!(
+                    "{} sheets are each the {wanted} sheet ({}: names are compared without case and the spaces around them); keep one, or merge their rows into one",
+                    matching.len(),
+                    quoted.join(", ")
+                ),
+            );
+            return None;
+        }
+        let grid = read_sheet(workbook, &name, diags)?;
+        if workbook.hidden().contains(&name) {
+            diags.warning(
+                Code::W004SheetChoice,
+                grid.sheet_location(),
+                format!("the {wanted} sheet is hidden but {used} are used"),
+            );
+        }
+        Some(grid)
+    };
+    let settings = side_sheet(
+        &mut workbook,
+        SETTINGS_SHEET,
+        "its settings",
+        Code::E030BadSetting,
+        diags,
+    );
     let addresses = side_sheet(
         &mut workbook,
         ADDRESSES_SHEET,
         "its pinned addresses",
+        Code::E035BadPinnedAddress,
         diags,
     );
     let table = pick_table(
@@ -164,12 +188,28 @@ pub(super) fn read_workbook(
     })
 }
 
+/// Whether the sheet `name` is the side sheet `wanted` (SETTINGS,
+/// ADDRESSES): the one comparison the reader makes of a side sheet's name.
+fn is_side(name: &str, wanted: &str) -> bool {
+    name.trim().eq_ignore_ascii_case(wanted)
+}
+
+/// The side sheet `name` is, if any: read for its settings or pins, never
+/// as the table.
+fn side_sheet_of(name: &str) -> Option<&'static str> {
+    [SETTINGS_SHEET, ADDRESSES_SHEET]
+        .into_iter()
+        .find(|side| is_side(name, side))
+}
+
 type SheetReader<'a> =
     dyn Fn(&mut Box<dyn SheetSource>, &str, &mut Diagnostics) -> Option<Grid> + 'a;
 
-/// The sheet holding the step table: the one asked for; else the one named
+/// The sheet holding the step table: the one asked for (not the SETTINGS or
+/// ADDRESSES sheet: E004); else the one named
 /// SEQUENTIAL CONTROL DESCRIPTION unless it is hidden; else the visible sheet
-/// that best holds a table (BRANCH/STEP headers first, then the most moves),
+/// that best holds a table (BRANCH/STEP headers first, then the most moves;
+/// the side sheets are not candidates),
 /// and a hidden one only when no visible sheet holds a table. Any choice
 /// among several, or of a hidden sheet, is said (W004).
 fn pick_table(
@@ -198,6 +238,26 @@ fn pick_table(
             );
             return None;
         };
+        // The SETTINGS or ADDRESSES sheet is read as such already: read as
+        // the table too, its cells would be both settings and moves, and
+        // one reading would call the other's cells unread.
+        if let Some(side) = side_sheet_of(name) {
+            let tables: Vec<&str> = names
+                .iter()
+                .filter(|n| side_sheet_of(n).is_none())
+                .map(String::as_str)
+                .collect();
+            diags.error(
+                Code::E004NoSuchSheet,
+                whole_file,
+                format!(
+                    "\"{name}\" is the {side} sheet, read for the table's {}, not a step table; name the sheet that holds the table with --sheet (the other sheets: {})",
+                    if side == SETTINGS_SHEET { "settings" } else { "pinned addresses" },
+                    if tables.is_empty() { "none".to_string() } else { tables.join(", ") }
+                ),
+            );
+            return None;
+        }
         return read_sheet(workbook, name, diags);
     }
     let hidden = workbook.hidden();
@@ -210,7 +270,8 @@ fn pick_table(
     // A sheet that could not be read may be the one with the table: say why.
     let mut unread = Diagnostics::new();
     let mut candidates: Vec<(TableScore, Grid)> = Vec::new();
-    for name in names {
+    // The side sheets are read as such, never as the table.
+    for name in names.iter().filter(|n| side_sheet_of(n).is_none()) {
         let mut local = Diagnostics::new();
         match read_sheet(workbook, name, &mut local) {
             Some(grid) => {

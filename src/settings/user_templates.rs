@@ -10,8 +10,9 @@ use crate::emit::templates::{DEFAULTS, TemplateError, Templates};
 use crate::write::{Durability, Inputs, WriteError, write_files};
 
 /// The defaults, with every file of `dir` that has a template's name in
-/// its place. A file in `dir` that is no template's name is an error, so
-/// a typo does not silently keep the default.
+/// its place. A file in `dir` that is no template's name, or a folder, is
+/// an error, so a typo or a misplaced template does not silently keep the
+/// default.
 pub fn load_dir(dir: &Path) -> Result<Templates, TemplateError> {
     let error = |file: String, detail: String| TemplateError {
         file,
@@ -29,15 +30,25 @@ pub fn load_dir(dir: &Path) -> Result<Templates, TemplateError> {
     let mut names: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
     names.sort();
     for path in names {
-        if path.is_dir() {
-            continue;
-        }
         let name = path
             .file_name()
             .map(|n| n.to_string_lossy().to_string())
             .unwrap_or_default();
         if editor_leftover(&name) {
             continue;
+        }
+        // Only the folder's own files are read: a folder in it (`old/`
+        // holding templates, a folder named `program.st.j2`) would be
+        // passed over silently and its templates never used, so it is an
+        // error like any other stray name. Hidden ones (`.git`) are not.
+        if path.is_dir() {
+            return Err(error(
+                path.display().to_string(),
+                format!(
+                    "a folder; templates are read only from {} itself, not from folders in it (move the templates meant up into it, or the folder out)",
+                    dir.display()
+                ),
+            ));
         }
         if !DEFAULTS.iter().any(|(n, _)| *n == name) {
             let known: Vec<&str> = DEFAULTS.iter().map(|(n, _)| *n).collect();
@@ -144,5 +155,21 @@ mod tests {
         std::fs::write(dir.path().join("progam.st.j2"), "typo").unwrap();
         let err = load_dir(dir.path()).unwrap_err();
         assert!(err.detail.contains("no template has this name"), "{err}");
+    }
+
+    #[test]
+    fn a_folder_among_the_templates_is_refused_by_name() {
+        for folder in ["program.st.j2", "old"] {
+            let dir = tempfile::tempdir().unwrap();
+            std::fs::create_dir(dir.path().join(folder)).unwrap();
+            std::fs::write(dir.path().join(folder).join("program.st.j2"), "x").unwrap();
+            let err = load_dir(dir.path()).unwrap_err();
+            assert!(err.file.ends_with(folder), "{err}");
+            assert!(err.detail.starts_with("a folder;"), "{err}");
+        }
+        // A hidden folder (a git checkout of the templates) is not one.
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join(".git")).unwrap();
+        assert!(load_dir(dir.path()).is_ok());
     }
 }

@@ -56,7 +56,8 @@ fn a_folder_with_good_bad_and_colliding_files() {
         .assert()
         .code(1)
         .stdout(contains("3 converted, 1 failed"))
-        .stdout(contains("failed: ").and(contains("bad.csv:2:2: error[E010]")));
+        .stdout(contains("failed: ").and(contains("bad.csv:2:2: error[E010]")))
+        .stdout(contains("b/line.xlsx -> ").and(contains("(another input has the name line)")));
 
     // Every good input complete, in its own folder; nothing for the bad one.
     let mut names: Vec<String> = files_below(&out)
@@ -88,6 +89,10 @@ fn a_folder_with_good_bad_and_colliding_files() {
     assert_eq!(row("a/line.xlsx")[1..3], ["converted", "0"]);
     assert_eq!(row("a/line.xlsx")[4..6], ["8", "4"]);
     assert_eq!(row("b/line.xlsx")[4..6], ["5", "5"]);
+    // The folder each input went to; none for one that failed.
+    assert_eq!(row("a/line.xlsx")[7], "line");
+    assert_eq!(row("b/line.xlsx")[7], "line-xlsx");
+    assert_eq!(row("bad.csv")[7], "");
 
     // A rerun into a folder inside the inputs does not convert its own outputs.
     let inner = input.join("out");
@@ -130,16 +135,21 @@ fn patterns_and_json_diagnostics() {
         .lines()
         .map(|l| serde_json::from_str(l).expect("one JSON object per line"))
         .collect();
-    assert_eq!(objects.len(), 2, "{stdout}");
-    assert_eq!(objects[0]["code"], "E010");
-    assert_eq!(objects[0]["row"], 2);
-    assert_eq!(objects[0]["column"], 2);
-    assert_eq!(objects[1]["code"], "E020");
-    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(objects.len(), 3, "{stdout}");
+    // The path that names nothing is E001, a file that cannot be read.
+    assert_eq!(objects[0]["code"], "E001");
     assert!(
-        stderr.contains("missing.xlsx: error: no such file or folder"),
-        "{stderr}"
+        objects[0]["file"]
+            .as_str()
+            .unwrap()
+            .ends_with("missing.xlsx"),
+        "{stdout}"
     );
+    assert_eq!(objects[1]["code"], "E010");
+    assert_eq!(objects[1]["row"], 2);
+    assert_eq!(objects[1]["column"], 2);
+    assert_eq!(objects[2]["code"], "E020");
+    let stderr = String::from_utf8(output.stderr).unwrap();
     assert!(stderr.contains("0 converted, 2 failed"), "{stderr}");
 }
 

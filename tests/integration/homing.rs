@@ -222,3 +222,40 @@ fn reset_does_not_home_behind_an_open_guard() {
         "RESET homes with the guard closed"
     );
 }
+
+/// The template workbook tells the engineer the same default: its SETTINGS
+/// help for `home order` (cell D19, and the note on B19) is the cycle's own
+/// return order, not the reverse of the last moves it once said; and the
+/// halt rows name every halt the guide names (an interlock too).
+#[test]
+fn the_templates_help_says_the_default_home_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.xlsx");
+    steptable()
+        .arg("template")
+        .arg("-o")
+        .arg(&path)
+        .assert()
+        .success();
+    let settings = crate::helpers::read_sheet(&path, "SETTINGS");
+    let help = |label: &str| {
+        let row = settings.iter().position(|r| r[0] == label).unwrap();
+        (row, settings[row][3].clone())
+    };
+    let (row, home) = help("home order");
+    assert_eq!(row, 18, "D19");
+    assert!(
+        home.contains("default: the order the cycle itself returns the actuators home (each actuator's last move, earliest first"),
+        "{home}"
+    );
+    assert!(!home.contains("reverse"), "{home}");
+    let (_, halt) = help("de-energise on halt");
+    assert!(halt.contains("an interlock"), "{halt}");
+    for label in ["hold on estop", "on estop"] {
+        let (_, text) = help(label);
+        assert!(
+            text.contains("a valve coil or a drive is refused"),
+            "{label}: {text}"
+        );
+    }
+}

@@ -42,6 +42,7 @@ mod paper;
 mod pins;
 mod promise_map;
 mod properties;
+mod read_two_ways;
 mod rerun;
 mod safety;
 mod settings_rows;
