@@ -165,6 +165,7 @@ fn settings_without_their_actuator(
 fn loads_without_effect(
     table: &StepTable,
     settings: &Settings,
+    sheet: Option<&crate::settings::Given>,
     grid: &read::Grid,
     diags: &mut Diagnostics,
 ) {
@@ -176,17 +177,55 @@ fn loads_without_effect(
         };
         let valve = valves.of(n, actuator.max_position);
         if !matches!(valve, ValveType::Exhaust53 | ValveType::Pressure53) {
-            let source = if settings.given.loads.contains_key(&n) {
-                "--load"
-            } else {
-                "the actuator table's load"
+            let cell = sheet.and_then(|s| s.actuator_cells.get(&(n, "load")));
+            let (source, at) = match cell {
+                Some(at) if !settings.given.loads.contains_key(&n) => {
+                    ("the actuator table's load", at.clone())
+                }
+                _ => ("--load", grid.sheet_location()),
             };
             diags.warning(
                 Code::W006NoEffect,
-                grid.sheet_location(),
+                at,
                 format!(
                     "{source} C{n}={load}: C{n}'s valve is {valve}, which holds the piston (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing"
                 ),
+            );
+        }
+    }
+}
+
+/// The command line wins over the SETTINGS sheet, but not silently: each
+/// cell it overrides is W006 at that cell, naming the option (a batch may
+/// give one option to workbooks whose sheets differ).
+fn overridden_by_the_command_line(
+    line: &crate::settings::Given,
+    sheet: &crate::settings::Given,
+    diags: &mut Diagnostics,
+) {
+    for (label, at) in &sheet.cells {
+        if line.gives(label) {
+            diags.warning(
+                Code::W006NoEffect,
+                at.clone(),
+                format!(
+                    "{label}: --{} on the command line wins over this cell; it was not used",
+                    label.replace(' ', "-")
+                ),
+            );
+        }
+    }
+    for ((actuator, what), at) in &sheet.actuator_cells {
+        let given = match *what {
+            "valve" => line.valves.contains_key(actuator),
+            "load" => line.loads.contains_key(actuator),
+            _ => line.strokes.contains_key(actuator),
+        };
+        if given {
+            diags.warning(
+                Code::W006NoEffect,
+                at.clone(),
+                format!("{what} of C{actuator}: --{what} C{actuator}=… on the command line wins over this cell; it was not used"),
             );
         }
     }
@@ -238,7 +277,16 @@ fn finish_check(
         table::check_machine(table, &machine, &input.table, &mut diags);
         let sheet = input.settings.as_ref().zip(sheet_given.as_ref());
         settings_without_their_actuator(table, settings, sheet, &input.table.file, &mut diags);
-        loads_without_effect(table, &effective, &input.table, &mut diags);
+        loads_without_effect(
+            table,
+            &effective,
+            sheet_given.as_ref(),
+            &input.table,
+            &mut diags,
+        );
+        if let Some(sheet) = &sheet_given {
+            overridden_by_the_command_line(&settings.given, sheet, &mut diags);
+        }
         let named = &effective.named;
         effective.program.halt =
             halt::resolve(table, &effective.simulation.valves, named, &mut diags);

@@ -49,6 +49,9 @@ pub struct Given {
     /// Where each labelled setting was read (a SETTINGS sheet's value
     /// cells, by label), for the messages about it.
     pub cells: BTreeMap<&'static str, crate::diag::Location>,
+    /// Where the actuator table gave an actuator's `valve`, `stroke` or
+    /// `load`, for the messages about it.
+    pub actuator_cells: BTreeMap<(u32, &'static str), crate::diag::Location>,
 }
 
 impl Given {
@@ -105,6 +108,7 @@ impl Given {
                 .chain(&self.cells)
                 .map(|(label, at)| (*label, at.clone()))
                 .collect(),
+            actuator_cells: merged(&self.actuator_cells, &other.actuator_cells),
         }
     }
 }

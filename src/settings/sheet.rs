@@ -377,7 +377,10 @@ fn read_labels(
                 Err(_) => bad(or_list(&Mnemonic::names())),
             },
             "scan time" => match parse_scan(&value) {
-                Ok(ms) => settings.scan_ms = Some(ms),
+                Ok(ms) => {
+                    said_without_unit(grid, value_cell, &value, diags);
+                    settings.scan_ms = Some(ms)
+                }
                 Err(_) => bad("a scan time from 1ms to 1s, such as 10ms".to_string()),
             },
             // The parsers say which item is wrong (unknown, twice, empty).
@@ -623,6 +626,20 @@ fn read_actuator_rows(
     }
 }
 
+/// A time typed as text without a unit (`1000`, `0.02`) is read as
+/// seconds, as a number cell is; typed as text, it may have meant
+/// milliseconds: W007 at the cell, with both spellings.
+fn said_without_unit(grid: &Grid, cell: &GridCell, text: &str, diags: &mut Diagnostics) {
+    let text = text.trim();
+    if matches!(cell.value, CellValue::Text(_)) && text.ends_with(|c: char| c.is_ascii_digit()) {
+        diags.warning(
+            Code::W007Assumed,
+            grid.location(cell.pos),
+            format!("\"{text}\" has no unit and is read as {text} seconds: write {text}s, or {text}ms if milliseconds were meant"),
+        );
+    }
+}
+
 fn read_actuator_row<'g>(
     grid: &Grid,
     actuator: u32,
@@ -637,6 +654,7 @@ fn read_actuator_row<'g>(
         match text.parse::<ValveType>() {
             Ok(valve) => {
                 settings.valves.insert(actuator, valve);
+                (settings.actuator_cells).insert((actuator, "valve"), grid.location(cell.pos));
             }
             // The parser's message says what was probably meant.
             Err(why) => diags.error(
@@ -652,6 +670,7 @@ fn read_actuator_row<'g>(
         match crate::valve::parse_load(&text) {
             Some(load) => {
                 settings.loads.insert(actuator, load);
+                (settings.actuator_cells).insert((actuator, "load"), grid.location(cell.pos));
             }
             None => diags.error(
                 Code::E030BadSetting,
@@ -660,10 +679,15 @@ fn read_actuator_row<'g>(
             ),
         }
     }
+    let mut stroke_at = None;
     let mut time = |col: Option<u32>| -> Option<u32> {
         let cell = col.and_then(at)?;
+        stroke_at.get_or_insert(grid.location(cell.pos));
         let text = value_text(grid, cell, diags)?;
         let ms = parse_duration_ms(&text);
+        if ms.is_some() {
+            said_without_unit(grid, cell, &text, diags);
+        }
         if ms.is_none() {
             diags.error(
                 Code::E030BadSetting,
@@ -678,6 +702,9 @@ fn read_actuator_row<'g>(
     let (extend, retract) = (time(columns.extend), time(columns.retract));
     if extend.is_none() && retract.is_none() {
         return;
+    }
+    if let Some(at) = stroke_at {
+        settings.actuator_cells.insert((actuator, "stroke"), at);
     }
     let default = Stroke::default();
     settings.strokes.insert(

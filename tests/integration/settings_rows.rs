@@ -462,3 +462,64 @@ fn list_items_given_twice_empty_or_beside_all_are_refused() {
         convert(&plain, &extra).0.success();
     }
 }
+
+/// The command line wins over the SETTINGS sheet, and says so at each cell
+/// it overrides (W006), per row and per actuator; a time typed as text
+/// without a unit is W007 at its cell; a load the valve makes useless is
+/// W006 at the load's cell.
+#[test]
+fn what_the_sheet_says_and_is_not_used_is_said_at_its_cell() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("line.xlsx");
+    write_xlsx_sheets(
+        &path,
+        &[
+            ("TABLE", SIX),
+            (
+                "SETTINGS",
+                &[
+                    &["modes", "stop"],
+                    &["scan time", "0.02"],
+                    &[],
+                    &["actuator", "extend", "retract", "valve", "load"],
+                    &["C1", "1000", "1s", "52bi", "0.3"],
+                ],
+            ),
+        ],
+    );
+    let run = |extra: &[&str]| {
+        let output = steptable()
+            .arg("simulate")
+            .arg(&path)
+            .args(extra)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr).to_string();
+        assert_eq!(output.status.code(), Some(0), "{extra:?}: {stderr}");
+        stderr
+    };
+    let plain = run(&[]);
+    for message in [
+        "SETTINGS!B2: warning[W007]: \"0.02\" has no unit and is read as 0.02 seconds",
+        "SETTINGS!B5: warning[W007]: \"1000\" has no unit and is read as 1000 seconds",
+        "SETTINGS!E5: warning[W006]: the actuator table's load C1=0.3: C1's valve is 52bi",
+    ] {
+        assert!(plain.contains(message), "{message}\n{plain}");
+    }
+    assert!(!plain.contains("wins over this cell"), "{plain}");
+    let overridden = run(&[
+        "--modes",
+        "estop",
+        "--valve",
+        "C1=53exhaust",
+        "--stroke",
+        "C1=2s/2s",
+    ]);
+    for message in [
+        "SETTINGS!B1: warning[W006]: modes: --modes on the command line wins over this cell; it was not used",
+        "SETTINGS!D5: warning[W006]: valve of C1: --valve C1=… on the command line wins over this cell",
+        "SETTINGS!B5: warning[W006]: stroke of C1: --stroke C1=… on the command line wins over this cell",
+    ] {
+        assert!(overridden.contains(message), "{message}\n{overridden}");
+    }
+}

@@ -179,7 +179,10 @@ fn awl_runs_in_awlsim_as_simulated_in_both_mnemonic_sets() {
     let python = awlsim::python(&tool(Tool::Awlsim));
     for mnemonic in ["en", "de"] {
         let dir = tempfile::tempdir().unwrap();
-        let cases = matrix(dir.path(), &["--formats", "awl", "--mnemonic", mnemonic]);
+        let cases = matrix(
+            dir.path(),
+            &["--formats", "awl,sdf", "--mnemonic", mnemonic],
+        );
         run_all(&cases, |c| {
             c.check_stepped(
                 &format!("awlsim ({mnemonic})"),
