@@ -278,6 +278,7 @@ fn convert_one(
                 &conversion.files,
                 all_inputs,
                 settings.durability,
+                Some(conversion.made_by.text()),
             ) {
                 Ok(_) => {}
                 // Something of the engineer's is in the way: said, kept.

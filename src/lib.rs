@@ -8,12 +8,15 @@
 //! [`address`] (the program's signals → addresses per PLC dialect) → [`emit`]
 //! (one file per output language); [`simulate`] and [`faults`] run the
 //! program, [`synth`] stands beside. [`convert`] runs the whole pipeline in
-//! memory and [`write`] writes the result atomically.
+//! memory and [`write`] writes the result atomically. [`cli`] is the
+//! command line over them: it parses, calls and prints.
 
 pub mod address;
 pub mod alloc_guard;
 pub mod batch;
 pub mod cell;
+pub mod cli;
+pub mod commands;
 pub mod convert;
 pub mod diag;
 pub mod emit;
@@ -21,6 +24,7 @@ pub mod faults;
 pub mod manifest;
 pub mod names;
 pub mod program;
+pub mod provenance;
 #[cfg(feature = "testing")]
 pub mod random_table;
 pub mod read;

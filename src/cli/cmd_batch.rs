@@ -25,8 +25,8 @@ pub(crate) struct BatchArgs {
 }
 
 pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
+    use crate::batch::{self, Status};
     use std::io::IsTerminal;
-    use steptable::batch::{self, Status};
 
     let report = Reporter::new(&args.common);
     let Some(settings) = output_settings(&args.common, &args.sim, &args.files) else {
@@ -50,7 +50,7 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
         report.say(&format!(
             "note: {} table(s) in the folders are outputs of an earlier run (listed in their folder's {}) and are not converted again, e.g. {}",
             expanded.outputs_skipped.len(),
-            steptable::manifest::FILE_NAME,
+            crate::manifest::FILE_NAME,
             display_name(&expanded.outputs_skipped[0])
         ));
     }
@@ -160,6 +160,7 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
                 &[file],
                 &write::Inputs::new(&inputs),
                 settings.durability,
+                None,
             ) {
                 code = code.max(write_failed(&report, &err));
             }

@@ -55,7 +55,7 @@ pub(crate) fn run_check(args: &CheckArgs) -> i32 {
                     display_name(input),
                     diagnostics
                         .iter()
-                        .filter(|d| d.severity == steptable::diag::Severity::Error)
+                        .filter(|d| d.severity == crate::diag::Severity::Error)
                         .count()
                 ));
                 code = code.max(EXIT_BAD_INPUT);
@@ -114,7 +114,13 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         };
         report.diagnostics(&conversion.warnings);
         let folder = args.output.join(&conversion.name);
-        match write::write_conversion(&folder, &conversion.files, &kept, settings.durability) {
+        match write::write_conversion(
+            &folder,
+            &conversion.files,
+            &kept,
+            settings.durability,
+            Some(conversion.made_by.text()),
+        ) {
             Ok((_, removed)) => {
                 // As the files lie in the folder: `NAME.beremiz/plc.xml`.
                 let names: Vec<String> = conversion.files.iter().map(|f| f.name.clone()).collect();
