@@ -9,7 +9,7 @@ use clap::builder::TypedValueParser;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::address::{Board, Mnemonic, Target};
-use crate::convert::{self, Failure};
+use crate::convert;
 use crate::diag::{Diagnostic, Severity};
 use crate::emit::OutputKind;
 use crate::emit::diagram::DiagramKind;

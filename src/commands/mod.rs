@@ -1,12 +1,13 @@
 //! One library entry per command that runs the stages for a table and
-//! writes what it found (`faults`, `simulate`, `synth`), beside
-//! [`crate::convert`] and [`crate::batch`]: each takes validated settings,
+//! writes what it made or found (`check`, `convert`, `faults`, `simulate`,
+//! `synth`; [`crate::batch`] runs `convert` for many): each takes validated settings,
 //! wires read → table → program → simulate / faults / synth, names its
 //! files by the rules of [`crate::emit::OutputKind`] and
 //! [`crate::emit::CommandFile`], writes them through [`crate::write`] with
 //! the line that says how they were made, and returns what it found and
 //! the paths it wrote. The command line only parses, calls and prints.
 
+pub mod convert;
 pub mod faults;
 pub mod simulate;
 pub mod synth;
