@@ -7,7 +7,7 @@
 //! changed since it was written is the engineer's again.
 //!
 //! Under each file's line, indented, the line that says how the run made
-//! it (see [`crate::provenance`]): the record of the command line for the
+//! it (see the `provenance` module): the record of the command line for the
 //! files that take no comment of their own (the CSV lists, the STEP 7
 //! symbol table, synth's reports).
 

@@ -100,7 +100,7 @@ impl Inputs {
 /// there — an engineer's file, a link, a folder, a file where a folder must
 /// be, an input of this run — is E040 for each, and nothing is written.
 /// `made_by`, the line that says how the run made them (see
-/// [`crate::provenance`]), is recorded for each in the manifest. Returns
+/// the `provenance` module), is recorded for each in the manifest. Returns
 /// the paths written.
 pub fn write_outputs(
     folder: &Path,

@@ -1,6 +1,6 @@
 //! One library entry per command that runs the stages for a table and
 //! writes what it made or found (`check`, `convert`, `faults`, `simulate`,
-//! `synth`; [`crate::batch`] runs `convert` for many): each takes validated settings,
+//! `synth`; `batch` runs `convert` for many): each takes validated settings,
 //! wires read → table → program → simulate / faults / synth, names its
 //! files by the rules of [`crate::emit::OutputKind`] and
 //! [`crate::emit::CommandFile`], writes them through [`crate::write`] with

@@ -145,7 +145,7 @@ pub struct Settings {
     /// The command line that asked for this run, as every output records
     /// it (`convert paper.xlsx --target siemens`: the command, its inputs'
     /// file names and the options that change the output; see
-    /// [`crate::provenance`]). `None` for a library call.
+    /// the `provenance` module). `None` for a library call.
     pub invocation: Option<String>,
 }
 
