@@ -155,12 +155,19 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
                     file.name
                 ));
             }
+            // A list with no comment line: the manifest records how it
+            // was made.
+            let made_by = crate::provenance::MadeBy::new(
+                recorded_invocation().as_deref(),
+                "the batch's tables",
+                &crate::provenance::settings_source(&settings),
+            );
             if let Err(err) = write::write_outputs(
                 &args.output,
                 &[file],
                 &write::Inputs::new(&inputs),
                 settings.durability,
-                None,
+                Some(made_by.text()),
             ) {
                 code = code.max(write_failed(&report, &err));
             }

@@ -1,6 +1,9 @@
-//! Command-line parsing (clap) and the commands. Raw arguments become
-//! validated [`Settings`] before any work starts; exit codes are 0 (ok),
-//! 1 (bad input, diagnostics printed) and 2 (internal or I/O failure).
+//! The command line: clap parses, the library's commands
+//! ([`crate::commands`], [`crate::batch`]) do the work and return what they
+//! found and wrote, and this layer prints it. Raw arguments become
+//! validated [`Settings`] before any work starts, with the command line as
+//! the outputs record it ([`invocation`]); exit codes are 0 (ok), 1 (bad
+//! input, diagnostics printed) and 2 (internal or I/O failure).
 
 use std::io::Write;
 use std::path::PathBuf;
