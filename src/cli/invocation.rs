@@ -33,11 +33,14 @@ pub(crate) fn invocation(args: &[OsString]) -> String {
     let mut rest = args[1..].iter();
     let mut positional_only = false;
     while let Some(word) = rest.next() {
+        if !positional_only && word == "--" {
+            // Kept: what follows is an input even if it starts with `-`.
+            positional_only = true;
+            words.push(word.clone());
+            continue;
+        }
         if positional_only || word == "-" || !word.starts_with('-') {
-            positional_only |= word == "--";
-            if word != "--" {
-                words.push(quote(&last_part(word)));
-            }
+            words.push(quote(&last_part(word)));
             continue;
         }
         // `--long`, `--long=value`, `-s`, `-svalue`.
@@ -159,8 +162,8 @@ mod tests {
             "synth --sequence 'A1 A0 B1 B0' --seed 3"
         );
         assert_eq!(
-            of(&["faults", "--pairs", "a b.csv", "--", "-c.csv"]),
-            "faults --pairs 'a b.csv' -c.csv"
+            of(&["faults", "--pairs", "a b.csv", "--", "/in/-c.csv"]),
+            "faults --pairs 'a b.csv' -- -c.csv"
         );
         assert_eq!(of(&["batch", "-j", "4", "-q", "lines/"]), "batch lines");
         assert_eq!(
