@@ -249,6 +249,7 @@ fn main() {
             &conversion.files,
             &steptable::write::Inputs::none(),
             steptable::write::Durability::Rename,
+            Some(conversion.made_by.text()),
         )
         .unwrap();
         write.push(t.elapsed());

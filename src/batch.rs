@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use crate::convert::{self, Failure};
+use crate::convert;
 use crate::diag::{Diagnostic, Severity};
 use crate::emit::OutputFile;
 use crate::manifest;
@@ -270,17 +270,14 @@ fn convert_one(
         actuators: None,
         millis: 0,
     };
-    match convert::convert_path_as(input, name, settings) {
-        Ok(conversion) => {
+    use crate::commands::{CommandError, convert::run};
+    match run(input, name, settings, out, all_inputs, &|_, _| {}) {
+        Ok(run) => {
+            let conversion = run.conversion;
             outcome.steps = Some(conversion.table.steps.len());
             outcome.actuators = Some(conversion.table.actuators.len());
             outcome.diagnostics = conversion.warnings;
-            match write::write_conversion(
-                &out.join(name),
-                &conversion.files,
-                all_inputs,
-                settings.durability,
-            ) {
+            match run.written {
                 Ok(_) => {}
                 // Something of the engineer's is in the way: said, kept.
                 Err(write::WriteError::Taken(problems)) => {
@@ -293,11 +290,11 @@ fn convert_one(
                 }
             }
         }
-        Err(Failure::Input(diagnostics)) => {
+        Err(CommandError::Input(diagnostics)) => {
             outcome.status = Status::Failed;
             outcome.diagnostics = diagnostics;
         }
-        Err(Failure::Template(err)) => {
+        Err(CommandError::Template(err)) => {
             outcome.status = if err.user {
                 Status::Failed
             } else {
@@ -305,9 +302,13 @@ fn convert_one(
             };
             outcome.message = Some(err.to_string());
         }
-        Err(Failure::Internal(why)) => {
+        Err(CommandError::Internal(why)) => {
             outcome.status = Status::Internal;
             outcome.message = Some(why);
+        }
+        Err(CommandError::Write(err)) => {
+            outcome.status = Status::Internal;
+            outcome.message = Some(err.to_string());
         }
     }
     outcome.millis = start.elapsed().as_millis();

@@ -12,8 +12,8 @@
 //! [`manifest`] records), and [`batch`] converts many inputs in parallel.
 //! [`settings`] holds a run's choices, from the command line, the workbook's
 //! SETTINGS sheet and the defaults; [`diag`] the diagnostics every stage
-//! collects. The command line (`src/main.rs`, `src/cli/`) is the binary's,
-//! a thin layer over this library.
+//! collects. [`cli`] is the command line over them: it parses, calls
+//! [`commands`] and prints.
 //!
 //! `ARCHITECTURE.md` at the repository root says what each module owns,
 //! which imports `tests/integration/layers.rs` forbids, and where to add an
@@ -23,6 +23,8 @@ pub mod address;
 pub mod alloc_guard;
 pub mod batch;
 pub mod cell;
+pub mod cli;
+pub mod commands;
 pub mod convert;
 pub mod diag;
 pub mod emit;
@@ -31,6 +33,7 @@ pub mod manifest;
 pub mod named_set;
 pub mod names;
 pub mod program;
+pub mod provenance;
 #[cfg(feature = "testing")]
 pub mod random_table;
 pub mod read;

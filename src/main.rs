@@ -1,6 +1,4 @@
-//! The `steptable` command: a thin layer over the library.
-
-mod cli;
+//! The `steptable` command: the library's command line ([`steptable::cli`]).
 
 /// The system allocator, which ends a user's template that asks for more
 /// memory than it may have with exit 1 and its name, not an abort.
@@ -8,5 +6,5 @@ mod cli;
 static ALLOCATOR: steptable::alloc_guard::Guard = steptable::alloc_guard::Guard;
 
 fn main() {
-    std::process::exit(cli::run());
+    std::process::exit(steptable::cli::run());
 }

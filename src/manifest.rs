@@ -5,6 +5,11 @@
 //! lists it with the bytes it still has (or if the new bytes are the same),
 //! and a folder walk skips a table only if a manifest lists it so. A file
 //! changed since it was written is the engineer's again.
+//!
+//! Under each file's line, indented, the line that says how the run made
+//! it (see the `provenance` module): the record of the command line for the
+//! files that take no comment of their own (the CSV lists, the STEP 7
+//! symbol table, synth's reports).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -14,6 +19,9 @@ pub const FILE_NAME: &str = ".steptable-manifest";
 
 /// The first line, which marks a manifest as steptable's.
 const HEADER: &str = "# steptable manifest: files steptable wrote in this folder (bytes, fnv1a64, name); a rerun replaces only these";
+
+/// What starts the line under a file's that says how it was made.
+const MADE_BY_INDENT: &str = "  ";
 
 /// Size and hash of a file's bytes as written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -46,6 +54,8 @@ fn fnv1a64(bytes: &[u8]) -> u64 {
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Manifest {
     pub files: BTreeMap<String, Stamp>,
+    /// File name → how the run that wrote it made it (one line).
+    pub made_by: BTreeMap<String, String>,
 }
 
 /// What is in a folder's manifest place.
@@ -78,13 +88,21 @@ impl Manifest {
             return None;
         }
         let mut files = BTreeMap::new();
+        let mut made_by = BTreeMap::new();
+        let mut last: Option<String> = None;
         for line in lines.filter(|l| !l.is_empty()) {
+            if let Some(text) = line.strip_prefix(MADE_BY_INDENT) {
+                made_by.insert(last.clone()?, text.to_string());
+                continue;
+            }
             let mut parts = line.splitn(3, ' ');
             let size = parts.next()?.parse().ok()?;
             let hash = u64::from_str_radix(parts.next()?, 16).ok()?;
-            files.insert(unescape(parts.next()?), Stamp { size, hash });
+            let name = unescape(parts.next()?);
+            files.insert(name.clone(), Stamp { size, hash });
+            last = Some(name);
         }
-        Some(Manifest { files })
+        Some(Manifest { files, made_by })
     }
 
     /// The manifest's text.
@@ -97,6 +115,13 @@ impl Manifest {
                 stamp.hash,
                 escape(name)
             ));
+            if let Some(made) = self.made_by.get(name) {
+                let made: String = made
+                    .chars()
+                    .map(|c| if c.is_control() { ' ' } else { c })
+                    .collect();
+                text.push_str(&format!("{MADE_BY_INDENT}{made}\n"));
+            }
         }
         text.into_bytes()
     }
@@ -186,8 +211,17 @@ mod tests {
         manifest
             .files
             .insert("p.beremiz/plc.xml".into(), Stamp::of(b"y"));
+        manifest
+            .made_by
+            .insert("a b.st".into(), "made by steptable\nconvert".into());
         let text = String::from_utf8(manifest.to_bytes()).unwrap();
+        // A line break in the record of a run would end it: a space.
+        manifest
+            .made_by
+            .insert("a b.st".into(), "made by steptable convert".into());
         assert_eq!(Manifest::parse(&text), Some(manifest));
+        // The record of a run comes under a file's line, never first.
+        assert_eq!(Manifest::parse(&format!("{HEADER}\n  made by\n")), None);
         assert_eq!(Manifest::parse("C1+1\nC1-0\n"), None);
         assert_eq!(Manifest::parse(&format!("{HEADER}\nnot a line\n")), None);
     }

@@ -99,14 +99,17 @@ impl Inputs {
 /// output folder of a version without manifests reruns so). Anything else
 /// there — an engineer's file, a link, a folder, a file where a folder must
 /// be, an input of this run — is E040 for each, and nothing is written.
-/// Returns the paths written.
+/// `made_by`, the line that says how the run made them (see
+/// the `provenance` module), is recorded for each in the manifest. Returns
+/// the paths written.
 pub fn write_outputs(
     folder: &Path,
     files: &[OutputFile],
     inputs: &Inputs,
     durability: Durability,
+    made_by: Option<&str>,
 ) -> Result<Vec<PathBuf>, WriteError> {
-    write_recorded(folder, files, inputs, durability, Links::Refused)
+    write_recorded(folder, files, inputs, durability, made_by, Links::Refused)
 }
 
 /// As [`write_outputs`], into the folder the user named with `-o` (the
@@ -117,8 +120,16 @@ pub fn write_into_named_folder(
     files: &[OutputFile],
     inputs: &Inputs,
     durability: Durability,
+    made_by: Option<&str>,
 ) -> Result<Vec<PathBuf>, WriteError> {
-    write_recorded(folder, files, inputs, durability, Links::FolderItself)
+    write_recorded(
+        folder,
+        files,
+        inputs,
+        durability,
+        made_by,
+        Links::FolderItself,
+    )
 }
 
 /// Whether the output folder itself may be a link.
@@ -133,6 +144,7 @@ fn write_recorded(
     files: &[OutputFile],
     inputs: &Inputs,
     durability: Durability,
+    made_by: Option<&str>,
     links: Links,
 ) -> Result<Vec<PathBuf>, WriteError> {
     let mut problems = folder_problems(folder, files, inputs, links);
@@ -198,10 +210,16 @@ fn write_recorded(
     recorded
         .files
         .retain(|name, _| std::fs::symlink_metadata(folder.join(name)).is_ok());
+    let kept = recorded.files.clone();
+    recorded.made_by.retain(|name, _| kept.contains_key(name));
     for file in files {
         recorded
             .files
             .insert(file.name.clone(), Stamp::of(&file.bytes));
+        match made_by {
+            Some(line) => recorded.made_by.insert(file.name.clone(), line.to_string()),
+            None => recorded.made_by.remove(&file.name),
+        };
     }
     // First, so that a file of this run is never seen in place before the
     // record that vouches for it (a second run into the folder at the
@@ -225,6 +243,7 @@ pub fn write_conversion(
     files: &[OutputFile],
     inputs: &Inputs,
     durability: Durability,
+    made_by: Option<&str>,
 ) -> Result<(Vec<PathBuf>, Vec<PathBuf>), WriteError> {
     let before = match folder.is_dir().then(|| Manifest::read(folder)) {
         Some(Found::Manifest(m)) => m,
@@ -238,7 +257,7 @@ pub fn write_conversion(
         .filter(|name| before.vouches_for(folder, name))
         .cloned()
         .collect();
-    let written = write_outputs(folder, files, inputs, durability)?;
+    let written = write_outputs(folder, files, inputs, durability, made_by)?;
     if stale.is_empty() {
         return Ok((written, Vec::new()));
     }
@@ -250,6 +269,7 @@ pub fn write_conversion(
         let path = folder.join(&name);
         if std::fs::remove_file(&path).is_ok() {
             record.files.remove(&name);
+            record.made_by.remove(&name);
             // A project folder (`NAME.beremiz/`) emptied goes too; one that
             // still holds anything stays.
             if let Some(parent) = path.parent().filter(|p| *p != folder) {

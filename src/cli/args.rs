@@ -19,7 +19,7 @@ pub(crate) struct SimArgs {
     pub(crate) input_delay: Option<InputDelays>,
 }
 
-pub(crate) type InputDelays = std::collections::BTreeMap<steptable::cell::Name, u32>;
+pub(crate) type InputDelays = std::collections::BTreeMap<crate::cell::Name, u32>;
 
 pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
     let mut delays = InputDelays::new();
@@ -27,9 +27,9 @@ pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
         let (name, value) = item
             .split_once('=')
             .ok_or_else(|| format!("\"{item}\": expected <input>=<time>, e.g. part_present=2s"))?;
-        let name = steptable::cell::Name::new(&name.trim().to_ascii_lowercase())
+        let name = crate::cell::Name::new(&name.trim().to_ascii_lowercase())
             .map_err(|e| format!("\"{item}\": {e}"))?;
-        let ms = steptable::stroke::parse_duration_ms(value)
+        let ms = crate::stroke::parse_duration_ms(value)
             .ok_or_else(|| format!("\"{item}\": expected a time such as 2s or 300ms"))?;
         if delays.insert(name, ms).is_some() {
             return Err(format!(
@@ -40,14 +40,14 @@ pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
     Ok(delays)
 }
 
-pub(crate) type StrokeMap = std::collections::BTreeMap<u32, steptable::stroke::Stroke>;
+pub(crate) type StrokeMap = std::collections::BTreeMap<u32, crate::stroke::Stroke>;
 
 pub(crate) fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
-    steptable::stroke::parse_strokes(text)
+    crate::stroke::parse_strokes(text)
 }
 
 pub(crate) fn parse_scan(text: &str) -> Result<u32, String> {
-    steptable::stroke::parse_scan(text)
+    crate::stroke::parse_scan(text)
 }
 
 impl SimArgs {
@@ -112,11 +112,11 @@ impl FileArgs {
             settings.formats = formats.clone();
         }
         if self.sync {
-            settings.durability = steptable::write::Durability::Sync;
+            settings.durability = crate::write::Durability::Sync;
         }
         if let Some(dir) = &self.templates {
             settings.templates =
-                steptable::settings::user_templates::load_dir(dir).map_err(|e| e.to_string())?;
+                crate::settings::user_templates::load_dir(dir).map_err(|e| e.to_string())?;
         }
         Ok(())
     }
@@ -146,7 +146,7 @@ pub(crate) struct CommonArgs {
     #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
     pub(crate) message_format: MessageFormat,
     #[arg(long, value_name = "LIST", value_parser = parse_valves, help = valves_help())]
-    pub(crate) valve: Option<std::collections::BTreeMap<u32, steptable::valve::ValveType>>,
+    pub(crate) valve: Option<std::collections::BTreeMap<u32, crate::valve::ValveType>>,
     #[arg(long, value_name = "LIST", value_parser = parse_safety, help = safety_help())]
     pub(crate) safety: Option<Safety>,
     #[arg(long, value_name = "LIST", value_parser = parse_modes, help = modes_help())]
@@ -196,7 +196,7 @@ pub(crate) fn formats_help() -> String {
 
 /// `--valve` help: every valve type, from the library's list.
 pub(crate) fn valves_help() -> String {
-    let names: Vec<&str> = steptable::valve::ValveType::ALL
+    let names: Vec<&str> = crate::valve::ValveType::ALL
         .iter()
         .map(|v| v.name())
         .collect();
@@ -212,12 +212,12 @@ pub(crate) fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<Out
 
 pub(crate) fn parse_valves(
     text: &str,
-) -> Result<std::collections::BTreeMap<u32, steptable::valve::ValveType>, String> {
-    steptable::valve::parse_valves(text)
+) -> Result<std::collections::BTreeMap<u32, crate::valve::ValveType>, String> {
+    crate::valve::parse_valves(text)
 }
 
 pub(crate) fn parse_loads(text: &str) -> Result<std::collections::BTreeMap<u32, f64>, String> {
-    steptable::valve::parse_loads(text)
+    crate::valve::parse_loads(text)
 }
 
 pub(crate) fn parse_safety(text: &str) -> Result<Safety, String> {
@@ -231,7 +231,7 @@ fn parse_target() -> impl clap::builder::TypedValueParser<Value = Target> {
 
 /// `--board`: the library's parser, with the boards listed in `--help`.
 fn parse_board() -> impl clap::builder::TypedValueParser<Value = Board> {
-    clap::builder::PossibleValuesParser::new(steptable::address::BOARDS.map(|b| b.name))
+    clap::builder::PossibleValuesParser::new(crate::address::BOARDS.map(|b| b.name))
         .try_map(|text| text.parse::<Board>())
 }
 
@@ -266,6 +266,7 @@ impl CommonArgs {
             .with_board_target(),
         );
         settings.sheet = self.sheet.clone();
+        settings.invocation = super::recorded_invocation();
         settings
     }
 }

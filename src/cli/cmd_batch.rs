@@ -32,19 +32,19 @@ fn parse_jobs(text: &str) -> Result<usize, String> {
     match text.trim().parse::<usize>() {
         Ok(0) => Err(format!(
             "-j takes 1 to {} jobs; 0 runs nothing (leave -j out for one job per core)",
-            steptable::batch::MAX_JOBS
+            crate::batch::MAX_JOBS
         )),
         Ok(jobs) => Ok(jobs),
         Err(_) => Err(format!(
             "\"{text}\" is not a number of jobs; -j takes 1 to {}",
-            steptable::batch::MAX_JOBS
+            crate::batch::MAX_JOBS
         )),
     }
 }
 
 pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
+    use crate::batch::{self, Status};
     use std::io::IsTerminal;
-    use steptable::batch::{self, Status};
 
     let report = Reporter::new(&args.common);
     let Some(settings) = output_settings(&args.common, &args.sim, &args.files) else {
@@ -64,8 +64,8 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
         .iter()
         .map(|path| Diagnostic {
             severity: Severity::Error,
-            code: steptable::diag::Code::E001Unreadable,
-            location: steptable::diag::Location {
+            code: crate::diag::Code::E001Unreadable,
+            location: crate::diag::Location {
                 file: display_name(path),
                 sheet: None,
                 cell: None,
@@ -78,7 +78,7 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
         report.say(&format!(
             "note: {} table(s) in the folders are outputs of an earlier run (listed in their folder's {}) and are not converted again, e.g. {}",
             expanded.outputs_skipped.len(),
-            steptable::manifest::FILE_NAME,
+            crate::manifest::FILE_NAME,
             display_name(&expanded.outputs_skipped[0])
         ));
     }
@@ -137,12 +137,12 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
     // Inputs sharing a name go to other folders than their own (the rule
     // convert uses too): said here and in summary.csv's `folder` column.
     for o in &outcomes {
-        if o.status == Status::Converted && steptable::convert::renamed(&o.input, &o.name) {
+        if o.status == Status::Converted && crate::convert::renamed(&o.input, &o.name) {
             report.say(&format!(
                 "note: {} -> {}/ (another input has the name {})",
                 display_name(&o.input),
                 args.output.join(&o.name).display(),
-                steptable::convert::output_name(&o.input)
+                crate::convert::output_name(&o.input)
             ));
         }
     }
@@ -194,11 +194,19 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
                     file.name
                 ));
             }
+            // A list with no comment line: the manifest records how it
+            // was made.
+            let made_by = crate::provenance::MadeBy::new(
+                recorded_invocation().as_deref(),
+                "the batch's tables",
+                &crate::provenance::settings_source(&settings),
+            );
             if let Err(err) = write::write_into_named_folder(
                 &args.output,
                 &[file],
                 &write::Inputs::new(&inputs),
                 settings.durability,
+                Some(made_by.text()),
             ) {
                 code = code.max(write_failed(&report, &err));
             }

@@ -32,20 +32,13 @@ pub(crate) fn run_check(args: &CheckArgs) -> i32 {
     let report = Reporter::new(&args.common);
     let mut code = EXIT_OK;
     for input in &args.inputs {
-        // The addresses are checked too: pins and the board are part of
-        // what convert would refuse.
-        let checked = convert::check_path(input, &settings).and_then(|checked| {
-            let program = convert::build_program(&checked.table, &checked.settings);
-            let allocation = convert::allocate(&program, &checked.settings, &checked.table.file)?;
-            Ok((checked, allocation))
-        });
-        match checked {
-            Ok((checked, allocation)) => {
+        match crate::commands::convert::check(input, &settings) {
+            Ok(checked) => {
                 report.diagnostics(&checked.warnings);
                 report.say(&format!(
                     "{}: ok: {}",
                     display_name(input),
-                    summary(&checked.table, &allocation)
+                    summary(&checked.table, &checked.allocation)
                 ));
             }
             Err(diagnostics) => {
@@ -55,7 +48,7 @@ pub(crate) fn run_check(args: &CheckArgs) -> i32 {
                     display_name(input),
                     diagnostics
                         .iter()
-                        .filter(|d| d.severity == steptable::diag::Severity::Error)
+                        .filter(|d| d.severity == crate::diag::Severity::Error)
                         .count()
                 ));
                 code = code.max(EXIT_BAD_INPUT);
@@ -78,49 +71,36 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
     let names = convert::output_names(&args.inputs);
     let kept = write::Inputs::new(&args.inputs);
     for (input, name) in args.inputs.iter().zip(&names) {
+        let shown = display_name(input);
         let progress = super::progress::Progress::new("fault cases", false);
-        let converted = convert::check_path(input, &settings)
-            .map_err(Failure::Input)
-            .and_then(|checked| {
-                convert::generate_observed(name, checked, &|done, total| {
-                    progress.update(done, total)
-                })
-            });
+        let run = crate::commands::convert::run(
+            input,
+            name,
+            &settings,
+            &args.output,
+            &kept,
+            &|done, total| progress.update(done, total),
+        );
         progress.finish();
-        let conversion = match converted {
-            Ok(c) => c,
-            Err(Failure::Input(diagnostics)) => {
-                report.diagnostics(&diagnostics);
-                eprintln!("{}: not converted, nothing written", display_name(input));
-                code = code.max(EXIT_BAD_INPUT);
-                continue;
-            }
-            Err(Failure::Internal(why)) => {
-                eprintln!("{}: internal error: {why}", display_name(input));
-                code = EXIT_INTERNAL;
-                continue;
-            }
-            Err(Failure::Template(err)) => {
-                eprintln!("{}: not converted, nothing written", display_name(input));
-                if err.user {
-                    eprintln!("{err}");
-                    code = code.max(EXIT_BAD_INPUT);
-                } else {
-                    eprintln!("internal error: {err}");
-                    code = EXIT_INTERNAL;
+        let run = match run {
+            Ok(run) => run,
+            Err(err) => {
+                let internal = matches!(&err, crate::commands::CommandError::Internal(_));
+                code = code.max(command_failed(&report, &shown, err));
+                if !internal {
+                    eprintln!("{shown}: not converted, nothing written");
                 }
                 continue;
             }
         };
+        let (conversion, folder) = (&run.conversion, &run.folder);
         report.diagnostics(&conversion.warnings);
-        let folder = args.output.join(&conversion.name);
-        match write::write_conversion(&folder, &conversion.files, &kept, settings.durability) {
+        match &run.written {
             Ok((_, removed)) => {
                 // As the files lie in the folder: `NAME.beremiz/plc.xml`.
                 let names: Vec<String> = conversion.files.iter().map(|f| f.name.clone()).collect();
                 report.say(&format!(
-                    "{}: {} -> {}/ ({})",
-                    display_name(input),
+                    "{shown}: {} -> {}/ ({})",
                     summary(&conversion.table, &conversion.allocation),
                     folder.display(),
                     names.join(", ")
@@ -131,7 +111,7 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
                 if !removed.is_empty() {
                     let names: Vec<String> = removed
                         .iter()
-                        .filter_map(|p| p.strip_prefix(&folder).ok())
+                        .filter_map(|p| p.strip_prefix(folder).ok())
                         .map(|p| p.display().to_string())
                         .collect();
                     report.say(&format!(
@@ -141,8 +121,8 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
                 }
             }
             Err(err) => {
-                code = code.max(write_failed(&report, &err));
-                eprintln!("{}: not converted, nothing written", display_name(input));
+                code = code.max(write_failed(&report, err));
+                eprintln!("{shown}: not converted, nothing written");
             }
         }
     }

@@ -31,68 +31,42 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
     let names = convert::output_names(&args.inputs);
     let kept = write::Inputs::new(&args.inputs);
     for (input, name) in args.inputs.iter().zip(&names) {
-        let checked = match convert::check_path(input, &settings) {
-            Ok(c) => c,
-            Err(diagnostics) => {
-                reporter.diagnostics(&diagnostics);
-                code = code.max(EXIT_BAD_INPUT);
-                continue;
-            }
-        };
-        reporter.diagnostics(&checked.warnings);
-        let (table, mut settings) = (checked.table, checked.settings);
-        let lucky = convert::lucky_middle_stops(&table, &settings);
-        if !lucky.is_empty() {
-            reporter.diagnostics(&lucky);
-            code = code.max(EXIT_BAD_INPUT);
-            continue;
-        }
-        settings.simulation.record_trace = args.diagram.is_some();
-        let program = convert::build_program(&table, &settings);
-        if let Some(why) = steptable::simulate::over_budget(&table, &program, &settings.simulation)
-        {
-            reporter.diagnostics(&[convert::budget_error(&table, why)]);
-            code = code.max(EXIT_BAD_INPUT);
-            continue;
-        }
-        let report = steptable::simulate::simulate(&table, &program, &settings.simulation);
         // The diagram is written before anything is printed: with stdout
         // closed, printing ends the process (quietly), and the file the user
         // asked for must exist by then.
-        let mut diagram = None;
-        if let Some(dir) = &args.diagram {
-            let svg = steptable::emit::diagram::render_svg(
-                name,
-                &report,
-                steptable::emit::diagram::DiagramKind::Time,
-            );
-            let file = steptable::emit::OutputFile {
-                name: format!("{name}.time.svg"),
-                bytes: svg.into_bytes(),
-            };
-            match write::write_outputs(&dir.join(name), &[file], &kept, write::Durability::Rename) {
-                Ok(paths) => diagram = Some(paths),
-                Err(err) => code = code.max(write_failed(&reporter, &err)),
+        let run =
+            crate::commands::simulate::run(input, name, &settings, args.diagram.as_deref(), &kept);
+        let mut run = match run {
+            Ok(run) => run,
+            Err(err) => {
+                code = code.max(command_failed(&reporter, &display_name(input), err));
+                continue;
             }
-        }
-        reporter.say(&format!("{}: {}", display_name(input), report.verdict()));
-        reporter.say(&steptable::simulate::report::step_table(&report));
-        if !report.passed {
+        };
+        reporter.diagnostics(&run.warnings);
+        let diagram = match run.diagram.take() {
+            Some(Ok(paths)) => paths,
+            Some(Err(err)) => {
+                code = code.max(write_failed(&reporter, &err));
+                Vec::new()
+            }
+            None => Vec::new(),
+        };
+        reporter.say(&format!(
+            "{}: {}",
+            display_name(input),
+            run.report.verdict()
+        ));
+        reporter.say(&crate::simulate::report::step_table(&run.report));
+        if let Some(failure) = run.failure() {
             // A script reading JSON sees why the run failed, as convert
             // reports the same machine.
             if reporter.json {
-                reporter.error(
-                    &table.file,
-                    steptable::diag::Code::E032MachineCannotRun,
-                    format!(
-                        "the generated program fails its simulation: {}",
-                        report.reason()
-                    ),
-                );
+                reporter.diagnostics(&[failure]);
             }
             code = code.max(EXIT_BAD_INPUT);
         }
-        for path in diagram.into_iter().flatten() {
+        for path in diagram {
             reporter.say(&format!("  diagram: {}", path.display()));
         }
     }

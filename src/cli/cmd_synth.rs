@@ -55,7 +55,7 @@ pub(crate) struct SynthArgs {
 }
 
 fn parse_time_limit(text: &str) -> Result<std::time::Duration, String> {
-    match steptable::stroke::parse_duration_ms(text) {
+    match crate::stroke::parse_duration_ms(text) {
         Some(ms) if ms >= 1000 => Ok(std::time::Duration::from_millis(ms.into())),
         _ => Err("the time limit is a duration from 1 s to 1 h, e.g. 30s".to_string()),
     }
@@ -97,65 +97,35 @@ pub(crate) enum MethodArg {
 }
 
 pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
-    use steptable::diag::Code;
-    use steptable::synth::{self, SynthError, output as synth_out};
+    use crate::commands::synth::{self as command, SynthSource};
+    use crate::synth;
 
     let reporter = Reporter::for_format(args.message_format);
     let templates = match &args.templates {
-        Some(dir) => match steptable::settings::user_templates::load_dir(dir) {
+        Some(dir) => match crate::settings::user_templates::load_dir(dir) {
             Ok(templates) => templates,
             Err(err) => {
                 eprintln!("{err}");
                 return EXIT_BAD_INPUT;
             }
         },
-        None => steptable::emit::templates::Templates::default(),
+        None => crate::emit::templates::Templates::default(),
     };
-    let source = match &args.input {
-        Some(input) if args.sequence.is_none() => display_name(input),
-        _ => "--sequence".to_string(),
-    };
-    let (sequence, name, inputs) = match (&args.input, &args.sequence) {
-        (_, Some(text)) => match synth::sequence::parse(text) {
-            Ok(s) => (s, "sequence".to_string(), Vec::new()),
-            Err(why) => {
-                reporter.error(&source, Code::E034NotSynthesisable, why);
-                return EXIT_BAD_INPUT;
-            }
+    let source = match (&args.input, &args.sequence) {
+        (_, Some(text)) => SynthSource::Sequence(text),
+        (Some(path), None) => SynthSource::Table {
+            path,
+            sheet: args.sheet.as_deref(),
         },
-        (Some(input), None) => {
-            let mut settings = Settings::new();
-            settings.sheet = args.sheet.clone();
-            let checked = match convert::check_path(input, &settings) {
-                Ok(c) => c,
-                Err(diagnostics) => {
-                    reporter.diagnostics(&diagnostics);
-                    return EXIT_BAD_INPUT;
-                }
-            };
-            reporter.diagnostics(&checked.warnings);
-            match synth::from_table(&checked.table) {
-                Ok(s) => (s, convert::output_name(input), vec![input.clone()]),
-                Err(diagnostic) => {
-                    reporter.diagnostics(&[diagnostic]);
-                    return EXIT_BAD_INPUT;
-                }
-            }
-        }
         (None, None) => {
             eprintln!("error: give a step table or --sequence");
             return EXIT_BAD_INPUT;
         }
     };
-    // The one name check, as for a table's signals: a name whose signals
-    // the programs cannot declare (`R`: `r` is an IL operator) is E015.
-    let problems = sequence.name_problems();
-    if !problems.is_empty() {
-        for why in problems {
-            reporter.error(&source, Code::E015BadName, why);
-        }
-        return EXIT_BAD_INPUT;
-    }
+    let shown = match source {
+        SynthSource::Table { path, .. } => display_name(path),
+        SynthSource::Sequence(_) => "--sequence".to_string(),
+    };
     let options = synth::Options {
         method: match args.method {
             MethodArg::Exact => synth::Method::Exact,
@@ -184,93 +154,37 @@ pub(crate) fn run_synth(args: &SynthArgs) -> i32 {
     // Ctrl-C ends the search; the comparison of equations keeps its best.
     let _ = ctrlc::set_handler(synth::interrupt);
     let progress = SearchProgress::new(args.time_limit);
-    let result = synth::synthesize_observed(&sequence, options, &|done, total| {
-        progress.update(done, total)
-    });
+    let run = command::run(
+        source,
+        options,
+        &templates,
+        &args.output,
+        recorded_invocation().as_deref(),
+        &|done, total| progress.update(done, total),
+    );
     progress.finish();
-    let synthesis = match result {
-        Ok(s) => s,
-        Err(err) => {
-            let code = match err {
-                SynthError::Unsuitable(_) => Code::E034NotSynthesisable,
-                SynthError::NotFound(_) | SynthError::OutOfTime(_) => Code::E033OverBudget,
-            };
-            reporter.error(&source, code, err.to_string());
-            return EXIT_BAD_INPUT;
-        }
+    let run = match run {
+        Ok(run) => run,
+        Err(err) => return command_failed(&reporter, &shown, err),
     };
-    let verification = synth::verify::verify(&synthesis, 2);
-    let report = synth_out::report_text(&synthesis, &verification);
-    reporter.say(&report);
-    // A program that fails its proof is not written: the report above
-    // says why.
-    if !verification.passed {
-        eprintln!(
-            "internal error: the synthesised controller fails its simulation ({}); please report this sequence",
-            verification.problem.as_deref().unwrap_or_default()
-        );
-        return EXIT_INTERNAL;
-    }
-    if let Err(why) = &verification.modes {
-        eprintln!(
-            "internal error: the synthesised program fails its mode proof ({why}); please report this sequence"
-        );
-        return EXIT_INTERNAL;
-    }
-    let workbook = match synth_out::workbook(&synthesis, &verification) {
-        Ok(b) => b,
-        Err(err) => {
-            eprintln!("internal error: workbook: {err}");
-            return EXIT_INTERNAL;
+    reporter.diagnostics(&run.warnings);
+    reporter.say(&run.report);
+    match run.written {
+        Ok(paths) => {
+            let names: Vec<String> = paths
+                .iter()
+                .filter_map(|p| p.file_name())
+                .map(|n| n.to_string_lossy().to_string())
+                .collect();
+            reporter.say(&format!(
+                "wrote {}/ ({})",
+                run.folder.display(),
+                names.join(", ")
+            ));
+            EXIT_OK
         }
-    };
-    let programs = steptable::emit::equations::structured_text(&templates, &synthesis, &name)
-        .and_then(|st| {
-            steptable::emit::equations::instruction_list(&templates, &synthesis, &name)
-                .map(|il| (st, il))
-        });
-    let (st, il) = match programs {
-        Ok(programs) => programs,
-        Err(err) if err.user => {
-            eprintln!("{err}");
-            return EXIT_BAD_INPUT;
-        }
-        Err(err) => {
-            eprintln!("internal error: {err}");
-            return EXIT_INTERNAL;
-        }
-    };
-    let files = vec![
-        steptable::emit::OutputFile {
-            name: format!("{name}.synth.txt"),
-            bytes: report.into_bytes(),
-        },
-        steptable::emit::OutputFile {
-            name: format!("{name}.synth.json"),
-            bytes: synth_out::report_json(&synthesis, &verification, args.seed).into_bytes(),
-        },
-        steptable::emit::OutputFile {
-            name: format!("{name}.equations.st"),
-            bytes: st.into_bytes(),
-        },
-        steptable::emit::OutputFile {
-            name: format!("{name}.equations.il"),
-            bytes: il.into_bytes(),
-        },
-        steptable::emit::OutputFile {
-            name: format!("{name}.xlsx"),
-            bytes: workbook,
-        },
-    ];
-    if let Err(err) = write::write_outputs(
-        &args.output.join(&name),
-        &files,
-        &write::Inputs::new(&inputs),
-        write::Durability::Rename,
-    ) {
-        return write_failed(&reporter, &err);
+        Err(err) => write_failed(&reporter, &err),
     }
-    EXIT_OK
 }
 
 /// On a terminal: a spinner while the memories are searched, then a bar of

@@ -62,7 +62,7 @@ pub(crate) fn run_template(args: &TemplateArgs) -> i32 {
         );
         return EXIT_BAD_INPUT;
     }
-    let bytes = match steptable::template_workbook::template_workbook(args.branches, args.steps) {
+    let bytes = match crate::template_workbook::template_workbook(args.branches, args.steps) {
         Ok(b) => b,
         Err(err) => {
             eprintln!("internal error: template: {err}");
@@ -80,7 +80,7 @@ pub(crate) fn run_template(args: &TemplateArgs) -> i32 {
         .unwrap_or_else(|| "steptable-template.xlsx".to_string());
     match write::write_files(
         &folder,
-        &[steptable::emit::OutputFile { name, bytes }],
+        &[crate::emit::OutputFile { name, bytes }],
         &write::Inputs::none(),
         write::Durability::Rename,
     ) {

@@ -1,6 +1,9 @@
-//! Command-line parsing (clap) and the commands. Raw arguments become
-//! validated [`Settings`] before any work starts; exit codes are 0 (ok),
-//! 1 (bad input, diagnostics printed) and 2 (internal or I/O failure).
+//! The command line: clap parses, the library's commands
+//! ([`crate::commands`], [`crate::batch`]) do the work and return what they
+//! found and wrote, and this layer prints it. Raw arguments become
+//! validated [`Settings`] before any work starts, with the command line as
+//! the outputs record it ([`invocation`]); exit codes are 0 (ok), 1 (bad
+//! input, diagnostics printed) and 2 (internal or I/O failure).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -8,15 +11,15 @@ use std::path::PathBuf;
 use clap::builder::TypedValueParser;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use steptable::address::{Board, Mnemonic, Target};
-use steptable::convert::{self, Failure};
-use steptable::diag::{Diagnostic, Severity};
-use steptable::emit::OutputKind;
-use steptable::emit::diagram::DiagramKind;
-use steptable::program::{Modes, Safety};
-use steptable::read::display_name;
-use steptable::settings::{Given, Settings};
-use steptable::write;
+use crate::address::{Board, Mnemonic, Target};
+use crate::convert;
+use crate::diag::{Diagnostic, Severity};
+use crate::emit::OutputKind;
+use crate::emit::diagram::DiagramKind;
+use crate::program::{Modes, Safety};
+use crate::read::display_name;
+use crate::settings::{Given, Settings};
+use crate::write;
 
 /// `eprintln!` that never panics: with standard error closed or full
 /// (`2>/dev/full`, `2>&1 | head`) std's panics (exit 101); the message is
@@ -35,6 +38,7 @@ mod cmd_faults;
 mod cmd_simulate;
 mod cmd_synth;
 mod cmd_template;
+mod invocation;
 mod progress;
 
 use args::*;
@@ -57,7 +61,7 @@ pub(crate) const EXIT_INTERRUPTED: i32 = 130;
     version,
     about = "Turn a step table of pneumatic cylinder moves into I/O address lists and PLC programs"
 )]
-pub(crate) struct Cli {
+pub struct Cli {
     #[command(subcommand)]
     pub(crate) command: Command,
 }
@@ -85,8 +89,18 @@ pub(crate) enum Command {
     Synth(SynthArgs),
 }
 
+/// The command line as the outputs record it, set once per run.
+static INVOCATION: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+
+/// The command line as the outputs record it (see [`invocation`]).
+pub(crate) fn recorded_invocation() -> Option<String> {
+    INVOCATION.get().cloned()
+}
+
 /// Runs the command line and returns the process exit code.
 pub fn run() -> i32 {
+    let argv: Vec<std::ffi::OsString> = std::env::args_os().skip(1).collect();
+    let _ = INVOCATION.set(invocation::invocation(&argv));
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(err) if !err.use_stderr() => {
@@ -122,7 +136,7 @@ pub fn run() -> i32 {
         Command::Batch(args) => run_batch(&args),
         Command::Synth(args) => run_synth(&args),
         Command::Templates(TemplatesCommand::Export { dir, force }) => {
-            use steptable::settings::user_templates::{ExportError, export_defaults};
+            use crate::settings::user_templates::{ExportError, export_defaults};
             match export_defaults(&dir, force) {
                 Ok(written) => {
                     for path in written {
@@ -168,7 +182,7 @@ fn command_line_json(rendered: &str) -> String {
         "row": null,
         "column": null,
         "severity": "error",
-        "code": steptable::diag::Code::E041BadCommandLine.as_str(),
+        "code": crate::diag::Code::E041BadCommandLine.as_str(),
         "message": message,
     })
     .to_string()
@@ -246,20 +260,6 @@ impl Reporter {
         }
     }
 
-    /// One error of `code` about `file` as a whole.
-    pub(crate) fn error(&self, file: &str, code: steptable::diag::Code, message: String) {
-        self.diagnostics(&[Diagnostic {
-            severity: Severity::Error,
-            code,
-            location: steptable::diag::Location {
-                file: file.to_string(),
-                sheet: None,
-                cell: None,
-            },
-            message,
-        }]);
-    }
-
     pub(crate) fn diagnostics(&self, diagnostics: &[Diagnostic]) {
         if self.json {
             for d in diagnostics {
@@ -283,6 +283,34 @@ impl Reporter {
     }
 }
 
+/// Says why a library command produced nothing for `input`; the exit code.
+pub(crate) fn command_failed(
+    report: &Reporter,
+    input: &str,
+    err: crate::commands::CommandError,
+) -> i32 {
+    use crate::commands::CommandError;
+    match err {
+        CommandError::Input(diagnostics) => {
+            report.diagnostics(&diagnostics);
+            EXIT_BAD_INPUT
+        }
+        CommandError::Template(err) if err.user => {
+            eprintln!("{err}");
+            EXIT_BAD_INPUT
+        }
+        CommandError::Template(err) => {
+            eprintln!("{input}: internal error: {err}");
+            EXIT_INTERNAL
+        }
+        CommandError::Internal(why) => {
+            eprintln!("{input}: internal error: {why}");
+            EXIT_INTERNAL
+        }
+        CommandError::Write(err) => write_failed(report, &err),
+    }
+}
+
 /// Says why outputs were not written; the exit code: 1 when something of
 /// the engineer's is in their place (E040), 2 for an I/O failure.
 pub(crate) fn write_failed(report: &Reporter, err: &write::WriteError) -> i32 {
@@ -301,10 +329,10 @@ pub(crate) fn write_failed(report: &Reporter, err: &write::WriteError) -> i32 {
 /// One line on a table and its wiring: the counts, and the address ranges
 /// in the target's notation, first to last (what the panel must have).
 pub(crate) fn summary(
-    table: &steptable::table::StepTable,
-    allocation: &steptable::address::Allocation,
+    table: &crate::table::StepTable,
+    allocation: &crate::address::Allocation,
 ) -> String {
-    let range = |points: &[steptable::address::Assigned]| match (points.first(), points.last()) {
+    let range = |points: &[crate::address::Assigned]| match (points.first(), points.last()) {
         (Some(first), Some(last)) => format!(
             "{} to {}",
             first.address.display(allocation.mnemonic),

@@ -45,6 +45,8 @@ pub struct Conversion {
     pub faults: Option<FaultTable>,
     pub files: Vec<OutputFile>,
     pub warnings: Vec<Diagnostic>,
+    /// How the files were made, as each records it.
+    pub made_by: crate::provenance::MadeBy,
     /// What the conversion found, a line each: the verdict and cycle time,
     /// the hazards, the homing order, a program without STOP (see
     /// [`findings::lines`]).
@@ -688,7 +690,9 @@ pub fn generate_observed(
     let mut kinds = early.map_err(emitted)?;
     kinds.extend(late.map_err(emitted)?);
     kinds.sort_by_key(|(kind, _)| *kind);
+    let made_by = crate::provenance::MadeBy::of_run(settings, &table.file);
     let files = kinds.into_iter().flat_map(|(_, files)| files).collect();
+    let files = crate::provenance::stamp_all(files, &made_by).map_err(Failure::Internal)?;
     let findings = findings::lines(
         &table,
         &settings.program.modes,
@@ -697,6 +701,7 @@ pub fn generate_observed(
     );
     Ok(Conversion {
         findings,
+        made_by,
         name: name.to_string(),
         table,
         allocation,

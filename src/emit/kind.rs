@@ -91,6 +91,12 @@ impl OutputKind {
         )
     }
 
+    /// The file's name for outputs named `name` (`paper` → `paper.st`);
+    /// a Beremiz project's is its folder.
+    pub fn file_name(self, name: &str) -> String {
+        format!("{name}{}", self.suffix())
+    }
+
     /// The end of the file name, after `NAME`.
     pub fn suffix(self) -> &'static str {
         match self {
@@ -171,6 +177,55 @@ impl OutputKind {
             .filter(|k| edit_distance(item, k.name()) * 4 <= k.name().len().max(item.len()))
             .collect();
         (!near.is_empty()).then_some(near)
+    }
+}
+
+/// The files the commands besides convert write (simulate's time diagram,
+/// synth's report, programs and workbook), each with its name rule as the
+/// kinds above have theirs: every file name a command writes is decided
+/// here. Not a `--formats` choice: each command writes all of its own.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum CommandFile {
+    /// `simulate --diagram DIR`: the run's displacement-time diagram.
+    TimeDiagram,
+    /// synth's report, as printed.
+    SynthReport,
+    /// synth's report for programs.
+    SynthJson,
+    /// The synthesised equations as a Structured Text program.
+    EquationsSt,
+    /// The same program in instruction list.
+    EquationsIl,
+    /// The equations and truth table as a workbook; not `NAME.xlsx`,
+    /// which is convert's workbook of the same table in the same folder.
+    SynthWorkbook,
+}
+
+impl CommandFile {
+    pub const ALL: [CommandFile; 6] = [
+        CommandFile::TimeDiagram,
+        CommandFile::SynthReport,
+        CommandFile::SynthJson,
+        CommandFile::EquationsSt,
+        CommandFile::EquationsIl,
+        CommandFile::SynthWorkbook,
+    ];
+
+    /// The end of the file name, after `NAME`.
+    pub fn suffix(self) -> &'static str {
+        match self {
+            CommandFile::TimeDiagram => ".time.svg",
+            CommandFile::SynthReport => ".synth.txt",
+            CommandFile::SynthJson => ".synth.json",
+            CommandFile::EquationsSt => ".equations.st",
+            CommandFile::EquationsIl => ".equations.il",
+            CommandFile::SynthWorkbook => ".synth.xlsx",
+        }
+    }
+
+    /// The file's name for outputs named `name`.
+    pub fn file_name(self, name: &str) -> String {
+        format!("{name}{}", self.suffix())
     }
 }
 

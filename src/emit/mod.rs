@@ -15,7 +15,7 @@ pub mod tables;
 pub mod templates;
 pub mod workbook;
 
-pub use kind::OutputKind;
+pub use kind::{CommandFile, OutputKind};
 pub use render::{EmitError, Renderer, render, render_each};
 
 use crate::address::Allocation;

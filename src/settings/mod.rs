@@ -146,6 +146,11 @@ pub struct Settings {
     /// Where the settings in force that a SETTINGS sheet gave were read, by
     /// label (the others came from the command line or are defaults).
     pub cells: BTreeMap<&'static str, crate::diag::Location>,
+    /// The command line that asked for this run, as every output records
+    /// it (`convert paper.xlsx --target siemens`: the command, its inputs'
+    /// file names and the options that change the output; see
+    /// the `provenance` module). `None` for a library call.
+    pub invocation: Option<String>,
 }
 
 impl Settings {

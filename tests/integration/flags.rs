@@ -554,7 +554,7 @@ fn all_cases() -> Vec<Case> {
             None,
             &["--sequence", "A1 B1 A0 B0"],
             &[],
-            Writes("steptable-out/sequence/sequence.equations.st"),
+            Writes("steptable-out/A1B1A0B0/A1B1A0B0.equations.st"),
         ),
         case(
             "synth",
@@ -563,7 +563,7 @@ fn all_cases() -> Vec<Case> {
             &["--sequence", "A1 B1 A0 B0", "--templates", "tpl"],
             &["--sequence", "A1 B1 A0 B0"],
             Has(
-                Place::File("steptable-out/sequence/sequence.equations.st".to_string()),
+                Place::File("steptable-out/A1B1A0B0/A1B1A0B0.equations.st".to_string()),
                 "(* marked template *)",
             ),
         ),
@@ -573,7 +573,7 @@ fn all_cases() -> Vec<Case> {
             None,
             &["--sequence", "A1 B1 A0 B0", "-o", "o2"],
             &[],
-            Writes("o2/sequence/sequence.equations.st"),
+            Writes("o2/A1B1A0B0/A1B1A0B0.equations.st"),
         ),
         case(
             "synth",
@@ -970,7 +970,7 @@ fn clap_flags() -> Vec<(String, String)> {
         }
     }
     let mut out = Vec::new();
-    walk(&crate::cli::Cli::command(), "", &mut out);
+    walk(&steptable::cli::Cli::command(), "", &mut out);
     out.sort();
     out
 }

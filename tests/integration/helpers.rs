@@ -283,3 +283,45 @@ pub fn interrupt(child: std::process::Child) -> std::process::Output {
         .unwrap();
     child.wait_with_output().unwrap()
 }
+
+/// The file `NAME{suffix}` that `synth --sequence TEXT -o out` writes:
+/// `out/NAME/NAME{suffix}`, NAME the sequence's own name
+/// (`steptable::commands::synth::sequence_name`: `A1 A0` → `A1A0`).
+pub fn synthesised(out: &Path, sequence: &str, suffix: &str) -> PathBuf {
+    let parsed = steptable::synth::sequence::parse(sequence).expect("a sequence");
+    let name = steptable::commands::synth::sequence_name(&parsed);
+    out.join(&name).join(format!("{name}{suffix}"))
+}
+
+/// Every file below `dir`, the manifests too, with its bytes: what a run
+/// that must write nothing must leave as it was.
+pub fn files_with_bytes(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    let mut found = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).into_iter().flatten().flatten() {
+            let path = entry.path();
+            let meta = std::fs::symlink_metadata(&path).unwrap();
+            if meta.is_dir() {
+                stack.push(path);
+            } else {
+                let bytes = std::fs::read(&path).unwrap_or_default();
+                found.push((path, bytes));
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
+/// Runs steptable in `work` with `args`: its exit code, and stdout then
+/// stderr as one text (what a user sees).
+pub fn run_in(work: &Path, args: &[String]) -> (Option<i32>, String) {
+    let output = steptable().current_dir(work).args(args).output().unwrap();
+    let said = format!(
+        "{}{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    (output.status.code(), said)
+}

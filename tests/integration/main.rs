@@ -7,10 +7,6 @@ mod boards;
 mod broken;
 mod budgets;
 mod codes;
-// The binary's command-line definition, for the test of every flag.
-#[allow(dead_code, unused_imports)]
-#[path = "../../src/cli/mod.rs"]
-mod cli;
 mod diagram;
 mod docs;
 mod drive_coasting;
@@ -55,3 +51,4 @@ mod synth;
 mod synth_short;
 mod template;
 mod valves;
+mod written;

@@ -10,29 +10,9 @@ use std::path::{Path, PathBuf};
 use predicates::prelude::*;
 use predicates::str::contains;
 
-use crate::helpers::{files_below, sample, steptable};
+use crate::helpers::{files_below, files_with_bytes, sample, steptable};
 
 const MANIFEST: &str = ".steptable-manifest";
-
-/// Every file below `dir`, the manifests too, with its bytes.
-fn snapshot(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
-    let mut found = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(dir) = stack.pop() {
-        for entry in std::fs::read_dir(&dir).into_iter().flatten().flatten() {
-            let path = entry.path();
-            let meta = std::fs::symlink_metadata(&path).unwrap();
-            if meta.is_dir() {
-                stack.push(path);
-            } else {
-                let bytes = std::fs::read(&path).unwrap_or_default();
-                found.push((path, bytes));
-            }
-        }
-    }
-    found.sort();
-    found
-}
 
 fn table(path: &Path) -> PathBuf {
     std::fs::create_dir_all(path.parent().unwrap()).unwrap();
@@ -269,19 +249,9 @@ fn every_output_place_that_is_taken_is_refused_and_named() {
         let dir = tempfile::tempdir().unwrap();
         let work = dir.path();
         let args = (case.setup)(work);
-        let before = snapshot(work);
-        let output = steptable().current_dir(work).args(&args).output().unwrap();
-        let said = format!(
-            "{}{}",
-            String::from_utf8_lossy(&output.stdout),
-            String::from_utf8_lossy(&output.stderr)
-        );
-        assert_eq!(
-            output.status.code(),
-            Some(case.code),
-            "{}: {said}",
-            case.name
-        );
+        let before = files_with_bytes(work);
+        let (exit, said) = crate::helpers::run_in(work, &args);
+        assert_eq!(exit, Some(case.code), "{}: {said}", case.name);
         assert!(!said.contains("panicked"), "{}: {said}", case.name);
         if let Some((code, path)) = case.error {
             let expected = format!("{path}: error[{code}]");
@@ -291,7 +261,7 @@ fn every_output_place_that_is_taken_is_refused_and_named() {
                 case.name
             );
         }
-        let after = snapshot(work);
+        let after = files_with_bytes(work);
         for kept in case.kept {
             let path = work.join(kept);
             let was = before.iter().find(|(p, _)| *p == path);
@@ -380,9 +350,11 @@ fn batch_into_its_own_folder_reruns_on_the_same_tables() {
         );
     }
     let manifest = std::fs::read_to_string(work.join("line").join(MANIFEST)).unwrap();
+    // Each file's line, and under it (indented) how the run made it.
     let listed: Vec<&str> = manifest
         .lines()
         .skip(1)
+        .filter(|l| !l.starts_with("  "))
         .map(|l| l.splitn(3, ' ').nth(2).unwrap())
         .collect();
     let mut written: Vec<String> = files_below(&work.join("line"))
@@ -396,6 +368,14 @@ fn batch_into_its_own_folder_reruns_on_the_same_tables() {
         .collect();
     written.sort();
     assert_eq!(listed, written);
+    let made_by: Vec<&str> = manifest.lines().filter(|l| l.starts_with("  ")).collect();
+    assert_eq!(made_by.len(), listed.len(), "{manifest}");
+    assert!(
+        made_by
+            .iter()
+            .all(|l| l.contains("from line.csv: steptable batch .; settings: ")),
+        "{manifest}"
+    );
 }
 
 /// A workbook named like an output is a table like any other when no
@@ -565,7 +545,7 @@ fn mistaken_names_lead_to_the_command_and_format_meant() {
 #[test]
 fn help_lists_every_format_and_valve() {
     use clap::CommandFactory;
-    let mut cli = crate::cli::Cli::command();
+    let mut cli = steptable::cli::Cli::command();
     cli.build();
     let help_of = |command: &str, flag: &str| -> String {
         let sub = cli.find_subcommand(command).unwrap();

@@ -40,7 +40,7 @@ fn the_map_names_every_flag_code_and_file() {
             walk(sub, flags);
         }
     }
-    walk(&crate::cli::Cli::command(), &mut flags);
+    walk(&steptable::cli::Cli::command(), &mut flags);
     for flag in &flags {
         let bare = flag.trim_matches('`');
         assert!(
@@ -74,6 +74,14 @@ fn the_map_names_every_flag_code_and_file() {
         let suffix = kind.suffix();
         assert!(
             map.contains(&format!("`NAME{suffix}`")) || map.contains(&format!("`NAME{suffix}/")),
+            "{suffix} is not in tests/README.md"
+        );
+    }
+    // Every file another command writes, by its name rule.
+    for file in steptable::emit::CommandFile::ALL {
+        let suffix = file.suffix();
+        assert!(
+            map.contains(&format!("`NAME{suffix}`")),
             "{suffix} is not in tests/README.md"
         );
     }

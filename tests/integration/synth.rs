@@ -20,9 +20,10 @@ fn the_classic_sequence_gives_the_papers_equations_and_every_file() {
         .stdout(contains("A1  = NOT (b OR x)"))
         .stdout(contains("total 13 nodes, largest equation 4 nodes"))
         .stdout(contains("simulation: passed"));
-    let out = dir.path().join("sequence");
+    // The folder and files are named after the sequence (`A+` is `A1`).
+    let out = dir.path().join("A1A0B1B0");
     let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("sequence.synth.json")).unwrap())
+        serde_json::from_str(&std::fs::read_to_string(out.join("A1A0B1B0.synth.json")).unwrap())
             .unwrap();
     assert_eq!(
         json["modified_sequence"],
@@ -34,17 +35,17 @@ fn the_classic_sequence_gives_the_papers_equations_and_every_file() {
     assert_eq!(json["method"], "both");
     assert_eq!(json["seed"], 1);
     assert_eq!(json["truth_table"]["rows"][0]["cells"][0], "1");
-    let st = std::fs::read_to_string(out.join("sequence.equations.st")).unwrap();
+    let st = std::fs::read_to_string(out.join("A1A0B1B0.equations.st")).unwrap();
     assert!(st.contains("ya_p := (enable AND (NOT (b OR x))); (* A1 *)"));
     assert!(st.contains("START AT %IX0.4 : BOOL;"), "{st}");
     assert!(st.contains("RESET_PB AT %IX0.7 : BOOL;"), "{st}");
     assert!(st.contains("CONFIGURATION Config0"));
-    let il = std::fs::read_to_string(out.join("sequence.equations.il")).unwrap();
+    let il = std::fs::read_to_string(out.join("A1A0B1B0.equations.il")).unwrap();
     assert!(
         il.contains("  LD x\n  AND enable\n  OR homing\n  ST ya_m\n"),
         "{il}"
     );
-    let sheet = crate::helpers::read_sheet(&out.join("sequence.xlsx"), "EQUATIONS");
+    let sheet = crate::helpers::read_sheet(&out.join("A1A0B1B0.synth.xlsx"), "EQUATIONS");
     assert_eq!(sheet[4][..3], ["ACTION", "EQUATION", "NODES"]);
     assert!(
         sheet
@@ -212,8 +213,8 @@ fn a_memory_reset_first_starts_set_in_both_programs() {
         .assert()
         .success()
         .stdout(contains("simulation: passed"));
-    let out = dir.path().join("sequence");
-    for file in ["sequence.equations.st", "sequence.equations.il"] {
+    let out = dir.path().join("A1B1B0A0");
+    for file in ["A1B1B0A0.equations.st", "A1B1B0A0.equations.il"] {
         let text = std::fs::read_to_string(out.join(file)).unwrap();
         assert!(
             text.contains("x : BOOL := TRUE; (* memory *)"),
@@ -336,7 +337,8 @@ fn the_ga_answers_every_benchmark_sequence_and_states_its_gap() {
         assert!(output.status.success(), "{text} seed {seed}: {stdout}");
         assert!(stdout.contains("simulation: passed"), "{text} seed {seed}");
         let json: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(dir.path().join("sequence/sequence.synth.json")).unwrap(),
+            &std::fs::read_to_string(crate::helpers::synthesised(dir.path(), text, ".synth.json"))
+                .unwrap(),
         )
         .unwrap();
         let inserted = json["inserted_operations"].as_u64().unwrap() as usize;
@@ -408,7 +410,12 @@ fn ctrl_c_keeps_the_best_equations_so_far() {
     );
     assert!(stdout.contains("simulation: passed"), "{stdout}");
     let json: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(dir.path().join("sequence/sequence.synth.json")).unwrap(),
+        &std::fs::read_to_string(crate::helpers::synthesised(
+            dir.path(),
+            "A1 A0 B1 B0 C1 C0 D1 D0 E1 E0 F1 F0 G1 G0 H1 H0 I1 I0 J1 J0 K1 K0",
+            ".synth.json",
+        ))
+        .unwrap(),
     )
     .unwrap();
     let comparison = &json["comparison"];
@@ -455,12 +462,15 @@ fn actuators_keep_their_names_in_every_output() {
         );
         assert!(stdout.contains(mapping), "{stdout}");
         assert!(stdout.contains("simulation: passed"), "{stdout}");
-        let st = std::fs::read_to_string(out.join("sequence/sequence.equations.st")).unwrap();
+        let st =
+            std::fs::read_to_string(crate::helpers::synthesised(&out, sequence, ".equations.st"))
+                .unwrap();
         for text in st_has {
             assert!(st.contains(text), "{sequence}: {text} not in\n{st}");
         }
         let json: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(out.join("sequence/sequence.synth.json")).unwrap(),
+            &std::fs::read_to_string(crate::helpers::synthesised(&out, sequence, ".synth.json"))
+                .unwrap(),
         )
         .unwrap();
         let written: Vec<&str> = json["sequence"]
@@ -470,7 +480,10 @@ fn actuators_keep_their_names_in_every_output() {
             .map(|t| t.as_str().unwrap())
             .collect();
         assert_eq!(written.join(" "), sequence);
-        let sheet = crate::helpers::read_sheet(&out.join("sequence/sequence.xlsx"), "EQUATIONS");
+        let sheet = crate::helpers::read_sheet(
+            &crate::helpers::synthesised(&out, sequence, ".synth.xlsx"),
+            "EQUATIONS",
+        );
         assert!(
             sheet
                 .iter()
@@ -506,7 +519,12 @@ fn the_front_shows_fewer_memories_against_smaller_equations() {
         let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
         assert!(stdout.contains("simulation: passed"), "{stdout}");
         let json: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(out.join("sequence/sequence.synth.json")).unwrap(),
+            &std::fs::read_to_string(crate::helpers::synthesised(
+                &out,
+                "A1 A0 A1 A0 A1 A0 B1 B0 C1 C0",
+                ".synth.json",
+            ))
+            .unwrap(),
         )
         .unwrap();
         let front: Vec<(u64, u64, bool, bool)> = json["front"]

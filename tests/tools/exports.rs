@@ -110,7 +110,11 @@ fn structured_text_parses_with_blark() {
         .arg(dir.path().join("synth"))
         .assert()
         .success();
-    files.push(dir.path().join("synth/sequence/sequence.equations.st"));
+    files.push(crate::helpers::synthesised(
+        &dir.path().join("synth"),
+        "A1 A0 A1 A0 A1 A0 B1 B0 C1 C0",
+        ".equations.st",
+    ));
     for file in files {
         // blark's grammar has no CONFIGURATION (matiec and OpenPLC's upload
         // compile the whole file in differential.rs): cut it off, and make

@@ -50,10 +50,10 @@ fn every_letter_synth_takes_compiles_in_matiec() {
             continue;
         }
         assert!(output.status.success(), "{text}: {stderr}");
-        for file in ["sequence.equations.st", "sequence.equations.il"] {
+        for file in [".equations.st", ".equations.il"] {
             let work = dir.path().join(format!("c{k}-{file}"));
             std::fs::create_dir_all(&work).unwrap();
-            let path = out.join("sequence").join(file);
+            let path = crate::helpers::synthesised(&out, text, file);
             matiec::compile(&shared, &path, &work).unwrap_or_else(|e| panic!("{text}: {e}"));
         }
     }

@@ -126,8 +126,8 @@ fn synthesised_programs_run_the_sequence_in_matiec() {
         };
         let s = synth::synthesize_with(&parse(text).unwrap(), options).unwrap();
         let model = modes::check(&s).unwrap_or_else(|e| panic!("{text}: the model: {e}"));
-        for file in ["sequence.equations.st", "sequence.equations.il"] {
-            let path = out.join("sequence").join(file);
+        for file in [".equations.st", ".equations.il"] {
+            let path = crate::helpers::synthesised(&out, text, file);
             let trace = run(&shared, &path, &s).unwrap_or_else(|e| panic!("{text}: {file}: {e}"));
             assert_eq!(trace, model, "{text}: {file}: matiec against the model");
             checked += 1;
