@@ -197,8 +197,14 @@ fn read(source: SynthSource) -> Result<Read, CommandError> {
         SynthSource::Table { path, sheet } => {
             let mut settings = Settings::new();
             settings.sheet = sheet.map(str::to_string);
-            let checked =
+            let mut checked =
                 crate::convert::check_path(path, &settings).map_err(CommandError::Input)?;
+            let (refused, unused) =
+                sheet_settings_synth_drops(&checked.settings, &checked.table.file);
+            checked.warnings.extend(unused);
+            if !refused.is_empty() {
+                return Err(CommandError::Input(refused).after(&checked.warnings));
+            }
             let sequence = synth::from_table(&checked.table)
                 .map_err(|d| CommandError::Input(vec![d]).after(&checked.warnings))?;
             Ok((
@@ -210,6 +216,82 @@ fn read(source: SynthSource) -> Result<Read, CommandError> {
             ))
         }
     }
+}
+
+/// What the workbook's SETTINGS and ADDRESSES sheets say that synthesis
+/// does not build: its equations have no operating modes, safety checks,
+/// interlocks or halt rows of the engineer's, and use their own addresses
+/// and timing. A row that keeps people or the machine safe (modes, safety,
+/// the interlock, the permissive, the halt and stop rows) is refused (E034
+/// at its cell: a "proven" controller without it would mislead); any other
+/// cell is W006 at the cell. Nothing is dropped in silence.
+fn sheet_settings_synth_drops(
+    settings: &Settings,
+    file: &str,
+) -> (Vec<Diagnostic>, Vec<Diagnostic>) {
+    let (mut refused, mut unused) = (Vec::new(), Vec::new());
+    let convert = "convert the table for a program that has it";
+    for (label, at) in &settings.cells {
+        let safety = matches!(*label, "modes" | "safety");
+        let diagnostic = |severity, code, why: &str| Diagnostic {
+            severity,
+            code,
+            location: at.clone(),
+            message: format!("{label}: synth {why}"),
+        };
+        if safety {
+            refused.push(diagnostic(
+                Severity::Error,
+                Code::E034NotSynthesisable,
+                &format!("does not build this into its equations; {convert}, or remove the row to synthesise"),
+            ));
+        } else {
+            unused.push(diagnostic(
+                Severity::Warning,
+                Code::W006NoEffect,
+                "does not use this setting (its equations take their own addresses and timing); it was not read",
+            ));
+        }
+    }
+    for (row, list) in &settings.named {
+        refused.push(Diagnostic {
+            severity: Severity::Error,
+            code: Code::E034NotSynthesisable,
+            location: list.at.clone(),
+            message: format!(
+                "{}: synth does not build this into its equations; {convert}, or remove the row to synthesise",
+                row.label()
+            ),
+        });
+    }
+    for pin in &settings.pins {
+        unused.push(Diagnostic {
+            severity: Severity::Warning,
+            code: Code::W006NoEffect,
+            location: pin.signal_at.clone(),
+            message: format!(
+                "{} {}: synth does not use pinned addresses (its equations name signals, not addresses); it was not read",
+                pin.signal, pin.address
+            ),
+        });
+    }
+    let sim = &settings.simulation;
+    if !(sim.strokes.per_actuator.is_empty()
+        && sim.valves.per_actuator.is_empty()
+        && sim.loads.is_empty())
+    {
+        unused.push(Diagnostic {
+            severity: Severity::Warning,
+            code: Code::W006NoEffect,
+            location: Location {
+                file: file.to_string(),
+                sheet: Some("SETTINGS".to_string()),
+                cell: None,
+            },
+            message: "synth does not use the actuator table (its proof uses its own valve and stroke model); it was not read".to_string(),
+        });
+    }
+    (refused, unused)
 }
 
 /// An error of `code` about `file` as a whole.

@@ -99,3 +99,72 @@ fn the_shortest_sequences_pass_every_proof_and_a_refusal_writes_nothing() {
             "modes: passed (START, STOP at the end of the cycle",
         ));
 }
+
+/// `synth` on a workbook says what of its SETTINGS and ADDRESSES it does
+/// not build: a safety row (modes, safety, interlock, …) is E034 at its
+/// cell and nothing is written (a proven controller without the engineer's
+/// interlock would mislead); any other setting or pin is W006 at its cell.
+#[test]
+fn synth_refuses_the_safety_rows_it_cannot_build_and_names_the_rest() {
+    let dir = tempfile::tempdir().unwrap();
+    let table: &[&[&str]] = &[&["C1+1"], &["C2+1"], &["C1-0"], &["C2-0"]];
+    let cases: &[(&[&[&str]], i32, &str)] = &[
+        (
+            &[&["interlock", "guard"]],
+            1,
+            "SETTINGS!B1: error[E034]: interlock: synth does not build this",
+        ),
+        (
+            &[&["modes", "stop"]],
+            1,
+            "SETTINGS!B1: error[E034]: modes: synth does not build this",
+        ),
+        (
+            &[&["start permissive", "air"]],
+            1,
+            "error[E034]: start permissive: synth does not build",
+        ),
+        (
+            &[&["target", "siemens"]],
+            0,
+            "SETTINGS!B1: warning[W006]: target: synth does not use this setting",
+        ),
+        (
+            &[&["scan time", "50ms"]],
+            0,
+            "SETTINGS!B1: warning[W006]: scan time: synth does not use",
+        ),
+    ];
+    for (settings, code, message) in cases {
+        let path = dir.path().join("s.xlsx");
+        crate::helpers::write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);
+        let out = dir.path().join("out");
+        let _ = std::fs::remove_dir_all(&out);
+        let assert = steptable()
+            .args(["synth", "--method", "exact", "-o"])
+            .arg(&out)
+            .arg(&path)
+            .assert()
+            .code(*code)
+            .stderr(contains(*message));
+        drop(assert);
+        if *code != 0 {
+            assert!(files_below(&out).is_empty(), "{message}: nothing written");
+        }
+    }
+    // Pins on ADDRESSES are named too.
+    let path = dir.path().join("p.xlsx");
+    crate::helpers::write_xlsx_sheets(
+        &path,
+        &[("TABLE", table), ("ADDRESSES", &[&["START", "I0.5"]])],
+    );
+    steptable()
+        .args(["synth", "--method", "exact", "-o"])
+        .arg(dir.path().join("out2"))
+        .arg(&path)
+        .assert()
+        .success()
+        .stderr(contains(
+            "warning[W006]: START I0.5: synth does not use pinned addresses",
+        ));
+}
