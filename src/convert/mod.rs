@@ -560,12 +560,12 @@ pub fn allocate(
         return Err(diags.into_sorted());
     }
     let Some(board) = settings.board else {
-        return Ok(Allocation::pinned(
-            program,
-            settings.target,
-            settings.mnemonic,
-            &pins,
-        ));
+        let allocation = Allocation::pinned(program, settings.target, settings.mnemonic, &pins);
+        beyond_the_image(&allocation, whole_file(), &mut diags);
+        if diags.has_errors() {
+            return Err(diags.into_sorted());
+        }
+        return Ok(allocation);
     };
     let allocation = Allocation::on_board(program, settings.mnemonic, &pins);
     for (input, needed, wired) in [
@@ -590,6 +590,31 @@ pub fn allocate(
         return Err(diags.into_sorted());
     }
     Ok(allocation)
+}
+
+/// A table so large that its inputs or outputs run past byte (or word) 255
+/// would get addresses no PLC's process image has, and that steptable
+/// refuses when they are pinned (E035): E024, with the counts.
+fn beyond_the_image(allocation: &Allocation, at: Location, diags: &mut Diagnostics) {
+    let max = crate::address::MAX_PINNED_UNIT;
+    for (what, list) in [
+        ("inputs", &allocation.inputs),
+        ("outputs", &allocation.outputs),
+    ] {
+        if list.iter().any(|a| a.address.unit > max)
+            && let Some(last) = list.last().map(|a| a.address)
+        {
+            diags.error(
+                Code::E024TableTooLarge,
+                at.clone(),
+                format!(
+                    "the program needs {} {what}, which run to {}, past the last address of the process image ({max}): split the machine into smaller tables",
+                    list.len(),
+                    last.display(allocation.mnemonic)
+                ),
+            );
+        }
+    }
 }
 
 /// The Festo allocation the FST files use whatever the target: `allocation`

@@ -126,3 +126,36 @@ fn a_watchdog_longer_than_a_plc_timer_holds_is_refused_at_its_step() {
             "1:1: error[E032]: step 1's watchdog would need 801.0 s",
         ));
 }
+
+/// A table whose inputs run past byte 255 of the process image (450
+/// actuators with four positions: 2,251 inputs, %IX281.2 on iec) is E024
+/// with the counts; the same table fits Festo's 16-bit words (I140.10).
+#[test]
+fn addresses_past_the_process_image_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("big.csv");
+    let mut text = String::from(",BRANCH 1\n");
+    for a in 1..=450 {
+        text.push_str(&format!(
+            "STEP {},C{a}+4\nSTEP {},C{a}-0\n",
+            2 * a - 1,
+            2 * a
+        ));
+    }
+    std::fs::write(&path, text).unwrap();
+    crate::helpers::steptable()
+        .arg("check")
+        .arg(&path)
+        .args(["--target", "iec"])
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "big.csv: error[E024]: the program needs 2251 inputs, which run to %IX281.2, past the last address of the process image (255)",
+        ));
+    crate::helpers::steptable()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .success()
+        .stdout(predicates::str::contains("I0.0 to I140.10"));
+}
