@@ -10,9 +10,9 @@ use steptable::convert;
 use steptable::program::Signal;
 use steptable::simulate::Fault;
 
-use crate::engines::{self, awlsim, fst, matiec};
+use crate::engines::{self, awlsim};
 use crate::helpers::{steptable, write_xlsx_sheets};
-use crate::{Check, Tool, shared, tool};
+use crate::{Check, Tool, tool};
 
 pub const CHECKS: &[Check] = &[
     Check::new(
@@ -374,20 +374,7 @@ fn run_everywhere(
             &checked.table,
             &checked.settings,
         );
-        let outputs = match format {
-            "st" => matiec::run(&shared(), &case.file(".st"), &case.trace, &case.allocation),
-            "awl" => awlsim::run(
-                &python,
-                &case.file(".awl"),
-                case.mnemonic,
-                &case.trace,
-                &case.allocation,
-            ),
-            _ => {
-                let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
-                fst::run(&text, &case.trace, &case.festo)
-            }
-        };
+        let outputs = engines::run_written(&case, format, &python);
         case.check(format, outputs).unwrap();
         cases.push(case);
     }

@@ -6,12 +6,11 @@
 
 use steptable::convert;
 use steptable::simulate::Operator;
-use steptable::simulate::io::IoSignals;
 use steptable::simulate::scenario::scenario_recording;
 
-use crate::engines::{self, awlsim, fst, matiec};
+use crate::engines::{self, awlsim};
 use crate::helpers::steptable;
-use crate::{Check, Tool, shared, tool};
+use crate::{Check, Tool, tool};
 
 pub const CHECKS: &[Check] = &[Check::new(
     "homing::reset_lifts_the_punch_before_it_opens_the_clamp_in_every_engine",
@@ -76,45 +75,25 @@ fn reset_lifts_the_punch_before_it_opens_the_clamp_in_every_engine() {
             .assert()
             .success();
         let checked = convert::check_path(&input, &engines::settings_for(&args)).unwrap();
-        let program = convert::build_program(&checked.table, &checked.settings);
-        let allocation =
-            convert::allocate(&program, &checked.settings, &checked.table.file).unwrap();
-        let festo = convert::festo_allocation(&program, &allocation);
-        let signals = IoSignals {
-            inputs: allocation.inputs.iter().map(|a| a.signal).collect(),
-            outputs: allocation.outputs.iter().map(|a| a.signal).collect(),
-        };
-        let (_, trace) = scenario_recording(
+        let (case, ()) = engines::record_with(
+            &format!("stamping {}", args.join(" ")),
+            out.join("stamping"),
+            "stamping",
             &checked.table,
-            &program,
-            &checked.settings.simulation,
-            &script(),
-            10_000,
-            signals,
+            &checked.settings,
+            |program, signals| {
+                let (_, trace) = scenario_recording(
+                    &checked.table,
+                    program,
+                    &checked.settings.simulation,
+                    &script(),
+                    10_000,
+                    signals,
+                );
+                ((), trace)
+            },
         );
-        let case = engines::Case {
-            label: format!("stamping {}", args.join(" ")),
-            dir: out.join("stamping"),
-            name: "stamping".to_string(),
-            mnemonic: allocation.mnemonic,
-            allocation,
-            festo,
-            trace,
-        };
-        let outputs = match format {
-            "st" => matiec::run(&shared(), &case.file(".st"), &case.trace, &case.allocation),
-            "awl" => awlsim::run(
-                &python,
-                &case.file(".awl"),
-                case.mnemonic,
-                &case.trace,
-                &case.allocation,
-            ),
-            _ => {
-                let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
-                fst::run(&text, &case.trace, &case.festo)
-            }
-        };
+        let outputs = engines::run_written(&case, format, &python);
         case.check(format, outputs).unwrap();
         // The engine's outputs are the trace's: read the order from it.
         let scans = &case.trace.scans;

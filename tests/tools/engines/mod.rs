@@ -213,6 +213,23 @@ pub fn record_run(
     table: &steptable::table::StepTable,
     settings: &Settings,
 ) -> (Case, simulate::SimReport) {
+    record_with(label, dir, name, table, settings, |program, signals| {
+        simulate::simulate_recording(table, program, &settings.simulation, signals)
+    })
+}
+
+/// The case of `table` under `settings`, its I/O recorded by `run` (the
+/// standard simulation, or a scripted one pressing STOP or RESET) over the
+/// signals of the allocation the written files use; what `run` found comes
+/// back beside it.
+pub fn record_with<R>(
+    label: &str,
+    dir: PathBuf,
+    name: &str,
+    table: &steptable::table::StepTable,
+    settings: &Settings,
+    run: impl FnOnce(&steptable::program::StepProgram, IoSignals) -> (R, IoTrace),
+) -> (Case, R) {
     let program = convert::build_program(table, settings);
     let allocation = convert::allocate(&program, settings, &table.file).expect("valid pins");
     let festo = convert::festo_allocation(&program, &allocation);
@@ -220,8 +237,7 @@ pub fn record_run(
         inputs: allocation.inputs.iter().map(|a| a.signal).collect(),
         outputs: allocation.outputs.iter().map(|a| a.signal).collect(),
     };
-    let (report, trace) =
-        simulate::simulate_recording(table, &program, &settings.simulation, signals);
+    let (report, trace) = run(&program, signals);
     let case = Case {
         label: label.to_string(),
         dir,
@@ -232,6 +248,30 @@ pub fn record_run(
         trace,
     };
     (case, report)
+}
+
+/// Runs the case's written `format` file (`st`, `awl`, else FST) in its
+/// engine over the recorded inputs: the outputs of every scan.
+pub fn run_written(case: &Case, format: &str, python: &Path) -> Result<Vec<Vec<bool>>, String> {
+    match format {
+        "st" => matiec::run(
+            &crate::shared(),
+            &case.file(".st"),
+            &case.trace,
+            &case.allocation,
+        ),
+        "awl" => awlsim::run(
+            python,
+            &case.file(".awl"),
+            case.mnemonic,
+            &case.trace,
+            &case.allocation,
+        ),
+        _ => {
+            let text = std::fs::read_to_string(case.file(".fst.txt")).map_err(|e| e.to_string())?;
+            fst::run(&text, &case.trace, &case.festo)
+        }
+    }
 }
 
 /// The recorded inputs, one line of 0/1 per scan.
