@@ -422,6 +422,13 @@ fn parse_dwell(text: &str) -> Option<u32> {
     parse_duration_in(text, MIN_DWELL_MS..=MAX_DWELL_MS)
 }
 
+/// A duration written without its unit (`T=500`, `1000`), which the
+/// duration parser reads as seconds and a PLC programmer used to
+/// milliseconds may not have meant: the one test of W007.
+pub fn without_unit(text: &str) -> bool {
+    text.trim().ends_with(|c: char| c.is_ascii_digit())
+}
+
 /// The one duration parser (dwells, stroke and scan times, input delays):
 /// `2s`, `500ms`, `1.5s`, `1,5s`, a bare number in seconds, at most three
 /// decimals, in exact decimal arithmetic; `None` outside `range` (ms).

@@ -631,7 +631,7 @@ fn read_actuator_rows(
 /// milliseconds: W007 at the cell, with both spellings.
 fn said_without_unit(grid: &Grid, cell: &GridCell, text: &str, diags: &mut Diagnostics) {
     let text = text.trim();
-    if matches!(cell.value, CellValue::Text(_)) && text.ends_with(|c: char| c.is_ascii_digit()) {
+    if matches!(cell.value, CellValue::Text(_)) && crate::cell::without_unit(text) {
         diags.warning(
             Code::W007Assumed,
             grid.location(cell.pos),

@@ -510,7 +510,7 @@ fn parse_cell(
         match result {
             Ok(item) => {
                 if let CellItem::Dwell { ms } = item
-                    && dwell_without_unit(part)
+                    && crate::cell::without_unit(part)
                 {
                     let number = part.split_once('=').map_or("", |(_, n)| n.trim());
                     let seconds = crate::cell::duration_text(ms);
@@ -544,12 +544,6 @@ fn parse_cell(
         }
     }
     items
-}
-
-/// `T=500`: a dwell whose number has no unit (read as seconds, which a
-/// PLC programmer used to milliseconds may not have meant).
-fn dwell_without_unit(item: &str) -> bool {
-    item.trim().ends_with(|c: char| c.is_ascii_digit())
 }
 
 /// Reports a refused item of the cell `text`: E010 quotes the item
