@@ -515,6 +515,32 @@ pub fn header_kind(text: &str) -> Option<Header> {
     bare_header(&squeezed)
 }
 
+/// The comment a `STEP n` label carries (`clamp part` of `STEP 3 (clamp
+/// part)`, `eject` of `STEP 4: eject`): what follows the number, without
+/// its separator and a closing bracket; `None` for a bare label.
+pub fn step_comment(text: &str) -> Option<String> {
+    if !matches!(header_kind(text), Some(Header::Step(_))) {
+        return None;
+    }
+    let trimmed = text.trim();
+    let after = trimmed
+        .char_indices()
+        .skip_while(|(_, c)| c.is_alphabetic() || c.is_whitespace())
+        .find(|(_, c)| !c.is_ascii_digit())
+        .map(|(i, _)| &trimmed[i..])?;
+    let bracketed = after.trim_start().starts_with('(');
+    let comment = after.trim_start_matches(|c: char| {
+        c.is_whitespace() || matches!(c, ':' | '-' | '–' | '—' | '(' | '.' | ',' | ';' | '=')
+    });
+    let comment = if bracketed {
+        comment.trim_end().strip_suffix(')').unwrap_or(comment)
+    } else {
+        comment
+    };
+    let comment = comment.trim();
+    (!comment.is_empty()).then(|| comment.to_string())
+}
+
 /// `BRANCH1` / `STEP1` with nothing else, any case.
 fn bare_header(squeezed: &str) -> Option<Header> {
     let split = squeezed.find(|c: char| c.is_ascii_digit())?;

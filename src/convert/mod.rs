@@ -38,6 +38,8 @@ pub struct Conversion {
     pub table: StepTable,
     pub allocation: Allocation,
     pub program: StepProgram,
+    /// Every name the outputs give (built once, read by every emitter).
+    pub symbols: crate::symbols::SymbolTable,
     /// The simulation that proved the program.
     pub simulation: SimReport,
     /// Every single input fault, simulated and classified (when an output
@@ -159,6 +161,41 @@ fn settings_without_their_actuator(
     }
 }
 
+/// The one check of every name against every other, over the table and
+/// its settings (see [`crate::symbols::check`]): table cells first, then
+/// the SETTINGS rows and the actuator names in sheet order, so that an
+/// error falls on the later of two names.
+fn names_of_the_whole_table(
+    table: &StepTable,
+    grid: &read::Grid,
+    settings: &Settings,
+    diags: &mut Diagnostics,
+) {
+    use crate::symbols::check;
+    let mut entries = check::table_entries(table, grid);
+    let mut later = Vec::new();
+    if let Some(row) = settings.named.get(&Row::StartPermissive) {
+        later.extend(check::row_entries(
+            Row::StartPermissive.label(),
+            &settings.program.permissive,
+            &row.at,
+        ));
+    }
+    if let Some(row) = settings.named.get(&Row::Interlock) {
+        let inputs: Vec<crate::cell::Name> = settings
+            .program
+            .interlocks
+            .iter()
+            .map(|i| i.input)
+            .collect();
+        later.extend(check::row_entries(Row::Interlock.label(), &inputs, &row.at));
+    }
+    later.extend(check::actuator_entries(table, &settings.naming, diags));
+    later.sort_by_key(|e| check::sheet_order(&e.at));
+    entries.extend(later);
+    check::check_entries(&entries, diags);
+}
+
 fn finish_check(
     input: Option<read::Input>,
     mut diags: Diagnostics,
@@ -190,7 +227,7 @@ fn finish_check(
         let modes = &effective.program.modes;
         let buttons: Vec<String> = modes
             .buttons()
-            .map(|b| b.ident().to_ascii_lowercase())
+            .map(|b| b.symbol().to_ascii_lowercase())
             .collect();
         // A home order from the SETTINGS sheet is blamed on its cell; one
         // from the command line on the file, naming the option.
@@ -217,6 +254,7 @@ fn finish_check(
         );
         effective.program.interlocks =
             halt::resolve_interlocks(table, &buttons, named.get(&Row::Interlock), &mut diags);
+        names_of_the_whole_table(table, &input.table, &effective, &mut diags);
         // A delay for an input the table does not have would be dropped
         // without a word (a batch may give one for some of its tables).
         for name in effective.simulation.input_delays.keys() {
@@ -527,12 +565,14 @@ pub fn generate_observed(
     let (program, simulation) = healthy_program(&table, settings, &sim_settings)?;
     let allocation = allocate(&program, settings, &table.file).map_err(Failure::Input)?;
     let festo = festo_allocation(&program, &allocation);
+    let symbols = crate::symbols::SymbolTable::build(&program, &table, &settings.naming);
     let input = EmitInput {
         name,
         table: &table,
         allocation: &allocation,
         festo: &festo,
         program: &program,
+        symbols: &symbols,
         simulation: Some(&simulation),
         faults: None,
         templates: &settings.templates,
@@ -593,6 +633,7 @@ pub fn generate_observed(
         table,
         allocation,
         program,
+        symbols,
         simulation,
         faults: fault_table,
         files,

@@ -8,9 +8,8 @@ use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
-use super::{EmitInput, action_comment, one_line, templates};
+use super::{EmitInput, one_line, templates};
 use crate::address::Mnemonic;
-use crate::names::FIRED;
 use crate::program::{Action, Literal};
 use crate::program::{Area, Signal};
 
@@ -96,10 +95,20 @@ struct Layout {
 /// `preset` holds its time.
 struct TimerBits {
     signal: Signal,
-    /// `wd` for the watchdog, `dw3` for dwell 3: the stem of the symbols.
-    stem: String,
+    /// The symbols of its run flag and preset (`dw3_run`, `dw3_pt`).
+    run_name: crate::symbols::Own,
+    preset_name: crate::symbols::Own,
     run: (u32, u32),
     preset_word: u32,
+}
+
+/// A name for a timer part the symbol table lacks (it never does: it
+/// names every timer of the program).
+fn own_default(what: &str) -> crate::symbols::Own {
+    crate::symbols::Own {
+        ident: format!("timer_{what}"),
+        comment: String::new(),
+    }
 }
 
 impl Layout {
@@ -129,11 +138,16 @@ impl Layout {
             .enumerate()
             .map(|(i, (&signal, run))| TimerBits {
                 signal,
-                stem: match signal {
-                    Signal::Dwell(n) => format!("dw{n}"),
-                    Signal::RunOn(n) => format!("ro{n}"),
-                    _ => "wd".to_string(),
-                },
+                run_name: input
+                    .symbols
+                    .timer(signal)
+                    .map(|t| t.step7_run.clone())
+                    .unwrap_or_else(|| own_default("run")),
+                preset_name: input
+                    .symbols
+                    .timer(signal)
+                    .map(|t| t.step7_preset.clone())
+                    .unwrap_or_else(|| own_default("pt")),
                 run,
                 preset_word: first_word + 2 * i as u32,
             })
@@ -235,25 +249,37 @@ fn build(input: &EmitInput) -> Context {
     let layout = Layout::new(input);
     let w = &layout.words;
     let program = input.program;
+    let symbols = input.symbols;
+    let fired = symbols.fired.ident.as_str();
+    let flag = |k: usize| {
+        symbols
+            .step(k)
+            .map(|s| s.flag.ident.clone())
+            .unwrap_or_default()
+    };
     let condition = |lines: &mut Vec<Line>, literals: &[Literal]| {
         for l in literals {
             let op = if l.negated { w.and_not } else { w.and };
-            lines.push(line(op, layout.operand(input, l.signal), l.signal.ident()));
+            lines.push(line(
+                op,
+                layout.operand(input, l.signal),
+                symbols.ident(l.signal),
+            ));
         }
     };
     let actions = |lines: &mut Vec<Line>, list: &[Action], moves: &[crate::table::Move]| {
         for a in list {
-            let comment = action_comment(*a, moves);
+            let comment = symbols.action_comment(*a, moves);
             match *a {
                 Action::Reset(Signal::Sequence) => {
                     // Back to STEP 1: every step flag off, the first on.
-                    for (k, flag) in layout.step_flags.iter().enumerate() {
-                        lines.push(line("R", Layout::m(*flag), format!("step_{}", k + 1)));
+                    for (k, bit) in layout.step_flags.iter().enumerate() {
+                        lines.push(line("R", Layout::m(*bit), flag(k)));
                     }
                     lines.push(line(
                         "S",
                         Layout::m(layout.step_flags[0]),
-                        "step_1: back to STEP 1",
+                        format!("{}: back to STEP 1", flag(0)),
                     ));
                 }
                 Action::Set(s) => lines.push(line("S", layout.operand(input, s), comment)),
@@ -263,13 +289,13 @@ fn build(input: &EmitInput) -> Context {
                     let word = format!("MW {}", t.preset_word);
                     let timer = timer_operand(input, s);
                     lines.push(line("L", s5time(ms), comment));
-                    lines.push(line("T", word.clone(), format!("{}_pt", t.stem)));
-                    lines.push(line("S", Layout::m(t.run), format!("{}_run", t.stem)));
+                    lines.push(line("T", word.clone(), t.preset_name.ident.clone()));
+                    lines.push(line("S", Layout::m(t.run), t.run_name.ident.clone()));
                     // A falling then a rising edge: the timer starts anew now.
                     lines.push(line("CLR", "", ""));
                     lines.push(line(w.on_delay, timer.clone(), "stop the timer"));
                     lines.push(line("SET", "", ""));
-                    lines.push(line("L", word, format!("{}_pt", t.stem)));
+                    lines.push(line("L", word, t.preset_name.ident.clone()));
                     lines.push(line(w.on_delay, timer, "and start it from now"));
                     lines.push(line("SET", "", ""));
                 }
@@ -282,10 +308,10 @@ fn build(input: &EmitInput) -> Context {
 
     // With no step flag set (first cycle after a cold start) wait at STEP 1.
     let mut init = Vec::new();
-    for (k, flag) in layout.step_flags.iter().enumerate() {
-        init.push(line(w.and_not, Layout::m(*flag), format!("step_{}", k + 1)));
+    for (k, bit) in layout.step_flags.iter().enumerate() {
+        init.push(line(w.and_not, Layout::m(*bit), flag(k)));
     }
-    init.push(line("S", Layout::m(layout.step_flags[0]), "step_1"));
+    init.push(line("S", Layout::m(layout.step_flags[0]), flag(0)));
     actions(&mut init, &program.init, &[]);
     networks.push(Network {
         title: "start: no step flag set, so wait at STEP 1".to_string(),
@@ -295,16 +321,17 @@ fn build(input: &EmitInput) -> Context {
         title: "no step has fired yet in this cycle".to_string(),
         lines: vec![
             line("SET", "", ""),
-            line("R", Layout::m(layout.fired), FIRED),
+            line("R", Layout::m(layout.fired), fired),
         ],
     });
     for t in &layout.timers {
         let timer = timer_operand(input, t.signal);
-        let stem = &t.stem;
-        let name = t.signal.ident();
+        let run = &t.run_name.ident;
+        let preset = &t.preset_name.ident;
+        let name = symbols.ident(t.signal);
         networks.push(Network {
             title: format!(
-                "{} timer: on-delay while {stem}_run; when it has elapsed, {stem}_run goes off",
+                "{} timer: on-delay while {run}; when it has elapsed, {run} goes off",
                 if t.signal == Signal::Watchdog {
                     "watchdog".to_string()
                 } else {
@@ -312,11 +339,11 @@ fn build(input: &EmitInput) -> Context {
                 }
             ),
             lines: vec![
-                line(w.and, Layout::m(t.run), format!("{stem}_run")),
-                line("L", format!("MW {}", t.preset_word), format!("{stem}_pt")),
+                line(w.and, Layout::m(t.run), run.clone()),
+                line("L", format!("MW {}", t.preset_word), preset.clone()),
                 line(w.on_delay, timer.clone(), name.clone()),
                 line(w.and, timer, format!("{name} elapsed")),
-                line("R", Layout::m(t.run), format!("{stem}_run")),
+                line("R", Layout::m(t.run), run.clone()),
             ],
         });
     }
@@ -329,12 +356,8 @@ fn build(input: &EmitInput) -> Context {
                           next: usize,
                           title: String| {
         let mut lines = vec![
-            line(
-                w.and,
-                Layout::m(layout.step_flags[k]),
-                format!("step_{}", k + 1),
-            ),
-            line(w.and_not, Layout::m(layout.fired), FIRED),
+            line(w.and, Layout::m(layout.step_flags[k]), flag(k)),
+            line(w.and_not, Layout::m(layout.fired), fired),
         ];
         condition(&mut lines, condition_of);
         let skip = label(labels);
@@ -342,17 +365,9 @@ fn build(input: &EmitInput) -> Context {
         lines.push(line(w.jump_if_not, skip.clone(), "condition not met"));
         lines.push(line("SET", "", ""));
         actions(&mut lines, fired_actions, moves);
-        lines.push(line(
-            "R",
-            Layout::m(layout.step_flags[k]),
-            format!("step_{}", k + 1),
-        ));
-        lines.push(line(
-            "S",
-            Layout::m(layout.step_flags[next]),
-            format!("step_{}", next + 1),
-        ));
-        lines.push(line("S", Layout::m(layout.fired), FIRED));
+        lines.push(line("R", Layout::m(layout.step_flags[k]), flag(k)));
+        lines.push(line("S", Layout::m(layout.step_flags[next]), flag(next)));
+        lines.push(line("S", Layout::m(layout.fired), fired));
         lines.push(Line {
             label: format!("{skip}:"),
             op: "NOP".to_string(),
@@ -380,7 +395,15 @@ fn build(input: &EmitInput) -> Context {
                 title,
             );
         }
-        let title = format!("STEP {}: {}", step.number, one_line(&step.title));
+        let title = format!(
+            "STEP {}: {}",
+            step.number,
+            one_line(
+                &symbols
+                    .step(k)
+                    .map_or(step.title.clone(), |s| s.title.clone())
+            )
+        );
         transition(
             k,
             &step.condition,
@@ -425,64 +448,53 @@ fn build(input: &EmitInput) -> Context {
         let (letter, number) = operand.split_once(' ').unwrap_or((operand, ""));
         format!("{letter:<4}{number:>7}")
     };
-    let mut symbols: Vec<Symbol> = input
+    let table: Vec<Symbol> = input
         .allocation
         .inputs
         .iter()
         .chain(&input.allocation.outputs)
         .chain(&input.allocation.memories)
         .map(|a| Symbol {
-            symbol: a.signal.ident(),
+            symbol: symbols.ident(a.signal),
             address: sdf_address(&layout.operand(input, a.signal)),
             data_type: "BOOL",
-            comment: one_line(&input.program.comment(a.signal, input.table)),
+            comment: one_line(&symbols.comment(a.signal)),
         })
         .collect();
-    for (k, flag) in layout.step_flags.iter().enumerate() {
-        symbols.push(Symbol {
-            symbol: format!("step_{}", k + 1),
-            address: sdf_address(&Layout::m(*flag)),
+    let mut table = table;
+    for (k, bit) in layout.step_flags.iter().enumerate() {
+        let names = symbols.step(k);
+        table.push(Symbol {
+            symbol: flag(k),
+            address: sdf_address(&Layout::m(*bit)),
             data_type: "BOOL",
-            comment: format!(
-                "the sequence waits to fire STEP {}",
-                program.steps[k].number
-            ),
+            comment: one_line(&names.map(|n| n.flag.comment.clone()).unwrap_or_default()),
         });
     }
-    symbols.push(Symbol {
-        symbol: FIRED.to_string(),
+    table.push(Symbol {
+        symbol: fired.to_string(),
         address: sdf_address(&Layout::m(layout.fired)),
         data_type: "BOOL",
-        comment: "a step fired in this cycle".to_string(),
+        comment: one_line(&symbols.fired.comment),
     });
     for t in &layout.timers {
-        let (what, preset) = if t.signal == Signal::Watchdog {
-            (
-                "watchdog".to_string(),
-                "watchdog preset of the running step".to_string(),
-            )
-        } else {
-            let what = t.signal.ident();
-            let preset = format!("{what} preset");
-            (what, preset)
-        };
-        symbols.push(Symbol {
-            symbol: format!("{}_run", t.stem),
+        table.push(Symbol {
+            symbol: t.run_name.ident.clone(),
             address: sdf_address(&Layout::m(t.run)),
             data_type: "BOOL",
-            comment: format!("{what} runs"),
+            comment: one_line(&t.run_name.comment),
         });
-        symbols.push(Symbol {
-            symbol: format!("{}_pt", t.stem),
+        table.push(Symbol {
+            symbol: t.preset_name.ident.clone(),
             address: sdf_address(&format!("MW {}", t.preset_word)),
             data_type: "S5TIME",
-            comment: preset,
+            comment: one_line(&t.preset_name.comment),
         });
-        symbols.push(Symbol {
-            symbol: t.signal.ident(),
+        table.push(Symbol {
+            symbol: symbols.ident(t.signal),
             address: sdf_address(&timer_operand(input, t.signal)),
             data_type: "TIMER",
-            comment: one_line(&input.program.comment(t.signal, input.table)),
+            comment: one_line(&symbols.comment(t.signal)),
         });
     }
 
@@ -498,7 +510,7 @@ fn build(input: &EmitInput) -> Context {
         },
         step_flags: format!("{} to {}", Layout::m(first_flag), Layout::m(last_flag)),
         networks,
-        symbols,
+        symbols: table,
     }
 }
 

@@ -1,6 +1,7 @@
-//! Output languages. Each emitter turns the one step program (plus the table and
-//! the allocation) into the bytes of one file. What a name, an address or an
-//! operator is, is decided here in Rust; templates in `templates/` only lay out.
+//! Output languages. Each emitter turns the one step program (plus the table,
+//! the allocation and the symbol table) into the bytes of one file. What an
+//! address or an operator is, is decided here in Rust, what a name or a
+//! comment is in [`crate::symbols`]; templates in `templates/` only lay out.
 
 pub mod awl;
 pub mod diagram;
@@ -19,12 +20,11 @@ pub use kind::OutputKind;
 pub use render::{EmitError, Renderer, render, render_each};
 
 use crate::address::Allocation;
-use crate::cell::Sign;
 use crate::faults::FaultTable;
-use crate::program::Signal;
-use crate::program::{Action, StepProgram};
+use crate::program::StepProgram;
 use crate::simulate::SimReport;
-use crate::table::{Move, StepTable};
+use crate::symbols::SymbolTable;
+use crate::table::StepTable;
 use templates::Templates;
 
 /// One generated file, in memory.
@@ -46,6 +46,9 @@ pub struct EmitInput<'a> {
     /// the target: allocated once, by the caller, not by each emitter.
     pub festo: &'a Allocation,
     pub program: &'a StepProgram,
+    /// Every name the outputs give a signal or a part of their own: the
+    /// emitters read names and comments only from here.
+    pub symbols: &'a SymbolTable,
     /// The simulation of the program, for the SIMULATION sheet.
     pub simulation: Option<&'a SimReport>,
     /// The fault table, for the FAULTS sheet.
@@ -71,60 +74,6 @@ impl EmitInput<'_> {
             Some(sheet) => format!("{file}, sheet {sheet}"),
             None => file,
         }
-    }
-}
-
-/// A short explanation of an action for a program comment.
-pub fn action_comment(action: Action, moves: &[Move]) -> String {
-    let symbol = action.signal().symbol();
-    match action {
-        Action::Set(Signal::Coil { actuator, sign }) => {
-            let target = moves
-                .iter()
-                .find(|m| m.actuator == actuator && m.sign == sign)
-                .map(|m| {
-                    let sensor = Signal::Sensor {
-                        actuator,
-                        position: m.to,
-                    };
-                    format!(", {} towards {}", m.notation(), sensor.symbol())
-                })
-                .unwrap_or_default();
-            let verb = if sign == Sign::Plus {
-                "extend"
-            } else {
-                "retract"
-            };
-            format!("{symbol} on: {verb} C{actuator}{target}")
-        }
-        Action::Reset(Signal::Coil { .. }) => format!("{symbol} off"),
-        Action::Set(Signal::SingleCoil { actuator }) => {
-            let target = moves
-                .iter()
-                .find(|m| m.actuator == actuator)
-                .map(|m| format!(", {}", m.notation()))
-                .unwrap_or_default();
-            format!("{symbol} on: extend C{actuator}{target}")
-        }
-        Action::Reset(Signal::SingleCoil { actuator }) => {
-            let target = moves
-                .iter()
-                .find(|m| m.actuator == actuator)
-                .map(|m| format!(", {}", m.notation()))
-                .unwrap_or_default();
-            format!("{symbol} off: the spring retracts C{actuator}{target}")
-        }
-        Action::Set(Signal::StopAt { actuator, position }) => {
-            format!(
-                "{symbol}: stop C{actuator} at {}",
-                Signal::Sensor { actuator, position }.symbol()
-            )
-        }
-        Action::Reset(Signal::StopAt { .. }) => format!("{symbol} off: stop request cleared"),
-        Action::StartTimer(s, ms) => format!("start {} for {ms} ms", s.symbol()),
-        Action::Reset(Signal::Sequence) => "the sequence goes back to STEP 1".to_string(),
-        Action::Set(s) => format!("{} on", s.symbol()),
-        Action::Reset(s) => format!("{} off", s.symbol()),
     }
 }
 

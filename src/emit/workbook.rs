@@ -28,6 +28,7 @@ pub const DIAGRAM_SHEET: &str = "DIAGRAM";
 /// middle-stop requests) and timers.
 pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
     let is_output = |a: &Action| a.signal().area() == Area::Output;
+    let name = |s: Signal| input.symbols.designation(s);
     let mut rows = Vec::new();
     let split = |actions: &[Action]| -> (Vec<Action>, String) {
         let (outputs, memories): (Vec<Action>, Vec<Action>) =
@@ -35,8 +36,8 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
         let requests = memories
             .iter()
             .map(|a| match a {
-                Action::StartTimer(s, ms) => format!("START {} ({ms} ms)", s.symbol()),
-                _ => format!("{} {}", a.verb(), a.signal().symbol()),
+                Action::StartTimer(s, ms) => format!("START {} ({ms} ms)", name(*s)),
+                _ => format!("{} {}", a.verb(), name(a.signal())),
             })
             .collect::<Vec<_>>()
             .join(" ");
@@ -51,7 +52,7 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
                 format!("STEP {} ({})", step.number, jump.title),
                 format!(
                     "{} GOTO STEP {next}",
-                    paper_sentence(&jump.condition, &outputs, Signal::symbol)
+                    paper_sentence(&jump.condition, &outputs, name)
                 ),
                 requests,
             ]);
@@ -64,7 +65,7 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
         };
         rows.push([
             label,
-            paper_sentence(&step.condition, &outputs, Signal::symbol),
+            paper_sentence(&step.condition, &outputs, name),
             requests,
         ]);
     }
@@ -72,7 +73,7 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
     for rung in &input.program.rungs {
         rows.push([
             rung.kind.label().to_string(),
-            paper_sentence(&rung.condition, &rung.actions, Signal::symbol),
+            paper_sentence(&rung.condition, &rung.actions, name),
             String::new(),
         ]);
     }
@@ -228,8 +229,8 @@ fn address_sheet(
     for (i, a) in list.iter().enumerate() {
         let row = i as u32 + 1;
         sheet.write_string(row, 0, a.address.display(input.allocation.mnemonic))?;
-        sheet.write_string(row, 1, a.signal.symbol())?;
-        sheet.write_string(row, 2, input.program.comment(a.signal, input.table))?;
+        sheet.write_string(row, 1, input.symbols.designation(a.signal))?;
+        sheet.write_string(row, 2, input.symbols.comment(a.signal))?;
     }
     sheet.set_column_width(0, 10)?;
     sheet.set_column_width(1, 10)?;

@@ -594,7 +594,7 @@ pub fn resolve_held_inputs(
                 None if names.contains(&name) => {
                     (Code::E030BadSetting, format!("{lower} is named twice"))
                 }
-                None => match held_input_problem(table, &names, name) {
+                None => match held_input_problem(table, name) {
                     Some(why) => (Code::E030BadSetting, why),
                     None => {
                         names.push(name);
@@ -608,13 +608,10 @@ pub fn resolve_held_inputs(
     names
 }
 
-/// Why a valid name cannot be a held input: an output, an input a step
-/// waits for, or one FST cannot tell from another name.
-fn held_input_problem(
-    table: &StepTable,
-    names: &[crate::cell::Name],
-    name: crate::cell::Name,
-) -> Option<String> {
+/// Why a valid name cannot be a held input: an output, or an input a step
+/// waits for. Names FST cannot tell apart are said by the one check over
+/// the table and its settings (crate::symbols::check).
+fn held_input_problem(table: &StepTable, name: crate::cell::Name) -> Option<String> {
     if table.outputs.contains(&name) {
         return Some(format!(
             "{name} is a machine output of the table, not an input"
@@ -625,13 +622,5 @@ fn held_input_problem(
             "the table waits for {name} in a step; name an input no step waits for"
         ));
     }
-    let other = table
-        .inputs
-        .iter()
-        .chain(&table.outputs)
-        .chain(names)
-        .find(|o| **o != name && crate::names::same_in_fst(o.as_str(), name.as_str()))?;
-    Some(format!(
-        "{name} and {other} begin with the same 9 characters, which is all Festo FST keeps of a symbol"
-    ))
+    None
 }

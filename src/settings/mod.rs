@@ -124,6 +124,8 @@ pub struct Settings {
     pub simulation: SimSettings,
     /// Horizontal axis of `NAME.diagram.svg`.
     pub diagram: DiagramKind,
+    /// How signals are designated, and the engineer's names of actuators.
+    pub naming: crate::symbols::Naming,
     /// Which files to write.
     pub formats: BTreeSet<OutputKind>,
     /// The templates text outputs are laid out by.
