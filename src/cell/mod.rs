@@ -528,6 +528,12 @@ pub fn step_comment(text: &str) -> Option<String> {
         .skip_while(|(_, c)| c.is_alphabetic() || c.is_whitespace())
         .find(|(_, c)| !c.is_ascii_digit())
         .map(|(i, _)| &trimmed[i..])?;
+    label_comment(after)
+}
+
+/// The comment after a label's number (`(clamp part)`, `: eject`), without
+/// its separator and a closing bracket; `None` when nothing is left.
+fn label_comment(after: &str) -> Option<String> {
     let bracketed = after.trim_start().starts_with('(');
     let comment = after.trim_start_matches(|c: char| {
         c.is_whitespace() || matches!(c, ':' | '-' | '–' | '—' | '(' | '.' | ',' | ';' | '=')
@@ -598,6 +604,25 @@ pub fn actuator_name(text: &str) -> Option<u32> {
         .parse()
         .ok()
         .filter(|n| (1..=MAX_ACTUATOR).contains(n))
+}
+
+/// The comment after an actuator's number in a settings row (`clamp` of
+/// `C1 (clamp)`, `gripper` of `C2: gripper`, `lift` of `C2 lift`); `None`
+/// for a bare `C2` or a text that names no actuator.
+pub fn actuator_comment(text: &str) -> Option<String> {
+    actuator_name(text)?;
+    let trimmed = text.trim();
+    // Past the `C`, the spaces and the digits (in any width the name allows).
+    let after = trimmed
+        .char_indices()
+        .skip(1)
+        .skip_while(|(_, c)| c.is_whitespace())
+        .find(|(_, c)| {
+            let n = normalize(c.encode_utf8(&mut [0; 4]));
+            !(n.len() == 1 && n.as_bytes()[0].is_ascii_digit())
+        })
+        .map(|(i, _)| &trimmed[i..])?;
+    label_comment(after)
 }
 
 /// True when the text looks like an attempt at a move (`C` followed by a digit

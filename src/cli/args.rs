@@ -154,6 +154,15 @@ pub(crate) struct CommonArgs {
     /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: the order the cycle itself returns them home).
     #[arg(long, value_name = "ORDER", value_parser = parse_home_order)]
     pub(crate) home_order: Option<HomeOrder>,
+    /// How signals are designated in every output: paper (x10, y1+; the default), iso (ISO 1219-2: 1A1, 1B1/1B2, 1M1/1M2) or names (the actuator table's names: clamp_home, clamp_out).
+    #[arg(long, ignore_case = true, value_parser = parse_designations())]
+    pub(crate) designations: Option<Scheme>,
+}
+
+/// `--designations`: the library's parser, with the schemes listed in `--help`.
+fn parse_designations() -> impl clap::builder::TypedValueParser<Value = Scheme> {
+    clap::builder::PossibleValuesParser::new(Scheme::ALL.map(Scheme::name))
+        .try_map(|text| text.parse::<Scheme>())
 }
 
 /// `--safety`'s help, listing every check there is.
@@ -261,6 +270,7 @@ impl CommonArgs {
                 modes: self.modes.clone(),
                 home_order: self.home_order.as_ref().map(|order| order.0.clone()),
                 valves: self.valve.clone().unwrap_or_default(),
+                designations: self.designations,
                 ..Given::default()
             }
             .with_board_target(),

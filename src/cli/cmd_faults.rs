@@ -92,6 +92,8 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
             code = code.max(EXIT_BAD_INPUT);
             continue;
         }
+        // The table's designations, as in every output of convert.
+        let symbols = steptable::symbols::SymbolTable::build(&program, &table, &settings.naming);
         let progress = super::progress::Progress::new("fault cases", false);
         let result = steptable::faults::analyse_observed(
             &table,
@@ -104,7 +106,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         // The table is written before anything is printed (see simulate).
         let file = steptable::emit::OutputFile {
             name: format!("{name}.faults.csv"),
-            bytes: match steptable::emit::faults_csv::render(&result) {
+            bytes: match steptable::emit::faults_csv::render(&result, &|s| symbols.designation(s)) {
                 Ok(b) => b,
                 Err(e) => {
                     eprintln!("internal error: {e}");
@@ -122,7 +124,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
             code = code.max(write_failed(&report, &err));
         }
         report.say(&format!("{}: {}", display_name(input), result.summary()));
-        let rows = steptable::faults::rows(&result);
+        let rows = steptable::faults::rows(&result, &|s| symbols.designation(s));
         let width = rows.iter().map(|r| r[0].len()).max().unwrap_or(5).max(5);
         let when = rows.iter().map(|r| r[2].len()).max().unwrap_or(7).max(7);
         report.say(&format!(

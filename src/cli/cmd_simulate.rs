@@ -61,10 +61,13 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
         // asked for must exist by then.
         let mut diagram = None;
         if let Some(dir) = &args.diagram {
+            let symbols =
+                steptable::symbols::SymbolTable::build(&program, &table, &settings.naming);
             let svg = steptable::emit::diagram::render_svg(
                 name,
                 &report,
                 steptable::emit::diagram::DiagramKind::Time,
+                &|n| symbols.actuator_parts(n),
             );
             let file = steptable::emit::OutputFile {
                 name: format!("{name}.time.svg"),

@@ -16,6 +16,7 @@ use steptable::emit::diagram::DiagramKind;
 use steptable::program::{Modes, Safety};
 use steptable::read::display_name;
 use steptable::settings::{Given, Settings};
+use steptable::symbols::Scheme;
 use steptable::write;
 
 /// `eprintln!` that never panics: with standard error closed or full

@@ -243,8 +243,13 @@ fn finish_check(
         let sheet = input.settings.as_ref().zip(sheet_given.as_ref());
         settings_without_their_actuator(table, settings, sheet, &input.table.file, &mut diags);
         let named = &effective.named;
-        effective.program.halt =
-            halt::resolve(table, &effective.simulation.valves, named, &mut diags);
+        effective.program.halt = halt::resolve(
+            table,
+            &effective.simulation.valves,
+            &effective.naming,
+            named,
+            &mut diags,
+        );
         effective.program.permissive = halt::resolve_held_inputs(
             table,
             &buttons,
@@ -482,6 +487,7 @@ pub fn allocate(
         &settings.pins,
         settings.target,
         settings.board,
+        &settings.naming,
         &mut diags,
     );
     if diags.has_errors() {

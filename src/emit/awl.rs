@@ -458,7 +458,9 @@ fn build(input: &EmitInput) -> Context {
             symbol: symbols.ident(a.signal),
             address: sdf_address(&layout.operand(input, a.signal)),
             data_type: "BOOL",
-            comment: one_line(&symbols.comment(a.signal)),
+            // The symbol table's fields are quoted: an engineer's `"` may
+            // not end one.
+            comment: one_line(&symbols.comment(a.signal)).replace('"', "'"),
         })
         .collect();
     let mut table = table;

@@ -58,11 +58,7 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
             ]);
         }
         let (outputs, requests) = split(&step.actions);
-        let label = if step.kind == crate::program::StepKind::EndOfCycle {
-            format!("STEP {} (END)", step.number)
-        } else {
-            format!("STEP {}", step.number)
-        };
+        let label = input.symbols.step_label(step.number);
         rows.push([
             label,
             paper_sentence(&step.condition, &outputs, name),
@@ -107,7 +103,7 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     sheet.set_column_width(0, 12)?;
     for (i, step) in input.table.steps.iter().enumerate() {
         let row = header_row + 1 + i as u32;
-        sheet.write_string_with_format(row, 0, format!("STEP {}", step.number), &bold)?;
+        sheet.write_string_with_format(row, 0, input.symbols.step_label(step.number), &bold)?;
         for branch in 0..input.table.branches {
             let text = step.cell_text(branch);
             if !text.is_empty() {
@@ -155,13 +151,25 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     sheet.set_freeze_panes(1, 0)?;
 
     if let Some(report) = input.simulation {
-        simulation_sheet(workbook.add_worksheet(), report, &bold, &title)?;
-    }
-    if let Some(report) = input.simulation {
-        diagram_sheet(workbook.add_worksheet(), report, &bold, &title)?;
+        // The SIMULATION sheet, then the DIAGRAM sheet.
+        for sheet in [simulation_sheet, diagram_sheet] {
+            sheet(
+                workbook.add_worksheet(),
+                report,
+                input.symbols,
+                &bold,
+                &title,
+            )?;
+        }
     }
     if let Some(faults) = input.faults {
-        faults_sheet(workbook.add_worksheet(), faults, &bold, &title)?;
+        faults_sheet(
+            workbook.add_worksheet(),
+            faults,
+            input.symbols,
+            &bold,
+            &title,
+        )?;
     }
 
     workbook.save_to_buffer()
@@ -170,6 +178,7 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
 fn simulation_sheet(
     sheet: &mut Worksheet,
     report: &SimReport,
+    symbols: &crate::symbols::SymbolTable,
     bold: &Format,
     title: &Format,
 ) -> Result<(), XlsxError> {
@@ -194,7 +203,7 @@ fn simulation_sheet(
     if let Some(cycle) = report.cycles.first() {
         for (i, step) in cycle.steps.iter().enumerate() {
             let row = header + 1 + i as u32;
-            sheet.write_string(row, 0, format!("STEP {}", step.step))?;
+            sheet.write_string(row, 0, symbols.step_label(step.step))?;
             sheet.write_number(row, 1, step.start_ms as f64 / 1000.0)?;
             sheet.write_number(row, 2, step.duration_ms as f64 / 1000.0)?;
             sheet.write_string(row, 3, &step.moves)?;
@@ -242,6 +251,7 @@ fn address_sheet(
 fn faults_sheet(
     sheet: &mut Worksheet,
     faults: &FaultTable,
+    symbols: &crate::symbols::SymbolTable,
     bold: &Format,
     title: &Format,
 ) -> Result<(), XlsxError> {
@@ -262,7 +272,8 @@ fn faults_sheet(
     {
         sheet.write_string_with_format(header, col as u16, *text, bold)?;
     }
-    for (i, row) in crate::faults::rows(faults).iter().enumerate() {
+    let name = |s: Signal| symbols.designation(s);
+    for (i, row) in crate::faults::rows(faults, &name).iter().enumerate() {
         for (col, text) in row.iter().enumerate() {
             if !text.is_empty() {
                 sheet.write_string(header + 1 + i as u32, col as u16, text)?;
@@ -293,6 +304,7 @@ fn chart_height(pmax: u32) -> u32 {
 fn diagram_sheet(
     sheet: &mut Worksheet,
     report: &SimReport,
+    symbols: &crate::symbols::SymbolTable,
     bold: &Format,
     title: &Format,
 ) -> Result<(), XlsxError> {
@@ -320,8 +332,8 @@ fn diagram_sheet(
     let mut chart_row = 1u32;
     for (i, (number, pmax)) in report.actuators.iter().enumerate() {
         let col = i as u16 + 1;
-        sheet.write_string_with_format(header, col, format!("C{number}"), bold)?;
-        let label = format!("C{number}");
+        let label = symbols.actuator(*number);
+        sheet.write_string_with_format(header, col, &label, bold)?;
         let mut chart = Chart::new(ChartType::ScatterStraightWithMarkers);
         chart
             .add_series()

@@ -43,6 +43,10 @@ pub struct Given {
     pub valves: BTreeMap<u32, ValveType>,
     /// Drift rates per actuator (stroke per second).
     pub loads: BTreeMap<u32, f64>,
+    /// The engineer's names of actuators (`C1 (clamp)` in the actuator table).
+    pub names: BTreeMap<u32, crate::symbols::ActuatorName>,
+    /// The designation scheme (`designations`).
+    pub designations: Option<crate::symbols::Scheme>,
     /// The rows that name outputs or inputs (`hold-safe`, `on stop`, …),
     /// as written: checked against the table once it is read.
     pub named: halt::NamedRows,
@@ -62,6 +66,7 @@ impl Given {
             "safety" => self.safety.is_some(),
             "modes" => self.modes.is_some(),
             "home order" => self.home_order.is_some(),
+            "designations" => self.designations.is_some(),
             other => halt::Row::from_label(other).is_some_and(|row| self.named.contains_key(&row)),
         }
     }
@@ -97,6 +102,8 @@ impl Given {
             strokes: merged(&self.strokes, &other.strokes),
             valves: merged(&self.valves, &other.valves),
             loads: merged(&self.loads, &other.loads),
+            names: merged(&self.names, &other.names),
+            designations: self.designations.or(other.designations),
             named: merged(&self.named, &other.named),
             cells: other
                 .cells
@@ -211,6 +218,12 @@ impl Settings {
         simulation.strokes.per_actuator.extend(&layer.strokes);
         simulation.valves.per_actuator.extend(&layer.valves);
         simulation.loads.extend(&layer.loads);
+        self.naming
+            .actuators
+            .extend(layer.names.iter().map(|(n, name)| (*n, name.clone())));
+        if let Some(scheme) = layer.designations {
+            self.naming.scheme = scheme;
+        }
     }
 
     /// Defaults: Festo addresses, middle stops, no safety checks, every format.

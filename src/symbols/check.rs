@@ -210,8 +210,12 @@ pub fn check_entries(entries: &[Entry], diags: &mut Diagnostics) {
             } else {
                 continue;
             };
-            // One error per place and name pair.
-            let key = (entry.at.clone(), entry.name.clone());
+            // One error per place and name pair; one per actuator name,
+            // whose signals would all say the same.
+            let key = match entry.actuator {
+                Some(_) => (entry.at.clone(), String::new()),
+                None => (entry.at.clone(), entry.name.clone()),
+            };
             if !said.contains(&key) {
                 said.push(key);
                 diags.error(Code::E025NameClash, entry.at.clone(), message);

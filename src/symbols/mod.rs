@@ -60,6 +60,10 @@ pub struct Own {
 /// The names of one step of the program.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct StepNames {
+    /// The step's number, as in the table.
+    pub number: usize,
+    /// The step's label on the sheets: `STEP 3 (clamp part)`, `STEP 9 (END)`.
+    pub label: String,
     /// What the step does, with the engineer's comment of its row:
     /// `C1+1 (clamp part)`.
     pub title: String,
@@ -82,7 +86,8 @@ pub struct TimerNames {
 pub struct SymbolTable {
     pub scheme: Scheme,
     signals: BTreeMap<Signal, Symbol>,
-    actuators: BTreeMap<u32, String>,
+    /// Each actuator's label (`C1`, `1A1`) and the engineer's name.
+    actuators: BTreeMap<u32, (String, Option<String>)>,
     steps: Vec<StepNames>,
     timers: BTreeMap<Signal, TimerNames>,
     pub step_counter: Own,
@@ -136,10 +141,10 @@ impl SymbolTable {
         used.push(Signal::Sequence);
 
         let designate = |s: Signal| naming.designation(s, table);
-        let actuators: BTreeMap<u32, String> = table
+        let actuators: BTreeMap<u32, (String, Option<String>)> = table
             .actuators
             .iter()
-            .map(|a| (a.number, naming.actuator_label(a.number)))
+            .map(|a| (a.number, naming.actuator_parts(a.number)))
             .collect();
         let actuator = |n: u32| naming.actuator_words(n);
         let mut table_of = BTreeMap::new();
@@ -226,6 +231,14 @@ impl SymbolTable {
                     .find(|t| t.number == s.number && s.kind == crate::program::StepKind::Table)
                     .and_then(|t| t.comment.as_deref());
                 StepNames {
+                    number: s.number,
+                    label: match (s.kind, comment) {
+                        (crate::program::StepKind::EndOfCycle, _) => {
+                            format!("STEP {} (END)", s.number)
+                        }
+                        (_, Some(c)) => format!("STEP {} ({c})", s.number),
+                        (_, None) => format!("STEP {}", s.number),
+                    },
                     title: match comment {
                         Some(c) => format!("{} ({c})", s.title),
                         None => s.title.clone(),
@@ -295,15 +308,32 @@ impl SymbolTable {
 
     /// Actuator `n` as the outputs name it: `C1`, `C1 (clamp)`, `1A1 (clamp)`.
     pub fn actuator(&self, n: u32) -> String {
+        match self.actuator_parts(n) {
+            (head, Some(name)) => format!("{head} ({name})"),
+            (head, None) => head,
+        }
+    }
+
+    /// Actuator `n` as a diagram labels its lane: `C1` (`1A1` under ISO)
+    /// and the engineer's name, if it has one.
+    pub fn actuator_parts(&self, n: u32) -> (String, Option<String>) {
         self.actuators
             .get(&n)
             .cloned()
-            .unwrap_or_else(|| format!("C{n}"))
+            .unwrap_or_else(|| (format!("C{n}"), None))
     }
 
     /// The names of the step at `index` among the program's steps.
     pub fn step(&self, index: usize) -> Option<&StepNames> {
         self.steps.get(index)
+    }
+
+    /// The label of the table's step `number` (`STEP 3 (clamp part)`).
+    pub fn step_label(&self, number: usize) -> String {
+        self.steps
+            .iter()
+            .find(|s| s.number == number)
+            .map_or_else(|| format!("STEP {number}"), |s| s.label.clone())
     }
 
     /// The run flag and preset names of a timer.

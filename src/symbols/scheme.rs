@@ -125,16 +125,14 @@ impl Naming {
         named(signal, table, |n| self.own_stem(n)).unwrap_or_else(|| signal.symbol())
     }
 
-    /// Actuator `n` in an action's comment: `C1`, `C1 (clamp)`, `1A1 (clamp)`.
-    pub fn actuator_label(&self, n: u32) -> String {
+    /// Actuator `n` in an action's comment and a diagram: `C1` (`1A1`
+    /// under ISO) and the engineer's name, if it has one.
+    pub fn actuator_parts(&self, n: u32) -> (String, Option<String>) {
         let head = match self.scheme {
             Scheme::Iso => format!("{n}A1"),
             _ => format!("C{n}"),
         };
-        match self.actuators.get(&n) {
-            Some(name) => format!("{head} ({})", name.text),
-            None => head,
-        }
+        (head, self.actuators.get(&n).map(|name| name.text.clone()))
     }
 
     /// Actuator `n` after `cylinder` in a comment: `1`, `1 (clamp)`, `1A1 (clamp)`.
@@ -153,12 +151,17 @@ impl Naming {
     /// paper symbol and identifier, and the engineer's names whatever the
     /// scheme (`clamp_out`).
     pub fn aliases(&self, signal: Signal, table: &StepTable) -> Vec<String> {
+        self.aliases_by(signal, &|a| table.actuator(a).map_or(1, |x| x.max_position))
+    }
+
+    /// [`Naming::aliases`], each actuator's end position given by `pmax`.
+    pub fn aliases_by(&self, signal: Signal, pmax: &dyn Fn(u32) -> u32) -> Vec<String> {
         let mut names = vec![signal.symbol(), paper_ident(signal)];
         let own = |n: u32| self.actuators.get(&n).and_then(ActuatorName::stem);
-        if let Some(name) = named(signal, table, own) {
+        if let Some(name) = named_by(signal, pmax, own) {
             names.push(name);
         }
-        if let Some(iso) = iso(signal, table) {
+        if let Some(iso) = iso_by(signal, pmax) {
             names.push(iso);
         }
         names
@@ -172,10 +175,22 @@ fn named(
     table: &StepTable,
     stem: impl Fn(u32) -> Option<String>,
 ) -> Option<String> {
+    named_by(
+        signal,
+        &|a| table.actuator(a).map_or(1, |x| x.max_position),
+        stem,
+    )
+}
+
+fn named_by(
+    signal: Signal,
+    pmax_of: &dyn Fn(u32) -> u32,
+    stem: impl Fn(u32) -> Option<String>,
+) -> Option<String> {
     match signal {
         Signal::Sensor { actuator, position } => {
             let name = stem(actuator)?;
-            let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
+            let pmax = pmax_of(actuator);
             Some(if position == 0 {
                 format!("{name}_home")
             } else if position == pmax {
@@ -201,9 +216,13 @@ fn named(
 /// `nB3`; solenoids `nM1` (+, the only one of a single-solenoid valve) and
 /// `nM2` (-).
 fn iso(signal: Signal, table: &StepTable) -> Option<String> {
+    iso_by(signal, &|a| table.actuator(a).map_or(1, |x| x.max_position))
+}
+
+fn iso_by(signal: Signal, pmax_of: &dyn Fn(u32) -> u32) -> Option<String> {
     match signal {
         Signal::Sensor { actuator, position } => {
-            let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
+            let pmax = pmax_of(actuator);
             let number = if position == 0 {
                 1
             } else if position == pmax {

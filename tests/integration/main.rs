@@ -11,6 +11,7 @@ mod codes;
 #[allow(dead_code, unused_imports)]
 #[path = "../../src/cli/mod.rs"]
 mod cli;
+mod designations;
 mod diagram;
 mod drive_coasting;
 mod energy;
@@ -25,6 +26,7 @@ mod homing;
 mod hostile;
 mod hostile_messages;
 mod hostile_settings;
+mod identifiers;
 mod jump_paths;
 mod jumps;
 mod layers;
