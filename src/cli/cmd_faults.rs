@@ -106,7 +106,11 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         // The table is written before anything is printed (see simulate).
         let file = steptable::emit::OutputFile {
             name: format!("{name}.faults.csv"),
-            bytes: match steptable::emit::faults_csv::render(&result, &|s| symbols.designation(s)) {
+            bytes: match steptable::emit::faults_csv::render(
+                &result,
+                &|s| symbols.designation(s),
+                &|t| symbols.designate(t),
+            ) {
                 Ok(b) => b,
                 Err(e) => {
                     eprintln!("internal error: {e}");
@@ -124,7 +128,9 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
             code = code.max(write_failed(&report, &err));
         }
         report.say(&format!("{}: {}", display_name(input), result.summary()));
-        let rows = steptable::faults::rows(&result, &|s| symbols.designation(s));
+        let rows = steptable::faults::rows(&result, &|s| symbols.designation(s), &|t| {
+            symbols.designate(t)
+        });
         let width = rows.iter().map(|r| r[0].len()).max().unwrap_or(5).max(5);
         let when = rows.iter().map(|r| r[2].len()).max().unwrap_or(7).max(7);
         report.say(&format!(

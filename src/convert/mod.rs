@@ -161,6 +161,65 @@ fn settings_without_their_actuator(
     }
 }
 
+/// The valve types and stroke times the command line gives by an
+/// actuator's name (`--valve clamp=52mono`), put in force for the actuator
+/// the SETTINGS actuator table names so; a name no actuator of the table
+/// has, or an actuator given by name and by number, is E030.
+fn by_name(table: &StepTable, settings: &mut Settings, file: &str, diags: &mut Diagnostics) {
+    let at = Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: None,
+    };
+    let naming = settings.naming.clone();
+    let named: Vec<String> = naming
+        .actuators
+        .iter()
+        .map(|(n, a)| format!("C{n} ({})", a.text))
+        .collect();
+    let mut resolve = |option: &str, name: &str, numbered: bool| -> Option<u32> {
+        let why = match naming.actuator_named(name) {
+            Some(n) if table.actuator(n).is_none() => {
+                format!(
+                    "{name} is C{n}, which the table does not have; the setting would do nothing"
+                )
+            }
+            Some(n) if numbered => {
+                format!("{name} is C{n}, which is given by number too; give each actuator once")
+            }
+            Some(n) => return Some(n),
+            None if named.is_empty() => format!(
+                "no actuator is named {name}: the SETTINGS actuator table names none (C1 (clamp))"
+            ),
+            None => format!(
+                "no actuator is named {name} (the actuator table names {})",
+                named.join(", ")
+            ),
+        };
+        diags.error(
+            Code::E030BadSetting,
+            at.clone(),
+            format!("--{option} {name}=…: {why}"),
+        );
+        None
+    };
+    let given = settings.given.clone();
+    for (name, valve) in &given.named_valves {
+        let n = naming.actuator_named(name);
+        let numbered = n.is_some_and(|n| given.valves.contains_key(&n));
+        if let Some(n) = resolve("valve", name, numbered) {
+            settings.simulation.valves.per_actuator.insert(n, *valve);
+        }
+    }
+    for (name, stroke) in &given.named_strokes {
+        let n = naming.actuator_named(name);
+        let numbered = n.is_some_and(|n| given.strokes.contains_key(&n));
+        if let Some(n) = resolve("stroke", name, numbered) {
+            settings.simulation.strokes.per_actuator.insert(n, *stroke);
+        }
+    }
+}
+
 /// The one check of every name against every other, over the table and
 /// its settings (see [`crate::symbols::check`]): table cells first, then
 /// the SETTINGS rows and the actuator names in sheet order, so that an
@@ -224,6 +283,7 @@ fn finish_check(
     }
     let table = table::build(&input.table, &mut diags);
     if let Some(table) = &table {
+        by_name(table, &mut effective, &input.table.file, &mut diags);
         let modes = &effective.program.modes;
         let buttons: Vec<String> = modes
             .buttons()

@@ -8,8 +8,13 @@ use crate::program::Signal;
 /// one row per case (pairs have both signals joined with `+`); `appears`
 /// is the first moment of the cycle at which the fault gives its outcome,
 /// `detected` is `alarm` when an alarm output came on in that run. Each
-/// signal is called as `name` says (its designation in the symbol table).
-pub fn render(table: &FaultTable, name: &dyn Fn(Signal) -> String) -> Result<Vec<u8>, csv::Error> {
+/// signal is called as `name` says (its designation in the symbol table),
+/// in the explanation too (`text` turns the paper's symbols into those).
+pub fn render(
+    table: &FaultTable,
+    name: &dyn Fn(Signal) -> String,
+    text: &dyn Fn(&str) -> String,
+) -> Result<Vec<u8>, csv::Error> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record([
         "fault",
@@ -36,7 +41,7 @@ pub fn render(table: &FaultTable, name: &dyn Fn(Signal) -> String) -> Result<Vec
             c.appears(table.moments.len()),
             c.detected_text().to_string(),
             c.step.map(|s| s.to_string()).unwrap_or_default(),
-            c.explanation.clone(),
+            text(&c.explanation),
         ])?;
     }
     writer

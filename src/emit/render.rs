@@ -157,8 +157,10 @@ impl<'a> Renderer<'a> {
                 let faults = input
                     .faults
                     .ok_or_else(|| internal("fault table", "not analysed"))?;
-                super::faults_csv::render(faults, &|s| self.input.symbols.designation(s))
-                    .map_err(|e| internal("fault table", e))?
+                super::faults_csv::render(faults, &|s| self.input.symbols.designation(s), &|t| {
+                    self.input.symbols.designate(t)
+                })
+                .map_err(|e| internal("fault table", e))?
             }
             OutputKind::TiaTags => {
                 super::tables::render_tia_tags(&input).map_err(|e| internal("TIA tag table", e))?

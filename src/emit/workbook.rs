@@ -273,7 +273,8 @@ fn faults_sheet(
         sheet.write_string_with_format(header, col as u16, *text, bold)?;
     }
     let name = |s: Signal| symbols.designation(s);
-    for (i, row) in crate::faults::rows(faults, &name).iter().enumerate() {
+    let text = |t: &str| symbols.designate(t);
+    for (i, row) in crate::faults::rows(faults, &name, &text).iter().enumerate() {
         for (col, text) in row.iter().enumerate() {
             if !text.is_empty() {
                 sheet.write_string(header + 1 + i as u32, col as u16, text)?;

@@ -466,8 +466,12 @@ pub fn judge(report: &SimReport) -> (Outcome, Option<usize>, String) {
 
 /// The rows of the fault table: fault, outcome, when it appears, whether
 /// an alarm came on, step, explanation; each signal called as `name` says
-/// (its designation in the outputs).
-pub fn rows(table: &FaultTable, name: &dyn Fn(Signal) -> String) -> Vec<[String; 6]> {
+/// (its designation in the outputs), also in the explanation (`text`).
+pub fn rows(
+    table: &FaultTable,
+    name: &dyn Fn(Signal) -> String,
+    text: &dyn Fn(&str) -> String,
+) -> Vec<[String; 6]> {
     table
         .cases
         .iter()
@@ -478,7 +482,7 @@ pub fn rows(table: &FaultTable, name: &dyn Fn(Signal) -> String) -> Vec<[String;
                 c.appears(table.moments.len()),
                 c.detected_text().to_string(),
                 c.step.map(|s| s.to_string()).unwrap_or_default(),
-                c.explanation.clone(),
+                text(&c.explanation),
             ]
         })
         .collect()

@@ -94,9 +94,7 @@ fn outputs_named(
     let lower = name.to_ascii_lowercase();
     // The engineer's names: `clamp` is C1, `clamp_out` its coil + (under
     // any designation scheme).
-    if let Some((n, _)) = naming.actuators.iter().find(|(_, a)| {
-        a.text.eq_ignore_ascii_case(name.trim()) || a.stem().as_deref() == Some(lower.trim())
-    }) {
+    if let Some(n) = naming.actuator_named(name) {
         return outputs_named(table, valves, &Naming::default(), &format!("C{n}"));
     }
     let coils = table.actuators.iter().flat_map(|a| {

@@ -43,6 +43,11 @@ pub struct Given {
     pub valves: BTreeMap<u32, ValveType>,
     /// Drift rates per actuator (stroke per second).
     pub loads: BTreeMap<u32, f64>,
+    /// Valve types and stroke times the command line gives by an
+    /// actuator's name (`--valve clamp=52mono`): resolved once the table's
+    /// names are read (`convert`).
+    pub named_valves: BTreeMap<String, ValveType>,
+    pub named_strokes: BTreeMap<String, Stroke>,
     /// The engineer's names of actuators (`C1 (clamp)` in the actuator table).
     pub names: BTreeMap<u32, crate::symbols::ActuatorName>,
     /// The designation scheme (`designations`).
@@ -103,6 +108,19 @@ impl Given {
             valves: merged(&self.valves, &other.valves),
             loads: merged(&self.loads, &other.loads),
             names: merged(&self.names, &other.names),
+            // The command line's word wins: it comes last.
+            named_valves: other
+                .named_valves
+                .clone()
+                .into_iter()
+                .chain(self.named_valves.clone())
+                .collect(),
+            named_strokes: other
+                .named_strokes
+                .clone()
+                .into_iter()
+                .chain(self.named_strokes.clone())
+                .collect(),
             designations: self.designations.or(other.designations),
             named: merged(&self.named, &other.named),
             cells: other

@@ -14,7 +14,7 @@ mod scheme;
 
 use std::collections::BTreeMap;
 
-pub use scheme::{ActuatorName, Naming, Scheme, paper_ident};
+pub use scheme::{ActuatorName, Naming, Scheme, paper_ident, stem as scheme_stem};
 
 use crate::cell::Sign;
 use crate::program::{Action, Area, Signal, StepProgram};
@@ -326,6 +326,34 @@ impl SymbolTable {
     /// The names of the step at `index` among the program's steps.
     pub fn step(&self, index: usize) -> Option<&StepNames> {
         self.steps.get(index)
+    }
+
+    /// `text` (a simulation's explanation, written in the paper's symbols)
+    /// with each signal's paper symbol replaced by its designation: a whole
+    /// word only (`x10`, `y1+`), never part of one (`C1+1` stays).
+    pub fn designate(&self, text: &str) -> String {
+        if self.scheme == Scheme::Paper {
+            return text.to_string();
+        }
+        let by_symbol: BTreeMap<String, &str> = self
+            .signals
+            .iter()
+            .filter(|(s, x)| s.symbol() != x.designation)
+            .map(|(s, x)| (s.symbol(), x.designation.as_str()))
+            .collect();
+        let word = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '+' | '-' | ':');
+        let mut out = String::with_capacity(text.len());
+        let mut rest = text;
+        while let Some(start) = rest.find(word) {
+            out.push_str(&rest[..start]);
+            let tail = &rest[start..];
+            let end = tail.find(|c: char| !word(c)).unwrap_or(tail.len());
+            let token = &tail[..end];
+            out.push_str(by_symbol.get(token).copied().unwrap_or(token));
+            rest = &tail[end..];
+        }
+        out.push_str(rest);
+        out
     }
 
     /// The label of the table's step `number` (`STEP 3 (clamp part)`).

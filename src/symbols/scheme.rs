@@ -110,6 +110,17 @@ impl Naming {
         }
     }
 
+    /// The actuator the engineer named `name` (as written, in any case, or
+    /// as its identifier stem: `Gripper Arm`, `gripper_arm`).
+    pub fn actuator_named(&self, name: &str) -> Option<u32> {
+        let name = name.trim();
+        let lower = name.to_ascii_lowercase();
+        self.actuators
+            .iter()
+            .find(|(_, a)| a.text.eq_ignore_ascii_case(name) || a.stem().as_deref() == Some(&lower))
+            .map(|(n, _)| *n)
+    }
+
     /// The identifier of `signal`.
     pub fn ident(&self, signal: Signal, table: &StepTable) -> String {
         named(signal, table, |n| self.own_stem(n)).unwrap_or_else(|| paper_ident(signal))

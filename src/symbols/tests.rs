@@ -238,3 +238,17 @@ fn name_stems() {
     assert_eq!(scheme::stem("Greifer ü"), None);
     assert_eq!(scheme::stem("  "), None);
 }
+
+#[test]
+fn explanations_speak_in_the_designations() {
+    let t = table("C1+1\nC1-0");
+    let names = symbols(&t, &named(Scheme::Names, &[(1, "clamp")]));
+    assert_eq!(
+        names.designate("C1+1 waits: C1 had not reached x11; y1+ on, x10 stuck"),
+        "C1+1 waits: C1 had not reached clamp_end; clamp_out on, clamp_home stuck"
+    );
+    let paper = symbols(&t, &Naming::default());
+    assert_eq!(paper.designate("x10 (y1-)"), "x10 (y1-)");
+    let iso = symbols(&t, &named(Scheme::Iso, &[]));
+    assert_eq!(iso.designate("x10 (y1-), x100"), "1B1 (1M2), x100");
+}

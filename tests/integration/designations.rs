@@ -254,6 +254,59 @@ type Hostile<'a> = (
 );
 
 #[test]
+fn options_name_an_actuator_by_its_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = station(dir.path(), &[]);
+    // A single-solenoid clamp has no retract coil.
+    let files = convert(
+        &input,
+        &dir.path().join("v"),
+        &["--valve", "clamp=52mono", "--formats", "io"],
+    );
+    assert!(!files[0].1.contains(",y1-,"), "{}", files[0].1);
+    assert!(files[0].1.contains(",y2-,"), "{}", files[0].1);
+    // A slow punch takes the cycle longer, as C2=3s does.
+    let cycle = |args: &[&str]| {
+        let output = steptable()
+            .arg("simulate")
+            .arg(&input)
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(output.status.success(), "{args:?}");
+        String::from_utf8_lossy(&output.stdout).to_string()
+    };
+    let by_name = cycle(&["--stroke", "punch=3s"]);
+    assert_eq!(by_name, cycle(&["--stroke", "C2=3s"]));
+    assert_ne!(by_name, cycle(&[]));
+    // A name no actuator has, or one actuator twice: E030, nothing written.
+    for (args, message) in [
+        (
+            ["--valve", "clamps=52mono"],
+            "error[E030]: --valve clamps=…: no actuator is named clamps (the actuator table names C1 (clamp), C2 (punch), C3 (ejector))",
+        ),
+        (
+            ["--stroke", "C1=2s,clamp=3s"],
+            "error[E030]: --stroke clamp=…: clamp is C1, which is given by number too",
+        ),
+    ] {
+        let out = dir.path().join("bad");
+        let output = steptable()
+            .arg("convert")
+            .arg(&input)
+            .args(args)
+            .arg("-o")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{stderr}");
+        assert!(stderr.contains(message), "{stderr}");
+        assert!(files_below(&out).is_empty());
+    }
+}
+
+#[test]
 fn hostile_names_are_refused_with_their_code_and_cell() {
     let dir = tempfile::tempdir().unwrap();
     // (what, actuator rows, table cell of STEP 5, args, code and message)
