@@ -6,7 +6,7 @@
 //! [`read`] (file → grid of cells) → [`table`] (grid → checked steps and moves)
 //! → [`program`] (the step program every output is rendered from) →
 //! [`address`] (the program's signals → addresses per PLC dialect) → [`emit`]
-//! (one file per output language); [`simulate`] and [`faults`] run the
+//! (one file per output language, every name read from [`symbols`]); [`simulate`] and [`faults`] run the
 //! program, [`synth`] stands beside. [`convert`] runs the whole pipeline in
 //! memory, [`write`] writes the result atomically (replacing only what a
 //! [`manifest`] records), and [`batch`] converts many inputs in parallel.
@@ -41,6 +41,7 @@ pub mod settings;
 pub mod sheets;
 pub mod simulate;
 pub mod stroke;
+pub mod symbols;
 pub mod synth;
 pub mod table;
 pub mod template_workbook;

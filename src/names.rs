@@ -2,7 +2,7 @@
 //! the IEC 61131-3 standard library, addresses of STEP 7 and FST, and the
 //! names the generated program uses for itself.
 
-/// The step counter of the Structured Text programs.
+/// The step counter of the Structured Text programs (`step` is a keyword).
 pub const STEP_COUNTER: &str = "active_step";
 /// The STEP 7 memory that lets at most one step fire per cycle.
 pub const FIRED: &str = "fired";
@@ -17,7 +17,8 @@ pub fn fst_stem(name: &str) -> String {
 
 /// Instruction-list operators and the function-block inputs IL names as
 /// operators (`S1`, `IN`, `PT`): matiec refuses a variable of one of these
-/// names in IL (checked one by one), so no signal may have them.
+/// names in IL (checked one by one), so no signal of synth's IL may have
+/// them. The table's programs have no IL: there they are names like any.
 #[rustfmt::skip]
 pub const IL_OPERATORS: &[&str] = &[
     "LD", "LDN", "ST", "STN", "S", "R", "S1", "R1", "AND", "ANDN", "OR", "ORN", "XOR", "XORN",
@@ -122,9 +123,9 @@ pub fn reserved_name(name: &str) -> Option<String> {
     if KEYWORDS.contains(&upper.as_str()) {
         return Some("it is a keyword of a PLC language".to_string());
     }
-    if IL_OPERATORS.contains(&upper.as_str()) {
-        return Some("it is an instruction-list operator (matiec reads it as one)".to_string());
-    }
+    // Instruction-list operators (`r`, `s`, `ld`) are refused only for
+    // synth's IL output ([`synth_problem`]): the table's programs are ST,
+    // where matiec accepts them.
     if is_standard_library_name(&upper) {
         return Some(
             "it is a standard function, function block or data type of IEC 61131-3 (matiec, OpenPLC and CODESYS would take it for that)"
@@ -442,11 +443,14 @@ mod tests {
     }
 
     #[test]
-    fn il_operators_and_mode_buttons_are_refused_in_any_case() {
+    fn il_operators_are_names_outside_il_and_mode_buttons_are_refused_in_any_case() {
+        // matiec accepts these in ST; only synth's IL refuses them (`r1`,
+        // `s1` stay refused as FST registers).
         for name in [
-            "ld", "st", "s", "r", "s1", "r1", "in", "pt", "clk", "cal", "ret", "jmpc",
+            "ld", "st", "s", "r", "in", "pt", "clk", "cal", "ret", "jmpc",
         ] {
-            assert!(signal_problem(name, &[]).is_some(), "{name}");
+            assert_eq!(signal_problem(name, &[]), None, "{name}");
+            assert!(synth_problem(name, &[name.to_string()]).is_some(), "{name}");
         }
         let buttons = ["estop".to_string(), "stop".to_string()];
         assert!(signal_problem("estop", &buttons).unwrap().contains("ESTOP"));

@@ -268,7 +268,8 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         "Operating modes in the program: none, all, or a list of {} (estop brings reset).",
         crate::program::Modes::NAMES.join(", ")
     );
-    let rows: [(&str, &str, &str, Option<&[&str]>); 15] = [
+    let schemes = crate::symbols::Scheme::ALL.map(crate::symbols::Scheme::name);
+    let rows: [(&str, &str, &str, Option<&[&str]>); 16] = [
         (
             "target",
             "default",
@@ -344,6 +345,12 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             None,
         ),
         (
+            "designations",
+            "paper",
+            "What the lists, comments and fault table call a signal: paper (x10, y1+), iso (ISO 1219-2: 1A1 cylinder, 1B1/1B2 sensors, 1M1/1M2 solenoids) or names (the actuator table's names: clamp_home, clamp_out). Name an actuator in the table below: C1 (clamp).",
+            Some(&schemes),
+        ),
+        (
             "home order",
             "default",
             "Homing stages for RESET, first to last, e.g. C3&C4, C2, C1. default: the order the cycle itself returns the actuators home (each actuator's last move, earliest first; those whose last moves share a step go together).",
@@ -367,8 +374,8 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             sheet.add_data_validation(row, 1, row, 1, &validation)?;
         }
     }
-    // Below the 15 rows of settings and a blank row.
-    let header = 21;
+    // Below the rows of settings and a blank row.
+    let header = 4 + rows.len() as u32 + 2;
     sheet.write_string(
         header - 1,
         0,

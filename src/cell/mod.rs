@@ -522,6 +522,38 @@ pub fn header_kind(text: &str) -> Option<Header> {
     bare_header(&squeezed)
 }
 
+/// The comment a `STEP n` label carries (`clamp part` of `STEP 3 (clamp
+/// part)`, `eject` of `STEP 4: eject`): what follows the number, without
+/// its separator and a closing bracket; `None` for a bare label.
+pub fn step_comment(text: &str) -> Option<String> {
+    if !matches!(header_kind(text), Some(Header::Step(_))) {
+        return None;
+    }
+    let trimmed = text.trim();
+    let after = trimmed
+        .char_indices()
+        .skip_while(|(_, c)| c.is_alphabetic() || c.is_whitespace())
+        .find(|(_, c)| !c.is_ascii_digit())
+        .map(|(i, _)| &trimmed[i..])?;
+    label_comment(after)
+}
+
+/// The comment after a label's number (`(clamp part)`, `: eject`), without
+/// its separator and a closing bracket; `None` when nothing is left.
+fn label_comment(after: &str) -> Option<String> {
+    let bracketed = after.trim_start().starts_with('(');
+    let comment = after.trim_start_matches(|c: char| {
+        c.is_whitespace() || matches!(c, ':' | '-' | '–' | '—' | '(' | '.' | ',' | ';' | '=')
+    });
+    let comment = if bracketed {
+        comment.trim_end().strip_suffix(')').unwrap_or(comment)
+    } else {
+        comment
+    };
+    let comment = comment.trim();
+    (!comment.is_empty()).then(|| comment.to_string())
+}
+
 /// `BRANCH1` / `STEP1` with nothing else, any case.
 fn bare_header(squeezed: &str) -> Option<Header> {
     let split = squeezed.find(|c: char| c.is_ascii_digit())?;
@@ -579,6 +611,25 @@ pub fn actuator_name(text: &str) -> Option<u32> {
         .parse()
         .ok()
         .filter(|n| (1..=MAX_ACTUATOR).contains(n))
+}
+
+/// The comment after an actuator's number in a settings row (`clamp` of
+/// `C1 (clamp)`, `gripper` of `C2: gripper`, `lift` of `C2 lift`); `None`
+/// for a bare `C2` or a text that names no actuator.
+pub fn actuator_comment(text: &str) -> Option<String> {
+    actuator_name(text)?;
+    let trimmed = text.trim();
+    // Past the `C`, the spaces and the digits (in any width the name allows).
+    let after = trimmed
+        .char_indices()
+        .skip(1)
+        .skip_while(|(_, c)| c.is_whitespace())
+        .find(|(_, c)| {
+            let n = normalize(c.encode_utf8(&mut [0; 4]));
+            !(n.len() == 1 && n.as_bytes()[0].is_ascii_digit())
+        })
+        .map(|(i, _)| &trimmed[i..])?;
+    label_comment(after)
 }
 
 /// True when the text looks like an attempt at a move (`C` followed by a digit

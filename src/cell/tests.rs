@@ -266,3 +266,23 @@ fn jumps_read_as_engineers_type_them() {
     }
     assert!(looks_like_item("J:7 if I:reject"));
 }
+
+#[test]
+fn label_comments_are_read_without_their_separators() {
+    assert_eq!(
+        step_comment("STEP 3 (clamp part)").as_deref(),
+        Some("clamp part")
+    );
+    assert_eq!(step_comment("step 4: eject").as_deref(), Some("eject"));
+    assert_eq!(step_comment("STEP 2 - lift").as_deref(), Some("lift"));
+    assert_eq!(step_comment("STEP 2"), None);
+    assert_eq!(step_comment("C1+1"), None);
+    assert_eq!(actuator_comment("C1 (clamp)").as_deref(), Some("clamp"));
+    assert_eq!(
+        actuator_comment("C12: gripper arm").as_deref(),
+        Some("gripper arm")
+    );
+    assert_eq!(actuator_comment("C2 lift").as_deref(), Some("lift"));
+    assert_eq!(actuator_comment("C2"), None);
+    assert_eq!(actuator_comment("clamp"), None);
+}

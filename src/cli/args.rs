@@ -40,10 +40,58 @@ pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
     Ok(delays)
 }
 
-pub(crate) type StrokeMap = std::collections::BTreeMap<u32, crate::stroke::Stroke>;
+/// Per-actuator values by number (`C2=…`) and by the engineer's name
+/// (`clamp=…`, resolved once the table's SETTINGS names are read).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Keyed<T> {
+    pub(crate) numbered: std::collections::BTreeMap<u32, T>,
+    pub(crate) named: std::collections::BTreeMap<String, T>,
+}
+
+/// Splits `C1=…,clamp=…` into the items that name an actuator by number,
+/// parsed by `numbered` as before, and those that give a name, each value
+/// parsed by `one`.
+fn parse_keyed<T>(
+    text: &str,
+    numbered: impl Fn(&str) -> Result<std::collections::BTreeMap<u32, T>, String>,
+    one: impl Fn(&str, &str) -> Result<T, String>,
+) -> Result<Keyed<T>, String> {
+    let mut by_number = Vec::new();
+    let mut named = std::collections::BTreeMap::new();
+    for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+        let key = item.split_once('=').map_or(item, |(k, _)| k).trim();
+        let is_name = crate::cell::parse_actuator(key).is_none()
+            && crate::symbols::scheme_stem(key).is_some()
+            && item.contains('=');
+        if !is_name {
+            by_number.push(item);
+            continue;
+        }
+        let value = item.split_once('=').map_or("", |(_, v)| v);
+        let lower = key.to_ascii_lowercase();
+        if named.insert(lower.clone(), one(item, value)?).is_some() {
+            return Err(format!(
+                "\"{item}\": {lower} is given twice; give each actuator once"
+            ));
+        }
+    }
+    Ok(Keyed {
+        numbered: numbered(&by_number.join(","))?,
+        named,
+    })
+}
+
+pub(crate) type StrokeMap = Keyed<crate::stroke::Stroke>;
 
 pub(crate) fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
-    crate::stroke::parse_strokes(text)
+    parse_keyed(text, crate::stroke::parse_strokes, |item, value| {
+        // One item alone, with its value under a placeholder number.
+        crate::stroke::parse_strokes(&format!("C1={value}"))
+            .map(|m| m.into_values().next().unwrap_or_default())
+            .map_err(|_| {
+                format!("\"{item}\": \"{value}\" is not a stroke time such as 1.5s or 800ms (or extend/retract: 1.5s/0.8s)")
+            })
+    })
 }
 
 pub(crate) fn parse_scan(text: &str) -> Result<u32, String> {
@@ -55,7 +103,16 @@ impl SimArgs {
         settings.give(Given {
             scan_ms: self.scan,
             loads: self.load.clone().unwrap_or_default(),
-            strokes: self.stroke.clone().unwrap_or_default(),
+            strokes: self
+                .stroke
+                .as_ref()
+                .map(|s| s.numbered.clone())
+                .unwrap_or_default(),
+            named_strokes: self
+                .stroke
+                .as_ref()
+                .map(|s| s.named.clone())
+                .unwrap_or_default(),
             ..Given::default()
         });
         if let Some(delays) = &self.input_delay {
@@ -146,7 +203,7 @@ pub(crate) struct CommonArgs {
     #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
     pub(crate) message_format: MessageFormat,
     #[arg(long, value_name = "LIST", value_parser = parse_valves, help = valves_help())]
-    pub(crate) valve: Option<std::collections::BTreeMap<u32, crate::valve::ValveType>>,
+    pub(crate) valve: Option<Keyed<crate::valve::ValveType>>,
     #[arg(long, value_name = "LIST", value_parser = parse_safety, help = safety_help())]
     pub(crate) safety: Option<Safety>,
     #[arg(long, value_name = "LIST", value_parser = parse_modes, help = modes_help())]
@@ -154,6 +211,15 @@ pub(crate) struct CommonArgs {
     /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: the order the cycle itself returns them home).
     #[arg(long, value_name = "ORDER", value_parser = parse_home_order)]
     pub(crate) home_order: Option<HomeOrder>,
+    /// How signals are designated in every output: paper (x10, y1+; the default), iso (ISO 1219-2: 1A1, 1B1/1B2, 1M1/1M2) or names (the actuator table's names: clamp_home, clamp_out).
+    #[arg(long, ignore_case = true, value_parser = parse_designations())]
+    pub(crate) designations: Option<Scheme>,
+}
+
+/// `--designations`: the library's parser, with the schemes listed in `--help`.
+fn parse_designations() -> impl clap::builder::TypedValueParser<Value = Scheme> {
+    clap::builder::PossibleValuesParser::new(Scheme::ALL.map(Scheme::name))
+        .try_map(|text| text.parse::<Scheme>())
 }
 
 /// `--safety`'s help, listing every check there is.
@@ -210,10 +276,12 @@ pub(crate) fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<Out
     OutputKind::parse_list(text)
 }
 
-pub(crate) fn parse_valves(
-    text: &str,
-) -> Result<std::collections::BTreeMap<u32, crate::valve::ValveType>, String> {
-    crate::valve::parse_valves(text)
+pub(crate) fn parse_valves(text: &str) -> Result<Keyed<crate::valve::ValveType>, String> {
+    parse_keyed(text, crate::valve::parse_valves, |item, value| {
+        value
+            .parse::<crate::valve::ValveType>()
+            .map_err(|e| format!("\"{item}\": {e}"))
+    })
 }
 
 pub(crate) fn parse_loads(text: &str) -> Result<std::collections::BTreeMap<u32, f64>, String> {
@@ -260,7 +328,17 @@ impl CommonArgs {
                 safety: self.safety,
                 modes: self.modes.clone(),
                 home_order: self.home_order.as_ref().map(|order| order.0.clone()),
-                valves: self.valve.clone().unwrap_or_default(),
+                valves: self
+                    .valve
+                    .as_ref()
+                    .map(|v| v.numbered.clone())
+                    .unwrap_or_default(),
+                named_valves: self
+                    .valve
+                    .as_ref()
+                    .map(|v| v.named.clone())
+                    .unwrap_or_default(),
+                designations: self.designations,
                 ..Given::default()
             }
             .with_board_target(),

@@ -63,7 +63,10 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
             display_name(input),
             run.result.summary()
         ));
-        let rows = crate::faults::rows(&run.result);
+        let symbols = &run.symbols;
+        let rows = crate::faults::rows(&run.result, &|s| symbols.designation(s), &|t| {
+            symbols.designate(t)
+        });
         let width = rows.iter().map(|r| r[0].len()).max().unwrap_or(5).max(5);
         let when = rows.iter().map(|r| r[2].len()).max().unwrap_or(7).max(7);
         report.say(&format!(

@@ -19,6 +19,7 @@ use crate::emit::diagram::DiagramKind;
 use crate::program::{Modes, Safety};
 use crate::read::display_name;
 use crate::settings::{Given, Settings};
+use crate::symbols::Scheme;
 use crate::write;
 
 /// `eprintln!` that never panics: with standard error closed or full

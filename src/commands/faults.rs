@@ -8,8 +8,10 @@ use crate::convert;
 use crate::diag::{Code, Diagnostic, Location, Severity};
 use crate::emit::{OutputFile, OutputKind};
 use crate::faults::{self, FaultTable};
+use crate::program::StepProgram;
 use crate::provenance::{self, MadeBy};
 use crate::settings::Settings;
+use crate::symbols::SymbolTable;
 use crate::table::StepTable;
 use crate::write::{self, WriteError};
 
@@ -29,6 +31,8 @@ pub struct FaultsRun {
     pub table: StepTable,
     pub warnings: Vec<Diagnostic>,
     pub result: FaultTable,
+    /// The table's names and designations, as in every output of convert.
+    pub symbols: SymbolTable,
     /// The paths written, or why the table could not be written (the
     /// analysis stands: the caller still shows it).
     pub written: Result<Vec<PathBuf>, WriteError>,
@@ -50,14 +54,17 @@ pub fn run(
     let warnings = checked.warnings;
     let (table, settings) = (checked.table, checked.settings);
     let analysed = analyse(&table, &settings, options, progress).map_err(|e| e.after(&warnings));
-    let result = analysed?;
+    let (program, result) = analysed?;
+    let symbols = SymbolTable::build(&program, &table, &settings.naming);
     let made_by = MadeBy::of_run(&settings, &table.file);
-    let file = crate::emit::faults_csv::render(&result)
-        .map(|bytes| OutputFile {
-            name: OutputKind::Faults.file_name(name),
-            bytes,
-        })
-        .map_err(|e| CommandError::Internal(format!("fault table: {e}")))?;
+    let file = crate::emit::faults_csv::render(&result, &|s| symbols.designation(s), &|t| {
+        symbols.designate(t)
+    })
+    .map(|bytes| OutputFile {
+        name: OutputKind::Faults.file_name(name),
+        bytes,
+    })
+    .map_err(|e| CommandError::Internal(format!("fault table: {e}")))?;
     let file = provenance::stamp(file, &made_by).map_err(CommandError::Internal)?;
     let written = write::write_outputs(
         &out.join(name),
@@ -70,18 +77,19 @@ pub fn run(
         table,
         warnings,
         result,
+        symbols,
         written,
     })
 }
 
 /// The healthy program, both budgets (cases and steps fired) and the
-/// analysis.
+/// analysis, with the program it ran.
 fn analyse(
     table: &StepTable,
     settings: &Settings,
     options: FaultsOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<FaultTable, CommandError> {
+) -> Result<(StepProgram, FaultTable), CommandError> {
     let (program, _) = convert::healthy_program(table, settings, &settings.simulation)?;
     let at_once = options.at_once;
     let cases = faults::case_count(&program, at_once);
@@ -110,11 +118,6 @@ fn analyse(
     if let Some(why) = faults::over_budget(table, &program, &settings.simulation, at_once) {
         return Err(CommandError::Input(vec![convert::budget_error(table, why)]));
     }
-    Ok(faults::analyse_observed(
-        table,
-        &program,
-        &settings.simulation,
-        at_once,
-        progress,
-    ))
+    let result = faults::analyse_observed(table, &program, &settings.simulation, at_once, progress);
+    Ok((program, result))
 }

@@ -12,6 +12,7 @@ use crate::emit::{CommandFile, OutputFile};
 use crate::provenance::{self, MadeBy};
 use crate::settings::Settings;
 use crate::simulate::{self, SimReport};
+use crate::symbols::SymbolTable;
 use crate::table::StepTable;
 use crate::write::{self, WriteError};
 
@@ -72,9 +73,11 @@ pub fn run(
     let diagram = match diagram {
         Some(dir) => {
             let made_by = MadeBy::of_run(&settings, &table.file);
+            let symbols = SymbolTable::build(&program, &table, &settings.naming);
+            let parts = |n| symbols.actuator_parts(n);
             let file = OutputFile {
                 name: CommandFile::TimeDiagram.file_name(name),
-                bytes: render_svg(name, &report, DiagramKind::Time).into_bytes(),
+                bytes: render_svg(name, &report, DiagramKind::Time, &parts).into_bytes(),
             };
             let file = provenance::stamp(file, &made_by)
                 .map_err(|why| CommandError::from(Failure::Internal(why)))?;

@@ -38,6 +38,8 @@ pub struct Conversion {
     pub table: StepTable,
     pub allocation: Allocation,
     pub program: StepProgram,
+    /// Every name the outputs give (built once, read by every emitter).
+    pub symbols: crate::symbols::SymbolTable,
     /// The simulation that proved the program.
     pub simulation: SimReport,
     /// Every single input fault, simulated and classified (when an output
@@ -233,6 +235,100 @@ fn overridden_by_the_command_line(
     }
 }
 
+/// The valve types and stroke times the command line gives by an
+/// actuator's name (`--valve clamp=52mono`), put in force for the actuator
+/// the SETTINGS actuator table names so; a name no actuator of the table
+/// has, or an actuator given by name and by number, is E030.
+fn by_name(table: &StepTable, settings: &mut Settings, file: &str, diags: &mut Diagnostics) {
+    let at = Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: None,
+    };
+    let naming = settings.naming.clone();
+    let named: Vec<String> = naming
+        .actuators
+        .iter()
+        .map(|(n, a)| format!("C{n} ({})", a.text))
+        .collect();
+    let mut resolve = |option: &str, name: &str, numbered: bool| -> Option<u32> {
+        let why = match naming.actuator_named(name) {
+            Some(n) if table.actuator(n).is_none() => {
+                format!(
+                    "{name} is C{n}, which the table does not have; the setting would do nothing"
+                )
+            }
+            Some(n) if numbered => {
+                format!("{name} is C{n}, which is given by number too; give each actuator once")
+            }
+            Some(n) => return Some(n),
+            None if named.is_empty() => format!(
+                "no actuator is named {name}: the SETTINGS actuator table names none (C1 (clamp))"
+            ),
+            None => format!(
+                "no actuator is named {name} (the actuator table names {})",
+                named.join(", ")
+            ),
+        };
+        diags.error(
+            Code::E030BadSetting,
+            at.clone(),
+            format!("--{option} {name}=…: {why}"),
+        );
+        None
+    };
+    let given = settings.given.clone();
+    for (name, valve) in &given.named_valves {
+        let n = naming.actuator_named(name);
+        let numbered = n.is_some_and(|n| given.valves.contains_key(&n));
+        if let Some(n) = resolve("valve", name, numbered) {
+            settings.simulation.valves.per_actuator.insert(n, *valve);
+        }
+    }
+    for (name, stroke) in &given.named_strokes {
+        let n = naming.actuator_named(name);
+        let numbered = n.is_some_and(|n| given.strokes.contains_key(&n));
+        if let Some(n) = resolve("stroke", name, numbered) {
+            settings.simulation.strokes.per_actuator.insert(n, *stroke);
+        }
+    }
+}
+
+/// The one check of every name against every other, over the table and
+/// its settings (see [`crate::symbols::check`]): table cells first, then
+/// the SETTINGS rows and the actuator names in sheet order, so that an
+/// error falls on the later of two names.
+fn names_of_the_whole_table(
+    table: &StepTable,
+    grid: &read::Grid,
+    settings: &Settings,
+    diags: &mut Diagnostics,
+) {
+    use crate::symbols::check;
+    let mut entries = check::table_entries(table, grid);
+    let mut later = Vec::new();
+    if let Some(row) = settings.named.get(&Row::StartPermissive) {
+        later.extend(check::row_entries(
+            Row::StartPermissive.label(),
+            &settings.program.permissive,
+            &row.at,
+        ));
+    }
+    if let Some(row) = settings.named.get(&Row::Interlock) {
+        let inputs: Vec<crate::cell::Name> = settings
+            .program
+            .interlocks
+            .iter()
+            .map(|i| i.input)
+            .collect();
+        later.extend(check::row_entries(Row::Interlock.label(), &inputs, &row.at));
+    }
+    later.extend(check::actuator_entries(table, &settings.naming, diags));
+    later.sort_by_key(|e| check::sheet_order(&e.at));
+    entries.extend(later);
+    check::check_entries(&entries, diags);
+}
+
 fn finish_check(
     input: Option<read::Input>,
     mut diags: Diagnostics,
@@ -261,10 +357,11 @@ fn finish_check(
     }
     let table = table::build(&input.table, &mut diags);
     if let Some(table) = &table {
+        by_name(table, &mut effective, &input.table.file, &mut diags);
         let modes = &effective.program.modes;
         let buttons: Vec<String> = modes
             .buttons()
-            .map(|b| b.ident().to_ascii_lowercase())
+            .map(|b| b.symbol().to_ascii_lowercase())
             .collect();
         // A home order from the SETTINGS sheet is blamed on its cell; one
         // from the command line on the file, naming the option.
@@ -290,8 +387,13 @@ fn finish_check(
             overridden_by_the_command_line(&settings.given, sheet, &mut diags);
         }
         let named = &effective.named;
-        effective.program.halt =
-            halt::resolve(table, &effective.simulation.valves, named, &mut diags);
+        effective.program.halt = halt::resolve(
+            table,
+            &effective.simulation.valves,
+            &effective.naming,
+            named,
+            &mut diags,
+        );
         effective.program.permissive = halt::resolve_held_inputs(
             table,
             &buttons,
@@ -301,6 +403,7 @@ fn finish_check(
         );
         effective.program.interlocks =
             halt::resolve_interlocks(table, &buttons, named.get(&Row::Interlock), &mut diags);
+        names_of_the_whole_table(table, &input.table, &effective, &mut diags);
         // A delay for an input the table does not have would be dropped
         // without a word (a batch may give one for some of its tables).
         for name in effective.simulation.input_delays.keys() {
@@ -554,6 +657,7 @@ pub fn allocate(
         &settings.pins,
         settings.target,
         settings.board,
+        &settings.naming,
         &mut diags,
     );
     if diags.has_errors() {
@@ -662,12 +766,14 @@ pub fn generate_observed(
     let (program, simulation) = healthy_program(&table, settings, &sim_settings)?;
     let allocation = allocate(&program, settings, &table.file).map_err(Failure::Input)?;
     let festo = festo_allocation(&program, &allocation);
+    let symbols = crate::symbols::SymbolTable::build(&program, &table, &settings.naming);
     let input = EmitInput {
         name,
         table: &table,
         allocation: &allocation,
         festo: &festo,
         program: &program,
+        symbols: &symbols,
         simulation: Some(&simulation),
         faults: None,
         templates: &settings.templates,
@@ -731,6 +837,7 @@ pub fn generate_observed(
         table,
         allocation,
         program,
+        symbols,
         simulation,
         faults: fault_table,
         files,

@@ -13,6 +13,7 @@ pub fn resolve(
     rows: &[PinRow],
     target: Target,
     board: Option<Board>,
+    naming: &crate::symbols::Naming,
     diags: &mut Diagnostics,
 ) -> Vec<Assigned> {
     // Every input and output of the allocation list: the alarm lamps too.
@@ -35,11 +36,24 @@ pub fn resolve(
             diags.error(Code::E035BadPinnedAddress, row.signal_at.clone(), message);
             continue;
         }
-        let Some(signal) = signals
-            .iter()
-            .copied()
-            .find(|s| s.symbol().eq_ignore_ascii_case(row.signal.trim()))
-        else {
+        // A signal by its paper symbol (`x11`), identifier, ISO
+        // designation (`1B2`) or the engineer's name (`clamp_end`).
+        let pmax = |a: u32| {
+            signals
+                .iter()
+                .filter_map(|s| match s {
+                    Signal::Sensor { actuator, position } if *actuator == a => Some(*position),
+                    _ => None,
+                })
+                .max()
+                .unwrap_or(1)
+        };
+        let Some(signal) = signals.iter().copied().find(|s| {
+            naming
+                .aliases_by(*s, &pmax)
+                .iter()
+                .any(|a| a.eq_ignore_ascii_case(row.signal.trim()))
+        }) else {
             let names: Vec<String> = signals.iter().take(12).map(|s| s.symbol()).collect();
             let more = if signals.len() > names.len() {
                 ", …"

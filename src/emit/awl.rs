@@ -9,9 +9,8 @@ use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
-use super::{EmitInput, action_comment, one_line, templates};
+use super::{EmitInput, one_line, templates};
 use crate::address::Mnemonic;
-use crate::names::FIRED;
 use crate::program::{Action, INITIAL_STEP, Literal};
 use crate::program::{Area, Signal};
 
@@ -99,10 +98,20 @@ struct Layout {
 /// `preset` holds its time.
 struct TimerBits {
     signal: Signal,
-    /// `wd` for the watchdog, `dw3` for dwell 3: the stem of the symbols.
-    stem: String,
+    /// The symbols of its run flag and preset (`dw3_run`, `dw3_pt`).
+    run_name: crate::symbols::Own,
+    preset_name: crate::symbols::Own,
     run: (u32, u32),
     preset_word: u32,
+}
+
+/// A name for a timer part the symbol table lacks (it never does: it
+/// names every timer of the program).
+fn own_default(what: &str) -> crate::symbols::Own {
+    crate::symbols::Own {
+        ident: format!("timer_{what}"),
+        comment: String::new(),
+    }
 }
 
 impl Layout {
@@ -132,11 +141,16 @@ impl Layout {
             .enumerate()
             .map(|(i, (&signal, run))| TimerBits {
                 signal,
-                stem: match signal {
-                    Signal::Dwell(n) => format!("dw{n}"),
-                    Signal::RunOn(n) => format!("ro{n}"),
-                    _ => "wd".to_string(),
-                },
+                run_name: input
+                    .symbols
+                    .timer(signal)
+                    .map(|t| t.step7_run.clone())
+                    .unwrap_or_else(|| own_default("run")),
+                preset_name: input
+                    .symbols
+                    .timer(signal)
+                    .map(|t| t.step7_preset.clone())
+                    .unwrap_or_else(|| own_default("pt")),
                 run,
                 preset_word: first_word + 2 * i as u32,
             })
@@ -238,28 +252,39 @@ fn build(input: &EmitInput) -> Context {
     let layout = Layout::new(input);
     let w = &layout.words;
     let program = input.program;
+    let symbols = input.symbols;
+    let fired = symbols.fired.ident.as_str();
     // The flag of the step the program is in while it waits at
     // `program.steps[k]`: `step_0` at rest, `step_3` while step 3's moves run.
-    let flag_name = |k: usize| format!("step_{}", program.step_in(k));
+    let flag = |k: usize| {
+        symbols.step(k).map_or_else(
+            || format!("step_{}", program.step_in(k)),
+            |s| s.flag.ident.clone(),
+        )
+    };
     let condition = |lines: &mut Vec<Line>, literals: &[Literal]| {
         for l in literals {
             let op = if l.negated { w.and_not } else { w.and };
-            lines.push(line(op, layout.operand(input, l.signal), l.signal.ident()));
+            lines.push(line(
+                op,
+                layout.operand(input, l.signal),
+                symbols.ident(l.signal),
+            ));
         }
     };
     let actions = |lines: &mut Vec<Line>, list: &[Action], moves: &[crate::table::Move]| {
         for a in list {
-            let comment = action_comment(*a, moves);
+            let comment = symbols.action_comment(*a, moves);
             match *a {
                 Action::Reset(Signal::Sequence) => {
                     // Back to the initial step: every step flag off, its own on.
-                    for (k, flag) in layout.step_flags.iter().enumerate() {
-                        lines.push(line("R", Layout::m(*flag), flag_name(k)));
+                    for (k, bit) in layout.step_flags.iter().enumerate() {
+                        lines.push(line("R", Layout::m(*bit), flag(k)));
                     }
                     lines.push(line(
                         "S",
                         Layout::m(layout.step_flags[0]),
-                        format!("{}: back to STEP {INITIAL_STEP}", flag_name(0)),
+                        format!("{}: back to STEP {INITIAL_STEP}", flag(0)),
                     ));
                 }
                 Action::Set(s) => lines.push(line("S", layout.operand(input, s), comment)),
@@ -269,13 +294,13 @@ fn build(input: &EmitInput) -> Context {
                     let word = format!("MW {}", t.preset_word);
                     let timer = timer_operand(input, s);
                     lines.push(line("L", s5time(ms), comment));
-                    lines.push(line("T", word.clone(), format!("{}_pt", t.stem)));
-                    lines.push(line("S", Layout::m(t.run), format!("{}_run", t.stem)));
+                    lines.push(line("T", word.clone(), t.preset_name.ident.clone()));
+                    lines.push(line("S", Layout::m(t.run), t.run_name.ident.clone()));
                     // A falling then a rising edge: the timer starts anew now.
                     lines.push(line("CLR", "", ""));
                     lines.push(line(w.on_delay, timer.clone(), "stop the timer"));
                     lines.push(line("SET", "", ""));
-                    lines.push(line("L", word, format!("{}_pt", t.stem)));
+                    lines.push(line("L", word, t.preset_name.ident.clone()));
                     lines.push(line(w.on_delay, timer, "and start it from now"));
                     lines.push(line("SET", "", ""));
                 }
@@ -289,10 +314,10 @@ fn build(input: &EmitInput) -> Context {
     // With no step flag set (first cycle after a cold start) the sequence
     // is in the initial step.
     let mut init = Vec::new();
-    for (k, flag) in layout.step_flags.iter().enumerate() {
-        init.push(line(w.and_not, Layout::m(*flag), flag_name(k)));
+    for (k, bit) in layout.step_flags.iter().enumerate() {
+        init.push(line(w.and_not, Layout::m(*bit), flag(k)));
     }
-    init.push(line("S", Layout::m(layout.step_flags[0]), flag_name(0)));
+    init.push(line("S", Layout::m(layout.step_flags[0]), flag(0)));
     actions(&mut init, &program.init, &[]);
     networks.push(Network {
         title: format!("start: no step flag set, so the sequence is in STEP {INITIAL_STEP}"),
@@ -302,16 +327,17 @@ fn build(input: &EmitInput) -> Context {
         title: "no step has fired yet in this cycle".to_string(),
         lines: vec![
             line("SET", "", ""),
-            line("R", Layout::m(layout.fired), FIRED),
+            line("R", Layout::m(layout.fired), fired),
         ],
     });
     for t in &layout.timers {
         let timer = timer_operand(input, t.signal);
-        let stem = &t.stem;
-        let name = t.signal.ident();
+        let run = &t.run_name.ident;
+        let preset = &t.preset_name.ident;
+        let name = symbols.ident(t.signal);
         networks.push(Network {
             title: format!(
-                "{} timer: on-delay while {stem}_run; when it has elapsed, {stem}_run goes off",
+                "{} timer: on-delay while {run}; when it has elapsed, {run} goes off",
                 if t.signal == Signal::Watchdog {
                     "watchdog".to_string()
                 } else {
@@ -319,11 +345,11 @@ fn build(input: &EmitInput) -> Context {
                 }
             ),
             lines: vec![
-                line(w.and, Layout::m(t.run), format!("{stem}_run")),
-                line("L", format!("MW {}", t.preset_word), format!("{stem}_pt")),
+                line(w.and, Layout::m(t.run), run.clone()),
+                line("L", format!("MW {}", t.preset_word), preset.clone()),
                 line(w.on_delay, timer.clone(), name.clone()),
                 line(w.and, timer, format!("{name} elapsed")),
-                line("R", Layout::m(t.run), format!("{stem}_run")),
+                line("R", Layout::m(t.run), run.clone()),
             ],
         });
     }
@@ -336,8 +362,8 @@ fn build(input: &EmitInput) -> Context {
                           next: usize,
                           title: String| {
         let mut lines = vec![
-            line(w.and, Layout::m(layout.step_flags[k]), flag_name(k)),
-            line(w.and_not, Layout::m(layout.fired), FIRED),
+            line(w.and, Layout::m(layout.step_flags[k]), flag(k)),
+            line(w.and_not, Layout::m(layout.fired), fired),
         ];
         condition(&mut lines, condition_of);
         let skip = label(labels);
@@ -345,13 +371,9 @@ fn build(input: &EmitInput) -> Context {
         lines.push(line(w.jump_if_not, skip.clone(), "condition not met"));
         lines.push(line("SET", "", ""));
         actions(&mut lines, fired_actions, moves);
-        lines.push(line("R", Layout::m(layout.step_flags[k]), flag_name(k)));
-        lines.push(line(
-            "S",
-            Layout::m(layout.step_flags[next]),
-            flag_name(next),
-        ));
-        lines.push(line("S", Layout::m(layout.fired), FIRED));
+        lines.push(line("R", Layout::m(layout.step_flags[k]), flag(k)));
+        lines.push(line("S", Layout::m(layout.step_flags[next]), flag(next)));
+        lines.push(line("S", Layout::m(layout.fired), fired));
         lines.push(Line {
             label: format!("{skip}:"),
             op: "NOP".to_string(),
@@ -364,7 +386,11 @@ fn build(input: &EmitInput) -> Context {
         let in_step = format!(
             "STEP {}: {}",
             program.step_in(k),
-            one_line(&program.title_in(k))
+            one_line(
+                &symbols
+                    .step(k)
+                    .map_or_else(|| program.title_in(k), |n| n.active_title.clone())
+            )
         );
         for jump in &step.jumps {
             let target = &program.steps[jump.fires];
@@ -381,7 +407,10 @@ fn build(input: &EmitInput) -> Context {
                 title,
             );
         }
-        let title = format!("{in_step}; {}", one_line(&super::entry_comment(program, k)));
+        let title = format!(
+            "{in_step}; {}",
+            one_line(&super::entry_comment(program, symbols, k))
+        );
         transition(
             k,
             &step.condition,
@@ -426,65 +455,56 @@ fn build(input: &EmitInput) -> Context {
         let (letter, number) = operand.split_once(' ').unwrap_or((operand, ""));
         format!("{letter:<4}{number:>7}")
     };
-    let mut symbols: Vec<Symbol> = input
+    let table: Vec<Symbol> = input
         .allocation
         .inputs
         .iter()
         .chain(&input.allocation.outputs)
         .chain(&input.allocation.memories)
         .map(|a| Symbol {
-            symbol: a.signal.ident(),
+            symbol: symbols.ident(a.signal),
             address: sdf_address(&layout.operand(input, a.signal)),
             data_type: "BOOL",
-            comment: one_line(&input.program.comment(a.signal, input.table)),
+            // The symbol table's fields are quoted: an engineer's `"` may
+            // not end one.
+            comment: one_line(&symbols.comment(a.signal)).replace('"', "'"),
         })
         .collect();
-    for (k, flag) in layout.step_flags.iter().enumerate() {
-        symbols.push(Symbol {
-            symbol: flag_name(k),
-            address: sdf_address(&Layout::m(*flag)),
+    let mut table = table;
+    for (k, bit) in layout.step_flags.iter().enumerate() {
+        let names = symbols.step(k);
+        table.push(Symbol {
+            symbol: flag(k),
+            address: sdf_address(&Layout::m(*bit)),
             data_type: "BOOL",
-            comment: one_line(&format!(
-                "STEP {} is active: {}",
-                program.step_in(k),
-                program.title_in(k)
-            )),
+            comment: one_line(&names.map(|n| n.flag.comment.clone()).unwrap_or_default())
+                .replace('"', "'"),
         });
     }
-    symbols.push(Symbol {
-        symbol: FIRED.to_string(),
+    table.push(Symbol {
+        symbol: fired.to_string(),
         address: sdf_address(&Layout::m(layout.fired)),
         data_type: "BOOL",
-        comment: "a step fired in this cycle".to_string(),
+        comment: one_line(&symbols.fired.comment),
     });
     for t in &layout.timers {
-        let (what, preset) = if t.signal == Signal::Watchdog {
-            (
-                "watchdog".to_string(),
-                "watchdog preset of the running step".to_string(),
-            )
-        } else {
-            let what = t.signal.ident();
-            let preset = format!("{what} preset");
-            (what, preset)
-        };
-        symbols.push(Symbol {
-            symbol: format!("{}_run", t.stem),
+        table.push(Symbol {
+            symbol: t.run_name.ident.clone(),
             address: sdf_address(&Layout::m(t.run)),
             data_type: "BOOL",
-            comment: format!("{what} runs"),
+            comment: one_line(&t.run_name.comment),
         });
-        symbols.push(Symbol {
-            symbol: format!("{}_pt", t.stem),
+        table.push(Symbol {
+            symbol: t.preset_name.ident.clone(),
             address: sdf_address(&format!("MW {}", t.preset_word)),
             data_type: "S5TIME",
-            comment: preset,
+            comment: one_line(&t.preset_name.comment),
         });
-        symbols.push(Symbol {
-            symbol: t.signal.ident(),
+        table.push(Symbol {
+            symbol: symbols.ident(t.signal),
             address: sdf_address(&timer_operand(input, t.signal)),
             data_type: "TIMER",
-            comment: one_line(&input.program.comment(t.signal, input.table)),
+            comment: one_line(&symbols.comment(t.signal)),
         });
     }
 
@@ -504,7 +524,7 @@ fn build(input: &EmitInput) -> Context {
             .map(|l| one_line(l))
             .collect(),
         networks,
-        symbols,
+        symbols: table,
     }
 }
 

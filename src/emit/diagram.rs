@@ -81,8 +81,14 @@ fn time_tick(seconds: u64) -> u64 {
     unreachable!("the cycle of factors never ends")
 }
 
-/// Renders the diagram as a standalone SVG document.
-pub fn render_svg(name: &str, report: &SimReport, kind: DiagramKind) -> String {
+/// Renders the diagram as a standalone SVG document; `actuator` gives each
+/// lane its label and the engineer's name under it (`C1`, `clamp`).
+pub fn render_svg(
+    name: &str,
+    report: &SimReport,
+    kind: DiagramKind,
+    actuator: &dyn Fn(u32) -> (String, Option<String>),
+) -> String {
     let lanes = lanes(report);
     let bottom = lanes.last().map(|(y, h)| y + h).unwrap_or(TOP) + 50.0;
     let (columns, x_label): (Vec<(f64, String)>, &str) = match kind {
@@ -208,11 +214,21 @@ pub fn render_svg(name: &str, report: &SimReport, kind: DiagramKind) -> String {
         let pmax = (*pmax).max(1);
         let y_of = |position: f64| top + height - position / pmax as f64 * height;
         let color = COLORS[i % COLORS.len()];
+        let (label, own) = actuator(*number);
         let _ = writeln!(
             svg,
-            r#"<text x="12" y="{:.1}" font-size="15" font-weight="bold" fill="{color}">C{number}</text>"#,
-            top + height / 2.0 + 5.0
+            r#"<text x="12" y="{:.1}" font-size="15" font-weight="bold" fill="{color}">{}</text>"#,
+            top + height / 2.0 + 5.0,
+            escape(&label)
         );
+        if let Some(own) = own {
+            let _ = writeln!(
+                svg,
+                r#"<text x="12" y="{:.1}" font-size="11" fill="{color}">{}</text>"#,
+                top + height / 2.0 + 20.0,
+                escape(&own)
+            );
+        }
         for level in 0..=pmax {
             let y = y_of(level as f64);
             let _ = writeln!(
@@ -289,6 +305,10 @@ mod tests {
     use crate::simulate::{SimSettings, simulate};
     use crate::table::StepTable;
 
+    fn plain(n: u32) -> (String, Option<String>) {
+        (format!("C{n}"), None)
+    }
+
     /// The healthy run of `table`'s default program, with its position
     /// trace when the time axis needs it.
     fn simulated(table: &StepTable, record_trace: bool) -> SimReport {
@@ -359,7 +379,7 @@ mod tests {
     fn the_time_axis_ticks_one_grid_column_apart_from_the_left_edge() {
         let table = crate::program::tests::paper_table();
         let report = simulated(&table, true);
-        let svg = render_svg("paper", &report, DiagramKind::Time);
+        let svg = render_svg("paper", &report, DiagramKind::Time, &plain);
         let labels = top_labels(&svg);
         let end_s = report.trace.last().unwrap().0.div_ceil(1000);
         let tick = time_tick(end_s);
@@ -386,7 +406,7 @@ mod tests {
         assert_eq!(span.to_ms - span.from_ms, 1000, "{span:?}");
         let tick = time_tick(report.trace.last().unwrap().0.div_ceil(1000)) as f64;
         let x = |ms: u64| LEFT + ms as f64 / 1000.0 * 60.0 / tick;
-        let svg = render_svg("dwell", &report, DiagramKind::Time);
+        let svg = render_svg("dwell", &report, DiagramKind::Time, &plain);
         let band = format!(
             r#"<rect x="{:.1}" y="{:.1}" width="{:.1}""#,
             x(span.from_ms),
@@ -400,7 +420,7 @@ mod tests {
     fn the_step_axis_puts_each_step_a_column_apart() {
         let table = crate::program::tests::paper_table();
         let report = simulated(&table, false);
-        let labels = top_labels(&render_svg("paper", &report, DiagramKind::Step));
+        let labels = top_labels(&render_svg("paper", &report, DiagramKind::Step, &plain));
         let texts: Vec<&str> = labels.iter().map(|(_, t)| t.as_str()).collect();
         assert_eq!(texts, ["1", "2", "3", "4", "5", "6", "7", "8", "9=1"]);
         for (k, (x, _)) in labels.iter().enumerate() {

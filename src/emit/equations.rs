@@ -7,8 +7,8 @@ use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
-use super::st::{CONFIGURATION_NAME, RESOURCE_NAME};
 use super::templates::{TemplateError, Templates};
+use crate::symbols::{CONFIGURATION_NAME, RESOURCE_NAME};
 use crate::synth::equations::Expr;
 use crate::synth::output::{CONVENTION, equation_line};
 use crate::synth::{Equation, Synthesis};

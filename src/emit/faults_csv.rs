@@ -2,12 +2,19 @@
 //! `faults` alike.
 
 use crate::faults::FaultTable;
+use crate::program::Signal;
 
 /// `NAME.faults.csv`: `fault,signals,stuck_at,outcome,appears,detected,step,explanation`,
 /// one row per case (pairs have both signals joined with `+`); `appears`
 /// is the first moment of the cycle at which the fault gives its outcome,
-/// `detected` is `alarm` when an alarm output came on in that run.
-pub fn render(table: &FaultTable) -> Result<Vec<u8>, csv::Error> {
+/// `detected` is `alarm` when an alarm output came on in that run. Each
+/// signal is called as `name` says (its designation in the symbol table),
+/// in the explanation too (`text` turns the paper's symbols into those).
+pub fn render(
+    table: &FaultTable,
+    name: &dyn Fn(Signal) -> String,
+    text: &dyn Fn(&str) -> String,
+) -> Result<Vec<u8>, csv::Error> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record([
         "fault",
@@ -20,21 +27,21 @@ pub fn render(table: &FaultTable) -> Result<Vec<u8>, csv::Error> {
         "explanation",
     ])?;
     for c in &table.cases {
-        let signals: Vec<String> = c.faults.iter().map(|f| f.signal.symbol()).collect();
+        let signals: Vec<String> = c.faults.iter().map(|f| name(f.signal)).collect();
         let stuck: Vec<&str> = c
             .faults
             .iter()
             .map(|f| if f.stuck_at { "1" } else { "0" })
             .collect();
         writer.write_record([
-            c.fault_text(),
+            c.fault_text_as(name),
             signals.join("+"),
             stuck.join("+"),
             c.outcome.label().to_string(),
             c.appears(table.moments.len()),
             c.detected_text().to_string(),
             c.step.map(|s| s.to_string()).unwrap_or_default(),
-            c.explanation.clone(),
+            text(&c.explanation),
         ])?;
     }
     writer

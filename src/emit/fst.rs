@@ -8,10 +8,11 @@ use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
-use super::{EmitInput, action_comment, one_line, templates};
+use super::{EmitInput, one_line, templates};
 use crate::address::Allocation;
 use crate::program::Signal;
 use crate::program::{Action, Literal, StepKind};
+use crate::symbols::SymbolTable;
 
 #[derive(Serialize)]
 struct ConditionLine {
@@ -75,7 +76,11 @@ struct Context {
     rungs: Vec<RungContext>,
 }
 
-fn condition(literals: &[Literal], festo: &Allocation) -> Vec<ConditionLine> {
+fn condition(
+    literals: &[Literal],
+    festo: &Allocation,
+    symbols: &SymbolTable,
+) -> Vec<ConditionLine> {
     if literals.is_empty() {
         // FST's condition that always holds.
         return vec![ConditionLine {
@@ -98,7 +103,7 @@ fn condition(literals: &[Literal], festo: &Allocation) -> Vec<ConditionLine> {
                     operand
                 },
                 // The FST allocation list's symbolic operand.
-                comment: l.signal.fst_symbol(),
+                comment: symbols.fst(l.signal),
             }
         })
         .collect()
@@ -107,12 +112,13 @@ fn condition(literals: &[Literal], festo: &Allocation) -> Vec<ConditionLine> {
 fn actions(
     list: &[Action],
     festo: &Allocation,
-    comment: impl Fn(Action) -> String,
+    symbols: &SymbolTable,
+    moves: &[crate::table::Move],
 ) -> Vec<ActionLine> {
     let mut lines = Vec::new();
     for action in list {
         let operand = festo.display(action.signal());
-        let comment = one_line(&comment(*action));
+        let comment = one_line(&symbols.action_comment(*action, moves));
         match *action {
             // FST timers count in hundredths of a second: load the preset
             // into the timer's preset register, then start it.
@@ -158,6 +164,7 @@ fn actions(
 pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
     let program = input.program;
     let festo = input.festo;
+    let symbols = input.symbols;
     let mut init = Vec::new();
     if !program.rungs.is_empty() {
         init.push(ActionLine {
@@ -167,7 +174,7 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
             comment: "start program P1 (logic that runs while P0 waits)".to_string(),
         });
     }
-    init.extend(actions(&program.init, festo, |a| action_comment(a, &[])));
+    init.extend(actions(&program.init, festo, symbols, &[]));
     for (i, line) in init.iter_mut().enumerate() {
         line.first = i == 0;
     }
@@ -183,17 +190,21 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
                     let target = &program.steps[j.fires];
                     JumpContext {
                         comment: one_line(&super::jump_comment(program, i, j)),
-                        condition: condition(&j.condition, festo),
-                        actions: actions(&j.actions, festo, |a| action_comment(a, &target.moves)),
+                        condition: condition(&j.condition, festo, symbols),
+                        actions: actions(&j.actions, festo, symbols, &target.moves),
                         next: program.step_entered(j.fires),
                     }
                 })
                 .collect(),
             label: program.step_in(i),
-            moves: one_line(&program.title_in(i)),
-            entry: one_line(&super::entry_comment(program, i)),
-            condition: condition(&s.condition, festo),
-            actions: actions(&s.actions, festo, |a| action_comment(a, &s.moves)),
+            moves: one_line(
+                &symbols
+                    .step(i)
+                    .map_or_else(|| program.title_in(i), |n| n.active_title.clone()),
+            ),
+            entry: one_line(&super::entry_comment(program, symbols, i)),
+            condition: condition(&s.condition, festo, symbols),
+            actions: actions(&s.actions, festo, symbols, &s.moves),
             closing: (s.kind == StepKind::EndOfCycle).then(|| program.step_entered(i)),
         })
         .collect();
@@ -203,8 +214,8 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         .iter()
         .map(|r| RungContext {
             comment: one_line(&r.comment),
-            condition: condition(&r.condition, festo),
-            actions: actions(&r.actions, festo, |a| action_comment(a, &[])),
+            condition: condition(&r.condition, festo, symbols),
+            actions: actions(&r.actions, festo, symbols, &[]),
         })
         .collect();
     let context = Context {

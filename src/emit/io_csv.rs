@@ -40,12 +40,12 @@ pub fn rows(input: &EmitInput) -> Vec<[String; 7]> {
             };
             [
                 a.address.display(alloc.mnemonic),
-                a.signal.symbol(),
-                a.signal.kind().to_string(),
+                input.symbols.designation(a.signal),
+                input.symbols.role(a.signal).to_string(),
                 actuator,
                 position,
                 direction,
-                input.program.comment(a.signal, input.table),
+                input.symbols.comment(a.signal),
             ]
         })
         .collect()

@@ -1,6 +1,7 @@
-//! Output languages. Each emitter turns the one step program (plus the table and
-//! the allocation) into the bytes of one file. What a name, an address or an
-//! operator is, is decided here in Rust; templates in `templates/` only lay out.
+//! Output languages. Each emitter turns the one step program (plus the table,
+//! the allocation and the symbol table) into the bytes of one file. What an
+//! address or an operator is, is decided here in Rust, what a name or a
+//! comment is in [`crate::symbols`]; templates in `templates/` only lay out.
 
 pub mod awl;
 pub mod diagram;
@@ -19,12 +20,11 @@ pub use kind::{CommandFile, OutputKind};
 pub use render::{EmitError, Renderer, render, render_each};
 
 use crate::address::Allocation;
-use crate::cell::Sign;
 use crate::faults::FaultTable;
-use crate::program::Signal;
-use crate::program::{Action, StepProgram};
+use crate::program::StepProgram;
 use crate::simulate::SimReport;
-use crate::table::{Move, StepTable};
+use crate::symbols::SymbolTable;
+use crate::table::StepTable;
 use templates::Templates;
 
 /// One generated file, in memory.
@@ -46,6 +46,9 @@ pub struct EmitInput<'a> {
     /// the target: allocated once, by the caller, not by each emitter.
     pub festo: &'a Allocation,
     pub program: &'a StepProgram,
+    /// Every name the outputs give a signal or a part of their own: the
+    /// emitters read names and comments only from here.
+    pub symbols: &'a SymbolTable,
     /// The simulation of the program, for the SIMULATION sheet.
     pub simulation: Option<&'a SimReport>,
     /// The fault table, for the FAULTS sheet.
@@ -74,63 +77,6 @@ impl EmitInput<'_> {
     }
 }
 
-/// A short explanation of an action for a program comment.
-pub fn action_comment(action: Action, moves: &[Move]) -> String {
-    let symbol = action.signal().symbol();
-    match action {
-        Action::Set(Signal::Coil { actuator, sign }) => {
-            let target = moves
-                .iter()
-                .find(|m| m.actuator == actuator && m.sign == sign)
-                .map(|m| {
-                    let sensor = Signal::Sensor {
-                        actuator,
-                        position: m.to,
-                    };
-                    format!(", {} towards {}", m.notation(), sensor.symbol())
-                })
-                .unwrap_or_default();
-            let verb = if sign == Sign::Plus {
-                "extend"
-            } else {
-                "retract"
-            };
-            format!("{symbol} on: {verb} C{actuator}{target}")
-        }
-        Action::Reset(Signal::Coil { .. }) => format!("{symbol} off"),
-        Action::Set(Signal::SingleCoil { actuator }) => {
-            let target = moves
-                .iter()
-                .find(|m| m.actuator == actuator)
-                .map(|m| format!(", {}", m.notation()))
-                .unwrap_or_default();
-            format!("{symbol} on: extend C{actuator}{target}")
-        }
-        Action::Reset(Signal::SingleCoil { actuator }) => {
-            let target = moves
-                .iter()
-                .find(|m| m.actuator == actuator)
-                .map(|m| format!(", {}", m.notation()))
-                .unwrap_or_default();
-            format!("{symbol} off: the spring retracts C{actuator}{target}")
-        }
-        Action::Set(Signal::StopAt { actuator, position }) => {
-            format!(
-                "{symbol}: stop C{actuator} at {}",
-                Signal::Sensor { actuator, position }.symbol()
-            )
-        }
-        Action::Reset(Signal::StopAt { .. }) => format!("{symbol} off: stop request cleared"),
-        Action::StartTimer(s, ms) => format!("start {} for {ms} ms", s.symbol()),
-        Action::Reset(Signal::Sequence) => format!(
-            "the sequence goes back to STEP {}",
-            crate::program::INITIAL_STEP
-        ),
-        Action::Set(s) => format!("{} on", s.symbol()),
-        Action::Reset(s) => format!("{} off", s.symbol()),
-    }
-}
-
 /// What the step number of a program means, for its header, in lines of
 /// at most 72 characters: `what` is how the language shows it
 /// (`active_step`, `the step flag on`).
@@ -153,12 +99,17 @@ pub fn step_numbering_note(what: &str) -> Vec<String> {
 }
 
 /// The comment on the transition `program.steps[index]`: the step it
-/// enters and what that step does, or the end of the cycle.
-pub fn entry_comment(program: &crate::program::StepProgram, index: usize) -> String {
+/// enters and what that step does (with the engineer's comment of its
+/// row), or the end of the cycle.
+pub fn entry_comment(
+    program: &crate::program::StepProgram,
+    symbols: &crate::symbols::SymbolTable,
+    index: usize,
+) -> String {
     let enters = program.step_entered(index);
-    match program.steps.get(index) {
-        Some(step) if step.kind == crate::program::StepKind::Table => {
-            format!("on to STEP {enters}: {}", step.title)
+    match (program.steps.get(index), symbols.step(index)) {
+        (Some(step), Some(names)) if step.kind == crate::program::StepKind::Table => {
+            format!("on to STEP {enters}: {}", names.title)
         }
         _ => format!("end of cycle: back to STEP {enters}"),
     }

@@ -148,13 +148,19 @@ impl<'a> Renderer<'a> {
                 let simulation = input
                     .simulation
                     .ok_or_else(|| internal("diagram", "not simulated"))?;
-                super::diagram::render_svg(name, simulation, input.diagram).into_bytes()
+                super::diagram::render_svg(name, simulation, input.diagram, &|n| {
+                    self.input.symbols.actuator_parts(n)
+                })
+                .into_bytes()
             }
             OutputKind::Faults => {
                 let faults = input
                     .faults
                     .ok_or_else(|| internal("fault table", "not analysed"))?;
-                super::faults_csv::render(faults).map_err(|e| internal("fault table", e))?
+                super::faults_csv::render(faults, &|s| self.input.symbols.designation(s), &|t| {
+                    self.input.symbols.designate(t)
+                })
+                .map_err(|e| internal("fault table", e))?
             }
             OutputKind::TiaTags => {
                 super::tables::render_tia_tags(&input).map_err(|e| internal("TIA tag table", e))?

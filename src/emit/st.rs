@@ -9,19 +9,13 @@ use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
-use super::{EmitInput, action_comment, templates};
+use super::{EmitInput, templates};
 use crate::address::Assigned;
 use crate::program::{Action, INITIAL_STEP, Literal, condition_text};
 use crate::program::{Area, Signal};
-
-/// Identifiers of the program's own parts. `step` is an IEC keyword, so the
-/// step counter is called `active_step`.
-pub const PROGRAM_NAME: &str = "steptable_main";
-pub const STEP_VAR: &str = crate::names::STEP_COUNTER;
-/// The names OpenPLC Runtime requires (its upload script moves `Config0.c`
-/// and `Res0.c`); Beremiz accepts any.
-pub const CONFIGURATION_NAME: &str = "Config0";
-pub const RESOURCE_NAME: &str = "Res0";
+use crate::symbols::{
+    CONFIGURATION_NAME, INSTANCE_NAME, PROGRAM_NAME, RESOURCE_NAME, SymbolTable, TASK_NAME,
+};
 
 #[derive(Serialize)]
 struct Var {
@@ -94,7 +88,7 @@ struct RungContext {
 
 #[derive(Serialize)]
 struct BodyContext {
-    step_var: &'static str,
+    step_var: String,
     timers: Vec<Timer>,
     steps: Vec<StepContext>,
     rungs: Vec<RungContext>,
@@ -173,74 +167,79 @@ fn comment_text(text: &str) -> String {
 }
 
 /// The run flag and preset variable of a timer (`wd_run`, `wd_pt` for the
-/// watchdog: short enough for every target's symbol limit).
-fn timer_run(timer: Signal) -> String {
-    format!("{}_run", timer_stem(timer))
+/// watchdog), as the symbol table names them.
+fn timer_run(symbols: &SymbolTable, timer: Signal) -> String {
+    symbols
+        .timer(timer)
+        .map(|t| t.iec_run.ident.clone())
+        .unwrap_or_default()
 }
 
-fn timer_preset(timer: Signal) -> String {
-    format!("{}_pt", timer_stem(timer))
-}
-
-fn timer_stem(timer: Signal) -> String {
-    match timer {
-        Signal::Watchdog => "wd".to_string(),
-        other => other.ident(),
-    }
+fn timer_preset(symbols: &SymbolTable, timer: Signal) -> String {
+    symbols
+        .timer(timer)
+        .map(|t| t.iec_preset.ident.clone())
+        .unwrap_or_default()
 }
 
 /// A signal as an ST operand: a timer reads as its run flag.
-fn operand(signal: Signal) -> String {
+fn operand(symbols: &SymbolTable, signal: Signal) -> String {
     match signal.area() {
-        Area::Timer => timer_run(signal),
-        _ => signal.ident(),
+        Area::Timer => timer_run(symbols, signal),
+        _ => symbols.ident(signal),
     }
 }
 
 /// A condition as an ST expression; one with no literal always holds
 /// (`IF THEN` with nothing between is a syntax error in matiec).
-fn condition(literals: &[Literal]) -> String {
+fn condition(symbols: &SymbolTable, literals: &[Literal]) -> String {
     if literals.is_empty() {
         return "TRUE".to_string();
     }
-    condition_text(literals, operand, "AND", "NOT ")
+    condition_text(literals, |s| operand(symbols, s), "AND", "NOT ")
 }
 
-fn statement(action: Action) -> String {
+fn statement(symbols: &SymbolTable, action: Action) -> String {
     match action {
-        Action::Reset(Signal::Sequence) => format!("{STEP_VAR} := {INITIAL_STEP};"),
+        Action::Reset(Signal::Sequence) => {
+            format!("{} := {INITIAL_STEP};", symbols.step_counter.ident)
+        }
         // Called with IN off then on, the TON restarts now: its time runs
         // from this scan, as the step program's timer does (a TON first
         // called with IN on in the next scan would end one scan late).
         Action::StartTimer(timer, ms) => format!(
             "{pt} := T#{ms}ms; {run} := TRUE; {t}(IN := FALSE, PT := {pt}); {t}(IN := TRUE, PT := {pt});",
-            pt = timer_preset(timer),
-            run = timer_run(timer),
-            t = timer.ident()
+            pt = timer_preset(symbols, timer),
+            run = timer_run(symbols, timer),
+            t = symbols.ident(timer)
         ),
         Action::Set(s) | Action::Reset(s) => {
             let value = if action.value() { "TRUE" } else { "FALSE" };
-            format!("{} := {value};", operand(s))
+            format!("{} := {value};", operand(symbols, s))
         }
     }
 }
 
-fn statements(actions: &[Action], comment: impl Fn(Action) -> String) -> Vec<Statement> {
+fn statements(
+    symbols: &SymbolTable,
+    actions: &[Action],
+    moves: &[crate::table::Move],
+) -> Vec<Statement> {
     actions
         .iter()
         .map(|a| Statement {
-            code: statement(*a),
-            comment: comment_text(&comment(*a)),
+            code: statement(symbols, *a),
+            comment: comment_text(&symbols.action_comment(*a, moves)),
         })
         .collect()
 }
 
 fn located(a: &Assigned, input: &EmitInput) -> Var {
     Var {
-        ident: a.signal.ident(),
+        ident: input.symbols.ident(a.signal),
         iec_address: a.address.iec(),
         address: a.address.display(input.allocation.mnemonic),
-        comment: comment_text(&input.program.comment(a.signal, input.table)),
+        comment: comment_text(&input.symbols.comment(a.signal)),
     }
 }
 
@@ -248,6 +247,7 @@ fn located(a: &Assigned, input: &EmitInput) -> Var {
 fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::TemplateError> {
     let alloc = input.allocation;
     let program = input.program;
+    let symbols = input.symbols;
     let steps = program
         .steps
         .iter()
@@ -260,17 +260,21 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
                     let target = &program.steps[j.fires];
                     JumpContext {
                         comment: comment_text(&super::jump_comment(program, i, j)),
-                        condition: condition(&j.condition),
-                        actions: statements(&j.actions, |a| action_comment(a, &target.moves)),
+                        condition: condition(symbols, &j.condition),
+                        actions: statements(symbols, &j.actions, &target.moves),
                         enters: program.step_entered(j.fires),
                     }
                 })
                 .collect(),
             active: program.step_in(i),
-            active_title: comment_text(&program.title_in(i)),
-            entry: comment_text(&super::entry_comment(program, i)),
-            condition: condition(&s.condition),
-            actions: statements(&s.actions, |a| action_comment(a, &s.moves)),
+            active_title: comment_text(
+                &symbols
+                    .step(i)
+                    .map_or_else(|| program.title_in(i), |n| n.active_title.clone()),
+            ),
+            entry: comment_text(&super::entry_comment(program, symbols, i)),
+            condition: condition(symbols, &s.condition),
+            actions: statements(symbols, &s.actions, &s.moves),
             enters: program.step_entered(i),
         })
         .collect();
@@ -279,23 +283,21 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
         .iter()
         .map(|r| RungContext {
             comment: comment_text(&r.comment),
-            condition: condition(&r.condition),
-            actions: statements(&r.actions, |a| action_comment(a, &[])),
+            condition: condition(symbols, &r.condition),
+            actions: statements(symbols, &r.actions, &[]),
         })
         .collect();
     let initially_on = |s: Signal| program.init.contains(&Action::Set(s));
     let mut internals = vec![Internal {
-        ident: STEP_VAR.to_string(),
+        ident: symbols.step_counter.ident.clone(),
         data_type: "INT",
         derived: false,
         initial: Some(INITIAL_STEP.to_string()),
-        comment: format!(
-            "the active step: {INITIAL_STEP} = initial step (at rest, waiting for START), k = table step k, whose moves run"
-        ),
+        comment: comment_text(&symbols.step_counter.comment),
     }];
     internals.extend(alloc.memories.iter().map(|m| {
         Internal {
-            ident: m.signal.ident(),
+            ident: symbols.ident(m.signal),
             data_type: "BOOL",
             derived: false,
             initial: Some(
@@ -306,35 +308,32 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
                 }
                 .to_string(),
             ),
-            comment: comment_text(&input.program.comment(m.signal, input.table)),
+            comment: comment_text(&symbols.comment(m.signal)),
         }
     }));
     let mut timers = Vec::new();
     for &timer in &program.timers {
+        let Some(names) = symbols.timer(timer) else {
+            continue;
+        };
         internals.push(Internal {
-            ident: timer_run(timer),
+            ident: names.iec_run.ident.clone(),
             data_type: "BOOL",
             derived: false,
             initial: Some("FALSE".to_string()),
-            comment: comment_text(&format!(
-                "{} runs",
-                input.program.comment(timer, input.table)
-            )),
+            comment: comment_text(&names.iec_run.comment),
         });
         internals.push(Internal {
-            ident: timer_preset(timer),
+            ident: names.iec_preset.ident.clone(),
             data_type: "TIME",
             derived: false,
             initial: Some("T#0ms".to_string()),
-            comment: comment_text(&format!(
-                "{} preset",
-                input.program.comment(timer, input.table)
-            )),
+            comment: comment_text(&names.iec_preset.comment),
         });
         timers.push(Timer {
-            ident: timer.ident(),
-            run: timer_run(timer),
-            preset: timer_preset(timer),
+            ident: symbols.ident(timer),
+            run: names.iec_run.ident.clone(),
+            preset: names.iec_preset.ident.clone(),
         });
     }
     for timer in &timers {
@@ -349,7 +348,7 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
     let body = input.templates.render(
         "program_body.st.j2",
         Value::from(Serde(&BodyContext {
-            step_var: STEP_VAR,
+            step_var: symbols.step_counter.ident.clone(),
             timers,
             steps,
             rungs,
@@ -362,7 +361,7 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
         target: alloc.target.name().to_string(),
         timestamp: TIMESTAMP,
         program_name: PROGRAM_NAME,
-        step_note: super::step_numbering_note(STEP_VAR)
+        step_note: super::step_numbering_note(&symbols.step_counter.ident)
             .iter()
             .map(|l| comment_text(l))
             .collect(),
@@ -378,8 +377,8 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
         // matiec names after the configuration and its resource.
         configuration_name: CONFIGURATION_NAME,
         resource_name: RESOURCE_NAME,
-        task_name: "cyclic_task",
-        instance_name: "main_instance",
+        task_name: TASK_NAME,
+        instance_name: INSTANCE_NAME,
         task_interval: format!("T#{scan_millis}ms"),
         task_interval_xsd: xsd_duration(scan_millis),
         program_object_id: object_id(&format!("{}/{PROGRAM_NAME}", input.name)),

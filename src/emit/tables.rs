@@ -35,8 +35,8 @@ pub fn render_fst_alloc(input: &EmitInput) -> Result<String, templates::Template
         .chain(&festo.timers)
         .map(|a| Entry {
             address: a.address.display(Mnemonic::En),
-            symbol: a.signal.fst_symbol(),
-            comment: one_line(&input.program.comment(a.signal, input.table)),
+            symbol: input.symbols.fst(a.signal),
+            comment: one_line(&input.symbols.comment(a.signal)),
         })
         .collect();
     input.templates.render(
@@ -70,11 +70,11 @@ pub fn render_rockwell(input: &EmitInput) -> Result<String, templates::TemplateE
         .chain(&alloc.outputs)
         .chain(&alloc.memories)
         .map(|a| Tag {
-            name: a.signal.ident(),
+            name: input.symbols.ident(a.signal),
             description: one_line(&format!(
                 "{} {}",
                 a.address.display(alloc.mnemonic),
-                input.program.comment(a.signal, input.table)
+                input.symbols.comment(a.signal)
             )),
             data_type: "BOOL",
         })
@@ -135,15 +135,11 @@ pub fn render_tia_tags(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
             (_, Mnemonic::En) => "Q",
             (_, Mnemonic::De) => "A",
         };
-        sheet.write_string(row, 0, a.signal.ident())?;
+        sheet.write_string(row, 0, input.symbols.ident(a.signal))?;
         sheet.write_string(row, 1, "Default tag table")?;
         sheet.write_string(row, 2, "Bool")?;
         sheet.write_string(row, 3, format!("%{letter}{byte}.{bit}"))?;
-        sheet.write_string(
-            row,
-            4,
-            one_line(&input.program.comment(a.signal, input.table)),
-        )?;
+        sheet.write_string(row, 4, one_line(&input.symbols.comment(a.signal)))?;
         for col in 5..8 {
             sheet.write_string(row, col, "True")?;
         }

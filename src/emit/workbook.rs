@@ -33,6 +33,7 @@ pub const DIAGRAM_SHEET: &str = "DIAGRAM";
 pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
     let program = input.program;
     let is_output = |a: &Action| a.signal().area() == Area::Output;
+    let name = |s: Signal| input.symbols.designation(s);
     let mut rows = Vec::new();
     let split = |actions: &[Action]| -> (Vec<Action>, String) {
         let (outputs, memories): (Vec<Action>, Vec<Action>) =
@@ -40,15 +41,15 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
         let requests = memories
             .iter()
             .map(|a| match a {
-                Action::StartTimer(s, ms) => format!("START {} ({ms} ms)", s.symbol()),
-                _ => format!("{} {}", a.verb(), a.signal().symbol()),
+                Action::StartTimer(s, ms) => format!("START {} ({ms} ms)", name(*s)),
+                _ => format!("{} {}", a.verb(), name(a.signal())),
             })
             .collect::<Vec<_>>()
             .join(" ");
         (outputs, requests)
     };
     for (i, step) in program.steps.iter().enumerate() {
-        let label = format!("STEP {}", program.step_in(i));
+        let label = input.symbols.step_label(program.step_in(i));
         // A jump is tested before its step: `IF … THEN … GOTO STEP 6`.
         for jump in &step.jumps {
             let (outputs, requests) = split(&jump.actions);
@@ -56,14 +57,14 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
                 format!("{label} ({})", jump.title),
                 format!(
                     "{} GOTO STEP {}",
-                    paper_sentence(&jump.condition, &outputs, Signal::symbol),
+                    paper_sentence(&jump.condition, &outputs, name),
                     program.step_entered(jump.fires)
                 ),
                 requests,
             ]);
         }
         let (outputs, requests) = split(&step.actions);
-        let mut sentence = paper_sentence(&step.condition, &outputs, Signal::symbol);
+        let mut sentence = paper_sentence(&step.condition, &outputs, name);
         if step.kind == StepKind::EndOfCycle {
             sentence.push_str(&format!(" GOTO STEP {}", program.step_entered(i)));
         }
@@ -72,7 +73,7 @@ pub fn program_rows(input: &EmitInput) -> Vec<[String; 3]> {
     for rung in &input.program.rungs {
         rows.push([
             rung.kind.label().to_string(),
-            paper_sentence(&rung.condition, &rung.actions, Signal::symbol),
+            paper_sentence(&rung.condition, &rung.actions, name),
             String::new(),
         ]);
     }
@@ -106,7 +107,7 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     sheet.set_column_width(0, 12)?;
     for (i, step) in input.table.steps.iter().enumerate() {
         let row = header_row + 1 + i as u32;
-        sheet.write_string_with_format(row, 0, format!("STEP {}", step.number), &bold)?;
+        sheet.write_string_with_format(row, 0, input.symbols.step_label(step.number), &bold)?;
         for branch in 0..input.table.branches {
             let text = step.cell_text(branch);
             if !text.is_empty() {
@@ -154,13 +155,25 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
     sheet.set_freeze_panes(1, 0)?;
 
     if let Some(report) = input.simulation {
-        simulation_sheet(workbook.add_worksheet(), report, &bold, &title)?;
-    }
-    if let Some(report) = input.simulation {
-        diagram_sheet(workbook.add_worksheet(), report, &bold, &title)?;
+        // The SIMULATION sheet, then the DIAGRAM sheet.
+        for sheet in [simulation_sheet, diagram_sheet] {
+            sheet(
+                workbook.add_worksheet(),
+                report,
+                input.symbols,
+                &bold,
+                &title,
+            )?;
+        }
     }
     if let Some(faults) = input.faults {
-        faults_sheet(workbook.add_worksheet(), faults, &bold, &title)?;
+        faults_sheet(
+            workbook.add_worksheet(),
+            faults,
+            input.symbols,
+            &bold,
+            &title,
+        )?;
     }
 
     workbook.save_to_buffer()
@@ -169,6 +182,7 @@ pub fn render(input: &EmitInput) -> Result<Vec<u8>, XlsxError> {
 fn simulation_sheet(
     sheet: &mut Worksheet,
     report: &SimReport,
+    symbols: &crate::symbols::SymbolTable,
     bold: &Format,
     title: &Format,
 ) -> Result<(), XlsxError> {
@@ -193,7 +207,7 @@ fn simulation_sheet(
     if let Some(cycle) = report.cycles.first() {
         for (i, step) in cycle.steps.iter().enumerate() {
             let row = header + 1 + i as u32;
-            sheet.write_string(row, 0, format!("STEP {}", step.step))?;
+            sheet.write_string(row, 0, symbols.step_label(step.step))?;
             sheet.write_number(row, 1, step.start_ms as f64 / 1000.0)?;
             sheet.write_number(row, 2, step.duration_ms as f64 / 1000.0)?;
             sheet.write_string(row, 3, &step.moves)?;
@@ -228,8 +242,8 @@ fn address_sheet(
     for (i, a) in list.iter().enumerate() {
         let row = i as u32 + 1;
         sheet.write_string(row, 0, a.address.display(input.allocation.mnemonic))?;
-        sheet.write_string(row, 1, a.signal.symbol())?;
-        sheet.write_string(row, 2, input.program.comment(a.signal, input.table))?;
+        sheet.write_string(row, 1, input.symbols.designation(a.signal))?;
+        sheet.write_string(row, 2, input.symbols.comment(a.signal))?;
     }
     sheet.set_column_width(0, 10)?;
     sheet.set_column_width(1, 10)?;
@@ -241,6 +255,7 @@ fn address_sheet(
 fn faults_sheet(
     sheet: &mut Worksheet,
     faults: &FaultTable,
+    symbols: &crate::symbols::SymbolTable,
     bold: &Format,
     title: &Format,
 ) -> Result<(), XlsxError> {
@@ -261,7 +276,9 @@ fn faults_sheet(
     {
         sheet.write_string_with_format(header, col as u16, *text, bold)?;
     }
-    for (i, row) in crate::faults::rows(faults).iter().enumerate() {
+    let name = |s: Signal| symbols.designation(s);
+    let text = |t: &str| symbols.designate(t);
+    for (i, row) in crate::faults::rows(faults, &name, &text).iter().enumerate() {
         for (col, text) in row.iter().enumerate() {
             if !text.is_empty() {
                 sheet.write_string(header + 1 + i as u32, col as u16, text)?;
@@ -292,6 +309,7 @@ fn chart_height(pmax: u32) -> u32 {
 fn diagram_sheet(
     sheet: &mut Worksheet,
     report: &SimReport,
+    symbols: &crate::symbols::SymbolTable,
     bold: &Format,
     title: &Format,
 ) -> Result<(), XlsxError> {
@@ -319,8 +337,8 @@ fn diagram_sheet(
     let mut chart_row = 1u32;
     for (i, (number, pmax)) in report.actuators.iter().enumerate() {
         let col = i as u16 + 1;
-        sheet.write_string_with_format(header, col, format!("C{number}"), bold)?;
-        let label = format!("C{number}");
+        let label = symbols.actuator(*number);
+        sheet.write_string_with_format(header, col, &label, bold)?;
         let mut chart = Chart::new(ChartType::ScatterStraightWithMarkers);
         chart
             .add_series()

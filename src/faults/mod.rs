@@ -8,7 +8,7 @@ mod phases;
 
 pub use phases::{Moment, Phase, moments};
 
-use crate::program::StepProgram;
+use crate::program::{Signal, StepProgram};
 use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings, Simulator};
 use crate::table::StepTable;
 use cases::{Cases, SetRuns, Verdict};
@@ -56,9 +56,14 @@ pub struct FaultCase {
 impl FaultCase {
     /// `x11 short circuit (stuck at 1) + x20 open circuit (stuck at 0)`.
     pub fn fault_text(&self) -> String {
+        self.fault_text_as(&|s: Signal| s.symbol())
+    }
+
+    /// The same with each signal called as `name` says.
+    pub fn fault_text_as(&self, name: &dyn Fn(Signal) -> String) -> String {
         self.faults
             .iter()
-            .map(Fault::describe)
+            .map(|f| f.describe_as(name(f.signal)))
             .collect::<Vec<_>>()
             .join(" + ")
     }
@@ -460,19 +465,24 @@ pub fn judge(report: &SimReport) -> (Outcome, Option<usize>, String) {
 }
 
 /// The rows of the fault table: fault, outcome, when it appears, whether
-/// an alarm came on, step, explanation.
-pub fn rows(table: &FaultTable) -> Vec<[String; 6]> {
+/// an alarm came on, step, explanation; each signal called as `name` says
+/// (its designation in the outputs), also in the explanation (`text`).
+pub fn rows(
+    table: &FaultTable,
+    name: &dyn Fn(Signal) -> String,
+    text: &dyn Fn(&str) -> String,
+) -> Vec<[String; 6]> {
     table
         .cases
         .iter()
         .map(|c| {
             [
-                c.fault_text(),
+                c.fault_text_as(name),
                 c.outcome.label().to_string(),
                 c.appears(table.moments.len()),
                 c.detected_text().to_string(),
                 c.step.map(|s| s.to_string()).unwrap_or_default(),
-                c.explanation.clone(),
+                text(&c.explanation),
             ]
         })
         .collect()

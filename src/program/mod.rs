@@ -260,44 +260,6 @@ impl StepProgram {
         };
         self.halt.may_stay_on(output, by_default)
     }
-
-    /// A human description of `signal` in this program: what STOP does,
-    /// which output a run-on timer keeps on; the rest as the signal says.
-    pub fn comment(&self, signal: Signal, table: &crate::table::StepTable) -> String {
-        let run_on = |n: u16| self.run_ons.get(usize::from(n).wrapping_sub(1));
-        match signal {
-            Signal::Stop if self.stops_now() => {
-                "STOP push-button, normally closed (0: stop at once, outputs as on stop says)"
-                    .to_string()
-            }
-            Signal::RunOn(n) => match run_on(n) {
-                Some(r) => format!(
-                    "run-on timer {n}: {} stays on {} after {}",
-                    r.output.symbol(),
-                    crate::cell::duration_text(r.ms),
-                    r.event.text()
-                ),
-                None => signal.comment(table),
-            },
-            Signal::RunOnArmed(n) => match run_on(n) {
-                Some(r) => format!("{} runs on after {}", r.output.symbol(), r.event.text()),
-                None => signal.comment(table),
-            },
-            Signal::Coil { actuator, sign } if self.signals.is_drive(signal) => {
-                format!(
-                    "drive {actuator}, {} (cut at its limit switch)",
-                    match sign {
-                        crate::cell::Sign::Plus => "forward (+)",
-                        crate::cell::Sign::Minus => "reverse (-)",
-                    }
-                )
-            }
-            Signal::StopAt { actuator, position } if self.signals.motors.contains(&actuator) => {
-                format!("drive {actuator} stops at position {position}")
-            }
-            other => other.comment(table),
-        }
-    }
 }
 
 /// `IF a AND b THEN SET y1+ RESET y1-` in the paper's notation, with symbols

@@ -9,6 +9,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use crate::cell::Sign;
 use crate::diag::{Code, Diagnostics, Location};
 use crate::program::{HaltPolicy, Interlock, Signal, StopAction};
+use crate::symbols::Naming;
 use crate::table::StepTable;
 use crate::valve::{ValveType, Valves};
 
@@ -84,8 +85,37 @@ impl NamedList {
 /// (`vacuum`), one coil (`y1+`, `y1-`, `y1` for a single-solenoid valve) or
 /// every coil of an actuator (`C1`). A coil its valve does not have (`y1`
 /// of a valve with two coils) is no output: the error names the ones it has.
-fn outputs_named(table: &StepTable, valves: &Valves, name: &str) -> Option<Vec<Signal>> {
+fn outputs_named(
+    table: &StepTable,
+    valves: &Valves,
+    naming: &Naming,
+    name: &str,
+) -> Option<Vec<Signal>> {
     let lower = name.to_ascii_lowercase();
+    // The engineer's names: `clamp` is C1, `clamp_out` its coil + (under
+    // any designation scheme).
+    if let Some(n) = naming.actuator_named(name) {
+        return outputs_named(table, valves, &Naming::default(), &format!("C{n}"));
+    }
+    let coils = table.actuators.iter().flat_map(|a| {
+        let pmax = a.max_position;
+        let actuator = a.number;
+        if valves.of(actuator, pmax) == ValveType::Mono52 {
+            vec![Signal::SingleCoil { actuator }]
+        } else {
+            [Sign::Plus, Sign::Minus]
+                .map(|sign| Signal::Coil { actuator, sign })
+                .to_vec()
+        }
+    });
+    for coil in coils {
+        // Its identifier (`y1p`), ISO designation (`1M1`) or the
+        // engineer's name (`clamp_out`); the paper's `y1+` is read below.
+        let aliases = naming.aliases(coil, table);
+        if aliases.iter().any(|a| a.eq_ignore_ascii_case(lower.trim())) {
+            return Some(vec![coil]);
+        }
+    }
     if let Some(output) = table
         .outputs
         .iter()
@@ -211,6 +241,7 @@ impl<'r> EventActions<'r> {
 fn listed(
     table: &StepTable,
     valves: &Valves,
+    naming: &Naming,
     row: Row,
     list: &NamedList,
     action: StopAction,
@@ -218,7 +249,7 @@ fn listed(
 ) -> BTreeMap<Signal, StopAction> {
     let mut actions = BTreeMap::new();
     for name in &list.names {
-        match outputs_named(table, valves, name) {
+        match outputs_named(table, valves, naming, name) {
             Some(signals) => {
                 for signal in signals {
                     if actions.insert(signal, action).is_some() {
@@ -250,6 +281,7 @@ fn twice(row: Row, list: &NamedList, signal: Signal, diags: &mut Diagnostics) {
 pub fn resolve(
     table: &StepTable,
     valves: &Valves,
+    naming: &Naming,
     rows: &NamedRows,
     diags: &mut Diagnostics,
 ) -> HaltPolicy {
@@ -258,10 +290,10 @@ pub fn resolve(
             let list = rows.get(&row)?;
             let actions = match row {
                 Row::HoldSafe | Row::HoldOnEstop => {
-                    listed(table, valves, row, list, StopAction::Hold, diags)
+                    listed(table, valves, naming, row, list, StopAction::Hold, diags)
                 }
-                Row::OffOnHalt => listed(table, valves, row, list, StopAction::Off, diags),
-                _ => stop_actions(table, valves, row, list, diags),
+                Row::OffOnHalt => listed(table, valves, naming, row, list, StopAction::Off, diags),
+                _ => stop_actions(table, valves, naming, row, list, diags),
             };
             Some((list, actions))
         };
@@ -434,6 +466,7 @@ fn not_an_output(
 fn stop_actions(
     table: &StepTable,
     valves: &Valves,
+    naming: &Naming,
     row: Row,
     list: &NamedList,
     diags: &mut Diagnostics,
@@ -465,7 +498,7 @@ fn stop_actions(
             );
             continue;
         };
-        match outputs_named(table, valves, name) {
+        match outputs_named(table, valves, naming, name) {
             Some(signals) => {
                 for signal in signals {
                     if actions.insert(signal, action).is_some() {
@@ -594,7 +627,7 @@ pub fn resolve_held_inputs(
                 None if names.contains(&name) => {
                     (Code::E030BadSetting, format!("{lower} is named twice"))
                 }
-                None => match held_input_problem(table, &names, name) {
+                None => match held_input_problem(table, name) {
                     Some(why) => (Code::E030BadSetting, why),
                     None => {
                         names.push(name);
@@ -608,13 +641,10 @@ pub fn resolve_held_inputs(
     names
 }
 
-/// Why a valid name cannot be a held input: an output, an input a step
-/// waits for, or one FST cannot tell from another name.
-fn held_input_problem(
-    table: &StepTable,
-    names: &[crate::cell::Name],
-    name: crate::cell::Name,
-) -> Option<String> {
+/// Why a valid name cannot be a held input: an output, or an input a step
+/// waits for. Names FST cannot tell apart are said by the one check over
+/// the table and its settings (crate::symbols::check).
+fn held_input_problem(table: &StepTable, name: crate::cell::Name) -> Option<String> {
     if table.outputs.contains(&name) {
         return Some(format!(
             "{name} is a machine output of the table, not an input"
@@ -625,13 +655,5 @@ fn held_input_problem(
             "the table waits for {name} in a step; name an input no step waits for"
         ));
     }
-    let other = table
-        .inputs
-        .iter()
-        .chain(&table.outputs)
-        .chain(names)
-        .find(|o| **o != name && crate::names::same_in_fst(o.as_str(), name.as_str()))?;
-    Some(format!(
-        "{name} and {other} begin with the same 9 characters, which is all Festo FST keeps of a symbol"
-    ))
+    None
 }

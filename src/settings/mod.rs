@@ -43,6 +43,15 @@ pub struct Given {
     pub valves: BTreeMap<u32, ValveType>,
     /// Drift rates per actuator (stroke per second).
     pub loads: BTreeMap<u32, f64>,
+    /// Valve types and stroke times the command line gives by an
+    /// actuator's name (`--valve clamp=52mono`): resolved once the table's
+    /// names are read (`convert`).
+    pub named_valves: BTreeMap<String, ValveType>,
+    pub named_strokes: BTreeMap<String, Stroke>,
+    /// The engineer's names of actuators (`C1 (clamp)` in the actuator table).
+    pub names: BTreeMap<u32, crate::symbols::ActuatorName>,
+    /// The designation scheme (`designations`).
+    pub designations: Option<crate::symbols::Scheme>,
     /// The rows that name outputs or inputs (`hold-safe`, `on stop`, …),
     /// as written: checked against the table once it is read.
     pub named: halt::NamedRows,
@@ -65,6 +74,7 @@ impl Given {
             "safety" => self.safety.is_some(),
             "modes" => self.modes.is_some(),
             "home order" => self.home_order.is_some(),
+            "designations" => self.designations.is_some(),
             other => halt::Row::from_label(other).is_some_and(|row| self.named.contains_key(&row)),
         }
     }
@@ -100,6 +110,21 @@ impl Given {
             strokes: merged(&self.strokes, &other.strokes),
             valves: merged(&self.valves, &other.valves),
             loads: merged(&self.loads, &other.loads),
+            names: merged(&self.names, &other.names),
+            // The command line's word wins: it comes last.
+            named_valves: other
+                .named_valves
+                .clone()
+                .into_iter()
+                .chain(self.named_valves.clone())
+                .collect(),
+            named_strokes: other
+                .named_strokes
+                .clone()
+                .into_iter()
+                .chain(self.named_strokes.clone())
+                .collect(),
+            designations: self.designations.or(other.designations),
             named: merged(&self.named, &other.named),
             cells: other
                 .cells
@@ -128,6 +153,8 @@ pub struct Settings {
     pub simulation: SimSettings,
     /// Horizontal axis of `NAME.diagram.svg`.
     pub diagram: DiagramKind,
+    /// How signals are designated, and the engineer's names of actuators.
+    pub naming: crate::symbols::Naming,
     /// Which files to write.
     pub formats: BTreeSet<OutputKind>,
     /// The templates text outputs are laid out by.
@@ -218,6 +245,12 @@ impl Settings {
         simulation.strokes.per_actuator.extend(&layer.strokes);
         simulation.valves.per_actuator.extend(&layer.valves);
         simulation.loads.extend(&layer.loads);
+        self.naming
+            .actuators
+            .extend(layer.names.iter().map(|(n, name)| (*n, name.clone())));
+        if let Some(scheme) = layer.designations {
+            self.naming.scheme = scheme;
+        }
     }
 
     /// Defaults: Festo addresses, middle stops, no safety checks, every format.

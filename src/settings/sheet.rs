@@ -39,7 +39,7 @@ struct ActuatorColumns {
 }
 
 /// The labels of the settings, as written on the sheet.
-pub const LABELS: [&str; 15] = [
+pub const LABELS: [&str; 16] = [
     "target",
     "board",
     "on stop",
@@ -55,6 +55,7 @@ pub const LABELS: [&str; 15] = [
     "safety",
     "modes",
     "home order",
+    "designations",
 ];
 
 /// The columns an actuator table may have, after `actuator`.
@@ -376,6 +377,10 @@ fn read_labels(
                 Ok(mnemonic) => settings.mnemonic = Some(mnemonic),
                 Err(_) => bad(or_list(&Mnemonic::names())),
             },
+            "designations" => match value.parse::<crate::symbols::Scheme>() {
+                Ok(scheme) => settings.designations = Some(scheme),
+                Err(_) => bad(or_list(&crate::symbols::Scheme::ALL.map(|s| s.name()))),
+            },
             "scan time" => match parse_scan(&value) {
                 Ok(ms) => {
                     said_without_unit(grid, value_cell, &value, diags);
@@ -579,7 +584,8 @@ fn read_actuator_rows(
             continue;
         };
         reader.seen.extend(values.iter().map(|c| c.pos));
-        if values.is_empty() {
+        let comment = crate::cell::actuator_comment(&name);
+        if values.is_empty() && comment.is_none() {
             reader.warn(
                 name_cell.pos,
                 format!("C{actuator} has nothing beside it in the actuator table; nothing was read for it"),
@@ -600,6 +606,17 @@ fn read_actuator_rows(
             continue;
         }
         first_rows.insert(actuator, name_cell.pos);
+        // `C1 (clamp)`: the engineer's name of the actuator, for every
+        // output (crate::symbols), even on a row with no other value.
+        if let Some(text) = comment {
+            reader.settings.names.insert(
+                actuator,
+                crate::symbols::ActuatorName {
+                    text,
+                    at: grid.location(name_cell.pos),
+                },
+            );
+        }
         for cell in &values {
             if !value_cols.contains(&cell.pos.col) {
                 reader.warn(

@@ -30,10 +30,16 @@ pub struct Fault {
 impl Fault {
     /// `x11 short circuit (stuck at 1)` / `x11 open circuit (stuck at 0)`.
     pub fn describe(&self) -> String {
+        self.describe_as(self.signal.symbol())
+    }
+
+    /// The same with the signal called `name` (its designation in the
+    /// outputs: `1B2 short circuit (stuck at 1)`).
+    pub fn describe_as(&self, name: String) -> String {
         if self.stuck_at {
-            format!("{} short circuit (stuck at 1)", self.signal.symbol())
+            format!("{name} short circuit (stuck at 1)")
         } else {
-            format!("{} open circuit (stuck at 0)", self.signal.symbol())
+            format!("{name} open circuit (stuck at 0)")
         }
     }
 }

@@ -190,8 +190,18 @@ pub(super) fn check(
     let mut steps = Vec::with_capacity(parsed.len());
     for (index, row) in parsed.into_iter().enumerate() {
         let number = index + 1;
+        // The engineer's comment on the step's label (`STEP 3 (clamp part)`).
+        let comment = frame
+            .label_col
+            .zip(frame.step_rows.get(index))
+            .and_then(|(col, row)| grid.cells.iter().find(|c| c.pos == CellPos::new(*row, col)))
+            .and_then(|c| match &c.value {
+                crate::read::CellValue::Text(t) => crate::cell::step_comment(t),
+                _ => None,
+            });
         let mut step = Step {
             number,
+            comment,
             moves: Vec::with_capacity(row.len()),
             dwells: Vec::new(),
             waits: Vec::new(),
@@ -501,8 +511,7 @@ struct Names {
 
 impl Names {
     /// Records a use of a name; a name is an input or an output, not both,
-    /// may not be one the program uses for itself, and must differ from every
-    /// other name in its first 9 characters (all Festo FST keeps).
+    /// and may not be one the program uses for itself.
     fn use_name(
         &mut self,
         name: Name,
@@ -531,20 +540,8 @@ impl Names {
         if let Some(why) = crate::names::signal_problem(name.as_str(), &[]) {
             diags.error(Code::E015BadName, grid.location(pos), why);
         }
-        if let Some((other, (_, other_pos))) = self
-            .first
-            .iter()
-            .find(|(n, _)| crate::names::same_in_fst(n.as_str(), name.as_str()))
-        {
-            diags.error(
-                Code::E025NameClash,
-                grid.location(pos),
-                format!(
-                    "{name} and {other} (cell {}) begin with the same 9 characters, which is all Festo FST keeps of a symbol",
-                    grid.cell_name(*other_pos)
-                ),
-            );
-        }
+        // Two names FST cannot tell apart are said by the one check over
+        // the table and its settings (the symbol table's check).
         self.first.insert(name, (kind, pos));
         match kind {
             NameKind::Input => self.inputs.push(name),

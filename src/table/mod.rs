@@ -149,6 +149,9 @@ pub fn positions_after(steps: &[Step]) -> Vec<BTreeMap<u32, u32>> {
 pub struct Step {
     /// One-based step number.
     pub number: usize,
+    /// The engineer's comment on the step's label (`clamp part` of `STEP 3
+    /// (clamp part)`), carried into every output's step comment.
+    pub comment: Option<String>,
     /// Moves in branch order.
     pub moves: Vec<Move>,
     pub dwells: Vec<Dwell>,

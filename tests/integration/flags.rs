@@ -137,6 +137,35 @@ fn table_cases(command: &'static str, out: &'static str) -> Vec<Case> {
             Has(Place::Stderr, "warning[W006]"),
         ),
     ];
+    cases.push(match command {
+        "convert" | "batch" => case(
+            command,
+            "--designations",
+            Paper,
+            &["--designations", "iso"],
+            &[],
+            Has(file("io.csv"), ",1B1,"),
+        ),
+        // The fault table on stdout names each signal by its designation.
+        "faults" => case(
+            command,
+            "--designations",
+            Paper,
+            &["--designations", "iso"],
+            &[],
+            Has(Place::Stdout, "1B1 short circuit"),
+        ),
+        _ => case(
+            command,
+            "--designations",
+            Paper,
+            &["--designations", "iso"],
+            &[],
+            Unchanged(
+                "check counts the signals and simulate speaks in the table's moves: neither prints a signal's designation",
+            ),
+        ),
+    });
     let simulates = command != "check";
     if command == "check" || writes_files {
         cases.extend([

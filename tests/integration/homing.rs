@@ -224,7 +224,7 @@ fn reset_does_not_home_behind_an_open_guard() {
 }
 
 /// The template workbook tells the engineer the same default: its SETTINGS
-/// help for `home order` (cell D19, and the note on B19) is the cycle's own
+/// help for `home order` (cell D20, and the note on B20) is the cycle's own
 /// return order, not the reverse of the last moves it once said; and the
 /// halt rows name every halt the guide names (an interlock too).
 #[test]
@@ -243,7 +243,7 @@ fn the_templates_help_says_the_default_home_order() {
         (row, settings[row][3].clone())
     };
     let (row, home) = help("home order");
-    assert_eq!(row, 18, "D19");
+    assert_eq!(row, 19, "D20");
     assert!(
         home.contains("default: the order the cycle itself returns the actuators home (each actuator's last move, earliest first"),
         "{home}"

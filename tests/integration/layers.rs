@@ -93,8 +93,15 @@ fn modules_import_in_pipeline_order_without_circles() {
         ),
         (
             "program",
-            &["emit", "address", "simulate", "read", "settings"],
+            &["emit", "address", "simulate", "read", "settings", "symbols"],
             "the program knows no output language and no address",
+        ),
+        (
+            "symbols",
+            &[
+                "emit", "address", "convert", "settings", "simulate", "faults",
+            ],
+            "the symbol table names the program's signals; every output reads it, it reads none",
         ),
         (
             "address",

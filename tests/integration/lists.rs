@@ -8,6 +8,7 @@
 use steptable::address::{BOARDS, Mnemonic, Target};
 use steptable::emit::OutputKind;
 use steptable::program::{Modes, Safety};
+use steptable::symbols::Scheme;
 use steptable::valve::ValveType;
 
 use crate::helpers::{sample, steptable, write_xlsx_sheets};
@@ -25,6 +26,7 @@ fn sources() -> Vec<(&'static str, Vec<&'static str>)> {
         ("mnemonic", Mnemonic::names()),
         ("safety", Safety::NAMES.to_vec()),
         ("modes", Modes::NAMES.to_vec()),
+        ("designations", Scheme::ALL.map(Scheme::name).to_vec()),
     ]
 }
 
@@ -94,6 +96,7 @@ fn the_messages_for_a_wrong_value_list_every_value() {
         &["mnemonic", "zz"],
         &["safety", "zz"],
         &["modes", "zz"],
+        &["designations", "zz"],
         &[],
         &["actuator", "valve"],
         &["C1", "zz"],
@@ -107,7 +110,8 @@ fn the_messages_for_a_wrong_value_list_every_value() {
         ("B3", "mnemonic"),
         ("B4", "safety"),
         ("B5", "modes"),
-        ("B8", "valve"),
+        ("B6", "designations"),
+        ("B9", "valve"),
     ] {
         let line = crate::helpers::line_with(
             &stderr

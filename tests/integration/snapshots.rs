@@ -200,6 +200,7 @@ fn step_programs_and_template_contexts() {
             allocation: &c.allocation,
             festo: &festo,
             program: &c.program,
+            symbols: &c.symbols,
             simulation: Some(&c.simulation),
             faults: c.faults.as_ref(),
             templates: &settings.templates,

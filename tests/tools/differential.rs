@@ -8,7 +8,8 @@
 //! `active_step`, the AWL step flag that is on, the FST step label).
 //!
 //! Matrix: every sample × festo/iec/siemens × plain / `--safety all` /
-//! `--modes all --safety all` (AWL also × `--mnemonic de`). Without
+//! `--modes all --safety all` (AWL also × `--mnemonic de`), and a table of
+//! named actuators and commented steps × `--designations iso` / `names`. Without
 //! `../shared` or awlsim the checks that need them are reported as ignored
 //! (they fail with STEPTABLE_REQUIRE_TOOLS=1).
 
@@ -88,6 +89,26 @@ fn matrix(dir: &Path, extra: &[&str]) -> Vec<Case> {
                 let out = dir.join(format!("{s}-{target}-{o}"));
                 cases.push(engines::prepare(sample, &args, &out));
             }
+        }
+    }
+    // The engineer's names and step comments, under each designation
+    // scheme (issue 38): identifiers and comments the engines must take.
+    let named = crate::helpers::root().join("tests/fixtures/named_station.xlsx");
+    for target in TARGETS {
+        for scheme in ["iso", "names"] {
+            let mut args = vec![
+                "--target",
+                target,
+                "--modes",
+                "all",
+                "--safety",
+                "all",
+                "--designations",
+                scheme,
+            ];
+            args.extend_from_slice(extra);
+            let out = dir.join(format!("named-{target}-{scheme}"));
+            cases.push(engines::prepare(&named, &args, &out));
         }
     }
     cases

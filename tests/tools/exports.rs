@@ -50,6 +50,18 @@ fn convert_all(dir: &Path, extra: &[&str]) -> Vec<PathBuf> {
         .arg(dir.join("modes"))
         .assert()
         .success();
+    // The engineer's names and step comments, under ISO 1219 designations
+    // and as identifiers (issue 38).
+    for scheme in ["iso", "names"] {
+        steptable()
+            .arg("convert")
+            .arg(crate::helpers::root().join("tests/fixtures/named_station.xlsx"))
+            .args(extra)
+            .args(["--modes", "all", "--designations", scheme, "-o"])
+            .arg(dir.join(scheme))
+            .assert()
+            .success();
+    }
     files_below(dir)
 }
 
@@ -97,7 +109,7 @@ fn plcopen_and_codesys_xml_validate_against_the_official_schema() {
         );
         checked += 1;
     }
-    assert_eq!(checked, 2 * (samples().len() + 3));
+    assert_eq!(checked, 2 * (samples().len() + 5));
 }
 
 fn structured_text_parses_with_blark() {

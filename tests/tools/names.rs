@@ -21,7 +21,49 @@ pub const CHECKS: &[Check] = &[
         &[Tool::Shared],
         every_letter_synth_takes_compiles_in_matiec,
     ),
+    Check::new(
+        "names::instruction_list_operators_name_table_signals_in_st",
+        &[Tool::Shared],
+        instruction_list_operators_name_table_signals_in_st,
+    ),
 ];
+
+/// A table's programs are Structured Text, where matiec takes IL's
+/// operators (`r`, `s`, `ld`, `in`, `pt`) as names: the table accepts them
+/// (synth, which writes IL, refuses its letters R and S), and the `.st`
+/// compiles.
+fn instruction_list_operators_name_table_signals_in_st() {
+    let shared = shared();
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("il.csv");
+    std::fs::write(
+        &input,
+        ",BRANCH 1\nSTEP 1,C1+1; I:r\nSTEP 2,Y:s+; I:ld\nSTEP 3,C1-0; I:in\nSTEP 4,Y:s-; I:pt\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let output = steptable()
+        .arg("convert")
+        .arg(&input)
+        .args(["--formats", "st", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let st = out.join("il").join("il.st");
+    let text = std::fs::read_to_string(&st).unwrap();
+    assert!(
+        text.contains("r AT %IX") && text.contains("s AT %QX"),
+        "{text}"
+    );
+    let work = dir.path().join("c");
+    std::fs::create_dir_all(&work).unwrap();
+    matiec::compile(&shared, &st, &work).unwrap_or_else(|e| panic!("{e}"));
+}
 
 /// Each letter as an actuator (with K, or J beside K), and the memories a
 /// sequence of W, X, Y, Z, V, U takes instead (T, Q, P: S and R skipped):

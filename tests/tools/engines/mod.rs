@@ -87,6 +87,10 @@ pub fn settings_for(args: &[&str]) -> Settings {
                 safety: Some(s.parse().expect("safety list")),
                 ..Given::default()
             }),
+            ["--designations", d] => settings.give(Given {
+                designations: Some(d.parse().expect("designations")),
+                ..Given::default()
+            }),
             ["--modes", m] => settings.give(Given {
                 modes: Some(m.parse().expect("modes")),
                 ..Given::default()

@@ -1,0 +1,226 @@
+//! The rules every name meets in every target, checked once over the whole
+//! table and its settings: each name a cell or a SETTINGS row brings in
+//! (machine inputs and outputs, start permissives, interlocks, actuator
+//! names and, under the engineer's names, the identifiers they give) against
+//! every other. IEC 61131-3 and Rockwell tags ignore case and Festo FST keeps
+//! only 9 characters, so two names that are one there are one signal to that
+//! target: an error at the later one's cell, naming the earlier one.
+
+use crate::diag::{Code, Diagnostics, Location};
+use crate::names::{FST_SYMBOL_CHARS, fst_stem, reserved_name};
+use crate::read::Grid;
+use crate::table::StepTable;
+
+use super::scheme::{Naming, Scheme};
+
+/// Why `id` is not an identifier of IEC 61131-3 (and so of Rockwell tags
+/// and STEP 7 symbols, which accept more): a letter, then letters, digits
+/// and single underscores, not ending in one.
+pub fn identifier_problem(id: &str) -> Option<String> {
+    let mut chars = id.chars();
+    if !chars.next().is_some_and(|c| c.is_ascii_alphabetic()) {
+        return Some(format!("{id} does not begin with a letter"));
+    }
+    if !chars.all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        return Some(format!(
+            "{id} holds a character other than a letter, digit or _"
+        ));
+    }
+    if id.contains("__") || id.ends_with('_') {
+        return Some(format!("{id} has a double or trailing underscore"));
+    }
+    None
+}
+
+/// One name the table or its settings bring in.
+#[derive(Debug, Clone)]
+pub struct Entry {
+    /// The name as the program spells it.
+    pub name: String,
+    /// Where it was written.
+    pub at: Location,
+    /// Says where it was written, in a message (`in cell B3`, `in the
+    /// interlock row`, `for C1`).
+    pub origin: String,
+    /// The prefix of a message at this entry (`interlock: `).
+    pub label: String,
+    /// The actuator whose name gives it, if any.
+    pub actuator: Option<u32>,
+    /// Whether it names a signal (an actuator's bare name names none, so
+    /// what FST keeps of it does not matter).
+    pub symbol: bool,
+}
+
+/// The machine inputs and outputs of `table`, each at the first cell
+/// (row by row, left to right) that names it.
+pub fn table_entries(table: &StepTable, grid: &Grid) -> Vec<Entry> {
+    let mut uses: Vec<(crate::diag::CellPos, String)> = Vec::new();
+    for step in &table.steps {
+        uses.extend(step.waits.iter().map(|w| (w.cell, w.input.to_string())));
+        uses.extend(step.jumps.iter().map(|j| (j.cell, j.input.to_string())));
+        uses.extend(step.switches.iter().map(|s| (s.cell, s.output.to_string())));
+    }
+    uses.sort_by_key(|(pos, _)| (pos.row, pos.col));
+    let mut entries: Vec<Entry> = Vec::new();
+    for (pos, name) in uses {
+        if entries.iter().any(|e| e.name == name) {
+            continue;
+        }
+        entries.push(Entry {
+            origin: format!("in cell {}", grid.cell_name(pos)),
+            at: grid.location(pos),
+            label: String::new(),
+            actuator: None,
+            symbol: true,
+            name,
+        });
+    }
+    entries
+}
+
+/// `SETTINGS!B5`: a cell in a message.
+fn place(at: &Location) -> String {
+    match (&at.sheet, at.cell) {
+        (Some(sheet), Some(cell)) => format!("{sheet}!{}", cell.a1()),
+        (None, Some(cell)) => format!("{}:{}", cell.row + 1, cell.col + 1),
+        (Some(sheet), None) => sheet.clone(),
+        (None, None) => "the command line".to_string(),
+    }
+}
+
+/// The inputs a SETTINGS row (`label`: `start permissive`, `interlock`)
+/// names, at its cell.
+pub fn row_entries(label: &str, names: &[crate::cell::Name], at: &Location) -> Vec<Entry> {
+    names
+        .iter()
+        .map(|n| Entry {
+            name: n.to_string(),
+            at: at.clone(),
+            origin: format!("in the {label} row, {}", place(at)),
+            label: format!("{label}: "),
+            actuator: None,
+            symbol: true,
+        })
+        .collect()
+}
+
+/// Sheet order of a SETTINGS cell, so that of two rows the lower one is
+/// the later.
+pub fn sheet_order(at: &Location) -> (u32, u32) {
+    at.cell.map_or((0, 0), |c| (c.row, c.col))
+}
+
+/// The identifiers the engineer's names give (`clamp_home`, `clamp_out`),
+/// and each name itself, at the actuator table's cell; a name that gives
+/// no identifier under the names scheme is E015 there.
+pub fn actuator_entries(table: &StepTable, naming: &Naming, diags: &mut Diagnostics) -> Vec<Entry> {
+    let mut entries = Vec::new();
+    for (&n, name) in &naming.actuators {
+        let Some(actuator) = table.actuator(n) else {
+            continue;
+        };
+        let label = format!("C{n} ({}): ", name.text);
+        let Some(stem) = name.stem() else {
+            if naming.scheme == Scheme::Names {
+                diags.error(
+                    Code::E015BadName,
+                    name.at.clone(),
+                    format!(
+                        "{label}\"{}\" gives no identifier (a name begins with a letter and holds only letters A-Z, digits and separators) under --designations names; rename it, or choose another scheme",
+                        name.text
+                    ),
+                );
+            }
+            continue;
+        };
+        let origin = format!("for C{n} at {}", place(&name.at));
+        let entry = |text: String, symbol: bool| Entry {
+            name: text,
+            at: name.at.clone(),
+            origin: origin.clone(),
+            label: label.clone(),
+            actuator: Some(n),
+            symbol,
+        };
+        entries.push(entry(stem.clone(), false));
+        if naming.scheme != Scheme::Names {
+            continue;
+        }
+        let mut ids: Vec<String> = (0..=actuator.max_position)
+            .map(|position| {
+                naming.ident(
+                    crate::program::Signal::Sensor {
+                        actuator: n,
+                        position,
+                    },
+                    table,
+                )
+            })
+            .collect();
+        ids.push(format!("{stem}_out"));
+        ids.push(format!("{stem}_in"));
+        for id in ids {
+            if let Some(why) = identifier_problem(&id).or_else(|| reserved_name(&id)) {
+                diags.error(
+                    Code::E015BadName,
+                    name.at.clone(),
+                    format!("{label}its signal {id} cannot be an identifier: {why}"),
+                );
+            }
+            entries.push(entry(id, true));
+        }
+    }
+    entries
+}
+
+/// Every entry against every earlier one: the same name after case folding
+/// (two actuators with one name, an input named like an actuator), or the
+/// same first 9 characters in Festo FST. An error at the later entry.
+pub fn check_entries(entries: &[Entry], diags: &mut Diagnostics) {
+    let mut said: Vec<(Location, String)> = Vec::new();
+    for (i, entry) in entries.iter().enumerate() {
+        let lower = entry.name.to_ascii_lowercase();
+        for earlier in &entries[..i] {
+            let same_actuator = entry.actuator.is_some() && entry.actuator == earlier.actuator;
+            let other = earlier.name.to_ascii_lowercase();
+            let message = if lower == other {
+                // One input in two rows (a permissive that is an
+                // interlock too) is one signal.
+                if same_actuator || (entry.actuator.is_none() && earlier.actuator.is_none()) {
+                    continue;
+                }
+                format!(
+                    "{}{} is named {} too; give them different names",
+                    entry.label, entry.name, earlier.origin
+                )
+            } else if entry.symbol && earlier.symbol && fst_stem(&lower) == fst_stem(&other) {
+                format!(
+                    "{}{} and {} begin with the same {FST_SYMBOL_CHARS} characters, which is all Festo FST keeps of a symbol ({} is named {}){}",
+                    entry.label,
+                    entry.name,
+                    earlier.name,
+                    earlier.name,
+                    earlier.origin,
+                    if entry.actuator.is_some() {
+                        "; give the actuator a shorter name, or choose --designations paper or iso"
+                    } else {
+                        ""
+                    }
+                )
+            } else {
+                continue;
+            };
+            // One error per place and name pair; one per actuator name,
+            // whose signals would all say the same.
+            let key = match entry.actuator {
+                Some(_) => (entry.at.clone(), String::new()),
+                None => (entry.at.clone(), entry.name.clone()),
+            };
+            if !said.contains(&key) {
+                said.push(key);
+                diags.error(Code::E025NameClash, entry.at.clone(), message);
+            }
+            break;
+        }
+    }
+}

@@ -1,0 +1,161 @@
+//! What each signal is, in words, for the symbol comments of every output
+//! ("cylinder 2 (clamp), middle position 1"): decided here once, so that a
+//! program text, a tag export and an I/O list describe a signal alike.
+
+use crate::cell::Sign;
+use crate::program::{Alarm, Signal, StepProgram};
+use crate::table::{Step, StepTable};
+
+/// The comment of `signal` in `program` of `table`; `actuator` names an
+/// actuator after the word `cylinder` or `drive` (`1 (clamp)`, `1A1`), and
+/// `name` designates a signal.
+pub(super) fn comment(
+    signal: Signal,
+    program: &StepProgram,
+    table: &StepTable,
+    actuator: &dyn Fn(u32) -> String,
+    name: &dyn Fn(Signal) -> String,
+) -> String {
+    let pmax = |a: u32| table.actuator(a).map(|x| x.max_position).unwrap_or(1);
+    let run_on = |n: u16| program.run_ons.get(usize::from(n).wrapping_sub(1));
+    match signal {
+        Signal::Start => "START push-button".to_string(),
+        Signal::Sensor {
+            actuator: a,
+            position,
+        } => {
+            let which = if position == 0 {
+                "home position 0".to_string()
+            } else if position == pmax(a) {
+                format!("end position {position}")
+            } else {
+                format!("middle position {position}")
+            };
+            format!("cylinder {}, {which}", actuator(a))
+        }
+        Signal::Coil { actuator: a, sign } if program.signals.is_drive(signal) => format!(
+            "drive {}, {} (cut at its limit switch)",
+            actuator(a),
+            match sign {
+                Sign::Plus => "forward (+)",
+                Sign::Minus => "reverse (-)",
+            }
+        ),
+        Signal::Coil { actuator: a, sign } => match sign {
+            Sign::Plus => format!("cylinder {}, coil + (extend)", actuator(a)),
+            Sign::Minus => format!("cylinder {}, coil - (retract)", actuator(a)),
+        },
+        Signal::SingleCoil { actuator: a } => {
+            format!(
+                "cylinder {}, coil (on: extend; off: the spring retracts)",
+                actuator(a)
+            )
+        }
+        Signal::StopAt {
+            actuator: a,
+            position,
+        } if program.signals.motors.contains(&a) => {
+            format!("drive {} stops at position {position}", actuator(a))
+        }
+        Signal::StopAt {
+            actuator: a,
+            position,
+        } => {
+            format!(
+                "cylinder {} stops at middle position {position}",
+                actuator(a)
+            )
+        }
+        Signal::StartMemory => "START in the previous scan (rising edge)".to_string(),
+        Signal::Halt => "sequence stopped by a safety check".to_string(),
+        Signal::Alarm(Alarm::Sensor) => "alarm: two sensors of one cylinder on at once".to_string(),
+        Signal::Alarm(Alarm::Timeout) => "alarm: a step did not finish in time".to_string(),
+        Signal::Alarm(Alarm::Interlock) => "alarm: an interlock input went off".to_string(),
+        Signal::Watchdog => "step watchdog timer".to_string(),
+        Signal::WatchdogArmed => "watchdog is timing a step".to_string(),
+        Signal::MachineInput(input) => {
+            let waits = |s: &Step| s.waits.iter().any(|w| w.input == input);
+            let jumps = |s: &Step| s.jumps.iter().any(|j| j.input == input);
+            let mut uses = vec![format!("machine input {input}")];
+            if table.steps.iter().any(waits) {
+                uses.push(format!("waited for in {}", steps_where(table, waits)));
+            }
+            if table.steps.iter().any(jumps) {
+                uses.push(format!("jumped on after {}", steps_where(table, jumps)));
+            }
+            uses.join(", ")
+        }
+        Signal::MachineOutput(output) => {
+            let switched = |s: &Step| s.switches.iter().any(|w| w.output == output);
+            format!(
+                "machine output {output}, switched in {}",
+                steps_where(table, switched)
+            )
+        }
+        Signal::Dwell(n) | Signal::DwellArmed(n) => {
+            let what = table
+                .steps
+                .iter()
+                .find_map(|s| {
+                    s.dwells.iter().find(|d| d.number == n).map(|d| {
+                        format!(
+                            "STEP {}, branch {}, {}",
+                            s.number,
+                            d.branch + 1,
+                            crate::cell::dwell_text(d.ms)
+                        )
+                    })
+                })
+                .unwrap_or_default();
+            if matches!(signal, Signal::Dwell(_)) {
+                format!("dwell timer {n} ({what})")
+            } else {
+                format!("dwell {n} waits for its branch to finish ({what})")
+            }
+        }
+        Signal::RunOn(n) => match run_on(n) {
+            Some(r) => format!(
+                "run-on timer {n}: {} stays on {} after {}",
+                name(r.output),
+                crate::cell::duration_text(r.ms),
+                r.event.text()
+            ),
+            None => format!("run-on timer {n} (an output on after STOP)"),
+        },
+        Signal::RunOnArmed(n) => match run_on(n) {
+            Some(r) => format!("{} runs on after {}", name(r.output), r.event.text()),
+            None => format!("run-on {n} is timing"),
+        },
+        Signal::InterlockZone(n) => format!("the sequence is in the steps of interlock zone {n}"),
+        Signal::Continuous => "CONTINUOUS switch (on: repeat cycles)".to_string(),
+        Signal::Stop if program.stops_now() => {
+            "STOP push-button, normally closed (0: stop at once, outputs as on stop says)"
+                .to_string()
+        }
+        Signal::Stop => {
+            "STOP push-button, normally closed (0: finish the cycle, then halt)".to_string()
+        }
+        Signal::EStop => "EMERGENCY STOP, normally closed (0: every coil off at once)".to_string(),
+        Signal::Reset => "RESET push-button (home every actuator)".to_string(),
+        Signal::CycleRequest => "a cycle was asked for".to_string(),
+        Signal::Busy => "a cycle is under way".to_string(),
+        Signal::AutoRun => "continuous operation runs".to_string(),
+        Signal::Homing => "the homing sequence runs".to_string(),
+        Signal::HomeStage(n) => format!("homing stage {n} runs"),
+        Signal::Sequence => "the step sequence".to_string(),
+    }
+}
+
+/// `STEP 2` or `STEPS 2, 5`.
+fn steps_where(table: &StepTable, test: impl Fn(&Step) -> bool) -> String {
+    let numbers: Vec<String> = table
+        .steps
+        .iter()
+        .filter(|s| test(s))
+        .map(|s| s.number.to_string())
+        .collect();
+    match numbers.len() {
+        1 => format!("STEP {}", numbers[0]),
+        _ => format!("STEPS {}", numbers.join(", ")),
+    }
+}

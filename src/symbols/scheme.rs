@@ -1,0 +1,264 @@
+//! How signals are designated: the published method's `x10` / `y1+`, the
+//! ISO 1219-2 designations of a circuit diagram (`1A1` cylinder, `1B1` /
+//! `1B2` sensors, `1M1` / `1M2` solenoids), or the engineer's own names
+//! (`clamp_home`, `clamp_out`) from the SETTINGS actuator table.
+
+use std::collections::BTreeMap;
+
+use crate::cell::Sign;
+use crate::diag::Location;
+use crate::program::Signal;
+use crate::table::StepTable;
+
+/// The designation scheme (`--designations`, SETTINGS `designations`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub enum Scheme {
+    /// The published method's: `x10`, `x11`, `y1+`, `y1-`.
+    #[default]
+    Paper,
+    /// ISO 1219-2: cylinder `1A1`, sensors `1B1` (home), `1B2` (end), then
+    /// the middle positions in order; solenoids `1M1` (+) and `1M2` (-).
+    /// They lead the comments and fill the lists; identifiers, which may
+    /// not begin with a digit, stay the paper's.
+    Iso,
+    /// The engineer's: an actuator named `clamp` in the SETTINGS actuator
+    /// table has `clamp_home`, `clamp_end`, `clamp_pos1` (middle position
+    /// 1), `clamp_out` and `clamp_in` as identifiers and designations.
+    Names,
+}
+
+impl Scheme {
+    pub const ALL: [Scheme; 3] = [Scheme::Paper, Scheme::Iso, Scheme::Names];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Paper => "paper",
+            Scheme::Iso => "iso",
+            Scheme::Names => "names",
+        }
+    }
+
+    /// Every value, for messages and `--help`.
+    pub fn list() -> String {
+        Scheme::ALL.map(Scheme::name).join(", ")
+    }
+}
+
+impl std::str::FromStr for Scheme {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let lower = text.trim().to_ascii_lowercase();
+        Scheme::ALL
+            .into_iter()
+            .find(|s| s.name() == lower)
+            .ok_or_else(|| format!("expected one of {}", Scheme::list()))
+    }
+}
+
+/// An actuator's name as the SETTINGS actuator table gives it (`C1
+/// (clamp)`), with its cell.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ActuatorName {
+    /// The comment as written (`clamp`, `gripper arm`).
+    pub text: String,
+    pub at: Location,
+}
+
+impl ActuatorName {
+    /// The name as an identifier stem: lower case, every run of other
+    /// characters one `_` (`Gripper arm` → `gripper_arm`); `None` when
+    /// that is empty, begins with a digit or holds a letter outside ASCII.
+    pub fn stem(&self) -> Option<String> {
+        stem(&self.text)
+    }
+}
+
+/// See [`ActuatorName::stem`].
+pub fn stem(text: &str) -> Option<String> {
+    let mut out = String::new();
+    for c in text.trim().chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c.to_ascii_lowercase());
+        } else if c.is_alphanumeric() {
+            return None;
+        } else if !out.ends_with('_') {
+            out.push('_');
+        }
+    }
+    let out = out.trim_matches('_').to_string();
+    out.chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic())
+        .then_some(out)
+}
+
+/// The naming settings of one conversion.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Naming {
+    pub scheme: Scheme,
+    /// The engineer's names of actuators, by number.
+    pub actuators: BTreeMap<u32, ActuatorName>,
+}
+
+impl Naming {
+    /// The identifier stem of actuator `n` under the names scheme.
+    fn own_stem(&self, n: u32) -> Option<String> {
+        match self.scheme {
+            Scheme::Names => self.actuators.get(&n).and_then(ActuatorName::stem),
+            _ => None,
+        }
+    }
+
+    /// The actuator the engineer named `name` (as written, in any case, or
+    /// as its identifier stem: `Gripper Arm`, `gripper_arm`).
+    pub fn actuator_named(&self, name: &str) -> Option<u32> {
+        let name = name.trim();
+        let lower = name.to_ascii_lowercase();
+        self.actuators
+            .iter()
+            .find(|(_, a)| a.text.eq_ignore_ascii_case(name) || a.stem().as_deref() == Some(&lower))
+            .map(|(n, _)| *n)
+    }
+
+    /// The identifier of `signal`.
+    pub fn ident(&self, signal: Signal, table: &StepTable) -> String {
+        named(signal, table, |n| self.own_stem(n)).unwrap_or_else(|| paper_ident(signal))
+    }
+
+    /// The designation of `signal`.
+    pub fn designation(&self, signal: Signal, table: &StepTable) -> String {
+        if self.scheme == Scheme::Iso
+            && let Some(iso) = iso(signal, table)
+        {
+            return iso;
+        }
+        named(signal, table, |n| self.own_stem(n)).unwrap_or_else(|| signal.symbol())
+    }
+
+    /// Actuator `n` in an action's comment and a diagram: `C1` (`1A1`
+    /// under ISO) and the engineer's name, if it has one.
+    pub fn actuator_parts(&self, n: u32) -> (String, Option<String>) {
+        let head = match self.scheme {
+            Scheme::Iso => format!("{n}A1"),
+            _ => format!("C{n}"),
+        };
+        (head, self.actuators.get(&n).map(|name| name.text.clone()))
+    }
+
+    /// Actuator `n` after `cylinder` in a comment: `1`, `1 (clamp)`, `1A1 (clamp)`.
+    pub fn actuator_words(&self, n: u32) -> String {
+        let head = match self.scheme {
+            Scheme::Iso => format!("{n}A1"),
+            _ => n.to_string(),
+        };
+        match self.actuators.get(&n) {
+            Some(name) => format!("{head} ({})", name.text),
+            None => head,
+        }
+    }
+
+    /// Every name `signal` answers to where a setting names a signal: its
+    /// paper symbol and identifier, and the engineer's names whatever the
+    /// scheme (`clamp_out`).
+    pub fn aliases(&self, signal: Signal, table: &StepTable) -> Vec<String> {
+        self.aliases_by(signal, &|a| table.actuator(a).map_or(1, |x| x.max_position))
+    }
+
+    /// [`Naming::aliases`], each actuator's end position given by `pmax`.
+    pub fn aliases_by(&self, signal: Signal, pmax: &dyn Fn(u32) -> u32) -> Vec<String> {
+        let mut names = vec![signal.symbol(), paper_ident(signal)];
+        let own = |n: u32| self.actuators.get(&n).and_then(ActuatorName::stem);
+        if let Some(name) = named_by(signal, pmax, own) {
+            names.push(name);
+        }
+        if let Some(iso) = iso_by(signal, pmax) {
+            names.push(iso);
+        }
+        names
+    }
+}
+
+/// The engineer's name of an actuator's sensor or coil, when `stem` gives
+/// its actuator one.
+fn named(
+    signal: Signal,
+    table: &StepTable,
+    stem: impl Fn(u32) -> Option<String>,
+) -> Option<String> {
+    named_by(
+        signal,
+        &|a| table.actuator(a).map_or(1, |x| x.max_position),
+        stem,
+    )
+}
+
+fn named_by(
+    signal: Signal,
+    pmax_of: &dyn Fn(u32) -> u32,
+    stem: impl Fn(u32) -> Option<String>,
+) -> Option<String> {
+    match signal {
+        Signal::Sensor { actuator, position } => {
+            let name = stem(actuator)?;
+            let pmax = pmax_of(actuator);
+            Some(if position == 0 {
+                format!("{name}_home")
+            } else if position == pmax {
+                format!("{name}_end")
+            } else {
+                format!("{name}_pos{position}")
+            })
+        }
+        Signal::Coil { actuator, sign } => {
+            let name = stem(actuator)?;
+            Some(match sign {
+                Sign::Plus => format!("{name}_out"),
+                Sign::Minus => format!("{name}_in"),
+            })
+        }
+        Signal::SingleCoil { actuator } => Some(format!("{}_out", stem(actuator)?)),
+        _ => None,
+    }
+}
+
+/// The ISO 1219-2 designation of an actuator's sensor or solenoid: sensors
+/// `nB1` (home), `nB2` (end), then the middle positions in order from
+/// `nB3`; solenoids `nM1` (+, the only one of a single-solenoid valve) and
+/// `nM2` (-).
+fn iso(signal: Signal, table: &StepTable) -> Option<String> {
+    iso_by(signal, &|a| table.actuator(a).map_or(1, |x| x.max_position))
+}
+
+fn iso_by(signal: Signal, pmax_of: &dyn Fn(u32) -> u32) -> Option<String> {
+    match signal {
+        Signal::Sensor { actuator, position } => {
+            let pmax = pmax_of(actuator);
+            let number = if position == 0 {
+                1
+            } else if position == pmax {
+                2
+            } else {
+                position + 2
+            };
+            Some(format!("{actuator}B{number}"))
+        }
+        Signal::Coil { actuator, sign } => Some(match sign {
+            Sign::Plus => format!("{actuator}M1"),
+            Sign::Minus => format!("{actuator}M2"),
+        }),
+        Signal::SingleCoil { actuator } => Some(format!("{actuator}M1")),
+        _ => None,
+    }
+}
+
+/// The published method's symbol as an identifier legal in every target
+/// language: `+`/`-` become `p`/`m`.
+pub fn paper_ident(signal: Signal) -> String {
+    match signal {
+        Signal::Coil { actuator, sign } => {
+            format!("y{actuator}{}", if sign == Sign::Plus { 'p' } else { 'm' })
+        }
+        other => other.symbol(),
+    }
+}
