@@ -23,6 +23,8 @@ pub enum OutputKind {
     CodesysV2,
     /// A Beremiz / OpenPLC Editor project folder (`NAME.beremiz/`).
     Beremiz,
+    /// The sequence as a GRAFCET (IEC 60848) picture.
+    Grafcet,
 }
 
 impl OutputKind {
@@ -33,7 +35,7 @@ impl OutputKind {
     }
 
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 16] = [
+    pub const ALL: [OutputKind; 17] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -50,6 +52,7 @@ impl OutputKind {
         OutputKind::Rockwell,
         OutputKind::CodesysV2,
         OutputKind::Beremiz,
+        OutputKind::Grafcet,
     ];
 
     /// The name used with `--formats`.
@@ -71,6 +74,7 @@ impl OutputKind {
             OutputKind::Rockwell => "rockwell",
             OutputKind::CodesysV2 => "exp",
             OutputKind::Beremiz => "beremiz",
+            OutputKind::Grafcet => "grafcet",
         }
     }
 
@@ -116,6 +120,7 @@ impl OutputKind {
             OutputKind::Rockwell => ".rockwell.csv",
             OutputKind::CodesysV2 => ".exp",
             OutputKind::Beremiz => ".beremiz",
+            OutputKind::Grafcet => ".grafcet.svg",
         }
     }
 
@@ -276,7 +281,7 @@ mod tests {
             let err = OutputKind::parse_list(list).unwrap_err();
             assert!(err.contains(said), "{list}: {err}");
         }
-        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 16);
+        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 17);
         assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(edit_distance("kitten", "sitting"), 3);
     }

@@ -8,6 +8,7 @@ pub mod diagram;
 pub mod equations;
 pub mod faults_csv;
 pub mod fst;
+pub mod grafcet;
 pub mod io_csv;
 mod kind;
 mod render;

@@ -176,6 +176,7 @@ impl<'a> Renderer<'a> {
             OutputKind::FstAllocation => text(kind, super::tables::render_fst_alloc(&input))?,
             OutputKind::Rockwell => text(kind, super::tables::render_rockwell(&input))?,
             OutputKind::Beremiz => return self.beremiz(),
+            OutputKind::Grafcet => super::grafcet::render_svg(&input).into_bytes(),
             OutputKind::StructuredText => self.iec(kind, IecFile::StructuredText)?,
             OutputKind::PlcOpen => {
                 let bytes = self.iec(kind, IecFile::PlcOpen)?;

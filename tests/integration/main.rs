@@ -18,6 +18,7 @@ mod fault_phases;
 mod findings;
 mod flags;
 mod fuzz_regressions;
+mod grafcet;
 mod helpers;
 mod homing;
 mod hostile;

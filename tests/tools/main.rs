@@ -11,6 +11,7 @@
 #[path = "../integration/helpers.rs"]
 mod helpers;
 
+mod browser;
 mod differential;
 mod differential_random;
 mod differential_timing;
@@ -41,6 +42,8 @@ pub enum Tool {
     Blark,
     Soffice,
     Strace,
+    /// Headless Chromium, Debian's package.
+    Chromium,
 }
 
 impl Tool {
@@ -57,6 +60,7 @@ impl Tool {
             Tool::Blark => find_program("blark"),
             Tool::Soffice => find_program("soffice"),
             Tool::Strace => find_program("strace"),
+            Tool::Chromium => find_program("chromium"),
         }
     }
 
@@ -72,6 +76,7 @@ impl Tool {
             Tool::Blark => "blark was not found (set STEPTABLE_TOOLS or PATH; .ci/run installs it)",
             Tool::Soffice => "soffice was not found (.ci/run installs libreoffice-calc)",
             Tool::Strace => "strace was not found (.ci/run installs it)",
+            Tool::Chromium => "chromium was not found (.ci/run installs Debian's chromium)",
         }
     }
 }
@@ -129,6 +134,7 @@ fn main() {
     let args = Arguments::from_args();
     let required = tools_required();
     let checks = [
+        browser::CHECKS,
         differential::CHECKS,
         differential_random::CHECKS,
         differential_timing::CHECKS,

@@ -1,0 +1,125 @@
+//! The pictures and the report as a real browser draws them: headless
+//! Chromium (Debian's package) lays the GRAFCET out with its own fonts and
+//! measures every box and label, so an overlap the character estimate of
+//! `tests/integration/grafcet.rs` missed is still caught.
+
+use std::path::Path;
+
+use crate::helpers::{samples, steptable};
+use crate::{Check, Tool, tool};
+
+pub const CHECKS: &[Check] = &[Check::new(
+    "browser::the_grafcet_renders_without_overlaps_in_chromium",
+    &[Tool::Chromium],
+    the_grafcet_renders_without_overlaps_in_chromium,
+)];
+
+/// The page's DOM after its scripts ran, as headless Chromium dumps it,
+/// and what Chromium logged (console messages among it).
+pub fn dump_dom(page: &Path, profile: &Path) -> (String, String) {
+    let out = std::process::Command::new(tool(Tool::Chromium))
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--enable-logging=stderr",
+            "--v=0",
+            "--dump-dom",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .arg(format!("file://{}", page.display()))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (
+        String::from_utf8_lossy(&out.stdout).to_string(),
+        String::from_utf8_lossy(&out.stderr).to_string(),
+    )
+}
+
+/// Measures the boxes and texts of every SVG on the page and writes the
+/// overlaps it finds into `#overlaps`, one a line, and `done` after them.
+pub const MEASURE: &str = r#"<script>
+(function () {
+  var out = [];
+  document.querySelectorAll('svg.grafcet').forEach(function (svg) {
+    var items = [];
+    svg.querySelectorAll('g.step > rect:first-of-type, g.actions > rect, g.note > rect, g.transition > text, text.label').forEach(function (el) {
+      var b = el.getBBox();
+      items.push({ el: el, b: b, name: el.parentNode.getAttribute('data-step') || el.parentNode.getAttribute('data-transition') || el.textContent });
+    });
+    svg.querySelectorAll('g.actions, g.note').forEach(function (g) {
+      var r = g.querySelector('rect').getBBox();
+      g.querySelectorAll('text').forEach(function (t) {
+        var b = t.getBBox();
+        if (b.x < r.x || b.y < r.y || b.x + b.width > r.x + r.width || b.y + b.height > r.y + r.height)
+          out.push('outside its panel: ' + t.textContent);
+      });
+    });
+    for (var i = 0; i < items.length; i++) for (var j = i + 1; j < items.length; j++) {
+      var a = items[i].b, c = items[j].b;
+      if (a.x < c.x + c.width && c.x < a.x + a.width && a.y < c.y + c.height && c.y < a.y + a.height)
+        out.push(items[i].name + ' overlaps ' + items[j].name);
+    }
+    out.push('drawn: ' + svg.querySelectorAll('g.step').length + ' steps, ' + svg.querySelectorAll('g.transition').length + ' transitions');
+  });
+  var pre = document.createElement('pre');
+  pre.id = 'overlaps';
+  pre.textContent = out.join('\n') + '\ndone';
+  document.body.appendChild(pre);
+})();
+</script>"#;
+
+fn the_grafcet_renders_without_overlaps_in_chromium() {
+    let dir = tempfile::tempdir().unwrap();
+    for path in samples() {
+        let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+        let out = dir.path().join(&stem);
+        steptable()
+            .arg("convert")
+            .arg(&path)
+            .args(["--formats", "grafcet", "--modes", "all", "-o"])
+            .arg(&out)
+            .assert()
+            .success();
+        let svg =
+            std::fs::read_to_string(out.join(&stem).join(format!("{stem}.grafcet.svg"))).unwrap();
+        let page = dir.path().join(format!("{stem}.html"));
+        std::fs::write(
+            &page,
+            format!("<!DOCTYPE html><html><body>{svg}{MEASURE}</body></html>"),
+        )
+        .unwrap();
+        let (dom, _) = dump_dom(&page, &dir.path().join("profile"));
+        let found = dom
+            .split("<pre id=\"overlaps\">")
+            .nth(1)
+            .and_then(|rest| rest.split("</pre>").next())
+            .unwrap_or_else(|| panic!("{stem}: the measuring script did not run"));
+        let lines: Vec<&str> = found.lines().collect();
+        assert_eq!(lines.last(), Some(&"done"), "{stem}: {found}");
+        let problems: Vec<&&str> = lines
+            .iter()
+            .filter(|l| !l.starts_with("drawn:") && **l != "done")
+            .collect();
+        assert!(problems.is_empty(), "{stem}: {problems:#?}");
+        let steps = svg.matches("<g class=\"step\"").count();
+        assert!(
+            lines.iter().any(|l| *l
+                == format!(
+                    "drawn: {steps} steps, {} transitions",
+                    svg.matches("<g class=\"transition\"").count()
+                )),
+            "{stem}: {found}"
+        );
+    }
+}
