@@ -134,6 +134,8 @@ enum Syntax {
     Fst,
     /// `<!-- … -->` after the XML declaration (PLCopen, CODESYS, Beremiz).
     Xml,
+    /// `<!-- … -->` after the HTML doctype (the report).
+    Html,
     /// `remark,"…"` after Studio 5000's first line.
     Remark,
     /// The workbook's Comments property.
@@ -157,6 +159,8 @@ fn syntax(name: &str) -> Syntax {
         Syntax::Fst
     } else if ends(".xml") {
         Syntax::Xml
+    } else if ends(OutputKind::Report.suffix()) {
+        Syntax::Html
     } else if ends(OutputKind::Rockwell.suffix()) {
         Syntax::Remark
     } else if ends(".xlsx") {
@@ -196,6 +200,10 @@ pub fn stamp(file: OutputFile, made: &MadeBy) -> Result<OutputFile, String> {
         Syntax::Fst => (0, format!("\" {line}")),
         Syntax::Xml => (
             after_lines(&text, |l| l.starts_with("<?xml")),
+            format!("<!-- {} -->", xml_comment(line)),
+        ),
+        Syntax::Html => (
+            after_lines(&text, |l| l.starts_with("<!DOCTYPE")),
             format!("<!-- {} -->", xml_comment(line)),
         ),
         Syntax::Remark => (

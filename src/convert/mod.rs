@@ -5,6 +5,7 @@ mod findings;
 mod physics;
 pub use physics::lucky_middle_stops;
 mod pins;
+mod report;
 
 use std::path::Path;
 
@@ -580,6 +581,17 @@ pub fn healthy_program(
     settings: &Settings,
     sim: &SimSettings,
 ) -> Result<(StepProgram, SimReport), Failure> {
+    healthy_program_recorded(table, settings, sim, false).map(|(p, s, _)| (p, s))
+}
+
+/// [`healthy_program`], with the run recorded scan by scan (every input,
+/// output, the active step and the positions) when `record`.
+pub fn healthy_program_recorded(
+    table: &StepTable,
+    settings: &Settings,
+    sim: &SimSettings,
+    record: bool,
+) -> Result<(StepProgram, SimReport, Option<simulate::io::IoTrace>), Failure> {
     let lucky = physics::lucky_middle_stops(table, settings);
     if !lucky.is_empty() {
         return Err(Failure::Input(lucky));
@@ -592,9 +604,14 @@ pub fn healthy_program(
     if let Some(why) = simulate::over_budget(table, &program, sim) {
         return Err(Failure::Input(vec![budget_error(table, why)]));
     }
-    let simulation = simulate::simulate(table, &program, sim);
+    let (simulation, trace) = if record {
+        let (simulation, trace) = report::recorded_run(table, &program, sim);
+        (simulation, Some(trace))
+    } else {
+        (simulate::simulate(table, &program, sim), None)
+    };
     if simulation.passed {
-        Ok((program, simulation))
+        Ok((program, simulation, trace))
     } else {
         Err(physics::explain(table, settings, &simulation))
     }
@@ -763,7 +780,13 @@ pub fn generate_observed(
         record_trace: settings.diagram == emit::diagram::DiagramKind::Time,
         ..settings.simulation.clone()
     };
-    let (program, simulation) = healthy_program(&table, settings, &sim_settings)?;
+    // The report's timeline needs the healthy run scan by scan: then
+    // that one run is recorded.
+    let record = settings.formats.contains(&OutputKind::Report);
+    let (program, simulation, io_trace) =
+        healthy_program_recorded(&table, settings, &sim_settings, record)?;
+    let made_by = crate::provenance::MadeBy::of_run(settings, &table.file);
+    let settings_rows = report::settings_rows(settings, &table, &made_by);
     let allocation = allocate(&program, settings, &table.file).map_err(Failure::Input)?;
     let festo = festo_allocation(&program, &allocation);
     let symbols = crate::symbols::SymbolTable::build(&program, &table, &settings.naming);
@@ -776,6 +799,8 @@ pub fn generate_observed(
         symbols: &symbols,
         simulation: Some(&simulation),
         faults: None,
+        io_trace: io_trace.as_ref(),
+        settings: &settings_rows,
         templates: &settings.templates,
         scan_ms: settings.simulation.scan_ms,
         diagram: settings.diagram,
@@ -821,7 +846,6 @@ pub fn generate_observed(
     let mut kinds = early.map_err(emitted)?;
     kinds.extend(late.map_err(emitted)?);
     kinds.sort_by_key(|(kind, _)| *kind);
-    let made_by = crate::provenance::MadeBy::of_run(settings, &table.file);
     let files = kinds.into_iter().flat_map(|(_, files)| files).collect();
     let files = crate::provenance::stamp_all(files, &made_by).map_err(Failure::Internal)?;
     let findings = findings::lines(

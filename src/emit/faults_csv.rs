@@ -16,35 +16,58 @@ pub fn render(
     text: &dyn Fn(&str) -> String,
 ) -> Result<Vec<u8>, csv::Error> {
     let mut writer = csv::Writer::from_writer(Vec::new());
-    writer.write_record([
-        "fault",
-        "signals",
-        "stuck_at",
-        "outcome",
-        "appears",
-        "detected",
-        "step",
-        "explanation",
-    ])?;
-    for c in &table.cases {
-        let signals: Vec<String> = c.faults.iter().map(|f| name(f.signal)).collect();
-        let stuck: Vec<&str> = c
-            .faults
-            .iter()
-            .map(|f| if f.stuck_at { "1" } else { "0" })
-            .collect();
-        writer.write_record([
-            c.fault_text_as(name),
-            signals.join("+"),
-            stuck.join("+"),
-            c.outcome.label().to_string(),
-            c.appears(table.moments.len()),
-            c.detected_text().to_string(),
-            c.step.map(|s| s.to_string()).unwrap_or_default(),
-            text(&c.explanation),
-        ])?;
+    writer.write_record(COLUMNS)?;
+    for row in rows(table, name, text) {
+        writer.write_record(&row)?;
     }
     writer
         .into_inner()
         .map_err(|e| csv::Error::from(std::io::Error::other(e.to_string())))
+}
+
+/// The header row.
+pub const COLUMNS: [&str; 8] = [
+    "fault",
+    "signals",
+    "stuck_at",
+    "outcome",
+    "appears",
+    "detected",
+    "step",
+    "explanation",
+];
+
+/// Every case as the cells of its row, in the table's order: the CSV and
+/// the report's fault table are these rows.
+pub fn rows(
+    table: &FaultTable,
+    name: &dyn Fn(Signal) -> String,
+    text: &dyn Fn(&str) -> String,
+) -> Vec<[String; 8]> {
+    // The workbook's six columns, with the signals and their stuck values
+    // after the fault.
+    crate::faults::rows(table, name, text)
+        .into_iter()
+        .zip(&table.cases)
+        .map(
+            |([fault, outcome, appears, detected, step, explanation], c)| {
+                let signals: Vec<String> = c.faults.iter().map(|f| name(f.signal)).collect();
+                let stuck: Vec<&str> = c
+                    .faults
+                    .iter()
+                    .map(|f| if f.stuck_at { "1" } else { "0" })
+                    .collect();
+                [
+                    fault,
+                    signals.join("+"),
+                    stuck.join("+"),
+                    outcome,
+                    appears,
+                    detected,
+                    step,
+                    explanation,
+                ]
+            },
+        )
+        .collect()
 }

@@ -25,17 +25,23 @@ pub enum OutputKind {
     Beremiz,
     /// The sequence as a GRAFCET (IEC 60848) picture.
     Grafcet,
+    /// One self-contained HTML page: table, pictures, I/O, simulation,
+    /// timeline and fault table.
+    Report,
 }
 
 impl OutputKind {
     /// The kinds that show the fault analysis (the fault table, the
     /// workbook's FAULTS sheet): nothing else needs it.
     pub fn shows_faults(self) -> bool {
-        matches!(self, OutputKind::Faults | OutputKind::Workbook)
+        matches!(
+            self,
+            OutputKind::Faults | OutputKind::Workbook | OutputKind::Report
+        )
     }
 
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 17] = [
+    pub const ALL: [OutputKind; 18] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -53,6 +59,7 @@ impl OutputKind {
         OutputKind::CodesysV2,
         OutputKind::Beremiz,
         OutputKind::Grafcet,
+        OutputKind::Report,
     ];
 
     /// The name used with `--formats`.
@@ -75,6 +82,7 @@ impl OutputKind {
             OutputKind::CodesysV2 => "exp",
             OutputKind::Beremiz => "beremiz",
             OutputKind::Grafcet => "grafcet",
+            OutputKind::Report => "report",
         }
     }
 
@@ -121,6 +129,7 @@ impl OutputKind {
             OutputKind::CodesysV2 => ".exp",
             OutputKind::Beremiz => ".beremiz",
             OutputKind::Grafcet => ".grafcet.svg",
+            OutputKind::Report => ".report.html",
         }
     }
 
@@ -281,7 +290,7 @@ mod tests {
             let err = OutputKind::parse_list(list).unwrap_err();
             assert!(err.contains(said), "{list}: {err}");
         }
-        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 17);
+        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 18);
         assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(edit_distance("kitten", "sitting"), 3);
     }

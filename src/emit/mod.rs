@@ -12,6 +12,7 @@ pub mod grafcet;
 pub mod io_csv;
 mod kind;
 mod render;
+pub mod report;
 pub mod st;
 pub mod tables;
 pub mod templates;
@@ -54,6 +55,11 @@ pub struct EmitInput<'a> {
     pub simulation: Option<&'a SimReport>,
     /// The fault table, for the FAULTS sheet.
     pub faults: Option<&'a FaultTable>,
+    /// Every scan of the simulation's inputs, outputs and step, for the
+    /// report's timeline (recorded only when the report is written).
+    pub io_trace: Option<&'a crate::simulate::io::IoTrace>,
+    /// The settings in force, as `(setting, value)` rows for the report.
+    pub settings: &'a [(String, String)],
     /// The templates text outputs are laid out by.
     pub templates: &'a Templates,
     /// The PLC scan time, which is also the generated task's cycle.

@@ -177,6 +177,9 @@ impl<'a> Renderer<'a> {
             OutputKind::Rockwell => text(kind, super::tables::render_rockwell(&input))?,
             OutputKind::Beremiz => return self.beremiz(),
             OutputKind::Grafcet => super::grafcet::render_svg(&input).into_bytes(),
+            OutputKind::Report => super::report::render(&input)
+                .map_err(|e| internal("report", e))?
+                .into_bytes(),
             OutputKind::StructuredText => self.iec(kind, IecFile::StructuredText)?,
             OutputKind::PlcOpen => {
                 let bytes = self.iec(kind, IecFile::PlcOpen)?;

@@ -17,6 +17,18 @@ pub struct IoSignals {
     pub outputs: Vec<Signal>,
 }
 
+impl IoSignals {
+    /// Every input of `program` and every output it drives, alarms last:
+    /// what a logic analyser on the machine would show.
+    pub fn every(program: &crate::program::StepProgram) -> IoSignals {
+        let signals = &program.signals;
+        IoSignals {
+            inputs: signals.inputs.clone(),
+            outputs: signals.driven().chain(signals.alarms()).collect(),
+        }
+    }
+}
+
 /// One scan: the inputs as read at its start, the outputs as written at its end.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ScanIo {

@@ -157,7 +157,10 @@ fn emit_never_touches_the_file_system() {
             files.push(path);
         }
     }
-    assert!(files.iter().any(|f| f.ends_with("grafcet/mod.rs")), "{files:?}");
+    assert!(
+        files.iter().any(|f| f.ends_with("grafcet/mod.rs")),
+        "{files:?}"
+    );
     for path in files {
         let text = std::fs::read_to_string(&path).unwrap();
         let code = text.split("#[cfg(test)]").next().unwrap();

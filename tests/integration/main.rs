@@ -42,6 +42,7 @@ mod pins;
 mod promise_map;
 mod properties;
 mod read_two_ways;
+mod report;
 mod rerun;
 mod safety;
 mod settings_rows;

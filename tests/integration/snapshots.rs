@@ -203,6 +203,8 @@ fn step_programs_and_template_contexts() {
             symbols: &c.symbols,
             simulation: Some(&c.simulation),
             faults: c.faults.as_ref(),
+            io_trace: None,
+            settings: &[],
             templates: &settings.templates,
             scan_ms: settings.simulation.scan_ms,
             diagram: settings.diagram,

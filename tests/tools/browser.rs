@@ -8,11 +8,18 @@ use std::path::Path;
 use crate::helpers::{samples, steptable};
 use crate::{Check, Tool, tool};
 
-pub const CHECKS: &[Check] = &[Check::new(
-    "browser::the_grafcet_renders_without_overlaps_in_chromium",
-    &[Tool::Chromium],
-    the_grafcet_renders_without_overlaps_in_chromium,
-)];
+pub const CHECKS: &[Check] = &[
+    Check::new(
+        "browser::the_grafcet_renders_without_overlaps_in_chromium",
+        &[Tool::Chromium],
+        the_grafcet_renders_without_overlaps_in_chromium,
+    ),
+    Check::new(
+        "browser::every_report_opens_in_chromium_without_errors_or_requests",
+        &[Tool::Chromium],
+        every_report_opens_in_chromium_without_errors_or_requests,
+    ),
+];
 
 /// The page's DOM after its scripts ran, as headless Chromium dumps it,
 /// and what Chromium logged (console messages among it).
@@ -79,18 +86,29 @@ pub const MEASURE: &str = r#"<script>
 })();
 </script>"#;
 
+/// Converts a sample into `dir/STEM` with `options`: its stem and folder.
+fn convert(path: &Path, dir: &Path, options: &[&str]) -> (String, std::path::PathBuf) {
+    let stem = path.file_stem().unwrap().to_string_lossy().to_string();
+    let out = dir.join(&stem);
+    steptable()
+        .arg("convert")
+        .arg(path)
+        .args(options)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    (stem, out)
+}
+
 fn the_grafcet_renders_without_overlaps_in_chromium() {
     let dir = tempfile::tempdir().unwrap();
     for path in samples() {
-        let stem = path.file_stem().unwrap().to_string_lossy().to_string();
-        let out = dir.path().join(&stem);
-        steptable()
-            .arg("convert")
-            .arg(&path)
-            .args(["--formats", "grafcet", "--modes", "all", "-o"])
-            .arg(&out)
-            .assert()
-            .success();
+        let (stem, out) = convert(
+            &path,
+            dir.path(),
+            &["--formats", "grafcet", "--modes", "all"],
+        );
         let svg =
             std::fs::read_to_string(out.join(&stem).join(format!("{stem}.grafcet.svg"))).unwrap();
         let page = dir.path().join(format!("{stem}.html"));
@@ -120,6 +138,59 @@ fn the_grafcet_renders_without_overlaps_in_chromium() {
                     svg.matches("<g class=\"transition\"").count()
                 )),
             "{stem}: {found}"
+        );
+    }
+}
+
+/// Lists the resources the page fetched into `#requests`, `done` last.
+const REQUESTS: &str = "<script>(function () { var p = document.createElement('pre'); p.id = 'requests'; p.textContent = performance.getEntriesByType('resource').map(function (e) { return e.name + '\\n'; }).join('') + 'done'; document.body.appendChild(p); })();</script>";
+
+/// Every sample's report in Chromium: its script ran without a console
+/// error (it marks the page and shows the controls), every section is in
+/// the DOM, and the page fetched nothing (its resource timing is empty).
+fn every_report_opens_in_chromium_without_errors_or_requests() {
+    let dir = tempfile::tempdir().unwrap();
+    for path in samples() {
+        let (stem, out) = convert(&path, dir.path(), &["--formats", "report"]);
+        let written = out.join(&stem).join(format!("{stem}.report.html"));
+        // A copy with a probe after the page's own script: every resource
+        // the page fetched (a style's font or image too), as the browser's
+        // resource timing lists them.
+        let page = dir.path().join(format!("{stem}.probed.html"));
+        let html = std::fs::read_to_string(&written).unwrap();
+        std::fs::write(
+            &page,
+            html.replace("</body>", &format!("{REQUESTS}</body>")),
+        )
+        .unwrap();
+        let (dom, log) = dump_dom(&page, &dir.path().join("profile"));
+        assert!(
+            dom.contains("data-js=\"on\""),
+            "{stem}: the script did not run\n{log}"
+        );
+        let errors: Vec<&str> = log
+            .lines()
+            .filter(|l| l.contains("CONSOLE") || l.contains("Uncaught"))
+            .collect();
+        assert!(errors.is_empty(), "{stem}: {errors:#?}");
+        for (id, _) in steptable::emit::report::SECTIONS {
+            assert!(
+                dom.contains(&format!("<section id=\"{id}\">")),
+                "{stem}: {id}"
+            );
+        }
+        assert!(
+            !dom.contains("<div class=\"controls\" hidden"),
+            "{stem}: the controls stay hidden"
+        );
+        let requests = dom
+            .split("<pre id=\"requests\">")
+            .nth(1)
+            .and_then(|r| r.split("</pre>").next())
+            .unwrap_or_else(|| panic!("{stem}: the probe did not run"));
+        assert_eq!(
+            requests, "done",
+            "{stem}: the page asked for more than itself"
         );
     }
 }

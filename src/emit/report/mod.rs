@@ -1,0 +1,223 @@
+//! `NAME.report.html`: one self-contained page per machine, to open from a
+//! USB stick on a shop-floor PC: the step table as the engineer wrote it,
+//! the GRAFCET and the displacement diagrams (inline SVG), the I/O list
+//! with its addresses, the settings used, the simulation's verdict and step
+//! timing, the timeline of the simulated cycle and the fault table, hazards
+//! first. No request leaves the file: the style sheet and the small script
+//! (zoom, filters) are inlined, and every table and picture is there
+//! without the script. It renders what the conversion already has, so it
+//! costs a few milliseconds beside the fault analysis.
+
+pub mod timeline;
+
+use std::fmt::Write;
+
+use super::EmitInput;
+use super::diagram::{DiagramKind, escape};
+use crate::faults::Outcome;
+
+const STYLE: &str = include_str!("report.css");
+const SCRIPT: &str = include_str!("report.js");
+
+/// The sections of the page, by id and heading, in order.
+pub const SECTIONS: [(&str, &str); 8] = [
+    ("table", "Step table"),
+    ("grafcet", "GRAFCET"),
+    ("diagrams", "Displacement diagrams"),
+    ("io", "I/O list"),
+    ("settings", "Settings used"),
+    ("simulation", "Simulation"),
+    ("timeline", "Timeline of the simulated cycle"),
+    ("faults", "Sensor faults"),
+];
+
+/// The page, or why it cannot be made (a conversion that did not simulate
+/// or analyse faults: a bug of the caller).
+pub fn render(input: &EmitInput) -> Result<String, String> {
+    let simulation = input.simulation.ok_or("not simulated")?;
+    let trace = input.io_trace.ok_or("no recorded run")?;
+    let faults = input.faults.ok_or("no fault analysis")?;
+    let name = escape(&super::one_line(input.name));
+    let mut page = String::with_capacity(256 * 1024);
+    let _ = write!(
+        page,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{name}: steptable report</title>\n<style>\n{STYLE}</style>\n</head>\n<body>\n<header><h1>{name}</h1><p>{}: {}</p><nav>",
+        escape(&input.source()),
+        escape(&simulation.verdict())
+    );
+    for (id, heading) in SECTIONS {
+        let _ = write!(page, "<a href=\"#{id}\">{heading}</a> ");
+    }
+    page.push_str("</nav></header>\n");
+    section(&mut page, 0, &step_table(input));
+    section(
+        &mut page,
+        1,
+        &format!(
+            "<div class=\"picture\">{}</div>",
+            super::grafcet::render_svg(input)
+        ),
+    );
+    section(&mut page, 2, &diagrams(input, simulation));
+    section(&mut page, 3, &io_list(input));
+    section(&mut page, 4, &settings(input));
+    section(&mut page, 5, &step_timing(input, simulation));
+    section(&mut page, 6, &timeline_html(input, simulation, trace));
+    section(&mut page, 7, &fault_table(input, faults));
+    let _ = write!(page, "<script>\n{SCRIPT}</script>\n</body>\n</html>\n");
+    Ok(page)
+}
+
+fn section(page: &mut String, index: usize, body: &str) {
+    let (id, heading) = SECTIONS[index];
+    let _ = write!(
+        page,
+        "<section id=\"{id}\">\n<h2>{heading}</h2>\n{body}\n</section>\n"
+    );
+}
+
+/// An HTML table with a header row; cells are escaped.
+fn table(
+    class: &str,
+    header: &[&str],
+    rows: impl IntoIterator<Item = (String, Vec<String>)>,
+) -> String {
+    let mut out = format!("<table class=\"{class}\"><thead><tr>");
+    for h in header {
+        let _ = write!(out, "<th>{}</th>", escape(h));
+    }
+    out.push_str("</tr></thead><tbody>\n");
+    for (attrs, cells) in rows {
+        let _ = write!(out, "<tr{attrs}>");
+        for c in cells {
+            let _ = write!(out, "<td>{}</td>", escape(&c));
+        }
+        out.push_str("</tr>\n");
+    }
+    out.push_str("</tbody></table>");
+    out
+}
+
+/// The table as written: one row per step with its label (and comment)
+/// and each branch's cell.
+fn step_table(input: &EmitInput) -> String {
+    let branches = input.table.branches.max(1);
+    let mut header = vec!["step".to_string()];
+    header.extend((1..=branches).map(|b| format!("BRANCH {b}")));
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    let rows = input.table.steps.iter().map(|s| {
+        let mut cells = vec![input.symbols.step_label(s.number)];
+        cells.extend((0..branches).map(|b| s.cell_text(b)));
+        (String::new(), cells)
+    });
+    table("steps", &header, rows)
+}
+
+fn diagrams(input: &EmitInput, simulation: &crate::simulate::SimReport) -> String {
+    let actuator = |n| input.symbols.actuator_parts(n);
+    let step = super::diagram::render_svg(input.name, simulation, DiagramKind::Step, &actuator);
+    let time = super::diagram::render_svg(input.name, simulation, DiagramKind::Time, &actuator);
+    format!("<div class=\"picture\">{step}</div>\n<div class=\"picture\">{time}</div>")
+}
+
+fn io_list(input: &EmitInput) -> String {
+    let rows = super::io_csv::rows(input)
+        .into_iter()
+        .map(|r| (String::new(), r.to_vec()));
+    table("io", &super::io_csv::COLUMNS, rows)
+}
+
+fn settings(input: &EmitInput) -> String {
+    let rows = input
+        .settings
+        .iter()
+        .map(|(k, v)| (String::new(), vec![k.clone(), v.clone()]));
+    table("settings", &["setting", "in force"], rows)
+}
+
+fn step_timing(input: &EmitInput, simulation: &crate::simulate::SimReport) -> String {
+    let class = if simulation.passed {
+        "passed"
+    } else {
+        "failed"
+    };
+    let mut out = format!(
+        "<p class=\"verdict {class}\">{}</p>\n",
+        escape(&simulation.verdict())
+    );
+    let Some(cycle) = simulation.cycles.first() else {
+        return out;
+    };
+    let rows = cycle.steps.iter().map(|s| {
+        (
+            String::new(),
+            vec![
+                input.symbols.step_label(s.step),
+                crate::simulate::report::seconds(s.start_ms),
+                crate::simulate::report::seconds(s.duration_ms),
+                s.moves.clone(),
+                input.symbols.designate(&s.notes),
+            ],
+        )
+    });
+    out.push_str(&table(
+        "timing",
+        &["step", "fires at", "lasts", "moves", "dwells and waits"],
+        rows,
+    ));
+    out
+}
+
+fn timeline_html(
+    input: &EmitInput,
+    simulation: &crate::simulate::SimReport,
+    trace: &crate::simulate::io::IoTrace,
+) -> String {
+    let press = simulation.cycles.first().map_or(0, |c| c.press_ms);
+    let lanes = timeline::lanes(trace, press, &|s| input.symbols.designation(s));
+    let (svg, labels) = timeline::render(simulation, trace, &lanes, &|n| input.symbols.actuator(n));
+    let mut out = String::from(
+        "<p class=\"hint\">Time from the START press, as in the step timing above. Shaded: dwells (green) and waits for a machine input (violet).</p>\n<div class=\"controls\" hidden><button type=\"button\" data-zoom=\"0.5\">zoom out</button> <button type=\"button\" data-zoom=\"2\">zoom in</button> <button type=\"button\" data-zoom=\"0\">fit</button></div>\n<div class=\"timeline-box\"><div class=\"lane-labels\">",
+    );
+    for label in labels {
+        let mut parts = label.splitn(3, '|');
+        let (text, kind, height) = (
+            parts.next().unwrap_or(""),
+            parts.next().unwrap_or(""),
+            parts.next().unwrap_or("22"),
+        );
+        let _ = write!(
+            out,
+            "<div class=\"{kind}\" style=\"height:{height}px\">{}</div>",
+            escape(text)
+        );
+    }
+    let _ = write!(out, "</div><div class=\"lanes\">{svg}</div></div>");
+    out
+}
+
+/// The fault table: hazards first, then safe stalls, then the rest, each
+/// in the analysis's order, coloured by outcome; filters by signal and
+/// outcome work with the script, every row shows without it.
+fn fault_table(input: &EmitInput, faults: &crate::faults::FaultTable) -> String {
+    let rows = super::faults_csv::rows(faults, &|s| input.symbols.designation(s), &|t| {
+        input.symbols.designate(t)
+    });
+    let mut order: Vec<(Outcome, [String; 8])> =
+        faults.cases.iter().map(|c| c.outcome).zip(rows).collect();
+    order.sort_by_key(|(outcome, _)| std::cmp::Reverse(*outcome as u8));
+    let hazards = order.iter().filter(|(o, _)| *o == Outcome::Hazard).count();
+    let mut out = format!(
+        "<p>{hazards} hazard(s) among {} fault case(s): every input stuck at 1 and at 0, appearing at every moment of the cycle.</p>\n<div class=\"controls\" hidden><label>signal <input type=\"search\" id=\"fault-signal\" placeholder=\"e.g. x11\"></label> <label>outcome <select id=\"fault-outcome\"><option value=\"\">any</option><option>hazard</option><option>safe stall</option><option>no effect</option></select></label> <span id=\"fault-count\"></span></div>\n",
+        order.len()
+    );
+    let rows = order.into_iter().map(|(outcome, cells)| {
+        let class = outcome.label().replace(' ', "-");
+        (
+            format!(" class=\"{class}\" data-signals=\"{}\"", escape(&cells[1])),
+            cells.to_vec(),
+        )
+    });
+    out.push_str(&table("faults", &super::faults_csv::COLUMNS, rows));
+    out
+}

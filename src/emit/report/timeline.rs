@@ -1,0 +1,207 @@
+//! The report's timeline of the simulated cycle, a logic analyser's view:
+//! the active step, one lane per actuator (its position), one per output
+//! and per input (high or low), dwells and waits shaded, on one time axis
+//! that starts at the START press, so every time on it is the step timing
+//! table's. Each digital lane carries its changes in `data-edges`
+//! (`0:0 1230:1 …`, milliseconds from the press and the value from then
+//! on), which the page's zoom leaves alone and the tests read back.
+
+use std::fmt::Write;
+
+use crate::emit::diagram::escape;
+use crate::simulate::SimReport;
+use crate::simulate::io::IoTrace;
+
+/// Pixels per second at zoom 1.
+pub const PX_PER_S: f64 = 120.0;
+const LANE: f64 = 22.0;
+const POSITION_LANE: f64 = 40.0;
+const GAP: f64 = 6.0;
+const AXIS: f64 = 24.0;
+
+/// One lane: its label, what it is, and its value changes
+/// `(ms from the press, value)`, the first at 0.
+pub struct Lane {
+    pub label: String,
+    pub kind: &'static str,
+    pub edges: Vec<(u64, u32)>,
+}
+
+/// The changes of `value(scan)` over the scans from `start` on, times
+/// taken from the press.
+fn edges(trace: &IoTrace, start: u64, value: impl Fn(usize) -> u32) -> Vec<(u64, u32)> {
+    let mut out: Vec<(u64, u32)> = Vec::new();
+    for (k, scan) in trace.scans.iter().enumerate() {
+        if scan.time_ms < start {
+            continue;
+        }
+        let v = value(k);
+        if out.last().is_none_or(|(_, last)| *last != v) {
+            out.push((scan.time_ms - start, v));
+        }
+    }
+    if let Some(first) = out.first_mut() {
+        first.0 = 0;
+    }
+    out
+}
+
+/// The digital lanes of a recorded run, from the first START press:
+/// the active step, each output, each input, named by `name`.
+pub fn lanes(
+    trace: &IoTrace,
+    press_ms: u64,
+    name: &dyn Fn(crate::program::Signal) -> String,
+) -> Vec<Lane> {
+    let mut lanes = vec![Lane {
+        label: "active step".to_string(),
+        kind: "step",
+        edges: edges(trace, press_ms, |k| trace.scans[k].step as u32),
+    }];
+    for (i, signal) in trace.signals.outputs.iter().enumerate() {
+        lanes.push(Lane {
+            label: name(*signal),
+            kind: "output",
+            edges: edges(trace, press_ms, |k| u32::from(trace.scans[k].outputs[i])),
+        });
+    }
+    for (i, signal) in trace.signals.inputs.iter().enumerate() {
+        lanes.push(Lane {
+            label: name(*signal),
+            kind: "input",
+            edges: edges(trace, press_ms, |k| u32::from(trace.scans[k].inputs[i])),
+        });
+    }
+    lanes
+}
+
+fn edges_attr(edges: &[(u64, u32)]) -> String {
+    edges
+        .iter()
+        .map(|(t, v)| format!("{t}:{v}"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The timeline as an SVG (lanes only; their labels are the HTML beside
+/// it, so that they stay put while the lanes scroll and zoom).
+pub fn render(
+    report: &SimReport,
+    trace: &IoTrace,
+    lanes: &[Lane],
+    actuator: &dyn Fn(u32) -> String,
+) -> (String, Vec<String>) {
+    let press = report.cycles.first().map_or(0, |c| c.press_ms);
+    let end_ms = trace
+        .scans
+        .last()
+        .map_or(0, |s| s.time_ms.saturating_sub(press))
+        .max(1000);
+    let width = (end_ms as f64 / 1000.0 * PX_PER_S).ceil() + 20.0;
+    let x = |ms: u64| ms as f64 / 1000.0 * PX_PER_S;
+    let positions = report.actuators.len() as f64 * (POSITION_LANE + GAP);
+    let height = AXIS + positions + lanes.len() as f64 * (LANE + GAP);
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r##"<svg xmlns="http://www.w3.org/2000/svg" class="timeline" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" preserveAspectRatio="none" data-px-per-s="{PX_PER_S}" data-end-ms="{end_ms}">"##
+    );
+    // Dwells and waits of the first cycle, shaded over every lane.
+    for span in &report.spans {
+        let (a, b) = (
+            x(span.from_ms.saturating_sub(press)),
+            x(span.to_ms.saturating_sub(press)),
+        );
+        let class = if span.label.starts_with("I:") {
+            "wait"
+        } else {
+            "dwell"
+        };
+        let _ = writeln!(
+            svg,
+            r#"<rect class="{class}" x="{a:.1}" y="{AXIS}" width="{:.1}" height="{:.1}"><title>{}</title></rect>"#,
+            (b - a).max(1.0),
+            height - AXIS,
+            escape(&span.label)
+        );
+    }
+    // The axis: a tick every second.
+    for s in 0..=end_ms / 1000 {
+        let _ = writeln!(
+            svg,
+            r#"<line class="tick" x1="{0:.1}" y1="{AXIS}" x2="{0:.1}" y2="{height:.0}"/><text class="axis" x="{1:.1}" y="14">{s} s</text>"#,
+            x(s * 1000),
+            x(s * 1000) + 2.0
+        );
+    }
+    let mut labels = Vec::new();
+    let mut top = AXIS;
+    for (i, (number, pmax)) in report.actuators.iter().enumerate() {
+        labels.push(format!("{}|position|{POSITION_LANE}", actuator(*number)));
+        let pmax = (*pmax).max(1) as f64;
+        let mut points = String::new();
+        for (t, p) in report.trace.iter().filter(|(t, _)| *t >= press) {
+            if let Some(p) = p.get(i) {
+                let y = top + POSITION_LANE - 3.0 - p / pmax * (POSITION_LANE - 6.0);
+                let _ = write!(points, "{:.1},{y:.1} ", x(t - press));
+            }
+        }
+        let _ = writeln!(
+            svg,
+            r#"<polyline class="position" data-actuator="{number}" points="{}"/>"#,
+            points.trim_end()
+        );
+        top += POSITION_LANE + GAP;
+    }
+    for lane in lanes {
+        labels.push(format!("{}|{}|{LANE}", lane.label, lane.kind));
+        let _ = write!(
+            svg,
+            r#"<g class="lane {}" data-signal="{}" data-edges="{}">"#,
+            lane.kind,
+            escape(&lane.label),
+            edges_attr(&lane.edges)
+        );
+        if lane.kind == "step" {
+            step_lane(&mut svg, lane, top, end_ms, &x);
+        } else {
+            let (high, low) = (top + 3.0, top + LANE - 3.0);
+            let mut points = String::new();
+            for (k, (t, v)) in lane.edges.iter().enumerate() {
+                let y = if *v == 1 { high } else { low };
+                if k > 0 {
+                    let before = if lane.edges[k - 1].1 == 1 { high } else { low };
+                    let _ = write!(points, "{:.1},{before:.1} ", x(*t));
+                }
+                let _ = write!(points, "{:.1},{y:.1} ", x(*t));
+            }
+            let last = lane
+                .edges
+                .last()
+                .map_or(low, |(_, v)| if *v == 1 { high } else { low });
+            let _ = write!(points, "{:.1},{last:.1}", x(end_ms));
+            let _ = write!(svg, r#"<polyline points="{points}"/>"#);
+        }
+        svg.push_str("</g>\n");
+        top += LANE + GAP;
+    }
+    svg.push_str("</svg>");
+    (svg, labels)
+}
+
+/// The active step as boxes with their numbers, one per stretch.
+fn step_lane(svg: &mut String, lane: &Lane, top: f64, end_ms: u64, x: &dyn Fn(u64) -> f64) {
+    for (k, (t, step)) in lane.edges.iter().enumerate() {
+        let until = lane.edges.get(k + 1).map_or(end_ms, |(t, _)| *t);
+        let _ = write!(
+            svg,
+            r#"<rect x="{:.1}" y="{:.1}" width="{:.1}" height="{:.1}"/><text x="{:.1}" y="{:.1}">{step}</text>"#,
+            x(*t),
+            top + 2.0,
+            (x(until) - x(*t)).max(0.5),
+            LANE - 4.0,
+            x(*t) + 3.0,
+            top + LANE - 7.0
+        );
+    }
+}
