@@ -52,6 +52,12 @@ pub struct Outcome {
     pub steps: Option<usize>,
     pub actuators: Option<usize>,
     pub millis: u128,
+    /// The simulation's verdict (`passed: cycle time 7.47 s`), its cycle
+    /// time, and the fault table's hazards (when the outputs asked for the
+    /// fault analysis), for a converted input.
+    pub verdict: Option<String>,
+    pub cycle_ms: Option<u64>,
+    pub hazards: Option<usize>,
 }
 
 impl Outcome {
@@ -155,9 +161,9 @@ pub fn summary_name(out: &Path) -> &'static str {
     }
 }
 
-/// The header of `summary.csv`. `folder` came last, so that a script
+/// The header of `summary.csv`. New columns come last, so that a script
 /// reading the earlier columns by place reads them still.
-const SUMMARY_HEADER: [&str; 8] = [
+const SUMMARY_HEADER: [&str; 11] = [
     "file",
     "status",
     "errors",
@@ -166,6 +172,9 @@ const SUMMARY_HEADER: [&str; 8] = [
     "actuators",
     "milliseconds",
     "folder",
+    "verdict",
+    "cycle seconds",
+    "hazards",
 ];
 
 fn walk(dir: &Path, files: &mut Vec<PathBuf>) {
@@ -234,6 +243,9 @@ pub fn run(
                 steps: None,
                 actuators: None,
                 millis: 0,
+                verdict: None,
+                cycle_ms: None,
+                hazards: None,
             }
         } else {
             convert_one(input, name, out, settings, &kept)
@@ -269,6 +281,9 @@ fn convert_one(
         steps: None,
         actuators: None,
         millis: 0,
+        verdict: None,
+        cycle_ms: None,
+        hazards: None,
     };
     use crate::commands::{CommandError, convert::run};
     match run(input, name, settings, out, all_inputs, &|_, _| {}) {
@@ -276,6 +291,18 @@ fn convert_one(
             let conversion = run.conversion;
             outcome.steps = Some(conversion.table.steps.len());
             outcome.actuators = Some(conversion.table.actuators.len());
+            outcome.verdict = Some(conversion.simulation.verdict());
+            outcome.cycle_ms = conversion
+                .simulation
+                .cycles
+                .first()
+                .and_then(|c| c.cycle_ms);
+            outcome.hazards = conversion.faults.as_ref().map(|f| {
+                f.cases
+                    .iter()
+                    .filter(|c| c.outcome == crate::faults::Outcome::Hazard)
+                    .count()
+            });
             outcome.diagnostics = conversion.warnings;
             match run.written {
                 Ok(_) => {}
@@ -316,8 +343,10 @@ fn convert_one(
 }
 
 /// `summary.csv`: file, status, error count, first error, steps, actuators,
-/// milliseconds, and the folder in the output folder its files went to
-/// (empty where nothing was written) — one row per input, in input order.
+/// milliseconds, the folder in the output folder its files went to
+/// (empty where nothing was written), the simulation's verdict, the cycle
+/// time in seconds and the fault table's hazard count (empty where the
+/// outputs asked for no fault analysis) — one row per input, in input order.
 pub fn summary_csv(outcomes: &[Outcome]) -> Result<OutputFile, csv::Error> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record(SUMMARY_HEADER)?;
@@ -335,6 +364,11 @@ pub fn summary_csv(outcomes: &[Outcome]) -> Result<OutputFile, csv::Error> {
             } else {
                 String::new()
             },
+            o.verdict.clone().unwrap_or_default(),
+            o.cycle_ms
+                .map(|ms| format!("{:.2}", ms as f64 / 1000.0))
+                .unwrap_or_default(),
+            o.hazards.map(|h| h.to_string()).unwrap_or_default(),
         ])?;
     }
     let bytes = writer

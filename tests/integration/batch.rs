@@ -93,6 +93,13 @@ fn a_folder_with_good_bad_and_colliding_files() {
     assert_eq!(row("a/line.xlsx")[7], "line");
     assert_eq!(row("b/line.xlsx")[7], "line-xlsx");
     assert_eq!(row("bad.csv")[7], "");
+    // The verdict and cycle time of each converted input; no hazard count
+    // where the formats asked for no fault analysis.
+    assert_eq!(
+        row("a/line.xlsx")[8..11],
+        ["passed: cycle time 7.47 s", "7.47", ""]
+    );
+    assert_eq!(row("bad.csv")[8..11], ["", "", ""]);
 
     // A rerun into a folder inside the inputs does not convert its own outputs.
     let inner = input.join("out");
@@ -389,4 +396,48 @@ fn self_linked_folders_and_huge_job_counts_end() {
     assert!(output.status.success(), "{stdout}");
     assert!(stdout.contains("1 converted"), "{stdout}");
     assert!(stdout.contains("note: -j 100000"), "{stdout}");
+}
+
+/// With the fault analysis, the summary counts each workbook's hazards as
+/// its fault table has them.
+#[test]
+fn the_summary_has_verdict_cycle_time_and_hazards() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    steptable()
+        .arg("batch")
+        .arg(sample("paper_example.xlsx"))
+        .arg(sample("sorting_station.xlsx"))
+        .arg("-o")
+        .arg(&out)
+        .args(["--formats", "faults", "--quiet"])
+        .assert()
+        .success();
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let mut reader = csv::Reader::from_reader(summary.as_bytes());
+    let header: Vec<String> = reader
+        .headers()
+        .unwrap()
+        .iter()
+        .map(str::to_string)
+        .collect();
+    assert_eq!(header[8..], ["verdict", "cycle seconds", "hazards"]);
+    for row in reader.records() {
+        let row = row.unwrap();
+        let name = &row[7];
+        let faults =
+            std::fs::read_to_string(out.join(name).join(format!("{name}.faults.csv"))).unwrap();
+        let hazards = csv::Reader::from_reader(faults.as_bytes())
+            .records()
+            .filter(|r| &r.as_ref().unwrap()[3] == "hazard")
+            .count();
+        assert!(hazards > 0, "{name}");
+        assert_eq!(row[10], hazards.to_string(), "{name}");
+        let seconds: f64 = row[9].parse().unwrap();
+        assert_eq!(
+            row[8],
+            format!("passed: cycle time {seconds:.2} s"),
+            "{name}"
+        );
+    }
 }
