@@ -202,9 +202,11 @@ pub fn stamp(file: OutputFile, made: &MadeBy) -> Result<OutputFile, String> {
             after_lines(&text, |l| l.starts_with("<?xml")),
             format!("<!-- {} -->", xml_comment(line)),
         ),
+        // HTML, unlike XML, allows `--` inside a comment; only its end may
+        // not appear there.
         Syntax::Html => (
             after_lines(&text, |l| l.starts_with("<!DOCTYPE")),
-            format!("<!-- {} -->", xml_comment(line)),
+            format!("<!-- {} -->", line.replace("-->", "- ->")),
         ),
         Syntax::Remark => (
             first_line_end(&text),

@@ -782,7 +782,8 @@ pub fn generate_observed(
     };
     // The report's timeline needs the healthy run scan by scan: then
     // that one run is recorded.
-    let record = settings.formats.contains(&OutputKind::Report);
+    let record = settings.formats.contains(&OutputKind::Report)
+        && table.steps.len() <= emit::report::TIMELINE_STEPS;
     let (program, simulation, io_trace) =
         healthy_program_recorded(&table, settings, &sim_settings, record)?;
     let made_by = crate::provenance::MadeBy::of_run(settings, &table.file);

@@ -90,6 +90,10 @@ pub fn render_svg(
     actuator: &dyn Fn(u32) -> (String, Option<String>),
 ) -> String {
     let lanes = lanes(report);
+    // The time axis starts at the first START press, as the step timing
+    // of the simulation counts it (step 4 at 2.59 s in the table is drawn
+    // at 2.59 s, not half a second later where power-up was).
+    let origin = report.cycles.first().map_or(0, |c| c.press_ms);
     let bottom = lanes.last().map(|(y, h)| y + h).unwrap_or(TOP) + 50.0;
     let (columns, x_label): (Vec<(f64, String)>, &str) = match kind {
         DiagramKind::Step => {
@@ -107,7 +111,11 @@ pub fn render_svg(
             (labels, "step")
         }
         DiagramKind::Time => {
-            let end = report.trace.last().map(|(t, _)| *t).unwrap_or(1000);
+            let end = report
+                .trace
+                .last()
+                .map(|(t, _)| t.saturating_sub(origin))
+                .unwrap_or(1000);
             let seconds = end.div_ceil(1000).max(1);
             let tick = time_tick(seconds);
             (
@@ -169,12 +177,15 @@ pub fn render_svg(
         LEFT - 14.0,
         TOP - 28.0
     );
-    if kind == DiagramKind::Time
-        && let Some(cycle) = report.cycles.first()
-    {
-        // Where each step fired, as dashed markers.
-        for step in &cycle.steps {
-            let x = x_of((cycle.press_ms + step.start_ms) as f64 / 1000.0);
+    if kind == DiagramKind::Time {
+        // Where each step of every cycle fired, as dashed markers.
+        for (cycle, step) in report
+            .cycles
+            .iter()
+            .flat_map(|c| c.steps.iter().map(move |s| (c, s)))
+        {
+            let ms = (cycle.press_ms + step.start_ms).saturating_sub(origin);
+            let x = x_of(ms as f64 / 1000.0);
             let _ = writeln!(
                 svg,
                 r##"<line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="#e67e22" stroke-dasharray="4 3"/><text x="{x:.1}" y="{:.1}" fill="#e67e22" font-size="11" text-anchor="middle">{}</text>"##,
@@ -189,8 +200,8 @@ pub fn render_svg(
         // Dwells and waits on machine inputs, as shaded bands over every lane.
         for span in &report.spans {
             let (x1, x2) = (
-                x_of(span.from_ms as f64 / 1000.0),
-                x_of(span.to_ms as f64 / 1000.0),
+                x_of(span.from_ms.saturating_sub(origin) as f64 / 1000.0),
+                x_of(span.to_ms.saturating_sub(origin) as f64 / 1000.0),
             );
             let color = if span.label.starts_with("I:") {
                 "#8e44ad"
@@ -254,10 +265,11 @@ pub fn render_svg(
             DiagramKind::Time => report
                 .trace
                 .iter()
+                .filter(|(t, _)| *t >= origin)
                 .filter_map(|(t, positions)| {
                     positions
                         .get(i)
-                        .map(|p| (x_of(*t as f64 / 1000.0), y_of(*p)))
+                        .map(|p| (x_of((t - origin) as f64 / 1000.0), y_of(*p)))
                 })
                 .collect(),
         };
@@ -381,21 +393,32 @@ mod tests {
         let report = simulated(&table, true);
         let svg = render_svg("paper", &report, DiagramKind::Time, &plain);
         let labels = top_labels(&svg);
-        let end_s = report.trace.last().unwrap().0.div_ceil(1000);
+        let press = report.cycles[0].press_ms;
+        let end_s = (report.trace.last().unwrap().0 - press).div_ceil(1000);
         let tick = time_tick(end_s);
         assert!(labels.len() >= 3, "{labels:?}");
         for (k, (x, text)) in labels.iter().enumerate() {
             assert_eq!(*text, format!("{} s", k as u64 * tick), "{labels:?}");
             assert!((x - (LEFT + 60.0 * k as f64)).abs() < 0.05, "{labels:?}");
         }
-        // Step 2 fires where its time falls on that axis.
+        // Step 2 fires where the simulation's step timing says, from the
+        // START press; so does every step of the second cycle.
         let cycle = &report.cycles[0];
-        let fired = (cycle.press_ms + cycle.steps[1].start_ms) as f64 / 1000.0;
+        let fired = cycle.steps[1].start_ms as f64 / 1000.0;
         let x = LEFT + fired * 60.0 / tick as f64;
         assert!(
             svg.contains(&format!(r#"<line x1="{x:.1}" y1="{:.1}""#, TOP - 6.0)),
             "{x}"
         );
+        assert!(report.cycles.len() > 1, "a second cycle to mark");
+        for c in &report.cycles {
+            for step in &c.steps {
+                let s = (c.press_ms - press + step.start_ms) as f64 / 1000.0;
+                let x = LEFT + s * 60.0 / tick as f64;
+                let marker = format!(r#"<line x1="{x:.1}" y1="{:.1}""#, TOP - 6.0);
+                assert!(svg.contains(&marker), "step {} at {s} s", step.step);
+            }
+        }
     }
 
     #[test]
@@ -404,8 +427,9 @@ mod tests {
         let report = simulated(&table, true);
         let span = &report.spans[0];
         assert_eq!(span.to_ms - span.from_ms, 1000, "{span:?}");
-        let tick = time_tick(report.trace.last().unwrap().0.div_ceil(1000)) as f64;
-        let x = |ms: u64| LEFT + ms as f64 / 1000.0 * 60.0 / tick;
+        let press = report.cycles[0].press_ms;
+        let tick = time_tick((report.trace.last().unwrap().0 - press).div_ceil(1000)) as f64;
+        let x = |ms: u64| LEFT + (ms - press) as f64 / 1000.0 * 60.0 / tick;
         let svg = render_svg("dwell", &report, DiagramKind::Time, &plain);
         let band = format!(
             r#"<rect x="{:.1}" y="{:.1}" width="{:.1}""#,

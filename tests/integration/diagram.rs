@@ -1,7 +1,7 @@
 //! The displacement-step diagram: as SVG beside the outputs and as the
 //! DIAGRAM sheet, both from the simulation of the generated program.
 
-use crate::helpers::{read_sheet, sample, steptable};
+use crate::helpers::{Build, read_sheet, sample, steptable};
 
 fn convert(dir: &std::path::Path, extra: &[&str]) -> std::path::PathBuf {
     steptable()
@@ -183,4 +183,70 @@ fn diagram_charts_do_not_overlap() {
             to[k - 1]
         );
     }
+}
+
+/// The time diagram's step markers stand where the simulation's step
+/// timing puts each step, counted from the START press, in every cycle:
+/// read back from the picture through its own axis labels.
+#[test]
+fn the_time_diagrams_step_markers_are_the_simulated_step_times() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = convert(dir.path(), &["--diagram", "time", "--formats", "diagram"]);
+    let svg = std::fs::read_to_string(out.join("paper_example.diagram.svg")).unwrap();
+    let number = |line: &str, attr: &str| -> f64 {
+        let at = line.find(&format!("{attr}=\"")).unwrap() + attr.len() + 2;
+        line[at..].split('"').next().unwrap().parse().unwrap()
+    };
+    // Two axis labels give the scale: x of "0 s" and of "1 s" (or the first tick).
+    let ticks: Vec<(f64, f64)> = svg
+        .lines()
+        // The axis labels along the top (y 72), not the verdict's "7.47 s".
+        .filter(|l| {
+            l.starts_with("<text")
+                && l.contains(r#"y="72.0" text-anchor="middle""#)
+                && l.ends_with(" s</text>")
+        })
+        .map(|l| {
+            let label = l.trim_end_matches("</text>").rsplit('>').next().unwrap();
+            (
+                number(l, "x"),
+                label.trim_end_matches(" s").parse().unwrap(),
+            )
+        })
+        .collect();
+    let ((x0, s0), (x1, s1)) = (ticks[0], ticks[1]);
+    let seconds_at = |x: f64| s0 + (x - x0) / (x1 - x0) * (s1 - s0);
+    let markers: Vec<f64> = svg
+        .lines()
+        .filter(|l| l.contains("stroke=\"#e67e22\""))
+        .map(|l| seconds_at(number(l, "x1")))
+        .collect();
+    let report = steptable::simulate::simulate(
+        &Build::path(&sample("paper_example.xlsx")).table,
+        &Build::path(&sample("paper_example.xlsx")).program(),
+        &Default::default(),
+    );
+    let press = report.cycles[0].press_ms;
+    let expected: Vec<f64> = report
+        .cycles
+        .iter()
+        .flat_map(|c| {
+            c.steps
+                .iter()
+                .map(move |s| (c.press_ms - press + s.start_ms) as f64 / 1000.0)
+        })
+        .collect();
+    assert!(
+        report.cycles.len() > 1 && expected.len() > 8,
+        "{expected:?}"
+    );
+    assert_eq!(markers.len(), expected.len(), "{markers:?}");
+    for (m, e) in markers.iter().zip(&expected) {
+        assert!(
+            (m - e).abs() < 0.01,
+            "a marker at {m} s, the step fired at {e} s"
+        );
+    }
+    // Step 4 of the paper's example fires 2.59 s after START, as the table says.
+    assert!((expected[3] - 2.59).abs() < 0.005, "{expected:?}");
 }

@@ -19,6 +19,11 @@ use crate::faults::Outcome;
 const STYLE: &str = include_str!("report.css");
 const SCRIPT: &str = include_str!("report.js");
 
+/// The most steps a table may have for the report to draw its timeline:
+/// every scan of a longer cycle, every signal, would make the page (and
+/// the recording) larger than a browser opens comfortably.
+pub const TIMELINE_STEPS: usize = 200;
+
 /// The sections of the page, by id and heading, in order.
 pub const SECTIONS: [(&str, &str); 8] = [
     ("table", "Step table"),
@@ -35,7 +40,6 @@ pub const SECTIONS: [(&str, &str); 8] = [
 /// or analyse faults: a bug of the caller).
 pub fn render(input: &EmitInput) -> Result<String, String> {
     let simulation = input.simulation.ok_or("not simulated")?;
-    let trace = input.io_trace.ok_or("no recorded run")?;
     let faults = input.faults.ok_or("no fault analysis")?;
     let name = escape(&super::one_line(input.name));
     let mut page = String::with_capacity(256 * 1024);
@@ -62,7 +66,14 @@ pub fn render(input: &EmitInput) -> Result<String, String> {
     section(&mut page, 3, &io_list(input));
     section(&mut page, 4, &settings(input));
     section(&mut page, 5, &step_timing(input, simulation));
-    section(&mut page, 6, &timeline_html(input, simulation, trace));
+    let timeline = match input.io_trace {
+        Some(trace) => timeline_html(input, simulation, trace),
+        None => format!(
+            "<p>The timeline is drawn for tables of at most {TIMELINE_STEPS} steps; this one has {}.</p>",
+            input.table.steps.len()
+        ),
+    };
+    section(&mut page, 6, &timeline);
     section(&mut page, 7, &fault_table(input, faults));
     let _ = write!(page, "<script>\n{SCRIPT}</script>\n</body>\n</html>\n");
     Ok(page)
