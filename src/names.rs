@@ -132,6 +132,14 @@ pub fn reserved_name(name: &str) -> Option<String> {
                 .to_string(),
         );
     }
+    // The words of the SETTINGS lists (`hold-safe | none`, `safety | all`,
+    // `target | default`): a signal so named could not be told from them.
+    if ["all", "none", "default"].contains(&name) {
+        return Some(
+            "it is a word of the SETTINGS rows and options (all, none, default), which could not tell the signal from it"
+                .to_string(),
+        );
+    }
     const OWN: &[&str] = &[
         // The mode buttons (stop, estop, reset_pb, cont) are taken only when
         // their mode is on: the table check knows which are.

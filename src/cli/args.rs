@@ -29,6 +29,7 @@ pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
             .ok_or_else(|| format!("\"{item}\": expected <input>=<time>, e.g. part_present=2s"))?;
         let name = crate::cell::Name::new(&name.trim().to_ascii_lowercase())
             .map_err(|e| format!("\"{item}\": {e}"))?;
+        unit_given(item, value)?;
         let ms = crate::stroke::parse_duration_ms(value)
             .ok_or_else(|| format!("\"{item}\": expected a time such as 2s or 300ms"))?;
         if delays.insert(name, ms).is_some() {
@@ -84,6 +85,13 @@ fn parse_keyed<T>(
 pub(crate) type StrokeMap = Keyed<crate::stroke::Stroke>;
 
 pub(crate) fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
+    for item in text.split(',') {
+        if let Some((_, times)) = item.split_once('=') {
+            for time in times.split('/') {
+                unit_given(item.trim(), time)?;
+            }
+        }
+    }
     parse_keyed(text, crate::stroke::parse_strokes, |item, value| {
         // One item alone, with its value under a placeholder number.
         crate::stroke::parse_strokes(&format!("C1={value}"))
@@ -95,7 +103,21 @@ pub(crate) fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
 }
 
 pub(crate) fn parse_scan(text: &str) -> Result<u32, String> {
+    unit_given(text, text)?;
     crate::stroke::parse_scan(text)
+}
+
+/// A time on the command line says its unit: `2` could be seconds or
+/// milliseconds, and an option has no cell to warn at (the SETTINGS sheet's
+/// W007), so it is refused with both readings.
+pub(crate) fn unit_given(item: &str, time: &str) -> Result<(), String> {
+    let time = time.trim();
+    if crate::cell::without_unit(time) && crate::stroke::parse_duration_ms(time).is_some() {
+        return Err(format!(
+            "\"{item}\": {time} has no unit: write {time}s or {time}ms"
+        ));
+    }
+    Ok(())
 }
 
 impl SimArgs {

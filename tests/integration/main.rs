@@ -35,6 +35,7 @@ mod modes;
 mod motor;
 mod name_check;
 mod on_stop;
+mod option_times;
 mod output_places;
 mod paper;
 mod pins;
