@@ -7,6 +7,7 @@
 //! coils, everything must be home at the end, and a second START must run an
 //! identical second cycle.
 
+pub mod bench;
 pub mod io;
 pub mod plant;
 pub mod plc;
@@ -16,6 +17,7 @@ mod run;
 pub use run::{Checkpoints, Course, Resumed, Trail};
 pub mod scenario;
 mod settings;
+mod world;
 
 use crate::program::StepProgram;
 use crate::table::StepTable;

@@ -51,6 +51,7 @@ mod stdout;
 mod stepping;
 mod stray_cells;
 mod synth;
+mod synth_bench;
 mod synth_short;
 mod template;
 mod valves;
