@@ -167,8 +167,15 @@ fn synth_refuses_the_safety_rows_it_cannot_build_and_names_the_rest() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(0), "{stderr}");
-    assert_eq!(stderr.matches("SETTINGS!B1: warning[W006]").count(), 1, "{stderr}");
-    assert!(stderr.contains("home order: synth does not use this setting"), "{stderr}");
+    assert_eq!(
+        stderr.matches("SETTINGS!B1: warning[W006]").count(),
+        1,
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("home order: synth does not use this setting"),
+        "{stderr}"
+    );
     assert!(!stderr.contains("reset"), "{stderr}");
     // Pins on ADDRESSES are named too.
     let path = dir.path().join("p.xlsx");
