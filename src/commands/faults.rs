@@ -82,8 +82,9 @@ fn analyse(
     options: FaultsOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<FaultTable, CommandError> {
-    let (program, _) = convert::healthy_program(table, settings, &settings.simulation)?;
     let at_once = options.at_once;
+    let (program, _, healthy) =
+        convert::proven_program(table, settings, &settings.simulation, Some(at_once))?;
     let cases = faults::case_count(&program, at_once);
     if cases > faults::MAX_CASES {
         let asked = if options.pairs {
@@ -110,11 +111,13 @@ fn analyse(
     if let Some(why) = faults::over_budget(table, &program, &settings.simulation, at_once) {
         return Err(CommandError::Input(vec![convert::budget_error(table, why)]));
     }
-    Ok(faults::analyse_observed(
+    Ok(faults::analyse_from(
         table,
         &program,
         &settings.simulation,
         at_once,
+        faults::FaultRuns::Resumed,
         progress,
+        healthy,
     ))
 }
