@@ -345,6 +345,20 @@ pub fn healthy_program(
     settings: &Settings,
     sim: &SimSettings,
 ) -> Result<(StepProgram, SimReport), Failure> {
+    proven_program(table, settings, sim, None).map(|(program, proof, _)| (program, proof))
+}
+
+/// Like [`healthy_program`]; when a fault analysis of up to `faults_at_once`
+/// faults will run (it is within its budgets), the proof is its healthy run
+/// too ([`faults::healthy_run`]), handed back to be given to it: one
+/// simulation of the healthy cycle, not two. Past a budget the analysis is
+/// refused, and the proof logs nothing for it.
+pub fn proven_program(
+    table: &StepTable,
+    settings: &Settings,
+    sim: &SimSettings,
+    faults_at_once: Option<usize>,
+) -> Result<(StepProgram, SimReport, Option<faults::Healthy>), Failure> {
     let lucky = physics::lucky_middle_stops(table, settings);
     if !lucky.is_empty() {
         return Err(Failure::Input(lucky));
@@ -357,9 +371,23 @@ pub fn healthy_program(
     if let Some(why) = simulate::over_budget(table, &program, sim) {
         return Err(Failure::Input(vec![budget_error(table, why)]));
     }
-    let simulation = simulate::simulate(table, &program, sim);
+    let for_faults = faults_at_once.is_some_and(|k| {
+        faults::case_count(&program, k) <= faults::MAX_CASES
+            && faults::over_budget(table, &program, sim, k).is_none()
+    });
+    let (simulation, healthy) = if for_faults {
+        let healthy = faults::healthy_run(table, &program, sim);
+        // The places are the analysis's; the proof's report has none.
+        let proof = SimReport {
+            places: Default::default(),
+            ..healthy.report.clone()
+        };
+        (proof, Some(healthy))
+    } else {
+        (simulate::simulate(table, &program, sim), None)
+    };
     if simulation.passed {
-        Ok((program, simulation))
+        Ok((program, simulation, healthy))
     } else {
         Err(physics::explain(table, settings, &simulation))
     }
@@ -411,7 +439,9 @@ pub fn generate_observed(
         record_trace: settings.diagram == emit::diagram::DiagramKind::Time,
         ..settings.simulation.clone()
     };
-    let (program, simulation) = healthy_program(&table, settings, &sim_settings)?;
+    let shows_faults = settings.formats.iter().any(|k| k.shows_faults());
+    let (program, simulation, healthy) =
+        proven_program(&table, settings, &sim_settings, shows_faults.then_some(1))?;
     let allocation = allocate(&program, settings, &table.file).map_err(Failure::Input)?;
     let festo = festo_allocation(&program, &allocation);
     let symbols = crate::symbols::SymbolTable::build(&program, &table, &settings.naming);
@@ -449,7 +479,15 @@ pub fn generate_observed(
     let ((fault_table, late), early) = rayon::join(
         || {
             let fault_table = (!late.is_empty()).then(|| {
-                faults::analyse_observed(&table, &program, &settings.simulation, 1, progress)
+                faults::analyse_from(
+                    &table,
+                    &program,
+                    &settings.simulation,
+                    1,
+                    faults::FaultRuns::Resumed,
+                    progress,
+                    healthy,
+                )
             });
             let late = emit::render_each(
                 late,
