@@ -22,6 +22,7 @@ pub(crate) struct SimArgs {
 pub(crate) type InputDelays = std::collections::BTreeMap<crate::cell::Name, u32>;
 
 pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
+    no_empty_item(text)?;
     let mut delays = InputDelays::new();
     for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
         let (name, value) = item
@@ -85,6 +86,7 @@ fn parse_keyed<T>(
 pub(crate) type StrokeMap = Keyed<crate::stroke::Stroke>;
 
 pub(crate) fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
+    no_empty_item(text)?;
     for item in text.split(',') {
         if let Some((_, times)) = item.split_once('=') {
             for time in times.split('/') {
@@ -299,6 +301,7 @@ pub(crate) fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<Out
 }
 
 pub(crate) fn parse_valves(text: &str) -> Result<Keyed<crate::valve::ValveType>, String> {
+    no_empty_item(text)?;
     parse_keyed(text, crate::valve::parse_valves, |item, value| {
         value
             .parse::<crate::valve::ValveType>()
@@ -307,7 +310,20 @@ pub(crate) fn parse_valves(text: &str) -> Result<Keyed<crate::valve::ValveType>,
 }
 
 pub(crate) fn parse_loads(text: &str) -> Result<std::collections::BTreeMap<u32, f64>, String> {
+    no_empty_item(text)?;
     crate::valve::parse_loads(text)
+}
+
+/// A per-actuator or per-input list with an empty item (`C1=52mono,,C2=52bi`,
+/// `,`) has lost a value or has a stray comma: refused, as `--modes` is.
+pub(crate) fn no_empty_item(text: &str) -> Result<(), String> {
+    if text.split(',').any(|item| item.trim().is_empty()) {
+        return Err(format!(
+            "\"{}\" has an empty item between its commas; give each item once (e.g. C1=52mono,C2=52bi)",
+            text.trim()
+        ));
+    }
+    Ok(())
 }
 
 pub(crate) fn parse_safety(text: &str) -> Result<Safety, String> {

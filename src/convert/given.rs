@@ -127,8 +127,15 @@ pub(super) fn loads_without_effect(
 pub(super) fn overridden_by_the_command_line(
     line: &crate::settings::Given,
     sheet: &crate::settings::Given,
+    naming: &crate::symbols::Naming,
     diags: &mut Diagnostics,
 ) {
+    // An option may name the actuator (`--valve clamp=52bi`).
+    let by_name = |names: Vec<&String>, n: u32| {
+        names
+            .into_iter()
+            .any(|name| naming.actuator_named(name) == Some(n))
+    };
     for (label, at) in &sheet.cells {
         if line.gives(label) {
             diags.warning(
@@ -142,16 +149,23 @@ pub(super) fn overridden_by_the_command_line(
         }
     }
     for ((actuator, what), at) in &sheet.actuator_cells {
-        let given = match *what {
-            "valve" => line.valves.contains_key(actuator),
-            "load" => line.loads.contains_key(actuator),
-            _ => line.strokes.contains_key(actuator),
+        let n = *actuator;
+        let (option, given) = match *what {
+            "valve" => (
+                "valve",
+                line.valves.contains_key(&n) || by_name(line.named_valves.keys().collect(), n),
+            ),
+            "load" => ("load", line.loads.contains_key(&n)),
+            _ => (
+                "stroke",
+                line.strokes.contains_key(&n) || by_name(line.named_strokes.keys().collect(), n),
+            ),
         };
         if given {
             diags.warning(
                 Code::W006NoEffect,
                 at.clone(),
-                format!("{what} of C{actuator}: --{what} C{actuator}=… on the command line wins over this cell; it was not used"),
+                format!("{what} of C{n}: --{option} on the command line wins over this cell; it was not used"),
             );
         }
     }

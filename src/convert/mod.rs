@@ -149,7 +149,7 @@ fn finish_check(
             &mut diags,
         );
         if let Some(sheet) = &sheet_given {
-            overridden_by_the_command_line(&settings.given, sheet, &mut diags);
+            overridden_by_the_command_line(&settings.given, sheet, &effective.naming, &mut diags);
         }
         let named = &effective.named;
         effective.program.halt = halt::resolve(

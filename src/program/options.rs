@@ -365,6 +365,13 @@ impl Modes {
         let mut stages = Vec::new();
         for stage in text.split([',', ';']) {
             let mut actuators = Vec::new();
+            // `C1&` or `&C2`: an actuator of the stage was lost.
+            if stage.contains('&') && stage.split('&').any(|part| part.trim().is_empty()) {
+                return Err(format!(
+                    "the home order \"{}\" has a stage with an empty item beside its &; name each actuator of a stage (e.g. C3&C4)",
+                    text.trim()
+                ));
+            }
             for item in stage.split(|c: char| c == '&' || c.is_whitespace()) {
                 if item.is_empty() {
                     continue;

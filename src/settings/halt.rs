@@ -488,6 +488,16 @@ fn stop_actions(
             }
             _ => None,
         };
+        if let (Some(StopAction::OffAfter(_)), [_, _, time @ ..]) = (action, words.as_slice())
+            && crate::cell::without_unit(&time.concat())
+        {
+            let time = time.concat();
+            diags.warning(
+                Code::W007Assumed,
+                list.at.clone(),
+                format!("{label}: \"{item}\": \"{time}\" has no unit and is read as {time} seconds: write {time}s, or {time}ms if milliseconds were meant"),
+            );
+        }
         let Some(action) = action else {
             diags.error(
                 Code::E030BadSetting,

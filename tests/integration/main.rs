@@ -33,6 +33,7 @@ mod machine_limits;
 mod messy;
 mod modes;
 mod motor;
+mod name_aliases;
 mod name_check;
 mod on_stop;
 mod option_times;
