@@ -133,8 +133,9 @@ pub fn reserved_name(name: &str) -> Option<String> {
         );
     }
     const OWN: &[&str] = &[
-        // The mode buttons (stop, estop, reset_pb, cont) are taken only when
-        // their mode is on: the table check knows which are.
+        // The mode buttons (stop, estop, reset_pb, cont, step_mode,
+        // step_pb) are taken only when their mode is on: the table check
+        // knows which are.
         "start",
         "start_mem",
         "halt",
@@ -149,6 +150,8 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "cycle_req",
         "busy",
         "auto_run",
+        "step_ok",
+        "step_mem",
         "homing",
         FIRED,
         STEP_COUNTER,

@@ -76,6 +76,55 @@ pub(super) fn mode_rungs(
             actions,
         });
     }
+    if modes.step {
+        rungs.extend(step_rungs());
+    }
+}
+
+/// Single-step mode: the permit every table step's transition needs. In
+/// automatic (STEP_MODE off) it is always on; in single-step it is on for
+/// the one scan after STEP_PB's rising edge, so that a press fires at most
+/// one step and only one whose conditions hold at that scan (S7-GRAPH's
+/// transition with T_PUSH). The rungs run after the sequence: the permit
+/// they set is read by the next scan's sequence.
+fn step_rungs() -> [Rung; 5] {
+    let rung = |comment: &str, condition: Vec<Literal>, action: Action| Rung {
+        kind: RungKind::Mode,
+        comment: comment.to_string(),
+        condition,
+        actions: vec![action],
+    };
+    [
+        rung(
+            "STEP_MODE off: automatic, every step may fire",
+            vec![Literal::not(Signal::StepMode)],
+            Action::Set(Signal::StepPermit),
+        ),
+        rung(
+            "STEP_MODE on: single step, a step fires only on a STEP_PB press",
+            vec![Literal::is(Signal::StepMode)],
+            Action::Reset(Signal::StepPermit),
+        ),
+        rung(
+            "STEP_PB pressed in single step: the next scan may fire one step",
+            vec![
+                Literal::is(Signal::StepMode),
+                Literal::is(Signal::StepButton),
+                Literal::not(Signal::StepMemory),
+            ],
+            Action::Set(Signal::StepPermit),
+        ),
+        rung(
+            "edge: remember STEP_PB for the next scan",
+            vec![Literal::is(Signal::StepButton)],
+            Action::Set(Signal::StepMemory),
+        ),
+        rung(
+            "edge: STEP_PB released",
+            vec![Literal::not(Signal::StepButton)],
+            Action::Reset(Signal::StepMemory),
+        ),
+    ]
 }
 
 /// RESET, the homing stages and the emergency stop, which comes last so

@@ -182,7 +182,10 @@ fn the_templates_lists_offer_every_value() {
     }
     // The notes beside safety and modes name every check and mode.
     let settings = crate::helpers::read_sheet(&path, "SETTINGS");
-    for (label, names) in [("safety", Safety::NAMES), ("modes", Modes::NAMES)] {
+    for (label, names) in [
+        ("safety", Safety::NAMES.to_vec()),
+        ("modes", Modes::NAMES.to_vec()),
+    ] {
         let row = settings.iter().find(|r| r[0] == label).unwrap();
         assert_eq!(
             missing(&row[3], &names),
