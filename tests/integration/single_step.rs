@@ -308,3 +308,25 @@ fn the_step_buttons_names_are_taken_only_with_the_mode() {
     write_xlsx_sheets(&path, &[("TABLE", table)]);
     steptable().arg("check").arg(&path).assert().success();
 }
+
+/// The fault table classifies the mode's inputs: a STEP_MODE stuck at 1
+/// stalls safely (no step without a press); the other three show no
+/// effect in automatic, the broken switch wire (stuck at 0) among them,
+/// which the guide says no check can catch.
+#[test]
+fn the_fault_table_classifies_the_step_inputs() {
+    use steptable::faults::Outcome;
+    use steptable::program::Signal;
+    let table = Build::paper().modes("step").faults();
+    let outcome = |signal: Signal, stuck_at: bool| {
+        let case = table.cases.iter().find(|c| {
+            c.faults.len() == 1 && c.faults[0].signal == signal && c.faults[0].stuck_at == stuck_at
+        });
+        case.unwrap_or_else(|| panic!("{signal:?} stuck at {stuck_at} is a case"))
+            .outcome
+    };
+    assert_eq!(outcome(Signal::StepMode, true), Outcome::SafeStall);
+    assert_eq!(outcome(Signal::StepMode, false), Outcome::NoEffect);
+    assert_eq!(outcome(Signal::StepButton, true), Outcome::NoEffect);
+    assert_eq!(outcome(Signal::StepButton, false), Outcome::NoEffect);
+}
