@@ -319,3 +319,48 @@ pub(super) fn homing_rungs(
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Literal, ProgramOptions, Signal, StepKind, build};
+    use crate::stroke::Strokes;
+    use crate::valve::Valves;
+
+    /// In single step every way into a table step needs the permit, a
+    /// jump too; the way back to step 0 (the closing transition, or a jump
+    /// to the end) moves nothing and needs none.
+    #[test]
+    fn every_table_step_and_jump_into_one_needs_the_step_permit() {
+        let rows: [[&str; 1]; 6] = [
+            ["C1+1"],
+            ["C1-0; J:5 if I:reject; J:end if I:abort"],
+            ["C2+1"],
+            ["C2-0"],
+            ["C3+1"],
+            ["C3-0"],
+        ];
+        let table = crate::table::from_rows("jumps.csv", &rows).expect("valid table");
+        let mut options = ProgramOptions::default();
+        options.modes = super::super::Modes::parse("step").unwrap();
+        let program = build(&table, &options, &Valves::default(), &Strokes::default());
+        let permit = Literal::is(Signal::StepPermit);
+        for step in &program.steps {
+            let table_step = step.kind == StepKind::Table;
+            assert_eq!(step.condition.contains(&permit), table_step, "{step:?}");
+            for jump in &step.jumps {
+                let into_table = program.steps[jump.fires].kind == StepKind::Table;
+                assert_eq!(jump.condition.contains(&permit), into_table, "{jump:?}");
+            }
+        }
+        let jumps: usize = program.steps.iter().map(|s| s.jumps.len()).sum();
+        assert_eq!(jumps, 2);
+        // Without the mode no condition reads it.
+        let plain = build(
+            &table,
+            &ProgramOptions::default(),
+            &Valves::default(),
+            &Strokes::default(),
+        );
+        assert!(plain.steps.iter().all(|s| !s.condition.contains(&permit)));
+    }
+}

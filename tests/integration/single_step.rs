@@ -330,3 +330,16 @@ fn the_fault_table_classifies_the_step_inputs() {
     assert_eq!(outcome(Signal::StepButton, true), Outcome::NoEffect);
     assert_eq!(outcome(Signal::StepButton, false), Outcome::NoEffect);
 }
+
+/// Every path of the sorting station (its jumps on `I:reject` and
+/// `I:no_label`) still runs with the mode, the switch off: the proof of
+/// `simulate` passes.
+#[test]
+fn the_sorting_stations_paths_run_with_the_mode() {
+    steptable()
+        .arg("simulate")
+        .arg(crate::helpers::sample("sorting_station.xlsx"))
+        .args(["--modes", "step"])
+        .assert()
+        .success();
+}
