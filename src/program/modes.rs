@@ -340,8 +340,10 @@ mod tests {
             ["C3-0"],
         ];
         let table = crate::table::from_rows("jumps.csv", &rows).expect("valid table");
-        let mut options = ProgramOptions::default();
-        options.modes = super::super::Modes::parse("step").unwrap();
+        let options = ProgramOptions {
+            modes: super::super::Modes::parse("step").unwrap(),
+            ..ProgramOptions::default()
+        };
         let program = build(&table, &options, &Valves::default(), &Strokes::default());
         let permit = Literal::is(Signal::StepPermit);
         for step in &program.steps {
