@@ -141,8 +141,9 @@ pub fn reserved_name(name: &str) -> Option<String> {
         );
     }
     const OWN: &[&str] = &[
-        // The mode buttons (stop, estop, reset_pb, cont) are taken only when
-        // their mode is on: the table check knows which are.
+        // The mode buttons (stop, estop, reset_pb, cont, step_mode,
+        // step_pb) are taken only when their mode is on: the table check
+        // knows which are.
         "start",
         "start_mem",
         "halt",
@@ -157,6 +158,8 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "cycle_req",
         "busy",
         "auto_run",
+        "step_ok",
+        "step_mem",
         "homing",
         FIRED,
         STEP_COUNTER,

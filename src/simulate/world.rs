@@ -126,6 +126,8 @@ pub(in crate::simulate) fn read_input(signal: Signal, world: &World) -> bool {
         Signal::Stop => !operator.stop,
         Signal::EStop => !operator.estop,
         Signal::Reset => operator.reset,
+        Signal::StepMode => operator.step_mode,
+        Signal::StepButton => operator.step,
         _ => false,
     }
 }

@@ -524,6 +524,8 @@ fn role(signal: Signal) -> &'static str {
         Signal::Stop => "stop",
         Signal::EStop => "estop",
         Signal::Reset => "reset",
+        Signal::StepMode => "step mode",
+        Signal::StepButton => "step",
         other => match other.area() {
             Area::Timer => "timer",
             _ => "memory",

@@ -182,7 +182,7 @@ pub fn run(
             stop: b.stop,
             estop: b.estop,
             reset: b.reset,
-            continuous: false,
+            ..Operator::default()
         });
         if let Some(&number) = bench.scan(&mut wired as &mut dyn Controller)?.first() {
             let name = seq.var_name(number as usize - 1);

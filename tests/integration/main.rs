@@ -47,6 +47,7 @@ mod rerun;
 mod safety;
 mod settings_rows;
 mod simulate;
+mod single_step;
 mod snapshots;
 mod stdout;
 mod stepping;

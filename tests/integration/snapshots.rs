@@ -136,6 +136,31 @@ fn paper_and_press_station_with_every_operating_mode() {
     }
 }
 
+/// Single step (`--modes step`): the STEP_MODE and STEP_PB inputs, the
+/// `step_ok` permit in every table step's condition, and its rungs, in the
+/// program model and in ST, FST and AWL.
+#[test]
+fn paper_in_single_step() {
+    let path = crate::helpers::sample("paper_example.xlsx");
+    let mut settings = Settings::new();
+    settings.program.modes = steptable::program::Modes::parse("step").unwrap();
+    let conversion = convert_path(&path, &settings).expect("sample converts");
+    insta::assert_snapshot!(
+        "paper_example_xlsx-step.program",
+        program_text(&conversion.program)
+    );
+    for output in &conversion.files {
+        let Some(ext) = [".st", ".fst.txt", ".awl"]
+            .into_iter()
+            .find(|e| output.name.ends_with(e))
+        else {
+            continue;
+        };
+        let text = String::from_utf8(output.bytes.clone()).expect("text output");
+        insta::assert_snapshot!(format!("paper_example_xlsx-step{ext}"), text);
+    }
+}
+
 /// The step program itself, in the paper's notation: the one model every
 /// output is rendered from. A change in it shows here before it shows in
 /// eleven output files.

@@ -21,6 +21,7 @@ mod homing;
 mod libreoffice;
 mod names;
 mod pinned;
+mod single_step;
 mod step_numbers;
 mod sync;
 mod synth_engines;
@@ -136,6 +137,7 @@ fn main() {
         libreoffice::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
+        single_step::CHECKS,
         step_numbers::CHECKS,
         halt::CHECKS,
         homing::CHECKS,

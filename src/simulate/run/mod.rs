@@ -350,10 +350,12 @@ impl Run<'_> {
         self.fired_any = true;
         let step = &self.program.steps[fired];
         self.machine_on_fire(fired, waited_at, jumped);
+        let operator = self.world.operator;
+        // In single step, START asks for the cycle and a STEP_PB press
+        // later fires its step 1.
+        let stepped = operator.step_mode && operator.step;
         if fired == 0
-            && !(self.world.start_pressed
-                || self.world.operator.start
-                || self.world.operator.continuous)
+            && !(self.world.start_pressed || operator.start || operator.continuous || stepped)
         {
             self.problem(
                 ProblemKind::UnexpectedStart,
