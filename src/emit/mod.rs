@@ -10,6 +10,7 @@ pub mod faults_csv;
 pub mod fst;
 pub mod io_csv;
 mod kind;
+pub mod lower;
 mod render;
 pub mod st;
 pub mod tables;

@@ -248,34 +248,30 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
     let alloc = input.allocation;
     let program = input.program;
     let symbols = input.symbols;
-    let steps = program
+    let lowered = super::lower::lower(program, symbols);
+    let steps = lowered
         .steps
         .iter()
-        .enumerate()
-        .map(|(i, s)| StepContext {
-            jumps: s
-                .jumps
-                .iter()
-                .map(|j| {
-                    let target = &program.steps[j.fires];
-                    JumpContext {
-                        comment: comment_text(&super::jump_comment(program, i, j)),
-                        condition: condition(symbols, &j.condition),
-                        actions: statements(symbols, &j.actions, &target.moves),
-                        enters: program.step_entered(j.fires),
-                    }
-                })
-                .collect(),
-            active: program.step_in(i),
-            active_title: comment_text(
-                &symbols
-                    .step(i)
-                    .map_or_else(|| program.title_in(i), |n| n.active_title.clone()),
-            ),
-            entry: comment_text(&super::entry_comment(program, symbols, i)),
-            condition: condition(symbols, &s.condition),
-            actions: statements(symbols, &s.actions, &s.moves),
-            enters: program.step_entered(i),
+        .map(|s| {
+            let own = s.own();
+            StepContext {
+                jumps: s
+                    .jumps()
+                    .iter()
+                    .map(|j| JumpContext {
+                        comment: comment_text(j.comment),
+                        condition: condition(symbols, j.condition),
+                        actions: statements(symbols, j.actions, j.moves),
+                        enters: j.enters,
+                    })
+                    .collect(),
+                active: s.active,
+                active_title: comment_text(&s.active_title),
+                entry: comment_text(own.comment),
+                condition: condition(symbols, own.condition),
+                actions: statements(symbols, own.actions, own.moves),
+                enters: own.enters,
+            }
         })
         .collect();
     let rungs = program
