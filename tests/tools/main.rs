@@ -21,6 +21,7 @@ mod homing;
 mod libreoffice;
 mod names;
 mod pinned;
+mod sfc;
 mod step_numbers;
 mod sync;
 mod synth_engines;
@@ -41,6 +42,8 @@ pub enum Tool {
     Blark,
     Soffice,
     Strace,
+    /// A Python with lxml and numpy, for Beremiz's generator.
+    BeremizPython,
 }
 
 impl Tool {
@@ -57,6 +60,17 @@ impl Tool {
             Tool::Blark => find_program("blark"),
             Tool::Soffice => find_program("soffice"),
             Tool::Strace => find_program("strace"),
+            // The tools' venv may lack numpy: PATH's Python is tried too.
+            Tool::BeremizPython => ["python3", "python"]
+                .into_iter()
+                .flat_map(|n| [find_program(n), on_path(n)])
+                .flatten()
+                .find(|p| {
+                    std::process::Command::new(p)
+                        .args(["-c", "import lxml, numpy"])
+                        .output()
+                        .is_ok_and(|o| o.status.success())
+                }),
         }
     }
 
@@ -72,6 +86,9 @@ impl Tool {
             Tool::Blark => "blark was not found (set STEPTABLE_TOOLS or PATH; .ci/run installs it)",
             Tool::Soffice => "soffice was not found (.ci/run installs libreoffice-calc)",
             Tool::Strace => "strace was not found (.ci/run installs it)",
+            Tool::BeremizPython => {
+                "no python3 with lxml and numpy for Beremiz's generator (set STEPTABLE_TOOLS or PATH; pip install lxml numpy)"
+            }
         }
     }
 }
@@ -84,6 +101,11 @@ fn find_program(name: &str) -> Option<PathBuf> {
             return Some(path);
         }
     }
+    on_path(name)
+}
+
+/// A program found on PATH alone.
+fn on_path(name: &str) -> Option<PathBuf> {
     let found = std::process::Command::new("sh")
         .arg("-c")
         .arg(format!("command -v {name}"))
@@ -136,6 +158,7 @@ fn main() {
         libreoffice::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
+        sfc::CHECKS,
         step_numbers::CHECKS,
         halt::CHECKS,
         homing::CHECKS,
