@@ -62,7 +62,12 @@ fn xsd_valid(xmllint: &Path, shared: &Path, xml: &Path) -> Result<(), String> {
 }
 
 /// The chart of `case`, through Beremiz and matiec, against the simulation.
-fn run_chart(python: &Path, shared: &Path, case: &Case, xml: &Path) -> Result<(), String> {
+pub(crate) fn run_chart(
+    python: &Path,
+    shared: &Path,
+    case: &Case,
+    xml: &Path,
+) -> Result<(), String> {
     let st = beremiz_text(python, shared, xml).map_err(|e| format!("{}: {e}", case.label))?;
     case.check(
         "Beremiz + matiec .sfc.xml",
