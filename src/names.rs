@@ -169,6 +169,13 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "steptable_main",
         "cyclic_task",
         "main_instance",
+        // The programs the SFC chart runs before and after it, and their
+        // instances (its steps `step_k` and actions `step_k_entry` are
+        // numbered names below).
+        "steptable_pre",
+        "steptable_post",
+        "pre_instance",
+        "post_instance",
     ];
     // Followed by a digit these read as the program's own names or as an
     // address of STEP 7 (I0, MW2, DB1, T3, Z4) or FST (FW1, TP0, R3, V10).

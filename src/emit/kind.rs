@@ -23,6 +23,9 @@ pub enum OutputKind {
     CodesysV2,
     /// A Beremiz / OpenPLC Editor project folder (`NAME.beremiz/`).
     Beremiz,
+    /// The sequence as an SFC chart in PLCopen XML (`NAME.sfc.xml`): asked
+    /// for by name, not written by default (the ST program is).
+    Sfc,
 }
 
 impl OutputKind {
@@ -33,7 +36,7 @@ impl OutputKind {
     }
 
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 16] = [
+    pub const ALL: [OutputKind; 17] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -50,7 +53,17 @@ impl OutputKind {
         OutputKind::Rockwell,
         OutputKind::CodesysV2,
         OutputKind::Beremiz,
+        OutputKind::Sfc,
     ];
+
+    /// What a conversion writes when `--formats` is not given: every kind
+    /// but the chart bodies, which are asked for by name.
+    pub fn defaults() -> BTreeSet<OutputKind> {
+        OutputKind::ALL
+            .into_iter()
+            .filter(|k| *k != OutputKind::Sfc)
+            .collect()
+    }
 
     /// The name used with `--formats`.
     pub fn name(self) -> &'static str {
@@ -71,6 +84,7 @@ impl OutputKind {
             OutputKind::Rockwell => "rockwell",
             OutputKind::CodesysV2 => "exp",
             OutputKind::Beremiz => "beremiz",
+            OutputKind::Sfc => "sfc",
         }
     }
 
@@ -116,6 +130,7 @@ impl OutputKind {
             OutputKind::Rockwell => ".rockwell.csv",
             OutputKind::CodesysV2 => ".exp",
             OutputKind::Beremiz => ".beremiz",
+            OutputKind::Sfc => ".sfc.xml",
         }
     }
 
@@ -276,7 +291,7 @@ mod tests {
             let err = OutputKind::parse_list(list).unwrap_err();
             assert!(err.contains(said), "{list}: {err}");
         }
-        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 16);
+        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 17);
         assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(edit_distance("kitten", "sitting"), 3);
     }

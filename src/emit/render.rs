@@ -185,6 +185,7 @@ impl<'a> Renderer<'a> {
             OutputKind::Codesys => self.iec(kind, IecFile::Codesys)?,
             OutputKind::Gvl => self.iec(kind, IecFile::GlobalVariables)?,
             OutputKind::CodesysV2 => self.iec(kind, IecFile::CodesysV2)?,
+            OutputKind::Sfc => text(kind, super::sfc::render(&input))?,
         };
         Ok(vec![file(bytes)])
     }

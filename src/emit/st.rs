@@ -38,15 +38,15 @@ struct Internal {
 
 /// A timer: a TON instance driven by a run flag and a preset variable, so
 /// that "start" and "running" mean what the step program says.
-#[derive(Serialize)]
-struct Timer {
+#[derive(Serialize, Clone)]
+pub(super) struct Timer {
     ident: String,
     run: String,
     preset: String,
 }
 
-#[derive(Serialize)]
-struct Statement {
+#[derive(Serialize, Clone)]
+pub(super) struct Statement {
     code: String,
     comment: String,
 }
@@ -79,8 +79,8 @@ struct JumpContext {
     enters: usize,
 }
 
-#[derive(Serialize)]
-struct RungContext {
+#[derive(Serialize, Clone)]
+pub(super) struct RungContext {
     comment: String,
     condition: String,
     actions: Vec<Statement>,
@@ -96,7 +96,7 @@ struct BodyContext {
 
 /// Everything the IEC templates (`.st`, PLCopen, CODESYS, GVL) lay out.
 #[derive(Serialize)]
-struct Context {
+pub(super) struct Context {
     title: String,
     version: &'static str,
     source: String,
@@ -160,7 +160,7 @@ fn xsd_duration(ms: u32) -> String {
 pub const TIMESTAMP: &str = "2020-01-01T00:00:00";
 
 /// Text made safe inside `(* … *)`: ST comments do not nest.
-fn comment_text(text: &str) -> String {
+pub(super) fn comment_text(text: &str) -> String {
     super::one_line(text)
         .replace("(*", "( *")
         .replace("*)", "* )")
@@ -192,7 +192,7 @@ fn operand(symbols: &SymbolTable, signal: Signal) -> String {
 
 /// A condition as an ST expression; one with no literal always holds
 /// (`IF THEN` with nothing between is a syntax error in matiec).
-fn condition(symbols: &SymbolTable, literals: &[Literal]) -> String {
+pub(super) fn condition(symbols: &SymbolTable, literals: &[Literal]) -> String {
     if literals.is_empty() {
         return "TRUE".to_string();
     }
@@ -220,7 +220,7 @@ fn statement(symbols: &SymbolTable, action: Action) -> String {
     }
 }
 
-fn statements(
+pub(super) fn statements(
     symbols: &SymbolTable,
     actions: &[Action],
     moves: &[crate::table::Move],
@@ -245,40 +245,53 @@ fn located(a: &Assigned, input: &EmitInput) -> Var {
 
 /// Builds the context shared by every IEC output.
 fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::TemplateError> {
+    Ok(parts(input, scan_millis)?.0)
+}
+
+/// What the ST body runs besides the sequence, for the bodies that keep the
+/// sequence elsewhere (the SFC chart): the timers, called before it, and
+/// the rungs, run after it.
+#[derive(Serialize, Clone)]
+pub(super) struct Around {
+    pub(super) timers: Vec<Timer>,
+    pub(super) rungs: Vec<RungContext>,
+}
+
+/// The context shared by every IEC output, and the timers and rungs of its body.
+pub(super) fn parts(
+    input: &EmitInput,
+    scan_millis: u32,
+) -> Result<(Context, Around), templates::TemplateError> {
     let alloc = input.allocation;
     let program = input.program;
     let symbols = input.symbols;
-    let steps = program
+    let lowered = super::lower::lower(program, symbols);
+    let steps = lowered
         .steps
         .iter()
-        .enumerate()
-        .map(|(i, s)| StepContext {
-            jumps: s
-                .jumps
-                .iter()
-                .map(|j| {
-                    let target = &program.steps[j.fires];
-                    JumpContext {
-                        comment: comment_text(&super::jump_comment(program, i, j)),
-                        condition: condition(symbols, &j.condition),
-                        actions: statements(symbols, &j.actions, &target.moves),
-                        enters: program.step_entered(j.fires),
-                    }
-                })
-                .collect(),
-            active: program.step_in(i),
-            active_title: comment_text(
-                &symbols
-                    .step(i)
-                    .map_or_else(|| program.title_in(i), |n| n.active_title.clone()),
-            ),
-            entry: comment_text(&super::entry_comment(program, symbols, i)),
-            condition: condition(symbols, &s.condition),
-            actions: statements(symbols, &s.actions, &s.moves),
-            enters: program.step_entered(i),
+        .map(|s| {
+            let own = s.own();
+            StepContext {
+                jumps: s
+                    .jumps()
+                    .iter()
+                    .map(|j| JumpContext {
+                        comment: comment_text(j.comment),
+                        condition: condition(symbols, j.condition),
+                        actions: statements(symbols, j.actions, j.moves),
+                        enters: j.enters,
+                    })
+                    .collect(),
+                active: s.active,
+                active_title: comment_text(&s.active_title),
+                entry: comment_text(own.comment),
+                condition: condition(symbols, own.condition),
+                actions: statements(symbols, own.actions, own.moves),
+                enters: own.enters,
+            }
         })
         .collect();
-    let rungs = program
+    let rungs: Vec<RungContext> = program
         .rungs
         .iter()
         .map(|r| RungContext {
@@ -345,6 +358,10 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
             comment: String::new(),
         });
     }
+    let around = Around {
+        timers: timers.clone(),
+        rungs: rungs.clone(),
+    };
     let body = input.templates.render(
         "program_body.st.j2",
         Value::from(Serde(&BodyContext {
@@ -354,36 +371,39 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
             rungs,
         })),
     )?;
-    Ok(Context {
-        title: comment_text(input.name),
-        version: env!("CARGO_PKG_VERSION"),
-        source: comment_text(&input.source()),
-        target: alloc.target.name().to_string(),
-        timestamp: TIMESTAMP,
-        program_name: PROGRAM_NAME,
-        step_note: super::step_numbering_note(&symbols.step_counter.ident)
-            .iter()
-            .map(|l| comment_text(l))
-            .collect(),
-        located: alloc
-            .inputs
-            .iter()
-            .chain(&alloc.outputs)
-            .map(|a| located(a, input))
-            .collect(),
-        internals,
-        body,
-        // OpenPLC's upload moves exactly Config0.c and Res0.c, the files
-        // matiec names after the configuration and its resource.
-        configuration_name: CONFIGURATION_NAME,
-        resource_name: RESOURCE_NAME,
-        task_name: TASK_NAME,
-        instance_name: INSTANCE_NAME,
-        task_interval: format!("T#{scan_millis}ms"),
-        task_interval_xsd: xsd_duration(scan_millis),
-        program_object_id: object_id(&format!("{}/{PROGRAM_NAME}", input.name)),
-        gvl_object_id: object_id(&format!("{}/GVL_IO", input.name)),
-    })
+    Ok((
+        Context {
+            title: comment_text(input.name),
+            version: env!("CARGO_PKG_VERSION"),
+            source: comment_text(&input.source()),
+            target: alloc.target.name().to_string(),
+            timestamp: TIMESTAMP,
+            program_name: PROGRAM_NAME,
+            step_note: super::step_numbering_note(&symbols.step_counter.ident)
+                .iter()
+                .map(|l| comment_text(l))
+                .collect(),
+            located: alloc
+                .inputs
+                .iter()
+                .chain(&alloc.outputs)
+                .map(|a| located(a, input))
+                .collect(),
+            internals,
+            body,
+            // OpenPLC's upload moves exactly Config0.c and Res0.c, the files
+            // matiec names after the configuration and its resource.
+            configuration_name: CONFIGURATION_NAME,
+            resource_name: RESOURCE_NAME,
+            task_name: TASK_NAME,
+            instance_name: INSTANCE_NAME,
+            task_interval: format!("T#{scan_millis}ms"),
+            task_interval_xsd: xsd_duration(scan_millis),
+            program_object_id: object_id(&format!("{}/{PROGRAM_NAME}", input.name)),
+            gvl_object_id: object_id(&format!("{}/GVL_IO", input.name)),
+        },
+        around,
+    ))
 }
 
 #[cfg(test)]

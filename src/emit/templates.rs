@@ -30,6 +30,7 @@ pub const DEFAULTS: &[(&str, &str)] = &[
         "plcopen.xml.j2",
         include_str!("../../templates/plcopen.xml.j2"),
     ),
+    ("sfc.xml.j2", include_str!("../../templates/sfc.xml.j2")),
     (
         "codesys.xml.j2",
         include_str!("../../templates/codesys.xml.j2"),

@@ -150,6 +150,30 @@ fn every_entry_point_refuses_every_kind_of_name_collision() {
             1,
             "word of the SETTINGS rows",
         ),
+        // The SFC chart's own programs, instances, steps and actions
+        // (issue 39), refused whatever --formats says.
+        (
+            "output steptable_pre",
+            "Y:steptable_pre+",
+            "none",
+            1,
+            "uses it",
+        ),
+        (
+            "wait on post_instance",
+            "I:post_instance",
+            "none",
+            1,
+            "uses it",
+        ),
+        ("wait on step_3", "I:step_3", "none", 1, "uses it"),
+        (
+            "jump on step_2_entry",
+            "J:4 if I:step_2_entry",
+            "none",
+            1,
+            "uses it",
+        ),
         // What FST keeps of a name.
         (
             "jump on cycle_req_lamp",

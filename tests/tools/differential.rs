@@ -76,7 +76,7 @@ const OPTIONS: [&[&str]; 3] = [
 ];
 
 /// Every case of the matrix, converted into `dir`, with `extra` arguments.
-fn matrix(dir: &Path, extra: &[&str]) -> Vec<Case> {
+pub(crate) fn matrix(dir: &Path, extra: &[&str]) -> Vec<Case> {
     let mut cases = Vec::new();
     for (s, sample) in samples().iter().enumerate() {
         // A sample that pins its addresses converts for its target only.
@@ -115,7 +115,7 @@ fn matrix(dir: &Path, extra: &[&str]) -> Vec<Case> {
 }
 
 /// Runs `check` on every case on two threads; every failure is reported.
-fn run_all(cases: &[Case], check: impl Fn(&Case) -> Result<(), String> + Sync) {
+pub(crate) fn run_all(cases: &[Case], check: impl Fn(&Case) -> Result<(), String> + Sync) {
     let failures: Vec<String> =
         engines::on_two_threads(cases, |c| check(c).err().into_iter().collect());
     assert!(
@@ -171,7 +171,7 @@ fn st_inside_plcopen_codesys_and_exp_runs_in_matiec_as_simulated() {
 }
 
 /// `check-upload` replays OpenPLC Runtime v3's upload compile.
-fn openplc_accepts(shared: &Path, st: &Path) -> Result<(), String> {
+pub(crate) fn openplc_accepts(shared: &Path, st: &Path) -> Result<(), String> {
     let output = Command::new(shared.join("tools/openplc/check-upload"))
         .arg(st)
         .output()

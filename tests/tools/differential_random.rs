@@ -34,6 +34,11 @@ pub const CHECKS: &[Check] = &[
         &[Tool::Awlsim],
         || random_tables_run_as_simulated(Engine::Awlsim),
     ),
+    Check::new(
+        "differential_random::random_charts_run_in_matiec_as_simulated",
+        &[Tool::Shared, Tool::BeremizPython],
+        random_charts_run_in_matiec_as_simulated,
+    ),
 ];
 
 /// A random table with its command-line options.
@@ -157,10 +162,44 @@ fn prepare(dir: &Path, seed: u64) -> Case {
     let rows: Vec<&[&str]> = rows.iter().map(Vec::as_slice).collect();
     write_xlsx(&input, "Sheet1", &rows);
     let mut args: Vec<&str> = drawn.args.iter().map(String::as_str).collect();
-    args.extend(["--formats", "st,awl,fst"]);
+    args.extend(["--formats", "st,awl,fst,sfc"]);
     let mut case = engines::prepare(&input, &args, &dir.join(format!("out{seed}")));
     case.label = format!("seed {seed}: {:?} {}", drawn.rows, drawn.args.join(" "));
     case
+}
+
+/// The seeds of a run: `STEPTABLE_DIFF_SEED` on, `STEPTABLE_DIFF_CASES` of them.
+fn seeds() -> Vec<u64> {
+    let first = env_number("STEPTABLE_DIFF_SEED", 0);
+    let count = env_number("STEPTABLE_DIFF_CASES", 100);
+    (first..first + count).collect()
+}
+
+/// The SFC chart of every random table, through Beremiz's generator and
+/// matiec (issue 39).
+fn random_charts_run_in_matiec_as_simulated() {
+    let shared = shared();
+    let python = tool(Tool::BeremizPython);
+    let dir = tempfile::tempdir().unwrap();
+    let seeds = seeds();
+    let failures: Vec<String> = engines::on_two_threads(&seeds, |&seed| {
+        let case = prepare(dir.path(), seed);
+        crate::sfc::run_chart(&python, &shared, &case, &case.file(".sfc.xml"))
+            .err()
+            .into_iter()
+            .collect()
+    });
+    assert!(
+        failures.is_empty(),
+        "{} differences over {} random charts:\n{}",
+        failures.len(),
+        seeds.len(),
+        failures.join("\n")
+    );
+    eprintln!(
+        "random tables: {} SFC charts run in matiec, traces equal",
+        seeds.len()
+    );
 }
 
 fn random_tables_run_as_simulated(engine: Engine) {

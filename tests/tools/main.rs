@@ -21,6 +21,7 @@ mod homing;
 mod libreoffice;
 mod names;
 mod pinned;
+mod sfc;
 mod single_step;
 mod step_numbers;
 mod sync;
@@ -42,6 +43,8 @@ pub enum Tool {
     Blark,
     Soffice,
     Strace,
+    /// A Python with lxml and numpy, for Beremiz's generator.
+    BeremizPython,
 }
 
 impl Tool {
@@ -58,6 +61,17 @@ impl Tool {
             Tool::Blark => find_program("blark"),
             Tool::Soffice => find_program("soffice"),
             Tool::Strace => find_program("strace"),
+            // The tools' venv may lack numpy: PATH's Python is tried too.
+            Tool::BeremizPython => ["python3", "python"]
+                .into_iter()
+                .flat_map(|n| [find_program(n), on_path(n)])
+                .flatten()
+                .find(|p| {
+                    std::process::Command::new(p)
+                        .args(["-c", "import lxml, numpy"])
+                        .output()
+                        .is_ok_and(|o| o.status.success())
+                }),
         }
     }
 
@@ -73,6 +87,9 @@ impl Tool {
             Tool::Blark => "blark was not found (set STEPTABLE_TOOLS or PATH; .ci/run installs it)",
             Tool::Soffice => "soffice was not found (.ci/run installs libreoffice-calc)",
             Tool::Strace => "strace was not found (.ci/run installs it)",
+            Tool::BeremizPython => {
+                "no python3 with lxml and numpy for Beremiz's generator (set STEPTABLE_TOOLS or PATH; pip install lxml numpy)"
+            }
         }
     }
 }
@@ -85,6 +102,11 @@ fn find_program(name: &str) -> Option<PathBuf> {
             return Some(path);
         }
     }
+    on_path(name)
+}
+
+/// A program found on PATH alone.
+fn on_path(name: &str) -> Option<PathBuf> {
     let found = std::process::Command::new("sh")
         .arg("-c")
         .arg(format!("command -v {name}"))
@@ -137,6 +159,7 @@ fn main() {
         libreoffice::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
+        sfc::CHECKS,
         single_step::CHECKS,
         step_numbers::CHECKS,
         halt::CHECKS,
