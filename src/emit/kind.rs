@@ -23,6 +23,10 @@ pub enum OutputKind {
     CodesysV2,
     /// A Beremiz / OpenPLC Editor project folder (`NAME.beremiz/`).
     Beremiz,
+    /// TIA Portal SCL external source for the S7-1200/1500 (`.scl`).
+    Scl,
+    /// Studio 5000 ladder program export (`.L5X`).
+    L5x,
 }
 
 impl OutputKind {
@@ -33,7 +37,7 @@ impl OutputKind {
     }
 
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 16] = [
+    pub const ALL: [OutputKind; 18] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -50,6 +54,8 @@ impl OutputKind {
         OutputKind::Rockwell,
         OutputKind::CodesysV2,
         OutputKind::Beremiz,
+        OutputKind::Scl,
+        OutputKind::L5x,
     ];
 
     /// The name used with `--formats`.
@@ -71,6 +77,8 @@ impl OutputKind {
             OutputKind::Rockwell => "rockwell",
             OutputKind::CodesysV2 => "exp",
             OutputKind::Beremiz => "beremiz",
+            OutputKind::Scl => "scl",
+            OutputKind::L5x => "l5x",
         }
     }
 
@@ -116,6 +124,9 @@ impl OutputKind {
             OutputKind::Rockwell => ".rockwell.csv",
             OutputKind::CodesysV2 => ".exp",
             OutputKind::Beremiz => ".beremiz",
+            OutputKind::Scl => ".scl",
+            // Studio 5000 writes and lists its exports as .L5X.
+            OutputKind::L5x => ".L5X",
         }
     }
 
@@ -276,7 +287,7 @@ mod tests {
             let err = OutputKind::parse_list(list).unwrap_err();
             assert!(err.contains(said), "{list}: {err}");
         }
-        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 16);
+        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 18);
         assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(edit_distance("kitten", "sitting"), 3);
     }
