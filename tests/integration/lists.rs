@@ -239,6 +239,8 @@ fn the_types_lists_hold_every_value() {
             Rockwell => 13,
             CodesysV2 => 14,
             Beremiz => 15,
+            Scl => 16,
+            L5x => 17,
         }
     }
     fn all_of(indices: Vec<usize>, count: usize) {
@@ -248,7 +250,7 @@ fn the_types_lists_hold_every_value() {
     all_of(ValveType::ALL.map(valve).to_vec(), 6);
     all_of(Target::ALL.map(target).to_vec(), 3);
     all_of(Mnemonic::ALL.map(mnemonic).to_vec(), 2);
-    all_of(OutputKind::ALL.map(kind).to_vec(), 16);
+    all_of(OutputKind::ALL.map(kind).to_vec(), 18);
     for name in ValveType::names() {
         assert!(name.parse::<ValveType>().is_ok(), "{name}");
     }

@@ -12,6 +12,7 @@
 mod helpers;
 
 mod differential;
+mod differential_native;
 mod differential_random;
 mod differential_timing;
 mod engines;
@@ -41,6 +42,9 @@ pub enum Tool {
     Blark,
     Soffice,
     Strace,
+    /// `../shared/tools/openplc4/check-upload-v4`, OpenPLC v4's build
+    /// replayed (STruC++ and g++, run with node).
+    OpenPlc4,
 }
 
 impl Tool {
@@ -57,6 +61,10 @@ impl Tool {
             Tool::Blark => find_program("blark"),
             Tool::Soffice => find_program("soffice"),
             Tool::Strace => find_program("strace"),
+            Tool::OpenPlc4 => {
+                let script = Tool::Shared.find()?.join("tools/openplc4/check-upload-v4");
+                (script.is_file() && find_program("node").is_some()).then_some(script)
+            }
         }
     }
 
@@ -72,6 +80,9 @@ impl Tool {
             Tool::Blark => "blark was not found (set STEPTABLE_TOOLS or PATH; .ci/run installs it)",
             Tool::Soffice => "soffice was not found (.ci/run installs libreoffice-calc)",
             Tool::Strace => "strace was not found (.ci/run installs it)",
+            Tool::OpenPlc4 => {
+                "../shared/tools/openplc4/check-upload-v4 or node (>= 18) was not found"
+            }
         }
     }
 }
@@ -130,6 +141,7 @@ fn main() {
     let required = tools_required();
     let checks = [
         differential::CHECKS,
+        differential_native::CHECKS,
         differential_random::CHECKS,
         differential_timing::CHECKS,
         exports::CHECKS,
