@@ -24,8 +24,8 @@ use crate::program::{Action, Area, INITIAL_STEP, Literal, Signal};
 
 /// The program and routine the file holds, as Studio 5000 names them in a
 /// new project.
-pub const PROGRAM: &str = "MainProgram";
-pub const ROUTINE: &str = "MainRoutine";
+pub const PROGRAM: &str = crate::names::LOGIX_PROGRAM;
+pub const ROUTINE: &str = crate::names::LOGIX_ROUTINE;
 /// The oldest Logix Designer the file is laid out for: any newer one
 /// imports it.
 pub const SOFTWARE_REVISION: &str = "20.01";

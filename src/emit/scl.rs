@@ -18,8 +18,8 @@ use super::{EmitInput, one_line, templates};
 
 /// The function block, its instance data block and the OB that calls it.
 pub const BLOCK_NAME: &str = crate::symbols::PROGRAM_NAME;
-pub const INSTANCE_DB: &str = "steptable_main_DB";
-pub const CYCLIC_OB: &str = "Main";
+pub const INSTANCE_DB: &str = crate::names::TIA_INSTANCE_DB;
+pub const CYCLIC_OB: &str = crate::names::TIA_CYCLIC_OB;
 
 #[derive(Serialize)]
 struct Static {

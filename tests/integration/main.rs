@@ -34,6 +34,7 @@ mod messy;
 mod modes;
 mod motor;
 mod name_check;
+mod native_outputs;
 mod on_stop;
 mod output_places;
 mod paper;
