@@ -26,6 +26,10 @@ pub enum OutputKind {
     /// The sequence as an SFC chart in PLCopen XML (`NAME.sfc.xml`): asked
     /// for by name, not written by default (the ST program is).
     Sfc,
+    /// TIA Portal SCL external source for the S7-1200/1500 (`.scl`).
+    Scl,
+    /// Studio 5000 ladder program export (`.L5X`).
+    L5x,
 }
 
 impl OutputKind {
@@ -36,7 +40,7 @@ impl OutputKind {
     }
 
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 17] = [
+    pub const ALL: [OutputKind; 19] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -54,6 +58,8 @@ impl OutputKind {
         OutputKind::CodesysV2,
         OutputKind::Beremiz,
         OutputKind::Sfc,
+        OutputKind::Scl,
+        OutputKind::L5x,
     ];
 
     /// What a conversion writes when `--formats` is not given: every kind
@@ -85,6 +91,8 @@ impl OutputKind {
             OutputKind::CodesysV2 => "exp",
             OutputKind::Beremiz => "beremiz",
             OutputKind::Sfc => "sfc",
+            OutputKind::Scl => "scl",
+            OutputKind::L5x => "l5x",
         }
     }
 
@@ -131,6 +139,9 @@ impl OutputKind {
             OutputKind::CodesysV2 => ".exp",
             OutputKind::Beremiz => ".beremiz",
             OutputKind::Sfc => ".sfc.xml",
+            OutputKind::Scl => ".scl",
+            // Studio 5000 writes and lists its exports as .L5X.
+            OutputKind::L5x => ".L5X",
         }
     }
 
@@ -291,7 +302,7 @@ mod tests {
             let err = OutputKind::parse_list(list).unwrap_err();
             assert!(err.contains(said), "{list}: {err}");
         }
-        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 17);
+        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 19);
         assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(edit_distance("kitten", "sitting"), 3);
     }

@@ -175,6 +175,8 @@ impl<'a> Renderer<'a> {
             }
             OutputKind::FstAllocation => text(kind, super::tables::render_fst_alloc(&input))?,
             OutputKind::Rockwell => text(kind, super::tables::render_rockwell(&input))?,
+            OutputKind::Scl => text(kind, super::scl::render(&input))?,
+            OutputKind::L5x => text(kind, super::l5x::render(&input))?,
             OutputKind::Beremiz => return self.beremiz(),
             OutputKind::StructuredText => self.iec(kind, IecFile::StructuredText)?,
             OutputKind::PlcOpen => {

@@ -21,7 +21,7 @@ use minijinja::value::Serde;
 use serde::Serialize;
 
 use super::lower::{Lowered, Transition};
-use super::st::{Statement, comment_text, condition, statements};
+use super::st::{Spelling, Statement, comment_text, condition, statements};
 use super::{EmitInput, templates};
 use crate::program::{Action, INITIAL_STEP, Signal};
 
@@ -148,7 +148,7 @@ impl Layout<'_, '_> {
         let mut all = Vec::new();
         if resets && step.active != INITIAL_STEP {
             let first = self.lowered.steps[0].own();
-            let text = condition(symbols, first.condition);
+            let text = condition(symbols, first.condition, Spelling::Iec);
             all.push(Leaving {
                 condition: if first.condition.is_empty() {
                     format!("{var} = {INITIAL_STEP}")
@@ -170,7 +170,7 @@ impl Layout<'_, '_> {
         }
         for t in step.transitions() {
             all.push(Leaving {
-                condition: condition(symbols, t.condition),
+                condition: condition(symbols, t.condition, Spelling::Iec),
                 comment: comment_text(t.comment),
                 enters: t.enters,
                 down: !t.jump && !step.closing,
@@ -317,7 +317,7 @@ fn entries(
                 .into_iter()
                 .map(|(from, t)| EntryCase {
                     from: if plain { Vec::new() } else { from },
-                    actions: statements(symbols, t.actions, t.moves),
+                    actions: statements(symbols, t.actions, t.moves, Spelling::Iec),
                 })
                 .collect(),
         });

@@ -53,6 +53,14 @@ pub const DEFAULTS: &[(&str, &str)] = &[
         include_str!("../../templates/rockwell.csv.j2"),
     ),
     (
+        "program.scl.j2",
+        include_str!("../../templates/program.scl.j2"),
+    ),
+    (
+        "program.l5x.xml.j2",
+        include_str!("../../templates/program.l5x.xml.j2"),
+    ),
+    (
         "program.exp.j2",
         include_str!("../../templates/program.exp.j2"),
     ),

@@ -243,6 +243,8 @@ fn the_types_lists_hold_every_value() {
             CodesysV2 => 14,
             Beremiz => 15,
             Sfc => 16,
+            Scl => 17,
+            L5x => 18,
         }
     }
     fn all_of(indices: Vec<usize>, count: usize) {
@@ -252,7 +254,7 @@ fn the_types_lists_hold_every_value() {
     all_of(ValveType::ALL.map(valve).to_vec(), 6);
     all_of(Target::ALL.map(target).to_vec(), 3);
     all_of(Mnemonic::ALL.map(mnemonic).to_vec(), 2);
-    all_of(OutputKind::ALL.map(kind).to_vec(), 17);
+    all_of(OutputKind::ALL.map(kind).to_vec(), 19);
     for name in ValveType::names() {
         assert!(name.parse::<ValveType>().is_ok(), "{name}");
     }

@@ -35,6 +35,7 @@ mod modes;
 mod motor;
 mod name_aliases;
 mod name_check;
+mod native_outputs;
 mod on_stop;
 mod option_times;
 mod output_places;

@@ -8,7 +8,7 @@ use steptable::settings::Settings;
 use crate::helpers::samples;
 
 /// Every text output, by the end of its name.
-const TEXT_OUTPUTS: [&str; 11] = [
+const TEXT_OUTPUTS: [&str; 13] = [
     ".st",
     ".fst.txt",
     ".io.csv",
@@ -20,6 +20,8 @@ const TEXT_OUTPUTS: [&str; 11] = [
     ".fst-alloc.csv",
     ".rockwell.csv",
     ".exp",
+    ".scl",
+    ".L5X",
 ];
 
 #[test]
@@ -124,7 +126,7 @@ fn paper_and_press_station_with_every_operating_mode() {
         };
         let file = name.replace('.', "_");
         for output in &conversion.files {
-            let Some(ext) = [".st", ".fst.txt", ".awl", ".io.csv"]
+            let Some(ext) = [".st", ".fst.txt", ".awl", ".io.csv", ".scl", ".L5X"]
                 .into_iter()
                 .find(|e| output.name.ends_with(e))
             else {

@@ -238,7 +238,7 @@ fn fst_runs_in_the_interpreter_as_simulated() {
 
 /// The press station with every safety check, converted: the case the
 /// self-tests below break one line of.
-fn press_case(dir: &Path) -> Case {
+pub(crate) fn press_case(dir: &Path) -> Case {
     let sample = crate::helpers::sample("press_station.xlsx");
     engines::prepare(&sample, &["--safety", "all"], dir)
 }
@@ -296,7 +296,7 @@ fn a_wrong_awl_timer_is_caught_by_awlsim() {
 }
 
 /// `text` with the first `from` after `marker` replaced by `to`.
-fn swap_first_after(text: &str, marker: &str, from: &str, to: &str) -> String {
+pub(crate) fn swap_first_after(text: &str, marker: &str, from: &str, to: &str) -> String {
     let at = text
         .find(marker)
         .unwrap_or_else(|| panic!("{marker} not in the file"));

@@ -12,6 +12,7 @@
 mod helpers;
 
 mod differential;
+mod differential_native;
 mod differential_random;
 mod differential_timing;
 mod engines;
@@ -45,6 +46,9 @@ pub enum Tool {
     Strace,
     /// A Python with lxml and numpy, for Beremiz's generator.
     BeremizPython,
+    /// `../shared/tools/openplc4/check-upload-v4`, OpenPLC v4's build
+    /// replayed (STruC++ and g++, run with node).
+    OpenPlc4,
 }
 
 impl Tool {
@@ -72,6 +76,10 @@ impl Tool {
                         .output()
                         .is_ok_and(|o| o.status.success())
                 }),
+            Tool::OpenPlc4 => {
+                let script = Tool::Shared.find()?.join("tools/openplc4/check-upload-v4");
+                (script.is_file() && find_program("node").is_some()).then_some(script)
+            }
         }
     }
 
@@ -89,6 +97,9 @@ impl Tool {
             Tool::Strace => "strace was not found (.ci/run installs it)",
             Tool::BeremizPython => {
                 "no python3 with lxml and numpy for Beremiz's generator (set STEPTABLE_TOOLS or PATH; pip install lxml numpy)"
+            }
+            Tool::OpenPlc4 => {
+                "../shared/tools/openplc4/check-upload-v4 or node (>= 18) was not found"
             }
         }
     }
@@ -153,6 +164,7 @@ fn main() {
     let required = tools_required();
     let checks = [
         differential::CHECKS,
+        differential_native::CHECKS,
         differential_random::CHECKS,
         differential_timing::CHECKS,
         exports::CHECKS,
