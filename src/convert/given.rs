@@ -130,12 +130,6 @@ pub(super) fn overridden_by_the_command_line(
     naming: &crate::symbols::Naming,
     diags: &mut Diagnostics,
 ) {
-    // An option may name the actuator (`--valve clamp=52bi`).
-    let by_name = |names: Vec<&String>, n: u32| {
-        names
-            .into_iter()
-            .any(|name| naming.actuator_named(name) == Some(n))
-    };
     for (label, at) in &sheet.cells {
         if line.gives(label) {
             diags.warning(
@@ -150,15 +144,17 @@ pub(super) fn overridden_by_the_command_line(
     }
     for ((actuator, what), at) in &sheet.actuator_cells {
         let n = *actuator;
+        // An option may name the actuator (`--valve clamp=52bi`).
+        let is_n = |name: &String| naming.actuator_named(name) == Some(n);
         let (option, given) = match *what {
             "valve" => (
                 "valve",
-                line.valves.contains_key(&n) || by_name(line.named_valves.keys().collect(), n),
+                line.valves.contains_key(&n) || line.named_valves.keys().any(is_n),
             ),
             "load" => ("load", line.loads.contains_key(&n)),
             _ => (
                 "stroke",
-                line.strokes.contains_key(&n) || by_name(line.named_strokes.keys().collect(), n),
+                line.strokes.contains_key(&n) || line.named_strokes.keys().any(is_n),
             ),
         };
         if given {

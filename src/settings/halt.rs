@@ -483,21 +483,22 @@ fn stop_actions(
             ["off"] => Some(StopAction::Off),
             ["hold"] => Some(StopAction::Hold),
             ["off", "after", time @ ..] | ["on", "for", time @ ..] => {
-                crate::cell::parse_duration_in(&time.concat(), 10..=655_000)
-                    .map(StopAction::OffAfter)
+                let time = time.concat();
+                let ms = crate::cell::parse_duration_in(&time, 10..=655_000);
+                if ms.is_some() && crate::cell::without_unit(&time) {
+                    diags.warning(
+                        Code::W007Assumed,
+                        list.at.clone(),
+                        format!(
+                            "{label}: \"{item}\": {}",
+                            crate::cell::read_as_seconds(&time)
+                        ),
+                    );
+                }
+                ms.map(StopAction::OffAfter)
             }
             _ => None,
         };
-        if let (Some(StopAction::OffAfter(_)), [_, _, time @ ..]) = (action, words.as_slice())
-            && crate::cell::without_unit(&time.concat())
-        {
-            let time = time.concat();
-            diags.warning(
-                Code::W007Assumed,
-                list.at.clone(),
-                format!("{label}: \"{item}\": \"{time}\" has no unit and is read as {time} seconds: write {time}s, or {time}ms if milliseconds were meant"),
-            );
-        }
         let Some(action) = action else {
             diags.error(
                 Code::E030BadSetting,

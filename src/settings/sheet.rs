@@ -652,7 +652,7 @@ fn said_without_unit(grid: &Grid, cell: &GridCell, text: &str, diags: &mut Diagn
         diags.warning(
             Code::W007Assumed,
             grid.location(cell.pos),
-            format!("\"{text}\" has no unit and is read as {text} seconds: write {text}s, or {text}ms if milliseconds were meant"),
+            crate::cell::read_as_seconds(text),
         );
     }
 }
