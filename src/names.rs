@@ -6,6 +6,14 @@
 pub const STEP_COUNTER: &str = "active_step";
 /// The STEP 7 memory that lets at most one step fire per cycle.
 pub const FIRED: &str = "fired";
+/// The cyclic OB the TIA Portal SCL source replaces and calls the step
+/// program from, and the instance DB of that program: names of the CPU, as
+/// every PLC tag is, so no tag may have them.
+pub const TIA_CYCLIC_OB: &str = "Main";
+pub const TIA_INSTANCE_DB: &str = "steptable_main_DB";
+/// The program and routine of the Studio 5000 export.
+pub const LOGIX_PROGRAM: &str = "MainProgram";
+pub const LOGIX_ROUTINE: &str = "MainRoutine";
 /// Festo FST keeps this many characters of a symbolic operand: the shortest
 /// limit of any target.
 pub const FST_SYMBOL_CHARS: usize = 9;
@@ -132,9 +140,18 @@ pub fn reserved_name(name: &str) -> Option<String> {
                 .to_string(),
         );
     }
+    // The words of the SETTINGS lists (`hold-safe | none`, `safety | all`,
+    // `target | default`): a signal so named could not be told from them.
+    if ["all", "none", "default"].contains(&name) {
+        return Some(
+            "it is a word of the SETTINGS rows and options (all, none, default), which could not tell the signal from it"
+                .to_string(),
+        );
+    }
     const OWN: &[&str] = &[
-        // The mode buttons (stop, estop, reset_pb, cont) are taken only when
-        // their mode is on: the table check knows which are.
+        // The mode buttons (stop, estop, reset_pb, cont, step_mode,
+        // step_pb) are taken only when their mode is on: the table check
+        // knows which are.
         "start",
         "start_mem",
         "halt",
@@ -149,6 +166,8 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "cycle_req",
         "busy",
         "auto_run",
+        "step_ok",
+        "step_mem",
         "homing",
         FIRED,
         STEP_COUNTER,
@@ -158,6 +177,19 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "steptable_main",
         "cyclic_task",
         "main_instance",
+        // The programs the SFC chart runs before and after it, and their
+        // instances (its steps `step_k` and actions `step_k_entry` are
+        // numbered names below).
+        "steptable_pre",
+        "steptable_post",
+        "pre_instance",
+        "post_instance",
+        // The blocks of the TIA Portal SCL source and the program and
+        // routine of the Studio 5000 export (TIA_CYCLIC_OB, …, lower case).
+        "main",
+        "steptable_main_db",
+        "mainprogram",
+        "mainroutine",
     ];
     // Followed by a digit these read as the program's own names or as an
     // address of STEP 7 (I0, MW2, DB1, T3, Z4) or FST (FW1, TP0, R3, V10).
@@ -485,6 +517,17 @@ mod tests {
         for name in declared {
             assert!(SYNTH_OWN.contains(&name), "{name}");
         }
+    }
+
+    #[test]
+    fn the_blocks_of_the_scl_and_l5x_files_are_refused_in_any_case() {
+        for name in [TIA_CYCLIC_OB, TIA_INSTANCE_DB, LOGIX_PROGRAM, LOGIX_ROUTINE] {
+            assert!(
+                reserved_name(&name.to_ascii_lowercase()).is_some(),
+                "{name}"
+            );
+        }
+        assert!(reserved_name("mains").is_none());
     }
 
     #[test]

@@ -128,11 +128,12 @@ enum Syntax {
     /// `(* … *)` after the leading `(* @…*)` pragmas CoDeSys V2.3 reads
     /// first.
     IecAfterPragmas,
-    /// `// …` (STEP 7 AWL source).
+    /// `// …` (STEP 7 AWL and TIA Portal SCL sources).
     Awl,
     /// `" …` (Festo FST statement list).
     Fst,
-    /// `<!-- … -->` after the XML declaration (PLCopen, CODESYS, Beremiz).
+    /// `<!-- … -->` after the XML declaration (PLCopen, CODESYS, Beremiz,
+    /// Studio 5000's L5X).
     Xml,
     /// `<!-- … -->` after the HTML doctype (the report).
     Html,
@@ -153,11 +154,11 @@ fn syntax(name: &str) -> Syntax {
         || ends(CommandFile::EquationsIl.suffix())
     {
         Syntax::Iec
-    } else if ends(OutputKind::Awl.suffix()) {
+    } else if ends(OutputKind::Awl.suffix()) || ends(OutputKind::Scl.suffix()) {
         Syntax::Awl
     } else if ends(OutputKind::Fst.suffix()) {
         Syntax::Fst
-    } else if ends(".xml") {
+    } else if ends(".xml") || ends(OutputKind::L5x.suffix()) {
         Syntax::Xml
     } else if ends(OutputKind::Report.suffix()) {
         Syntax::Html

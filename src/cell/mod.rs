@@ -429,6 +429,14 @@ pub fn without_unit(text: &str) -> bool {
     text.trim().ends_with(|c: char| c.is_ascii_digit())
 }
 
+/// W007's words for a time typed without its unit (`1000`): what it is
+/// read as, and both spellings that say it.
+pub fn read_as_seconds(text: &str) -> String {
+    format!(
+        "\"{text}\" has no unit and is read as {text} seconds: write {text}s, or {text}ms if milliseconds were meant"
+    )
+}
+
 /// The one duration parser (dwells, stroke and scan times, input delays):
 /// `2s`, `500ms`, `1.5s`, `1,5s`, a bare number in seconds, at most three
 /// decimals, in exact decimal arithmetic; `None` outside `range` (ms).

@@ -22,6 +22,7 @@ pub(crate) struct SimArgs {
 pub(crate) type InputDelays = std::collections::BTreeMap<crate::cell::Name, u32>;
 
 pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
+    no_empty_item(text)?;
     let mut delays = InputDelays::new();
     for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
         let (name, value) = item
@@ -29,6 +30,7 @@ pub(crate) fn parse_input_delays(text: &str) -> Result<InputDelays, String> {
             .ok_or_else(|| format!("\"{item}\": expected <input>=<time>, e.g. part_present=2s"))?;
         let name = crate::cell::Name::new(&name.trim().to_ascii_lowercase())
             .map_err(|e| format!("\"{item}\": {e}"))?;
+        unit_given(item, value)?;
         let ms = crate::stroke::parse_duration_ms(value)
             .ok_or_else(|| format!("\"{item}\": expected a time such as 2s or 300ms"))?;
         if delays.insert(name, ms).is_some() {
@@ -84,6 +86,14 @@ fn parse_keyed<T>(
 pub(crate) type StrokeMap = Keyed<crate::stroke::Stroke>;
 
 pub(crate) fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
+    no_empty_item(text)?;
+    for item in text.split(',') {
+        if let Some((_, times)) = item.split_once('=') {
+            for time in times.split('/') {
+                unit_given(item.trim(), time)?;
+            }
+        }
+    }
     parse_keyed(text, crate::stroke::parse_strokes, |item, value| {
         // One item alone, with its value under a placeholder number.
         crate::stroke::parse_strokes(&format!("C1={value}"))
@@ -95,7 +105,21 @@ pub(crate) fn parse_strokes(text: &str) -> Result<StrokeMap, String> {
 }
 
 pub(crate) fn parse_scan(text: &str) -> Result<u32, String> {
+    unit_given(text, text)?;
     crate::stroke::parse_scan(text)
+}
+
+/// A time on the command line says its unit: `2` could be seconds or
+/// milliseconds, and an option has no cell to warn at (the SETTINGS sheet's
+/// W007), so it is refused with both readings.
+pub(crate) fn unit_given(item: &str, time: &str) -> Result<(), String> {
+    let time = time.trim();
+    if crate::cell::without_unit(time) && crate::stroke::parse_duration_ms(time).is_some() {
+        return Err(format!(
+            "\"{item}\": {time} has no unit: write {time}s or {time}ms"
+        ));
+    }
+    Ok(())
 }
 
 impl SimArgs {
@@ -277,6 +301,7 @@ pub(crate) fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<Out
 }
 
 pub(crate) fn parse_valves(text: &str) -> Result<Keyed<crate::valve::ValveType>, String> {
+    no_empty_item(text)?;
     parse_keyed(text, crate::valve::parse_valves, |item, value| {
         value
             .parse::<crate::valve::ValveType>()
@@ -285,7 +310,20 @@ pub(crate) fn parse_valves(text: &str) -> Result<Keyed<crate::valve::ValveType>,
 }
 
 pub(crate) fn parse_loads(text: &str) -> Result<std::collections::BTreeMap<u32, f64>, String> {
+    no_empty_item(text)?;
     crate::valve::parse_loads(text)
+}
+
+/// A per-actuator or per-input list with an empty item (`C1=52mono,,C2=52bi`,
+/// `,`) has lost a value or has a stray comma: refused, as `--modes` is.
+pub(crate) fn no_empty_item(text: &str) -> Result<(), String> {
+    if text.split(',').any(|item| item.trim().is_empty()) {
+        return Err(format!(
+            "\"{}\" has an empty item between its commas; give each item once (e.g. C1=52mono,C2=52bi)",
+            text.trim()
+        ));
+    }
+    Ok(())
 }
 
 pub(crate) fn parse_safety(text: &str) -> Result<Safety, String> {

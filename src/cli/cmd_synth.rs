@@ -55,6 +55,7 @@ pub(crate) struct SynthArgs {
 }
 
 fn parse_time_limit(text: &str) -> Result<std::time::Duration, String> {
+    super::args::unit_given(text, text)?;
     match crate::stroke::parse_duration_ms(text) {
         Some(ms) if ms >= 1000 => Ok(std::time::Duration::from_millis(ms.into())),
         _ => Err("the time limit is a duration from 1 s to 1 h, e.g. 30s".to_string()),

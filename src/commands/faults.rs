@@ -90,8 +90,10 @@ fn analyse(
     options: FaultsOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<(StepProgram, FaultTable), CommandError> {
-    let (program, _) = convert::healthy_program(table, settings, &settings.simulation)?;
     let at_once = options.at_once;
+    let convert::Proven {
+        program, healthy, ..
+    } = convert::proven_program(table, settings, &settings.simulation, Some(at_once), false)?;
     let cases = faults::case_count(&program, at_once);
     if cases > faults::MAX_CASES {
         let asked = if options.pairs {
@@ -118,6 +120,14 @@ fn analyse(
     if let Some(why) = faults::over_budget(table, &program, &settings.simulation, at_once) {
         return Err(CommandError::Input(vec![convert::budget_error(table, why)]));
     }
-    let result = faults::analyse_observed(table, &program, &settings.simulation, at_once, progress);
+    let result = faults::analyse_from(
+        table,
+        &program,
+        &settings.simulation,
+        at_once,
+        faults::FaultRuns::Resumed,
+        progress,
+        healthy,
+    );
     Ok((program, result))
 }

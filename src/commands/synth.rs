@@ -201,6 +201,16 @@ fn read(source: SynthSource) -> Result<Read, CommandError> {
                 crate::convert::check_path(path, &settings).map_err(CommandError::Input)?;
             let (refused, unused) =
                 sheet_settings_synth_drops(&checked.settings, &checked.table.file);
+            // convert's advice about a cell synth reports itself (a home
+            // order without reset: "add reset to the modes") does not apply.
+            let said = |d: &Diagnostic| {
+                d.code == Code::W006NoEffect
+                    && unused
+                        .iter()
+                        .chain(&refused)
+                        .any(|u| u.location == d.location)
+            };
+            checked.warnings.retain(|d| !said(d));
             checked.warnings.extend(unused);
             if !refused.is_empty() {
                 return Err(CommandError::Input(refused).after(&checked.warnings));

@@ -1,7 +1,14 @@
 //! The pipeline, end to end and in memory: read → table → program → addresses
 //! → every output file. Writing to disk is [`crate::write`]'s job.
 
+mod allocate;
+pub use allocate::{allocate, festo_allocation};
 mod findings;
+mod given;
+use given::{
+    by_name, loads_without_effect, names_of_the_whole_table, overridden_by_the_command_line,
+    settings_without_their_actuator,
+};
 mod physics;
 pub use physics::lucky_middle_stops;
 mod pins;
@@ -9,7 +16,7 @@ mod report;
 
 use std::path::Path;
 
-use crate::address::{Allocation, Mnemonic, Target};
+use crate::address::Allocation;
 use crate::diag::{Code, Diagnostic, Diagnostics, Location};
 use crate::emit::OutputFile;
 use crate::emit::templates::TemplateError;
@@ -88,248 +95,6 @@ pub fn check_bytes(
     finish_check(input, diags, settings)
 }
 
-/// A valve type, stroke, load or input delay for an actuator or input the
-/// table does not have does nothing: a typo (C8 for C3) would leave the
-/// real actuator on its default valve without a word. Each is E030 at the
-/// SETTINGS cell that names it, or naming the command-line option; a
-/// SETTINGS row giving only the default stroke (the template's C1 to C8)
-/// loses nothing and passes.
-fn settings_without_their_actuator(
-    table: &StepTable,
-    settings: &Settings,
-    sheet: Option<(&read::Grid, &crate::settings::Given)>,
-    file: &str,
-    diags: &mut Diagnostics,
-) {
-    let has: Vec<String> = table
-        .actuators
-        .iter()
-        .map(|a| format!("C{}", a.number))
-        .collect();
-    let has = if has.is_empty() {
-        "it has none".to_string()
-    } else {
-        format!("it has {}", has.join(", "))
-    };
-    let option = Location {
-        file: file.to_string(),
-        sheet: None,
-        cell: None,
-    };
-    // The template's actuator table lists C1 to C8 at the default 1s / 1s:
-    // a row saying only the default loses nothing.
-    let keys = |given: &crate::settings::Given, all: bool| -> Vec<(u32, &'static str)> {
-        let mut keys: Vec<(u32, &'static str)> = Vec::new();
-        keys.extend(given.valves.keys().map(|n| (*n, "valve")));
-        keys.extend(
-            given
-                .strokes
-                .iter()
-                .filter(|(_, s)| all || **s != crate::stroke::Stroke::default())
-                .map(|(n, _)| (*n, "stroke")),
-        );
-        keys.extend(given.loads.keys().map(|n| (*n, "load")));
-        keys.retain(|(n, _)| table.actuator(*n).is_none());
-        keys
-    };
-    for (n, what) in keys(&settings.given, true) {
-        diags.error(
-            Code::E030BadSetting,
-            option.clone(),
-            format!("--{what} C{n}=…: the table has no actuator C{n} ({has}); the setting would do nothing"),
-        );
-    }
-    if let Some((grid, given)) = sheet {
-        let mut named: Vec<u32> = keys(given, false).into_iter().map(|(n, _)| n).collect();
-        named.sort_unstable();
-        named.dedup();
-        for n in named {
-            let cell = grid.cells.iter().find(|c| match &c.value {
-                read::CellValue::Text(t) => {
-                    let head = t.split(['(', ' ']).next().unwrap_or("");
-                    crate::cell::actuator_name(head) == Some(n)
-                }
-                _ => false,
-            });
-            let at = match cell {
-                Some(cell) => grid.location(cell.pos),
-                None => grid.location(crate::diag::CellPos::new(0, 0)),
-            };
-            diags.error(
-                Code::E030BadSetting,
-                at,
-                format!("the actuator table names C{n}, which the table does not have ({has}); its settings would do nothing"),
-            );
-        }
-    }
-}
-
-/// A load only moves a piston whose valve lets it (an exhausted or a
-/// pressurised centre); given for another valve it would be dropped
-/// without a word: W006 at the file, naming the actuator and its valve.
-fn loads_without_effect(
-    table: &StepTable,
-    settings: &Settings,
-    sheet: Option<&crate::settings::Given>,
-    grid: &read::Grid,
-    diags: &mut Diagnostics,
-) {
-    use crate::valve::ValveType;
-    let valves = &settings.simulation.valves;
-    for (&n, load) in &settings.simulation.loads {
-        let Some(actuator) = table.actuator(n) else {
-            continue; // E030 already
-        };
-        let valve = valves.of(n, actuator.max_position);
-        if !matches!(valve, ValveType::Exhaust53 | ValveType::Pressure53) {
-            let cell = sheet.and_then(|s| s.actuator_cells.get(&(n, "load")));
-            let (source, at) = match cell {
-                Some(at) if !settings.given.loads.contains_key(&n) => {
-                    ("the actuator table's load", at.clone())
-                }
-                _ => ("--load", grid.sheet_location()),
-            };
-            diags.warning(
-                Code::W006NoEffect,
-                at,
-                format!(
-                    "{source} C{n}={load}: C{n}'s valve is {valve}, which holds the piston (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing"
-                ),
-            );
-        }
-    }
-}
-
-/// The command line wins over the SETTINGS sheet, but not silently: each
-/// cell it overrides is W006 at that cell, naming the option (a batch may
-/// give one option to workbooks whose sheets differ).
-fn overridden_by_the_command_line(
-    line: &crate::settings::Given,
-    sheet: &crate::settings::Given,
-    diags: &mut Diagnostics,
-) {
-    for (label, at) in &sheet.cells {
-        if line.gives(label) {
-            diags.warning(
-                Code::W006NoEffect,
-                at.clone(),
-                format!(
-                    "{label}: --{} on the command line wins over this cell; it was not used",
-                    label.replace(' ', "-")
-                ),
-            );
-        }
-    }
-    for ((actuator, what), at) in &sheet.actuator_cells {
-        let given = match *what {
-            "valve" => line.valves.contains_key(actuator),
-            "load" => line.loads.contains_key(actuator),
-            _ => line.strokes.contains_key(actuator),
-        };
-        if given {
-            diags.warning(
-                Code::W006NoEffect,
-                at.clone(),
-                format!("{what} of C{actuator}: --{what} C{actuator}=… on the command line wins over this cell; it was not used"),
-            );
-        }
-    }
-}
-
-/// The valve types and stroke times the command line gives by an
-/// actuator's name (`--valve clamp=52mono`), put in force for the actuator
-/// the SETTINGS actuator table names so; a name no actuator of the table
-/// has, or an actuator given by name and by number, is E030.
-fn by_name(table: &StepTable, settings: &mut Settings, file: &str, diags: &mut Diagnostics) {
-    let at = Location {
-        file: file.to_string(),
-        sheet: None,
-        cell: None,
-    };
-    let naming = settings.naming.clone();
-    let named: Vec<String> = naming
-        .actuators
-        .iter()
-        .map(|(n, a)| format!("C{n} ({})", a.text))
-        .collect();
-    let mut resolve = |option: &str, name: &str, numbered: bool| -> Option<u32> {
-        let why = match naming.actuator_named(name) {
-            Some(n) if table.actuator(n).is_none() => {
-                format!(
-                    "{name} is C{n}, which the table does not have; the setting would do nothing"
-                )
-            }
-            Some(n) if numbered => {
-                format!("{name} is C{n}, which is given by number too; give each actuator once")
-            }
-            Some(n) => return Some(n),
-            None if named.is_empty() => format!(
-                "no actuator is named {name}: the SETTINGS actuator table names none (C1 (clamp))"
-            ),
-            None => format!(
-                "no actuator is named {name} (the actuator table names {})",
-                named.join(", ")
-            ),
-        };
-        diags.error(
-            Code::E030BadSetting,
-            at.clone(),
-            format!("--{option} {name}=…: {why}"),
-        );
-        None
-    };
-    let given = settings.given.clone();
-    for (name, valve) in &given.named_valves {
-        let n = naming.actuator_named(name);
-        let numbered = n.is_some_and(|n| given.valves.contains_key(&n));
-        if let Some(n) = resolve("valve", name, numbered) {
-            settings.simulation.valves.per_actuator.insert(n, *valve);
-        }
-    }
-    for (name, stroke) in &given.named_strokes {
-        let n = naming.actuator_named(name);
-        let numbered = n.is_some_and(|n| given.strokes.contains_key(&n));
-        if let Some(n) = resolve("stroke", name, numbered) {
-            settings.simulation.strokes.per_actuator.insert(n, *stroke);
-        }
-    }
-}
-
-/// The one check of every name against every other, over the table and
-/// its settings (see [`crate::symbols::check`]): table cells first, then
-/// the SETTINGS rows and the actuator names in sheet order, so that an
-/// error falls on the later of two names.
-fn names_of_the_whole_table(
-    table: &StepTable,
-    grid: &read::Grid,
-    settings: &Settings,
-    diags: &mut Diagnostics,
-) {
-    use crate::symbols::check;
-    let mut entries = check::table_entries(table, grid);
-    let mut later = Vec::new();
-    if let Some(row) = settings.named.get(&Row::StartPermissive) {
-        later.extend(check::row_entries(
-            Row::StartPermissive.label(),
-            &settings.program.permissive,
-            &row.at,
-        ));
-    }
-    if let Some(row) = settings.named.get(&Row::Interlock) {
-        let inputs: Vec<crate::cell::Name> = settings
-            .program
-            .interlocks
-            .iter()
-            .map(|i| i.input)
-            .collect();
-        later.extend(check::row_entries(Row::Interlock.label(), &inputs, &row.at));
-    }
-    later.extend(check::actuator_entries(table, &settings.naming, diags));
-    later.sort_by_key(|e| check::sheet_order(&e.at));
-    entries.extend(later);
-    check::check_entries(&entries, diags);
-}
-
 fn finish_check(
     input: Option<read::Input>,
     mut diags: Diagnostics,
@@ -385,7 +150,7 @@ fn finish_check(
             &mut diags,
         );
         if let Some(sheet) = &sheet_given {
-            overridden_by_the_command_line(&settings.given, sheet, &mut diags);
+            overridden_by_the_command_line(&settings.given, sheet, &effective.naming, &mut diags);
         }
         let named = &effective.named;
         effective.program.halt = halt::resolve(
@@ -581,17 +346,34 @@ pub fn healthy_program(
     settings: &Settings,
     sim: &SimSettings,
 ) -> Result<(StepProgram, SimReport), Failure> {
-    healthy_program_recorded(table, settings, sim, false).map(|(p, s, _)| (p, s))
+    proven_program(table, settings, sim, None, false).map(|p| (p.program, p.proof))
 }
 
-/// [`healthy_program`], with the run recorded scan by scan (every input,
-/// output, the active step and the positions) when `record`.
-pub fn healthy_program_recorded(
+/// A program proven by its healthy run, with what that one run can hand
+/// on: the fault analysis's yardstick and the report's recording.
+pub struct Proven {
+    pub program: StepProgram,
+    pub proof: SimReport,
+    /// The run the fault analysis measures against, when one will run.
+    pub healthy: Option<faults::Healthy>,
+    /// Every input, output, the active step and the positions, scan by
+    /// scan, when `record` was asked.
+    pub io_trace: Option<simulate::io::IoTrace>,
+}
+
+/// Like [`healthy_program`]; when a fault analysis of up to `faults_at_once`
+/// faults will run (it is within its budgets), the proof is its healthy run
+/// too ([`faults::healthy_run`]), handed back to be given to it: one
+/// simulation of the healthy cycle, not two. Past a budget the analysis is
+/// refused, and the proof logs nothing for it. With `record`, that same run
+/// is recorded scan by scan (for the report's timeline).
+pub fn proven_program(
     table: &StepTable,
     settings: &Settings,
     sim: &SimSettings,
+    faults_at_once: Option<usize>,
     record: bool,
-) -> Result<(StepProgram, SimReport, Option<simulate::io::IoTrace>), Failure> {
+) -> Result<Proven, Failure> {
     let lucky = physics::lucky_middle_stops(table, settings);
     if !lucky.is_empty() {
         return Err(Failure::Input(lucky));
@@ -604,14 +386,32 @@ pub fn healthy_program_recorded(
     if let Some(why) = simulate::over_budget(table, &program, sim) {
         return Err(Failure::Input(vec![budget_error(table, why)]));
     }
-    let (simulation, trace) = if record {
-        let (simulation, trace) = report::recorded_run(table, &program, sim);
-        (simulation, Some(trace))
+    let for_faults = faults_at_once.is_some_and(|k| {
+        faults::case_count(&program, k) <= faults::MAX_CASES
+            && faults::over_budget(table, &program, sim, k).is_none()
+    });
+    let signals = record.then(|| simulate::io::IoSignals::every(&program));
+    let (simulation, healthy, io_trace) = if for_faults {
+        let (healthy, trace) = faults::healthy_run_recording(table, &program, sim, signals);
+        // The places are the analysis's; the proof's report has none.
+        let proof = SimReport {
+            places: Default::default(),
+            ..healthy.report.clone()
+        };
+        (proof, Some(healthy), trace)
+    } else if let Some(signals) = signals {
+        let (simulation, trace) = report::recorded_run(table, &program, sim, signals);
+        (simulation, None, Some(trace))
     } else {
-        (simulate::simulate(table, &program, sim), None)
+        (simulate::simulate(table, &program, sim), None, None)
     };
     if simulation.passed {
-        Ok((program, simulation, trace))
+        Ok(Proven {
+            program,
+            proof: simulation,
+            healthy,
+            io_trace,
+        })
     } else {
         Err(physics::explain(table, settings, &simulation))
     }
@@ -628,123 +428,6 @@ pub fn budget_error(table: &StepTable, why: String) -> Diagnostic {
             cell: None,
         },
         message: why,
-    }
-}
-
-/// The program's addresses for the target `settings` name, with the
-/// ADDRESSES sheet's pins, on the OpenPLC board if one is named; every wrong
-/// pin, and a board too small for the program, is a diagnostic. `file`
-/// names the table in them.
-pub fn allocate(
-    program: &StepProgram,
-    settings: &Settings,
-    file: &str,
-) -> Result<Allocation, Vec<Diagnostic>> {
-    let mut diags = crate::diag::Diagnostics::new();
-    let whole_file = || Location {
-        file: file.to_string(),
-        sheet: None,
-        cell: None,
-    };
-    if let Some(board) = settings.board
-        && settings.target != Target::Iec
-    {
-        // At the board's cell when the SETTINGS sheet names it, else the
-        // target's; the message says where each came from.
-        let at = ["board", "target"]
-            .iter()
-            .find_map(|label| settings.cells.get(label))
-            .cloned()
-            .unwrap_or_else(whole_file);
-        diags.error(
-            Code::E036BoardTooSmall,
-            at,
-            format!(
-                "the {} board is OpenPLC's, whose addresses are %IX/%QX, but the target is {}: make the target iec (or openplc, or default), or leave it out (the board from {}, the target from {})",
-                board.name,
-                settings.target.name(),
-                settings.origin("board"),
-                settings.origin("target"),
-            ),
-        );
-        return Err(diags.into_sorted());
-    }
-    let pins = pins::resolve(
-        program,
-        &settings.pins,
-        settings.target,
-        settings.board,
-        &settings.naming,
-        &mut diags,
-    );
-    if diags.has_errors() {
-        return Err(diags.into_sorted());
-    }
-    let Some(board) = settings.board else {
-        let allocation = Allocation::pinned(program, settings.target, settings.mnemonic, &pins);
-        beyond_the_image(&allocation, whole_file(), &mut diags);
-        if diags.has_errors() {
-            return Err(diags.into_sorted());
-        }
-        return Ok(allocation);
-    };
-    let allocation = Allocation::on_board(program, settings.mnemonic, &pins);
-    for (input, needed, wired) in [
-        (true, allocation.inputs.len(), board.inputs),
-        (false, allocation.outputs.len(), board.outputs),
-    ] {
-        if needed > wired as usize {
-            diags.error(
-                Code::E036BoardTooSmall,
-                whole_file(),
-                format!(
-                    "the program needs {needed} {}, but the {} board ({}) wires {}: choose a board with more, or split the machine",
-                    if input { "inputs" } else { "outputs" },
-                    board.name,
-                    board.label,
-                    board.span(input)
-                ),
-            );
-        }
-    }
-    if diags.has_errors() {
-        return Err(diags.into_sorted());
-    }
-    Ok(allocation)
-}
-
-/// A table so large that its inputs or outputs run past byte (or word) 255
-/// would get addresses no PLC's process image has, and that steptable
-/// refuses when they are pinned (E035): E024, with the counts.
-fn beyond_the_image(allocation: &Allocation, at: Location, diags: &mut Diagnostics) {
-    let max = crate::address::MAX_PINNED_UNIT;
-    for (what, list) in [
-        ("inputs", &allocation.inputs),
-        ("outputs", &allocation.outputs),
-    ] {
-        if list.iter().any(|a| a.address.unit > max)
-            && let Some(last) = list.last().map(|a| a.address)
-        {
-            diags.error(
-                Code::E024TableTooLarge,
-                at.clone(),
-                format!(
-                    "the program needs {} {what}, which run to {}, past the last address of the process image ({max}): split the machine into smaller tables",
-                    list.len(),
-                    last.display(allocation.mnemonic)
-                ),
-            );
-        }
-    }
-}
-
-/// The Festo allocation the FST files use whatever the target: `allocation`
-/// itself on Festo; else Festo's own layout (the pins are in the target's
-/// notation, so they hold only there).
-pub fn festo_allocation(program: &StepProgram, allocation: &Allocation) -> Allocation {
-    match allocation.target {
-        Target::Festo => allocation.clone(),
-        _ => Allocation::new(program, Target::Festo, Mnemonic::En),
     }
 }
 
@@ -780,12 +463,23 @@ pub fn generate_observed(
         record_trace: settings.diagram == emit::diagram::DiagramKind::Time,
         ..settings.simulation.clone()
     };
-    // The report's timeline needs the healthy run scan by scan: then
-    // that one run is recorded.
+    let shows_faults = settings.formats.iter().any(|k| k.shows_faults());
+    // The report's timeline needs the healthy run scan by scan: then that
+    // one run is recorded.
     let record = settings.formats.contains(&OutputKind::Report)
         && table.steps.len() <= emit::report::TIMELINE_STEPS;
-    let (program, simulation, io_trace) =
-        healthy_program_recorded(&table, settings, &sim_settings, record)?;
+    let Proven {
+        program,
+        proof: simulation,
+        healthy,
+        io_trace,
+    } = proven_program(
+        &table,
+        settings,
+        &sim_settings,
+        shows_faults.then_some(1),
+        record,
+    )?;
     let made_by = crate::provenance::MadeBy::of_run(settings, &table.file);
     let settings_rows = report::settings_rows(settings, &table, &made_by);
     let allocation = allocate(&program, settings, &table.file).map_err(Failure::Input)?;
@@ -827,7 +521,15 @@ pub fn generate_observed(
     let ((fault_table, late), early) = rayon::join(
         || {
             let fault_table = (!late.is_empty()).then(|| {
-                faults::analyse_observed(&table, &program, &settings.simulation, 1, progress)
+                faults::analyse_from(
+                    &table,
+                    &program,
+                    &settings.simulation,
+                    1,
+                    faults::FaultRuns::Resumed,
+                    progress,
+                    healthy,
+                )
             });
             let late = emit::render_each(
                 late,

@@ -15,8 +15,8 @@ pub fn recorded_run(
     table: &StepTable,
     program: &StepProgram,
     sim: &SimSettings,
+    signals: IoSignals,
 ) -> (SimReport, IoTrace) {
-    let signals = IoSignals::every(program);
     let sim = SimSettings {
         record_trace: true,
         ..sim.clone()

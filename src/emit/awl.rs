@@ -253,15 +253,11 @@ fn build(input: &EmitInput) -> Context {
     let w = &layout.words;
     let program = input.program;
     let symbols = input.symbols;
-    let fired = symbols.fired.ident.as_str();
+    let lowered = super::lower::lower(program, symbols);
+    let fired = lowered.fired.as_str();
     // The flag of the step the program is in while it waits at
     // `program.steps[k]`: `step_0` at rest, `step_3` while step 3's moves run.
-    let flag = |k: usize| {
-        symbols.step(k).map_or_else(
-            || format!("step_{}", program.step_in(k)),
-            |s| s.flag.ident.clone(),
-        )
-    };
+    let flag = |k: usize| lowered.flag(k).to_string();
     let condition = |lines: &mut Vec<Line>, literals: &[Literal]| {
         for l in literals {
             let op = if l.negated { w.and_not } else { w.and };
@@ -353,7 +349,6 @@ fn build(input: &EmitInput) -> Context {
             ],
         });
     }
-    let count = program.steps.len();
     // One transition per network: the step's jumps first, then the step.
     let mut transition = |k: usize,
                           condition_of: &[crate::program::Literal],
@@ -382,43 +377,12 @@ fn build(input: &EmitInput) -> Context {
         });
         networks.push(Network { title, lines });
     };
-    for (k, step) in program.steps.iter().enumerate() {
-        let in_step = format!(
-            "STEP {}: {}",
-            program.step_in(k),
-            one_line(
-                &symbols
-                    .step(k)
-                    .map_or_else(|| program.title_in(k), |n| n.active_title.clone())
-            )
-        );
-        for jump in &step.jumps {
-            let target = &program.steps[jump.fires];
-            let title = format!(
-                "{in_step}; {}",
-                one_line(&super::jump_comment(program, k, jump))
-            );
-            transition(
-                k,
-                &jump.condition,
-                &jump.actions,
-                &target.moves,
-                jump.next,
-                title,
-            );
+    for step in &lowered.steps {
+        let in_step = format!("STEP {}: {}", step.active, one_line(&step.active_title));
+        for t in step.transitions() {
+            let title = format!("{in_step}; {}", one_line(t.comment));
+            transition(step.index, t.condition, t.actions, t.moves, t.next, title);
         }
-        let title = format!(
-            "{in_step}; {}",
-            one_line(&super::entry_comment(program, symbols, k))
-        );
-        transition(
-            k,
-            &step.condition,
-            &step.actions,
-            &step.moves,
-            (k + 1) % count,
-            title,
-        );
     }
     for rung in &program.rungs {
         let mut lines = Vec::new();

@@ -11,7 +11,7 @@ use serde::Serialize;
 use super::{EmitInput, one_line, templates};
 use crate::address::Allocation;
 use crate::program::Signal;
-use crate::program::{Action, Literal, StepKind};
+use crate::program::{Action, Literal};
 use crate::symbols::SymbolTable;
 
 #[derive(Serialize)]
@@ -178,34 +178,30 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
     for (i, line) in init.iter_mut().enumerate() {
         line.first = i == 0;
     }
-    let steps = program
+    let lowered = super::lower::lower(program, symbols);
+    let steps = lowered
         .steps
         .iter()
-        .enumerate()
-        .map(|(i, s)| StepContext {
-            jumps: s
-                .jumps
-                .iter()
-                .map(|j| {
-                    let target = &program.steps[j.fires];
-                    JumpContext {
-                        comment: one_line(&super::jump_comment(program, i, j)),
-                        condition: condition(&j.condition, festo, symbols),
-                        actions: actions(&j.actions, festo, symbols, &target.moves),
-                        next: program.step_entered(j.fires),
-                    }
-                })
-                .collect(),
-            label: program.step_in(i),
-            moves: one_line(
-                &symbols
-                    .step(i)
-                    .map_or_else(|| program.title_in(i), |n| n.active_title.clone()),
-            ),
-            entry: one_line(&super::entry_comment(program, symbols, i)),
-            condition: condition(&s.condition, festo, symbols),
-            actions: actions(&s.actions, festo, symbols, &s.moves),
-            closing: (s.kind == StepKind::EndOfCycle).then(|| program.step_entered(i)),
+        .map(|s| {
+            let own = s.own();
+            StepContext {
+                jumps: s
+                    .jumps()
+                    .iter()
+                    .map(|j| JumpContext {
+                        comment: one_line(j.comment),
+                        condition: condition(j.condition, festo, symbols),
+                        actions: actions(j.actions, festo, symbols, j.moves),
+                        next: j.enters,
+                    })
+                    .collect(),
+                label: s.active,
+                moves: one_line(&s.active_title),
+                entry: one_line(own.comment),
+                condition: condition(own.condition, festo, symbols),
+                actions: actions(own.actions, festo, symbols, own.moves),
+                closing: s.closing.then_some(own.enters),
+            }
         })
         .collect();
     let rungs = input

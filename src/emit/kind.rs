@@ -23,6 +23,13 @@ pub enum OutputKind {
     CodesysV2,
     /// A Beremiz / OpenPLC Editor project folder (`NAME.beremiz/`).
     Beremiz,
+    /// The sequence as an SFC chart in PLCopen XML (`NAME.sfc.xml`): asked
+    /// for by name, not written by default (the ST program is).
+    Sfc,
+    /// TIA Portal SCL external source for the S7-1200/1500 (`.scl`).
+    Scl,
+    /// Studio 5000 ladder program export (`.L5X`).
+    L5x,
     /// The sequence as a GRAFCET (IEC 60848) picture.
     Grafcet,
     /// One self-contained HTML page: table, pictures, I/O, simulation,
@@ -41,7 +48,7 @@ impl OutputKind {
     }
 
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 18] = [
+    pub const ALL: [OutputKind; 21] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -58,9 +65,21 @@ impl OutputKind {
         OutputKind::Rockwell,
         OutputKind::CodesysV2,
         OutputKind::Beremiz,
+        OutputKind::Sfc,
+        OutputKind::Scl,
+        OutputKind::L5x,
         OutputKind::Grafcet,
         OutputKind::Report,
     ];
+
+    /// What a conversion writes when `--formats` is not given: every kind
+    /// but the chart bodies, which are asked for by name.
+    pub fn defaults() -> BTreeSet<OutputKind> {
+        OutputKind::ALL
+            .into_iter()
+            .filter(|k| *k != OutputKind::Sfc)
+            .collect()
+    }
 
     /// The name used with `--formats`.
     pub fn name(self) -> &'static str {
@@ -81,6 +100,9 @@ impl OutputKind {
             OutputKind::Rockwell => "rockwell",
             OutputKind::CodesysV2 => "exp",
             OutputKind::Beremiz => "beremiz",
+            OutputKind::Sfc => "sfc",
+            OutputKind::Scl => "scl",
+            OutputKind::L5x => "l5x",
             OutputKind::Grafcet => "grafcet",
             OutputKind::Report => "report",
         }
@@ -128,6 +150,10 @@ impl OutputKind {
             OutputKind::Rockwell => ".rockwell.csv",
             OutputKind::CodesysV2 => ".exp",
             OutputKind::Beremiz => ".beremiz",
+            OutputKind::Sfc => ".sfc.xml",
+            OutputKind::Scl => ".scl",
+            // Studio 5000 writes and lists its exports as .L5X.
+            OutputKind::L5x => ".L5X",
             OutputKind::Grafcet => ".grafcet.svg",
             OutputKind::Report => ".report.html",
         }
@@ -290,7 +316,7 @@ mod tests {
             let err = OutputKind::parse_list(list).unwrap_err();
             assert!(err.contains(said), "{list}: {err}");
         }
-        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 18);
+        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 21);
         assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(edit_distance("kitten", "sitting"), 3);
     }

@@ -175,6 +175,8 @@ impl<'a> Renderer<'a> {
             }
             OutputKind::FstAllocation => text(kind, super::tables::render_fst_alloc(&input))?,
             OutputKind::Rockwell => text(kind, super::tables::render_rockwell(&input))?,
+            OutputKind::Scl => text(kind, super::scl::render(&input))?,
+            OutputKind::L5x => text(kind, super::l5x::render(&input))?,
             OutputKind::Beremiz => return self.beremiz(),
             OutputKind::Grafcet => super::grafcet::render_svg(&input).into_bytes(),
             OutputKind::Report => super::report::render(&input)
@@ -189,6 +191,7 @@ impl<'a> Renderer<'a> {
             OutputKind::Codesys => self.iec(kind, IecFile::Codesys)?,
             OutputKind::Gvl => self.iec(kind, IecFile::GlobalVariables)?,
             OutputKind::CodesysV2 => self.iec(kind, IecFile::CodesysV2)?,
+            OutputKind::Sfc => text(kind, super::sfc::render(&input))?,
         };
         Ok(vec![file(bytes)])
     }

@@ -26,27 +26,27 @@ struct Var {
 }
 
 #[derive(Serialize)]
-struct Internal {
-    ident: String,
-    data_type: &'static str,
+pub(super) struct Internal {
+    pub(super) ident: String,
+    pub(super) data_type: &'static str,
     /// A function block type (`TON`) rather than an elementary one.
-    derived: bool,
+    pub(super) derived: bool,
     /// Initial value, if the declaration has one.
-    initial: Option<String>,
-    comment: String,
+    pub(super) initial: Option<String>,
+    pub(super) comment: String,
 }
 
 /// A timer: a TON instance driven by a run flag and a preset variable, so
 /// that "start" and "running" mean what the step program says.
-#[derive(Serialize)]
-struct Timer {
-    ident: String,
-    run: String,
-    preset: String,
+#[derive(Serialize, Clone)]
+pub(super) struct Timer {
+    pub(super) ident: String,
+    pub(super) run: String,
+    pub(super) preset: String,
 }
 
-#[derive(Serialize)]
-struct Statement {
+#[derive(Serialize, Clone)]
+pub(super) struct Statement {
     code: String,
     comment: String,
 }
@@ -54,7 +54,7 @@ struct Statement {
 /// One branch of the `CASE`: the SFC step the program is in, and the
 /// transitions that leave it with the actions of the step each enters.
 #[derive(Serialize)]
-struct StepContext {
+pub(super) struct StepContext {
     /// The step the program is in (`active_step`): 0 at rest, else the
     /// table step whose moves run.
     active: usize,
@@ -72,15 +72,15 @@ struct StepContext {
 /// A jump of a step (`J:7 if I:reject`): its target is entered in place of
 /// the next step.
 #[derive(Serialize)]
-struct JumpContext {
+pub(super) struct JumpContext {
     comment: String,
     condition: String,
     actions: Vec<Statement>,
     enters: usize,
 }
 
-#[derive(Serialize)]
-struct RungContext {
+#[derive(Serialize, Clone)]
+pub(super) struct RungContext {
     comment: String,
     condition: String,
     actions: Vec<Statement>,
@@ -96,7 +96,7 @@ struct BodyContext {
 
 /// Everything the IEC templates (`.st`, PLCopen, CODESYS, GVL) lay out.
 #[derive(Serialize)]
-struct Context {
+pub(super) struct Context {
     title: String,
     version: &'static str,
     source: String,
@@ -160,7 +160,7 @@ fn xsd_duration(ms: u32) -> String {
 pub const TIMESTAMP: &str = "2020-01-01T00:00:00";
 
 /// Text made safe inside `(* … *)`: ST comments do not nest.
-fn comment_text(text: &str) -> String {
+pub(super) fn comment_text(text: &str) -> String {
     super::one_line(text)
         .replace("(*", "( *")
         .replace("*)", "* )")
@@ -182,53 +182,77 @@ fn timer_preset(symbols: &SymbolTable, timer: Signal) -> String {
         .unwrap_or_default()
 }
 
-/// A signal as an ST operand: a timer reads as its run flag.
-fn operand(symbols: &SymbolTable, signal: Signal) -> String {
-    match signal.area() {
-        Area::Timer => timer_run(symbols, signal),
-        _ => symbols.ident(signal),
+/// How a language writes the program's names: IEC ST bare; TIA Portal's
+/// SCL the tag table's tags (inputs, outputs) in double quotes and the
+/// block's own variables with `#`. Everything else ST and SCL share.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Spelling {
+    Iec,
+    Scl,
+}
+
+impl Spelling {
+    /// A variable of the program or block itself.
+    pub(super) fn own(self, ident: &str) -> String {
+        match self {
+            Spelling::Iec => ident.to_string(),
+            Spelling::Scl => format!("#{ident}"),
+        }
+    }
+
+    /// A signal: an input or output is a tag, anything else the block's own;
+    /// a timer reads as its run flag.
+    fn signal(self, symbols: &SymbolTable, signal: Signal) -> String {
+        match (self, signal.area()) {
+            (_, Area::Timer) => self.own(&timer_run(symbols, signal)),
+            (Spelling::Scl, Area::Input | Area::Output) => {
+                format!("\"{}\"", symbols.ident(signal))
+            }
+            _ => self.own(&symbols.ident(signal)),
+        }
     }
 }
 
 /// A condition as an ST expression; one with no literal always holds
 /// (`IF THEN` with nothing between is a syntax error in matiec).
-fn condition(symbols: &SymbolTable, literals: &[Literal]) -> String {
+pub(super) fn condition(symbols: &SymbolTable, literals: &[Literal], sp: Spelling) -> String {
     if literals.is_empty() {
         return "TRUE".to_string();
     }
-    condition_text(literals, |s| operand(symbols, s), "AND", "NOT ")
+    condition_text(literals, |s| sp.signal(symbols, s), "AND", "NOT ")
 }
 
-fn statement(symbols: &SymbolTable, action: Action) -> String {
+fn statement(symbols: &SymbolTable, action: Action, sp: Spelling) -> String {
     match action {
         Action::Reset(Signal::Sequence) => {
-            format!("{} := {INITIAL_STEP};", symbols.step_counter.ident)
+            format!("{} := {INITIAL_STEP};", sp.own(&symbols.step_counter.ident))
         }
         // Called with IN off then on, the TON restarts now: its time runs
         // from this scan, as the step program's timer does (a TON first
         // called with IN on in the next scan would end one scan late).
         Action::StartTimer(timer, ms) => format!(
             "{pt} := T#{ms}ms; {run} := TRUE; {t}(IN := FALSE, PT := {pt}); {t}(IN := TRUE, PT := {pt});",
-            pt = timer_preset(symbols, timer),
-            run = timer_run(symbols, timer),
-            t = symbols.ident(timer)
+            pt = sp.own(&timer_preset(symbols, timer)),
+            run = sp.own(&timer_run(symbols, timer)),
+            t = sp.own(&symbols.ident(timer))
         ),
         Action::Set(s) | Action::Reset(s) => {
             let value = if action.value() { "TRUE" } else { "FALSE" };
-            format!("{} := {value};", operand(symbols, s))
+            format!("{} := {value};", sp.signal(symbols, s))
         }
     }
 }
 
-fn statements(
+pub(super) fn statements(
     symbols: &SymbolTable,
     actions: &[Action],
     moves: &[crate::table::Move],
+    sp: Spelling,
 ) -> Vec<Statement> {
     actions
         .iter()
         .map(|a| Statement {
-            code: statement(symbols, *a),
+            code: statement(symbols, *a, sp),
             comment: comment_text(&symbols.action_comment(*a, moves)),
         })
         .collect()
@@ -245,48 +269,66 @@ fn located(a: &Assigned, input: &EmitInput) -> Var {
 
 /// Builds the context shared by every IEC output.
 fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::TemplateError> {
-    let alloc = input.allocation;
+    Ok(parts(input, scan_millis)?.0)
+}
+
+/// What the ST body runs besides the sequence, for the bodies that keep the
+/// sequence elsewhere (the SFC chart): the timers, called before it, and
+/// the rungs, run after it.
+#[derive(Serialize, Clone)]
+pub(super) struct Around {
+    pub(super) timers: Vec<Timer>,
+    pub(super) rungs: Vec<RungContext>,
+}
+
+/// The `CASE` branches and the rungs after it, spelled for ST or SCL.
+pub(super) fn sequence(input: &EmitInput, sp: Spelling) -> (Vec<StepContext>, Vec<RungContext>) {
     let program = input.program;
     let symbols = input.symbols;
-    let steps = program
+    let lowered = super::lower::lower(program, symbols);
+    let steps = lowered
         .steps
         .iter()
-        .enumerate()
-        .map(|(i, s)| StepContext {
-            jumps: s
-                .jumps
-                .iter()
-                .map(|j| {
-                    let target = &program.steps[j.fires];
-                    JumpContext {
-                        comment: comment_text(&super::jump_comment(program, i, j)),
-                        condition: condition(symbols, &j.condition),
-                        actions: statements(symbols, &j.actions, &target.moves),
-                        enters: program.step_entered(j.fires),
-                    }
-                })
-                .collect(),
-            active: program.step_in(i),
-            active_title: comment_text(
-                &symbols
-                    .step(i)
-                    .map_or_else(|| program.title_in(i), |n| n.active_title.clone()),
-            ),
-            entry: comment_text(&super::entry_comment(program, symbols, i)),
-            condition: condition(symbols, &s.condition),
-            actions: statements(symbols, &s.actions, &s.moves),
-            enters: program.step_entered(i),
+        .map(|s| {
+            let own = s.own();
+            StepContext {
+                jumps: s
+                    .jumps()
+                    .iter()
+                    .map(|j| JumpContext {
+                        comment: comment_text(j.comment),
+                        condition: condition(symbols, j.condition, sp),
+                        actions: statements(symbols, j.actions, j.moves, sp),
+                        enters: j.enters,
+                    })
+                    .collect(),
+                active: s.active,
+                active_title: comment_text(&s.active_title),
+                entry: comment_text(own.comment),
+                condition: condition(symbols, own.condition, sp),
+                actions: statements(symbols, own.actions, own.moves, sp),
+                enters: own.enters,
+            }
         })
         .collect();
-    let rungs = program
+    let rungs: Vec<RungContext> = program
         .rungs
         .iter()
         .map(|r| RungContext {
             comment: comment_text(&r.comment),
-            condition: condition(symbols, &r.condition),
-            actions: statements(symbols, &r.actions, &[]),
+            condition: condition(symbols, &r.condition, sp),
+            actions: statements(symbols, &r.actions, &[], sp),
         })
         .collect();
+    (steps, rungs)
+}
+
+/// The program's own variables (step counter, memories, timer flags,
+/// presets and instances) and its timers, named as ST and SCL name them.
+pub(super) fn internals(input: &EmitInput) -> (Vec<Internal>, Vec<Timer>) {
+    let alloc = input.allocation;
+    let program = input.program;
+    let symbols = input.symbols;
     let initially_on = |s: Signal| program.init.contains(&Action::Set(s));
     let mut internals = vec![Internal {
         ident: symbols.step_counter.ident.clone(),
@@ -345,6 +387,22 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
             comment: String::new(),
         });
     }
+    (internals, timers)
+}
+
+/// The context shared by every IEC output, and the timers and rungs of its body.
+pub(super) fn parts(
+    input: &EmitInput,
+    scan_millis: u32,
+) -> Result<(Context, Around), templates::TemplateError> {
+    let alloc = input.allocation;
+    let symbols = input.symbols;
+    let (steps, rungs) = sequence(input, Spelling::Iec);
+    let (internals, timers) = internals(input);
+    let around = Around {
+        timers: timers.clone(),
+        rungs: rungs.clone(),
+    };
     let body = input.templates.render(
         "program_body.st.j2",
         Value::from(Serde(&BodyContext {
@@ -354,36 +412,39 @@ fn context(input: &EmitInput, scan_millis: u32) -> Result<Context, templates::Te
             rungs,
         })),
     )?;
-    Ok(Context {
-        title: comment_text(input.name),
-        version: env!("CARGO_PKG_VERSION"),
-        source: comment_text(&input.source()),
-        target: alloc.target.name().to_string(),
-        timestamp: TIMESTAMP,
-        program_name: PROGRAM_NAME,
-        step_note: super::step_numbering_note(&symbols.step_counter.ident)
-            .iter()
-            .map(|l| comment_text(l))
-            .collect(),
-        located: alloc
-            .inputs
-            .iter()
-            .chain(&alloc.outputs)
-            .map(|a| located(a, input))
-            .collect(),
-        internals,
-        body,
-        // OpenPLC's upload moves exactly Config0.c and Res0.c, the files
-        // matiec names after the configuration and its resource.
-        configuration_name: CONFIGURATION_NAME,
-        resource_name: RESOURCE_NAME,
-        task_name: TASK_NAME,
-        instance_name: INSTANCE_NAME,
-        task_interval: format!("T#{scan_millis}ms"),
-        task_interval_xsd: xsd_duration(scan_millis),
-        program_object_id: object_id(&format!("{}/{PROGRAM_NAME}", input.name)),
-        gvl_object_id: object_id(&format!("{}/GVL_IO", input.name)),
-    })
+    Ok((
+        Context {
+            title: comment_text(input.name),
+            version: env!("CARGO_PKG_VERSION"),
+            source: comment_text(&input.source()),
+            target: alloc.target.name().to_string(),
+            timestamp: TIMESTAMP,
+            program_name: PROGRAM_NAME,
+            step_note: super::step_numbering_note(&symbols.step_counter.ident)
+                .iter()
+                .map(|l| comment_text(l))
+                .collect(),
+            located: alloc
+                .inputs
+                .iter()
+                .chain(&alloc.outputs)
+                .map(|a| located(a, input))
+                .collect(),
+            internals,
+            body,
+            // OpenPLC's upload moves exactly Config0.c and Res0.c, the files
+            // matiec names after the configuration and its resource.
+            configuration_name: CONFIGURATION_NAME,
+            resource_name: RESOURCE_NAME,
+            task_name: TASK_NAME,
+            instance_name: INSTANCE_NAME,
+            task_interval: format!("T#{scan_millis}ms"),
+            task_interval_xsd: xsd_duration(scan_millis),
+            program_object_id: object_id(&format!("{}/{PROGRAM_NAME}", input.name)),
+            gvl_object_id: object_id(&format!("{}/GVL_IO", input.name)),
+        },
+        around,
+    ))
 }
 
 #[cfg(test)]

@@ -30,6 +30,7 @@ pub const DEFAULTS: &[(&str, &str)] = &[
         "plcopen.xml.j2",
         include_str!("../../templates/plcopen.xml.j2"),
     ),
+    ("sfc.xml.j2", include_str!("../../templates/sfc.xml.j2")),
     (
         "codesys.xml.j2",
         include_str!("../../templates/codesys.xml.j2"),
@@ -50,6 +51,14 @@ pub const DEFAULTS: &[(&str, &str)] = &[
     (
         "rockwell.csv.j2",
         include_str!("../../templates/rockwell.csv.j2"),
+    ),
+    (
+        "program.scl.j2",
+        include_str!("../../templates/program.scl.j2"),
+    ),
+    (
+        "program.l5x.xml.j2",
+        include_str!("../../templates/program.l5x.xml.j2"),
     ),
     (
         "program.exp.j2",

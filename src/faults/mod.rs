@@ -4,14 +4,17 @@
 //! safe stall or hazard.
 
 mod cases;
+mod healthy;
 mod phases;
 
+pub use healthy::{Healthy, healthy_run, healthy_run_recording};
 pub use phases::{Moment, Phase, moments};
 
 use crate::program::{Signal, StepProgram};
 use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings, Simulator};
 use crate::table::StepTable;
 use cases::{Cases, SetRuns, Verdict};
+use healthy::yardstick_settings;
 
 /// What a fault does to the machine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
@@ -264,23 +267,36 @@ pub fn analyse_runs(
     runs: FaultRuns,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> FaultTable {
+    analyse_from(table, program, settings, at_once, runs, progress, None)
+}
+
+/// Like [`analyse_runs`], measured against `healthy` ([`healthy_run`] under
+/// the same settings) when it is given, else against a run of its own.
+pub fn analyse_from(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    at_once: usize,
+    runs: FaultRuns,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    healthy: Option<Healthy>,
+) -> FaultTable {
     use rayon::prelude::*;
     let mut sets = fault_sets(program, at_once);
     let simulator = Simulator::new(table, program);
     // What the healthy cycle does is the yardstick: the combinations of
     // positions it reaches are the ones a faulty run may reach, its
     // moments are when faults appear, its inputs tell which of those runs
-    // are one and the same.
+    // are one and the same. Its log says when each input changes: a log,
+    // not a copy of every scan (a long table has millions).
     let healthy_settings = SimSettings {
-        record_places: true,
         record_trace: false,
-        faults: Vec::new(),
-        ..settings.clone()
+        ..yardstick_settings(settings)
     };
-    // The healthy run logs when each input changes: a log, not a copy of
-    // every scan (a long table has millions).
-    let (healthy, log) =
-        simulator.run_logging_inputs(&healthy_settings, program.signals.inputs.clone());
+    let Healthy {
+        report: healthy,
+        log,
+    } = healthy.unwrap_or_else(|| healthy_run(table, program, &healthy_settings));
     let mut moments = moments(&healthy, table, settings.scan_ms as u64);
     let cases_at_every_moment = sets.len() * moments.len();
     // A jump's cycle is one more cycle each run may go through.

@@ -43,8 +43,15 @@ fn completion(step: &Step) -> Vec<Literal> {
 /// target sensors still off (a sensor on before its move starts is a lie),
 /// no halt, and every interlock that covers the step closed: the interlock
 /// rung halts only later in the scan, and a step fired in the scan its
-/// guard opens would start its moves behind the open guard.
-fn guards(moves: &[Move], number: usize, options: &ProgramOptions) -> Vec<Literal> {
+/// guard opens would start its moves behind the open guard. In single-step
+/// mode a table step (not the closing transition, which moves nothing)
+/// also needs the step permit a STEP_PB press gives.
+fn guards(
+    moves: &[Move],
+    number: usize,
+    table_step: bool,
+    options: &ProgramOptions,
+) -> Vec<Literal> {
     let mut literals = Vec::new();
     for interlock in &options.interlocks {
         let covers = interlock
@@ -65,6 +72,9 @@ fn guards(moves: &[Move], number: usize, options: &ProgramOptions) -> Vec<Litera
     }
     if options.halts() {
         literals.push(Literal::not(Signal::Halt));
+    }
+    if options.modes.step && table_step {
+        literals.push(Literal::is(Signal::StepPermit));
     }
     literals
 }
@@ -207,7 +217,10 @@ pub fn build(
         options,
         &mut steps,
         |index| completion(&table.steps[index]),
-        |target| guards(&target.moves, target.number, options),
+        |target| {
+            let table_step = target.kind == StepKind::Table;
+            guards(&target.moves, target.number, table_step, options)
+        },
     );
     if modes.any() {
         homing_rungs(table, &signals, &timers, options, &run_ons, &mut rungs);
@@ -250,7 +263,7 @@ fn sequence_steps(
         } else {
             completion(&table.steps[index - 1])
         };
-        condition.extend(guards(&step.moves, step.number, options));
+        condition.extend(guards(&step.moves, step.number, true, options));
 
         let mut actions = Vec::new();
         for m in &step.moves {
@@ -315,7 +328,7 @@ fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramSt
     // once the last moves have finished, not run on while the machine
     // idles, and a new cycle may be asked for only now.
     let mut condition = completion(last);
-    condition.extend(guards(&[], last.number + 1, options));
+    condition.extend(guards(&[], last.number + 1, false, options));
     let mut actions = Vec::new();
     if safety.watchdog {
         actions.push(Action::Reset(Signal::Watchdog));

@@ -76,6 +76,55 @@ pub(super) fn mode_rungs(
             actions,
         });
     }
+    if modes.step {
+        rungs.extend(step_rungs());
+    }
+}
+
+/// Single-step mode: the permit every table step's transition needs. In
+/// automatic (STEP_MODE off) it is always on; in single-step it is on for
+/// the one scan after STEP_PB's rising edge, so that a press fires at most
+/// one step and only one whose conditions hold at that scan (S7-GRAPH's
+/// transition with T_PUSH). The rungs run after the sequence: the permit
+/// they set is read by the next scan's sequence.
+fn step_rungs() -> [Rung; 5] {
+    let rung = |comment: &str, condition: Vec<Literal>, action: Action| Rung {
+        kind: RungKind::Mode,
+        comment: comment.to_string(),
+        condition,
+        actions: vec![action],
+    };
+    [
+        rung(
+            "STEP_MODE off: automatic, every step may fire",
+            vec![Literal::not(Signal::StepMode)],
+            Action::Set(Signal::StepPermit),
+        ),
+        rung(
+            "STEP_MODE on: single step, a step fires only on a STEP_PB press",
+            vec![Literal::is(Signal::StepMode)],
+            Action::Reset(Signal::StepPermit),
+        ),
+        rung(
+            "STEP_PB pressed in single step: the next scan may fire one step",
+            vec![
+                Literal::is(Signal::StepMode),
+                Literal::is(Signal::StepButton),
+                Literal::not(Signal::StepMemory),
+            ],
+            Action::Set(Signal::StepPermit),
+        ),
+        rung(
+            "edge: remember STEP_PB for the next scan",
+            vec![Literal::is(Signal::StepButton)],
+            Action::Set(Signal::StepMemory),
+        ),
+        rung(
+            "edge: STEP_PB released",
+            vec![Literal::not(Signal::StepButton)],
+            Action::Reset(Signal::StepMemory),
+        ),
+    ]
 }
 
 /// RESET, the homing stages and the emergency stop, which comes last so
@@ -268,5 +317,52 @@ pub(super) fn homing_rungs(
             condition: vec![Literal::not(Signal::EStop)],
             actions,
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Literal, ProgramOptions, Signal, StepKind, build};
+    use crate::stroke::Strokes;
+    use crate::valve::Valves;
+
+    /// In single step every way into a table step needs the permit, a
+    /// jump too; the way back to step 0 (the closing transition, or a jump
+    /// to the end) moves nothing and needs none.
+    #[test]
+    fn every_table_step_and_jump_into_one_needs_the_step_permit() {
+        let rows: [[&str; 1]; 6] = [
+            ["C1+1"],
+            ["C1-0; J:5 if I:reject; J:end if I:abort"],
+            ["C2+1"],
+            ["C2-0"],
+            ["C3+1"],
+            ["C3-0"],
+        ];
+        let table = crate::table::from_rows("jumps.csv", &rows).expect("valid table");
+        let options = ProgramOptions {
+            modes: super::super::Modes::parse("step").unwrap(),
+            ..ProgramOptions::default()
+        };
+        let program = build(&table, &options, &Valves::default(), &Strokes::default());
+        let permit = Literal::is(Signal::StepPermit);
+        for step in &program.steps {
+            let table_step = step.kind == StepKind::Table;
+            assert_eq!(step.condition.contains(&permit), table_step, "{step:?}");
+            for jump in &step.jumps {
+                let into_table = program.steps[jump.fires].kind == StepKind::Table;
+                assert_eq!(jump.condition.contains(&permit), into_table, "{jump:?}");
+            }
+        }
+        let jumps: usize = program.steps.iter().map(|s| s.jumps.len()).sum();
+        assert_eq!(jumps, 2);
+        // Without the mode no condition reads it.
+        let plain = build(
+            &table,
+            &ProgramOptions::default(),
+            &Valves::default(),
+            &Strokes::default(),
+        );
+        assert!(plain.steps.iter().all(|s| !s.condition.contains(&permit)));
     }
 }

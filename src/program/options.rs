@@ -317,6 +317,11 @@ pub struct Modes {
     pub estop: bool,
     /// A RESET button homes every actuator.
     pub reset: bool,
+    /// Single-step mode: with the STEP_MODE switch on, each transition
+    /// fires only on a press of STEP_PB (its conditions still checked), at
+    /// most one per press. Not part of `all`: a commissioning aid, asked
+    /// for by name.
+    pub step: bool,
     /// Homing stages, each a set of actuators homed together; `None` is the
     /// default (the order the cycle returns them home).
     pub home_order: Option<Vec<Vec<u32>>>,
@@ -325,7 +330,7 @@ pub struct Modes {
 impl Modes {
     /// The modes by name, as `--modes` and the SETTINGS sheet write them
     /// (besides `all` and `none`).
-    pub const NAMES: [&str; 4] = ["continuous", "stop", "estop", "reset"];
+    pub const NAMES: [&str; 5] = ["continuous", "stop", "estop", "reset", "step"];
 
     /// What `--modes` and the SETTINGS row accept, for messages.
     pub fn expected() -> String {
@@ -334,8 +339,10 @@ impl Modes {
         crate::diag::or_list(&all)
     }
 
-    /// Parses `continuous,stop,estop,reset` (any subset; `all`, `none`). An
-    /// emergency stop needs RESET as its way out, so `estop` brings `reset`.
+    /// Parses `continuous,stop,estop,reset,step` (any subset; `all`, `none`;
+    /// `all` is every mode but `step`, which changes how the machine runs
+    /// and is asked for by name). An emergency stop needs RESET as its way
+    /// out, so `estop` brings `reset`.
     pub fn parse(text: &str) -> Result<Modes, String> {
         let mut modes = Modes::default();
         for item in named_set(text, &Modes::NAMES, "an operating mode", Modes::expected)? {
@@ -350,6 +357,7 @@ impl Modes {
                 "stop" => modes.stop = true,
                 "estop" => modes.estop = true,
                 "reset" => modes.reset = true,
+                "step" => modes.step = true,
                 _ => {}
             }
         }
@@ -365,6 +373,13 @@ impl Modes {
         let mut stages = Vec::new();
         for stage in text.split([',', ';']) {
             let mut actuators = Vec::new();
+            // `C1&` or `&C2`: an actuator of the stage was lost.
+            if stage.contains('&') && stage.split('&').any(|part| part.trim().is_empty()) {
+                return Err(format!(
+                    "the home order \"{}\" has a stage with an empty item beside its &; name each actuator of a stage (e.g. C3&C4)",
+                    text.trim()
+                ));
+            }
             for item in stage.split(|c: char| c == '&' || c.is_whitespace()) {
                 if item.is_empty() {
                     continue;
@@ -386,7 +401,7 @@ impl Modes {
     }
 
     pub fn any(&self) -> bool {
-        self.continuous || self.stop || self.estop || self.reset
+        self.continuous || self.stop || self.estop || self.reset || self.step
     }
 
     /// The input of each mode that is on, in address order.
@@ -397,6 +412,8 @@ impl Modes {
             (self.stop, Signal::Stop),
             (self.estop, Signal::EStop),
             (self.reset, Signal::Reset),
+            (self.step, Signal::StepMode),
+            (self.step, Signal::StepButton),
         ]
         .into_iter()
         .filter_map(|(on, signal)| on.then_some(signal))

@@ -82,6 +82,15 @@ pub enum Signal {
     Stop,
     EStop,
     Reset,
+    /// Single-step mode: the STEP_MODE switch (on: one step per press) and
+    /// the STEP_PB push-button.
+    StepMode,
+    StepButton,
+    /// Memory: the sequence may fire a transition in this scan (always in
+    /// automatic, for one scan after a STEP_PB press in single-step).
+    StepPermit,
+    /// Memory: STEP_PB as read in the previous scan (its rising edge).
+    StepMemory,
     /// Memory: a cycle was asked for (START, or CONTINUOUS at a cycle's end).
     CycleRequest,
     /// Memory: a cycle is under way (from STEP 1 to the end of the cycle).
@@ -106,7 +115,9 @@ impl Signal {
             | Signal::Continuous
             | Signal::Stop
             | Signal::EStop
-            | Signal::Reset => Area::Input,
+            | Signal::Reset
+            | Signal::StepMode
+            | Signal::StepButton => Area::Input,
             Signal::Coil { .. }
             | Signal::SingleCoil { .. }
             | Signal::Alarm(_)
@@ -123,6 +134,8 @@ impl Signal {
             | Signal::AutoRun
             | Signal::Homing
             | Signal::HomeStage(_)
+            | Signal::StepPermit
+            | Signal::StepMemory
             | Signal::Sequence => Area::Memory,
             Signal::Watchdog | Signal::Dwell(_) | Signal::RunOn(_) => Area::Timer,
         }
@@ -160,6 +173,10 @@ impl Signal {
             Signal::EStop => "ESTOP".to_string(),
             // RESET is an FST and IL keyword.
             Signal::Reset => "RESET_PB".to_string(),
+            Signal::StepMode => "STEP_MODE".to_string(),
+            Signal::StepButton => "STEP_PB".to_string(),
+            Signal::StepPermit => "step_ok".to_string(),
+            Signal::StepMemory => "step_mem".to_string(),
             Signal::CycleRequest => "cycle_req".to_string(),
             Signal::Busy => "busy".to_string(),
             Signal::AutoRun => "auto_run".to_string(),

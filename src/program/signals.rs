@@ -181,6 +181,10 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
     if modes.continuous {
         memories.push(Signal::AutoRun);
     }
+    if modes.step {
+        memories.push(Signal::StepPermit);
+        memories.push(Signal::StepMemory);
+    }
     if modes.reset {
         memories.push(Signal::Homing);
         let stages = modes.home_stages(table).map(|s| s.len()).unwrap_or(0);

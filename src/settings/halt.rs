@@ -483,8 +483,19 @@ fn stop_actions(
             ["off"] => Some(StopAction::Off),
             ["hold"] => Some(StopAction::Hold),
             ["off", "after", time @ ..] | ["on", "for", time @ ..] => {
-                crate::cell::parse_duration_in(&time.concat(), 10..=655_000)
-                    .map(StopAction::OffAfter)
+                let time = time.concat();
+                let ms = crate::cell::parse_duration_in(&time, 10..=655_000);
+                if ms.is_some() && crate::cell::without_unit(&time) {
+                    diags.warning(
+                        Code::W007Assumed,
+                        list.at.clone(),
+                        format!(
+                            "{label}: \"{item}\": {}",
+                            crate::cell::read_as_seconds(&time)
+                        ),
+                    );
+                }
+                ms.map(StopAction::OffAfter)
             }
             _ => None,
         };

@@ -253,10 +253,11 @@ impl Settings {
         }
     }
 
-    /// Defaults: Festo addresses, middle stops, no safety checks, every format.
+    /// Defaults: Festo addresses, middle stops, no safety checks, every format
+    /// but the SFC chart (asked for by name).
     pub fn new() -> Self {
         Settings {
-            formats: OutputKind::ALL.into_iter().collect(),
+            formats: OutputKind::defaults(),
             ..Settings::default()
         }
     }

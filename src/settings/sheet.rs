@@ -652,7 +652,7 @@ fn said_without_unit(grid: &Grid, cell: &GridCell, text: &str, diags: &mut Diagn
         diags.warning(
             Code::W007Assumed,
             grid.location(cell.pos),
-            format!("\"{text}\" has no unit and is read as {text} seconds: write {text}s, or {text}ms if milliseconds were meant"),
+            crate::cell::read_as_seconds(text),
         );
     }
 }
@@ -696,10 +696,10 @@ fn read_actuator_row<'g>(
             ),
         }
     }
-    let mut stroke_at = None;
-    let mut time = |col: Option<u32>| -> Option<u32> {
+    let mut stroke_at = Vec::new();
+    let mut time = |col: Option<u32>, what: &'static str| -> Option<u32> {
         let cell = col.and_then(at)?;
-        stroke_at.get_or_insert(grid.location(cell.pos));
+        stroke_at.push((what, grid.location(cell.pos)));
         let text = value_text(grid, cell, diags)?;
         let ms = parse_duration_ms(&text);
         if ms.is_some() {
@@ -716,12 +716,15 @@ fn read_actuator_row<'g>(
         }
         ms
     };
-    let (extend, retract) = (time(columns.extend), time(columns.retract));
+    let (extend, retract) = (
+        time(columns.extend, "extend"),
+        time(columns.retract, "retract"),
+    );
     if extend.is_none() && retract.is_none() {
         return;
     }
-    if let Some(at) = stroke_at {
-        settings.actuator_cells.insert((actuator, "stroke"), at);
+    for (what, at) in stroke_at {
+        settings.actuator_cells.insert((actuator, what), at);
     }
     let default = Stroke::default();
     settings.strokes.insert(

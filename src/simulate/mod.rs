@@ -7,6 +7,7 @@
 //! coils, everything must be home at the end, and a second START must run an
 //! identical second cycle.
 
+pub mod bench;
 pub mod io;
 pub mod plant;
 pub mod plc;
@@ -16,6 +17,7 @@ mod run;
 pub use run::{Checkpoints, Course, Resumed, Trail};
 pub mod scenario;
 mod settings;
+mod world;
 
 use crate::program::StepProgram;
 use crate::table::StepTable;
@@ -152,13 +154,22 @@ impl<'a> Simulator<'a> {
     }
 
     /// Runs under `settings`, logging the scans on which `inputs` change
-    /// (the fault analysis's healthy run).
+    /// (the fault analysis's healthy run), and recording `record` at every
+    /// scan when given.
     pub fn run_logging_inputs(
         &self,
         settings: &SimSettings,
         inputs: Vec<crate::program::Signal>,
-    ) -> (SimReport, io::InputLog) {
-        run::run_logging_inputs(self.table, self.program, &self.code, settings, inputs)
+        record: Option<io::IoSignals>,
+    ) -> (SimReport, io::InputLog, Option<io::IoTrace>) {
+        run::run_logging_inputs(
+            self.table,
+            self.program,
+            &self.code,
+            settings,
+            inputs,
+            record,
+        )
     }
 
     /// The same as [`simulate_recording`].

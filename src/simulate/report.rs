@@ -94,6 +94,10 @@ pub struct Operator {
     /// EMERGENCY STOP pressed (the normally closed input reads 0).
     pub estop: bool,
     pub reset: bool,
+    /// The STEP_MODE switch on (single step).
+    pub step_mode: bool,
+    /// STEP_PB pressed.
+    pub step: bool,
 }
 
 /// One complete or interrupted cycle.

@@ -6,6 +6,7 @@
 //! only 9 characters, so two names that are one there are one signal to that
 //! target: an error at the later one's cell, naming the earlier one.
 
+use crate::cell::Sign;
 use crate::diag::{Code, Diagnostics, Location};
 use crate::names::{FST_SYMBOL_CHARS, fst_stem, reserved_name};
 use crate::read::Grid;
@@ -142,32 +143,44 @@ pub fn actuator_entries(table: &StepTable, naming: &Naming, diags: &mut Diagnost
             actuator: Some(n),
             symbol,
         };
-        entries.push(entry(stem.clone(), false));
-        if naming.scheme != Scheme::Names {
+        // The name itself may not read as a reserved word or another
+        // actuator's (`C1 (C2)`, `C1 (y1)`, `C1 (none)`): a row naming it
+        // would mean two things.
+        if let Some(why) = reserved_name(&stem) {
+            diags.error(
+                Code::E015BadName,
+                name.at.clone(),
+                format!("{label}\"{}\" cannot name an actuator: {why}", name.text),
+            );
             continue;
         }
-        let mut ids: Vec<String> = (0..=actuator.max_position)
-            .map(|position| {
-                naming.ident(
-                    crate::program::Signal::Sensor {
-                        actuator: n,
-                        position,
-                    },
-                    table,
-                )
+        entries.push(entry(stem.clone(), false));
+        // The names a row may use for its signals (`clamp_home`, `clamp_out`)
+        // are names under every scheme; under `names` they are identifiers
+        // too, so FST's 9 characters and the identifier rules apply.
+        let names = naming.scheme == Scheme::Names;
+        let mut signals: Vec<crate::program::Signal> = (0..=actuator.max_position)
+            .map(|position| crate::program::Signal::Sensor {
+                actuator: n,
+                position,
             })
             .collect();
-        ids.push(format!("{stem}_out"));
-        ids.push(format!("{stem}_in"));
-        for id in ids {
-            if let Some(why) = identifier_problem(&id).or_else(|| reserved_name(&id)) {
+        signals.extend(
+            [Sign::Plus, Sign::Minus]
+                .map(|sign| crate::program::Signal::Coil { actuator: n, sign }),
+        );
+        for signal in signals {
+            let Some(id) = naming.own_alias(signal, table) else {
+                continue;
+            };
+            if names && let Some(why) = identifier_problem(&id).or_else(|| reserved_name(&id)) {
                 diags.error(
                     Code::E015BadName,
                     name.at.clone(),
                     format!("{label}its signal {id} cannot be an identifier: {why}"),
                 );
             }
-            entries.push(entry(id, true));
+            entries.push(entry(id, names));
         }
     }
     entries

@@ -137,6 +137,12 @@ pub(super) fn comment(
         }
         Signal::EStop => "EMERGENCY STOP, normally closed (0: every coil off at once)".to_string(),
         Signal::Reset => "RESET push-button (home every actuator)".to_string(),
+        Signal::StepMode => {
+            "STEP_MODE switch (on: single step, one step per STEP_PB press)".to_string()
+        }
+        Signal::StepButton => "STEP_PB push-button (single step: fire the next step)".to_string(),
+        Signal::StepPermit => "the sequence may fire a step in this scan".to_string(),
+        Signal::StepMemory => "STEP_PB as read in the previous scan".to_string(),
         Signal::CycleRequest => "a cycle was asked for".to_string(),
         Signal::Busy => "a cycle is under way".to_string(),
         Signal::AutoRun => "continuous operation runs".to_string(),

@@ -363,12 +363,19 @@ impl SymbolTable {
         if self.scheme == Scheme::Paper {
             return text.to_string();
         }
-        let by_symbol: BTreeMap<String, &str> = self
+        let mut by_symbol: BTreeMap<String, &str> = self
             .signals
             .iter()
             .filter(|(s, x)| s.symbol() != x.designation)
             .map(|(s, x)| (s.symbol(), x.designation.as_str()))
             .collect();
+        // The actuator too, where its label is not the paper's (`1A1`).
+        by_symbol.extend(
+            self.actuators
+                .iter()
+                .filter(|(n, (label, _))| *label != format!("C{n}"))
+                .map(|(n, (label, _))| (format!("C{n}"), label.as_str())),
+        );
         let word = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '+' | '-' | ':');
         let mut out = String::with_capacity(text.len());
         let mut rest = text;
@@ -517,6 +524,8 @@ fn role(signal: Signal) -> &'static str {
         Signal::Stop => "stop",
         Signal::EStop => "estop",
         Signal::Reset => "reset",
+        Signal::StepMode => "step mode",
+        Signal::StepButton => "step",
         other => match other.area() {
             Area::Timer => "timer",
             _ => "memory",

@@ -165,6 +165,13 @@ impl Naming {
         self.aliases_by(signal, &|a| table.actuator(a).map_or(1, |x| x.max_position))
     }
 
+    /// The engineer's name of `signal` whatever the scheme (`clamp_out`),
+    /// if its actuator has a name.
+    pub fn own_alias(&self, signal: Signal, table: &StepTable) -> Option<String> {
+        let own = |n: u32| self.actuators.get(&n).and_then(ActuatorName::stem);
+        named(signal, table, own)
+    }
+
     /// [`Naming::aliases`], each actuator's end position given by `pmax`.
     pub fn aliases_by(&self, signal: Signal, pmax: &dyn Fn(u32) -> u32) -> Vec<String> {
         let mut names = vec![signal.symbol(), paper_ident(signal)];

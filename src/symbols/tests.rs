@@ -101,6 +101,10 @@ fn every_generated_identifier_is_legal_in_every_target_language() {
         Signal::Stop,
         Signal::EStop,
         Signal::Reset,
+        Signal::StepMode,
+        Signal::StepButton,
+        Signal::StepPermit,
+        Signal::StepMemory,
         Signal::CycleRequest,
         Signal::Busy,
         Signal::AutoRun,
@@ -121,13 +125,19 @@ fn every_generated_identifier_is_legal_in_every_target_language() {
         // on, and then in any case.
         if matches!(
             signal,
-            Signal::Continuous | Signal::Stop | Signal::EStop | Signal::Reset
+            Signal::Continuous
+                | Signal::Stop
+                | Signal::EStop
+                | Signal::Reset
+                | Signal::StepMode
+                | Signal::StepButton
         ) {
-            let buttons: Vec<String> = crate::program::Modes::parse("all")
-                .unwrap()
-                .buttons()
-                .map(|b| b.symbol().to_ascii_lowercase())
-                .collect();
+            let buttons: Vec<String> =
+                crate::program::Modes::parse("continuous,stop,estop,reset,step")
+                    .unwrap()
+                    .buttons()
+                    .map(|b| b.symbol().to_ascii_lowercase())
+                    .collect();
             assert!(signal_problem(&id, &buttons).is_some(), "{id}");
             assert!(signal_problem(&id, &[]).is_none(), "{id}");
             continue;

@@ -12,11 +12,11 @@
 
 mod budget;
 pub mod choose;
+pub mod controller;
 pub mod equations;
 mod exact;
 pub mod ga;
 pub mod gp;
-pub mod modes;
 pub mod output;
 pub mod search;
 pub mod sequence;

@@ -148,7 +148,7 @@ mod modes_table5 {
     fn the_programs_obey_start_stop_estop_and_reset() {
         for (text, ..) in super::table5::TABLE5 {
             let s = synthesize(&sequence::parse(text).unwrap()).unwrap();
-            let trace = modes::check(&s).unwrap_or_else(|e| panic!("{text}: {e}"));
+            let trace = verify::check(&s).unwrap_or_else(|e| panic!("{text}: {e}"));
             assert!(trace.len() > 3 * s.original.actions.len(), "{text}");
         }
     }
@@ -158,30 +158,30 @@ mod modes_table5 {
     #[test]
     fn a_program_without_modes_fails_the_proof() {
         let s = synthesize(&sequence::parse("A1 A0 B1 B0").unwrap()).unwrap();
-        let script = modes::script_for(&s);
-        let mut free = modes::Program::new(&s);
-        let trace = modes::run(
+        let script = verify::script_for(&s);
+        let mut free = controller::Program::new(&s);
+        let trace = verify::run(
             &s,
-            modes::STROKE_MS,
+            verify::STROKE_MS,
             script.scans,
             &|scan| script.buttons(scan),
             &mut |ends, buttons| {
                 Ok(free.scan(
                     ends,
-                    modes::Buttons {
+                    controller::Buttons {
                         start: scan_start(buttons),
-                        ..modes::Buttons::default()
+                        ..controller::Buttons::default()
                     },
                 ))
             },
         )
         .unwrap();
-        let why = modes::judge(&s, &script, &trace).unwrap_err();
+        let why = verify::judge(&s, &script, &trace).unwrap_err();
         assert!(why.contains("before START"), "{why}");
     }
 
     /// START held on every scan: the program then cycles on regardless.
-    fn scan_start(_: modes::Buttons) -> bool {
+    fn scan_start(_: controller::Buttons) -> bool {
         true
     }
 }

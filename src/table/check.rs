@@ -191,14 +191,10 @@ pub(super) fn check(
     for (index, row) in parsed.into_iter().enumerate() {
         let number = index + 1;
         // The engineer's comment on the step's label (`STEP 3 (clamp part)`).
-        let comment = frame
-            .label_col
-            .zip(frame.step_rows.get(index))
-            .and_then(|(col, row)| grid.cells.iter().find(|c| c.pos == CellPos::new(*row, col)))
-            .and_then(|c| match &c.value {
-                crate::read::CellValue::Text(t) => crate::cell::step_comment(t),
-                _ => None,
-            });
+        let comment = frame.label_cell(grid, index).and_then(|c| match &c.value {
+            crate::read::CellValue::Text(t) => crate::cell::step_comment(t),
+            _ => None,
+        });
         let mut step = Step {
             number,
             comment,

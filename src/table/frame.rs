@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use crate::cell::{Header, header_kind, looks_like_item, parse_items};
 use crate::diag::{CellPos, Code, Diagnostics};
-use crate::read::{CellValue, Grid};
+use crate::read::{CellValue, Grid, GridCell};
 
 /// The table's frame on the sheet.
 pub(super) struct Frame {
@@ -21,6 +21,16 @@ pub(super) struct Frame {
     pub header_row: Option<u32>,
     /// The column of the `STEP n` labels, if there are any.
     pub label_col: Option<u32>,
+}
+
+impl Frame {
+    /// The label cell of step row `index` (`STEP 3 (clamp part)`), if the
+    /// table has labels and that row has one.
+    pub(super) fn label_cell<'g>(&self, grid: &'g Grid, index: usize) -> Option<&'g GridCell> {
+        let col = self.label_col?;
+        let row = *self.step_rows.get(index)?;
+        grid.cells.iter().find(|c| c.pos == CellPos::new(row, col))
+    }
 }
 
 /// Finds step rows and branch columns: by headers, or as a bare grid of moves.

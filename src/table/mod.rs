@@ -418,6 +418,21 @@ pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
             );
         }
     }
+    // An unused template row is dropped, but not the engineer's words on
+    // its label (`STEP 9 (spare)`): said, so a step meant to be filled
+    // is not lost without a word.
+    for index in last_with_moves + 1..frame.step_rows.len() {
+        if let Some(cell) = frame.label_cell(grid, index)
+            && let CellValue::Text(text) = &cell.value
+            && crate::cell::step_comment(text).is_some()
+        {
+            diags.warning(
+                Code::W003Ignored,
+                grid.location(cell.pos),
+                format!("\"{}\" labels a step with no move after the last one; the step and its comment are not used", text.trim()),
+            );
+        }
+    }
     parsed.truncate(last_with_moves + 1);
 
     let table = check::check(grid, &frame, parsed, &refused, diags);

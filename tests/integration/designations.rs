@@ -330,7 +330,7 @@ fn hostile_names_are_refused_with_their_code_and_cell() {
             &[&["C1 (x1)"]],
             "C1-0",
             &["--designations", "names"],
-            "SETTINGS!A2: error[E015]: C1 (x1): its signal x1_home cannot be an identifier: the generated program uses it",
+            "SETTINGS!A2: error[E015]: C1 (x1): \"x1\" cannot name an actuator: the generated program uses it",
         ),
         (
             "an engineer's signal named like a machine input",

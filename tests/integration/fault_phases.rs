@@ -60,6 +60,34 @@ fn resumed_fault_runs_give_the_table_of_runs_from_power_up() {
     assert!(moments > 1000, "{moments} moments");
 }
 
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 48, ..proptest::prelude::ProptestConfig::default() })]
+
+    /// The fault table's file, byte for byte, whichever way its runs went:
+    /// resumed from the healthy run and cut short where they rejoin it,
+    /// measured against the proof's own healthy run (one simulation of the
+    /// cycle per conversion), or each from power-up to its end.
+    #[test]
+    fn the_fault_table_file_is_the_same_however_its_runs_are_cut(seed in 0u64..1_000_000) {
+        let (rows, table, program, sim) = random_machine(seed);
+        let csv = |t: &faults::FaultTable| {
+            steptable::emit::faults_csv::render(t, &|s| s.symbol(), &|t| t.to_string())
+                .expect("renders")
+        };
+        let run = |runs, healthy| {
+            faults::analyse_from(&table, &program, &sim, 1, runs, &|_, _| {}, healthy)
+        };
+        let reference = csv(&run(FaultRuns::FromPowerUp, None));
+        let resumed = csv(&run(FaultRuns::Resumed, None));
+        // The proof's run records the diagram's trace; the analysis reads
+        // nothing of it.
+        let proof = SimSettings { record_trace: true, ..sim.clone() };
+        let shared = csv(&run(FaultRuns::Resumed, Some(faults::healthy_run(&table, &program, &proof))));
+        proptest::prop_assert_eq!(&resumed, &reference, "seed {} {:?}", seed, rows);
+        proptest::prop_assert_eq!(&shared, &reference, "seed {} {:?}", seed, rows);
+    }
+}
+
 #[test]
 fn every_verdict_is_what_the_fault_alone_gives_when_it_appears_then() {
     let mut replayed = 0;

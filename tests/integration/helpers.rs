@@ -158,9 +158,9 @@ pub fn xlsx_part(path: &Path, part: &str) -> String {
     text
 }
 
-/// How many files one conversion with every format writes.
+/// How many files one conversion with the default formats writes.
 pub fn all_files() -> usize {
-    steptable::emit::OutputKind::ALL
+    steptable::emit::OutputKind::defaults()
         .iter()
         .map(|k| k.file_count())
         .sum()

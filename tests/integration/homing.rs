@@ -19,6 +19,8 @@ const IDLE: Operator = Operator {
     stop: false,
     estop: false,
     reset: false,
+    step_mode: false,
+    step: false,
 };
 
 fn position(report: &ScenarioReport, time_ms: u64, actuator: usize) -> f64 {

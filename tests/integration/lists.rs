@@ -182,7 +182,10 @@ fn the_templates_lists_offer_every_value() {
     }
     // The notes beside safety and modes name every check and mode.
     let settings = crate::helpers::read_sheet(&path, "SETTINGS");
-    for (label, names) in [("safety", Safety::NAMES), ("modes", Modes::NAMES)] {
+    for (label, names) in [
+        ("safety", Safety::NAMES.to_vec()),
+        ("modes", Modes::NAMES.to_vec()),
+    ] {
         let row = settings.iter().find(|r| r[0] == label).unwrap();
         assert_eq!(
             missing(&row[3], &names),
@@ -239,8 +242,11 @@ fn the_types_lists_hold_every_value() {
             Rockwell => 13,
             CodesysV2 => 14,
             Beremiz => 15,
-            Grafcet => 16,
-            Report => 17,
+            Sfc => 16,
+            Scl => 17,
+            L5x => 18,
+            Grafcet => 19,
+            Report => 20,
         }
     }
     fn all_of(indices: Vec<usize>, count: usize) {
@@ -250,7 +256,7 @@ fn the_types_lists_hold_every_value() {
     all_of(ValveType::ALL.map(valve).to_vec(), 6);
     all_of(Target::ALL.map(target).to_vec(), 3);
     all_of(Mnemonic::ALL.map(mnemonic).to_vec(), 2);
-    all_of(OutputKind::ALL.map(kind).to_vec(), 18);
+    all_of(OutputKind::ALL.map(kind).to_vec(), 21);
     for name in ValveType::names() {
         assert!(name.parse::<ValveType>().is_ok(), "{name}");
     }
@@ -265,7 +271,12 @@ fn the_types_lists_hold_every_value() {
     for name in Safety::NAMES {
         assert_ne!(Safety::parse(name), Ok(Safety::default()), "{name}");
     }
-    assert_eq!(Modes::parse(&Modes::NAMES.join(",")), Modes::parse("all"));
+    // `all` is every mode but single step, which is asked for by name.
+    let every = Modes {
+        step: true,
+        ..Modes::parse("all").unwrap()
+    };
+    assert_eq!(Modes::parse(&Modes::NAMES.join(",")), Ok(every));
     for name in Modes::NAMES {
         assert_ne!(Modes::parse(name), Ok(Modes::default()), "{name}");
     }

@@ -29,6 +29,8 @@ const IDLE: Operator = Operator {
     stop: false,
     estop: false,
     reset: false,
+    step_mode: false,
+    step: false,
 };
 
 fn press(at: u64, button: Operator) -> Vec<(u64, Operator)> {

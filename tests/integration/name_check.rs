@@ -127,6 +127,53 @@ fn every_entry_point_refuses_every_kind_of_name_collision() {
             1,
             "uses it",
         ),
+        // The words of the SETTINGS lists: `hold-safe | none` could not
+        // tell a signal so named from the word.
+        (
+            "output none",
+            "Y:none+",
+            "none",
+            1,
+            "word of the SETTINGS rows",
+        ),
+        (
+            "wait on all",
+            "I:all",
+            "none",
+            1,
+            "word of the SETTINGS rows",
+        ),
+        (
+            "jump on default",
+            "J:4 if I:Default",
+            "none",
+            1,
+            "word of the SETTINGS rows",
+        ),
+        // The SFC chart's own programs, instances, steps and actions
+        // (issue 39), refused whatever --formats says.
+        (
+            "output steptable_pre",
+            "Y:steptable_pre+",
+            "none",
+            1,
+            "uses it",
+        ),
+        (
+            "wait on post_instance",
+            "I:post_instance",
+            "none",
+            1,
+            "uses it",
+        ),
+        ("wait on step_3", "I:step_3", "none", 1, "uses it"),
+        (
+            "jump on step_2_entry",
+            "J:4 if I:step_2_entry",
+            "none",
+            1,
+            "uses it",
+        ),
         // What FST keeps of a name.
         (
             "jump on cycle_req_lamp",
@@ -178,6 +225,11 @@ fn every_entry_point_refuses_every_kind_of_name_collision() {
                 &["interlock", "part_present_b"],
             ],
             "SETTINGS!B2: error[E025]: interlock: part_present_b and part_present_a begin with the same 9 characters, which is all Festo FST keeps of a symbol (part_present_a is named in the start permissive row, SETTINGS!B1)",
+        ),
+        (
+            "interlock none beside a name",
+            &[&["interlock", "guard, none"]],
+            "SETTINGS!B1: error[",
         ),
         (
             "interlock cycle_req_lamp",

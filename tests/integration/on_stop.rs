@@ -16,6 +16,8 @@ const IDLE: Operator = Operator {
     stop: false,
     estop: false,
     reset: false,
+    step_mode: false,
+    step: false,
 };
 
 /// The bundled oven through the binary: its addresses are the paper's

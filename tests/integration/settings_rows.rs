@@ -517,8 +517,9 @@ fn what_the_sheet_says_and_is_not_used_is_said_at_its_cell() {
     ]);
     for message in [
         "SETTINGS!B1: warning[W006]: modes: --modes on the command line wins over this cell; it was not used",
-        "SETTINGS!D5: warning[W006]: valve of C1: --valve C1=… on the command line wins over this cell",
-        "SETTINGS!B5: warning[W006]: stroke of C1: --stroke C1=… on the command line wins over this cell",
+        "SETTINGS!D5: warning[W006]: valve of C1: --valve on the command line wins over this cell",
+        "SETTINGS!B5: warning[W006]: extend of C1: --stroke on the command line wins over this cell",
+        "SETTINGS!C5: warning[W006]: retract of C1: --stroke on the command line wins over this cell",
     ] {
         assert!(overridden.contains(message), "{message}\n{overridden}");
     }

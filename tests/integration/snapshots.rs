@@ -8,7 +8,7 @@ use steptable::settings::Settings;
 use crate::helpers::samples;
 
 /// Every text output, by the end of its name.
-const TEXT_OUTPUTS: [&str; 11] = [
+const TEXT_OUTPUTS: [&str; 13] = [
     ".st",
     ".fst.txt",
     ".io.csv",
@@ -20,6 +20,8 @@ const TEXT_OUTPUTS: [&str; 11] = [
     ".fst-alloc.csv",
     ".rockwell.csv",
     ".exp",
+    ".scl",
+    ".L5X",
 ];
 
 #[test]
@@ -124,7 +126,7 @@ fn paper_and_press_station_with_every_operating_mode() {
         };
         let file = name.replace('.', "_");
         for output in &conversion.files {
-            let Some(ext) = [".st", ".fst.txt", ".awl", ".io.csv"]
+            let Some(ext) = [".st", ".fst.txt", ".awl", ".io.csv", ".scl", ".L5X"]
                 .into_iter()
                 .find(|e| output.name.ends_with(e))
             else {
@@ -133,6 +135,31 @@ fn paper_and_press_station_with_every_operating_mode() {
             let text = String::from_utf8(output.bytes.clone()).expect("text output");
             insta::assert_snapshot!(format!("{file}-modes{ext}"), text);
         }
+    }
+}
+
+/// Single step (`--modes step`): the STEP_MODE and STEP_PB inputs, the
+/// `step_ok` permit in every table step's condition, and its rungs, in the
+/// program model and in ST, FST and AWL.
+#[test]
+fn paper_in_single_step() {
+    let path = crate::helpers::sample("paper_example.xlsx");
+    let mut settings = Settings::new();
+    settings.program.modes = steptable::program::Modes::parse("step").unwrap();
+    let conversion = convert_path(&path, &settings).expect("sample converts");
+    insta::assert_snapshot!(
+        "paper_example_xlsx-step.program",
+        program_text(&conversion.program)
+    );
+    for output in &conversion.files {
+        let Some(ext) = [".st", ".fst.txt", ".awl"]
+            .into_iter()
+            .find(|e| output.name.ends_with(e))
+        else {
+            continue;
+        };
+        let text = String::from_utf8(output.bytes.clone()).expect("text output");
+        insta::assert_snapshot!(format!("paper_example_xlsx-step{ext}"), text);
     }
 }
 

@@ -152,6 +152,31 @@ fn synth_refuses_the_safety_rows_it_cannot_build_and_names_the_rest() {
             assert!(files_below(&out).is_empty(), "{message}: nothing written");
         }
     }
+    // A home order: synth's own W006, not convert's advice to add reset to
+    // the modes (synth has no modes to add it to).
+    let path = dir.path().join("h.xlsx");
+    crate::helpers::write_xlsx_sheets(
+        &path,
+        &[("TABLE", table), ("SETTINGS", &[&["home order", "C2, C1"]])],
+    );
+    let output = steptable()
+        .args(["synth", "--method", "exact", "-o"])
+        .arg(dir.path().join("out3"))
+        .arg(&path)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "{stderr}");
+    assert_eq!(
+        stderr.matches("SETTINGS!B1: warning[W006]").count(),
+        1,
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("home order: synth does not use this setting"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("reset"), "{stderr}");
     // Pins on ADDRESSES are named too.
     let path = dir.path().join("p.xlsx");
     crate::helpers::write_xlsx_sheets(

@@ -330,7 +330,7 @@ fn every_output_records_the_command_line_and_no_folder_or_time() {
     for file in &files {
         let record = recorded(&folder, file);
         let name = file.display();
-        let wanted = if name.to_string().ends_with(".xml") {
+        let wanted = if name.to_string().ends_with(".xml") || name.to_string().ends_with(".L5X") {
             &in_xml
         } else {
             &line

@@ -76,7 +76,7 @@ const OPTIONS: [&[&str]; 3] = [
 ];
 
 /// Every case of the matrix, converted into `dir`, with `extra` arguments.
-fn matrix(dir: &Path, extra: &[&str]) -> Vec<Case> {
+pub(crate) fn matrix(dir: &Path, extra: &[&str]) -> Vec<Case> {
     let mut cases = Vec::new();
     for (s, sample) in samples().iter().enumerate() {
         // A sample that pins its addresses converts for its target only.
@@ -115,7 +115,7 @@ fn matrix(dir: &Path, extra: &[&str]) -> Vec<Case> {
 }
 
 /// Runs `check` on every case on two threads; every failure is reported.
-fn run_all(cases: &[Case], check: impl Fn(&Case) -> Result<(), String> + Sync) {
+pub(crate) fn run_all(cases: &[Case], check: impl Fn(&Case) -> Result<(), String> + Sync) {
     let failures: Vec<String> =
         engines::on_two_threads(cases, |c| check(c).err().into_iter().collect());
     assert!(
@@ -171,7 +171,7 @@ fn st_inside_plcopen_codesys_and_exp_runs_in_matiec_as_simulated() {
 }
 
 /// `check-upload` replays OpenPLC Runtime v3's upload compile.
-fn openplc_accepts(shared: &Path, st: &Path) -> Result<(), String> {
+pub(crate) fn openplc_accepts(shared: &Path, st: &Path) -> Result<(), String> {
     let output = Command::new(shared.join("tools/openplc/check-upload"))
         .arg(st)
         .output()
@@ -238,7 +238,7 @@ fn fst_runs_in_the_interpreter_as_simulated() {
 
 /// The press station with every safety check, converted: the case the
 /// self-tests below break one line of.
-fn press_case(dir: &Path) -> Case {
+pub(crate) fn press_case(dir: &Path) -> Case {
     let sample = crate::helpers::sample("press_station.xlsx");
     engines::prepare(&sample, &["--safety", "all"], dir)
 }
@@ -296,7 +296,7 @@ fn a_wrong_awl_timer_is_caught_by_awlsim() {
 }
 
 /// `text` with the first `from` after `marker` replaced by `to`.
-fn swap_first_after(text: &str, marker: &str, from: &str, to: &str) -> String {
+pub(crate) fn swap_first_after(text: &str, marker: &str, from: &str, to: &str) -> String {
     let at = text
         .find(marker)
         .unwrap_or_else(|| panic!("{marker} not in the file"));

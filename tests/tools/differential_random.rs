@@ -2,7 +2,8 @@
 //! branches and middle stops, dwells of any length up to 9.99 s, waits on
 //! machine inputs, machine outputs, valve types, operating modes, safety
 //! checks, every target and both mnemonic sets. Each table is written by the
-//! binary and its `.st` (matiec), `.awl` (awlsim) and `.fst.txt` (the FST
+//! binary and its `.st` (matiec), `.awl` (awlsim), `.fst.txt` (the FST
+//! interpreter), `.scl` (the SCL interpreter) and `.L5X` (the RLL
 //! interpreter) must give the simulation's outputs at every scan; one check
 //! per engine, so that a missing engine is an ignored check, not a pass.
 //!
@@ -25,6 +26,16 @@ pub const CHECKS: &[Check] = &[
         || random_tables_run_as_simulated(Engine::Fst),
     ),
     Check::new(
+        "differential_random::random_tables_run_in_the_scl_interpreter_as_simulated",
+        &[],
+        || random_tables_run_as_simulated(Engine::Scl),
+    ),
+    Check::new(
+        "differential_random::random_tables_run_in_the_rll_interpreter_as_simulated",
+        &[],
+        || random_tables_run_as_simulated(Engine::Rll),
+    ),
+    Check::new(
         "differential_random::random_tables_run_in_matiec_as_simulated",
         &[Tool::Shared],
         || random_tables_run_as_simulated(Engine::Matiec),
@@ -33,6 +44,11 @@ pub const CHECKS: &[Check] = &[
         "differential_random::random_tables_run_in_awlsim_as_simulated",
         &[Tool::Awlsim],
         || random_tables_run_as_simulated(Engine::Awlsim),
+    ),
+    Check::new(
+        "differential_random::random_charts_run_in_matiec_as_simulated",
+        &[Tool::Shared, Tool::BeremizPython],
+        random_charts_run_in_matiec_as_simulated,
     ),
 ];
 
@@ -157,10 +173,44 @@ fn prepare(dir: &Path, seed: u64) -> Case {
     let rows: Vec<&[&str]> = rows.iter().map(Vec::as_slice).collect();
     write_xlsx(&input, "Sheet1", &rows);
     let mut args: Vec<&str> = drawn.args.iter().map(String::as_str).collect();
-    args.extend(["--formats", "st,awl,fst"]);
+    args.extend(["--formats", "st,awl,fst,sfc,scl,tia,l5x,rockwell"]);
     let mut case = engines::prepare(&input, &args, &dir.join(format!("out{seed}")));
     case.label = format!("seed {seed}: {:?} {}", drawn.rows, drawn.args.join(" "));
     case
+}
+
+/// The seeds of a run: `STEPTABLE_DIFF_SEED` on, `STEPTABLE_DIFF_CASES` of them.
+fn seeds() -> Vec<u64> {
+    let first = env_number("STEPTABLE_DIFF_SEED", 0);
+    let count = env_number("STEPTABLE_DIFF_CASES", 100);
+    (first..first + count).collect()
+}
+
+/// The SFC chart of every random table, through Beremiz's generator and
+/// matiec (issue 39).
+fn random_charts_run_in_matiec_as_simulated() {
+    let shared = shared();
+    let python = tool(Tool::BeremizPython);
+    let dir = tempfile::tempdir().unwrap();
+    let seeds = seeds();
+    let failures: Vec<String> = engines::on_two_threads(&seeds, |&seed| {
+        let case = prepare(dir.path(), seed);
+        crate::sfc::run_chart(&python, &shared, &case, &case.file(".sfc.xml"))
+            .err()
+            .into_iter()
+            .collect()
+    });
+    assert!(
+        failures.is_empty(),
+        "{} differences over {} random charts:\n{}",
+        failures.len(),
+        seeds.len(),
+        failures.join("\n")
+    );
+    eprintln!(
+        "random tables: {} SFC charts run in matiec, traces equal",
+        seeds.len()
+    );
 }
 
 fn random_tables_run_as_simulated(engine: Engine) {
@@ -177,6 +227,8 @@ fn random_tables_run_as_simulated(engine: Engine) {
                 let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
                 case.check("FST", fst::run(&text, &case.trace, &case.festo))
             }
+            Engine::Scl => case.check_stepped("SCL", crate::differential_native::run_scl(&case)),
+            Engine::Rll => case.check_stepped("RLL", crate::differential_native::run_l5x(&case)),
             Engine::Matiec => case.check(
                 "matiec",
                 matiec::run(

@@ -26,6 +26,8 @@ const IDLE: Operator = Operator {
     stop: false,
     estop: false,
     reset: false,
+    step_mode: false,
+    step: false,
 };
 
 /// START at 0.5 s; the clamp closes (1 s), the punch goes down (1 s) and

@@ -13,6 +13,7 @@ mod helpers;
 
 mod browser;
 mod differential;
+mod differential_native;
 mod differential_random;
 mod differential_timing;
 mod engines;
@@ -22,6 +23,8 @@ mod homing;
 mod libreoffice;
 mod names;
 mod pinned;
+mod sfc;
+mod single_step;
 mod step_numbers;
 mod sync;
 mod synth_engines;
@@ -44,6 +47,11 @@ pub enum Tool {
     Strace,
     /// Headless Chromium, Debian's package.
     Chromium,
+    /// A Python with lxml and numpy, for Beremiz's generator.
+    BeremizPython,
+    /// `../shared/tools/openplc4/check-upload-v4`, OpenPLC v4's build
+    /// replayed (STruC++ and g++, run with node).
+    OpenPlc4,
 }
 
 impl Tool {
@@ -61,6 +69,21 @@ impl Tool {
             Tool::Soffice => find_program("soffice"),
             Tool::Strace => find_program("strace"),
             Tool::Chromium => find_program("chromium"),
+            // The tools' venv may lack numpy: PATH's Python is tried too.
+            Tool::BeremizPython => ["python3", "python"]
+                .into_iter()
+                .flat_map(|n| [find_program(n), on_path(n)])
+                .flatten()
+                .find(|p| {
+                    std::process::Command::new(p)
+                        .args(["-c", "import lxml, numpy"])
+                        .output()
+                        .is_ok_and(|o| o.status.success())
+                }),
+            Tool::OpenPlc4 => {
+                let script = Tool::Shared.find()?.join("tools/openplc4/check-upload-v4");
+                (script.is_file() && find_program("node").is_some()).then_some(script)
+            }
         }
     }
 
@@ -77,6 +100,12 @@ impl Tool {
             Tool::Soffice => "soffice was not found (.ci/run installs libreoffice-calc)",
             Tool::Strace => "strace was not found (.ci/run installs it)",
             Tool::Chromium => "chromium was not found (.ci/run installs Debian's chromium)",
+            Tool::BeremizPython => {
+                "no python3 with lxml and numpy for Beremiz's generator (set STEPTABLE_TOOLS or PATH; pip install lxml numpy)"
+            }
+            Tool::OpenPlc4 => {
+                "../shared/tools/openplc4/check-upload-v4 or node (>= 18) was not found"
+            }
         }
     }
 }
@@ -89,6 +118,11 @@ fn find_program(name: &str) -> Option<PathBuf> {
             return Some(path);
         }
     }
+    on_path(name)
+}
+
+/// A program found on PATH alone.
+fn on_path(name: &str) -> Option<PathBuf> {
     let found = std::process::Command::new("sh")
         .arg("-c")
         .arg(format!("command -v {name}"))
@@ -136,12 +170,15 @@ fn main() {
     let checks = [
         browser::CHECKS,
         differential::CHECKS,
+        differential_native::CHECKS,
         differential_random::CHECKS,
         differential_timing::CHECKS,
         exports::CHECKS,
         libreoffice::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
+        sfc::CHECKS,
+        single_step::CHECKS,
         step_numbers::CHECKS,
         halt::CHECKS,
         homing::CHECKS,

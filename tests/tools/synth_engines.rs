@@ -4,12 +4,13 @@
 //! each starting at the complement of its first move) with the mode proof's
 //! script: nothing before START, STOP at the end of a cycle, the emergency
 //! stop, RESET and one more cycle. Every move must come at the same scan as
-//! in the model of the program (`synth::modes`), which the proof judges.
+//! in the model of the program (`synth::controller`), which the proof
+//! judges; both run on the bench of the shared simulation.
 
 use std::path::Path;
 
-use steptable::synth::modes::{self, Trace};
 use steptable::synth::sequence::{Operation, parse};
+use steptable::synth::verify::{self, Trace};
 use steptable::synth::{self, Synthesis};
 
 use crate::engines::matiec;
@@ -60,10 +61,10 @@ fn run(shared: &Path, file: &Path, s: &Synthesis) -> Result<Trace, String> {
     }
     let program = matiec::build(shared, file, 10, &inputs, &outputs)?;
     let mut live = program.live()?;
-    let script = modes::script_for(s);
-    modes::run(
+    let script = verify::script_for(s);
+    verify::run(
         s,
-        modes::STROKE_MS,
+        verify::STROKE_MS,
         script.scans,
         &|scan| script.buttons(scan),
         &mut |ends, buttons| {
@@ -125,7 +126,7 @@ fn synthesised_programs_run_the_sequence_in_matiec() {
             ..synth::Options::default()
         };
         let s = synth::synthesize_with(&parse(text).unwrap(), options).unwrap();
-        let model = modes::check(&s).unwrap_or_else(|e| panic!("{text}: the model: {e}"));
+        let model = verify::check(&s).unwrap_or_else(|e| panic!("{text}: the model: {e}"));
         for file in [".equations.st", ".equations.il"] {
             let path = crate::helpers::synthesised(&out, text, file);
             let trace = run(&shared, &path, &s).unwrap_or_else(|e| panic!("{text}: {file}: {e}"));

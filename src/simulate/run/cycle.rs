@@ -522,8 +522,9 @@ pub(in crate::simulate) fn run_logging_inputs(
     code: &PlcProgram,
     settings: &SimSettings,
     inputs: Vec<crate::program::Signal>,
-) -> (SimReport, io::InputLog) {
-    let mut drive = Drive::new(table, program, code, settings, None, Stepping::Events);
+    record: Option<io::IoSignals>,
+) -> (SimReport, io::InputLog, Option<io::IoTrace>) {
+    let mut drive = Drive::new(table, program, code, settings, record, Stepping::Events);
     drive.run.input_log = Some(io::InputLog::new(drive.run.world.settings.scan_ms, inputs));
     drive.run_to_end();
     let mut log = drive.run.input_log.take().unwrap_or_default();
@@ -532,7 +533,8 @@ pub(in crate::simulate) fn run_logging_inputs(
     log.last_ms = log
         .last_ms
         .max(drive.run.time_ms.saturating_sub(u64::from(log.scan_ms)));
-    (drive.finish().0, log)
+    let (report, trace) = drive.finish();
+    (report, log, trace)
 }
 
 /// Simulates from power-up to the end.

@@ -72,51 +72,17 @@ impl<'a> Run<'a> {
         code: &'a PlcProgram,
         settings: &SimSettings,
     ) -> Run<'a> {
-        let scan_ms = settings.scan_ms.max(1);
-        let pistons: Vec<Piston> = table
-            .actuators
+        let mut world = World::new(settings, pistons(table, settings));
+        world.machine = table
+            .inputs
             .iter()
-            .map(|a| {
-                Piston::with_valve(
-                    a.number,
-                    a.max_position,
-                    settings.stroke(a.number),
-                    scan_ms,
-                    settings.valves.of(a.number, a.max_position),
-                    settings
-                        .loads
-                        .get(&a.number)
-                        .copied()
-                        .unwrap_or(DEFAULT_DRIFT),
-                )
-            })
+            .filter_map(|n| machine::rest_value(table, *n).map(|v| (*n, v)))
+            // A healthy machine holds its start permissives on.
+            .chain(program.permissive.iter().map(|n| (*n, true)))
             .collect();
-        let index_of: BTreeMap<u32, usize> = pistons
-            .iter()
-            .enumerate()
-            .map(|(i, p)| (p.number, i))
-            .collect();
-        let settings_scan = SimSettings {
-            scan_ms,
-            ..settings.clone()
-        };
         let mut run = Run {
             program,
-            world: World {
-                settings: std::sync::Arc::new(settings_scan),
-                pistons,
-                index_of: std::sync::Arc::new(index_of),
-                start_pressed: false,
-                operator: Operator::default(),
-                machine: table
-                    .inputs
-                    .iter()
-                    .filter_map(|n| machine::rest_value(table, *n).map(|v| (*n, v)))
-                    // A healthy machine holds its start permissives on.
-                    .chain(program.permissive.iter().map(|n| (*n, true)))
-                    .collect(),
-                faults_active: settings.fault_onset_ms == 0,
-            },
+            world,
             plc: PlcState::new(code),
             time_ms: 0,
             problems: Vec::new(),

@@ -10,10 +10,9 @@ pub use checkpoint::{Checkpoints, Course, Resumed, Trail};
 pub(super) use checkpoint::{checkpoints, resume};
 pub(super) use cycle::{run, run_logging_inputs};
 
-use std::collections::BTreeMap;
-
 use super::plant::Piston;
 use super::plc::{PlcState, scan};
+pub(in crate::simulate) use super::world::{World, pistons, read_input};
 use super::*;
 use crate::cell::{Name, Sign};
 use crate::program::{Literal, Signal, StepProgram};
@@ -102,24 +101,6 @@ pub(in crate::simulate) struct Run<'a> {
     /// Every piston's [`Piston::place`] now, and the combinations reached.
     pub(in crate::simulate) places: Vec<u32>,
     pub(in crate::simulate) visited: Places,
-}
-
-/// Everything the PLC's inputs are read from.
-#[derive(Clone)]
-pub(in crate::simulate) struct World {
-    /// Shared: a copy of the run (the fault analysis's checkpoints) keeps
-    /// them until it is resumed under others.
-    pub(in crate::simulate) settings: std::sync::Arc<SimSettings>,
-    pub(in crate::simulate) pistons: Vec<Piston>,
-    /// Each actuator's piston, by number (shared by the run's copies).
-    pub(in crate::simulate) index_of: std::sync::Arc<BTreeMap<u32, usize>>,
-    pub(in crate::simulate) start_pressed: bool,
-    /// Buttons other than START (the standard proof leaves them alone).
-    pub(in crate::simulate) operator: Operator,
-    /// Machine inputs as the machine gives them.
-    pub(in crate::simulate) machine: BTreeMap<Name, bool>,
-    /// The faults have appeared (the run has reached their onset).
-    pub(in crate::simulate) faults_active: bool,
 }
 
 impl Run<'_> {
@@ -299,14 +280,12 @@ impl Run<'_> {
             let on = |at: Option<usize>| at.is_some_and(|i| self.plc.bit_at(i));
             let plus = on(plus_at) || on(single_at);
             let minus = on(minus_at);
-            let piston = &mut self.world.pistons[i];
+            let piston = &self.world.pistons[i];
             let was_at_rest = piston.at_rest();
             let was_at = piston.s;
             let motor = piston.valve == crate::valve::ValveType::Motor;
-            let was = piston.spool;
-            let conflict = piston.drive(plus, minus);
-            piston.settle(was, self.world.settings.window);
-            if conflict {
+            let actuated = self.world.actuate(i, plus, minus);
+            if actuated.conflict {
                 let step = self.current_step();
                 let who = if motor {
                     format!("the drive of C{number} gets forward and reverse")
@@ -319,7 +298,7 @@ impl Run<'_> {
                     format!("{who} y{number}+ and y{number}- in step {step}"),
                 );
             }
-            if let Some(direction) = self.world.pistons[i].advance() {
+            if let Some(direction) = actuated.moved {
                 self.check_motion(i, direction);
             }
             // The inputs the next scan reads stay those this one read (a
@@ -371,10 +350,12 @@ impl Run<'_> {
         self.fired_any = true;
         let step = &self.program.steps[fired];
         self.machine_on_fire(fired, waited_at, jumped);
+        let operator = self.world.operator;
+        // In single step, START asks for the cycle and a STEP_PB press
+        // later fires its step 1.
+        let stepped = operator.step_mode && operator.step;
         if fired == 0
-            && !(self.world.start_pressed
-                || self.world.operator.start
-                || self.world.operator.continuous)
+            && !(self.world.start_pressed || operator.start || operator.continuous || stepped)
         {
             self.problem(
                 ProblemKind::UnexpectedStart,
@@ -575,30 +556,6 @@ impl Run<'_> {
             .iter()
             .map(Piston::position_units)
             .collect()
-    }
-}
-
-/// The value an input reads: a fault overrides the plant. STOP and
-/// EMERGENCY STOP are normally closed: they read 1 until pressed.
-pub(in crate::simulate) fn read_input(signal: Signal, world: &World) -> bool {
-    if world.faults_active
-        && let Some(f) = world.settings.faults.iter().find(|f| f.signal == signal)
-    {
-        return f.stuck_at;
-    }
-    let operator = world.operator;
-    match signal {
-        Signal::Start => world.start_pressed || operator.start,
-        Signal::Sensor { actuator, position } => world
-            .index_of
-            .get(&actuator)
-            .is_some_and(|i| world.pistons[*i].sensor(position, world.settings.window)),
-        Signal::MachineInput(name) => world.machine.get(&name).copied().unwrap_or(false),
-        Signal::Continuous => operator.continuous,
-        Signal::Stop => !operator.stop,
-        Signal::EStop => !operator.estop,
-        Signal::Reset => operator.reset,
-        _ => false,
     }
 }
 

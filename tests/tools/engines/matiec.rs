@@ -143,6 +143,17 @@ fn build_with(
     let work = tempfile::tempdir().map_err(|e| e.to_string())?;
     let dir = work.path();
     compile(shared, st, dir)?;
+    // matiec lists a resource's unlocated globals in LOCATED_VARIABLES.h
+    // too, run together on one line; Beremiz reads only the
+    // `__LOCATED_VAR(` lines of that file, and so does the harness.
+    let located = dir.join("LOCATED_VARIABLES.h");
+    let text = std::fs::read_to_string(&located).map_err(|e| e.to_string())?;
+    let kept: String = text
+        .lines()
+        .filter(|l| l.starts_with("__LOCATED_VAR("))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(&located, kept).map_err(|e| e.to_string())?;
     let instance = if probe {
         Some(instance_name(dir)?)
     } else {

@@ -8,6 +8,8 @@ pub mod awlsim;
 pub mod fst;
 pub mod matiec;
 pub mod plcxml;
+pub mod rll;
+pub mod scl;
 
 use std::path::{Path, PathBuf};
 
@@ -27,6 +29,10 @@ pub enum Engine {
     Fst,
     Matiec,
     Awlsim,
+    /// The SCL interpreter of these tests (always there).
+    Scl,
+    /// The RLL interpreter of these tests, after the `l5x` crate's parse.
+    Rll,
 }
 
 /// One table converted with one set of options: the written files and the

@@ -19,7 +19,7 @@ struct Variable {
     block: usize,
 }
 
-fn attribute(e: &BytesStart, name: &str) -> Option<String> {
+pub fn attribute(e: &BytesStart, name: &str) -> Option<String> {
     e.attributes()
         .flatten()
         .find(|a| a.key.as_ref() == name)
@@ -28,6 +28,23 @@ fn attribute(e: &BytesStart, name: &str) -> Option<String> {
                 .ok()
                 .map(|v| v.to_string())
         })
+}
+
+/// The character an entity reference (`&amp;`, `&#233;`) stands for:
+/// quick-xml hands them over apart from the text around them.
+pub fn entity(r: &quick_xml::events::BytesRef) -> Result<char, String> {
+    let name = r.xml10_content();
+    Ok(match name.as_ref() {
+        "lt" => '<',
+        "gt" => '>',
+        "amp" => '&',
+        "quot" => '"',
+        "apos" => '\'',
+        _ => r
+            .resolve_char_ref()
+            .map_err(|e| e.to_string())?
+            .ok_or_else(|| format!("unknown entity &{name};"))?,
+    })
 }
 
 /// The `.st` a tool would compile from this PLCopen XML.
@@ -104,21 +121,7 @@ pub fn structured_text(xml: &str) -> Result<String, String> {
             Event::CData(t) if in_body(&stack) => {
                 body.push_str(&t.xml10_content());
             }
-            Event::GeneralRef(r) if in_body(&stack) => {
-                let name = r.xml10_content();
-                let resolved = match name.as_ref() {
-                    "lt" => '<',
-                    "gt" => '>',
-                    "amp" => '&',
-                    "quot" => '"',
-                    "apos" => '\'',
-                    _ => r
-                        .resolve_char_ref()
-                        .map_err(|e| e.to_string())?
-                        .ok_or_else(|| format!("unknown entity &{name};"))?,
-                };
-                body.push(resolved);
-            }
+            Event::GeneralRef(r) if in_body(&stack) => body.push(entity(r)?),
             Event::Eof => break,
             _ => {}
         }

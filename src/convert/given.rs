@@ -1,0 +1,267 @@
+//! What the settings give, checked against the table before anything is
+//! built: settings for actuators or inputs the table lacks, loads that do
+//! nothing, cells the command line overrides, options naming actuators by
+//! name, and the one check of every name over the table and its settings.
+
+use crate::diag::{Code, Diagnostics, Location};
+use crate::read;
+use crate::settings::Settings;
+use crate::settings::halt::Row;
+use crate::table::StepTable;
+
+/// A valve type, stroke, load or input delay for an actuator or input the
+/// table does not have does nothing: a typo (C8 for C3) would leave the
+/// real actuator on its default valve without a word. Each is E030 at the
+/// SETTINGS cell that names it, or naming the command-line option; a
+/// SETTINGS row giving only the default stroke (the template's C1 to C8)
+/// loses nothing and passes.
+pub(super) fn settings_without_their_actuator(
+    table: &StepTable,
+    settings: &Settings,
+    sheet: Option<(&read::Grid, &crate::settings::Given)>,
+    file: &str,
+    diags: &mut Diagnostics,
+) {
+    let has: Vec<String> = table
+        .actuators
+        .iter()
+        .map(|a| format!("C{}", a.number))
+        .collect();
+    let has = if has.is_empty() {
+        "it has none".to_string()
+    } else {
+        format!("it has {}", has.join(", "))
+    };
+    let option = Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: None,
+    };
+    // The template's actuator table lists C1 to C8 at the default 1s / 1s:
+    // a row saying only the default loses nothing.
+    let keys = |given: &crate::settings::Given, all: bool| -> Vec<(u32, &'static str)> {
+        let mut keys: Vec<(u32, &'static str)> = Vec::new();
+        keys.extend(given.valves.keys().map(|n| (*n, "valve")));
+        keys.extend(
+            given
+                .strokes
+                .iter()
+                .filter(|(_, s)| all || **s != crate::stroke::Stroke::default())
+                .map(|(n, _)| (*n, "stroke")),
+        );
+        keys.extend(given.loads.keys().map(|n| (*n, "load")));
+        keys.retain(|(n, _)| table.actuator(*n).is_none());
+        keys
+    };
+    for (n, what) in keys(&settings.given, true) {
+        diags.error(
+            Code::E030BadSetting,
+            option.clone(),
+            format!("--{what} C{n}=…: the table has no actuator C{n} ({has}); the setting would do nothing"),
+        );
+    }
+    if let Some((grid, given)) = sheet {
+        let mut named: Vec<u32> = keys(given, false).into_iter().map(|(n, _)| n).collect();
+        named.sort_unstable();
+        named.dedup();
+        for n in named {
+            let cell = grid.cells.iter().find(|c| match &c.value {
+                read::CellValue::Text(t) => {
+                    let head = t.split(['(', ' ']).next().unwrap_or("");
+                    crate::cell::actuator_name(head) == Some(n)
+                }
+                _ => false,
+            });
+            let at = match cell {
+                Some(cell) => grid.location(cell.pos),
+                None => grid.location(crate::diag::CellPos::new(0, 0)),
+            };
+            diags.error(
+                Code::E030BadSetting,
+                at,
+                format!("the actuator table names C{n}, which the table does not have ({has}); its settings would do nothing"),
+            );
+        }
+    }
+}
+
+/// A load only moves a piston whose valve lets it (an exhausted or a
+/// pressurised centre); given for another valve it would be dropped
+/// without a word: W006 at the file, naming the actuator and its valve.
+pub(super) fn loads_without_effect(
+    table: &StepTable,
+    settings: &Settings,
+    sheet: Option<&crate::settings::Given>,
+    grid: &read::Grid,
+    diags: &mut Diagnostics,
+) {
+    use crate::valve::ValveType;
+    let valves = &settings.simulation.valves;
+    for (&n, load) in &settings.simulation.loads {
+        let Some(actuator) = table.actuator(n) else {
+            continue; // E030 already
+        };
+        let valve = valves.of(n, actuator.max_position);
+        if !matches!(valve, ValveType::Exhaust53 | ValveType::Pressure53) {
+            let cell = sheet.and_then(|s| s.actuator_cells.get(&(n, "load")));
+            let (source, at) = match cell {
+                Some(at) if !settings.given.loads.contains_key(&n) => {
+                    ("the actuator table's load", at.clone())
+                }
+                _ => ("--load", grid.sheet_location()),
+            };
+            diags.warning(
+                Code::W006NoEffect,
+                at,
+                format!(
+                    "{source} C{n}={load}: C{n}'s valve is {valve}, which holds the piston (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing"
+                ),
+            );
+        }
+    }
+}
+
+/// The command line wins over the SETTINGS sheet, but not silently: each
+/// cell it overrides is W006 at that cell, naming the option (a batch may
+/// give one option to workbooks whose sheets differ).
+pub(super) fn overridden_by_the_command_line(
+    line: &crate::settings::Given,
+    sheet: &crate::settings::Given,
+    naming: &crate::symbols::Naming,
+    diags: &mut Diagnostics,
+) {
+    for (label, at) in &sheet.cells {
+        if line.gives(label) {
+            diags.warning(
+                Code::W006NoEffect,
+                at.clone(),
+                format!(
+                    "{label}: --{} on the command line wins over this cell; it was not used",
+                    label.replace(' ', "-")
+                ),
+            );
+        }
+    }
+    for ((actuator, what), at) in &sheet.actuator_cells {
+        let n = *actuator;
+        // An option may name the actuator (`--valve clamp=52bi`).
+        let is_n = |name: &String| naming.actuator_named(name) == Some(n);
+        let (option, given) = match *what {
+            "valve" => (
+                "valve",
+                line.valves.contains_key(&n) || line.named_valves.keys().any(is_n),
+            ),
+            "load" => ("load", line.loads.contains_key(&n)),
+            _ => (
+                "stroke",
+                line.strokes.contains_key(&n) || line.named_strokes.keys().any(is_n),
+            ),
+        };
+        if given {
+            diags.warning(
+                Code::W006NoEffect,
+                at.clone(),
+                format!("{what} of C{n}: --{option} on the command line wins over this cell; it was not used"),
+            );
+        }
+    }
+}
+
+/// The valve types and stroke times the command line gives by an
+/// actuator's name (`--valve clamp=52mono`), put in force for the actuator
+/// the SETTINGS actuator table names so; a name no actuator of the table
+/// has, or an actuator given by name and by number, is E030.
+pub(super) fn by_name(
+    table: &StepTable,
+    settings: &mut Settings,
+    file: &str,
+    diags: &mut Diagnostics,
+) {
+    let at = Location {
+        file: file.to_string(),
+        sheet: None,
+        cell: None,
+    };
+    let naming = settings.naming.clone();
+    let named: Vec<String> = naming
+        .actuators
+        .iter()
+        .map(|(n, a)| format!("C{n} ({})", a.text))
+        .collect();
+    let mut resolve = |option: &str, name: &str, numbered: bool| -> Option<u32> {
+        let why = match naming.actuator_named(name) {
+            Some(n) if table.actuator(n).is_none() => {
+                format!(
+                    "{name} is C{n}, which the table does not have; the setting would do nothing"
+                )
+            }
+            Some(n) if numbered => {
+                format!("{name} is C{n}, which is given by number too; give each actuator once")
+            }
+            Some(n) => return Some(n),
+            None if named.is_empty() => format!(
+                "no actuator is named {name}: the SETTINGS actuator table names none (C1 (clamp))"
+            ),
+            None => format!(
+                "no actuator is named {name} (the actuator table names {})",
+                named.join(", ")
+            ),
+        };
+        diags.error(
+            Code::E030BadSetting,
+            at.clone(),
+            format!("--{option} {name}=…: {why}"),
+        );
+        None
+    };
+    let given = settings.given.clone();
+    for (name, valve) in &given.named_valves {
+        let n = naming.actuator_named(name);
+        let numbered = n.is_some_and(|n| given.valves.contains_key(&n));
+        if let Some(n) = resolve("valve", name, numbered) {
+            settings.simulation.valves.per_actuator.insert(n, *valve);
+        }
+    }
+    for (name, stroke) in &given.named_strokes {
+        let n = naming.actuator_named(name);
+        let numbered = n.is_some_and(|n| given.strokes.contains_key(&n));
+        if let Some(n) = resolve("stroke", name, numbered) {
+            settings.simulation.strokes.per_actuator.insert(n, *stroke);
+        }
+    }
+}
+
+/// The one check of every name against every other, over the table and
+/// its settings (see [`crate::symbols::check`]): table cells first, then
+/// the SETTINGS rows and the actuator names in sheet order, so that an
+/// error falls on the later of two names.
+pub(super) fn names_of_the_whole_table(
+    table: &StepTable,
+    grid: &read::Grid,
+    settings: &Settings,
+    diags: &mut Diagnostics,
+) {
+    use crate::symbols::check;
+    let mut entries = check::table_entries(table, grid);
+    let mut later = Vec::new();
+    if let Some(row) = settings.named.get(&Row::StartPermissive) {
+        later.extend(check::row_entries(
+            Row::StartPermissive.label(),
+            &settings.program.permissive,
+            &row.at,
+        ));
+    }
+    if let Some(row) = settings.named.get(&Row::Interlock) {
+        let inputs: Vec<crate::cell::Name> = settings
+            .program
+            .interlocks
+            .iter()
+            .map(|i| i.input)
+            .collect();
+        later.extend(check::row_entries(Row::Interlock.label(), &inputs, &row.at));
+    }
+    later.extend(check::actuator_entries(table, &settings.naming, diags));
+    later.sort_by_key(|e| check::sheet_order(&e.at));
+    entries.extend(later);
+    check::check_entries(&entries, diags);
+}

@@ -1,0 +1,345 @@
+//! Single-step mode (`--modes step`) in simulation: with the STEP_MODE
+//! switch on, the paper's example fires at most one step per STEP_PB press,
+//! only a step whose conditions hold at the press; off, it runs as before.
+//! The hostile inputs of the mode, through the binary, are at the end.
+
+use steptable::program::StepProgram;
+use steptable::simulate::scenario::{ScenarioReport, scenario};
+use steptable::simulate::{Operator, SimSettings};
+use steptable::table::StepTable;
+
+use crate::helpers::{Build, steptable, write_xlsx_sheets};
+
+/// The switch on, no button pressed.
+const STEPPING: Operator = Operator {
+    start: false,
+    continuous: false,
+    stop: false,
+    estop: false,
+    reset: false,
+    step_mode: true,
+    step: false,
+};
+
+fn paper_with(modes: &str) -> (StepTable, StepProgram) {
+    let build = Build::paper().modes(modes);
+    let program = build.program();
+    (build.table, program)
+}
+
+/// STEP_PB held from `at` for `hold_ms`, over `base`.
+fn press(at: u64, hold_ms: u64, base: Operator) -> [(u64, Operator); 2] {
+    [(at, Operator { step: true, ..base }), (at + hold_ms, base)]
+}
+
+fn run(table: &StepTable, program: &StepProgram, script: &[(u64, Operator)]) -> ScenarioReport {
+    let mut script = script.to_vec();
+    script.sort_by_key(|(t, _)| *t);
+    scenario(table, program, &SimSettings::default(), &script, 22_000)
+}
+
+/// START, then nine presses: one while C1 is still moving (nothing may
+/// fire, and the press is not remembered), one held for three seconds (one
+/// step only), then one every two seconds.
+#[test]
+fn each_step_press_fires_exactly_one_step_and_only_when_its_conditions_hold() {
+    let (table, program) = paper_with("step");
+    let mut script = vec![(0, STEPPING)];
+    script.extend([
+        (
+            500,
+            Operator {
+                start: true,
+                ..STEPPING
+            },
+        ),
+        (600, STEPPING),
+    ]);
+    let presses: [(u64, u64); 9] = [
+        (1_000, 100),
+        (1_300, 100),
+        (3_000, 3_000),
+        (7_000, 100),
+        (9_000, 100),
+        (11_000, 100),
+        (13_000, 100),
+        (15_000, 100),
+        (17_000, 100),
+    ];
+    for (at, hold) in presses {
+        script.extend(press(at, hold, STEPPING));
+    }
+    let report = run(&table, &program, &script);
+    assert!(report.problems.is_empty(), "{:?}", report.problems);
+    // START alone fires nothing: step 1 waits for the first press.
+    let fired_in = |from: u64, to: u64| -> Vec<usize> {
+        report
+            .fired
+            .iter()
+            .filter(|(t, _)| (from..to).contains(t))
+            .map(|(_, step)| *step)
+            .collect()
+    };
+    assert_eq!(
+        fired_in(0, 1_000),
+        Vec::<usize>::new(),
+        "{:?}",
+        report.fired
+    );
+    assert_eq!(fired_in(1_000, 1_100), [1], "{:?}", report.fired);
+    // C1 reaches x11 about 1 s after step 1: the press at 1.3 s finds step
+    // 2's condition unmet and fires nothing, then or later.
+    assert_eq!(
+        fired_in(1_100, 3_000),
+        Vec::<usize>::new(),
+        "{:?}",
+        report.fired
+    );
+    // Held for 3 s: step 2 fires, step 3's condition (x23) comes true while
+    // the button is still held, and step 3 waits for the next press.
+    assert_eq!(fired_in(3_000, 7_000), [2], "{:?}", report.fired);
+    for (number, at) in (3..=8).zip([7_000, 9_000, 11_000, 13_000, 15_000, 17_000]) {
+        assert_eq!(fired_in(at, at + 100), [number], "{:?}", report.fired);
+        let later = fired_in(at + 100, at + 2_000);
+        // Only the closing transition may follow step 8 without a press.
+        assert!(later.iter().all(|s| *s == 9), "{:?}", report.fired);
+    }
+    // The closing transition moves nothing: it needs no press.
+    let last = report.fired.last().unwrap();
+    assert_eq!(last.1, 9, "{:?}", report.fired);
+    let end = report.samples.last().unwrap();
+    assert_eq!(end.step, 0);
+    assert!(end.positions.iter().all(|p| p.abs() < 0.05), "{end:?}");
+}
+
+/// The switch off mid-cycle: the rest of the cycle runs by itself, step
+/// for step as the automatic run of the same program does.
+#[test]
+fn switching_single_step_off_runs_the_rest_of_the_cycle() {
+    let (table, program) = paper_with("step");
+    let auto = Operator {
+        step_mode: false,
+        ..STEPPING
+    };
+    let mut script = vec![(0, STEPPING)];
+    script.extend([
+        (
+            500,
+            Operator {
+                start: true,
+                ..STEPPING
+            },
+        ),
+        (600, STEPPING),
+    ]);
+    script.extend(press(1_000, 100, STEPPING));
+    script.push((3_000, auto));
+    let report = run(&table, &program, &script);
+    assert!(report.problems.is_empty(), "{:?}", report.problems);
+    let steps: Vec<usize> = report.fired.iter().map(|(_, s)| *s).collect();
+    assert_eq!(steps, [1, 2, 3, 4, 5, 6, 7, 8, 9]);
+    // Step 2 fires the scan after the switch goes off (x11 has long been on).
+    assert!(
+        (3_000..3_030).contains(&report.fired[1].0),
+        "{:?}",
+        report.fired
+    );
+}
+
+/// With the switch off, single-step mode changes nothing: the steps fire
+/// at the same scans as in the program without it.
+#[test]
+fn with_the_switch_off_the_cycle_is_that_of_automatic() {
+    let (table, stepping) = paper_with("step,stop");
+    let (_, plain) = paper_with("stop");
+    let script = [
+        (0, Operator::default()),
+        (
+            500,
+            Operator {
+                start: true,
+                ..Operator::default()
+            },
+        ),
+        (600, Operator::default()),
+    ];
+    let a = run(&table, &stepping, &script);
+    let b = run(&table, &plain, &script);
+    assert_eq!(a.fired.len(), 9);
+    assert_eq!(a.fired, b.fired);
+}
+
+/// One hostile input of single-step mode: the table (one column), the
+/// SETTINGS rows, the options, and the code at its cell.
+struct Case {
+    what: &'static str,
+    table: &'static [&'static [&'static str]],
+    settings: &'static [&'static [&'static str]],
+    args: &'static [&'static str],
+    /// `TABLE!A2: error[E015]`, or the option's message.
+    code_at: &'static str,
+}
+
+const CASES: &[Case] = &[
+    Case {
+        what: "a machine input named like the STEP button",
+        table: &[&["C1+1"], &["I:step_pb"], &["C1-0"]],
+        settings: &[],
+        args: &["--modes", "step"],
+        code_at: "TABLE!A2: error[E015]",
+    },
+    Case {
+        what: "a machine output named like the STEP_MODE switch, in another case",
+        table: &[&["C1+1"], &["Y:Step_Mode+"], &["C1-0; Y:Step_Mode-"]],
+        settings: &[],
+        args: &["--modes", "step"],
+        code_at: "TABLE!A2: error[E015]",
+    },
+    Case {
+        what: "a name Festo FST cuts to STEP_MODE (its 9 characters)",
+        table: &[&["C1+1"], &["I:step_modex"], &["C1-0"]],
+        settings: &[],
+        args: &["--modes", "step"],
+        code_at: "TABLE!A2: error[E015]",
+    },
+    Case {
+        what: "the STEP button's name, the mode asked for on SETTINGS",
+        table: &[&["C1+1"], &["I:STEP_PB"], &["C1-0"]],
+        settings: &[&["modes", "step"]],
+        args: &[],
+        code_at: "TABLE!A2: error[E015]",
+    },
+    Case {
+        what: "a machine input named like the step permit memory, in any mode",
+        table: &[&["C1+1"], &["I:step_ok"], &["C1-0"]],
+        settings: &[],
+        args: &[],
+        code_at: "TABLE!A2: error[E015]",
+    },
+    Case {
+        what: "a machine input named like the STEP button's edge memory",
+        table: &[&["C1+1"], &["I:Step_Mem"], &["C1-0"]],
+        settings: &[],
+        args: &["--modes", "step"],
+        code_at: "TABLE!A2: error[E015]",
+    },
+    Case {
+        what: "an interlock input named like the STEP button",
+        table: &[&["C1+1"], &["C1-0"]],
+        settings: &[&["modes", "step"], &["interlock", "step_pb"]],
+        args: &[],
+        code_at: "SETTINGS!B2: error[E015]",
+    },
+    Case {
+        what: "the mode given twice on SETTINGS",
+        table: &[&["C1+1"], &["C1-0"]],
+        settings: &[&["modes", "step, step"]],
+        args: &[],
+        code_at: "SETTINGS!B1: error[",
+    },
+    Case {
+        what: "the mode misspelt on SETTINGS",
+        table: &[&["C1+1"], &["C1-0"]],
+        settings: &[&["modes", "single step"]],
+        args: &[],
+        code_at: "SETTINGS!B1: error[",
+    },
+    Case {
+        what: "the mode beside all on SETTINGS",
+        table: &[&["C1+1"], &["C1-0"]],
+        settings: &[&["modes", "all, step"]],
+        args: &[],
+        code_at: "SETTINGS!B1: error[",
+    },
+    Case {
+        what: "the mode given twice on the command line",
+        table: &[&["C1+1"], &["C1-0"]],
+        settings: &[],
+        args: &["--modes", "step,step"],
+        code_at: "\"step\" is given twice",
+    },
+    Case {
+        what: "the mode beside all on the command line",
+        table: &[&["C1+1"], &["C1-0"]],
+        settings: &[],
+        args: &["--modes", "all,step"],
+        code_at: "\"all\" stands alone",
+    },
+];
+
+/// Each row through the binary: exit 1, its code at its cell, nothing
+/// written.
+#[test]
+fn hostile_single_step_inputs_are_refused_with_their_cell() {
+    for case in CASES {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("h.xlsx");
+        let mut sheets: Vec<(&str, &[&[&str]])> = vec![("TABLE", case.table)];
+        if !case.settings.is_empty() {
+            sheets.push(("SETTINGS", case.settings));
+        }
+        write_xlsx_sheets(&path, &sheets);
+        let out = dir.path().join("out");
+        let assert = steptable()
+            .arg("convert")
+            .arg(&path)
+            .args(case.args)
+            .args(["--formats", "st", "-o"])
+            .arg(&out)
+            .assert()
+            .code(1);
+        let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+        assert!(
+            stderr.contains(case.code_at),
+            "{}: expected {}, got {stderr}",
+            case.what,
+            case.code_at
+        );
+        assert!(!out.exists(), "{}: refused but wrote files", case.what);
+    }
+}
+
+/// The buttons' names are free for a machine signal without the mode.
+#[test]
+fn the_step_buttons_names_are_taken_only_with_the_mode() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("free.xlsx");
+    let table: &[&[&str]] = &[&["C1+1"], &["I:step_pb"], &["C1-0"]];
+    write_xlsx_sheets(&path, &[("TABLE", table)]);
+    steptable().arg("check").arg(&path).assert().success();
+}
+
+/// The fault table classifies the mode's inputs: a STEP_MODE stuck at 1
+/// stalls safely (no step without a press); the other three show no
+/// effect in automatic, the broken switch wire (stuck at 0) among them,
+/// which the guide says no check can catch.
+#[test]
+fn the_fault_table_classifies_the_step_inputs() {
+    use steptable::faults::Outcome;
+    use steptable::program::Signal;
+    let table = Build::paper().modes("step").faults();
+    let outcome = |signal: Signal, stuck_at: bool| {
+        let case = table.cases.iter().find(|c| {
+            c.faults.len() == 1 && c.faults[0].signal == signal && c.faults[0].stuck_at == stuck_at
+        });
+        case.unwrap_or_else(|| panic!("{signal:?} stuck at {stuck_at} is a case"))
+            .outcome
+    };
+    assert_eq!(outcome(Signal::StepMode, true), Outcome::SafeStall);
+    assert_eq!(outcome(Signal::StepMode, false), Outcome::NoEffect);
+    assert_eq!(outcome(Signal::StepButton, true), Outcome::NoEffect);
+    assert_eq!(outcome(Signal::StepButton, false), Outcome::NoEffect);
+}
+
+/// Every path of the sorting station (its jumps on `I:reject` and
+/// `I:no_label`) still runs with the mode, the switch off: the proof of
+/// `simulate` passes.
+#[test]
+fn the_sorting_stations_paths_run_with_the_mode() {
+    steptable()
+        .arg("simulate")
+        .arg(crate::helpers::sample("sorting_station.xlsx"))
+        .args(["--modes", "step"])
+        .assert()
+        .success();
+}
