@@ -201,8 +201,14 @@ fn the_recorded_io_is_the_same_both_ways() {
         assert_eq!(events_io, scans_io);
         // The fault analysis's log of the inputs' changes says what the
         // recording of every scan says.
-        let (logged, log, _) =
-            run::run_logging_inputs(&table, &program, &code, &settings, signals.inputs.clone(), None);
+        let (logged, log, _) = run::run_logging_inputs(
+            &table,
+            &program,
+            &code,
+            &settings,
+            signals.inputs.clone(),
+            None,
+        );
         assert_eq!(logged, events);
         assert_eq!(log, io::InputLog::of_trace(&scans_io));
         assert!(log.changes.iter().any(|(_, c)| c.len() > 1), "{log:?}");
