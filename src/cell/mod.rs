@@ -429,6 +429,28 @@ pub fn without_unit(text: &str) -> bool {
     text.trim().ends_with(|c: char| c.is_ascii_digit())
 }
 
+/// Whether `text` is written as a time at all: a plain decimal number
+/// (`10`, `1.5`, `1,5`) and at most a unit (`s`, `ms`). An exponent, a
+/// sign or a hex number (`1e1ms`, `-5ms`, `0x10ms`) is not, whatever its
+/// value, so the message says what to write instead of blaming the range.
+pub fn plain_time(text: &str) -> bool {
+    let t: String = text
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .to_ascii_lowercase();
+    let number = t
+        .strip_suffix("ms")
+        .or_else(|| t.strip_suffix('s'))
+        .unwrap_or(&t);
+    let (whole, fraction) = number.split_once(['.', ',']).unwrap_or((number, ""));
+    !(whole.is_empty() && fraction.is_empty())
+        && whole
+            .chars()
+            .chain(fraction.chars())
+            .all(|c| c.is_ascii_digit())
+}
+
 /// W007's words for a time typed without its unit (`1000`): what it is
 /// read as, and both spellings that say it.
 pub fn read_as_seconds(text: &str) -> String {

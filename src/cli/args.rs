@@ -111,9 +111,16 @@ pub(crate) fn parse_scan(text: &str) -> Result<u32, String> {
 
 /// A time on the command line says its unit: `2` could be seconds or
 /// milliseconds, and an option has no cell to warn at (the SETTINGS sheet's
-/// W007), so it is refused with both readings.
+/// W007), so it is refused with both readings. A time not written as a
+/// plain number (`1e1ms`) is refused saying what is expected, before a
+/// parser could blame its range.
 pub(crate) fn unit_given(item: &str, time: &str) -> Result<(), String> {
     let time = time.trim();
+    if !crate::cell::plain_time(time) {
+        return Err(format!(
+            "\"{item}\": \"{time}\" is not written as a time: expected a plain number and its unit, such as 10ms or 1.5s (no exponent, sign or hex digits)"
+        ));
+    }
     if crate::cell::without_unit(time) && crate::stroke::parse_duration_ms(time).is_some() {
         return Err(format!(
             "\"{item}\": {time} has no unit: write {time}s or {time}ms"
