@@ -67,6 +67,51 @@ struct Symbol {
     address: String,
     data_type: &'static str,
     comment: String,
+    /// The comment was longer than the symbol table holds (see [`sdf_comment`]).
+    #[serde(skip)]
+    cut: bool,
+}
+
+/// The characters a comment of STEP 7's symbol table holds.
+pub const SDF_COMMENT: usize = 80;
+
+/// A comment as the symbol table holds it: one line, quoted fields so an
+/// engineer's `"` becomes `'`, and at most [`SDF_COMMENT`] characters. A
+/// longer one (a long step comment or actuator name) would widen the
+/// fixed-width row past what STEP 7 imports, so it is cut to 77
+/// characters and `...`, the same every run; the `.awl` keeps it whole.
+fn sdf_comment(text: &str) -> (String, bool) {
+    let text = one_line(text).replace('"', "'");
+    if text.chars().count() <= SDF_COMMENT {
+        return (text, false);
+    }
+    let mut cut: String = text.chars().take(SDF_COMMENT - 3).collect();
+    cut.push_str("...");
+    (cut, true)
+}
+
+/// The symbols whose comments `NAME.sdf` cuts to [`SDF_COMMENT`]
+/// characters, for the warning that says so.
+pub fn shortened_comments(input: &EmitInput) -> Vec<String> {
+    build(input)
+        .symbols
+        .into_iter()
+        .filter(|s| s.cut)
+        .map(|s| s.symbol)
+        .collect()
+}
+
+impl Symbol {
+    fn new(symbol: String, address: String, data_type: &'static str, comment: &str) -> Symbol {
+        let (comment, cut) = sdf_comment(comment);
+        Symbol {
+            symbol,
+            address,
+            data_type,
+            comment,
+            cut,
+        }
+    }
 }
 
 #[derive(Serialize)]
@@ -425,51 +470,50 @@ fn build(input: &EmitInput) -> Context {
         .iter()
         .chain(&input.allocation.outputs)
         .chain(&input.allocation.memories)
-        .map(|a| Symbol {
-            symbol: symbols.ident(a.signal),
-            address: sdf_address(&layout.operand(input, a.signal)),
-            data_type: "BOOL",
-            // The symbol table's fields are quoted: an engineer's `"` may
-            // not end one.
-            comment: one_line(&symbols.comment(a.signal)).replace('"', "'"),
+        .map(|a| {
+            Symbol::new(
+                symbols.ident(a.signal),
+                sdf_address(&layout.operand(input, a.signal)),
+                "BOOL",
+                &symbols.comment(a.signal),
+            )
         })
         .collect();
     let mut table = table;
     for (k, bit) in layout.step_flags.iter().enumerate() {
         let names = symbols.step(k);
-        table.push(Symbol {
-            symbol: flag(k),
-            address: sdf_address(&Layout::m(*bit)),
-            data_type: "BOOL",
-            comment: one_line(&names.map(|n| n.flag.comment.clone()).unwrap_or_default())
-                .replace('"', "'"),
-        });
+        table.push(Symbol::new(
+            flag(k),
+            sdf_address(&Layout::m(*bit)),
+            "BOOL",
+            &names.map(|n| n.flag.comment.clone()).unwrap_or_default(),
+        ));
     }
-    table.push(Symbol {
-        symbol: fired.to_string(),
-        address: sdf_address(&Layout::m(layout.fired)),
-        data_type: "BOOL",
-        comment: one_line(&symbols.fired.comment),
-    });
+    table.push(Symbol::new(
+        fired.to_string(),
+        sdf_address(&Layout::m(layout.fired)),
+        "BOOL",
+        &symbols.fired.comment,
+    ));
     for t in &layout.timers {
-        table.push(Symbol {
-            symbol: t.run_name.ident.clone(),
-            address: sdf_address(&Layout::m(t.run)),
-            data_type: "BOOL",
-            comment: one_line(&t.run_name.comment),
-        });
-        table.push(Symbol {
-            symbol: t.preset_name.ident.clone(),
-            address: sdf_address(&format!("MW {}", t.preset_word)),
-            data_type: "S5TIME",
-            comment: one_line(&t.preset_name.comment),
-        });
-        table.push(Symbol {
-            symbol: symbols.ident(t.signal),
-            address: sdf_address(&timer_operand(input, t.signal)),
-            data_type: "TIMER",
-            comment: one_line(&symbols.comment(t.signal)),
-        });
+        table.push(Symbol::new(
+            t.run_name.ident.clone(),
+            sdf_address(&Layout::m(t.run)),
+            "BOOL",
+            &t.run_name.comment,
+        ));
+        table.push(Symbol::new(
+            t.preset_name.ident.clone(),
+            sdf_address(&format!("MW {}", t.preset_word)),
+            "S5TIME",
+            &t.preset_name.comment,
+        ));
+        table.push(Symbol::new(
+            symbols.ident(t.signal),
+            sdf_address(&timer_operand(input, t.signal)),
+            "TIMER",
+            &symbols.comment(t.signal),
+        ));
     }
 
     let first_flag = layout.step_flags.first().copied().unwrap_or((0, 0));

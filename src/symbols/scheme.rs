@@ -172,6 +172,17 @@ impl Naming {
         named(signal, table, own)
     }
 
+    /// `signal` in a message about a setting that names it: its paper
+    /// symbol, and the engineer's name beside it where its actuator has
+    /// one (`x11 (clamp_end)`), whatever the scheme.
+    pub fn called_by(&self, signal: Signal, pmax: &dyn Fn(u32) -> u32) -> String {
+        let own = |n: u32| self.actuators.get(&n).and_then(ActuatorName::stem);
+        match named_by(signal, pmax, own) {
+            Some(name) => format!("{} ({name})", signal.symbol()),
+            None => signal.symbol(),
+        }
+    }
+
     /// [`Naming::aliases`], each actuator's end position given by `pmax`.
     pub fn aliases_by(&self, signal: Signal, pmax: &dyn Fn(u32) -> u32) -> Vec<String> {
         let mut names = vec![signal.symbol(), paper_ident(signal)];

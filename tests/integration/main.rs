@@ -22,6 +22,7 @@ mod helpers;
 mod homing;
 mod hostile;
 mod hostile_messages;
+mod hostile_round3;
 mod hostile_settings;
 mod identifiers;
 mod jump_paths;
