@@ -5,7 +5,7 @@
 use std::fmt;
 
 mod hint;
-pub use hint::{move_attempt, not_a_move_hint};
+pub use hint::{edit_distance, move_attempt, not_a_move_hint};
 
 /// Largest actuator number accepted (`C999`).
 pub const MAX_ACTUATOR: u32 = 999;

@@ -121,6 +121,39 @@ impl Naming {
             .map(|(n, _)| *n)
     }
 
+    /// The actuator `text` names where a setting names one (`--home-order`,
+    /// its SETTINGS row, `--valve`, `--stroke`, `--load`): its paper number
+    /// (`C1`), its ISO designation (`1A1`) or the engineer's name (`clamp`).
+    pub fn actuator_called(&self, text: &str) -> Option<u32> {
+        let text = text.trim();
+        crate::cell::parse_actuator(text)
+            .or_else(|| iso_actuator(text))
+            .or_else(|| self.actuator_named(text))
+    }
+
+    /// The name among those of `actuators` (number, ISO designation, the
+    /// engineer's name) closest to `text`, for a "did you mean": within one
+    /// letter in four.
+    pub fn actuator_like(&self, text: &str, actuators: &[u32]) -> Option<String> {
+        let lower = text.trim().to_ascii_lowercase();
+        actuators
+            .iter()
+            .flat_map(|&n| {
+                let mut names = vec![format!("C{n}"), format!("{n}A1")];
+                names.extend(self.actuators.get(&n).and_then(ActuatorName::stem));
+                names
+            })
+            .map(|name| {
+                (
+                    crate::cell::edit_distance(&lower, &name.to_ascii_lowercase()),
+                    name,
+                )
+            })
+            .filter(|(distance, _)| *distance > 0 && *distance * 4 <= lower.chars().count().max(4))
+            .min()
+            .map(|(_, name)| name)
+    }
+
     /// The identifier of `signal`.
     pub fn ident(&self, signal: Signal, table: &StepTable) -> String {
         named(signal, table, |n| self.own_stem(n)).unwrap_or_else(|| paper_ident(signal))
@@ -195,6 +228,16 @@ impl Naming {
         }
         names
     }
+}
+
+/// The actuator an ISO designation names: `1A1` (any case) is actuator 1.
+pub fn iso_actuator(text: &str) -> Option<u32> {
+    let lower = text.trim().to_ascii_lowercase();
+    let digits = lower.strip_suffix("a1")?;
+    if digits.is_empty() || !digits.chars().all(|c| c.is_ascii_digit()) || digits.starts_with('0') {
+        return None;
+    }
+    digits.parse().ok()
 }
 
 /// The engineer's name of an actuator's sensor or coil, when `stem` gives
