@@ -464,3 +464,28 @@ fn a_home_order_by_name_homes_as_the_same_order_by_number() {
         );
     }
 }
+
+/// The line each output records of how it was made names an actuator whose
+/// settings came from the SETTINGS sheet as the engineer's actuator table
+/// writes it (`C1 (lift) stroke`), and not one the command line set by its
+/// name (`--stroke clamp=2s`).
+#[test]
+fn the_made_by_line_names_the_actuators_as_the_engineer_wrote_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("h.xlsx");
+    write_xlsx_sheets(&path, &[("TABLE", TWO), ("SETTINGS", NAMED)]);
+    let out = dir.path().join("out");
+    steptable()
+        .arg("convert")
+        .arg(&path)
+        .args(["--stroke", "clamp=2s", "--formats", "st", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let st = std::fs::read_to_string(out.join("h/h.st")).unwrap();
+    let line = st.lines().next().unwrap();
+    assert!(
+        line.contains("settings: the command line, the SETTINGS sheet (C1 (lift) stroke), defaults for the rest"),
+        "{line}"
+    );
+}
