@@ -489,3 +489,70 @@ fn the_made_by_line_names_the_actuators_as_the_engineer_wrote_them() {
         "{line}"
     );
 }
+
+/// Hidden rows and columns are read like visible ones (the reader cannot
+/// tell them apart; docs/guide.md says so): a step in a hidden row is
+/// converted, a SETTINGS row in a hidden row is in force, and a wrong cell
+/// in a hidden row or column is reported at its cell, nothing written.
+#[test]
+fn hidden_rows_and_columns_are_read_like_visible_ones() {
+    use rust_xlsxwriter::Workbook;
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, step2: &str, hide_col: bool| {
+        let mut workbook = Workbook::new();
+        let ws = workbook.add_worksheet();
+        ws.set_name("TABLE").unwrap();
+        let rows: [[&str; 3]; 5] = [
+            ["", "BRANCH 1", "BRANCH 2"],
+            ["STEP 1", "C1+1", ""],
+            ["STEP 2", "", step2],
+            ["STEP 3", "", "C2-0"],
+            ["STEP 4", "C1-0", ""],
+        ];
+        for (r, row) in rows.iter().enumerate() {
+            for (c, text) in row.iter().enumerate() {
+                if !text.is_empty() {
+                    ws.write_string(r as u32, c as u16, *text).unwrap();
+                }
+            }
+        }
+        ws.set_row_hidden(2).unwrap();
+        if hide_col {
+            ws.set_column_hidden(2).unwrap();
+        }
+        let settings = workbook.add_worksheet();
+        settings.set_name("SETTINGS").unwrap();
+        settings.write_string(0, 0, "target").unwrap();
+        settings.write_string(0, 1, "siemens").unwrap();
+        settings.set_row_hidden(0).unwrap();
+        let path = dir.path().join(name);
+        workbook.save(&path).unwrap();
+        path
+    };
+    let good = write("good.xlsx", "C2+1", true);
+    let out = dir.path().join("good");
+    steptable()
+        .arg("convert")
+        .arg(&good)
+        .args(["--formats", "awl", "-o"])
+        .arg(&out)
+        .assert()
+        .success()
+        .stdout(contains("good.xlsx: 4 steps, 2 branch(es), 2 actuators"));
+    // The hidden SETTINGS row's target is in force: STEP 7 operands.
+    let awl = std::fs::read_to_string(out.join("good/good.awl")).unwrap();
+    assert!(awl.contains("C2+1"), "the hidden step is converted");
+    assert!(awl.contains("the SETTINGS sheet (target)"), "{awl}");
+    assert!(awl.contains("S     Q 0.0;"), "siemens packs from Q 0.0: {awl}");
+    let bad = write("bad.xlsx", "C2+l", false);
+    let out = dir.path().join("bad");
+    steptable()
+        .arg("convert")
+        .arg(&bad)
+        .args(["--formats", "awl", "-o"])
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(contains("bad.xlsx: TABLE!C3: error[E010]"));
+    assert!(files_below(&out).is_empty());
+}
