@@ -543,7 +543,10 @@ fn hidden_rows_and_columns_are_read_like_visible_ones() {
     let awl = std::fs::read_to_string(out.join("good/good.awl")).unwrap();
     assert!(awl.contains("C2+1"), "the hidden step is converted");
     assert!(awl.contains("the SETTINGS sheet (target)"), "{awl}");
-    assert!(awl.contains("S     Q 0.0;"), "siemens packs from Q 0.0: {awl}");
+    assert!(
+        awl.contains("S     Q 0.0;"),
+        "siemens packs from Q 0.0: {awl}"
+    );
     let bad = write("bad.xlsx", "C2+l", false);
     let out = dir.path().join("bad");
     steptable()
@@ -555,4 +558,63 @@ fn hidden_rows_and_columns_are_read_like_visible_ones() {
         .code(1)
         .stderr(contains("bad.xlsx: TABLE!C3: error[E010]"));
     assert!(files_below(&out).is_empty());
+}
+
+/// Issue 37's "smaller" list: the valve error names every valve type the
+/// library has (`motor` among them), on the SETTINGS sheet at its cell and
+/// for `--valve`, exit 1, nothing written.
+#[test]
+fn an_unknown_valve_lists_every_valve_type() {
+    let every = steptable::valve::ValveType::ALL
+        .iter()
+        .map(|v| v.name())
+        .collect::<Vec<_>>();
+    let (last, rest) = every.split_last().unwrap();
+    let list = format!("(expected {} or {last})", rest.join(", "));
+    assert!(list.contains("motor"), "{list}");
+    let cases = [
+        Case {
+            what: "on the SETTINGS sheet",
+            sheets: &[
+                ("TABLE", TWO),
+                (
+                    "SETTINGS",
+                    &[
+                        &["actuator", "extend", "retract", "valve"],
+                        &["C1", "1s", "1s", "pneumatic"],
+                    ],
+                ),
+            ],
+            args: &["--formats", "st"],
+            exit: 1,
+            says: &["SETTINGS!D2: error[E030]: valve of C1: \"pneumatic\" is not a valve type"],
+            never: &[],
+        },
+        Case {
+            what: "on the command line",
+            sheets: &[("TABLE", TWO)],
+            args: &["--valve", "C1=pneumatic", "--formats", "st"],
+            exit: 1,
+            says: &["'--valve <LIST>': \"C1=pneumatic\": \"pneumatic\" is not a valve type"],
+            never: &[],
+        },
+    ];
+    for case in &cases {
+        run(case);
+        // The whole list, from the library's own.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("v.xlsx");
+        write_xlsx_sheets(&path, case.sheets);
+        steptable()
+            .arg("check")
+            .arg(&path)
+            .args(
+                case.args
+                    .iter()
+                    .filter(|a| !["--formats", "st"].contains(a)),
+            )
+            .assert()
+            .code(1)
+            .stderr(contains(list.as_str()));
+    }
 }
