@@ -429,6 +429,16 @@ pub fn without_unit(text: &str) -> bool {
     text.trim().ends_with(|c: char| c.is_ascii_digit())
 }
 
+/// The actuator an ISO designation names: `1A1` (any case) is actuator 1.
+pub fn iso_actuator(text: &str) -> Option<u32> {
+    let lower = text.trim().to_ascii_lowercase();
+    let digits = lower.strip_suffix("a1")?;
+    if digits.is_empty() || !digits.chars().all(|c| c.is_ascii_digit()) || digits.starts_with('0') {
+        return None;
+    }
+    digits.parse().ok()
+}
+
 /// Whether `text` is written as a time at all: a plain decimal number
 /// (`10`, `1.5`, `1,5`) and at most a unit (`s`, `ms`). An exponent, a
 /// sign or a hex number (`1e1ms`, `-5ms`, `0x10ms`) is not, whatever its

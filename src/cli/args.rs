@@ -64,7 +64,7 @@ fn parse_keyed<T>(
         let key = item.split_once('=').map_or(item, |(k, _)| k).trim();
         let is_name = crate::cell::parse_actuator(key).is_none()
             && (crate::symbols::scheme_stem(key).is_some()
-                || crate::symbols::iso_actuator(key).is_some())
+                || crate::cell::iso_actuator(key).is_some())
             && item.contains('=');
         if !is_name {
             by_number.push(item);
@@ -112,12 +112,12 @@ pub(crate) fn parse_scan(text: &str) -> Result<u32, String> {
 
 /// A time on the command line says its unit: `2` could be seconds or
 /// milliseconds, and an option has no cell to warn at (the SETTINGS sheet's
-/// W007), so it is refused with both readings. A time not written as a
-/// plain number (`1e1ms`) is refused saying what is expected, before a
-/// parser could blame its range.
+/// W007), so it is refused with both readings. A number not written
+/// plainly (`1e1ms`, `0x2s`) is refused saying what is expected, before a
+/// parser could blame its range; a word (`fast`) is left to the parser.
 pub(crate) fn unit_given(item: &str, time: &str) -> Result<(), String> {
     let time = time.trim();
-    if !crate::cell::plain_time(time) {
+    if !crate::cell::plain_time(time) && time.chars().any(|c| c.is_ascii_digit()) {
         return Err(format!(
             "\"{item}\": \"{time}\" is not written as a time: expected a plain number and its unit, such as 10ms or 1.5s (no exponent, sign or hex digits)"
         ));

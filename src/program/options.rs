@@ -371,7 +371,7 @@ impl Modes {
     /// together joined by `&` or spaces: `C3&C4, C2, C1`. Each actuator as
     /// written (`C1`, `1A1`, `clamp`): which one a name means is known once
     /// the table's SETTINGS names are read
-    /// ([`crate::symbols::Naming::actuator_called`]).
+    /// (the naming authority's `Naming::actuator_called`).
     pub fn parse_home_order(text: &str) -> Result<Vec<Vec<String>>, String> {
         let mut stages = Vec::new();
         for stage in text.split([',', ';']) {
@@ -387,9 +387,15 @@ impl Modes {
                 if item.is_empty() {
                     continue;
                 }
+                // A number, an ISO designation or a name (`gripper_arm`):
+                // which actuator it means, the naming authority says once
+                // the table's names are read.
                 let named = crate::cell::parse_actuator(item).is_some()
-                    || crate::symbols::iso_actuator(item).is_some()
-                    || crate::symbols::scheme_stem(item).is_some();
+                    || crate::cell::iso_actuator(item).is_some()
+                    || item.starts_with(|c: char| c.is_alphabetic())
+                        && item
+                            .chars()
+                            .all(|c| c.is_alphanumeric() || c == '_' || c == '-');
                 if !named {
                     return Err(format!(
                         "\"{item}\" is not an actuator (expected C1, C2, …, its ISO designation 1A1, or its name from the SETTINGS actuator table)"

@@ -14,7 +14,7 @@ mod scheme;
 
 use std::collections::BTreeMap;
 
-pub use scheme::{ActuatorName, Naming, Scheme, iso_actuator, paper_ident, stem as scheme_stem};
+pub use scheme::{ActuatorName, Naming, Scheme, paper_ident, stem as scheme_stem};
 
 use crate::cell::Sign;
 use crate::program::{Action, Area, Signal, StepProgram};

@@ -127,7 +127,7 @@ impl Naming {
     pub fn actuator_called(&self, text: &str) -> Option<u32> {
         let text = text.trim();
         crate::cell::parse_actuator(text)
-            .or_else(|| iso_actuator(text))
+            .or_else(|| crate::cell::iso_actuator(text))
             .or_else(|| self.actuator_named(text))
     }
 
@@ -228,16 +228,6 @@ impl Naming {
         }
         names
     }
-}
-
-/// The actuator an ISO designation names: `1A1` (any case) is actuator 1.
-pub fn iso_actuator(text: &str) -> Option<u32> {
-    let lower = text.trim().to_ascii_lowercase();
-    let digits = lower.strip_suffix("a1")?;
-    if digits.is_empty() || !digits.chars().all(|c| c.is_ascii_digit()) || digits.starts_with('0') {
-        return None;
-    }
-    digits.parse().ok()
 }
 
 /// The engineer's name of an actuator's sensor or coil, when `stem` gives
