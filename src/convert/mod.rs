@@ -414,32 +414,6 @@ pub fn budget_error(table: &StepTable, why: String) -> Diagnostic {
     }
 }
 
-/// W008 when `NAME.sdf` cuts comments to the width STEP 7's symbol table
-/// holds (a long step comment or actuator name), naming the symbols, so
-/// the engineer knows where the symbol table says less than the `.awl`.
-fn shortened_sdf_comments(input: &EmitInput) -> Option<Diagnostic> {
-    let cut = emit::awl::shortened_comments(input);
-    let (first, _) = cut.split_first()?;
-    let more = match cut.len() {
-        1 => String::new(),
-        n => format!(" and {} more ({})", n - 1, cut[1..].join(", ")),
-    };
-    Some(Diagnostic {
-        severity: crate::diag::Severity::Warning,
-        code: Code::W008Shortened,
-        location: Location {
-            file: input.table.file.clone(),
-            sheet: None,
-            cell: None,
-        },
-        message: format!(
-            "{}.sdf: the comment of {first}{more} is longer than the {} characters a STEP 7 symbol table holds; it is cut there and ends in \"...\" (the .awl keeps it whole); shorten the step comment or actuator name to keep it",
-            input.name,
-            emit::awl::SDF_COMMENT
-        ),
-    })
-}
-
 /// The step program of a checked table under `settings`.
 pub fn build_program(table: &StepTable, settings: &Settings) -> StepProgram {
     program::build(
@@ -492,7 +466,7 @@ pub fn generate_observed(
         diagram: settings.diagram,
     };
     if settings.formats.contains(&OutputKind::SymbolTable) {
-        warnings.extend(shortened_sdf_comments(&input));
+        warnings.extend(findings::shortened_sdf_comments(&input));
     }
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them, and

@@ -9,6 +9,7 @@ use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
+use super::sdf::Symbol;
 use super::{EmitInput, one_line, templates};
 use crate::address::Mnemonic;
 use crate::program::{Action, INITIAL_STEP, Literal};
@@ -61,36 +62,7 @@ struct Network {
     lines: Vec<Line>,
 }
 
-#[derive(Serialize, Clone)]
-struct Symbol {
-    symbol: String,
-    address: String,
-    data_type: &'static str,
-    comment: String,
-    /// The comment was longer than the symbol table holds (see [`sdf_comment`]).
-    #[serde(skip)]
-    cut: bool,
-}
-
-/// The characters a comment of STEP 7's symbol table holds.
-pub const SDF_COMMENT: usize = 80;
-
-/// A comment as the symbol table holds it: one line, quoted fields so an
-/// engineer's `"` becomes `'`, and at most [`SDF_COMMENT`] characters. A
-/// longer one (a long step comment or actuator name) would widen the
-/// fixed-width row past what STEP 7 imports, so it is cut to 77
-/// characters and `...`, the same every run; the `.awl` keeps it whole.
-fn sdf_comment(text: &str) -> (String, bool) {
-    let text = one_line(text).replace('"', "'");
-    if text.chars().count() <= SDF_COMMENT {
-        return (text, false);
-    }
-    let mut cut: String = text.chars().take(SDF_COMMENT - 3).collect();
-    cut.push_str("...");
-    (cut, true)
-}
-
-/// The symbols whose comments `NAME.sdf` cuts to [`SDF_COMMENT`]
+/// The symbols whose comments `NAME.sdf` cuts to [`super::sdf::SDF_COMMENT`]
 /// characters, for the warning that says so.
 pub fn shortened_comments(input: &EmitInput) -> Vec<String> {
     build(input)
@@ -99,19 +71,6 @@ pub fn shortened_comments(input: &EmitInput) -> Vec<String> {
         .filter(|s| s.cut)
         .map(|s| s.symbol)
         .collect()
-}
-
-impl Symbol {
-    fn new(symbol: String, address: String, data_type: &'static str, comment: &str) -> Symbol {
-        let (comment, cut) = sdf_comment(comment);
-        Symbol {
-            symbol,
-            address,
-            data_type,
-            comment,
-            cut,
-        }
-    }
 }
 
 #[derive(Serialize)]

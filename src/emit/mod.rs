@@ -12,6 +12,7 @@ pub mod io_csv;
 mod kind;
 pub mod lower;
 mod render;
+pub mod sdf;
 pub mod sfc;
 pub mod st;
 pub mod tables;

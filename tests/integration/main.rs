@@ -57,5 +57,6 @@ mod synth;
 mod synth_bench;
 mod synth_short;
 mod template;
+mod typed_names;
 mod valves;
 mod written;
