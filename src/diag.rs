@@ -99,6 +99,9 @@ pub enum Code {
     /// A value read under an assumption the engineer did not write (a dwell
     /// without a unit, read as seconds).
     W007Assumed,
+    /// An output holds less of what the engineer wrote than the table (a
+    /// comment cut to the width a symbol table's field holds).
+    W008Shortened,
 }
 
 impl Code {
@@ -132,6 +135,7 @@ impl Code {
             Code::W005Delimiter => "W005",
             Code::W006NoEffect => "W006",
             Code::W007Assumed => "W007",
+            Code::W008Shortened => "W008",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",

@@ -68,29 +68,50 @@ impl MadeBy {
 /// sheet gave, and defaults.
 pub fn settings_source(settings: &Settings) -> String {
     let mut sheet: Vec<String> = settings.cells.keys().map(|l| l.to_string()).collect();
-    // Per actuator, what the command line did not give came from the sheet.
+    // Per actuator, what the command line did not give (by number or by
+    // name) came from the sheet; an actuator is named as the engineer's
+    // actuator table writes it (`C1 (clamp) stroke`).
+    let naming = &settings.naming;
     let per_actuator = |what: &str, given: Vec<u32>, in_force: Vec<u32>| -> Vec<String> {
         in_force
             .into_iter()
             .filter(|n| !given.contains(n))
-            .map(|n| format!("C{n} {what}"))
+            .map(|n| match naming.actuators.get(&n) {
+                Some(name) => format!("C{n} ({}) {what}", name.text),
+                None => format!("C{n} {what}"),
+            })
             .collect()
+    };
+    let by_line = |numbered: Vec<u32>, named: Vec<&String>| -> Vec<u32> {
+        let named = named
+            .into_iter()
+            .filter_map(|name| naming.actuator_called(name));
+        numbered.into_iter().chain(named).collect()
     };
     let sim = &settings.simulation;
     let given = &settings.given;
     sheet.extend(per_actuator(
         "valve",
-        given.valves.keys().copied().collect(),
+        by_line(
+            given.valves.keys().copied().collect(),
+            given.named_valves.keys().collect(),
+        ),
         sim.valves.per_actuator.keys().copied().collect(),
     ));
     sheet.extend(per_actuator(
         "stroke",
-        given.strokes.keys().copied().collect(),
+        by_line(
+            given.strokes.keys().copied().collect(),
+            given.named_strokes.keys().collect(),
+        ),
         sim.strokes.per_actuator.keys().copied().collect(),
     ));
     sheet.extend(per_actuator(
         "load",
-        given.loads.keys().copied().collect(),
+        by_line(
+            given.loads.keys().copied().collect(),
+            given.named_loads.keys().collect(),
+        ),
         sim.loads.keys().copied().collect(),
     ));
     sheet.extend(

@@ -6,6 +6,35 @@
 
 use super::{normalize, parse_dwell, parse_item, parse_move};
 
+/// Edit distance by characters, a swap of two neighbours counting one
+/// (`clmap` for `clamp`): the one measure of "did you mean" (labels,
+/// formats, actuator names).
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    // d[i][j]: the distance of a's first i and b's first j characters.
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for (j, cell) in d[0].iter_mut().enumerate() {
+        *cell = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut best = (d[i - 1][j] + 1)
+                .min(d[i][j - 1] + 1)
+                .min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                best = best.min(d[i - 2][j - 2] + 1);
+            }
+            d[i][j] = best;
+        }
+    }
+    d[a.len()][b.len()]
+}
+
 /// Why `item` is not a move, shaped by what it looks like: "did you mean
 /// C2+1? …", or the grammar when nothing fits better.
 pub fn not_a_move_hint(item: &str) -> String {

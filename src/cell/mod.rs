@@ -5,7 +5,7 @@
 use std::fmt;
 
 mod hint;
-pub use hint::{move_attempt, not_a_move_hint};
+pub use hint::{edit_distance, move_attempt, not_a_move_hint};
 
 /// Largest actuator number accepted (`C999`).
 pub const MAX_ACTUATOR: u32 = 999;
@@ -427,6 +427,38 @@ fn parse_dwell(text: &str) -> Option<u32> {
 /// milliseconds may not have meant: the one test of W007.
 pub fn without_unit(text: &str) -> bool {
     text.trim().ends_with(|c: char| c.is_ascii_digit())
+}
+
+/// The actuator an ISO designation names: `1A1` (any case) is actuator 1.
+pub fn iso_actuator(text: &str) -> Option<u32> {
+    let lower = text.trim().to_ascii_lowercase();
+    let digits = lower.strip_suffix("a1")?;
+    if digits.is_empty() || !digits.chars().all(|c| c.is_ascii_digit()) || digits.starts_with('0') {
+        return None;
+    }
+    digits.parse().ok()
+}
+
+/// Whether `text` is written as a time at all: a plain decimal number
+/// (`10`, `1.5`, `1,5`) and at most a unit (`s`, `ms`). An exponent, a
+/// sign or a hex number (`1e1ms`, `-5ms`, `0x10ms`) is not, whatever its
+/// value, so the message says what to write instead of blaming the range.
+pub fn plain_time(text: &str) -> bool {
+    let t: String = text
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .to_ascii_lowercase();
+    let number = t
+        .strip_suffix("ms")
+        .or_else(|| t.strip_suffix('s'))
+        .unwrap_or(&t);
+    let (whole, fraction) = number.split_once(['.', ',']).unwrap_or((number, ""));
+    !(whole.is_empty() && fraction.is_empty())
+        && whole
+            .chars()
+            .chain(fraction.chars())
+            .all(|c| c.is_ascii_digit())
 }
 
 /// W007's words for a time typed without its unit (`1000`): what it is

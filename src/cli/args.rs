@@ -7,10 +7,10 @@ pub(crate) struct SimArgs {
     /// Stroke times per actuator, extend/retract: C2=1.5s/0.8s,C3=2s (default 1s/1s).
     #[arg(long, value_name = "LIST", value_parser = parse_strokes)]
     pub(crate) stroke: Option<StrokeMap>,
-    /// Drift of a 5/3 piston with no coil on, stroke per second: C2=0.1 (the load
-    /// on an exhausted centre, the creep of a pressurised one; default 0.05).
+    /// Drift of a 5/3 piston with no coil on, stroke per second: C2=0.1, 2A1=0.1 or clamp=0.1
+    /// (the load on an exhausted centre, the creep of a pressurised one; default 0.05).
     #[arg(long, value_name = "LIST", value_parser = parse_loads)]
-    pub(crate) load: Option<std::collections::BTreeMap<u32, f64>>,
+    pub(crate) load: Option<Keyed<f64>>,
     /// PLC scan time of the simulation and of the generated task.
     #[arg(long, value_name = "TIME", value_parser = parse_scan)]
     pub(crate) scan: Option<u32>,
@@ -63,7 +63,8 @@ fn parse_keyed<T>(
     for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
         let key = item.split_once('=').map_or(item, |(k, _)| k).trim();
         let is_name = crate::cell::parse_actuator(key).is_none()
-            && crate::symbols::scheme_stem(key).is_some()
+            && (crate::symbols::scheme_stem(key).is_some()
+                || crate::cell::iso_actuator(key).is_some())
             && item.contains('=');
         if !is_name {
             by_number.push(item);
@@ -111,9 +112,16 @@ pub(crate) fn parse_scan(text: &str) -> Result<u32, String> {
 
 /// A time on the command line says its unit: `2` could be seconds or
 /// milliseconds, and an option has no cell to warn at (the SETTINGS sheet's
-/// W007), so it is refused with both readings.
+/// W007), so it is refused with both readings. A number not written
+/// plainly (`1e1ms`, `0x2s`) is refused saying what is expected, before a
+/// parser could blame its range; a word (`fast`) is left to the parser.
 pub(crate) fn unit_given(item: &str, time: &str) -> Result<(), String> {
     let time = time.trim();
+    if !crate::cell::plain_time(time) && time.chars().any(|c| c.is_ascii_digit()) {
+        return Err(format!(
+            "\"{item}\": \"{time}\" is not written as a time: expected a plain number and its unit, such as 10ms or 1.5s (no exponent, sign or hex digits)"
+        ));
+    }
     if crate::cell::without_unit(time) && crate::stroke::parse_duration_ms(time).is_some() {
         return Err(format!(
             "\"{item}\": {time} has no unit: write {time}s or {time}ms"
@@ -126,7 +134,16 @@ impl SimArgs {
     pub(crate) fn apply(&self, settings: &mut Settings) {
         settings.give(Given {
             scan_ms: self.scan,
-            loads: self.load.clone().unwrap_or_default(),
+            loads: self
+                .load
+                .as_ref()
+                .map(|l| l.numbered.clone())
+                .unwrap_or_default(),
+            named_loads: self
+                .load
+                .as_ref()
+                .map(|l| l.named.clone())
+                .unwrap_or_default(),
             strokes: self
                 .stroke
                 .as_ref()
@@ -232,7 +249,7 @@ pub(crate) struct CommonArgs {
     pub(crate) safety: Option<Safety>,
     #[arg(long, value_name = "LIST", value_parser = parse_modes, help = modes_help())]
     pub(crate) modes: Option<Modes>,
-    /// Homing stages for RESET, first to last: "C3&C4,C2,C1" (default: the order the cycle itself returns them home).
+    /// Homing stages for RESET, first to last: "C3&C4,C2,C1", an actuator also by its ISO designation (3A1) or name (clamp) (default: the order the cycle itself returns them home).
     #[arg(long, value_name = "ORDER", value_parser = parse_home_order)]
     pub(crate) home_order: Option<HomeOrder>,
     /// How signals are designated in every output: paper (x10, y1+; the default), iso (ISO 1219-2: 1A1, 1B1/1B2, 1M1/1M2) or names (the actuator table's names: clamp_home, clamp_out).
@@ -265,7 +282,7 @@ fn modes_help() -> String {
 /// Homing stages, each a list of actuator numbers. A type of its own: clap
 /// takes a bare `Vec` for a flag given several times, and panicked.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub(crate) struct HomeOrder(pub(crate) Vec<Vec<u32>>);
+pub(crate) struct HomeOrder(pub(crate) Vec<Vec<String>>);
 
 pub(crate) fn parse_modes(text: &str) -> Result<Modes, String> {
     text.parse()
@@ -309,9 +326,14 @@ pub(crate) fn parse_valves(text: &str) -> Result<Keyed<crate::valve::ValveType>,
     })
 }
 
-pub(crate) fn parse_loads(text: &str) -> Result<std::collections::BTreeMap<u32, f64>, String> {
+pub(crate) fn parse_loads(text: &str) -> Result<Keyed<f64>, String> {
     no_empty_item(text)?;
-    crate::valve::parse_loads(text)
+    parse_keyed(text, crate::valve::parse_loads, |item, value| {
+        // One item alone, with its value under a placeholder number.
+        crate::valve::parse_loads(&format!("C1={value}"))
+            .map(|m| m.into_values().next().unwrap_or_default())
+            .map_err(|why| format!("\"{item}\": {why}"))
+    })
 }
 
 /// A per-actuator or per-input list with an empty item (`C1=52mono,,C2=52bi`,

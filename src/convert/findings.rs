@@ -74,6 +74,34 @@ fn stages_text(stages: &[Vec<u32>]) -> String {
     }
 }
 
+/// W008 when `NAME.sdf` cuts comments to the width STEP 7's symbol table
+/// holds (a long step comment or actuator name), naming the symbols, so
+/// the engineer knows where the symbol table says less than the `.awl`.
+pub(super) fn shortened_sdf_comments(
+    input: &crate::emit::EmitInput,
+) -> Option<crate::diag::Diagnostic> {
+    let cut = crate::emit::awl::shortened_comments(input);
+    let (first, _) = cut.split_first()?;
+    let more = match cut.len() {
+        1 => String::new(),
+        n => format!(" and {} more ({})", n - 1, cut[1..].join(", ")),
+    };
+    Some(crate::diag::Diagnostic {
+        severity: crate::diag::Severity::Warning,
+        code: crate::diag::Code::W008Shortened,
+        location: crate::diag::Location {
+            file: input.table.file.clone(),
+            sheet: None,
+            cell: None,
+        },
+        message: format!(
+            "{}.sdf: the comment of {first}{more} is longer than the {} characters a STEP 7 symbol table holds; it is cut there and ends in \"...\" (the .awl keeps it whole); shorten the step comment or actuator name to keep it",
+            input.name,
+            crate::emit::sdf::SDF_COMMENT
+        ),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

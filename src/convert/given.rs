@@ -145,13 +145,16 @@ pub(super) fn overridden_by_the_command_line(
     for ((actuator, what), at) in &sheet.actuator_cells {
         let n = *actuator;
         // An option may name the actuator (`--valve clamp=52bi`).
-        let is_n = |name: &String| naming.actuator_named(name) == Some(n);
+        let is_n = |name: &String| naming.actuator_called(name) == Some(n);
         let (option, given) = match *what {
             "valve" => (
                 "valve",
                 line.valves.contains_key(&n) || line.named_valves.keys().any(is_n),
             ),
-            "load" => ("load", line.loads.contains_key(&n)),
+            "load" => (
+                "load",
+                line.loads.contains_key(&n) || line.named_loads.keys().any(is_n),
+            ),
             _ => (
                 "stroke",
                 line.strokes.contains_key(&n) || line.named_strokes.keys().any(is_n),
@@ -167,10 +170,11 @@ pub(super) fn overridden_by_the_command_line(
     }
 }
 
-/// The valve types and stroke times the command line gives by an
-/// actuator's name (`--valve clamp=52mono`), put in force for the actuator
-/// the SETTINGS actuator table names so; a name no actuator of the table
-/// has, or an actuator given by name and by number, is E030.
+/// The valve types, stroke times and loads the command line gives by an
+/// actuator's name or ISO designation (`--valve clamp=52mono`, `--load
+/// 1A1=0.1`), put in force for the actuator the naming authority reads it
+/// as; a name no actuator of the table has, or an actuator given by name
+/// and by number, is E030.
 pub(super) fn by_name(
     table: &StepTable,
     settings: &mut Settings,
@@ -188,8 +192,13 @@ pub(super) fn by_name(
         .iter()
         .map(|(n, a)| format!("C{n} ({})", a.text))
         .collect();
+    let numbers: Vec<u32> = table.actuators.iter().map(|a| a.number).collect();
     let mut resolve = |option: &str, name: &str, numbered: bool| -> Option<u32> {
-        let why = match naming.actuator_named(name) {
+        let like = naming
+            .actuator_like(name, &numbers)
+            .map(|name| format!("; did you mean {name}?"))
+            .unwrap_or_default();
+        let why = match naming.actuator_called(name) {
             Some(n) if table.actuator(n).is_none() => {
                 format!(
                     "{name} is C{n}, which the table does not have; the setting would do nothing"
@@ -200,10 +209,10 @@ pub(super) fn by_name(
             }
             Some(n) => return Some(n),
             None if named.is_empty() => format!(
-                "no actuator is named {name}: the SETTINGS actuator table names none (C1 (clamp))"
+                "no actuator is named {name}: the SETTINGS actuator table names none (C1 (clamp)){like}"
             ),
             None => format!(
-                "no actuator is named {name} (the actuator table names {})",
+                "no actuator is named {name} (the actuator table names {}){like}",
                 named.join(", ")
             ),
         };
@@ -216,18 +225,72 @@ pub(super) fn by_name(
     };
     let given = settings.given.clone();
     for (name, valve) in &given.named_valves {
-        let n = naming.actuator_named(name);
+        let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.valves.contains_key(&n));
         if let Some(n) = resolve("valve", name, numbered) {
             settings.simulation.valves.per_actuator.insert(n, *valve);
         }
     }
     for (name, stroke) in &given.named_strokes {
-        let n = naming.actuator_named(name);
+        let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.strokes.contains_key(&n));
         if let Some(n) = resolve("stroke", name, numbered) {
             settings.simulation.strokes.per_actuator.insert(n, *stroke);
         }
+    }
+    for (name, load) in &given.named_loads {
+        let n = naming.actuator_called(name);
+        let numbered = n.is_some_and(|n| given.loads.contains_key(&n));
+        if let Some(n) = resolve("load", name, numbered) {
+            settings.simulation.loads.insert(n, *load);
+        }
+    }
+}
+
+/// The home order in force, its actuators read by the naming authority
+/// (`C1`, `1A1`, `clamp`): put in force as numbers for the table check and
+/// the program; an item no actuator answers to is E030 on its SETTINGS
+/// cell, or on the file naming `--home-order`, with the closest name.
+pub(super) fn home_order_by_name(
+    table: &StepTable,
+    settings: &mut Settings,
+    at: Option<&Location>,
+    file: &str,
+    diags: &mut Diagnostics,
+) {
+    let Some(order) = settings.home_order.clone() else {
+        return;
+    };
+    let (at, source) = crate::table::home_order_place(at, file);
+    let numbers: Vec<u32> = table.actuators.iter().map(|a| a.number).collect();
+    let naming = &settings.naming;
+    let mut stages = Vec::new();
+    let mut known = true;
+    for stage in &order {
+        let mut actuators = Vec::new();
+        for item in stage {
+            match naming.actuator_called(item) {
+                Some(n) => actuators.push(n),
+                None => {
+                    known = false;
+                    let like = naming
+                        .actuator_like(item, &numbers)
+                        .map(|name| format!("; did you mean {name}?"))
+                        .unwrap_or_default();
+                    diags.error(
+                        Code::E030BadSetting,
+                        at.clone(),
+                        format!(
+                            "the home order names \"{item}\", which is no actuator (C1, its ISO designation 1A1, or its name from the SETTINGS actuator table){like}{source}"
+                        ),
+                    );
+                }
+            }
+        }
+        stages.push(actuators);
+    }
+    if known {
+        settings.program.modes.home_order = Some(stages);
     }
 }
 

@@ -6,8 +6,8 @@ pub use allocate::{allocate, festo_allocation};
 mod findings;
 mod given;
 use given::{
-    by_name, loads_without_effect, names_of_the_whole_table, overridden_by_the_command_line,
-    settings_without_their_actuator,
+    by_name, home_order_by_name, loads_without_effect, names_of_the_whole_table,
+    overridden_by_the_command_line, settings_without_their_actuator,
 };
 mod physics;
 pub use physics::lucky_middle_stops;
@@ -124,14 +124,21 @@ fn finish_check(
     let table = table::build(&input.table, &mut diags);
     if let Some(table) = &table {
         by_name(table, &mut effective, &input.table.file, &mut diags);
+        // A home order from the SETTINGS sheet is blamed on its cell; one
+        // from the command line on the file, naming the option.
+        let home_order_at = effective.cells.get("home order").cloned();
+        home_order_by_name(
+            table,
+            &mut effective,
+            home_order_at.as_ref(),
+            &input.table.file,
+            &mut diags,
+        );
         let modes = &effective.program.modes;
         let buttons: Vec<String> = modes
             .buttons()
             .map(|b| b.symbol().to_ascii_lowercase())
             .collect();
-        // A home order from the SETTINGS sheet is blamed on its cell; one
-        // from the command line on the file, naming the option.
-        let home_order_at = effective.cells.get("home order").cloned();
         let machine = table::Machine {
             valves: &effective.simulation.valves,
             home_order: modes.home_order.as_deref(),
@@ -455,7 +462,7 @@ pub fn generate_observed(
 ) -> Result<Conversion, Failure> {
     let Checked {
         table,
-        warnings,
+        mut warnings,
         settings,
     } = checked;
     let settings = &settings;
@@ -500,6 +507,9 @@ pub fn generate_observed(
         scan_ms: settings.simulation.scan_ms,
         diagram: settings.diagram,
     };
+    if settings.formats.contains(&OutputKind::SymbolTable) {
+        warnings.extend(findings::shortened_sdf_comments(&input));
+    }
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them, and
     // beside the other outputs (on a core the analysis leaves idle: its

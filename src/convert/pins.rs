@@ -92,7 +92,7 @@ pub fn resolve(
                 row.address_at.clone(),
                 format!(
                     "{} is {}, but \"{}\" is {} address",
-                    signal.symbol(),
+                    naming.called_by(signal, &pmax),
                     area(wanted),
                     row.address.trim(),
                     area(address.area)
@@ -123,7 +123,7 @@ pub fn resolve(
                 row.signal_at.clone(),
                 format!(
                     "{} is pinned twice (first at {})",
-                    signal.symbol(),
+                    naming.called_by(signal, &pmax),
                     first.signal_at.cell.map(|c| c.a1()).unwrap_or_default()
                 ),
             );
@@ -136,7 +136,7 @@ pub fn resolve(
                 format!(
                     "\"{}\" is already {}'s address",
                     row.address.trim(),
-                    other.signal.symbol()
+                    naming.called_by(other.signal, &pmax)
                 ),
             );
             continue;

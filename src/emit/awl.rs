@@ -9,6 +9,7 @@ use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
+use super::sdf::Symbol;
 use super::{EmitInput, one_line, templates};
 use crate::address::Mnemonic;
 use crate::program::{Action, INITIAL_STEP, Literal};
@@ -61,12 +62,15 @@ struct Network {
     lines: Vec<Line>,
 }
 
-#[derive(Serialize, Clone)]
-struct Symbol {
-    symbol: String,
-    address: String,
-    data_type: &'static str,
-    comment: String,
+/// The symbols whose comments `NAME.sdf` cuts to [`super::sdf::SDF_COMMENT`]
+/// characters, for the warning that says so.
+pub fn shortened_comments(input: &EmitInput) -> Vec<String> {
+    build(input)
+        .symbols
+        .into_iter()
+        .filter(|s| s.cut)
+        .map(|s| s.symbol)
+        .collect()
 }
 
 #[derive(Serialize)]
@@ -425,51 +429,50 @@ fn build(input: &EmitInput) -> Context {
         .iter()
         .chain(&input.allocation.outputs)
         .chain(&input.allocation.memories)
-        .map(|a| Symbol {
-            symbol: symbols.ident(a.signal),
-            address: sdf_address(&layout.operand(input, a.signal)),
-            data_type: "BOOL",
-            // The symbol table's fields are quoted: an engineer's `"` may
-            // not end one.
-            comment: one_line(&symbols.comment(a.signal)).replace('"', "'"),
+        .map(|a| {
+            Symbol::new(
+                symbols.ident(a.signal),
+                sdf_address(&layout.operand(input, a.signal)),
+                "BOOL",
+                &symbols.comment(a.signal),
+            )
         })
         .collect();
     let mut table = table;
     for (k, bit) in layout.step_flags.iter().enumerate() {
         let names = symbols.step(k);
-        table.push(Symbol {
-            symbol: flag(k),
-            address: sdf_address(&Layout::m(*bit)),
-            data_type: "BOOL",
-            comment: one_line(&names.map(|n| n.flag.comment.clone()).unwrap_or_default())
-                .replace('"', "'"),
-        });
+        table.push(Symbol::new(
+            flag(k),
+            sdf_address(&Layout::m(*bit)),
+            "BOOL",
+            &names.map(|n| n.flag.comment.clone()).unwrap_or_default(),
+        ));
     }
-    table.push(Symbol {
-        symbol: fired.to_string(),
-        address: sdf_address(&Layout::m(layout.fired)),
-        data_type: "BOOL",
-        comment: one_line(&symbols.fired.comment),
-    });
+    table.push(Symbol::new(
+        fired.to_string(),
+        sdf_address(&Layout::m(layout.fired)),
+        "BOOL",
+        &symbols.fired.comment,
+    ));
     for t in &layout.timers {
-        table.push(Symbol {
-            symbol: t.run_name.ident.clone(),
-            address: sdf_address(&Layout::m(t.run)),
-            data_type: "BOOL",
-            comment: one_line(&t.run_name.comment),
-        });
-        table.push(Symbol {
-            symbol: t.preset_name.ident.clone(),
-            address: sdf_address(&format!("MW {}", t.preset_word)),
-            data_type: "S5TIME",
-            comment: one_line(&t.preset_name.comment),
-        });
-        table.push(Symbol {
-            symbol: symbols.ident(t.signal),
-            address: sdf_address(&timer_operand(input, t.signal)),
-            data_type: "TIMER",
-            comment: one_line(&symbols.comment(t.signal)),
-        });
+        table.push(Symbol::new(
+            t.run_name.ident.clone(),
+            sdf_address(&Layout::m(t.run)),
+            "BOOL",
+            &t.run_name.comment,
+        ));
+        table.push(Symbol::new(
+            t.preset_name.ident.clone(),
+            sdf_address(&format!("MW {}", t.preset_word)),
+            "S5TIME",
+            &t.preset_name.comment,
+        ));
+        table.push(Symbol::new(
+            symbols.ident(t.signal),
+            sdf_address(&timer_operand(input, t.signal)),
+            "TIMER",
+            &symbols.comment(t.signal),
+        ));
     }
 
     let first_flag = layout.step_flags.first().copied().unwrap_or((0, 0));

@@ -214,7 +214,9 @@ impl OutputKind {
         let near: Vec<OutputKind> = OutputKind::ALL
             .into_iter()
             // At most one letter in four wrong: `plcopn`, not `pdf` for sdf.
-            .filter(|k| edit_distance(item, k.name()) * 4 <= k.name().len().max(item.len()))
+            .filter(|k| {
+                crate::cell::edit_distance(item, k.name()) * 4 <= k.name().len().max(item.len())
+            })
             .collect();
         (!near.is_empty()).then_some(near)
     }
@@ -269,24 +271,6 @@ impl CommandFile {
     }
 }
 
-/// Levenshtein distance, by characters.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let above = row[j + 1];
-            row[j + 1] = (above + 1)
-                .min(row[j] + 1)
-                .min(diagonal + usize::from(ca != *cb));
-            diagonal = above;
-        }
-    }
-    row[b.len()]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -318,6 +302,6 @@ mod tests {
         }
         assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 21);
         assert!(OutputKind::parse_list(" ").is_err());
-        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(crate::cell::edit_distance("kitten", "sitting"), 3);
     }
 }

@@ -16,6 +16,7 @@ pub mod lower;
 mod render;
 pub mod report;
 pub mod scl;
+pub mod sdf;
 pub mod sfc;
 pub mod st;
 pub mod tables;

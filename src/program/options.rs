@@ -368,8 +368,11 @@ impl Modes {
     }
 
     /// Parses `--home-order`: stages separated by `,`, actuators homed
-    /// together joined by `&` or spaces: `C3&C4, C2, C1`.
-    pub fn parse_home_order(text: &str) -> Result<Vec<Vec<u32>>, String> {
+    /// together joined by `&` or spaces: `C3&C4, C2, C1`. Each actuator as
+    /// written (`C1`, `1A1`, `clamp`): which one a name means is known once
+    /// the table's SETTINGS names are read
+    /// (the naming authority's `Naming::actuator_called`).
+    pub fn parse_home_order(text: &str) -> Result<Vec<Vec<String>>, String> {
         let mut stages = Vec::new();
         for stage in text.split([',', ';']) {
             let mut actuators = Vec::new();
@@ -384,9 +387,21 @@ impl Modes {
                 if item.is_empty() {
                     continue;
                 }
-                let number = crate::cell::parse_actuator(item)
-                    .ok_or_else(|| format!("\"{item}\" is not an actuator (expected C1, C2, …)"))?;
-                actuators.push(number);
+                // A number, an ISO designation or a name (`gripper_arm`):
+                // which actuator it means, the naming authority says once
+                // the table's names are read.
+                let named = crate::cell::parse_actuator(item).is_some()
+                    || crate::cell::iso_actuator(item).is_some()
+                    || item.starts_with(|c: char| c.is_alphabetic())
+                        && item
+                            .chars()
+                            .all(|c| c.is_alphanumeric() || c == '_' || c == '-');
+                if !named {
+                    return Err(format!(
+                        "\"{item}\" is not an actuator (expected C1, C2, …, its ISO designation 1A1, or its name from the SETTINGS actuator table)"
+                    ));
+                }
+                actuators.push(item.to_string());
             }
             // `C2,,C1` or a trailing `,`: a stage was left out or a name lost.
             if actuators.is_empty() {

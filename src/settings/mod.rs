@@ -35,8 +35,9 @@ pub struct Given {
     pub safety: Option<Safety>,
     /// Operating modes (`continuous, stop, estop, reset`).
     pub modes: Option<Modes>,
-    /// Homing stages (`C3&C4, C2, C1`).
-    pub home_order: Option<Vec<Vec<u32>>>,
+    /// Homing stages (`C3&C4, C2, C1`, `lift, clamp`), each actuator as
+    /// written.
+    pub home_order: Option<Vec<Vec<String>>>,
     /// Stroke times per actuator.
     pub strokes: BTreeMap<u32, Stroke>,
     /// Valve types per actuator.
@@ -48,6 +49,7 @@ pub struct Given {
     /// names are read (`convert`).
     pub named_valves: BTreeMap<String, ValveType>,
     pub named_strokes: BTreeMap<String, Stroke>,
+    pub named_loads: BTreeMap<String, f64>,
     /// The engineer's names of actuators (`C1 (clamp)` in the actuator table).
     pub names: BTreeMap<u32, crate::symbols::ActuatorName>,
     /// The designation scheme (`designations`).
@@ -124,6 +126,12 @@ impl Given {
                 .into_iter()
                 .chain(self.named_strokes.clone())
                 .collect(),
+            named_loads: other
+                .named_loads
+                .clone()
+                .into_iter()
+                .chain(self.named_loads.clone())
+                .collect(),
             designations: self.designations.or(other.designations),
             named: merged(&self.named, &other.named),
             cells: other
@@ -170,6 +178,9 @@ pub struct Settings {
     /// `program.halt`, `program.permissive` and `program.interlocks` once
     /// checked against the table.
     pub named: halt::NamedRows,
+    /// The home order in force as written (`lift, clamp`);
+    /// `program.modes.home_order` once its names are read with the table.
+    pub home_order: Option<Vec<Vec<String>>>,
     /// Where the settings in force that a SETTINGS sheet gave were read, by
     /// label (the others came from the command line or are defaults).
     pub cells: BTreeMap<&'static str, crate::diag::Location>,
@@ -239,7 +250,7 @@ impl Settings {
             modes.home_order = order;
         }
         if let Some(order) = &layer.home_order {
-            modes.home_order = Some(order.clone());
+            self.home_order = Some(order.clone());
         }
         let simulation = &mut self.simulation;
         simulation.strokes.per_actuator.extend(&layer.strokes);
@@ -306,17 +317,20 @@ mod tests {
     fn sheet_modes_keep_the_command_lines_home_order() {
         let mut settings = Settings::new();
         settings.give(Given {
-            home_order: Some(vec![vec![2], vec![1]]),
+            home_order: Some(vec![vec!["C2".into()], vec!["C1".into()]]),
             ..Given::default()
         });
         let sheet = Given {
             modes: Some("reset".parse().unwrap()),
-            home_order: Some(vec![vec![1, 2]]),
+            home_order: Some(vec![vec!["C1".into(), "C2".into()]]),
             ..Given::default()
         };
-        let modes = settings.with_sheet(&sheet).program.modes;
-        assert!(modes.reset);
-        assert_eq!(modes.home_order, Some(vec![vec![2], vec![1]]));
+        let merged = settings.with_sheet(&sheet);
+        assert!(merged.program.modes.reset);
+        assert_eq!(
+            merged.home_order,
+            Some(vec![vec!["C2".into()], vec!["C1".into()]])
+        );
     }
 
     #[test]

@@ -864,26 +864,11 @@ fn closest_label(label: &str) -> Option<&'static str> {
         .map(|(_, known)| known)
 }
 
-fn letters(text: &str) -> Vec<char> {
+fn letters(text: &str) -> String {
     text.chars().filter(|c| c.is_alphabetic()).collect()
 }
 
-/// Levenshtein distance, for the few short labels above.
-fn edit_distance(a: &[char], b: &[char]) -> usize {
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.iter().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let above = row[j + 1];
-            row[j + 1] = (diagonal + usize::from(ca != cb))
-                .min(row[j] + 1)
-                .min(above + 1);
-            diagonal = above;
-        }
-    }
-    row[b.len()]
-}
+use crate::cell::edit_distance;
 
 #[cfg(test)]
 mod tests {
@@ -898,12 +883,7 @@ mod tests {
     /// its start (two cargo mutants survivors made deletions free).
     #[test]
     fn the_edit_distance_counts_every_deleted_letter() {
-        let d = |a: &str, b: &str| {
-            edit_distance(
-                &a.chars().collect::<Vec<_>>(),
-                &b.chars().collect::<Vec<_>>(),
-            )
-        };
+        let d = edit_distance;
         assert_eq!(d("ab", ""), 2);
         assert_eq!(d("abc", "a"), 2);
         assert_eq!(d("safety", "safty"), 1);

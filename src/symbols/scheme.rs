@@ -121,6 +121,39 @@ impl Naming {
             .map(|(n, _)| *n)
     }
 
+    /// The actuator `text` names where a setting names one (`--home-order`,
+    /// its SETTINGS row, `--valve`, `--stroke`, `--load`): its paper number
+    /// (`C1`), its ISO designation (`1A1`) or the engineer's name (`clamp`).
+    pub fn actuator_called(&self, text: &str) -> Option<u32> {
+        let text = text.trim();
+        crate::cell::parse_actuator(text)
+            .or_else(|| crate::cell::iso_actuator(text))
+            .or_else(|| self.actuator_named(text))
+    }
+
+    /// The name among those of `actuators` (number, ISO designation, the
+    /// engineer's name) closest to `text`, for a "did you mean": within one
+    /// letter in four.
+    pub fn actuator_like(&self, text: &str, actuators: &[u32]) -> Option<String> {
+        let lower = text.trim().to_ascii_lowercase();
+        actuators
+            .iter()
+            .flat_map(|&n| {
+                let mut names = vec![format!("C{n}"), format!("{n}A1")];
+                names.extend(self.actuators.get(&n).and_then(ActuatorName::stem));
+                names
+            })
+            .map(|name| {
+                (
+                    crate::cell::edit_distance(&lower, &name.to_ascii_lowercase()),
+                    name,
+                )
+            })
+            .filter(|(distance, _)| *distance > 0 && *distance * 4 <= lower.chars().count().max(4))
+            .min()
+            .map(|(_, name)| name)
+    }
+
     /// The identifier of `signal`.
     pub fn ident(&self, signal: Signal, table: &StepTable) -> String {
         named(signal, table, |n| self.own_stem(n)).unwrap_or_else(|| paper_ident(signal))
@@ -170,6 +203,17 @@ impl Naming {
     pub fn own_alias(&self, signal: Signal, table: &StepTable) -> Option<String> {
         let own = |n: u32| self.actuators.get(&n).and_then(ActuatorName::stem);
         named(signal, table, own)
+    }
+
+    /// `signal` in a message about a setting that names it: its paper
+    /// symbol, and the engineer's name beside it where its actuator has
+    /// one (`x11 (clamp_end)`), whatever the scheme.
+    pub fn called_by(&self, signal: Signal, pmax: &dyn Fn(u32) -> u32) -> String {
+        let own = |n: u32| self.actuators.get(&n).and_then(ActuatorName::stem);
+        match named_by(signal, pmax, own) {
+            Some(name) => format!("{} ({name})", signal.symbol()),
+            None => signal.symbol(),
+        }
     }
 
     /// [`Naming::aliases`], each actuator's end position given by `pmax`.

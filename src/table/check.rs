@@ -72,6 +72,22 @@ fn first_use(table: &StepTable, name: &str) -> Option<CellPos> {
     })
 }
 
+/// Where a message about the home order goes: on its SETTINGS cell, or on
+/// the file with the words naming `--home-order` to end the message.
+pub fn home_order_place(at: Option<&Location>, file: &str) -> (Location, &'static str) {
+    match at {
+        Some(at) => (at.clone(), ""),
+        None => (
+            Location {
+                file: file.to_string(),
+                sheet: None,
+                cell: None,
+            },
+            " (--home-order)",
+        ),
+    }
+}
+
 /// A home order is checked against the table whether or not it is used,
 /// and a home order without the reset mode that uses it is said, so that a
 /// forgotten `reset` is not silently a no-op.
@@ -79,18 +95,7 @@ fn check_home_order(table: &StepTable, machine: &Machine, grid: &Grid, diags: &m
     let Some(order) = machine.home_order else {
         return;
     };
-    // On its SETTINGS cell, or on the file for `--home-order`.
-    let (at, source) = match machine.home_order_at {
-        Some(at) => (at.clone(), ""),
-        None => (
-            Location {
-                file: grid.file.clone(),
-                sheet: None,
-                cell: None,
-            },
-            " (--home-order)",
-        ),
-    };
+    let (at, source) = home_order_place(machine.home_order_at, &grid.file);
     if let Err(message) = table.home_stages(Some(order)) {
         diags.error(Code::E030BadSetting, at, format!("{message}{source}"));
     } else if !machine.reset {

@@ -3,7 +3,7 @@
 //! moves; and the audit that every other filled cell in or beside that region
 //! is reported, never silently dropped.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 
 use crate::cell::{Header, header_kind, looks_like_item, parse_items};
 use crate::diag::{CellPos, Code, Diagnostics};
@@ -179,37 +179,19 @@ fn sorted_unique(values: impl Iterator<Item = u32>) -> Vec<u32> {
 }
 
 /// Steps are numbered by their order on the sheet; a `STEP n` label that
-/// says otherwise (a copied row, a skipped number) is worth a warning, since
-/// every output uses the row order.
+/// says otherwise (a copied row, a skipped number, two rows swapped) is
+/// worth a warning, since every output uses the row order.
 fn warn_on_label_numbers(grid: &Grid, label_col: u32, step_rows: &[u32], diags: &mut Diagnostics) {
-    let labels: BTreeMap<CellPos, u32> = grid
-        .cells
+    let cells: Vec<CellPos> = step_rows
         .iter()
-        .filter_map(|c| match &c.value {
-            CellValue::Text(t) if c.pos.col == label_col => match header_kind(t) {
-                Some(Header::Step(n)) => Some((c.pos, n)),
-                _ => None,
-            },
-            _ => None,
-        })
+        .map(|row| CellPos::new(*row, label_col))
         .collect();
-    for (k, row) in step_rows.iter().enumerate() {
-        let pos = CellPos::new(*row, label_col);
-        if let Some(&n) = labels.get(&pos)
-            && n as usize != k + 1
-        {
-            diags.warning(
-                Code::W002StepNumber,
-                grid.location(pos),
-                format!(
-                    "this row is labelled STEP {n} but is step {} of the table; steps are numbered by their order",
-                    k + 1
-                ),
-            );
-            // One warning tells the story; the rows below are shifted alike.
-            return;
-        }
-    }
+    warn_on_numbers(
+        grid,
+        &cells,
+        ("row is labelled STEP", "step", "steps"),
+        diags,
+    );
 }
 
 /// Branches are numbered by their order too: a `BRANCH n` header that says
@@ -221,25 +203,67 @@ fn warn_on_branch_numbers(
     branch_cols: &[u32],
     diags: &mut Diagnostics,
 ) {
-    for (k, col) in branch_cols.iter().enumerate() {
-        let pos = CellPos::new(header_row, *col);
-        let Some(CellValue::Text(t)) = grid.cells.iter().find(|c| c.pos == pos).map(|c| &c.value)
-        else {
+    let cells: Vec<CellPos> = branch_cols
+        .iter()
+        .map(|col| CellPos::new(header_row, *col))
+        .collect();
+    warn_on_numbers(
+        grid,
+        &cells,
+        ("column is headed BRANCH", "branch", "branches"),
+        diags,
+    );
+}
+
+/// W002 for each `STEP n` / `BRANCH n` cell (in table order) whose number
+/// is not its place. A run of cells shifted alike (a copied row and every
+/// row below it) is one warning, at its first cell; every change of the
+/// shift is another, so of two swapped labels both cells are named. A
+/// label another cell carries too names that cell.
+fn warn_on_numbers(
+    grid: &Grid,
+    cells: &[CellPos],
+    (says, one, many): (&str, &str, &str),
+    diags: &mut Diagnostics,
+) {
+    let numbers: Vec<Option<u32>> = cells
+        .iter()
+        .map(
+            |pos| match grid.cells.iter().find(|c| c.pos == *pos).map(|c| &c.value) {
+                Some(CellValue::Text(t)) => match header_kind(t) {
+                    Some(Header::Step(n) | Header::Branch(n)) => Some(n),
+                    _ => None,
+                },
+                _ => None,
+            },
+        )
+        .collect();
+    let mut said_shift = 0i64;
+    for (k, (pos, number)) in cells.iter().zip(&numbers).enumerate() {
+        let Some(n) = *number else { continue };
+        let shift = i64::from(n) - (k as i64 + 1);
+        if shift == said_shift || shift == 0 {
+            said_shift = shift;
             continue;
-        };
-        if let Some(Header::Branch(n)) = header_kind(t)
-            && n as usize != k + 1
-        {
-            diags.warning(
-                Code::W002StepNumber,
-                grid.location(pos),
-                format!(
-                    "this column is headed BRANCH {n} but is branch {} of the table; branches are numbered by their order",
-                    k + 1
-                ),
-            );
-            return;
         }
+        said_shift = shift;
+        let twin = cells
+            .iter()
+            .zip(&numbers)
+            .find(|(other, m)| *other != pos && **m == Some(n))
+            .map(|(other, _)| {
+                let word = says.rsplit(' ').next().unwrap_or_default();
+                format!(" ({} is {word} {n} too)", grid.cell_name(*other))
+            })
+            .unwrap_or_default();
+        diags.warning(
+            Code::W002StepNumber,
+            grid.location(*pos),
+            format!(
+                "this {says} {n} but is {one} {} of the table{twin}; {many} are numbered by their order",
+                k + 1
+            ),
+        );
     }
 }
 

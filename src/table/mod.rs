@@ -8,7 +8,7 @@ mod check;
 mod dialect;
 mod frame;
 
-pub use check::{Machine, check_machine};
+pub use check::{Machine, check_machine, home_order_place};
 pub use dialect::choose_reading;
 
 use frame::find_frame;

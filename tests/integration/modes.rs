@@ -275,7 +275,7 @@ fn default_home_order_is_the_cycles_own_return_order() {
         vec![vec![2, 3, 4], vec![1]]
     );
     let custom = Modes {
-        home_order: Some(Modes::parse_home_order("C3&C4, C2, C1").unwrap()),
+        home_order: Some(vec![vec![3, 4], vec![2], vec![1]]),
         ..modes.clone()
     };
     assert_eq!(
@@ -283,7 +283,7 @@ fn default_home_order_is_the_cycles_own_return_order() {
         vec![vec![3, 4], vec![2], vec![1]]
     );
     let missing = Modes {
-        home_order: Some(Modes::parse_home_order("C1,C2").unwrap()),
+        home_order: Some(vec![vec![1], vec![2]]),
         ..modes
     };
     assert!(

@@ -2,7 +2,8 @@
 //! could mean 2 s or 2 ms, and an option has no cell to warn at (the
 //! SETTINGS sheet's W007), so every option that takes a time refuses a bare
 //! number, exit 1, naming both readings, and writes nothing; the same time
-//! with its unit is taken.
+//! with its unit is taken. A time not written as a plain number
+//! (`1e1ms`, `0x2s`) is refused saying what is expected.
 
 use crate::helpers::{files_below, sample, steptable};
 
@@ -45,6 +46,29 @@ fn a_time_without_its_unit_is_refused_on_the_command_line() {
             "--input-delay",
             "part_present=2",
             "2 has no unit",
+            "part_present=2s",
+        ),
+        // Issue 37's round 3: a number not written plainly is refused
+        // saying what is expected, not blamed on its range.
+        (
+            "convert",
+            "--scan",
+            "1e1ms",
+            "\"1e1ms\" is not written as a time: expected a plain number and its unit, such as 10ms",
+            "10ms",
+        ),
+        (
+            "convert",
+            "--stroke",
+            "C1=1e1s",
+            "\"1e1s\" is not written as a time: expected a plain number and its unit",
+            "C1=10s",
+        ),
+        (
+            "faults",
+            "--input-delay",
+            "part_present=0x2s",
+            "\"0x2s\" is not written as a time",
             "part_present=2s",
         ),
     ];

@@ -16,7 +16,7 @@ fn test_source(reference: &str) -> Option<String> {
 
 /// Every `file.rs::test` reference in `text`.
 fn references(text: &str) -> Vec<(String, String)> {
-    let pattern = regex::Regex::new(r"`((?:tools/)?[a-z_]+\.rs)::([a-z0-9_]+)`").unwrap();
+    let pattern = regex::Regex::new(r"`((?:tools/)?[a-z0-9_]+\.rs)::([a-z0-9_]+)`").unwrap();
     pattern
         .captures_iter(text)
         .map(|c| (c[1].to_string(), c[2].to_string()))

@@ -1,0 +1,54 @@
+//! The rows of STEP 7's symbol table (`NAME.sdf`), laid out by
+//! `symbols.sdf.j2` from the model [`super::awl`] builds: fixed-width
+//! quoted fields, the comment at most [`SDF_COMMENT`] characters.
+
+use serde::Serialize;
+
+use super::one_line;
+
+#[derive(Serialize, Clone)]
+pub(super) struct Symbol {
+    pub(super) symbol: String,
+    address: String,
+    data_type: &'static str,
+    comment: String,
+    /// The comment was longer than the symbol table holds (see [`sdf_comment`]).
+    #[serde(skip)]
+    pub(super) cut: bool,
+}
+
+/// The characters a comment of STEP 7's symbol table holds.
+pub const SDF_COMMENT: usize = 80;
+
+/// A comment as the symbol table holds it: one line, quoted fields so an
+/// engineer's `"` becomes `'`, and at most [`SDF_COMMENT`] characters. A
+/// longer one (a long step comment or actuator name) would widen the
+/// fixed-width row past what STEP 7 imports, so it is cut to 77
+/// characters and `...`, the same every run; the `.awl` keeps it whole.
+fn sdf_comment(text: &str) -> (String, bool) {
+    let text = one_line(text).replace('"', "'");
+    if text.chars().count() <= SDF_COMMENT {
+        return (text, false);
+    }
+    let mut cut: String = text.chars().take(SDF_COMMENT - 3).collect();
+    cut.push_str("...");
+    (cut, true)
+}
+
+impl Symbol {
+    pub(super) fn new(
+        symbol: String,
+        address: String,
+        data_type: &'static str,
+        comment: &str,
+    ) -> Symbol {
+        let (comment, cut) = sdf_comment(comment);
+        Symbol {
+            symbol,
+            address,
+            data_type,
+            comment,
+            cut,
+        }
+    }
+}
