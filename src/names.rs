@@ -121,6 +121,15 @@ pub const KEYWORDS: &[&str] = &[
     "UNTIL", "USINT", "VAR", "VAR_ACCESS", "VAR_EXTERNAL", "VAR_GLOBAL", "VAR_INPUT",
     "VAR_IN_OUT", "VAR_OUTPUT", "VAR_TEMP", "WHILE", "WITH", "WORD", "XOR", "NOP", "JMP",
     "SET", "RESET", "THEN", "TON", "TOF", "TP", "LOAD", "ELSE", "OTHRW", "CMP", "PSE",
+    // matiec's and OpenPLC v3's own (the edition 2 words it parses).
+    "CONTINUE", "VAR_CONFIG", "R_EDGE", "F_EDGE", "NON_RETAIN", "REF", "REF_TO", "NULL",
+    // Edition 3's object-oriented words, which OpenPLC v4's STruC++ and
+    // CODESYS reserve.
+    "THIS", "SUPER", "METHOD", "END_METHOD", "INTERFACE", "END_INTERFACE", "PROPERTY",
+    "END_PROPERTY", "PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL", "EXTENDS", "IMPLEMENTS",
+    "ABSTRACT", "FINAL", "OVERRIDE", "NAMESPACE", "END_NAMESPACE", "USING", "VAR_STAT",
+    "CLASS", "END_CLASS", "CHAR", "WCHAR", "WSTRING", "LWORD", "LTIME", "LDATE", "LTOD", "LDT",
+    "DATE_AND_TIME", "TIME_OF_DAY", "REFERENCE", "POINTER",
 ];
 
 /// Why a machine input or output may not have this (lower-case) name, if
@@ -177,6 +186,10 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "steptable_main",
         "cyclic_task",
         "main_instance",
+        // OpenPLC's upload needs the configuration and resource so named
+        // (its script moves Config0.c and Res0.c).
+        "config0",
+        "res0",
         // The programs the SFC chart runs before and after it, and their
         // instances (its steps `step_k` and actions `step_k_entry` are
         // numbered names below).

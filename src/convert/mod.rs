@@ -397,7 +397,10 @@ pub fn proven_program(
         faults::case_count(&program, k) <= faults::MAX_CASES
             && faults::over_budget(table, &program, sim, k).is_none()
     });
-    let signals = record.then(|| simulate::io::IoSignals::every(&program));
+    let signals = record.then(|| simulate::io::IoSignals {
+        max_scans: Some(emit::report::TIMELINE_SCANS),
+        ..simulate::io::IoSignals::every(&program)
+    });
     let (simulation, healthy, io_trace) = if for_faults {
         let (healthy, trace) = faults::healthy_run_recording(table, &program, sim, signals);
         // The places are the analysis's; the proof's report has none.

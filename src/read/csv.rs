@@ -154,7 +154,8 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
         let mut previous: Option<&str> = None;
         for (col, field) in record.iter().enumerate() {
             let col = col.min(u32::MAX as usize) as u32;
-            if field.trim().is_empty() {
+            // A field of invisible characters only is as empty as it looks.
+            if field.trim().is_empty() || super::grid::visible_text(field).trim().is_empty() {
                 previous = None;
                 continue;
             }
@@ -188,7 +189,7 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
             previous = Some(field);
             cells.push(GridCell {
                 pos: CellPos::new(row, col),
-                value: CellValue::Text(field.to_string()),
+                value: CellValue::text(field),
             });
         }
     }

@@ -479,10 +479,11 @@ fn cell_value(data: &Data) -> Option<CellValue> {
     Some(match data {
         Data::Empty => return None,
         Data::String(s) => {
-            if s.trim().is_empty() {
+            let text = crate::read::grid::visible_text(s);
+            if text.trim().is_empty() {
                 return None;
             }
-            CellValue::Text(s.clone())
+            CellValue::Text(text)
         }
         Data::Int(i) => CellValue::Number(*i as f64),
         Data::Float(f) => CellValue::Number(*f),

@@ -15,6 +15,9 @@ use crate::program::Signal;
 pub struct IoSignals {
     pub inputs: Vec<Signal>,
     pub outputs: Vec<Signal>,
+    /// Record at most this many scans (the report's timeline, whose memory
+    /// and width grow with the scans); `None` records the whole run.
+    pub max_scans: Option<usize>,
 }
 
 impl IoSignals {
@@ -25,6 +28,7 @@ impl IoSignals {
         IoSignals {
             inputs: signals.inputs.clone(),
             outputs: signals.driven().chain(signals.alarms()).collect(),
+            max_scans: None,
         }
     }
 }
@@ -48,6 +52,8 @@ pub struct IoTrace {
     pub scan_ms: u32,
     pub signals: IoSignals,
     pub scans: Vec<ScanIo>,
+    /// The run went on past `signals.max_scans`: `scans` holds its start.
+    pub cut: bool,
 }
 
 /// The first scan at which an engine's outputs differ from the simulation.
@@ -133,6 +139,29 @@ impl InputLog {
 }
 
 impl IoTrace {
+    /// An empty recording of `signals`.
+    pub fn new(scan_ms: u32, signals: IoSignals) -> IoTrace {
+        IoTrace {
+            scan_ms,
+            signals,
+            scans: Vec::new(),
+            cut: false,
+        }
+    }
+
+    /// Keeps `scan` unless the recording is full.
+    pub(crate) fn push(&mut self, scan: ScanIo) {
+        if self
+            .signals
+            .max_scans
+            .is_some_and(|max| self.scans.len() >= max)
+        {
+            self.cut = true;
+        } else {
+            self.scans.push(scan);
+        }
+    }
+
     /// Compares an engine's outputs, one vector per scan in the order of
     /// `signals.outputs`, with the recorded ones. A run that ended early is a
     /// mismatch at the first missing scan.
@@ -194,6 +223,7 @@ mod tests {
             signals: IoSignals {
                 inputs: vec![Signal::Start],
                 outputs: vec![coil],
+                max_scans: None,
             },
             scans: (0..4)
                 .map(|i| ScanIo {
@@ -203,6 +233,7 @@ mod tests {
                     step: usize::from(i >= 1),
                 })
                 .collect(),
+            cut: false,
         }
     }
 

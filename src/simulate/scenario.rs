@@ -92,11 +92,7 @@ fn run_script(
 ) -> (ScenarioReport, Option<super::io::IoTrace>) {
     let code = PlcProgram::compile(program);
     let mut run = Run::new(table, program, &code, settings);
-    run.io = record.map(|signals| super::io::IoTrace {
-        scan_ms: run.world.settings.scan_ms,
-        signals,
-        scans: Vec::new(),
-    });
+    run.io = record.map(|signals| super::io::IoTrace::new(run.world.settings.scan_ms, signals));
     let outputs: Vec<(usize, Signal)> = program
         .steps
         .iter()

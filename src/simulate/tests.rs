@@ -180,6 +180,7 @@ fn the_recorded_io_is_the_same_both_ways() {
         let signals = io::IoSignals {
             inputs: program.signals.inputs.clone(),
             outputs: program.signals.driven().collect(),
+            max_scans: None,
         };
         let code = plc::PlcProgram::compile(&program);
         let record = |stepping| {

@@ -280,7 +280,45 @@ fn the_sorting_stations_jumps_are_a_selection_with_their_targets() {
         svg.contains(r#"x20 · <tspan text-decoration="overline">reject</tspan>"#),
         "{svg}"
     );
-    assert!(svg.contains("t/X7/500ms"), "the dwell as a GRAFCET time");
+    // The dwell starts once x41 is on, as the program's timer does.
+    assert!(svg.contains("t/x41/500ms"), "the dwell as a GRAFCET time");
+}
+
+/// Two jumps from one step: the program tests them in turn (`IF … ELSIF`),
+/// so the second is drawn with the first one's input negated: the
+/// alternatives stay exclusive, as IEC 60848 needs of a selection. A dwell
+/// after a move starts when its sensor comes on, not with the step.
+#[test]
+fn a_second_jump_and_a_dwell_read_as_the_program_runs_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("two.xlsx");
+    let rows: &[&[&str]] = &[
+        &["", "BRANCH 1"],
+        &["STEP 1", "C1+1"],
+        &["STEP 2", "C2+1; T=2s"],
+        &["STEP 3", "C2-0; J:5 if I:jmpa; J:6 if I:jmpb"],
+        &["STEP 4", "T=1s"],
+        &["STEP 5", "T=200ms"],
+        &["STEP 6", "C1-0"],
+    ];
+    write_xlsx(&path, "SEQUENTIAL CONTROL DESCRIPTION", rows);
+    let svg = convert(&path, dir.path(), &[]);
+    let d = drawn(&svg);
+    let jumps: Vec<String> = d
+        .transitions
+        .iter()
+        .filter(|(id, _)| id.contains('j'))
+        .map(|(_, l)| l.join(" "))
+        .collect();
+    assert_eq!(jumps, ["x20 · jmpa", "x20 · jmpb · jmpa"]);
+    assert!(
+        svg.contains(r#"jmpb · <tspan text-decoration="overline">jmpa</tspan>"#),
+        "{svg}"
+    );
+    // The dwell after C2's move runs from x21 on; the dwell alone in its
+    // step runs with the step.
+    assert!(svg.contains("t/x21/2s"), "{svg}");
+    assert!(svg.contains("t/X4/1s"), "{svg}");
 }
 
 #[test]

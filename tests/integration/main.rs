@@ -26,6 +26,7 @@ mod hostile_messages;
 mod hostile_round3;
 mod hostile_settings;
 mod identifiers;
+mod invisible_chars;
 mod jump_paths;
 mod jumps;
 mod layers;

@@ -82,6 +82,37 @@ fn every_entry_point_refuses_every_kind_of_name_collision() {
         ("wait on s", "I:s", "none", 0, ""),
         // Keywords, standard functions and blocks.
         ("wait on if", "I:if", "none", 1, "keyword"),
+        // Words matiec, OpenPLC v3 or OpenPLC v4 reserve beyond the
+        // classic keywords (each compiled to a refused .st with exit 0).
+        ("wait on continue", "I:continue", "none", 1, "keyword"),
+        (
+            "jump on var_config",
+            "J:4 if I:var_config",
+            "none",
+            1,
+            "keyword",
+        ),
+        ("wait on r_edge", "I:r_edge", "none", 1, "keyword"),
+        ("output non_retain", "Y:non_retain+", "none", 1, "keyword"),
+        ("wait on ref", "I:ref", "none", 1, "keyword"),
+        ("wait on null", "I:null", "none", 1, "keyword"),
+        ("wait on this", "I:this", "none", 1, "keyword"),
+        ("output method", "Y:method+", "none", 1, "keyword"),
+        ("wait on interface", "I:interface", "none", 1, "keyword"),
+        (
+            "jump on property",
+            "J:4 if I:property",
+            "none",
+            1,
+            "keyword",
+        ),
+        (
+            "wait on Config0",
+            "I:Config0",
+            "none",
+            1,
+            "generated program uses it",
+        ),
         ("output ctu", "Y:ctu+", "none", 1, "standard function"),
         (
             "jump on max",

@@ -226,3 +226,34 @@ fn the_engineers_text_is_escaped() {
     );
     assert_eq!(external_references(&page), Vec::<String>::new());
 }
+
+/// A long dwell at a short scan time: the recording stops at the
+/// timeline's scan budget and the page says so, instead of recording
+/// every scan (the red team saw 341 MB and an abort under a memory cap).
+#[test]
+fn a_run_longer_than_the_timeline_budget_is_said_not_drawn() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("long.xlsx");
+    let rows: &[&[&str]] = &[
+        &["", "BRANCH 1"],
+        &["STEP 1", "C1+1; T=30s"],
+        &["STEP 2", "C1-0"],
+    ];
+    write_xlsx(&input, "SEQUENTIAL CONTROL DESCRIPTION", rows);
+    let folder = convert(
+        &input,
+        dir.path(),
+        &["--scan", "1ms", "--formats", "report"],
+    );
+    let page = read(&folder, ".report.html");
+    assert!(
+        page.contains("The timeline is drawn for runs of at most 20000 scans"),
+        "{page}"
+    );
+    assert!(!page.contains("class=\"timeline\""), "no timeline drawn");
+    // A short run still gets its timeline.
+    let short = dir.path().join("short");
+    let folder = convert(&input, &short, &["--scan", "10ms", "--formats", "report"]);
+    let page = read(&folder, ".report.html");
+    assert!(!page.contains("at most 20000 scans"), "drawn at 10 ms");
+}

@@ -325,7 +325,7 @@ impl Layout {
             });
             self.y = at + 3.0;
         }
-        let mut main = receptivity(&step.condition, input.symbols, input.table);
+        let mut main = receptivity(&step.condition, input.symbols, input.table, input.program);
         // The program tests its jumps first: the sequence goes on only when
         // no jump's input holds, which makes the alternatives exclusive.
         for jump in &step.jumps {
@@ -338,7 +338,13 @@ impl Layout {
             .iter()
             .enumerate()
             .map(|(k, j)| {
-                let cond = receptivity(&j.condition, input.symbols, input.table);
+                let mut cond = receptivity(&j.condition, input.symbols, input.table, input.program);
+                // A later jump is tested only when no earlier one fired.
+                for earlier in &step.jumps[..k] {
+                    if let Some(term) = words::jump_input(earlier, input.symbols) {
+                        cond.last_mut().expect("one line at least").push(term);
+                    }
+                }
                 (
                     format!("t{index}j{}", k + 1),
                     cond,

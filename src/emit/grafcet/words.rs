@@ -4,7 +4,7 @@
 //! actions as stored set/reset orders (`S y1+`, `R y1-`) split by the
 //! table's branches.
 
-use crate::program::{Action, Literal, ProgramStep, Signal, StepKind};
+use crate::program::{Action, Literal, ProgramStep, Signal, StepKind, StepProgram};
 use crate::symbols::SymbolTable;
 use crate::table::{Step, StepTable};
 
@@ -26,13 +26,14 @@ pub fn receptivity(
     condition: &[Literal],
     symbols: &SymbolTable,
     table: &StepTable,
+    program: &StepProgram,
 ) -> Vec<Vec<Term>> {
     let terms: Vec<Term> = condition
         .iter()
         .filter(|l| !matches!(l.signal, Signal::DwellArmed(_)))
         .map(|l| match l.signal {
             Signal::Dwell(n) => Term {
-                text: dwell_text(n, table),
+                text: dwell_text(n, table, program, symbols),
                 // The timer runs while the dwell lasts: NOT running is the
                 // time having elapsed.
                 negated: !l.negated,
@@ -63,18 +64,43 @@ pub fn receptivity(
     lines
 }
 
-/// `t/X3/2s`: dwell `n` runs in the step that holds it.
-fn dwell_text(n: u16, table: &StepTable) -> String {
-    table
+/// `t/X3/2s` when dwell `n` starts with its step; `t/x41/500ms` (or
+/// `t/(x41·¬r)/2s`) when it starts once the other items of its branch are
+/// done: the time runs from the moment its own rung's condition holds, as
+/// the program's timer does (IEC 60848's `t1/b/t2`, the delay on `b`).
+fn dwell_text(n: u16, table: &StepTable, program: &StepProgram, symbols: &SymbolTable) -> String {
+    let Some((step, dwell)) = table
         .steps
         .iter()
-        .find_map(|s| {
-            s.dwells
+        .find_map(|s| s.dwells.iter().find(|d| d.number == n).map(|d| (s, d)))
+    else {
+        return format!("t/T{n}");
+    };
+    let trigger: Vec<String> = program
+        .rungs
+        .iter()
+        .find(|r| {
+            r.actions
                 .iter()
-                .find(|d| d.number == n)
-                .map(|d| format!("t/X{}/{}", s.number, crate::cell::duration_text(d.ms)))
+                .any(|a| matches!(a, Action::StartTimer(Signal::Dwell(d), _) if *d == n))
         })
-        .unwrap_or_else(|| format!("t/T{n}"))
+        .map(|rung| {
+            rung.condition
+                .iter()
+                .filter(|l| !matches!(l.signal, Signal::DwellArmed(_)))
+                .map(|l| {
+                    let name = symbols.designation(l.signal);
+                    if l.negated { format!("¬{name}") } else { name }
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    let trigger = match trigger.as_slice() {
+        [] => format!("X{}", step.number),
+        [one] => one.clone(),
+        many => format!("({})", many.join("·")),
+    };
+    format!("t/{trigger}/{}", crate::cell::duration_text(dwell.ms))
 }
 
 /// The text of one line of terms, as the SVG and the tests measure it.

@@ -24,6 +24,12 @@ const SCRIPT: &str = include_str!("report.js");
 /// the recording) larger than a browser opens comfortably.
 pub const TIMELINE_STEPS: usize = 200;
 
+/// The most scans the timeline records and draws (200 s of a cycle at
+/// 10 ms scans): a long dwell at a short scan time would otherwise make
+/// the recording hundreds of megabytes and the page millions of pixels
+/// wide. A longer run is recorded this far and the timeline left out.
+pub const TIMELINE_SCANS: usize = 20_000;
+
 /// The sections of the page, by id and heading, in order.
 pub const SECTIONS: [(&str, &str); 8] = [
     ("table", "Step table"),
@@ -67,6 +73,11 @@ pub fn render(input: &EmitInput) -> Result<String, String> {
     section(&mut page, 4, &settings(input));
     section(&mut page, 5, &step_timing(input, simulation));
     let timeline = match input.io_trace {
+        Some(trace) if trace.cut => format!(
+            "<p>The timeline is drawn for runs of at most {TIMELINE_SCANS} scans; this one runs longer than {} s at {} ms a scan.</p>",
+            TIMELINE_SCANS as u64 * u64::from(trace.scan_ms) / 1000,
+            trace.scan_ms
+        ),
         Some(trace) => timeline_html(input, simulation, trace),
         None => format!(
             "<p>The timeline is drawn for tables of at most {TIMELINE_STEPS} steps; this one has {}.</p>",

@@ -66,11 +66,7 @@ impl<'a> Drive<'a> {
     ) -> Self {
         let mut run = Run::new(table, program, code, settings);
         run.event_driven = stepping == Stepping::Events;
-        run.io = record.map(|signals| io::IoTrace {
-            scan_ms: run.world.settings.scan_ms,
-            signals,
-            scans: Vec::new(),
-        });
+        run.io = record.map(|signals| io::IoTrace::new(run.world.settings.scan_ms, signals));
         let press_at = IDLE_MS as u64;
         let positions = run.positions();
         Drive {

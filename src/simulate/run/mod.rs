@@ -251,7 +251,7 @@ impl Run<'_> {
                 .iter()
                 .map(|s| self.plc.bit(*s))
                 .collect();
-            io.scans.push(io::ScanIo {
+            io.push(io::ScanIo {
                 time_ms: now,
                 inputs,
                 outputs,

@@ -246,6 +246,7 @@ pub fn record_with<R>(
     let signals = IoSignals {
         inputs: allocation.inputs.iter().map(|a| a.signal).collect(),
         outputs: allocation.outputs.iter().map(|a| a.signal).collect(),
+        max_scans: None,
     };
     let (report, trace) = run(&program, signals);
     let case = Case {
