@@ -25,6 +25,7 @@ mod pinned;
 mod sfc;
 mod single_step;
 mod step_numbers;
+mod supervision;
 mod sync;
 mod synth_engines;
 
@@ -173,6 +174,7 @@ fn main() {
         pinned::CHECKS,
         sfc::CHECKS,
         single_step::CHECKS,
+        supervision::CHECKS,
         step_numbers::CHECKS,
         halt::CHECKS,
         homing::CHECKS,
