@@ -2,14 +2,16 @@
 //! example converted with `--safety criteria`, x32 open circuit (step 5
 //! waits for x32 and x22). The written program raises the timeout alarm
 //! and lights x32's missing output, and x32's alone, in matiec (iec),
-//! awlsim (siemens) and the FST interpreter (festo), scan for scan as
-//! simulated.
+//! awlsim (siemens) and the FST interpreter (festo), and in the SCL and
+//! RLL interpreters (the TIA Portal SCL, the Studio 5000 L5X), scan for
+//! scan as simulated.
 
 use steptable::convert;
 use steptable::program::{Alarm, Signal};
 use steptable::simulate::scenario::scenario_recording;
 use steptable::simulate::{Fault, Operator};
 
+use crate::differential_native::{run_l5x, run_scl};
 use crate::engines::{self, awlsim};
 use crate::helpers::{sample, steptable};
 use crate::{Check, Tool, tool};
@@ -41,14 +43,22 @@ fn the_missing_condition_is_read_in_every_engine() {
         actuator: 3,
         position: 2,
     };
-    for (target, format) in [("iec", "st"), ("siemens", "awl"), ("festo", "fst")] {
+    // Beside each engine's own file, the native programs of the two largest
+    // PLC families: the TIA Portal SCL with its tag table (siemens), the
+    // Studio 5000 L5X with its tags (iec), each in its interpreter.
+    let runs = [
+        ("iec", "st", "st,l5x,rockwell"),
+        ("siemens", "awl", "awl,scl,tia"),
+        ("festo", "fst", "fst"),
+    ];
+    for (target, format, formats) in runs {
         let args = ["--target", target, "--safety", "criteria"];
         let out = dir.path().join(format);
         steptable()
             .arg("convert")
             .arg(&input)
             .args(args)
-            .args(["--formats", format, "-o"])
+            .args(["--formats", formats, "-o"])
             .arg(&out)
             .assert()
             .success();
@@ -82,6 +92,11 @@ fn the_missing_condition_is_read_in_every_engine() {
         assert_eq!(steps, [1, 2, 3, 4], "{}: {fired:?}", case.label);
         let outputs = engines::run_written(&case, format, &python);
         case.check(format, outputs).unwrap();
+        match target {
+            "siemens" => case.check_stepped("scl", run_scl(&case)).unwrap(),
+            "iec" => case.check_stepped("l5x", run_l5x(&case)).unwrap(),
+            _ => {}
+        }
         // The engine's outputs are the trace's: at the end the alarm and
         // x32's missing output are on, no other missing output.
         let program = convert::build_program(&checked.table, &checked.settings);
@@ -106,6 +121,6 @@ fn the_missing_condition_is_read_in_every_engine() {
         );
     }
     eprintln!(
-        "supervision: matiec, awlsim and the FST interpreter raise the timeout alarm of the paper's example with x32 stuck off and name x32, and only x32, missing, as simulated"
+        "supervision: matiec, awlsim, the FST, SCL and RLL interpreters raise the timeout alarm of the paper's example with x32 stuck off and name x32, and only x32, missing, as simulated"
     );
 }
