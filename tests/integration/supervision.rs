@@ -205,3 +205,64 @@ fn the_fault_table_names_the_missing_sensor_of_every_stall_it_catches() {
     }
     assert_eq!(named, 7, "the paper's watchdog catches seven dead sensors");
 }
+
+/// Every sample (jumps, waits, dwells, drives among them), with every
+/// check, the criteria analysis and every mode: each transition, its own
+/// or a jump, moves the awaited memories from the criteria of the
+/// transition it leaves to exactly those of the one it makes the sequence
+/// wait at; so after any path through the table only the awaited
+/// transition's criteria are on.
+#[test]
+fn every_transition_leaves_exactly_the_awaited_criteria_on() {
+    use steptable::program::Action;
+    let awaited = |program: &StepProgram, index: usize| -> Vec<u16> {
+        let mut on: Vec<u16> = match index {
+            0 => Vec::new(),
+            _ => program.steps[index]
+                .condition
+                .iter()
+                .filter_map(|l| program.criteria.iter().position(|c| c == l))
+                .map(|n| n as u16 + 1)
+                .collect(),
+        };
+        on.sort_unstable();
+        on.dedup();
+        on
+    };
+    let after = |from: Vec<u16>, actions: &[Action]| -> Vec<u16> {
+        let mut on = from;
+        for action in actions {
+            match action {
+                Action::Set(Signal::Awaited(n)) => on.push(*n),
+                Action::Reset(Signal::Awaited(n)) => on.retain(|m| m != n),
+                _ => {}
+            }
+        }
+        on.sort_unstable();
+        on.dedup();
+        on
+    };
+    let mut jumps = 0;
+    for entry in std::fs::read_dir(crate::helpers::root().join("samples")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "xlsx") {
+            continue;
+        }
+        let build = Build::path(&path)
+            .safety("edge,precheck,plausibility,criteria".parse().unwrap())
+            .modes("all");
+        // The oven waits on its dwells alone: no input, no criterion.
+        let program = build.program();
+        let count = program.steps.len();
+        for (i, step) in program.steps.iter().enumerate() {
+            let own = after(awaited(&program, i), &step.actions);
+            assert_eq!(own, awaited(&program, (i + 1) % count), "{path:?} {i}");
+            for jump in &step.jumps {
+                jumps += 1;
+                let to = after(awaited(&program, i), &jump.actions);
+                assert_eq!(to, awaited(&program, jump.next), "{path:?} {}", jump.title);
+            }
+        }
+    }
+    assert!(jumps > 0, "a sample has jumps");
+}
