@@ -266,3 +266,30 @@ fn every_transition_leaves_exactly_the_awaited_criteria_on() {
     }
     assert!(jumps > 0, "a sample has jumps");
 }
+
+/// A step that waits on a machine input is not timed (a part may take as
+/// long as it takes) until it is given a supervision time: the press
+/// station's step 1 waits for part_present, given 5 s late; untimed it
+/// waits, supervised 3 s it raises the alarm with part_present missing.
+#[test]
+fn a_supervision_time_times_a_waiting_step() {
+    let path = crate::helpers::sample("press_station.xlsx");
+    let part = steptable::cell::Name::new("part_present").unwrap();
+    let run = |times: &[(usize, u32)]| {
+        let mut build = Build::path(&path).safety("criteria".parse().unwrap());
+        build.settings.program.supervision = times.iter().copied().collect();
+        build.settings.simulation.input_delays = [(part, 5_000)].into();
+        let program = build.program();
+        let simulation = build.settings.simulation.clone();
+        let report = started(&build.table, &program, &simulation, 5_000);
+        (program, report)
+    };
+    let (_, untimed) = run(&[]);
+    assert!(!alarm_on(&untimed));
+    let (program, timed) = run(&[(1, 3_000)]);
+    assert!(alarm_on(&timed));
+    assert_eq!(
+        missing(&program, &timed),
+        [Literal::is(Signal::MachineInput(part))]
+    );
+}
