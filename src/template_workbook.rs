@@ -269,7 +269,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         crate::program::Modes::NAMES.join(", ")
     );
     let schemes = crate::symbols::Scheme::ALL.map(crate::symbols::Scheme::name);
-    let rows: [(&str, &str, &str, Option<&[&str]>); 16] = [
+    let rows: [(&str, &str, &str, Option<&[&str]>); 17] = [
         (
             "target",
             "default",
@@ -354,6 +354,12 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             "home order",
             "default",
             "Homing stages for RESET, first to last, e.g. C3&C4, C2, C1. default: the order the cycle itself returns the actuators home (each actuator's last move, earliest first; those whose last moves share a step go together).",
+            None,
+        ),
+        (
+            "supervision",
+            "none",
+            "Supervision time per step in place of the watchdog's (twice the step's longest move, plus its dwell, plus 1 s), e.g. 3=5s, 5=12s: longer than the step takes, at most 655.35 s; needs watchdog or criteria among the safety checks. none: every step's from the stroke times.",
             None,
         ),
     ];

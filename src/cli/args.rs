@@ -252,6 +252,9 @@ pub(crate) struct CommonArgs {
     /// Homing stages for RESET, first to last: "C3&C4,C2,C1", an actuator also by its ISO designation (3A1) or name (clamp) (default: the order the cycle itself returns them home).
     #[arg(long, value_name = "ORDER", value_parser = parse_home_order)]
     pub(crate) home_order: Option<HomeOrder>,
+    /// Supervision time per table step, in place of the watchdog's from the plant model: 3=5s,5=12s (needs --safety watchdog or criteria).
+    #[arg(long, value_name = "LIST", value_parser = parse_supervision)]
+    pub(crate) supervision: Option<Supervision>,
     /// How signals are designated in every output: paper (x10, y1+; the default), iso (ISO 1219-2: 1A1, 1B1/1B2, 1M1/1M2) or names (the actuator table's names: clamp_home, clamp_out).
     #[arg(long, ignore_case = true, value_parser = parse_designations())]
     pub(crate) designations: Option<Scheme>,
@@ -286,6 +289,15 @@ pub(crate) struct HomeOrder(pub(crate) Vec<Vec<String>>);
 
 pub(crate) fn parse_modes(text: &str) -> Result<Modes, String> {
     text.parse()
+}
+
+/// Supervision times by step. A type of its own: clap takes a bare map
+/// apart.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Supervision(pub(crate) std::collections::BTreeMap<usize, u32>);
+
+pub(crate) fn parse_supervision(text: &str) -> Result<Supervision, String> {
+    crate::program::parse_supervision(text).map(Supervision)
 }
 
 pub(crate) fn parse_home_order(text: &str) -> Result<HomeOrder, String> {
@@ -388,6 +400,7 @@ impl CommonArgs {
                 safety: self.safety,
                 modes: self.modes.clone(),
                 home_order: self.home_order.as_ref().map(|order| order.0.clone()),
+                supervision: self.supervision.as_ref().map(|times| times.0.clone()),
                 valves: self
                     .valve
                     .as_ref()

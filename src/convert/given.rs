@@ -328,3 +328,64 @@ pub(super) fn names_of_the_whole_table(
     entries.extend(later);
     check::check_entries(&entries, diags);
 }
+
+/// Supervision times (`--supervision`, SETTINGS `supervision`) checked
+/// against the table: each names a step the table has, the watchdog they
+/// set is on, and none is shorter than its step takes in a healthy machine
+/// (its longest move from the stroke times, plus its dwell), where the
+/// alarm would come every cycle. Each is E030 at the SETTINGS cell, or
+/// naming the option.
+pub(super) fn supervision_times(
+    table: &StepTable,
+    settings: &Settings,
+    file: &str,
+    diags: &mut Diagnostics,
+) {
+    let times = &settings.program.supervision;
+    if times.is_empty() {
+        return;
+    }
+    let (at, source) = match settings.cells.get("supervision") {
+        Some(at) => (at.clone(), "supervision".to_string()),
+        None => (
+            Location {
+                file: file.to_string(),
+                sheet: None,
+                cell: None,
+            },
+            "--supervision".to_string(),
+        ),
+    };
+    let mut refuse = |message: String| {
+        diags.error(
+            Code::E030BadSetting,
+            at.clone(),
+            format!("{source}: {message}"),
+        );
+    };
+    if !settings.program.safety.watchdog {
+        refuse(format!(
+            "a supervision time sets the step watchdog, which {} leaves out; add watchdog or criteria to the safety checks",
+            settings.origin("safety")
+        ));
+    }
+    let strokes = &settings.simulation.strokes;
+    for (&number, &ms) in times {
+        let Some(step) = table.steps.iter().find(|s| s.number == number) else {
+            refuse(format!(
+                "step {number} is not a step of the table (it has steps 1 to {})",
+                table.steps.len()
+            ));
+            continue;
+        };
+        let (longest, dwell) = crate::program::expected_step_ms(table, step, strokes);
+        let takes = longest + dwell;
+        if u64::from(ms) <= takes {
+            refuse(format!(
+                "step {number}'s {} is not longer than the {} the step takes in a healthy machine (its longest move, plus its dwell): the alarm would come every cycle",
+                crate::cell::duration_text(ms),
+                crate::cell::duration_text(takes.min(u64::from(u32::MAX)) as u32)
+            ));
+        }
+    }
+}

@@ -7,7 +7,7 @@ mod findings;
 mod given;
 use given::{
     by_name, home_order_by_name, loads_without_effect, names_of_the_whole_table,
-    overridden_by_the_command_line, settings_without_their_actuator,
+    overridden_by_the_command_line, settings_without_their_actuator, supervision_times,
 };
 mod physics;
 pub use physics::lucky_middle_stops;
@@ -156,6 +156,7 @@ fn finish_check(
             &input.table,
             &mut diags,
         );
+        supervision_times(table, &effective, &input.table.file, &mut diags);
         if let Some(sheet) = &sheet_given {
             overridden_by_the_command_line(&settings.given, sheet, &effective.naming, &mut diags);
         }

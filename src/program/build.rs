@@ -7,6 +7,7 @@ use super::signals::{self, Coils, Signals};
 use super::stops::{
     end_run_ons, halt_off_rung, interlock_rung, mark_zones, run_on_rungs, stop_now_rungs,
 };
+use super::supervision;
 use super::{
     Action, Alarm, Literal, ProgramOptions, ProgramStep, Rung, RungKind, Signal, StepKind,
     StepProgram,
@@ -144,7 +145,7 @@ pub fn build(
     valves: &Valves,
     strokes: &Strokes,
 ) -> StepProgram {
-    let signals = signals::declare(table, options, valves);
+    let mut signals = signals::declare(table, options, valves);
     let safety = options.safety;
     let modes = &options.modes;
     let homes: Vec<Literal> = table
@@ -170,6 +171,12 @@ pub fn build(
         .collect();
     let mut steps = sequence_steps(table, options, &signals, &ready, strokes);
     steps.extend(end_of_cycle(table, options));
+    let criteria = if safety.criteria {
+        supervision::criteria(&steps, &signals)
+    } else {
+        Vec::new()
+    };
+    supervision::declare(&criteria, &mut signals);
 
     let mut rungs = Vec::new();
     rungs.extend(middle_stop_rungs(&signals));
@@ -197,6 +204,7 @@ pub fn build(
     if safety.watchdog {
         timers.push(Signal::Watchdog);
         rungs.push(watchdog_rung());
+        rungs.extend(supervision::rungs(&criteria));
     }
     timers.extend(table.dwells().map(|d| Signal::Dwell(d.number)));
     let run_ons = options.run_ons();
@@ -222,10 +230,14 @@ pub fn build(
             guards(&target.moves, target.number, table_step, options)
         },
     );
+    // After the jumps, which copy their target's actions: each transition
+    // moves the awaited criteria from where it leaves to where it leads.
+    supervision::track(&mut steps, &criteria);
     if modes.any() {
         homing_rungs(table, &signals, &timers, options, &run_ons, &mut rungs);
     }
     StepProgram {
+        criteria,
         init,
         steps,
         rungs,
@@ -287,10 +299,11 @@ fn sequence_steps(
             actions.push(Action::Set(Signal::Busy));
         }
         if safety.watchdog {
-            if step.waits.is_empty() {
+            // A supervision time given for a step that waits times the wait.
+            if step.waits.is_empty() || options.supervision.contains_key(&step.number) {
                 actions.push(Action::StartTimer(
                     Signal::Watchdog,
-                    watchdog_preset_ms(table, step, strokes),
+                    supervision::preset_ms(table, step, strokes, &options.supervision),
                 ));
                 actions.push(Action::Set(Signal::WatchdogArmed));
             } else {
@@ -491,39 +504,4 @@ fn watchdog_rung() -> Rung {
             Action::Reset(Signal::WatchdogArmed),
         ],
     }
-}
-
-/// Twice the longest move of the step plus its longest dwell plus one
-/// second, rounded up to 100 ms: generous enough for a sticky valve, short
-/// enough to catch a lost sensor.
-fn watchdog_preset_ms(table: &StepTable, step: &Step, strokes: &Strokes) -> u32 {
-    let dwell = step.dwells.iter().map(|d| d.ms as u64).max().unwrap_or(0);
-    let longest = step
-        .moves
-        .iter()
-        .map(|m| {
-            let pmax = table
-                .actuator(m.actuator)
-                .map(|a| a.max_position)
-                .unwrap_or(1)
-                .max(1);
-            let stroke = strokes.of(m.actuator);
-            let full = match m.sign {
-                Sign::Plus => stroke.extend_ms,
-                Sign::Minus => stroke.retract_ms,
-            };
-            (full as u64 * m.from.abs_diff(m.to) as u64).div_ceil(pmax as u64)
-        })
-        .max()
-        .unwrap_or(0);
-    let preset = 2 * longest + dwell + 1000;
-    // Rounding up never pushes a preset a timer holds past what it holds.
-    let most = crate::cell::MAX_DWELL_MS as u64;
-    let rounded = preset.div_ceil(100) * 100;
-    let rounded = if preset <= most {
-        rounded.min(most)
-    } else {
-        rounded
-    };
-    rounded.min(u32::MAX as u64) as u32
 }

@@ -32,6 +32,7 @@ mod options;
 mod signal;
 mod signals;
 mod stops;
+mod supervision;
 
 pub use build::build;
 pub use jumps::StepJump;
@@ -40,6 +41,10 @@ pub use options::{
 };
 pub use signal::{Alarm, Area, Signal};
 pub use signals::{Coils, Signals};
+pub use supervision::{
+    describe as describe_criterion, expected_ms as expected_step_ms,
+    parse_times as parse_supervision,
+};
 
 use crate::table::Move;
 
@@ -208,6 +213,9 @@ pub struct StepProgram {
     pub permissive: Vec<crate::cell::Name>,
     /// The outputs that run on after a stop event: run-on n is the n-th.
     pub run_ons: Vec<RunOn>,
+    /// The criteria of the criteria analysis (`--safety criteria`):
+    /// output `Missing(n)` reports criterion n (1-based) unmet.
+    pub criteria: Vec<Literal>,
 }
 
 impl StepProgram {

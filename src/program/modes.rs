@@ -172,6 +172,7 @@ pub(super) fn homing_rungs(
                             | Signal::RunOnArmed(_)
                             | Signal::InterlockZone(_)
                             | Signal::WatchdogArmed
+                            | Signal::Awaited(_)
                     )
                 })
                 .map(|m| Action::Reset(*m)),

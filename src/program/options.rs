@@ -23,6 +23,10 @@ pub struct ProgramOptions {
     /// Machine inputs that must stay on: one going off halts the machine
     /// and raises `alarm_il` (SETTINGS `interlock`: a guard door).
     pub interlocks: Vec<Interlock>,
+    /// Supervision times by table step number (`--supervision 3=5s`, the
+    /// SETTINGS row `supervision`): the watchdog's preset for those steps
+    /// in place of the one from the plant model.
+    pub supervision: std::collections::BTreeMap<usize, u32>,
 }
 
 impl ProgramOptions {
@@ -90,6 +94,7 @@ impl Default for ProgramOptions {
             halt: HaltPolicy::default(),
             permissive: Vec::new(),
             interlocks: Vec::new(),
+            supervision: std::collections::BTreeMap::new(),
         }
     }
 }
@@ -222,6 +227,11 @@ pub struct Safety {
     pub plausibility: bool,
     /// A step that does not finish in time raises an alarm and stops.
     pub watchdog: bool,
+    /// Criteria analysis on the watchdog (which it brings): when a step
+    /// runs out of time, one output per condition of the awaited transition
+    /// says which are not met. Not part of `all`: it adds outputs an HMI
+    /// reads, asked for by name.
+    pub criteria: bool,
 }
 
 impl std::str::FromStr for Safety {
@@ -248,14 +258,17 @@ impl Safety {
             precheck: true,
             plausibility: true,
             watchdog: true,
+            criteria: false,
         }
     }
 
     /// The checks by name, as `--safety` and the SETTINGS sheet write
     /// them (besides `all` and `none`).
-    pub const NAMES: [&str; 4] = ["edge", "precheck", "plausibility", "watchdog"];
+    pub const NAMES: [&str; 5] = ["edge", "precheck", "plausibility", "watchdog", "criteria"];
 
-    /// Parses `edge,precheck,plausibility,watchdog` (any subset; `all`, `none`).
+    /// Parses `edge,precheck,plausibility,watchdog,criteria` (any subset;
+    /// `all`, `none`; `all` is every check but `criteria`). The criteria
+    /// analysis reads the watchdog, so `criteria` brings `watchdog`.
     pub fn parse(text: &str) -> Result<Safety, String> {
         let mut safety = Safety::default();
         for item in named_set(text, &Safety::NAMES, "a safety check", Safety::expected)? {
@@ -265,6 +278,10 @@ impl Safety {
                 "precheck" => safety.precheck = true,
                 "plausibility" => safety.plausibility = true,
                 "watchdog" => safety.watchdog = true,
+                "criteria" => {
+                    safety.watchdog = true;
+                    safety.criteria = true;
+                }
                 _ => {}
             }
         }

@@ -101,6 +101,12 @@ pub enum Signal {
     Homing,
     /// Memory: homing stage n runs.
     HomeStage(u16),
+    /// Criteria analysis (`--safety criteria`): criterion n is a condition
+    /// of the transition the sequence waits at (memory `crit{n}`), and
+    /// output `miss{n}` is on while the step has run out of time with it
+    /// unmet.
+    Awaited(u16),
+    Missing(u16),
     /// Not a bit: the sequence itself. `Reset(Sequence)` sends it back to
     /// STEP 1 (each language has its own statement for that).
     Sequence,
@@ -121,6 +127,7 @@ impl Signal {
             Signal::Coil { .. }
             | Signal::SingleCoil { .. }
             | Signal::Alarm(_)
+            | Signal::Missing(_)
             | Signal::MachineOutput(_) => Area::Output,
             Signal::StopAt { .. }
             | Signal::StartMemory
@@ -136,6 +143,7 @@ impl Signal {
             | Signal::HomeStage(_)
             | Signal::StepPermit
             | Signal::StepMemory
+            | Signal::Awaited(_)
             | Signal::Sequence => Area::Memory,
             Signal::Watchdog | Signal::Dwell(_) | Signal::RunOn(_) => Area::Timer,
         }
@@ -182,6 +190,8 @@ impl Signal {
             Signal::AutoRun => "auto_run".to_string(),
             Signal::Homing => "homing".to_string(),
             Signal::HomeStage(n) => format!("home{n}"),
+            Signal::Awaited(n) => format!("crit{n}"),
+            Signal::Missing(n) => format!("miss{n}"),
             Signal::Sequence => "sequence".to_string(),
         }
     }

@@ -190,6 +190,7 @@ pub(super) fn stop_now_rungs(
                         | Signal::DwellArmed(_)
                         | Signal::InterlockZone(_)
                         | Signal::WatchdogArmed
+                        | Signal::Awaited(_)
                         | Signal::Homing
                         | Signal::HomeStage(_)
                 )

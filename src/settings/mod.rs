@@ -38,6 +38,8 @@ pub struct Given {
     /// Homing stages (`C3&C4, C2, C1`, `lift, clamp`), each actuator as
     /// written.
     pub home_order: Option<Vec<Vec<String>>>,
+    /// Supervision times by table step (`3=5s, 5=12s`).
+    pub supervision: Option<BTreeMap<usize, u32>>,
     /// Stroke times per actuator.
     pub strokes: BTreeMap<u32, Stroke>,
     /// Valve types per actuator.
@@ -76,6 +78,7 @@ impl Given {
             "safety" => self.safety.is_some(),
             "modes" => self.modes.is_some(),
             "home order" => self.home_order.is_some(),
+            "supervision" => self.supervision.is_some(),
             "designations" => self.designations.is_some(),
             other => halt::Row::from_label(other).is_some_and(|row| self.named.contains_key(&row)),
         }
@@ -109,6 +112,10 @@ impl Given {
             safety: self.safety.or(other.safety),
             modes: self.modes.clone().or_else(|| other.modes.clone()),
             home_order: self.home_order.clone().or_else(|| other.home_order.clone()),
+            supervision: self
+                .supervision
+                .clone()
+                .or_else(|| other.supervision.clone()),
             strokes: merged(&self.strokes, &other.strokes),
             valves: merged(&self.valves, &other.valves),
             loads: merged(&self.loads, &other.loads),
@@ -251,6 +258,9 @@ impl Settings {
         }
         if let Some(order) = &layer.home_order {
             self.home_order = Some(order.clone());
+        }
+        if let Some(times) = &layer.supervision {
+            self.program.supervision = times.clone();
         }
         let simulation = &mut self.simulation;
         simulation.strokes.per_actuator.extend(&layer.strokes);

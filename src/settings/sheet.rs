@@ -39,7 +39,7 @@ struct ActuatorColumns {
 }
 
 /// The labels of the settings, as written on the sheet.
-pub const LABELS: [&str; 16] = [
+pub const LABELS: [&str; 17] = [
     "target",
     "board",
     "on stop",
@@ -56,6 +56,7 @@ pub const LABELS: [&str; 16] = [
     "modes",
     "home order",
     "designations",
+    "supervision",
 ];
 
 /// The columns an actuator table may have, after `actuator`.
@@ -395,6 +396,11 @@ fn read_labels(
             },
             "modes" => match value.parse::<Modes>() {
                 Ok(modes) => settings.modes = Some(modes),
+                Err(why) => said(why),
+            },
+            "supervision" if lower == "none" => {}
+            "supervision" => match crate::program::parse_supervision(&value) {
+                Ok(times) => settings.supervision = Some(times),
                 Err(why) => said(why),
             },
             "home order" if lower == "default" => {}

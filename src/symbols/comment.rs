@@ -18,6 +18,15 @@ pub(super) fn comment(
 ) -> String {
     let pmax = |a: u32| table.actuator(a).map(|x| x.max_position).unwrap_or(1);
     let run_on = |n: u16| program.run_ons.get(usize::from(n).wrapping_sub(1));
+    let criterion = |n: u16| program.criteria.get(usize::from(n).wrapping_sub(1));
+    // `x21 on`, `x21 off`, by the signal's designation.
+    let wanted = |l: &crate::program::Literal| {
+        format!(
+            "{} {}",
+            name(l.signal),
+            if l.negated { "off" } else { "on" }
+        )
+    };
     match signal {
         Signal::Start => "START push-button".to_string(),
         Signal::Sensor {
@@ -148,6 +157,18 @@ pub(super) fn comment(
         Signal::AutoRun => "continuous operation runs".to_string(),
         Signal::Homing => "the homing sequence runs".to_string(),
         Signal::HomeStage(n) => format!("homing stage {n} runs"),
+        Signal::Awaited(n) => match criterion(n) {
+            Some(l) => format!("criterion {n}: the awaited transition needs {}", wanted(l)),
+            None => format!("criterion {n}"),
+        },
+        Signal::Missing(n) => match criterion(n) {
+            Some(l) => format!(
+                "criteria analysis bit {}: the step ran out of time and {} is not met",
+                n - 1,
+                wanted(l)
+            ),
+            None => format!("criteria analysis bit {}", n - 1),
+        },
         Signal::Sequence => "the step sequence".to_string(),
     }
 }

@@ -518,6 +518,7 @@ fn role(signal: Signal) -> &'static str {
         Signal::Sensor { .. } => "sensor",
         Signal::Coil { .. } | Signal::SingleCoil { .. } => "coil",
         Signal::Alarm(_) => "alarm",
+        Signal::Missing(_) => "missing",
         Signal::MachineInput(_) => "input",
         Signal::MachineOutput(_) => "output",
         Signal::Continuous => "continuous",

@@ -136,6 +136,19 @@ fn table_cases(command: &'static str, out: &'static str) -> Vec<Case> {
             &[],
             Has(Place::Stderr, "warning[W006]"),
         ),
+        // A supervision time sets the watchdog's preset: without the
+        // watchdog it is refused, in every command that reads tables.
+        case(
+            command,
+            "--supervision",
+            Paper,
+            &["--supervision", "2=5s"],
+            &[],
+            Has(
+                Place::Stderr,
+                "error[E030]: --supervision: a supervision time sets the step watchdog",
+            ),
+        ),
     ];
     cases.push(match command {
         "convert" | "batch" => case(

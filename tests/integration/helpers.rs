@@ -325,3 +325,45 @@ pub fn run_in(work: &Path, args: &[String]) -> (Option<i32>, String) {
     );
     (output.status.code(), said)
 }
+
+/// One hostile input of a table-driven test: the table (sheet `TABLE`, one
+/// column per branch), the SETTINGS rows, the options, and what stderr
+/// must say (`TABLE!A2: error[E015]`, or an option's message).
+pub struct Refused {
+    pub what: &'static str,
+    pub table: &'static [&'static [&'static str]],
+    pub settings: &'static [&'static [&'static str]],
+    pub args: &'static [&'static str],
+    pub code_at: &'static str,
+}
+
+/// Each row through `convert`: exit 1, its code at its cell, nothing
+/// written.
+pub fn assert_refused(cases: &[Refused]) {
+    for case in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("h.xlsx");
+        let mut sheets: Vec<(&str, &[&[&str]])> = vec![("TABLE", case.table)];
+        if !case.settings.is_empty() {
+            sheets.push(("SETTINGS", case.settings));
+        }
+        write_xlsx_sheets(&path, &sheets);
+        let out = dir.path().join("out");
+        let assert = steptable()
+            .arg("convert")
+            .arg(&path)
+            .args(case.args)
+            .args(["--formats", "st", "-o"])
+            .arg(&out)
+            .assert()
+            .code(1);
+        let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+        assert!(
+            stderr.contains(case.code_at),
+            "{}: expected {}, got {stderr}",
+            case.what,
+            case.code_at
+        );
+        assert!(!out.exists(), "{}: refused but wrote files", case.what);
+    }
+}

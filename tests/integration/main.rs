@@ -57,6 +57,8 @@ mod snapshots;
 mod stdout;
 mod stepping;
 mod stray_cells;
+mod supervision;
+mod supervision_hostile;
 mod synth;
 mod synth_bench;
 mod synth_short;

@@ -8,7 +8,7 @@ use steptable::simulate::scenario::{ScenarioReport, scenario};
 use steptable::simulate::{Operator, SimSettings};
 use steptable::table::StepTable;
 
-use crate::helpers::{Build, steptable, write_xlsx_sheets};
+use crate::helpers::{Build, Refused, assert_refused, steptable, write_xlsx_sheets};
 
 /// The switch on, no button pressed.
 const STEPPING: Operator = Operator {
@@ -169,96 +169,85 @@ fn with_the_switch_off_the_cycle_is_that_of_automatic() {
     assert_eq!(a.fired, b.fired);
 }
 
-/// One hostile input of single-step mode: the table (one column), the
-/// SETTINGS rows, the options, and the code at its cell.
-struct Case {
-    what: &'static str,
-    table: &'static [&'static [&'static str]],
-    settings: &'static [&'static [&'static str]],
-    args: &'static [&'static str],
-    /// `TABLE!A2: error[E015]`, or the option's message.
-    code_at: &'static str,
-}
-
-const CASES: &[Case] = &[
-    Case {
+const CASES: &[Refused] = &[
+    Refused {
         what: "a machine input named like the STEP button",
         table: &[&["C1+1"], &["I:step_pb"], &["C1-0"]],
         settings: &[],
         args: &["--modes", "step"],
         code_at: "TABLE!A2: error[E015]",
     },
-    Case {
+    Refused {
         what: "a machine output named like the STEP_MODE switch, in another case",
         table: &[&["C1+1"], &["Y:Step_Mode+"], &["C1-0; Y:Step_Mode-"]],
         settings: &[],
         args: &["--modes", "step"],
         code_at: "TABLE!A2: error[E015]",
     },
-    Case {
+    Refused {
         what: "a name Festo FST cuts to STEP_MODE (its 9 characters)",
         table: &[&["C1+1"], &["I:step_modex"], &["C1-0"]],
         settings: &[],
         args: &["--modes", "step"],
         code_at: "TABLE!A2: error[E015]",
     },
-    Case {
+    Refused {
         what: "the STEP button's name, the mode asked for on SETTINGS",
         table: &[&["C1+1"], &["I:STEP_PB"], &["C1-0"]],
         settings: &[&["modes", "step"]],
         args: &[],
         code_at: "TABLE!A2: error[E015]",
     },
-    Case {
+    Refused {
         what: "a machine input named like the step permit memory, in any mode",
         table: &[&["C1+1"], &["I:step_ok"], &["C1-0"]],
         settings: &[],
         args: &[],
         code_at: "TABLE!A2: error[E015]",
     },
-    Case {
+    Refused {
         what: "a machine input named like the STEP button's edge memory",
         table: &[&["C1+1"], &["I:Step_Mem"], &["C1-0"]],
         settings: &[],
         args: &["--modes", "step"],
         code_at: "TABLE!A2: error[E015]",
     },
-    Case {
+    Refused {
         what: "an interlock input named like the STEP button",
         table: &[&["C1+1"], &["C1-0"]],
         settings: &[&["modes", "step"], &["interlock", "step_pb"]],
         args: &[],
         code_at: "SETTINGS!B2: error[E015]",
     },
-    Case {
+    Refused {
         what: "the mode given twice on SETTINGS",
         table: &[&["C1+1"], &["C1-0"]],
         settings: &[&["modes", "step, step"]],
         args: &[],
         code_at: "SETTINGS!B1: error[",
     },
-    Case {
+    Refused {
         what: "the mode misspelt on SETTINGS",
         table: &[&["C1+1"], &["C1-0"]],
         settings: &[&["modes", "single step"]],
         args: &[],
         code_at: "SETTINGS!B1: error[",
     },
-    Case {
+    Refused {
         what: "the mode beside all on SETTINGS",
         table: &[&["C1+1"], &["C1-0"]],
         settings: &[&["modes", "all, step"]],
         args: &[],
         code_at: "SETTINGS!B1: error[",
     },
-    Case {
+    Refused {
         what: "the mode given twice on the command line",
         table: &[&["C1+1"], &["C1-0"]],
         settings: &[],
         args: &["--modes", "step,step"],
         code_at: "\"step\" is given twice",
     },
-    Case {
+    Refused {
         what: "the mode beside all on the command line",
         table: &[&["C1+1"], &["C1-0"]],
         settings: &[],
@@ -271,32 +260,7 @@ const CASES: &[Case] = &[
 /// written.
 #[test]
 fn hostile_single_step_inputs_are_refused_with_their_cell() {
-    for case in CASES {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("h.xlsx");
-        let mut sheets: Vec<(&str, &[&[&str]])> = vec![("TABLE", case.table)];
-        if !case.settings.is_empty() {
-            sheets.push(("SETTINGS", case.settings));
-        }
-        write_xlsx_sheets(&path, &sheets);
-        let out = dir.path().join("out");
-        let assert = steptable()
-            .arg("convert")
-            .arg(&path)
-            .args(case.args)
-            .args(["--formats", "st", "-o"])
-            .arg(&out)
-            .assert()
-            .code(1);
-        let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
-        assert!(
-            stderr.contains(case.code_at),
-            "{}: expected {}, got {stderr}",
-            case.what,
-            case.code_at
-        );
-        assert!(!out.exists(), "{}: refused but wrote files", case.what);
-    }
+    assert_refused(CASES);
 }
 
 /// The buttons' names are free for a machine signal without the mode.

@@ -163,6 +163,33 @@ fn paper_in_single_step() {
     }
 }
 
+/// The paper's example with the criteria analysis (`--safety criteria`,
+/// and step 2 supervised 2.5 s): the awaited memories each transition
+/// moves, the rungs that light the `miss` outputs, in the program model
+/// and in ST, FST, AWL, SCL and the I/O list.
+#[test]
+fn paper_with_criteria_analysis() {
+    let path = crate::helpers::sample("paper_example.xlsx");
+    let mut settings = Settings::new();
+    settings.program.safety = "criteria".parse().unwrap();
+    settings.program.supervision = [(2, 2_500)].into();
+    let conversion = convert_path(&path, &settings).expect("sample converts");
+    insta::assert_snapshot!(
+        "paper_example_xlsx-criteria.program",
+        program_text(&conversion.program)
+    );
+    for output in &conversion.files {
+        let Some(ext) = [".st", ".fst.txt", ".awl", ".scl", ".io.csv"]
+            .into_iter()
+            .find(|e| output.name.ends_with(e))
+        else {
+            continue;
+        };
+        let text = String::from_utf8(output.bytes.clone()).expect("text output");
+        insta::assert_snapshot!(format!("paper_example_xlsx-criteria{ext}"), text);
+    }
+}
+
 /// The step program itself, in the paper's notation: the one model every
 /// output is rendered from. A change in it shows here before it shows in
 /// eleven output files.

@@ -26,6 +26,7 @@ mod pinned;
 mod sfc;
 mod single_step;
 mod step_numbers;
+mod supervision;
 mod sync;
 mod synth_engines;
 
@@ -179,6 +180,7 @@ fn main() {
         pinned::CHECKS,
         sfc::CHECKS,
         single_step::CHECKS,
+        supervision::CHECKS,
         step_numbers::CHECKS,
         halt::CHECKS,
         homing::CHECKS,

@@ -383,8 +383,23 @@ impl<'a> Drive<'a> {
                 }
             )
         };
+        // The criteria analysis's outputs that are on: what the HMI shows.
+        let shown: Vec<String> = program
+            .criteria
+            .iter()
+            .zip(1u16..)
+            .filter(|(_, n)| run.plc.bit(Signal::Missing(*n)))
+            .map(|(l, n)| {
+                let what = crate::program::describe_criterion(*l);
+                format!("{} ({what})", Signal::Missing(n).symbol())
+            })
+            .collect();
         if !alarms.is_empty() {
-            message.push_str(&format!(" (alarm: {})", alarms.join(", ")));
+            let missing = match shown.is_empty() {
+                true => String::new(),
+                false => format!("; missing: {}", shown.join(", ")),
+            };
+            message.push_str(&format!(" (alarm: {}{missing})", alarms.join(", ")));
         }
         // Waiting for the next cycle, an output the cycle leaves on (an
         // oven's heater until STOP) is on as in a healthy machine.
