@@ -162,7 +162,7 @@ fn settings_in_the_workbook_apply_and_flags_override_them() {
             .assert()
             .success();
         let csv = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
-        let simulation = read_sheet(&out.join("line/line.xlsx"), "SIMULATION");
+        let simulation = read_sheet(&out.join("line/line.steptable.xlsx"), "SIMULATION");
         (csv, simulation)
     };
     let (csv, simulation) = io(&[]);
