@@ -9,6 +9,7 @@ use rust_xlsxwriter::{
 };
 
 use crate::cell::{MAX_ACTUATOR, MAX_POSITION};
+use crate::emit::workbook::row_points;
 use crate::sheets::{ADDRESSES_SHEET, SETTINGS_SHEET, TABLE_SHEET};
 use crate::table::{MAX_BRANCHES, MAX_STEPS};
 
@@ -28,6 +29,10 @@ pub const PAPER_EXAMPLE: [[&str; 3]; 8] = [
     ["C3-0", "C2-0", "C4-0"],
     ["C1-0", "", ""],
 ];
+
+/// Characters across the SETTINGS sheet's help column and the HELP sheet's.
+const MEANING_WIDTH: f64 = 80.0;
+const HELP_WIDTH: f64 = 100.0;
 
 /// Rows and columns of the table: the header row and the first step row.
 const HEADER_ROW: u32 = 2;
@@ -368,6 +373,9 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         sheet.write_string_with_format(row, 0, *label, &f.label)?;
         sheet.write_string_with_format(row, 1, *value, &f.input)?;
         sheet.write_string_with_format(row, 3, *meaning, &f.wrap)?;
+        // Tall enough for the wrapped help: neither Excel nor LibreOffice
+        // grows a row on opening, and a 15 pt row overlaps the next one.
+        sheet.set_row_height(row, row_points(&[meaning], &[MEANING_WIDTH]))?;
         sheet.insert_note(row, 1, &Note::new(*meaning).set_author("steptable"))?;
         if let Some(choices) = choices {
             let mut validation = DataValidation::new()
@@ -416,10 +424,12 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
                 "Empty: 52bi (two positions) or 53closed (middle positions). 52mono: one coil, spring return; motor: an electric drive.",
             )?,
     )?;
-    sheet.set_column_width(0, 14)?;
+    // Wide enough for the longest label (`de-energise on halt`) in bold.
+    let widest = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(10);
+    sheet.set_column_width(0, widest as f64 + 3.0)?;
     sheet.set_column_width(1, 14)?;
     sheet.set_column_width(2, 14)?;
-    sheet.set_column_width(3, 80)?;
+    sheet.set_column_width(3, MEANING_WIDTH)?;
     sheet.protect();
     Ok(())
 }
@@ -461,8 +471,9 @@ fn help_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         let row = 3 + i as u32;
         sheet.write_string_with_format(row, 0, *what, &f.label)?;
         sheet.write_string_with_format(row, 1, meaning, &f.wrap)?;
+        sheet.set_row_height(row, row_points(&[meaning], &[HELP_WIDTH]))?;
     }
     sheet.set_column_width(0, 14)?;
-    sheet.set_column_width(1, 100)?;
+    sheet.set_column_width(1, HELP_WIDTH)?;
     Ok(())
 }

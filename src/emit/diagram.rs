@@ -252,15 +252,10 @@ pub fn render_svg(
             );
         }
         let points: Vec<(f64, f64)> = match kind {
-            DiagramKind::Step => report
-                .step_positions
+            DiagramKind::Step => step_levels(report)
                 .iter()
                 .enumerate()
-                .filter_map(|(k, positions)| {
-                    positions
-                        .get(i)
-                        .map(|p| (x_of(k as f64), y_of(p.round_to_level())))
-                })
+                .filter_map(|(k, positions)| positions.get(i).map(|p| (x_of(k as f64), y_of(*p))))
                 .collect(),
             DiagramKind::Time => report
                 .trace
@@ -291,6 +286,17 @@ pub fn render_svg(
     );
     svg.push_str("</svg>\n");
     svg
+}
+
+/// The positions at the step boundaries (when each step fired) at the
+/// level the sensors report, as the step diagram draws them and the
+/// workbook's DIAGRAM sheet lists them.
+pub fn step_levels(report: &SimReport) -> Vec<Vec<f64>> {
+    report
+        .step_positions
+        .iter()
+        .map(|positions| positions.iter().map(|p| p.round_to_level()).collect())
+        .collect()
 }
 
 /// Positions at step boundaries are read at sensor level: snap to the level

@@ -134,7 +134,9 @@ impl OutputKind {
     /// The end of the file name, after `NAME`.
     pub fn suffix(self) -> &'static str {
         match self {
-            OutputKind::Workbook => ".xlsx",
+            // Not `NAME.xlsx`: Excel refuses to open two workbooks of one
+            // file name, and the engineer opens this one beside its input.
+            OutputKind::Workbook => ".steptable.xlsx",
             OutputKind::StructuredText => ".st",
             OutputKind::Fst => ".fst.txt",
             OutputKind::Allocation => ".io.csv",
@@ -238,8 +240,9 @@ pub enum CommandFile {
     EquationsSt,
     /// The same program in instruction list.
     EquationsIl,
-    /// The equations and truth table as a workbook; not `NAME.xlsx`,
-    /// which is convert's workbook of the same table in the same folder.
+    /// The equations and truth table as a workbook; not
+    /// `NAME.steptable.xlsx`, convert's workbook of the same table in the
+    /// same folder.
     SynthWorkbook,
 }
 

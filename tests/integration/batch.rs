@@ -335,22 +335,23 @@ fn batch_into_its_own_input_folder() {
     }
 }
 
-/// A table named where its own output would go (`OUT/NAME/NAME.xlsx`, here
-/// through `..`) is kept, and reported; the batch's other tables still land.
+/// A table named where another's output would go
+/// (`OUT/NAME/NAME.steptable.xlsx`, here through `..`) is kept, and
+/// reported; the batch's other tables still land.
 #[test]
 fn a_batch_never_overwrites_an_input() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("cell")).unwrap();
-    let kept = dir.path().join("cell/cell.xlsx");
+    let kept = dir.path().join("cell/cell.steptable.xlsx");
     std::fs::copy(sample("paper_example.xlsx"), &kept).unwrap();
-    std::fs::copy(sample("paper_example.xlsx"), dir.path().join("other.xlsx")).unwrap();
+    std::fs::copy(sample("paper_example.xlsx"), dir.path().join("cell.xlsx")).unwrap();
     let before = std::fs::read(&kept).unwrap();
     let output = steptable()
         .current_dir(dir.path())
         .args([
             "batch",
-            "cell/../cell/cell.xlsx",
-            "other.xlsx",
+            "cell/../cell/cell.steptable.xlsx",
+            "cell.xlsx",
             "-j",
             "1",
             "-o",
@@ -368,7 +369,7 @@ fn a_batch_never_overwrites_an_input() {
     assert_eq!(std::fs::read(&kept).unwrap(), before);
     assert_eq!(files_below(&dir.path().join("cell")), [kept]);
     assert_eq!(
-        files_below(&dir.path().join("other")).len(),
+        files_below(&dir.path().join("cell.steptable")).len(),
         crate::helpers::all_files()
     );
 }

@@ -220,22 +220,27 @@ fn check_prints_a_summary_per_file_and_writes_nothing() {
 #[test]
 fn an_input_is_never_overwritten() {
     let dir = tempfile::tempdir().unwrap();
-    // The input sits where its own output would go: DIR/NAME/NAME.xlsx.
+    // The second input sits where the first one's workbook would go:
+    // DIR/NAME/NAME.steptable.xlsx.
     std::fs::create_dir(dir.path().join("cell")).unwrap();
+    let first = fig7(dir.path(), "cell.xlsx", &[&["C1+1"], &["C1-0"]]);
     let input = fig7(
         &dir.path().join("cell"),
-        "cell.xlsx",
+        "cell.steptable.xlsx",
         &[&["C1+1"], &["C1-0"]],
     );
     let before = std::fs::read(&input).unwrap();
     steptable()
         .arg("convert")
+        .arg(&first)
         .arg(&input)
         .arg("-o")
         .arg(dir.path())
         .assert()
         .code(1)
-        .stderr(contains("error[E040]: is an input of this run"));
+        .stderr(contains(
+            "cell.steptable.xlsx: error[E040]: is an input of this run",
+        ));
     assert_eq!(std::fs::read(&input).unwrap(), before);
-    assert_eq!(files_below(dir.path()), [input]);
+    assert_eq!(files_below(&dir.path().join("cell")), [input]);
 }

@@ -100,7 +100,7 @@ fn expected(names: bool) -> Vec<(&'static str, Vec<&'static str>)> {
         (".rockwell.csv", list.clone()),
         (".tags.xlsx", list.clone()),
         (
-            "stamp.xlsx",
+            "stamp.steptable.xlsx",
             vec!["STEP 1 (clamp part)", "(clamp)", "C1 (clamp)"],
         ),
         (".diagram.svg", vec!["clamp", "punch", "ejector"]),

@@ -32,18 +32,26 @@ fn the_papers_diagram_has_every_lane_and_position() {
         "nine boundaries, the last one is step 1 again"
     );
 
-    let sheet = read_sheet(&out.join("paper_example.xlsx"), "DIAGRAM");
-    assert_eq!(sheet[3][..5], ["STEP", "C1", "C2", "C3", "C4"]);
-    let steps: Vec<&str> = sheet[4..13].iter().map(|r| r[0].as_str()).collect();
+    let sheet = read_sheet(&out.join("paper_example.steptable.xlsx"), "DIAGRAM");
+    let header = step_header(&sheet);
+    assert_eq!(sheet[header][..5], ["STEP", "C1", "C2", "C3", "C4"]);
+    let rows = &sheet[header + 1..header + 10];
+    let steps: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
     assert_eq!(steps, ["1", "2", "3", "4", "5", "6", "7", "8", "9"]);
-    let c2: Vec<&str> = sheet[4..13].iter().map(|r| r[2].as_str()).collect();
-    // calamine prints whole numbers without decimals; middle stops sit
-    // within the sensor window, so they are close to, not exactly, 1 or 2.
-    let levels: Vec<i64> = c2
+    // The levels the sensors report when each step fires, as the SVG draws
+    // them: whole positions, not a piston 2 % before its end stop.
+    let c2: Vec<&str> = rows.iter().map(|r| r[2].as_str()).collect();
+    assert_eq!(c2, ["0", "0", "3", "1", "2", "1", "2", "0", "0"]);
+    let c1: Vec<&str> = rows.iter().map(|r| r[1].as_str()).collect();
+    assert_eq!(c1, ["0", "1", "1", "1", "1", "1", "1", "1", "0"]);
+}
+
+/// The row of the DIAGRAM sheet's table headers (under the charts).
+fn step_header(sheet: &[Vec<String>]) -> usize {
+    sheet
         .iter()
-        .map(|v| v.parse::<f64>().unwrap().round() as i64)
-        .collect();
-    assert_eq!(levels, [0, 0, 3, 1, 2, 1, 2, 0, 0]);
+        .position(|r| r.first().is_some_and(|c| c == "STEP"))
+        .expect("the STEP header")
 }
 
 #[test]
@@ -134,7 +142,9 @@ fn diagram_charts_do_not_overlap() {
         .arg(dir.path())
         .assert()
         .success();
-    let book = dir.path().join("paper_example/paper_example.xlsx");
+    let book = dir
+        .path()
+        .join("paper_example/paper_example.steptable.xlsx");
     let drawing = crate::helpers::xlsx_part(&book, "xl/drawings/drawing1.xml");
     let rows = |tag: &str| -> Vec<u32> {
         drawing
@@ -148,28 +158,47 @@ fn diagram_charts_do_not_overlap() {
     };
     let (from, to) = (rows("from"), rows("to"));
     assert_eq!(from.len(), 4, "{drawing}");
+    // Each lane tall enough to read 0, 1 and the middle positions: at
+    // least 150 pixels (7 rows and a half), taller for more positions (C2 has four).
     let rows_tall: Vec<u32> = from.iter().zip(&to).map(|(f, t)| t - f).collect();
     assert!(
-        rows_tall.iter().all(|r| (6..=20).contains(r)),
+        rows_tall.iter().all(|r| (7..=20).contains(r)),
         "{rows_tall:?}"
     );
     assert!(rows_tall[1] > rows_tall[0], "{rows_tall:?}");
-    // Beside the table of positions (STEP and C1…C4, columns 0–4), one
-    // column left free.
-    let first_col: u32 = drawing
-        .split("<xdr:col>")
-        .nth(1)
-        .and_then(|part| part.split('<').next())
-        .and_then(|col| col.parse().ok())
-        .expect("a chart's column");
-    assert_eq!(first_col, 6, "{drawing}");
+    // Stacked in the first column, one under the other, one row apart,
+    // and no chart cut by a page break.
+    let cols: Vec<u32> = drawing
+        .split("<xdr:from><xdr:col>")
+        .skip(1)
+        .map(|part| part.split('<').next().unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(cols, [0, 0, 0, 0], "{drawing}");
+    let sheet = crate::helpers::xlsx_part(&book, "xl/worksheets/sheet6.xml");
+    let breaks: Vec<u32> = sheet
+        .split("<brk id=\"")
+        .skip(1)
+        .map(|part| part.split('"').next().unwrap().parse().unwrap())
+        .collect();
+    assert!(!breaks.is_empty(), "{sheet}");
+    for (f, t) in from.iter().zip(&to) {
+        assert!(
+            breaks.iter().all(|b| b <= f || b > t),
+            "a chart on rows {f}-{t} is cut by a page break at {breaks:?}"
+        );
+    }
     // Each chart plots its cylinder's column over the step numbers, the
-    // table's nine rows below its header.
+    // table's nine rows below its header, under the charts.
+    let header = step_header(&read_sheet(&book, "DIAGRAM")) + 1;
+    let (first, last) = (header + 1, header + 9);
+    assert!(header as u32 - 1 > to[3], "the table under the charts");
     for (k, column) in ["B", "C", "D", "E"].iter().enumerate() {
         let chart = crate::helpers::xlsx_part(&book, &format!("xl/charts/chart{}.xml", k + 1));
         assert!(
-            chart.contains("<c:f>DIAGRAM!$A$5:$A$13</c:f>")
-                && chart.contains(&format!("<c:f>DIAGRAM!${column}$5:${column}$13</c:f>")),
+            chart.contains(&format!("<c:f>DIAGRAM!$A${first}:$A${last}</c:f>"))
+                && chart.contains(&format!(
+                    "<c:f>DIAGRAM!${column}${first}:${column}${last}</c:f>"
+                )),
             "chart {}: {chart}",
             k + 1
         );

@@ -180,7 +180,8 @@ fn the_program_sheet_shows_each_jump_before_its_step() {
         .assert()
         .success();
     let rows = read_sheet(
-        &dir.path().join("sorting_station/sorting_station.xlsx"),
+        &dir.path()
+            .join("sorting_station/sorting_station.steptable.xlsx"),
         "PLC PROGRAM",
     );
     let at = |label: &str| {

@@ -85,14 +85,14 @@ fn the_press_station_converts_with_its_machine_signals_everywhere() {
     assert!(svg.contains(">T=2s</text>") && svg.contains(">I:part_present</text>"));
     // The normalised table in the workbook keeps every item of a cell.
     let table = read_sheet(
-        &out.join("press_station.xlsx"),
+        &out.join("press_station.steptable.xlsx"),
         "SEQUENTIAL CONTROL DESCRIPTION",
     );
     assert!(
         table.iter().flatten().any(|c| c == "Y:vacuum+; T=500ms"),
         "{table:?}"
     );
-    let timing = read_sheet(&out.join("press_station.xlsx"), "SIMULATION");
+    let timing = read_sheet(&out.join("press_station.steptable.xlsx"), "SIMULATION");
     assert!(
         timing
             .iter()

@@ -44,6 +44,7 @@ mod option_times;
 mod output_places;
 mod paper;
 mod pins;
+mod print_workbook;
 mod promise_map;
 mod properties;
 mod read_two_ways;

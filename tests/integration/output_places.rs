@@ -40,16 +40,17 @@ fn s(items: &[&str]) -> Vec<String> {
 fn cases() -> Vec<Case> {
     vec![
         Case {
-            name: "batch w -o w: the engineer's w/a/a.xlsx is where its own workbook goes",
+            name: "batch w -o w: the engineer's w/a/a.steptable.xlsx is where a.csv's workbook goes",
             setup: |w| {
                 table(&w.join("w/a.csv"));
                 std::fs::create_dir_all(w.join("w/a")).unwrap();
-                std::fs::copy(sample("paper_example.xlsx"), w.join("w/a/a.xlsx")).unwrap();
+                std::fs::copy(sample("paper_example.xlsx"), w.join("w/a/a.steptable.xlsx"))
+                    .unwrap();
                 s(&["batch", "w", "-o", "w", "-j", "1"])
             },
             code: 1,
-            error: Some(("E040", "w/a/a.xlsx")),
-            kept: &["w/a/a.xlsx"],
+            error: Some(("E040", "w/a/a.steptable.xlsx")),
+            kept: &["w/a/a.steptable.xlsx"],
         },
         Case {
             name: "batch plant -o plant: tables named like outputs are inputs, never skipped",
@@ -58,15 +59,63 @@ fn cases() -> Vec<Case> {
                     std::fs::create_dir_all(w.join(format!("plant/{n}"))).unwrap();
                     std::fs::copy(
                         sample("paper_example.xlsx"),
-                        w.join(format!("plant/{n}/{n}.xlsx")),
+                        w.join(format!("plant/{n}/{n}.steptable.xlsx")),
                     )
                     .unwrap();
                 }
+                // press.csv's workbook goes where press.steptable.xlsx lies.
+                table(&w.join("plant/press.csv"));
                 s(&["batch", "plant", "-o", "plant"])
             },
             code: 1,
-            error: Some(("E040", "plant/press/press.xlsx")),
-            kept: &["plant/press/press.xlsx", "plant/drill/drill.xlsx"],
+            error: Some(("E040", "plant/press/press.steptable.xlsx")),
+            kept: &[
+                "plant/press/press.steptable.xlsx",
+                "plant/drill/drill.steptable.xlsx",
+            ],
+        },
+        Case {
+            name: "convert out/x/x.steptable.xlsx -o out: a table named like the workbook converts beside it",
+            setup: |w| {
+                std::fs::create_dir_all(w.join("out/x")).unwrap();
+                std::fs::copy(
+                    sample("paper_example.xlsx"),
+                    w.join("out/x/x.steptable.xlsx"),
+                )
+                .unwrap();
+                s(&["convert", "out/x/x.steptable.xlsx", "-o", "out"])
+            },
+            code: 0,
+            error: None,
+            kept: &["out/x/x.steptable.xlsx"],
+        },
+        Case {
+            name: "convert x.csv out/x/x.steptable.xlsx -o out: an input where the other's workbook goes",
+            setup: |w| {
+                table(&w.join("x.csv"));
+                std::fs::create_dir_all(w.join("out/x")).unwrap();
+                std::fs::copy(
+                    sample("paper_example.xlsx"),
+                    w.join("out/x/x.steptable.xlsx"),
+                )
+                .unwrap();
+                s(&["convert", "x.csv", "out/x/x.steptable.xlsx", "-o", "out"])
+            },
+            code: 1,
+            error: Some(("E040", "out/x/x.steptable.xlsx")),
+            kept: &["out/x/x.steptable.xlsx"],
+        },
+        Case {
+            name: "convert x.csv -o out: the engineer's own workbook where the output workbook goes",
+            setup: |w| {
+                table(&w.join("x.csv"));
+                std::fs::create_dir_all(w.join("out/x")).unwrap();
+                std::fs::write(w.join("out/x/x.steptable.xlsx"), "my notes").unwrap();
+                s(&["convert", "x.csv", "-o", "out"])
+            },
+            code: 1,
+            error: Some(("E040", "out/x/x.steptable.xlsx")),
+            kept: &["out/x/x.steptable.xlsx"],
         },
         Case {
             name: "convert: a file of the engineer's where an output goes",
@@ -389,7 +438,7 @@ fn tables_named_like_outputs_are_converted() {
     std::fs::create_dir_all(work.join("plant/press")).unwrap();
     std::fs::copy(
         sample("paper_example.xlsx"),
-        work.join("plant/press/press.xlsx"),
+        work.join("plant/press/press.steptable.xlsx"),
     )
     .unwrap();
     table(&work.join("src/drill.csv"));
@@ -400,7 +449,7 @@ fn tables_named_like_outputs_are_converted() {
         .success();
     std::fs::copy(
         sample("paper_example.xlsx"),
-        work.join("plant/drill/drill.xlsx"),
+        work.join("plant/drill/drill.steptable.xlsx"),
     )
     .unwrap();
     let output = steptable()
@@ -418,11 +467,11 @@ fn tables_named_like_outputs_are_converted() {
     );
     let summary = std::fs::read_to_string(work.join("out/summary.csv")).unwrap();
     assert!(
-        summary.contains("plant/drill/drill.xlsx,converted"),
+        summary.contains("plant/drill/drill.steptable.xlsx,converted"),
         "{summary}"
     );
     assert!(
-        summary.contains("plant/press/press.xlsx,converted"),
+        summary.contains("plant/press/press.steptable.xlsx,converted"),
         "{summary}"
     );
 }

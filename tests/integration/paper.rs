@@ -73,7 +73,7 @@ fn convert_paper(dir: &std::path::Path) -> std::path::PathBuf {
 fn address_sheets_are_exactly_the_papers() {
     let dir = tempfile::tempdir().unwrap();
     let out = convert_paper(dir.path());
-    let workbook = out.join("paper_example.xlsx");
+    let workbook = out.join("paper_example.steptable.xlsx");
 
     let inputs = read_sheet(&workbook, "INPUT ADDRESSES");
     assert_eq!(inputs[0][..2], ["ADDRESS", "SYMBOL"]);
@@ -93,7 +93,7 @@ fn address_sheets_are_exactly_the_papers() {
 fn program_sheet_is_exactly_the_papers_with_middle_stops() {
     let dir = tempfile::tempdir().unwrap();
     let out = convert_paper(dir.path());
-    let program = read_sheet(&out.join("paper_example.xlsx"), "PLC PROGRAM");
+    let program = read_sheet(&out.join("paper_example.steptable.xlsx"), "PLC PROGRAM");
     assert_eq!(program[0][..2], ["STEP", "PROGRAM"]);
     for (row, (label, sentence)) in program[1..].iter().zip(DESIGN_PROGRAM) {
         assert_eq!((row[0].as_str(), row[1].as_str()), (label, sentence));
@@ -117,7 +117,7 @@ fn program_sheet_is_exactly_the_papers_with_middle_stops() {
     );
 
     let table = read_sheet(
-        &out.join("paper_example.xlsx"),
+        &out.join("paper_example.steptable.xlsx"),
         "SEQUENTIAL CONTROL DESCRIPTION",
     );
     assert_eq!(table[2][1..4], ["BRANCH 1", "BRANCH 2", "BRANCH 3"]);
@@ -130,7 +130,7 @@ fn program_sheet_is_exactly_the_papers_with_middle_stops() {
 fn workbook_agrees_with_io_csv_and_fst() {
     let dir = tempfile::tempdir().unwrap();
     let out = convert_paper(dir.path());
-    let workbook = out.join("paper_example.xlsx");
+    let workbook = out.join("paper_example.steptable.xlsx");
 
     let mut csv = csv::Reader::from_path(out.join("paper_example.io.csv")).unwrap();
     let csv_rows: Vec<(String, String)> = csv
@@ -280,7 +280,10 @@ fn xls_and_ods_read_the_same_table() {
     let dir = tempfile::tempdir().unwrap();
     let reference = convert_paper(&dir.path().join("ref"));
     let expected_csv = std::fs::read(reference.join("paper_example.io.csv")).unwrap();
-    let expected_program = read_sheet(&reference.join("paper_example.xlsx"), "PLC PROGRAM");
+    let expected_program = read_sheet(
+        &reference.join("paper_example.steptable.xlsx"),
+        "PLC PROGRAM",
+    );
     for fixture in ["paper_example.xls", "paper_example_grid.ods"] {
         let input = crate::helpers::root().join("tests/fixtures").join(fixture);
         steptable()
@@ -298,7 +301,7 @@ fn xls_and_ods_read_the_same_table() {
             "{fixture}"
         );
         assert_eq!(
-            read_sheet(&out.join(format!("{stem}.xlsx")), "PLC PROGRAM"),
+            read_sheet(&out.join(format!("{stem}.steptable.xlsx")), "PLC PROGRAM"),
             expected_program,
             "{fixture}"
         );
@@ -355,7 +358,9 @@ fn the_workbook_freezes_every_header() {
         .arg(dir.path())
         .assert()
         .success();
-    let workbook = dir.path().join("paper_example/paper_example.xlsx");
+    let workbook = dir
+        .path()
+        .join("paper_example/paper_example.steptable.xlsx");
     for (sheet, top_left) in [
         (1, "B4"),
         (2, "A2"),

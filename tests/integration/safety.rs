@@ -172,7 +172,7 @@ fn convert_with_safety_lists_alarms_and_passes_simulation() {
     let io = std::fs::read_to_string(out.join("paper_example.io.csv")).unwrap();
     assert!(io.contains("O1.5,alarm_pl,alarm,,,,"), "{io}");
     assert!(io.contains("O1.6,alarm_wd,alarm,,,,"), "{io}");
-    let simulation = read_sheet(&out.join("paper_example.xlsx"), "SIMULATION");
+    let simulation = read_sheet(&out.join("paper_example.steptable.xlsx"), "SIMULATION");
     assert!(
         simulation[1][0].starts_with("passed"),
         "{:?}",
@@ -180,7 +180,7 @@ fn convert_with_safety_lists_alarms_and_passes_simulation() {
     );
     // The PLC PROGRAM sheet shows each step starting its watchdog timer,
     // with the preset, beside the memories it sets.
-    let program = read_sheet(&out.join("paper_example.xlsx"), "PLC PROGRAM");
+    let program = read_sheet(&out.join("paper_example.steptable.xlsx"), "PLC PROGRAM");
     // Step 1's actions are on the row of step 0, whose START enters it.
     let step1 = program
         .iter()
@@ -192,7 +192,7 @@ fn convert_with_safety_lists_alarms_and_passes_simulation() {
     );
     // From power-up, only the overruns of the dead middle sensors x22 and
     // x31 remain; the other hazards need the fault to appear mid-cycle.
-    let faults = read_sheet(&out.join("paper_example.xlsx"), "FAULTS");
+    let faults = read_sheet(&out.join("paper_example.steptable.xlsx"), "FAULTS");
     assert!(
         faults[1][0].starts_with("24 fault case(s) at 17 moments of the cycle"),
         "{:?}",

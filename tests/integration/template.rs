@@ -162,7 +162,7 @@ fn settings_in_the_workbook_apply_and_flags_override_them() {
             .assert()
             .success();
         let csv = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
-        let simulation = read_sheet(&out.join("line/line.xlsx"), "SIMULATION");
+        let simulation = read_sheet(&out.join("line/line.steptable.xlsx"), "SIMULATION");
         (csv, simulation)
     };
     let (csv, simulation) = io(&[]);
@@ -581,4 +581,58 @@ fn template_files_are_never_clobbered() {
         .code(1)
         .stderr(predicates::str::contains(".xlsx"));
     assert!(!dir.path().join("t.csv").exists());
+}
+
+/// The SETTINGS help texts wrap in their column; a row of the default
+/// 15 points would let them run over the next row (LibreOffice) or cut
+/// them (Excel): each row is at least as tall as its text's lines, counted
+/// at 80 characters to a line, and the label column holds the longest label.
+#[test]
+fn settings_rows_are_tall_enough_for_their_help_and_labels_are_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.xlsx");
+    steptable()
+        .args(["template", "-o"])
+        .arg(&path)
+        .assert()
+        .success();
+    let settings = read_sheet(&path, "SETTINGS");
+    let xml = xlsx_part(&path, "xl/worksheets/sheet2.xml");
+    let height = |row: usize| -> f64 {
+        xml.split(&format!("<row r=\"{}\"", row + 1))
+            .nth(1)
+            .and_then(|r| r.split(" ht=\"").nth(1))
+            .and_then(|h| h.split('"').next())
+            .and_then(|h| h.parse().ok())
+            .unwrap_or(15.0)
+    };
+    let mut checked = 0;
+    let mut longest = 0;
+    for (row, cells) in settings.iter().enumerate().skip(4) {
+        let help = cells.get(3).map(String::as_str).unwrap_or("");
+        if help.len() < 40 || cells[0].is_empty() {
+            continue;
+        }
+        longest = longest.max(cells[0].chars().count());
+        let lines = help.len().div_ceil(80);
+        assert!(
+            height(row) >= 15.0 * lines as f64,
+            "SETTINGS row {} ({}): {} pt for {lines} lines",
+            row + 1,
+            cells[0],
+            height(row)
+        );
+        checked += 1;
+    }
+    assert!(checked >= 10, "{checked} help rows");
+    let width: f64 = xml
+        .split("<col min=\"1\" max=\"1\" width=\"")
+        .nth(1)
+        .and_then(|w| w.split('"').next())
+        .and_then(|w| w.parse().ok())
+        .expect("column A's width");
+    assert!(
+        width >= longest as f64 + 1.0,
+        "column A is {width} wide for a label of {longest} characters"
+    );
 }
