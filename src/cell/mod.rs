@@ -590,8 +590,36 @@ fn label_comment(after: &str) -> Option<String> {
     } else {
         comment
     };
+    let comment = visible_text(comment);
     let comment = comment.trim();
     (!comment.is_empty()).then(|| comment.to_string())
+}
+
+/// Free text (a comment, an actuator's name) as the engineer sees it: a
+/// vertical tab, form feed or Unicode line or paragraph separator (Word's
+/// soft line break pasted into a cell, stored as `_x000B_`) is a line
+/// break; other control characters and Unicode noncharacters show as
+/// nothing and are left out, so that no written file (XML, SVG, a PLC
+/// comment) carries a character its format forbids. The table's own cells
+/// keep them, and a move with one is refused (E010).
+pub fn visible_text(raw: &str) -> String {
+    if !raw.chars().any(is_invisible) {
+        return raw.to_string();
+    }
+    raw.chars()
+        .filter_map(|c| match c {
+            '\u{b}' | '\u{c}' | '\u{2028}' | '\u{2029}' => Some('\n'),
+            c if is_invisible(c) => None,
+            c => Some(c),
+        })
+        .collect()
+}
+
+fn is_invisible(c: char) -> bool {
+    let noncharacter = matches!(c as u32, 0xFDD0..=0xFDEF) || (c as u32) & 0xFFFE == 0xFFFE;
+    (c.is_control() && !matches!(c, '\t' | '\n' | '\r'))
+        || noncharacter
+        || matches!(c, '\u{2028}' | '\u{2029}')
 }
 
 /// `BRANCH1` / `STEP1` with nothing else, any case.

@@ -286,3 +286,18 @@ fn label_comments_are_read_without_their_separators() {
     assert_eq!(actuator_comment("C2"), None);
     assert_eq!(actuator_comment("clamp"), None);
 }
+
+#[test]
+fn invisible_characters_of_a_comment_become_what_they_show() {
+    assert_eq!(visible_text("clamp\u{b}part"), "clamp\npart");
+    assert_eq!(visible_text("a\u{7}b\u{1b}c\u{fffe}d\u{ffff}"), "abcd");
+    assert_eq!(visible_text("tab\there\r\nok"), "tab\there\r\nok");
+    assert_eq!(
+        step_comment("STEP 2 (bell\u{7} and escape\u{1b})").as_deref(),
+        Some("bell and escape")
+    );
+    assert_eq!(
+        actuator_comment("C2 (lift\u{b}unit)").as_deref(),
+        Some("lift\nunit")
+    );
+}

@@ -30,7 +30,7 @@ const COLORS: [&str; 6] = [
 /// which for most coordinates falls back to big-number arithmetic (a
 /// diagram has thousands): the tenths as a whole number. Near a tie, where
 /// the product may have rounded the other way, the formatter decides.
-struct Tenths(f64);
+pub(crate) struct Tenths(pub(crate) f64);
 
 impl std::fmt::Display for Tenths {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

@@ -154,8 +154,7 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
         let mut previous: Option<&str> = None;
         for (col, field) in record.iter().enumerate() {
             let col = col.min(u32::MAX as usize) as u32;
-            // A field of invisible characters only is as empty as it looks.
-            if field.trim().is_empty() || super::grid::visible_text(field).trim().is_empty() {
+            if field.trim().is_empty() {
                 previous = None;
                 continue;
             }
@@ -189,7 +188,7 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
             previous = Some(field);
             cells.push(GridCell {
                 pos: CellPos::new(row, col),
-                value: CellValue::text(field),
+                value: CellValue::Text(field.to_string()),
             });
         }
     }

@@ -17,16 +17,6 @@ pub enum CellValue {
 }
 
 impl CellValue {
-    /// A text cell as the engineer sees it: a vertical tab, form feed or
-    /// Unicode line or paragraph separator (Word's soft line break pasted
-    /// into a cell, stored as `_x000B_`) is the line break it shows as;
-    /// other control characters and Unicode noncharacters show as nothing
-    /// and are left out, so that no written file (XML, SVG, a PLC comment)
-    /// carries a character its format forbids.
-    pub fn text(raw: &str) -> CellValue {
-        CellValue::Text(visible_text(raw))
-    }
-
     /// The value as a message names it: `"C1+1"`, `the number 42`.
     pub fn describe(&self) -> String {
         match self {
@@ -84,7 +74,7 @@ impl Grid {
                 if !text.trim().is_empty() {
                     cells.push(GridCell {
                         pos: CellPos::new(r as u32, c as u32),
-                        value: CellValue::text(text),
+                        value: CellValue::Text(text.to_string()),
                     });
                 }
             }
@@ -121,39 +111,5 @@ impl Grid {
             sheet: self.sheet.clone(),
             cell: None,
         }
-    }
-}
-
-/// `raw` with its invisible characters as [`CellValue::text`] says.
-pub fn visible_text(raw: &str) -> String {
-    if !raw.chars().any(is_invisible) {
-        return raw.to_string();
-    }
-    raw.chars()
-        .filter_map(|c| match c {
-            '\u{b}' | '\u{c}' | '\u{2028}' | '\u{2029}' => Some('\n'),
-            c if is_invisible(c) => None,
-            c => Some(c),
-        })
-        .collect()
-}
-
-fn is_invisible(c: char) -> bool {
-    let noncharacter = matches!(c as u32, 0xFDD0..=0xFDEF) || (c as u32) & 0xFFFE == 0xFFFE;
-    (c.is_control() && !matches!(c, '\t' | '\n' | '\r'))
-        || noncharacter
-        || matches!(c, '\u{2028}' | '\u{2029}')
-}
-
-#[cfg(test)]
-mod visible_tests {
-    use super::visible_text;
-
-    #[test]
-    fn invisible_characters_become_what_they_show() {
-        assert_eq!(visible_text("clamp\u{b}part"), "clamp\npart");
-        assert_eq!(visible_text("a\u{7}b\u{1b}c\u{fffe}d\u{ffff}"), "abcd");
-        assert_eq!(visible_text("tab\there\r\nok"), "tab\there\r\nok");
-        assert_eq!(visible_text("C1+1; T=2s"), "C1+1; T=2s");
     }
 }

@@ -479,11 +479,10 @@ fn cell_value(data: &Data) -> Option<CellValue> {
     Some(match data {
         Data::Empty => return None,
         Data::String(s) => {
-            let text = crate::read::grid::visible_text(s);
-            if text.trim().is_empty() {
+            if s.trim().is_empty() {
                 return None;
             }
-            CellValue::Text(text)
+            CellValue::Text(s.clone())
         }
         Data::Int(i) => CellValue::Number(*i as f64),
         Data::Float(f) => CellValue::Number(*f),

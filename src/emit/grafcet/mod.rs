@@ -20,6 +20,7 @@ pub use words::Term;
 use words::{actions, branches, line_text, mode_note, receptivity, table_step};
 
 use super::EmitInput;
+use super::diagram::Tenths;
 use crate::program::{INITIAL_STEP, StepKind};
 
 /// The centre line of the sequence.
@@ -539,7 +540,7 @@ fn draw(svg: &mut String, shape: &Shape) {
         } => {
             let d: Vec<String> = points
                 .iter()
-                .map(|(x, y)| format!("{x:.1},{y:.1}"))
+                .map(|(x, y)| format!("{},{}", Tenths(*x), Tenths(*y)))
                 .collect();
             let d = d.join(" ");
             if *double {

@@ -8,7 +8,7 @@
 
 use std::fmt::Write;
 
-use crate::emit::diagram::escape;
+use crate::emit::diagram::{Tenths, escape};
 use crate::simulate::SimReport;
 use crate::simulate::io::IoTrace;
 
@@ -143,7 +143,7 @@ pub fn render(
         for (t, p) in report.trace.iter().filter(|(t, _)| *t >= press) {
             if let Some(p) = p.get(i) {
                 let y = top + POSITION_LANE - 3.0 - p / pmax * (POSITION_LANE - 6.0);
-                let _ = write!(points, "{:.1},{y:.1} ", x(t - press));
+                let _ = write!(points, "{},{} ", Tenths(x(t - press)), Tenths(y));
             }
         }
         let _ = writeln!(
@@ -171,15 +171,15 @@ pub fn render(
                 let y = if *v == 1 { high } else { low };
                 if k > 0 {
                     let before = if lane.edges[k - 1].1 == 1 { high } else { low };
-                    let _ = write!(points, "{:.1},{before:.1} ", x(*t));
+                    let _ = write!(points, "{},{} ", Tenths(x(*t)), Tenths(before));
                 }
-                let _ = write!(points, "{:.1},{y:.1} ", x(*t));
+                let _ = write!(points, "{},{} ", Tenths(x(*t)), Tenths(y));
             }
             let last = lane
                 .edges
                 .last()
                 .map_or(low, |(_, v)| if *v == 1 { high } else { low });
-            let _ = write!(points, "{:.1},{last:.1}", x(end_ms));
+            let _ = write!(points, "{},{}", Tenths(x(end_ms)), Tenths(last));
             let _ = write!(svg, r#"<polyline points="{points}"/>"#);
         }
         svg.push_str("</g>\n");
