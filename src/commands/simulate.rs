@@ -98,3 +98,81 @@ pub fn run(
         diagram,
     })
 }
+
+/// What a scenario did and wrote.
+#[derive(Debug)]
+pub struct ScenarioRun {
+    pub warnings: Vec<Diagnostic>,
+    /// The scenario's run, printed as a step table.
+    pub table: String,
+}
+
+/// Runs the program of the table `input` under `settings` with the
+/// operator's events `written` (`("press", "STOP@step3")`, in the order of
+/// the command line), for as long after the last event as one healthy
+/// cycle takes. An event the program cannot run is E042.
+pub fn scenario(
+    input: &Path,
+    settings: &Settings,
+    written: &[(String, String)],
+) -> Result<ScenarioRun, CommandError> {
+    use crate::simulate::scenario::{self as sc, events, table as printed};
+    let checked = convert::check_path(input, settings).map_err(CommandError::Input)?;
+    let warnings = checked.warnings;
+    let (table, settings) = (checked.table, checked.settings);
+    let refused = |problems: Vec<Diagnostic>| CommandError::Input(problems).after(&warnings);
+    let program = convert::build_program(&table, &settings);
+    let naming = &settings.naming;
+    let mut events = Vec::new();
+    let mut bad = Vec::new();
+    for (option, text) in written {
+        match events::parse(option, text, &program, &table, naming) {
+            Ok(event) => events.push(event),
+            Err(why) => bad.push(why),
+        }
+    }
+    bad.extend(events::check(&events));
+    if !bad.is_empty() {
+        let at = |message| event_error(&table, message);
+        return Err(refused(bad.into_iter().map(at).collect()));
+    }
+    let sim = &settings.simulation;
+    let proof = simulate::simulate(&table, &program, sim);
+    // As long after the last event as a healthy cycle takes, and a second
+    // to see the machine stand.
+    let cycle = proof
+        .cycles
+        .first()
+        .and_then(|c| c.cycle_ms)
+        .unwrap_or(10_000);
+    let tail = cycle + 1_000;
+    let until = u64::from(events::LATEST_MS) + tail;
+    let (run, _) = sc::scenario_events(&table, &program, sim, &events, (tail, until), None);
+    let symbols = SymbolTable::build(&program, &table, naming);
+    let designation = |s| symbols.designation(s);
+    let actuator = |n| symbols.actuator(n);
+    let names = printed::Names {
+        signal: &designation,
+        actuator: &actuator,
+    };
+    let numbers: Vec<u32> = table.actuators.iter().map(|a| a.number).collect();
+    let printed = printed::render(&run, &events, &program, &numbers, &names);
+    Ok(ScenarioRun {
+        warnings,
+        table: printed,
+    })
+}
+
+/// E042 at the table's file (an event is no cell of it).
+fn event_error(table: &StepTable, message: String) -> Diagnostic {
+    Diagnostic {
+        severity: Severity::Error,
+        code: Code::E042BadScenarioEvent,
+        location: Location {
+            file: table.file.clone(),
+            sheet: None,
+            cell: None,
+        },
+        message,
+    }
+}
