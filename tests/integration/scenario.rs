@@ -49,6 +49,11 @@ fn reset_mid_cycle_homes_the_paper_example_as_printed() {
     let reset = time_of(&table, "--press RESET@+1s: RESET_PB pressed");
     assert_eq!(estop, step3 + 10, "the scan after step 3 starts:\n{table}");
     assert_eq!(reset, estop + 1_000, "{table}");
+    // RESET homes the machine in the scan that reads it; the motion of
+    // homing is no problem of the table's.
+    assert_eq!(time_of(&table, "homing starts"), reset, "{table}");
+    assert!(time_of(&table, "homing done") > reset, "{table}");
+    assert!(!table.contains("problem:"), "{table}");
     assert!(
         !table.contains("step 4 "),
         "no step after the ESTOP:\n{table}"
@@ -215,4 +220,18 @@ fn a_relative_press_repeated_is_a_second_press() {
     ]);
     assert_eq!(code, 0, "{table}");
     assert_eq!(table.matches("STOP pressed").count(), 2, "{table}");
+}
+
+/// A sensor dying mid-cycle under the watchdog: the alarm line says when
+/// the machine told its operator, and the run ends in the step it waits in.
+#[test]
+fn a_sensor_dying_mid_cycle_prints_the_watchdog_alarm() {
+    let (code, table) = simulate(&["--safety", "all", "--stick", "x23=0@step2"]);
+    assert_eq!(code, 0, "{table}");
+    let stuck = time_of(&table, "x23 stuck at 0");
+    let alarm = time_of(&table, "alarm_wd on");
+    assert!(alarm > stuck, "{table}");
+    assert!(!table.contains("step 3 "), "{table}");
+    let end = table.lines().find(|l| l.starts_with("ended at")).unwrap();
+    assert!(end.contains("in step 2;"), "{end}");
 }

@@ -7,6 +7,7 @@ use std::fmt::Write;
 
 use super::{Event, ScenarioReport};
 use crate::program::{Signal, StepProgram};
+use crate::simulate::ProblemKind;
 
 /// What the table names things by: the naming authority's designation of
 /// a signal and of an actuator.
@@ -52,7 +53,17 @@ fn lines(
         let what = if on { "on" } else { "off" };
         lines.push((t, 2, format!("{} {what}", (names.signal)(signal))));
     }
-    for p in &report.problems {
+    for (t, on) in homing_changes(report) {
+        let what = if on { "homing starts" } else { "homing done" };
+        lines.push((t, 2, what.to_string()));
+    }
+    // Motion while the program homes the machine is what RESET asked for.
+    let homing = |t: u64| report.at(t).is_some_and(|s| s.homing);
+    for p in report
+        .problems
+        .iter()
+        .filter(|p| !(is_motion(p.kind) && homing(p.time_ms)))
+    {
         lines.push((p.time_ms, 3, format!("problem: {}", p.message)));
     }
     lines.sort_by_key(|(t, order, _)| (*t, *order));
@@ -71,18 +82,42 @@ fn describe(event: &Event, names: &Names) -> String {
     }
 }
 
+/// Each sample with the time its scan started (the sample is taken at
+/// its end): the time the table prints steps and events at.
+fn scans(report: &ScenarioReport) -> impl Iterator<Item = (u64, &super::Sample)> {
+    let starts = std::iter::once(0).chain(report.samples.iter().map(|s| s.time_ms));
+    starts.zip(&report.samples)
+}
+
+fn is_motion(kind: ProblemKind) -> bool {
+    matches!(kind, ProblemKind::OutsideStep | ProblemKind::RanThrough)
+}
+
+/// When the program started and ended homing the machine.
+fn homing_changes(report: &ScenarioReport) -> Vec<(u64, bool)> {
+    let mut was = false;
+    let mut changes = Vec::new();
+    for (scan, sample) in scans(report) {
+        if sample.homing != was {
+            changes.push((scan, sample.homing));
+            was = sample.homing;
+        }
+    }
+    changes
+}
+
 /// When each alarm output came on and went off.
 fn alarm_changes(report: &ScenarioReport) -> Vec<(u64, Signal, bool)> {
     let is_alarm = |s: &Signal| matches!(s, Signal::Alarm(_));
     let mut on: Vec<Signal> = Vec::new();
     let mut changes = Vec::new();
-    for sample in &report.samples {
+    for (scan, sample) in scans(report) {
         let now: Vec<Signal> = sample.outputs_on.iter().copied().filter(is_alarm).collect();
         for s in now.iter().filter(|s| !on.contains(s)) {
-            changes.push((sample.time_ms, *s, true));
+            changes.push((scan, *s, true));
         }
         for s in on.iter().filter(|s| !now.contains(s)) {
-            changes.push((sample.time_ms, *s, false));
+            changes.push((scan, *s, false));
         }
         on = now;
     }
