@@ -33,6 +33,10 @@ pub(crate) struct SimulateArgs {
     /// machine does (a broken wire, a stuck sensor): `x21=0@4.0s`.
     #[arg(long, value_name = "INPUT=0|1@WHEN")]
     pub(crate) stick: Vec<String>,
+    /// With a scenario: also draw its run on the report's timeline, in
+    /// DIR/NAME/NAME.scenario.report.html.
+    #[arg(long, value_name = "DIR", requires = "events")]
+    pub(crate) report: Option<PathBuf>,
     #[command(flatten)]
     pub(crate) common: CommonArgs,
     #[command(flatten)]
@@ -135,8 +139,18 @@ fn run_scenarios(
     reporter: &Reporter,
 ) -> i32 {
     let mut code = EXIT_OK;
-    for input in &args.inputs {
-        let run = crate::commands::simulate::scenario(input, settings, events);
+    let names = convert::output_names(&args.inputs);
+    let kept = write::Inputs::new(&args.inputs);
+    for (input, name) in args.inputs.iter().zip(&names) {
+        let report = args
+            .report
+            .as_deref()
+            .map(|dir| crate::commands::simulate::ScenarioReport {
+                dir,
+                name,
+                inputs: &kept,
+            });
+        let run = crate::commands::simulate::scenario(input, settings, events, report);
         let run = match run {
             Ok(run) => run,
             Err(err) => {
@@ -145,8 +159,21 @@ fn run_scenarios(
             }
         };
         reporter.diagnostics(&run.warnings);
+        // Written before anything is printed, as `--diagram` is: with
+        // stdout closed, printing ends the process.
+        let written = match run.report {
+            Some(Ok(paths)) => paths,
+            Some(Err(err)) => {
+                code = code.max(write_failed(reporter, &err));
+                Vec::new()
+            }
+            None => Vec::new(),
+        };
         reporter.say(&format!("{}: scenario", display_name(input)));
         reporter.say(&run.table);
+        for path in written {
+            reporter.say(&format!("  report: {}", path.display()));
+        }
     }
     code
 }

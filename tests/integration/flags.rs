@@ -515,6 +515,17 @@ fn all_cases() -> Vec<Case> {
         ),
         case(
             "simulate",
+            "--report",
+            Paper,
+            &["--stick", "x11=0@1s", "--report", "d"],
+            &["--stick", "x11=0@1s"],
+            Has(
+                Place::File("d/t/t.scenario.report.html".into()),
+                "<title>--stick x11=0@1s</title>",
+            ),
+        ),
+        case(
+            "simulate",
             "--stick",
             Paper,
             &["--stick", "x11=0@0.2s"],

@@ -235,3 +235,95 @@ fn a_sensor_dying_mid_cycle_prints_the_watchdog_alarm() {
     let end = table.lines().find(|l| l.starts_with("ended at")).unwrap();
     assert!(end.contains("in step 2;"), "{end}");
 }
+
+/// `--report DIR`: the scenario's page holds the table as printed, a red
+/// line per event at its time, and the lanes of the run: ESTOP (normally
+/// closed) reads 0 from the scan of its press, RESET_PB 1, for a press's
+/// 100 ms.
+#[test]
+fn the_report_draws_the_scenario_on_the_timeline() {
+    let out = tempfile::tempdir().unwrap();
+    let dir = out.path().join("r");
+    let (code, table) = simulate(&[
+        "--modes",
+        "estop,reset",
+        "--press",
+        "ESTOP@step3",
+        "--press",
+        "RESET@+1s",
+        "--report",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{table}");
+    let page = dir.join("paper_example/paper_example.scenario.report.html");
+    assert!(
+        table.contains(&format!("report: {}", page.display())),
+        "{table}"
+    );
+    let html = std::fs::read_to_string(&page).unwrap();
+    let printed = table
+        .lines()
+        .skip(1)
+        .take_while(|l| !l.starts_with("  report:"));
+    for line in printed {
+        let escaped = line
+            .replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;");
+        assert!(html.contains(&escaped), "the page holds {line:?}");
+    }
+    let (estop, reset) = (
+        time_of(&table, "ESTOP pressed"),
+        time_of(&table, "RESET_PB pressed"),
+    );
+    for (at, event) in [(estop, "--press ESTOP@step3"), (reset, "--press RESET@+1s")] {
+        let x = at as f64 / 1000.0 * 120.0;
+        let mark = format!(r#"x1="{x:.1}""#);
+        let line = html
+            .lines()
+            .find(|l| l.contains(&format!("<title>{event}</title>")))
+            .unwrap_or_else(|| panic!("a mark for {event}"));
+        assert!(line.contains(&mark), "{event} at {at} ms: {line}");
+    }
+    let edges = |signal: &str| {
+        let key = format!(r#"data-signal="{signal}" data-edges=""#);
+        let from = html.find(&key).unwrap_or_else(|| panic!("a lane {signal}")) + key.len();
+        html[from..].split('"').next().unwrap().to_string()
+    };
+    assert!(
+        edges("ESTOP").contains(&format!("{estop}:0 {}:1", estop + 100)),
+        "{}",
+        edges("ESTOP")
+    );
+    assert!(
+        edges("RESET_PB").contains(&format!("{reset}:1 {}:0", reset + 100)),
+        "{}",
+        edges("RESET_PB")
+    );
+    // Self-contained: nothing loaded from elsewhere.
+    assert!(
+        !html.contains(" src=") && !html.contains("href=\"http"),
+        "self-contained"
+    );
+}
+
+/// A refused event writes no page; `--report` without an event is the
+/// option parser's error.
+#[test]
+fn a_refused_scenario_writes_no_report() {
+    let work = tempfile::tempdir().unwrap();
+    let input = sample("paper_example.xlsx").display().to_string();
+    for args in [
+        vec!["--press", "RESET@1s", "--report", "r"],
+        vec!["--report", "r"],
+    ] {
+        let mut line = vec!["simulate".to_string(), input.clone()];
+        line.extend(args.iter().map(|a| a.to_string()));
+        let (code, said) = run_in(work.path(), &line);
+        assert_eq!(code, Some(1), "{args:?}: {said}");
+        assert!(
+            files_below(work.path()).is_empty(),
+            "{args:?}: nothing written"
+        );
+    }
+}
