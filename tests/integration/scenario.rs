@@ -327,3 +327,17 @@ fn a_refused_scenario_writes_no_report() {
         );
     }
 }
+
+/// An event whose step never comes is said, after where the run ended.
+#[test]
+fn an_event_whose_step_never_comes_is_said() {
+    let (code, table) = simulate(&["--stick", "x11=0@0.2s", "--stick", "x21=1@step3"]);
+    assert_eq!(code, 0, "{table}");
+    assert!(
+        table
+            .trim_end()
+            .ends_with("never happened: --stick x21=1@step3 (the run ended first)"),
+        "{table}"
+    );
+    assert!(!table.contains("x21 stuck"), "{table}");
+}
