@@ -84,6 +84,11 @@ pub enum Code {
     E040OutputTaken,
     /// The command line itself is wrong: an unknown option, a bad value.
     E041BadCommandLine,
+    /// A scenario event of `simulate` (`--press`, `--hold`, `--release`,
+    /// `--stick`) that this table's program cannot run: an unknown signal,
+    /// a button whose mode is off, a step it lacks, a malformed time, two
+    /// events contradicting or repeating each other.
+    E042BadScenarioEvent,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -148,6 +153,7 @@ impl Code {
             Code::E029JumpPositions => "E029",
             Code::E040OutputTaken => "E040",
             Code::E041BadCommandLine => "E041",
+            Code::E042BadScenarioEvent => "E042",
         }
     }
 }

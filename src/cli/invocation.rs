@@ -2,8 +2,8 @@
 //! [`crate::provenance`]): the command, the inputs by file name, and the
 //! options that change what is written, each as typed. Options that change
 //! only where files go or how a run speaks (`-o`, `--message-format`,
-//! `--sync`, `--jobs`, `--quiet`, `--force`, and the folder of `simulate
-//! --diagram DIR`) are left out, and the folder of `--templates` is cut to
+//! `--sync`, `--jobs`, `--quiet`, `--force`, and the folders of `simulate
+//! --diagram DIR` and `--report DIR`) are left out, and the folder of `--templates` is cut to
 //! its last part, as inputs are to their file names, so that the same run
 //! from another folder writes the same bytes.
 

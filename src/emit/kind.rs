@@ -232,6 +232,10 @@ impl OutputKind {
 pub enum CommandFile {
     /// `simulate --diagram DIR`: the run's displacement-time diagram.
     TimeDiagram,
+    /// `simulate --press … --report DIR`: the scenario on one page, drawn
+    /// on the report's timeline; `.report.html` at its end, as the
+    /// report's, so that it opens in a browser and is stamped alike.
+    ScenarioReport,
     /// synth's report, as printed.
     SynthReport,
     /// synth's report for programs.
@@ -247,8 +251,9 @@ pub enum CommandFile {
 }
 
 impl CommandFile {
-    pub const ALL: [CommandFile; 6] = [
+    pub const ALL: [CommandFile; 7] = [
         CommandFile::TimeDiagram,
+        CommandFile::ScenarioReport,
         CommandFile::SynthReport,
         CommandFile::SynthJson,
         CommandFile::EquationsSt,
@@ -260,6 +265,7 @@ impl CommandFile {
     pub fn suffix(self) -> &'static str {
         match self {
             CommandFile::TimeDiagram => ".time.svg",
+            CommandFile::ScenarioReport => ".scenario.report.html",
             CommandFile::SynthReport => ".synth.txt",
             CommandFile::SynthJson => ".synth.json",
             CommandFile::EquationsSt => ".equations.st",

@@ -51,6 +51,7 @@ mod read_two_ways;
 mod report;
 mod rerun;
 mod safety;
+mod scenario;
 mod settings_rows;
 mod simulate;
 mod single_step;

@@ -19,6 +19,11 @@ pub const CHECKS: &[Check] = &[
         &[Tool::Chromium],
         every_report_opens_in_chromium_without_errors_or_requests,
     ),
+    Check::new(
+        "browser::a_scenario_page_opens_in_chromium_without_errors_or_requests",
+        &[Tool::Chromium],
+        a_scenario_page_opens_in_chromium_without_errors_or_requests,
+    ),
 ];
 
 /// The page's DOM after its scripts ran, as headless Chromium dumps it,
@@ -193,4 +198,53 @@ fn every_report_opens_in_chromium_without_errors_or_requests() {
             "{stem}: the page asked for more than itself"
         );
     }
+}
+
+/// `simulate --press … --report DIR` on the paper's example: the page runs
+/// its script, logs no error, asks for nothing beyond itself, and shows
+/// its zoom controls and a mark per event.
+fn a_scenario_page_opens_in_chromium_without_errors_or_requests() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r");
+    steptable()
+        .arg("simulate")
+        .arg(crate::helpers::sample("paper_example.xlsx"))
+        .args(["--modes", "estop,reset", "--press", "ESTOP@step3"])
+        .args(["--press", "RESET@+1s", "--report"])
+        .arg(&out)
+        .assert()
+        .success();
+    let written = out.join("paper_example/paper_example.scenario.report.html");
+    let page = dir.path().join("probed.html");
+    let html = std::fs::read_to_string(&written).unwrap();
+    std::fs::write(
+        &page,
+        html.replace("</body>", &format!("{REQUESTS}</body>")),
+    )
+    .unwrap();
+    let (dom, log) = dump_dom(&page, &dir.path().join("profile"));
+    assert!(
+        dom.contains("data-js=\"on\""),
+        "the script did not run\n{log}"
+    );
+    let errors: Vec<&str> = log
+        .lines()
+        .filter(|l| l.contains("CONSOLE") || l.contains("Uncaught"))
+        .collect();
+    assert!(errors.is_empty(), "{errors:#?}");
+    assert!(
+        !dom.contains("<div class=\"controls\" hidden"),
+        "the controls stay hidden"
+    );
+    assert_eq!(
+        dom.matches("class=\"mark\"").count(),
+        2,
+        "one mark per event"
+    );
+    let requests = dom
+        .split("<pre id=\"requests\">")
+        .nth(1)
+        .and_then(|r| r.split("</pre>").next())
+        .expect("the probe ran");
+    assert_eq!(requests, "done", "the page asked for more than itself");
 }

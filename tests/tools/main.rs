@@ -23,6 +23,7 @@ mod homing;
 mod libreoffice;
 mod names;
 mod pinned;
+mod scenario;
 mod sfc;
 mod single_step;
 mod step_numbers;
@@ -178,6 +179,7 @@ fn main() {
         libreoffice::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
+        scenario::CHECKS,
         sfc::CHECKS,
         single_step::CHECKS,
         supervision::CHECKS,

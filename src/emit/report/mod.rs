@@ -8,6 +8,7 @@
 //! without the script. It renders what the conversion already has, so it
 //! costs a few milliseconds beside the fault analysis.
 
+pub mod scenario;
 pub mod timeline;
 
 use std::fmt::Write;
@@ -195,11 +196,20 @@ fn timeline_html(
     simulation: &crate::simulate::SimReport,
     trace: &crate::simulate::io::IoTrace,
 ) -> String {
-    let press = simulation.cycles.first().map_or(0, |c| c.press_ms);
-    let lanes = timeline::lanes(trace, press, &|s| input.symbols.designation(s));
-    let (svg, labels) = timeline::render(simulation, trace, &lanes, &|n| input.symbols.actuator(n));
-    let mut out = String::from(
-        "<p class=\"hint\">Time from the START press, as in the step timing above. Shaded: dwells (green) and waits for a machine input (violet).</p>\n<div class=\"controls\" hidden><button type=\"button\" data-zoom=\"0.5\">zoom out</button> <button type=\"button\" data-zoom=\"2\">zoom in</button> <button type=\"button\" data-zoom=\"0\">fit</button></div>\n<div class=\"timeline-box\"><div class=\"lane-labels\">",
+    let drawn = timeline::Drawn::of(simulation);
+    let lanes = timeline::lanes(trace, drawn.press_ms, &|s| input.symbols.designation(s));
+    let (svg, labels) = timeline::render(&drawn, trace, &lanes, &|n| input.symbols.actuator(n));
+    timeline_box(
+        "Time from the START press, as in the step timing above. Shaded: dwells (green) and waits for a machine input (violet).",
+        &svg,
+        labels,
+    )
+}
+
+/// The timeline with its zoom buttons and the lanes' labels beside it.
+fn timeline_box(hint: &str, svg: &str, labels: Vec<String>) -> String {
+    let mut out = format!(
+        "<p class=\"hint\">{hint}</p>\n<div class=\"controls\" hidden><button type=\"button\" data-zoom=\"0.5\">zoom out</button> <button type=\"button\" data-zoom=\"2\">zoom in</button> <button type=\"button\" data-zoom=\"0\">fit</button></div>\n<div class=\"timeline-box\"><div class=\"lane-labels\">",
     );
     for label in labels {
         let mut parts = label.splitn(3, '|');

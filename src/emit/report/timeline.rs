@@ -9,8 +9,8 @@
 use std::fmt::Write;
 
 use crate::emit::diagram::{Tenths, escape};
-use crate::simulate::SimReport;
 use crate::simulate::io::IoTrace;
+use crate::simulate::{SimReport, Span};
 
 /// Pixels per second at zoom 1.
 pub const PX_PER_S: f64 = 120.0;
@@ -18,6 +18,34 @@ const LANE: f64 = 22.0;
 const POSITION_LANE: f64 = 40.0;
 const GAP: f64 = 6.0;
 const AXIS: f64 = 24.0;
+
+/// What the timeline draws beside the digital lanes: where its time axis
+/// starts, the shaded spans, each actuator's position at every scan, and
+/// the moments marked with a line across every lane (a scenario's events).
+pub struct Drawn<'a> {
+    /// The run's time that is 0 on the axis.
+    pub press_ms: u64,
+    pub spans: &'a [Span],
+    /// Actuator numbers and end positions, in the order of each position vector.
+    pub actuators: &'a [(u32, u32)],
+    /// `(time_ms, positions)` at every scan.
+    pub positions: &'a [(u64, Vec<f64>)],
+    /// `(time_ms, label)` of each moment marked.
+    pub marks: &'a [(u64, String)],
+}
+
+impl<'a> Drawn<'a> {
+    /// The simulated cycle of `report`, from its first START press.
+    pub fn of(report: &'a SimReport) -> Self {
+        Drawn {
+            press_ms: report.cycles.first().map_or(0, |c| c.press_ms),
+            spans: &report.spans,
+            actuators: &report.actuators,
+            positions: &report.trace,
+            marks: &[],
+        }
+    }
+}
 
 /// One lane: its label, what it is, and its value changes
 /// `(ms from the press, value)`, the first at 0.
@@ -86,12 +114,12 @@ fn edges_attr(edges: &[(u64, u32)]) -> String {
 /// The timeline as an SVG (lanes only; their labels are the HTML beside
 /// it, so that they stay put while the lanes scroll and zoom).
 pub fn render(
-    report: &SimReport,
+    report: &Drawn,
     trace: &IoTrace,
     lanes: &[Lane],
     actuator: &dyn Fn(u32) -> String,
 ) -> (String, Vec<String>) {
-    let press = report.cycles.first().map_or(0, |c| c.press_ms);
+    let press = report.press_ms;
     let end_ms = trace
         .scans
         .last()
@@ -107,7 +135,7 @@ pub fn render(
         r##"<svg xmlns="http://www.w3.org/2000/svg" class="timeline" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" preserveAspectRatio="none" data-px-per-s="{PX_PER_S}" data-end-ms="{end_ms}">"##
     );
     // Dwells and waits of the first cycle, shaded over every lane.
-    for span in &report.spans {
+    for span in report.spans {
         let (a, b) = (
             x(span.from_ms.saturating_sub(press)),
             x(span.to_ms.saturating_sub(press)),
@@ -140,7 +168,7 @@ pub fn render(
         labels.push(format!("{}|position|{POSITION_LANE}", actuator(*number)));
         let pmax = (*pmax).max(1) as f64;
         let mut points = String::new();
-        for (t, p) in report.trace.iter().filter(|(t, _)| *t >= press) {
+        for (t, p) in report.positions.iter().filter(|(t, _)| *t >= press) {
             if let Some(p) = p.get(i) {
                 let y = top + POSITION_LANE - 3.0 - p / pmax * (POSITION_LANE - 6.0);
                 let _ = write!(points, "{},{} ", Tenths(x(t - press)), Tenths(y));
@@ -184,6 +212,16 @@ pub fn render(
         }
         svg.push_str("</g>\n");
         top += LANE + GAP;
+    }
+    // The marked moments over everything else, styled here: the report's
+    // style sheet is the healthy cycle's, which marks none.
+    for (t, label) in report.marks {
+        let at = x(t.saturating_sub(press));
+        let _ = writeln!(
+            svg,
+            r##"<line class="mark" x1="{at:.1}" y1="{AXIS}" x2="{at:.1}" y2="{height:.0}" stroke="#c0392b" stroke-width="2"><title>{}</title></line>"##,
+            escape(label)
+        );
     }
     svg.push_str("</svg>");
     (svg, labels)

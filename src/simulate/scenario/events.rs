@@ -1,0 +1,309 @@
+//! The operator's events of a scenario as the command line writes them:
+//! `--press STOP@step3`, `--hold STEP_MODE@0s`, `--release STEP_MODE@+4s`,
+//! `--stick x21=0@4.0s`. Each is read against the program it runs on:
+//! its signal by any name the naming authority gives it (paper symbol,
+//! ISO designation, the engineer's name), a button only where its mode is
+//! on, a step only where the program has it. Every refusal names the
+//! option as written, so the engineer finds it on their command line.
+
+use crate::cell::parse_duration_in;
+use crate::program::{Area, Signal, StepProgram};
+use crate::symbols::Naming;
+use crate::table::StepTable;
+
+/// The latest moment an event may name: a scenario runs every scan, and
+/// ten minutes of a machine's life is more than any cycle worth watching.
+pub const LATEST_MS: u32 = 600_000;
+
+/// When an event happens.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum When {
+    /// At this time of the run (milliseconds from power-up).
+    At(u64),
+    /// When the program enters this SFC step (0 at rest, k while table
+    /// step k's moves run), the first time after the event before it.
+    Step(usize),
+    /// This long after the event before it (after power-up for the first).
+    After(u64),
+}
+
+/// What the operator (or a broken wire) does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Act {
+    /// Presses a button and lets go after a press's length (100 ms).
+    Press(Signal),
+    /// Presses a button (or turns a switch on) and keeps it there.
+    Hold(Signal),
+    /// Lets go of a held button.
+    Release(Signal),
+    /// The input reads this value from then on, whatever the machine does.
+    Stick(Signal, bool),
+}
+
+impl Act {
+    pub fn signal(self) -> Signal {
+        match self {
+            Act::Press(s) | Act::Hold(s) | Act::Release(s) | Act::Stick(s, _) => s,
+        }
+    }
+
+    /// What it does, in words: `STOP pressed`, `x21 stuck at 0`.
+    pub fn describe(self) -> String {
+        match self {
+            Act::Press(s) => format!("{} pressed", s.symbol()),
+            Act::Hold(s) => format!("{} held", s.symbol()),
+            Act::Release(s) => format!("{} released", s.symbol()),
+            Act::Stick(s, v) => format!("{} stuck at {}", s.symbol(), u8::from(v)),
+        }
+    }
+}
+
+/// One event of a scenario, with the option that asked for it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Event {
+    pub when: When,
+    pub act: Act,
+    /// The option as written: `--press STOP@step3`.
+    pub written: String,
+}
+
+/// The kinds of event option: `press`, `hold`, `release`, `stick`.
+pub const OPTIONS: [&str; 4] = ["press", "hold", "release", "stick"];
+
+/// Reads `--OPTION TEXT` (`option` one of [`OPTIONS`]) against `program`.
+pub fn parse(
+    option: &str,
+    text: &str,
+    program: &StepProgram,
+    table: &StepTable,
+    naming: &Naming,
+) -> Result<Event, String> {
+    let written = format!("--{option} {text}");
+    let refuse = |why: String| format!("{written}: {why}");
+    let (what, when) = text.rsplit_once('@').ok_or_else(|| {
+        refuse("expected SIGNAL@WHEN (`STOP@4.0s`, `STOP@500ms`, `STOP@step3`, `STOP@+2s`)".into())
+    })?;
+    let when = parse_when(when.trim(), program).map_err(refuse)?;
+    let act = match option {
+        "stick" => {
+            let (name, value) = what.rsplit_once('=').ok_or_else(|| {
+                refuse("expected SIGNAL=0 or SIGNAL=1 before the @ (`x21=0@4.0s`)".into())
+            })?;
+            let value = match value.trim() {
+                "0" => false,
+                "1" => true,
+                other => return Err(refuse(format!("\"{other}\" is not 0 or 1"))),
+            };
+            Act::Stick(
+                input(name.trim(), program, table, naming).map_err(refuse)?,
+                value,
+            )
+        }
+        _ => {
+            let button = button(what.trim(), program, table, naming).map_err(refuse)?;
+            match option {
+                "hold" => Act::Hold(button),
+                "release" => Act::Release(button),
+                _ => Act::Press(button),
+            }
+        }
+    };
+    Ok(Event { when, act, written })
+}
+
+fn parse_when(text: &str, program: &StepProgram) -> Result<When, String> {
+    if let Some(step) = text.strip_prefix("step") {
+        let table_step =
+            |s: &&crate::program::ProgramStep| s.kind == crate::program::StepKind::Table;
+        let steps = program.steps.iter().filter(table_step);
+        let last = steps.map(|s| s.number).max().unwrap_or(0);
+        return match step.parse::<usize>() {
+            Ok(k) if k <= last => Ok(When::Step(k)),
+            Ok(k) => Err(format!(
+                "the program has no step {k}: its steps are 0 (at rest) to {last}"
+            )),
+            Err(_) => Err(format!("\"{step}\" is not a step number (`step3`)")),
+        };
+    }
+    if text.starts_with('-') {
+        return Err(format!(
+            "\"{text}\" is before power-up: times count from 0 s, or from the event before with +"
+        ));
+    }
+    let (relative, time) = match text.strip_prefix('+') {
+        Some(t) => (true, t),
+        None => (false, text),
+    };
+    if crate::cell::without_unit(time) {
+        return Err(format!("\"{time}\" has no unit: write {time}s or {time}ms"));
+    }
+    let ms = parse_duration_in(time, 0..=LATEST_MS).ok_or_else(|| {
+        format!(
+            "\"{time}\" is not a time from 0 s to {} s (`4.0s`, `500ms`, `step3`, `+2s`)",
+            LATEST_MS / 1000
+        )
+    })? as u64;
+    Ok(if relative {
+        When::After(ms)
+    } else {
+        When::At(ms)
+    })
+}
+
+/// The program input called `name` by any of its names.
+fn input(
+    name: &str,
+    program: &StepProgram,
+    table: &StepTable,
+    naming: &Naming,
+) -> Result<Signal, String> {
+    if name.is_empty() {
+        return Err("no signal named before the @".into());
+    }
+    let calls = |s: Signal| {
+        naming
+            .aliases(s, table)
+            .iter()
+            .chain(&[naming.designation(s, table), alias(s)])
+            .any(|a| a.eq_ignore_ascii_case(name))
+    };
+    if let Some(signal) = program.signals.inputs.iter().copied().find(|s| calls(*s)) {
+        return Ok(signal);
+    }
+    if let Some(button) = BUTTONS.iter().copied().find(|s| calls(*s)) {
+        return Err(format!(
+            "the program has no {} button: its mode is off (turn it on with --modes {})",
+            button.symbol(),
+            mode_of(button)
+        ));
+    }
+    let outputs = program.steps.iter().flat_map(|s| &s.actions);
+    let outputs = outputs.chain(program.rungs.iter().flat_map(|r| &r.actions));
+    if let Some(output) = outputs
+        .map(|a| a.signal())
+        .find(|s| s.area() == Area::Output && calls(*s))
+    {
+        return Err(format!(
+            "{} is an output: only an input (a sensor, a button, a machine input) can be pressed or stuck",
+            output.symbol()
+        ));
+    }
+    Err(format!(
+        "the program has no input called \"{name}\" (its inputs: {})",
+        program
+            .signals
+            .inputs
+            .iter()
+            .map(|s| s.symbol())
+            .collect::<Vec<_>>()
+            .join(", ")
+    ))
+}
+
+/// The operator's button called `name`.
+fn button(
+    name: &str,
+    program: &StepProgram,
+    table: &StepTable,
+    naming: &Naming,
+) -> Result<Signal, String> {
+    let signal = input(name, program, table, naming)?;
+    if BUTTONS.contains(&signal) {
+        Ok(signal)
+    } else {
+        Err(format!(
+            "{} is not an operator's button: stick it instead (--stick {}=1@…)",
+            signal.symbol(),
+            signal.symbol()
+        ))
+    }
+}
+
+/// The operator's buttons and switches.
+pub const BUTTONS: [Signal; 7] = [
+    Signal::Start,
+    Signal::Stop,
+    Signal::EStop,
+    Signal::Reset,
+    Signal::Continuous,
+    Signal::StepMode,
+    Signal::StepButton,
+];
+
+/// The name an operator calls a button beside its symbol: RESET for
+/// RESET_PB (whose symbol avoids an FST keyword), STEP for STEP_PB.
+fn alias(signal: Signal) -> String {
+    match signal {
+        Signal::Reset => "RESET",
+        Signal::StepButton => "STEP",
+        Signal::EStop => "EMERGENCY_STOP",
+        _ => "",
+    }
+    .to_string()
+}
+
+/// The `--modes` word that gives the program `button`.
+fn mode_of(button: Signal) -> &'static str {
+    match button {
+        Signal::Stop => "stop",
+        Signal::EStop => "estop",
+        Signal::Reset => "reset",
+        Signal::Continuous => "continuous",
+        _ => "step",
+    }
+}
+
+/// The refusals of a scenario as a whole: an absolute time before an
+/// absolute time given before it, an event written twice, and two events
+/// of one signal at one moment that contradict each other.
+pub fn check(events: &[Event]) -> Vec<String> {
+    let mut refused = Vec::new();
+    let mut last_at: Option<(u64, &str)> = None;
+    for (k, event) in events.iter().enumerate() {
+        if let When::At(t) = event.when {
+            if let Some((before, written)) = last_at.filter(|(b, _)| *b > t) {
+                refused.push(format!(
+                    "{}: {} s is before the event written before it ({written}, at {} s): events happen in the order written",
+                    event.written,
+                    t as f64 / 1000.0,
+                    before as f64 / 1000.0
+                ));
+            }
+            last_at = Some((t, &event.written));
+        }
+        // After the event before it, a repeat is a second press, not
+        // the same one.
+        if matches!(event.when, When::After(_)) {
+            continue;
+        }
+        for other in events[..k].iter().filter(|o| o.when == event.when) {
+            if other.act == event.act {
+                refused.push(format!(
+                    "{}: written twice; the second would do nothing",
+                    event.written
+                ));
+            } else if contradicts(other.act, event.act) {
+                refused.push(format!(
+                    "{}: contradicts {} at the same moment",
+                    event.written, other.written
+                ));
+            }
+        }
+    }
+    refused
+}
+
+/// Two acts on one signal that cannot both hold at one moment: a press
+/// and a release, stuck at 0 and at 1, a button pressed and stuck.
+fn contradicts(a: Act, b: Act) -> bool {
+    if a.signal() != b.signal() {
+        return false;
+    }
+    match (a, b) {
+        (Act::Release(_), Act::Release(_)) => false,
+        (Act::Release(_), _) | (_, Act::Release(_)) => true,
+        (Act::Stick(_, x), Act::Stick(_, y)) => x != y,
+        (Act::Stick(..), _) | (_, Act::Stick(..)) => true,
+        _ => false,
+    }
+}

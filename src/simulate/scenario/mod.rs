@@ -1,0 +1,342 @@
+//! Scripted runs for the operating modes: the operator presses STOP, the
+//! EMERGENCY STOP or RESET at given times, and the run records what the
+//! machine did scan by scan. The standard proof ([`super::simulate`]) only
+//! ever presses START; this shows what the other buttons do.
+
+use crate::program::Signal;
+use crate::program::StepProgram;
+use crate::table::StepTable;
+
+pub mod events;
+pub mod table;
+
+use std::sync::Arc;
+
+pub use events::{Act, Event, When};
+
+use super::plant::Piston;
+use super::plc::PlcProgram;
+use super::run::Run;
+use super::{Operator, Problem, SimSettings};
+
+/// The machine at the end of one scan.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sample {
+    pub time_ms: u64,
+    /// Positions in sensor units, in table order.
+    pub positions: Vec<f64>,
+    /// Outputs switched on (coils, machine outputs, alarms).
+    pub outputs_on: Vec<Signal>,
+    /// The step the program is in (its `active_step`): 0 at rest, k while
+    /// table step k's moves run.
+    pub step: usize,
+    /// Homing runs (the `homing` memory is set).
+    pub homing: bool,
+}
+
+/// What a scripted run did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScenarioReport {
+    /// `(time_ms, step number)` of every step that fired.
+    pub fired: Vec<(u64, usize)>,
+    /// One sample per scan.
+    pub samples: Vec<Sample>,
+    /// Problems the run checks found (motion outside a step is expected
+    /// while homing).
+    pub problems: Vec<Problem>,
+    /// `(time_ms, event index)` of every event of an event script that
+    /// happened, in order; the events after the last are those that never
+    /// came (their step was not entered before the run ended).
+    pub happened: Vec<(u64, usize)>,
+    /// When START was pressed for an event script without a START event.
+    pub auto_start_ms: Option<u64>,
+}
+
+impl ScenarioReport {
+    /// The sample at or just after `time_ms`.
+    pub fn at(&self, time_ms: u64) -> Option<&Sample> {
+        self.samples.iter().find(|s| s.time_ms >= time_ms)
+    }
+
+    /// Times at which STEP 1 fired: the starts of the cycles.
+    pub fn cycle_starts(&self) -> Vec<u64> {
+        self.fired
+            .iter()
+            .filter(|(_, step)| *step == 1)
+            .map(|(t, _)| *t)
+            .collect()
+    }
+}
+
+/// Runs `program` from power-up for `until_ms`, with the operator's buttons
+/// as `script` says: each entry gives the buttons' state from its time on.
+pub fn scenario(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    script: &[(u64, Operator)],
+    until_ms: u64,
+) -> ScenarioReport {
+    run_script(table, program, settings, &mut Timed(script), until_ms, None).0
+}
+
+/// Like [`scenario`], and records `signals` at every scan, so that the
+/// written program can be replayed in its own engine with the operator's
+/// presses (STOP, EMERGENCY STOP, RESET) and compared scan by scan.
+pub fn scenario_recording(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    script: &[(u64, Operator)],
+    until_ms: u64,
+    signals: super::io::IoSignals,
+) -> (ScenarioReport, super::io::IoTrace) {
+    let (report, trace) = run_script(
+        table,
+        program,
+        settings,
+        &mut Timed(script),
+        until_ms,
+        Some(signals),
+    );
+    (report, trace.unwrap_or_default())
+}
+
+/// Runs `program` from power-up with the operator's `events` (each
+/// happening in the order given), until `tail_ms` after the last has
+/// happened, or `until_ms` at the latest; records `signals` at every
+/// scan when given (the timeline, a replay in an engine). Without an
+/// event on START, START is pressed at 0.5 s as in the proof.
+pub fn scenario_events(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    events: &[Event],
+    (tail_ms, until_ms): (u64, u64),
+    signals: Option<super::io::IoSignals>,
+) -> (ScenarioReport, Option<super::io::IoTrace>) {
+    let mut script = Events::new(events, tail_ms);
+    run_script(table, program, settings, &mut script, until_ms, signals)
+}
+
+/// What the operator does, scan by scan.
+trait Script {
+    /// Sets the buttons and faults for the scan about to run at `now`;
+    /// `step` is the SFC step the program is in, `happened` gathers the
+    /// events that happen now.
+    fn apply(
+        &mut self,
+        world: &mut super::world::World,
+        now: u64,
+        step: usize,
+        happened: &mut Vec<(u64, usize)>,
+    );
+    /// Whether the run may end now.
+    fn done(&self, _now: u64) -> bool {
+        false
+    }
+    /// When the script pressed START on its own.
+    fn auto_start_ms(&self) -> Option<u64> {
+        None
+    }
+}
+
+/// A script of operator states by time: each from its time on.
+struct Timed<'a>(&'a [(u64, Operator)]);
+
+impl Script for Timed<'_> {
+    fn apply(
+        &mut self,
+        world: &mut super::world::World,
+        now: u64,
+        _: usize,
+        _: &mut Vec<(u64, usize)>,
+    ) {
+        if let Some((_, operator)) = self.0.iter().rev().find(|(t, _)| *t <= now) {
+            world.operator = *operator;
+        }
+    }
+}
+
+/// How long a press holds a button, as the proof holds START.
+const PRESS_MS: u64 = super::START_PRESS_MS as u64;
+
+/// A script of events, each armed when the one before it has happened.
+struct Events<'a> {
+    events: &'a [Event],
+    next: usize,
+    /// When the last event happened (0 before the first).
+    last_ms: u64,
+    /// The step the program was in at the scan before, to see it enter one.
+    step_before: Option<usize>,
+    /// Buttons pressed (not held), with when they are let go.
+    releases: Vec<(u64, Signal)>,
+    /// START pressed at 0.5 s when no event touches it.
+    auto_start: bool,
+    /// When it was.
+    started_ms: Option<u64>,
+    tail_ms: u64,
+}
+
+impl<'a> Events<'a> {
+    fn new(events: &'a [Event], tail_ms: u64) -> Self {
+        let auto_start = !events.iter().any(|e| e.act.signal() == Signal::Start);
+        Events {
+            events,
+            next: 0,
+            last_ms: 0,
+            step_before: None,
+            releases: Vec::new(),
+            auto_start,
+            started_ms: None,
+            tail_ms,
+        }
+    }
+
+    /// Whether event `k` happens at the scan at `now`.
+    fn due(&self, k: usize, now: u64, step: usize) -> bool {
+        match self.events[k].when {
+            When::At(t) => now >= t,
+            When::After(d) => now >= self.last_ms + d,
+            When::Step(s) => step == s && self.step_before.is_some_and(|b| b != s),
+        }
+    }
+}
+
+impl Script for Events<'_> {
+    fn apply(
+        &mut self,
+        world: &mut super::world::World,
+        now: u64,
+        step: usize,
+        happened: &mut Vec<(u64, usize)>,
+    ) {
+        if self.auto_start && now >= u64::from(super::IDLE_MS) {
+            self.auto_start = false;
+            self.started_ms = Some(now);
+            self.releases.push((now + PRESS_MS, Signal::Start));
+            set(&mut world.operator, Signal::Start, true);
+        }
+        let mut let_go = Vec::new();
+        self.releases.retain(|(t, s)| {
+            let due = *t <= now;
+            if due {
+                let_go.push(*s);
+            }
+            !due
+        });
+        for signal in let_go {
+            set(&mut world.operator, signal, false);
+        }
+        while self.next < self.events.len() && self.due(self.next, now, step) {
+            match self.events[self.next].act {
+                Act::Press(s) => {
+                    set(&mut world.operator, s, true);
+                    self.releases.retain(|(_, r)| *r != s);
+                    self.releases.push((now + PRESS_MS, s));
+                }
+                Act::Hold(s) => {
+                    set(&mut world.operator, s, true);
+                    self.releases.retain(|(_, r)| *r != s);
+                }
+                Act::Release(s) => set(&mut world.operator, s, false),
+                Act::Stick(signal, stuck_at) => stick(world, signal, stuck_at),
+            }
+            happened.push((now, self.next));
+            self.last_ms = now;
+            self.next += 1;
+        }
+        self.step_before = Some(step);
+    }
+
+    fn done(&self, now: u64) -> bool {
+        self.next == self.events.len() && now >= self.last_ms + self.tail_ms
+    }
+
+    fn auto_start_ms(&self) -> Option<u64> {
+        self.started_ms
+    }
+}
+
+/// The input `signal` reads `stuck_at` from this scan on.
+fn stick(world: &mut super::world::World, signal: Signal, stuck_at: bool) {
+    let settings = Arc::make_mut(&mut world.settings);
+    settings.faults.retain(|f| f.signal != signal);
+    settings.faults.push(super::Fault { signal, stuck_at });
+    // Faults from power-up on: the ones present are the ones stuck so far.
+    settings.fault_onset_ms = 0;
+    world.faults_active = true;
+}
+
+/// Presses or lets go of the operator's button `signal`.
+fn set(operator: &mut Operator, signal: Signal, on: bool) {
+    match signal {
+        Signal::Start => operator.start = on,
+        Signal::Stop => operator.stop = on,
+        Signal::EStop => operator.estop = on,
+        Signal::Reset => operator.reset = on,
+        Signal::Continuous => operator.continuous = on,
+        Signal::StepMode => operator.step_mode = on,
+        Signal::StepButton => operator.step = on,
+        _ => {}
+    }
+}
+
+fn run_script(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    script: &mut dyn Script,
+    until_ms: u64,
+    record: Option<super::io::IoSignals>,
+) -> (ScenarioReport, Option<super::io::IoTrace>) {
+    let code = PlcProgram::compile(program);
+    let mut run = Run::new(table, program, &code, settings);
+    run.io = record.map(|signals| super::io::IoTrace::new(run.world.settings.scan_ms, signals));
+    let outputs: Vec<(usize, Signal)> = program
+        .steps
+        .iter()
+        .flat_map(|s| &s.actions)
+        .chain(program.rungs.iter().flat_map(|r| &r.actions))
+        .map(|a| a.signal())
+        .filter(|s| s.area() == crate::program::Area::Output)
+        .filter_map(|s| run.plc.index_of(s).map(|i| (i, s)))
+        .collect::<std::collections::BTreeMap<_, _>>()
+        .into_iter()
+        .collect();
+    let mut fired = Vec::new();
+    let mut samples = Vec::new();
+    let mut happened = Vec::new();
+    while run.time_ms < until_ms && !script.done(run.time_ms) {
+        let step = program.step_in(run.plc.awaited);
+        script.apply(&mut run.world, run.time_ms, step, &mut happened);
+        let before = run.time_ms;
+        if let Some(index) = run.tick() {
+            fired.push((before, program.steps[index].number));
+        }
+        samples.push(Sample {
+            time_ms: run.time_ms,
+            positions: run
+                .world
+                .pistons
+                .iter()
+                .map(Piston::position_units)
+                .collect(),
+            outputs_on: outputs
+                .iter()
+                .filter(|(i, _)| run.plc.bit_at(*i))
+                .map(|(_, s)| *s)
+                .collect(),
+            step: program.step_in(run.plc.awaited),
+            homing: run.plc.bit(Signal::Homing),
+        });
+    }
+    let report = ScenarioReport {
+        fired,
+        samples,
+        problems: run.problems,
+        happened,
+        auto_start_ms: script.auto_start_ms(),
+    };
+    (report, run.io)
+}

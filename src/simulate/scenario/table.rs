@@ -1,0 +1,165 @@
+//! A scenario's run printed as a step table: every event as it happened,
+//! every step as it fired with its time and what it does, each alarm as
+//! it came on and went off, the problems the run found, and where the
+//! machine stood at the end.
+
+use std::fmt::Write;
+
+use super::{Event, ScenarioReport};
+use crate::program::{Signal, StepProgram};
+use crate::simulate::ProblemKind;
+
+/// What the table names things by: the naming authority's designation of
+/// a signal and of an actuator.
+pub struct Names<'a> {
+    pub signal: &'a dyn Fn(Signal) -> String,
+    pub actuator: &'a dyn Fn(u32) -> String,
+}
+
+/// One line of the table, at its time; events sort before a step that
+/// fires in the same scan (the scan reads what the event did).
+fn lines(
+    report: &ScenarioReport,
+    events: &[Event],
+    program: &StepProgram,
+    names: &Names,
+) -> Vec<(u64, u8, String)> {
+    let mut lines = Vec::new();
+    for (t, k) in &report.happened {
+        let event = &events[*k];
+        lines.push((
+            *t,
+            0,
+            format!("{}: {}", event.written, describe(event, names)),
+        ));
+    }
+    if let Some(press) = report.auto_start_ms {
+        lines.push((press, 0, "START pressed (as in the proof)".to_string()));
+    }
+    for (t, step) in &report.fired {
+        let title = program
+            .steps
+            .iter()
+            .find(|s| s.number == *step)
+            .map_or(String::new(), |s| s.title.clone());
+        let title = if *step == 0 {
+            "at rest".to_string()
+        } else {
+            title
+        };
+        lines.push((*t, 1, format!("step {step:<3} {title}")));
+    }
+    for (t, signal, on) in alarm_changes(report) {
+        let what = if on { "on" } else { "off" };
+        lines.push((t, 2, format!("{} {what}", (names.signal)(signal))));
+    }
+    for (t, on) in homing_changes(report) {
+        let what = if on { "homing starts" } else { "homing done" };
+        lines.push((t, 2, what.to_string()));
+    }
+    // Motion while the program homes the machine is what RESET asked for.
+    let homing = |t: u64| report.at(t).is_some_and(|s| s.homing);
+    for p in report
+        .problems
+        .iter()
+        .filter(|p| !(is_motion(p.kind) && homing(p.time_ms)))
+    {
+        lines.push((p.time_ms, 3, format!("problem: {}", p.message)));
+    }
+    lines.sort_by_key(|(t, order, _)| (*t, *order));
+    lines
+}
+
+/// `STOP pressed`, with the signal by its designation when it differs.
+fn describe(event: &Event, names: &Names) -> String {
+    let signal = event.act.signal();
+    let designation = (names.signal)(signal);
+    let said = event.act.describe();
+    if designation == signal.symbol() {
+        said
+    } else {
+        format!("{said} ({designation})")
+    }
+}
+
+/// Each sample with the time its scan started (the sample is taken at
+/// its end): the time the table prints steps and events at.
+fn scans(report: &ScenarioReport) -> impl Iterator<Item = (u64, &super::Sample)> {
+    let starts = std::iter::once(0).chain(report.samples.iter().map(|s| s.time_ms));
+    starts.zip(&report.samples)
+}
+
+fn is_motion(kind: ProblemKind) -> bool {
+    matches!(kind, ProblemKind::OutsideStep | ProblemKind::RanThrough)
+}
+
+/// When the program started and ended homing the machine.
+fn homing_changes(report: &ScenarioReport) -> Vec<(u64, bool)> {
+    let mut was = false;
+    let mut changes = Vec::new();
+    for (scan, sample) in scans(report) {
+        if sample.homing != was {
+            changes.push((scan, sample.homing));
+            was = sample.homing;
+        }
+    }
+    changes
+}
+
+/// When each alarm output came on and went off.
+fn alarm_changes(report: &ScenarioReport) -> Vec<(u64, Signal, bool)> {
+    let is_alarm = |s: &Signal| matches!(s, Signal::Alarm(_));
+    let mut on: Vec<Signal> = Vec::new();
+    let mut changes = Vec::new();
+    for (scan, sample) in scans(report) {
+        let now: Vec<Signal> = sample.outputs_on.iter().copied().filter(is_alarm).collect();
+        for s in now.iter().filter(|s| !on.contains(s)) {
+            changes.push((scan, *s, true));
+        }
+        for s in on.iter().filter(|s| !now.contains(s)) {
+            changes.push((scan, *s, false));
+        }
+        on = now;
+    }
+    changes
+}
+
+/// The table, as printed by `simulate --press …`.
+pub fn render(
+    report: &ScenarioReport,
+    events: &[Event],
+    program: &StepProgram,
+    actuators: &[u32],
+    names: &Names,
+) -> String {
+    let mut out = String::from("      time  what happened\n");
+    for (t, _, line) in lines(report, events, program, names) {
+        let _ = writeln!(out, "  {:>6.2} s  {line}", t as f64 / 1000.0);
+    }
+    if let Some(last) = report.samples.last() {
+        let step = if last.step == 0 {
+            "step 0 (at rest)".to_string()
+        } else {
+            format!("step {}", last.step)
+        };
+        let places: Vec<String> = actuators
+            .iter()
+            .zip(&last.positions)
+            .map(|(n, p)| format!("{} at {p:.2}", (names.actuator)(*n)))
+            .collect();
+        let _ = writeln!(
+            out,
+            "ended at {:.2} s in {step}; {}",
+            last.time_ms as f64 / 1000.0,
+            places.join(", ")
+        );
+    }
+    for event in events.iter().skip(report.happened.len()) {
+        let _ = writeln!(
+            out,
+            "never happened: {} (the run ended first)",
+            event.written
+        );
+    }
+    out.trim_end().to_string()
+}

@@ -1,0 +1,343 @@
+//! Scenarios from the command line (`simulate --press/--hold/--release/
+//! --stick`): what the printed step table shows of RESET mid-cycle, a
+//! sensor stuck at a moment, and the three forms of time; then the hostile
+//! inputs of the options, each with its code and the option named, and
+//! nothing written.
+
+use crate::helpers::{files_below, run_in, sample, steptable};
+
+/// `simulate paper_example.xlsx ARGS`: exit code and stdout.
+fn simulate(args: &[&str]) -> (i32, String) {
+    let out = steptable()
+        .arg("simulate")
+        .arg(sample("paper_example.xlsx"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+    )
+}
+
+/// The time printed on the first line containing `text`, in ms.
+fn time_of(table: &str, text: &str) -> u64 {
+    let line = table
+        .lines()
+        .find(|l| l.contains(text))
+        .unwrap_or_else(|| panic!("no line with {text}:\n{table}"));
+    let seconds: f64 = line.split_whitespace().next().unwrap().parse().unwrap();
+    (seconds * 1000.0).round() as u64
+}
+
+/// The EMERGENCY STOP as step 3 starts, RESET a second later: the cycle
+/// stops short of step 4, RESET homes the machine, and it ends at rest
+/// with every cylinder home.
+#[test]
+fn reset_mid_cycle_homes_the_paper_example_as_printed() {
+    let (code, table) = simulate(&[
+        "--modes",
+        "estop,reset",
+        "--press",
+        "ESTOP@step3",
+        "--press",
+        "RESET@+1s",
+    ]);
+    assert_eq!(code, 0, "{table}");
+    let step3 = time_of(&table, "step 3 ");
+    let estop = time_of(&table, "--press ESTOP@step3: ESTOP pressed");
+    let reset = time_of(&table, "--press RESET@+1s: RESET_PB pressed");
+    assert_eq!(estop, step3 + 10, "the scan after step 3 starts:\n{table}");
+    assert_eq!(reset, estop + 1_000, "{table}");
+    // RESET homes the machine in the scan that reads it; the motion of
+    // homing is no problem of the table's.
+    assert_eq!(time_of(&table, "homing starts"), reset, "{table}");
+    assert!(time_of(&table, "homing done") > reset, "{table}");
+    assert!(!table.contains("problem:"), "{table}");
+    assert!(
+        !table.contains("step 4 "),
+        "no step after the ESTOP:\n{table}"
+    );
+    let end = table.lines().find(|l| l.starts_with("ended at")).unwrap();
+    assert!(end.contains("in step 0 (at rest)"), "{end}");
+    for c in ["C1", "C2", "C3", "C4"] {
+        assert!(end.contains(&format!("{c} at 0.00")), "{end}");
+    }
+}
+
+/// A sensor stuck at 0 before START: the cycle waits in step 1 for ever.
+#[test]
+fn a_sensor_stuck_at_0_holds_the_cycle_in_its_step() {
+    let (code, table) = simulate(&["--stick", "x11=0@0.2s"]);
+    assert_eq!(code, 0, "{table}");
+    assert_eq!(time_of(&table, "x11 stuck at 0"), 200, "{table}");
+    assert!(!table.contains("step 2 "), "{table}");
+    let end = table.lines().find(|l| l.starts_with("ended at")).unwrap();
+    assert!(end.contains("in step 1;"), "{end}");
+    assert!(end.contains("C1 at 1.00"), "{end}");
+}
+
+/// The ISO designation, the paper symbol and absolute or relative times
+/// name the same event: the tables differ only in the options written.
+#[test]
+fn a_signal_answers_to_each_of_its_names_and_times_to_each_form() {
+    let run = |args: &[&str]| {
+        let (code, table) = simulate(args);
+        assert_eq!(code, 0, "{table}");
+        table
+    };
+    let paper = run(&["--designations", "iso", "--stick", "x21=0@step2"]);
+    let iso = run(&["--designations", "iso", "--stick", "2B3=0@step2"]);
+    assert!(paper.contains("x21 stuck at 0 (2B3)"), "{paper}");
+    assert_eq!(paper.replace("x21=0", "2B3=0"), iso);
+    let relative = run(&["--stick", "x21=0@1s", "--stick", "x11=0@+500ms"]);
+    let absolute = run(&["--stick", "x21=0@1s", "--stick", "x11=0@1.5s"]);
+    assert_eq!(relative.replace("+500ms", "1.5s"), absolute);
+}
+
+/// Events happen in the order written, across the options.
+#[test]
+fn events_happen_in_the_order_written_across_options() {
+    let (code, table) = simulate(&[
+        "--modes",
+        "stop",
+        "--stick",
+        "x11=1@1s",
+        "--hold",
+        "STOP@+1s",
+        "--release",
+        "STOP@+1s",
+    ]);
+    assert_eq!(code, 0, "{table}");
+    assert_eq!(time_of(&table, "STOP held"), 2_000, "{table}");
+    assert_eq!(time_of(&table, "STOP released"), 3_000, "{table}");
+}
+
+/// Each hostile event: exit 1, E042 naming the option as written, nothing
+/// written in the working folder.
+#[test]
+fn hostile_events_are_refused_with_e042_and_the_option() {
+    let rows: &[(&[&str], &str, &str)] = &[
+        (
+            &["--press", "FOO@1s"],
+            "--press FOO@1s",
+            "no input called \"FOO\"",
+        ),
+        (
+            &["--press", "RESET@1s"],
+            "--press RESET@1s",
+            "--modes reset",
+        ),
+        (
+            &["--press", "STOP@-1s"],
+            "--press STOP@-1s",
+            "before power-up",
+        ),
+        (
+            &["--press", "STOP@step99"],
+            "--press STOP@step99",
+            "no step 99",
+        ),
+        (&["--press", "STOP@"], "--press STOP@:", "is not a time"),
+        (
+            &["--press", "STOP@soon"],
+            "--press STOP@soon",
+            "is not a time",
+        ),
+        (
+            &["--press", "STOP1s"],
+            "--press STOP1s",
+            "expected SIGNAL@WHEN",
+        ),
+        (&["--press", "STOP@4"], "--press STOP@4", "has no unit"),
+        (
+            &["--press", "STOP@700s"],
+            "--press STOP@700s",
+            "0 s to 600 s",
+        ),
+        (&["--press", ""], "--press :", "expected SIGNAL@WHEN"),
+        (&["--press", "@1s"], "--press @1s", "no signal named"),
+        (&["--press", "x21@1s"], "--press x21@1s", "stick it instead"),
+        (&["--stick", "y1+=1@1s"], "--stick y1+=1@1s", "is an output"),
+        (
+            &["--stick", "x21@1s"],
+            "--stick x21@1s",
+            "SIGNAL=0 or SIGNAL=1",
+        ),
+        (&["--stick", "x21=2@1s"], "--stick x21=2@1s", "not 0 or 1"),
+        (
+            &[
+                "--modes",
+                "stop",
+                "--hold",
+                "STOP@2s",
+                "--release",
+                "STOP@2s",
+            ],
+            "--release STOP@2s",
+            "contradicts --hold STOP@2s",
+        ),
+        (
+            &["--stick", "x21=0@step2", "--stick", "x21=1@step2"],
+            "--stick x21=1@step2",
+            "contradicts",
+        ),
+        (
+            &[
+                "--modes", "stop", "--press", "STOP@2s", "--press", "STOP@2s",
+            ],
+            "--press STOP@2s",
+            "written twice",
+        ),
+        (
+            &[
+                "--modes", "stop", "--press", "STOP@3s", "--press", "STOP@2s",
+            ],
+            "--press STOP@2s",
+            "before the event written before it",
+        ),
+    ];
+    let work = tempfile::tempdir().unwrap();
+    let input = sample("paper_example.xlsx");
+    for (args, option, why) in rows {
+        let mut line = vec!["simulate".to_string(), input.display().to_string()];
+        line.extend(args.iter().map(|a| a.to_string()));
+        let (code, said) = run_in(work.path(), &line);
+        assert_eq!(code, Some(1), "{args:?}: {said}");
+        assert!(said.contains("error[E042]"), "{args:?}: {said}");
+        assert!(said.contains(option), "{args:?} names {option}: {said}");
+        assert!(said.contains(why), "{args:?} says {why}: {said}");
+        assert!(!said.contains("what happened"), "{args:?} ran: {said}");
+    }
+    assert!(files_below(work.path()).is_empty(), "nothing written");
+}
+
+/// A repeated relative press is a second press, not a duplicate.
+#[test]
+fn a_relative_press_repeated_is_a_second_press() {
+    let (code, table) = simulate(&[
+        "--modes", "stop", "--press", "STOP@+1s", "--press", "STOP@+1s",
+    ]);
+    assert_eq!(code, 0, "{table}");
+    assert_eq!(table.matches("STOP pressed").count(), 2, "{table}");
+}
+
+/// A sensor dying mid-cycle under the watchdog: the alarm line says when
+/// the machine told its operator, and the run ends in the step it waits in.
+#[test]
+fn a_sensor_dying_mid_cycle_prints_the_watchdog_alarm() {
+    let (code, table) = simulate(&["--safety", "all", "--stick", "x23=0@step2"]);
+    assert_eq!(code, 0, "{table}");
+    let stuck = time_of(&table, "x23 stuck at 0");
+    let alarm = time_of(&table, "alarm_wd on");
+    assert!(alarm > stuck, "{table}");
+    assert!(!table.contains("step 3 "), "{table}");
+    let end = table.lines().find(|l| l.starts_with("ended at")).unwrap();
+    assert!(end.contains("in step 2;"), "{end}");
+}
+
+/// `--report DIR`: the scenario's page holds the table as printed, a red
+/// line per event at its time, and the lanes of the run: ESTOP (normally
+/// closed) reads 0 from the scan of its press, RESET_PB 1, for a press's
+/// 100 ms.
+#[test]
+fn the_report_draws_the_scenario_on_the_timeline() {
+    let out = tempfile::tempdir().unwrap();
+    let dir = out.path().join("r");
+    let (code, table) = simulate(&[
+        "--modes",
+        "estop,reset",
+        "--press",
+        "ESTOP@step3",
+        "--press",
+        "RESET@+1s",
+        "--report",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{table}");
+    let page = dir.join("paper_example/paper_example.scenario.report.html");
+    assert!(
+        table.contains(&format!("report: {}", page.display())),
+        "{table}"
+    );
+    let html = std::fs::read_to_string(&page).unwrap();
+    let printed = table
+        .lines()
+        .skip(1)
+        .take_while(|l| !l.starts_with("  report:"));
+    for line in printed {
+        let escaped = line
+            .replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;");
+        assert!(html.contains(&escaped), "the page holds {line:?}");
+    }
+    let (estop, reset) = (
+        time_of(&table, "ESTOP pressed"),
+        time_of(&table, "RESET_PB pressed"),
+    );
+    for (at, event) in [(estop, "--press ESTOP@step3"), (reset, "--press RESET@+1s")] {
+        let x = at as f64 / 1000.0 * 120.0;
+        let mark = format!(r#"x1="{x:.1}""#);
+        let line = html
+            .lines()
+            .find(|l| l.contains(&format!("<title>{event}</title>")))
+            .unwrap_or_else(|| panic!("a mark for {event}"));
+        assert!(line.contains(&mark), "{event} at {at} ms: {line}");
+    }
+    let edges = |signal: &str| {
+        let key = format!(r#"data-signal="{signal}" data-edges=""#);
+        let from = html.find(&key).unwrap_or_else(|| panic!("a lane {signal}")) + key.len();
+        html[from..].split('"').next().unwrap().to_string()
+    };
+    assert!(
+        edges("ESTOP").contains(&format!("{estop}:0 {}:1", estop + 100)),
+        "{}",
+        edges("ESTOP")
+    );
+    assert!(
+        edges("RESET_PB").contains(&format!("{reset}:1 {}:0", reset + 100)),
+        "{}",
+        edges("RESET_PB")
+    );
+    // Self-contained: nothing loaded from elsewhere.
+    assert!(
+        !html.contains(" src=") && !html.contains("href=\"http"),
+        "self-contained"
+    );
+}
+
+/// A refused event writes no page; `--report` without an event is the
+/// option parser's error.
+#[test]
+fn a_refused_scenario_writes_no_report() {
+    let work = tempfile::tempdir().unwrap();
+    let input = sample("paper_example.xlsx").display().to_string();
+    for args in [
+        vec!["--press", "RESET@1s", "--report", "r"],
+        vec!["--report", "r"],
+    ] {
+        let mut line = vec!["simulate".to_string(), input.clone()];
+        line.extend(args.iter().map(|a| a.to_string()));
+        let (code, said) = run_in(work.path(), &line);
+        assert_eq!(code, Some(1), "{args:?}: {said}");
+        assert!(
+            files_below(work.path()).is_empty(),
+            "{args:?}: nothing written"
+        );
+    }
+}
+
+/// An event whose step never comes is said, after where the run ended.
+#[test]
+fn an_event_whose_step_never_comes_is_said() {
+    let (code, table) = simulate(&["--stick", "x11=0@0.2s", "--stick", "x21=1@step3"]);
+    assert_eq!(code, 0, "{table}");
+    assert!(
+        table
+            .trim_end()
+            .ends_with("never happened: --stick x21=1@step3 (the run ended first)"),
+        "{table}"
+    );
+    assert!(!table.contains("x21 stuck"), "{table}");
+}
