@@ -162,6 +162,25 @@ impl IoTrace {
         }
     }
 
+    /// Records `scans` more scans, `scan_ms` apart, that read and wrote what
+    /// the last one did (the quiet scans the run passes at once), within the
+    /// same limit as [`IoTrace::push`].
+    pub(crate) fn repeat_last(&mut self, scans: u64, scan_ms: u64) {
+        let Some(last) = self.scans.last().cloned() else {
+            return;
+        };
+        let room = self
+            .signals
+            .max_scans
+            .map_or(usize::MAX, |max| max.saturating_sub(self.scans.len()));
+        let kept = usize::try_from(scans).unwrap_or(usize::MAX).min(room);
+        self.cut |= kept < usize::try_from(scans).unwrap_or(usize::MAX);
+        self.scans.extend((1..=kept as u64).map(|j| ScanIo {
+            time_ms: last.time_ms + j * scan_ms,
+            ..last.clone()
+        }));
+    }
+
     /// Compares an engine's outputs, one vector per scan in the order of
     /// `signals.outputs`, with the recorded ones. A run that ended early is a
     /// mismatch at the first missing scan.
@@ -235,6 +254,21 @@ mod tests {
                 .collect(),
             cut: false,
         }
+    }
+
+    #[test]
+    fn passed_quiet_scans_are_recorded_within_the_limit() {
+        let mut open = trace();
+        open.repeat_last(3, 10);
+        assert_eq!(open.scans.len(), 7);
+        assert_eq!(open.scans[6].time_ms, 60);
+        assert_eq!(open.scans[6].outputs, vec![true]);
+        assert!(!open.cut);
+        let mut capped = trace();
+        capped.signals.max_scans = Some(5);
+        capped.repeat_last(1_000_000, 10);
+        assert_eq!(capped.scans.len(), 5);
+        assert!(capped.cut, "a run past the limit says it was cut");
     }
 
     #[test]

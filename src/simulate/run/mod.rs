@@ -519,13 +519,8 @@ impl Run<'_> {
         if scans == 0 {
             return;
         }
-        if let Some(io) = self.io.as_mut()
-            && let Some(last) = io.scans.last().cloned()
-        {
-            io.scans.extend((1..=scans).map(|j| io::ScanIo {
-                time_ms: last.time_ms + j * scan,
-                ..last.clone()
-            }));
+        if let Some(io) = self.io.as_mut() {
+            io.repeat_last(scans, scan);
         }
         for &i in &self.moving {
             let p = &mut self.world.pistons[i];
