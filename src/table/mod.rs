@@ -7,9 +7,10 @@ use std::collections::BTreeMap;
 mod check;
 mod dialect;
 mod frame;
+mod machine;
 
-pub use check::{Machine, check_machine, home_order_place};
 pub use dialect::choose_reading;
+pub use machine::{Machine, check_machine, home_order_place};
 
 use frame::find_frame;
 
