@@ -546,12 +546,48 @@ pub fn generate_observed(
         );
         return Err(Failure::Input(vec![budget_error(&table, why)]));
     }
+    let (files, fault_table) =
+        render_beside_faults(input, early, late, settings, progress, healthy)?;
+    let files = crate::provenance::stamp_all(files, &made_by).map_err(Failure::Internal)?;
+    let findings = findings::lines(
+        &table,
+        &settings.program.modes,
+        &simulation,
+        fault_table.as_ref(),
+    );
+    Ok(Conversion {
+        findings,
+        made_by,
+        name: name.to_string(),
+        table,
+        allocation,
+        program,
+        symbols,
+        simulation,
+        faults: fault_table,
+        files,
+        warnings,
+    })
+}
+
+/// Renders the outputs that need no fault table at once and, beside them,
+/// runs the fault analysis and then renders the outputs that show it;
+/// every file in the order of its kind.
+fn render_beside_faults(
+    input: EmitInput,
+    early: Vec<OutputKind>,
+    late: Vec<OutputKind>,
+    settings: &Settings,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    healthy: Option<faults::Healthy>,
+) -> Result<(Vec<emit::OutputFile>, Option<faults::FaultTable>), Failure> {
+    let (table, program) = (input.table, input.program);
     let ((fault_table, late), early) = rayon::join(
         || {
             let fault_table = (!late.is_empty()).then(|| {
                 faults::analyse_from(
-                    &table,
-                    &program,
+                    table,
+                    program,
                     &settings.simulation,
                     1,
                     faults::FaultRuns::Resumed,
@@ -578,26 +614,7 @@ pub fn generate_observed(
     kinds.extend(late.map_err(emitted)?);
     kinds.sort_by_key(|(kind, _)| *kind);
     let files = kinds.into_iter().flat_map(|(_, files)| files).collect();
-    let files = crate::provenance::stamp_all(files, &made_by).map_err(Failure::Internal)?;
-    let findings = findings::lines(
-        &table,
-        &settings.program.modes,
-        &simulation,
-        fault_table.as_ref(),
-    );
-    Ok(Conversion {
-        findings,
-        made_by,
-        name: name.to_string(),
-        table,
-        allocation,
-        program,
-        symbols,
-        simulation,
-        faults: fault_table,
-        files,
-        warnings,
-    })
+    Ok((files, fault_table))
 }
 
 #[cfg(test)]
