@@ -401,9 +401,9 @@ fn apply(
             Ok(scheme) => settings.designations = Some(scheme),
             Err(_) => bad(or_list(&crate::symbols::Scheme::ALL.map(|s| s.name()))),
         },
-        "scan time" => match parse_scan(&value) {
+        "scan time" => match parse_scan(value) {
             Ok(ms) => {
-                said_without_unit(grid, value_cell, &value, diags);
+                said_without_unit(grid, value_cell, value, diags);
                 settings.scan_ms = Some(ms)
             }
             Err(_) => bad("a scan time from 1ms to 1s, such as 10ms".to_string()),
@@ -418,12 +418,12 @@ fn apply(
             Err(why) => said(why),
         },
         "supervision" if lower == "none" => {}
-        "supervision" => match crate::program::parse_supervision(&value) {
+        "supervision" => match crate::program::parse_supervision(value) {
             Ok(times) => settings.supervision = Some(times),
             Err(why) => said(why),
         },
         "home order" if lower == "default" => {}
-        "home order" => match Modes::parse_home_order(&value) {
+        "home order" => match Modes::parse_home_order(value) {
             Ok(order) => settings.home_order = Some(order),
             Err(why) => said(why),
         },
@@ -435,7 +435,7 @@ fn apply(
             {
                 settings
                     .named
-                    .insert(row, super::halt::NamedList::parse(&value, at.clone()));
+                    .insert(row, super::halt::NamedList::parse(value, at.clone()));
             }
         }
     }
