@@ -187,21 +187,35 @@ impl<'a> Rules<'a> {
         });
     }
 
+    /// E021 when a step names a machine signal `twice` for one purpose
+    /// (`message`); else the name is taken as an input or output. Whether
+    /// the item is read.
+    fn first_use(
+        &mut self,
+        twice: bool,
+        name: Name,
+        kind: NameKind,
+        pos: CellPos,
+        message: impl FnOnce() -> String,
+    ) -> bool {
+        if twice {
+            self.diags
+                .error(Code::E021TwiceInStep, self.location(pos), message());
+            return false;
+        }
+        self.names.use_name(name, kind, pos, self.grid, self.diags);
+        true
+    }
+
     /// E021 (a step waits for an input twice), and the input's name.
     fn wait(&mut self, step: &mut Step, input: Name, value: bool, pos: CellPos, branch: usize) {
-        if step.waits.iter().any(|w| w.input == input) {
-            self.diags.error(
-                Code::E021TwiceInStep,
-                self.location(pos),
-                format!(
-                    "STEP {} already waits for I:{input}; a step waits for an input once",
-                    step.number
-                ),
-            );
+        let twice = step.waits.iter().any(|w| w.input == input);
+        let number = step.number;
+        if !self.first_use(twice, input, NameKind::Input, pos, || {
+            format!("STEP {number} already waits for I:{input}; a step waits for an input once")
+        }) {
             return;
         }
-        self.names
-            .use_name(input, NameKind::Input, pos, self.grid, self.diags);
         step.waits.push(Wait {
             input,
             value,
@@ -220,19 +234,13 @@ impl<'a> Rules<'a> {
         pos: CellPos,
         branch: usize,
     ) {
-        if step.jumps.iter().any(|j| j.input == input) {
-            self.diags.error(
-                Code::E021TwiceInStep,
-                self.location(pos),
-                format!(
-                    "STEP {} already jumps on I:{input}; a step jumps on an input once",
-                    step.number
-                ),
-            );
+        let twice = step.jumps.iter().any(|j| j.input == input);
+        let number = step.number;
+        if !self.first_use(twice, input, NameKind::Input, pos, || {
+            format!("STEP {number} already jumps on I:{input}; a step jumps on an input once")
+        }) {
             return;
         }
-        self.names
-            .use_name(input, NameKind::Input, pos, self.grid, self.diags);
         step.jumps.push(Jump {
             target: match target {
                 JumpTarget::Step(n) => Some(n as usize),
@@ -247,19 +255,13 @@ impl<'a> Rules<'a> {
 
     /// E021 (a step switches an output twice), and the output's name.
     fn switch(&mut self, step: &mut Step, output: Name, on: bool, pos: CellPos, branch: usize) {
-        if step.switches.iter().any(|w| w.output == output) {
-            self.diags.error(
-                Code::E021TwiceInStep,
-                self.location(pos),
-                format!(
-                    "STEP {} already switches Y:{output}; a step switches an output once",
-                    step.number
-                ),
-            );
+        let twice = step.switches.iter().any(|w| w.output == output);
+        let number = step.number;
+        if !self.first_use(twice, output, NameKind::Output, pos, || {
+            format!("STEP {number} already switches Y:{output}; a step switches an output once")
+        }) {
             return;
         }
-        self.names
-            .use_name(output, NameKind::Output, pos, self.grid, self.diags);
         step.switches.push(Switch {
             output,
             on,

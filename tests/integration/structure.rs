@@ -251,7 +251,7 @@ trait T {
 fn two() {}
 "####;
     let found = functions(text);
-    let expected = [("one".to_string(), 2, 8), ("two".to_string(), 14, 1)];
+    let expected = [("one".to_string(), 2, 7), ("two".to_string(), 14, 1)];
     assert_eq!(found, expected);
     assert_eq!(lines_before_tests("a\nb\n#[cfg(test)]\nc\n"), 2);
 }
