@@ -43,8 +43,7 @@ fn parse_jobs(text: &str) -> Result<usize, String> {
 }
 
 pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
-    use crate::batch::{self, Status};
-    use std::io::IsTerminal;
+    use crate::batch;
 
     let report = Reporter::new(&args.common);
     let Some(settings) = output_settings(&args.common, &args.sim, &args.files) else {
@@ -57,10 +56,54 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
     }
     let started = std::time::Instant::now();
     let expanded = batch::expand_inputs(&args.paths);
-    let (inputs, missing) = (expanded.found, expanded.missing);
-    // A path that names nothing is a file that cannot be read: E001, as
-    // convert says it, so a script reading the JSON sees it too.
-    let unmatched: Vec<Diagnostic> = missing
+    report.diagnostics(&unmatched(&expanded.missing));
+    if !expanded.outputs_skipped.is_empty() {
+        report.say(&format!(
+            "note: {} table(s) in the folders are outputs of an earlier run (listed in their folder's {}) and are not converted again, e.g. {}",
+            expanded.outputs_skipped.len(),
+            crate::manifest::FILE_NAME,
+            display_name(&expanded.outputs_skipped[0])
+        ));
+    }
+    let (inputs, missing) = (&expanded.found, &expanded.missing);
+    let jobs = job_count(args, &report);
+    let bar = progress_bar(args, inputs.len());
+    let on_done = |outcome: &batch::Outcome| {
+        if let Some(bar) = &bar {
+            bar.set_message(display_name(&outcome.input));
+            bar.inc(1);
+        }
+    };
+    // Ctrl-C: let the conversions under way finish (their files land whole),
+    // skip the rest, and still write the summary.
+    static STOP: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    let _ = ctrlc::set_handler(|| STOP.store(true, std::sync::atomic::Ordering::SeqCst));
+    let outcomes = batch::run(inputs, &args.output, &settings, jobs, &STOP, &on_done);
+    let interrupted = STOP.load(std::sync::atomic::Ordering::SeqCst);
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    let mut code = outcome_code(args, &outcomes, missing, &report);
+    let run = Run {
+        outcomes: &outcomes,
+        missing: missing.len(),
+        interrupted,
+        seconds: started.elapsed().as_secs_f64(),
+        jobs,
+    };
+    run.say(args, &report);
+    code = code.max(write_summary(args, &outcomes, inputs, &settings, &report));
+    if interrupted {
+        // The shell's convention for a run ended by Ctrl-C.
+        return EXIT_INTERRUPTED;
+    }
+    code
+}
+
+/// A path that names nothing is a file that cannot be read: E001, as
+/// convert says it, so a script reading the JSON sees it too.
+fn unmatched(missing: &[PathBuf]) -> Vec<Diagnostic> {
+    missing
         .iter()
         .map(|path| Diagnostic {
             severity: Severity::Error,
@@ -72,60 +115,54 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
             },
             message: "no such file or folder, and no file matches it as a pattern".to_string(),
         })
-        .collect();
-    report.diagnostics(&unmatched);
-    if !expanded.outputs_skipped.is_empty() {
-        report.say(&format!(
-            "note: {} table(s) in the folders are outputs of an earlier run (listed in their folder's {}) and are not converted again, e.g. {}",
-            expanded.outputs_skipped.len(),
-            crate::manifest::FILE_NAME,
-            display_name(&expanded.outputs_skipped[0])
-        ));
-    }
-    let mut jobs = args
+        .collect()
+}
+
+/// `-j`, or one job per core; never more than steptable runs at once.
+fn job_count(args: &BatchArgs, report: &Reporter) -> usize {
+    let jobs = args
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    if jobs > batch::MAX_JOBS {
+    if jobs > crate::batch::MAX_JOBS {
         report.say(&format!(
             "note: -j {jobs} is more than steptable runs at once; running {} jobs",
-            batch::MAX_JOBS
+            crate::batch::MAX_JOBS
         ));
-        jobs = batch::MAX_JOBS;
+        return crate::batch::MAX_JOBS;
     }
-    let bar = if !args.quiet && std::io::stderr().is_terminal() {
-        let bar = indicatif::ProgressBar::new(inputs.len() as u64);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{bar:30} {pos}/{len} workbooks, {per_sec}, {elapsed} {msg}",
-            )
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        Some(bar)
-    } else {
-        None
-    };
-    let on_done = |outcome: &batch::Outcome| {
-        if let Some(bar) = &bar {
-            bar.set_message(display_name(&outcome.input));
-            bar.inc(1);
-        }
-    };
-    // Ctrl-C: let the conversions under way finish (their files land whole),
-    // skip the rest, and still write the summary.
-    static STOP: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-    let _ = ctrlc::set_handler(|| STOP.store(true, std::sync::atomic::Ordering::SeqCst));
-    let outcomes = batch::run(&inputs, &args.output, &settings, jobs, &STOP, &on_done);
-    let interrupted = STOP.load(std::sync::atomic::Ordering::SeqCst);
-    if let Some(bar) = &bar {
-        bar.finish_and_clear();
-    }
+    jobs
+}
 
+/// A progress bar on a terminal, unless `--quiet`.
+fn progress_bar(args: &BatchArgs, inputs: usize) -> Option<indicatif::ProgressBar> {
+    use std::io::IsTerminal;
+    if args.quiet || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = indicatif::ProgressBar::new(inputs as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:30} {pos}/{len} workbooks, {per_sec}, {elapsed} {msg}",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    Some(bar)
+}
+
+/// Every input's diagnostics said, and the exit code their outcomes make.
+fn outcome_code(
+    args: &BatchArgs,
+    outcomes: &[crate::batch::Outcome],
+    missing: &[PathBuf],
+    report: &Reporter,
+) -> i32 {
+    use crate::batch::Status;
     let mut code = if missing.is_empty() {
         EXIT_OK
     } else {
         EXIT_BAD_INPUT
     };
-    for o in &outcomes {
+    for o in outcomes {
         report.diagnostics(&o.diagnostics);
         match o.status {
             Status::Converted => {}
@@ -136,7 +173,7 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
     }
     // Inputs sharing a name go to other folders than their own (the rule
     // convert uses too): said here and in summary.csv's `folder` column.
-    for o in &outcomes {
+    for o in outcomes {
         if o.status == Status::Converted && crate::convert::renamed(&o.input, &o.name) {
             report.say(&format!(
                 "note: {} -> {}/ (another input has the name {})",
@@ -146,45 +183,77 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
             ));
         }
     }
-    let failed: Vec<&batch::Outcome> = outcomes
-        .iter()
-        .filter(|o| !matches!(o.status, Status::Converted | Status::Skipped))
-        .collect();
-    let skipped = outcomes
-        .iter()
-        .filter(|o| o.status == Status::Skipped)
-        .count();
-    if interrupted {
+    code
+}
+
+/// What a batch run did, for its closing lines.
+struct Run<'a> {
+    outcomes: &'a [crate::batch::Outcome],
+    missing: usize,
+    interrupted: bool,
+    seconds: f64,
+    jobs: usize,
+}
+
+impl Run<'_> {
+    /// The count converted and failed, the speed, and each failure's
+    /// first error.
+    fn say(&self, args: &BatchArgs, report: &Reporter) {
+        use crate::batch::Status;
+        let failed: Vec<&crate::batch::Outcome> = self
+            .outcomes
+            .iter()
+            .filter(|o| !matches!(o.status, Status::Converted | Status::Skipped))
+            .collect();
+        let skipped = self
+            .outcomes
+            .iter()
+            .filter(|o| o.status == Status::Skipped)
+            .count();
+        if self.interrupted {
+            report.say(&format!(
+                "interrupted: {skipped} input(s) not started; everything written is complete"
+            ));
+        }
+        let (seconds, jobs) = (self.seconds, self.jobs);
         report.say(&format!(
-            "interrupted: {skipped} input(s) not started; everything written is complete"
+            "{} converted, {} failed, in {:.2} s ({:.1} workbooks/s, {} job{}) -> {}",
+            self.outcomes.len() - failed.len() - skipped,
+            failed.len() + self.missing,
+            seconds,
+            self.outcomes.len() as f64 / seconds.max(1e-9),
+            jobs,
+            if jobs == 1 { "" } else { "s" },
+            args.output.display()
         ));
+        for o in &failed {
+            // A diagnostic names its file; other failures need the name added.
+            let first = match o.diagnostics.iter().find(|d| d.severity == Severity::Error) {
+                Some(d) => d.to_string(),
+                None => format!(
+                    "{}: {}",
+                    display_name(&o.input),
+                    o.message
+                        .clone()
+                        .unwrap_or_else(|| o.status.label().to_string())
+                ),
+            };
+            report.say(&format!("  failed: {first}"));
+        }
     }
-    let seconds = started.elapsed().as_secs_f64();
-    report.say(&format!(
-        "{} converted, {} failed, in {:.2} s ({:.1} workbooks/s, {} job{}) -> {}",
-        outcomes.len() - failed.len() - skipped,
-        failed.len() + missing.len(),
-        seconds,
-        outcomes.len() as f64 / seconds.max(1e-9),
-        jobs,
-        if jobs == 1 { "" } else { "s" },
-        args.output.display()
-    ));
-    for o in &failed {
-        // A diagnostic names its file; other failures need the name added.
-        let first = match o.diagnostics.iter().find(|d| d.severity == Severity::Error) {
-            Some(d) => d.to_string(),
-            None => format!(
-                "{}: {}",
-                display_name(&o.input),
-                o.message
-                    .clone()
-                    .unwrap_or_else(|| o.status.label().to_string())
-            ),
-        };
-        report.say(&format!("  failed: {first}"));
-    }
-    match batch::summary_csv(&outcomes) {
+}
+
+/// Writes `summary.csv` (or the name that does not overwrite the
+/// engineer's own); the exit code of that.
+fn write_summary(
+    args: &BatchArgs,
+    outcomes: &[crate::batch::Outcome],
+    inputs: &[PathBuf],
+    settings: &Settings,
+    report: &Reporter,
+) -> i32 {
+    use crate::batch;
+    match batch::summary_csv(outcomes) {
         Ok(mut file) => {
             file.name = batch::summary_name(&args.output).to_string();
             if file.name != "summary.csv" {
@@ -199,26 +268,22 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
             let made_by = crate::provenance::MadeBy::new(
                 recorded_invocation().as_deref(),
                 "the batch's tables",
-                &crate::provenance::settings_source(&settings),
+                &crate::provenance::settings_source(settings),
             );
-            if let Err(err) = write::write_into_named_folder(
+            match write::write_into_named_folder(
                 &args.output,
                 &[file],
-                &write::Inputs::new(&inputs),
+                &write::Inputs::new(inputs),
                 settings.durability,
                 Some(made_by.text()),
             ) {
-                code = code.max(write_failed(&report, &err));
+                Ok(_) => EXIT_OK,
+                Err(err) => write_failed(report, &err),
             }
         }
         Err(err) => {
             eprintln!("internal error: summary: {err}");
-            code = EXIT_INTERNAL;
+            EXIT_INTERNAL
         }
     }
-    if interrupted {
-        // The shell's convention for a run ended by Ctrl-C.
-        return EXIT_INTERRUPTED;
-    }
-    code
 }

@@ -389,3 +389,60 @@ pub(super) fn supervision_times(
         }
     }
 }
+
+/// A delay for an input the table does not have would be dropped without
+/// a word (a batch may give one for some of its tables): W006.
+pub(super) fn delays_without_their_input(
+    table: &StepTable,
+    effective: &Settings,
+    grid: &read::Grid,
+    diags: &mut Diagnostics,
+) {
+    for name in effective.simulation.input_delays.keys() {
+        if !table.inputs.contains(name) {
+            let inputs: Vec<&str> = table.inputs.iter().map(|n| n.as_str()).collect();
+            diags.warning(
+                Code::W006NoEffect,
+                grid.sheet_location(),
+                format!(
+                    "--input-delay {name}=…: {name} is no machine input of this table ({}); nothing is delayed",
+                    if inputs.is_empty() {
+                        "it waits for none".to_string()
+                    } else {
+                        format!("its inputs: {}", inputs.join(", "))
+                    }
+                ),
+            );
+        }
+    }
+}
+
+/// A SETTINGS row about an event the program does not have does nothing:
+/// W006.
+pub(super) fn rows_without_their_event(effective: &Settings, diags: &mut Diagnostics) {
+    let named = &effective.named;
+    let program = &effective.program;
+    let no_estop = "the program has no emergency stop (--modes estop); nothing named here is done";
+    let no_halt = "the program never halts without the plausibility or watchdog check, the emergency stop or an interlock (--safety, --modes estop); the outputs named stay as the sequence left them";
+    for (row, has, why) in [
+        (Row::HoldOnEstop, program.modes.estop, no_estop),
+        (Row::OnEstop, program.modes.estop, no_estop),
+        (
+            Row::OnStop,
+            program.modes.stop,
+            "the program has no STOP button (--modes stop); nothing named here is ever done",
+        ),
+        (Row::OffOnHalt, program.halts(), no_halt),
+        (Row::OnHalt, program.halts(), no_halt),
+    ] {
+        if let Some(list) = named.get(&row)
+            && !has
+        {
+            diags.warning(
+                Code::W006NoEffect,
+                list.at.clone(),
+                format!("{}: {why}", row.label()),
+            );
+        }
+    }
+}

@@ -6,8 +6,9 @@ pub use allocate::{allocate, festo_allocation};
 mod findings;
 mod given;
 use given::{
-    by_name, home_order_by_name, loads_without_effect, names_of_the_whole_table,
-    overridden_by_the_command_line, settings_without_their_actuator, supervision_times,
+    by_name, delays_without_their_input, home_order_by_name, loads_without_effect,
+    names_of_the_whole_table, overridden_by_the_command_line, rows_without_their_event,
+    settings_without_their_actuator, supervision_times,
 };
 mod physics;
 pub use physics::lucky_middle_stops;
@@ -178,51 +179,8 @@ fn finish_check(
         effective.program.interlocks =
             halt::resolve_interlocks(table, &buttons, named.get(&Row::Interlock), &mut diags);
         names_of_the_whole_table(table, &input.table, &effective, &mut diags);
-        // A delay for an input the table does not have would be dropped
-        // without a word (a batch may give one for some of its tables).
-        for name in effective.simulation.input_delays.keys() {
-            if !table.inputs.contains(name) {
-                let inputs: Vec<&str> = table.inputs.iter().map(|n| n.as_str()).collect();
-                diags.warning(
-                    Code::W006NoEffect,
-                    input.table.sheet_location(),
-                    format!(
-                        "--input-delay {name}=…: {name} is no machine input of this table ({}); nothing is delayed",
-                        if inputs.is_empty() {
-                            "it waits for none".to_string()
-                        } else {
-                            format!("its inputs: {}", inputs.join(", "))
-                        }
-                    ),
-                );
-            }
-        }
-        // A row about an event the program does not have does nothing.
-        let program = &effective.program;
-        let no_estop =
-            "the program has no emergency stop (--modes estop); nothing named here is done";
-        let no_halt = "the program never halts without the plausibility or watchdog check, the emergency stop or an interlock (--safety, --modes estop); the outputs named stay as the sequence left them";
-        for (row, has, why) in [
-            (Row::HoldOnEstop, program.modes.estop, no_estop),
-            (Row::OnEstop, program.modes.estop, no_estop),
-            (
-                Row::OnStop,
-                program.modes.stop,
-                "the program has no STOP button (--modes stop); nothing named here is ever done",
-            ),
-            (Row::OffOnHalt, program.halts(), no_halt),
-            (Row::OnHalt, program.halts(), no_halt),
-        ] {
-            if let Some(list) = named.get(&row)
-                && !has
-            {
-                diags.warning(
-                    Code::W006NoEffect,
-                    list.at.clone(),
-                    format!("{}: {why}", row.label()),
-                );
-            }
-        }
+        delays_without_their_input(table, &effective, &input.table, &mut diags);
+        rows_without_their_event(&effective, &mut diags);
     }
     match table {
         Some(table) if !diags.has_errors() => Ok(Checked {
@@ -532,12 +490,48 @@ pub fn generate_observed(
         );
         return Err(Failure::Input(vec![budget_error(&table, why)]));
     }
+    let (files, fault_table) =
+        render_beside_faults(input, early, late, settings, progress, healthy)?;
+    let files = crate::provenance::stamp_all(files, &made_by).map_err(Failure::Internal)?;
+    let findings = findings::lines(
+        &table,
+        &settings.program.modes,
+        &simulation,
+        fault_table.as_ref(),
+    );
+    Ok(Conversion {
+        findings,
+        made_by,
+        name: name.to_string(),
+        table,
+        allocation,
+        program,
+        symbols,
+        simulation,
+        faults: fault_table,
+        files,
+        warnings,
+    })
+}
+
+/// Renders the outputs that need no fault table at once and, beside them,
+/// runs the fault analysis and then renders the outputs that show it;
+/// every file in the order of its kind.
+fn render_beside_faults(
+    input: EmitInput,
+    early: Vec<OutputKind>,
+    late: Vec<OutputKind>,
+    settings: &Settings,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    healthy: Option<faults::Healthy>,
+) -> Result<(Vec<emit::OutputFile>, Option<faults::FaultTable>), Failure> {
+    let (table, program) = (input.table, input.program);
     let ((fault_table, late), early) = rayon::join(
         || {
             let fault_table = (!late.is_empty()).then(|| {
                 faults::analyse_from(
-                    &table,
-                    &program,
+                    table,
+                    program,
                     &settings.simulation,
                     1,
                     faults::FaultRuns::Resumed,
@@ -564,26 +558,7 @@ pub fn generate_observed(
     kinds.extend(late.map_err(emitted)?);
     kinds.sort_by_key(|(kind, _)| *kind);
     let files = kinds.into_iter().flat_map(|(_, files)| files).collect();
-    let files = crate::provenance::stamp_all(files, &made_by).map_err(Failure::Internal)?;
-    let findings = findings::lines(
-        &table,
-        &settings.program.modes,
-        &simulation,
-        fault_table.as_ref(),
-    );
-    Ok(Conversion {
-        findings,
-        made_by,
-        name: name.to_string(),
-        table,
-        allocation,
-        program,
-        symbols,
-        simulation,
-        faults: fault_table,
-        files,
-        warnings,
-    })
+    Ok((files, fault_table))
 }
 
 #[cfg(test)]

@@ -252,39 +252,56 @@ fn line(op: &str, operand: impl Into<String>, comment: impl Into<String>) -> Lin
     }
 }
 
-fn build(input: &EmitInput) -> Context {
-    let layout = Layout::new(input);
-    let w = &layout.words;
-    let program = input.program;
-    let symbols = input.symbols;
-    let lowered = super::lower::lower(program, symbols);
-    let fired = lowered.fired.as_str();
-    // The flag of the step the program is in while it waits at
-    // `program.steps[k]`: `step_0` at rest, `step_3` while step 3's moves run.
-    let flag = |k: usize| lowered.flag(k).to_string();
-    let condition = |lines: &mut Vec<Line>, literals: &[Literal]| {
+/// What the networks of OB 1 are built from: the layout, the lowered steps
+/// and the count of jump labels handed out so far.
+struct Networks<'a> {
+    input: &'a EmitInput<'a>,
+    layout: &'a Layout,
+    lowered: &'a super::lower::Lowered<'a>,
+    labels: usize,
+    networks: Vec<Network>,
+}
+
+impl Networks<'_> {
+    /// The flag of the step the program is in while it waits at
+    /// `program.steps[k]`: `step_0` at rest, `step_3` while step 3's moves run.
+    fn flag(&self, k: usize) -> String {
+        self.lowered.flag(k).to_string()
+    }
+
+    fn next_label(&mut self) -> String {
+        let skip = label(self.labels);
+        self.labels += 1;
+        skip
+    }
+
+    fn condition(&self, lines: &mut Vec<Line>, literals: &[Literal]) {
+        let w = &self.layout.words;
         for l in literals {
             let op = if l.negated { w.and_not } else { w.and };
             lines.push(line(
                 op,
-                layout.operand(input, l.signal),
-                symbols.ident(l.signal),
+                self.layout.operand(self.input, l.signal),
+                self.input.symbols.ident(l.signal),
             ));
         }
-    };
-    let actions = |lines: &mut Vec<Line>, list: &[Action], moves: &[crate::table::Move]| {
+    }
+
+    fn actions(&self, lines: &mut Vec<Line>, list: &[Action], moves: &[crate::table::Move]) {
+        let (input, layout) = (self.input, self.layout);
+        let w = &layout.words;
         for a in list {
-            let comment = symbols.action_comment(*a, moves);
+            let comment = input.symbols.action_comment(*a, moves);
             match *a {
                 Action::Reset(Signal::Sequence) => {
                     // Back to the initial step: every step flag off, its own on.
                     for (k, bit) in layout.step_flags.iter().enumerate() {
-                        lines.push(line("R", Layout::m(*bit), flag(k)));
+                        lines.push(line("R", Layout::m(*bit), self.flag(k)));
                     }
                     lines.push(line(
                         "S",
                         Layout::m(layout.step_flags[0]),
-                        format!("{}: back to STEP {INITIAL_STEP}", flag(0)),
+                        format!("{}: back to STEP {INITIAL_STEP}", self.flag(0)),
                     ));
                 }
                 Action::Set(s) => lines.push(line("S", layout.operand(input, s), comment)),
@@ -306,124 +323,156 @@ fn build(input: &EmitInput) -> Context {
                 }
             }
         }
-    };
-
-    let mut networks = Vec::new();
-    let mut labels = 0usize;
-
-    // With no step flag set (first cycle after a cold start) the sequence
-    // is in the initial step.
-    let mut init = Vec::new();
-    for (k, bit) in layout.step_flags.iter().enumerate() {
-        init.push(line(w.and_not, Layout::m(*bit), flag(k)));
     }
-    init.push(line("S", Layout::m(layout.step_flags[0]), flag(0)));
-    actions(&mut init, &program.init, &[]);
-    networks.push(Network {
-        title: format!("start: no step flag set, so the sequence is in STEP {INITIAL_STEP}"),
-        lines: init,
-    });
-    networks.push(Network {
-        title: "no step has fired yet in this cycle".to_string(),
-        lines: vec![
-            line("SET", "", ""),
-            line("R", Layout::m(layout.fired), fired),
-        ],
-    });
-    for t in &layout.timers {
-        let timer = timer_operand(input, t.signal);
-        let run = &t.run_name.ident;
-        let preset = &t.preset_name.ident;
-        let name = symbols.ident(t.signal);
-        networks.push(Network {
-            title: format!(
-                "{} timer: on-delay while {run}; when it has elapsed, {run} goes off",
-                if t.signal == Signal::Watchdog {
-                    "watchdog".to_string()
-                } else {
-                    name.clone()
-                }
-            ),
+
+    /// With no step flag set (first cycle after a cold start) the sequence
+    /// is in the initial step; then no step has fired yet in this cycle.
+    fn start(&mut self) {
+        let layout = self.layout;
+        let w = &layout.words;
+        let mut init = Vec::new();
+        for (k, bit) in layout.step_flags.iter().enumerate() {
+            init.push(line(w.and_not, Layout::m(*bit), self.flag(k)));
+        }
+        init.push(line("S", Layout::m(layout.step_flags[0]), self.flag(0)));
+        self.actions(&mut init, &self.input.program.init, &[]);
+        self.networks.push(Network {
+            title: format!("start: no step flag set, so the sequence is in STEP {INITIAL_STEP}"),
+            lines: init,
+        });
+        self.networks.push(Network {
+            title: "no step has fired yet in this cycle".to_string(),
             lines: vec![
-                line(w.and, Layout::m(t.run), run.clone()),
-                line("L", format!("MW {}", t.preset_word), preset.clone()),
-                line(w.on_delay, timer.clone(), name.clone()),
-                line(w.and, timer, format!("{name} elapsed")),
-                line("R", Layout::m(t.run), run.clone()),
+                line("SET", "", ""),
+                line("R", Layout::m(layout.fired), self.lowered.fired.as_str()),
             ],
         });
     }
-    // One transition per network: the step's jumps first, then the step.
-    let mut transition = |k: usize,
-                          condition_of: &[crate::program::Literal],
-                          fired_actions: &[Action],
-                          moves: &[crate::table::Move],
-                          next: usize,
-                          title: String| {
-        let mut lines = vec![
-            line(w.and, Layout::m(layout.step_flags[k]), flag(k)),
-            line(w.and_not, Layout::m(layout.fired), fired),
-        ];
-        condition(&mut lines, condition_of);
-        let skip = label(labels);
-        labels += 1;
-        lines.push(line(w.jump_if_not, skip.clone(), "condition not met"));
-        lines.push(line("SET", "", ""));
-        actions(&mut lines, fired_actions, moves);
-        lines.push(line("R", Layout::m(layout.step_flags[k]), flag(k)));
-        lines.push(line("S", Layout::m(layout.step_flags[next]), flag(next)));
-        lines.push(line("S", Layout::m(layout.fired), fired));
-        lines.push(Line {
-            label: format!("{skip}:"),
-            op: "NOP".to_string(),
-            operand: "0".to_string(),
-            comment: String::new(),
-        });
-        networks.push(Network { title, lines });
-    };
-    for step in &lowered.steps {
-        let in_step = format!("STEP {}: {}", step.active, one_line(&step.active_title));
-        for t in step.transitions() {
-            let title = format!("{in_step}; {}", one_line(t.comment));
-            transition(step.index, t.condition, t.actions, t.moves, t.next, title);
+
+    fn timers(&mut self) {
+        let (input, layout) = (self.input, self.layout);
+        let w = &layout.words;
+        for t in &layout.timers {
+            let timer = timer_operand(input, t.signal);
+            let run = &t.run_name.ident;
+            let preset = &t.preset_name.ident;
+            let name = input.symbols.ident(t.signal);
+            self.networks.push(Network {
+                title: format!(
+                    "{} timer: on-delay while {run}; when it has elapsed, {run} goes off",
+                    if t.signal == Signal::Watchdog {
+                        "watchdog".to_string()
+                    } else {
+                        name.clone()
+                    }
+                ),
+                lines: vec![
+                    line(w.and, Layout::m(t.run), run.clone()),
+                    line("L", format!("MW {}", t.preset_word), preset.clone()),
+                    line(w.on_delay, timer.clone(), name.clone()),
+                    line(w.and, timer, format!("{name} elapsed")),
+                    line("R", Layout::m(t.run), run.clone()),
+                ],
+            });
         }
     }
-    for rung in &program.rungs {
-        let mut lines = Vec::new();
-        if rung.condition.is_empty() {
-            // Nothing to test: the actions always run.
+
+    /// One transition per network: the step's jumps first, then the step.
+    fn transitions(&mut self) {
+        let lowered = self.lowered;
+        for step in &lowered.steps {
+            let in_step = format!("STEP {}: {}", step.active, one_line(&step.active_title));
+            for t in step.transitions() {
+                let title = format!("{in_step}; {}", one_line(t.comment));
+                self.transition(step.index, t.condition, t.actions, t.moves, t.next, title);
+            }
+        }
+    }
+
+    fn transition(
+        &mut self,
+        k: usize,
+        condition_of: &[Literal],
+        fired_actions: &[Action],
+        moves: &[crate::table::Move],
+        next: usize,
+        title: String,
+    ) {
+        let layout = self.layout;
+        let w = &layout.words;
+        let fired = self.lowered.fired.as_str();
+        let mut lines = vec![
+            line(w.and, Layout::m(layout.step_flags[k]), self.flag(k)),
+            line(w.and_not, Layout::m(layout.fired), fired),
+        ];
+        self.condition(&mut lines, condition_of);
+        let skip = self.next_label();
+        lines.push(line(w.jump_if_not, skip.clone(), "condition not met"));
+        lines.push(line("SET", "", ""));
+        self.actions(&mut lines, fired_actions, moves);
+        lines.push(line("R", Layout::m(layout.step_flags[k]), self.flag(k)));
+        lines.push(line(
+            "S",
+            Layout::m(layout.step_flags[next]),
+            self.flag(next),
+        ));
+        lines.push(line("S", Layout::m(layout.fired), fired));
+        lines.push(nop(&skip));
+        self.networks.push(Network { title, lines });
+    }
+
+    fn rungs(&mut self) {
+        let w = &self.layout.words;
+        for rung in &self.input.program.rungs {
+            let mut lines = Vec::new();
+            if rung.condition.is_empty() {
+                // Nothing to test: the actions always run.
+                lines.push(line("SET", "", ""));
+                self.actions(&mut lines, &rung.actions, &[]);
+                self.networks.push(Network {
+                    title: one_line(&rung.comment),
+                    lines,
+                });
+                continue;
+            }
+            self.condition(&mut lines, &rung.condition);
+            let skip = self.next_label();
+            lines.push(line(w.jump_if_not, skip.clone(), ""));
             lines.push(line("SET", "", ""));
-            actions(&mut lines, &rung.actions, &[]);
-            networks.push(Network {
+            self.actions(&mut lines, &rung.actions, &[]);
+            lines.push(nop(&skip));
+            self.networks.push(Network {
                 title: one_line(&rung.comment),
                 lines,
             });
-            continue;
         }
-        condition(&mut lines, &rung.condition);
-        let skip = label(labels);
-        labels += 1;
-        lines.push(line(w.jump_if_not, skip.clone(), ""));
-        lines.push(line("SET", "", ""));
-        actions(&mut lines, &rung.actions, &[]);
-        lines.push(Line {
-            label: format!("{skip}:"),
-            op: "NOP".to_string(),
-            operand: "0".to_string(),
-            comment: String::new(),
-        });
-        networks.push(Network {
-            title: one_line(&rung.comment),
-            lines,
-        });
     }
+}
 
-    // The symbol table: I/O, memories, timer, and the AWL-only bits.
-    let sdf_address = |operand: &str| -> String {
-        let (letter, number) = operand.split_once(' ').unwrap_or((operand, ""));
-        format!("{letter:<4}{number:>7}")
-    };
-    let table: Vec<Symbol> = input
+/// The jump target that ends a network's conditional part.
+fn nop(skip: &str) -> Line {
+    Line {
+        label: format!("{skip}:"),
+        op: "NOP".to_string(),
+        operand: "0".to_string(),
+        comment: String::new(),
+    }
+}
+
+/// An operand as the symbol table column holds it.
+fn sdf_address(operand: &str) -> String {
+    let (letter, number) = operand.split_once(' ').unwrap_or((operand, ""));
+    format!("{letter:<4}{number:>7}")
+}
+
+/// The symbol table: I/O, memories, timer, and the AWL-only bits.
+fn symbol_table(
+    input: &EmitInput,
+    layout: &Layout,
+    lowered: &super::lower::Lowered,
+) -> Vec<Symbol> {
+    let symbols = input.symbols;
+    let mut table: Vec<Symbol> = input
         .allocation
         .inputs
         .iter()
@@ -438,18 +487,17 @@ fn build(input: &EmitInput) -> Context {
             )
         })
         .collect();
-    let mut table = table;
     for (k, bit) in layout.step_flags.iter().enumerate() {
         let names = symbols.step(k);
         table.push(Symbol::new(
-            flag(k),
+            lowered.flag(k).to_string(),
             sdf_address(&Layout::m(*bit)),
             "BOOL",
             &names.map(|n| n.flag.comment.clone()).unwrap_or_default(),
         ));
     }
     table.push(Symbol::new(
-        fired.to_string(),
+        lowered.fired.clone(),
         sdf_address(&Layout::m(layout.fired)),
         "BOOL",
         &symbols.fired.comment,
@@ -474,7 +522,24 @@ fn build(input: &EmitInput) -> Context {
             &symbols.comment(t.signal),
         ));
     }
+    table
+}
 
+fn build(input: &EmitInput) -> Context {
+    let layout = Layout::new(input);
+    let lowered = super::lower::lower(input.program, input.symbols);
+    let mut networks = Networks {
+        input,
+        layout: &layout,
+        lowered: &lowered,
+        labels: 0,
+        networks: Vec::new(),
+    };
+    networks.start();
+    networks.timers();
+    networks.transitions();
+    networks.rungs();
+    let networks = networks.networks;
     let first_flag = layout.step_flags.first().copied().unwrap_or((0, 0));
     let last_flag = layout.step_flags.last().copied().unwrap_or((0, 0));
     Context {
@@ -491,7 +556,7 @@ fn build(input: &EmitInput) -> Context {
             .map(|l| one_line(l))
             .collect(),
         networks,
-        symbols: table,
+        symbols: symbol_table(input, &layout, &lowered),
     }
 }
 

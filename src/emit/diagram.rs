@@ -90,12 +90,248 @@ pub fn render_svg(
     actuator: &dyn Fn(u32) -> (String, Option<String>),
 ) -> String {
     let lanes = lanes(report);
-    // The time axis starts at the first START press, as the step timing
-    // of the simulation counts it (step 4 at 2.59 s in the table is drawn
-    // at 2.59 s, not half a second later where power-up was).
-    let origin = report.cycles.first().map_or(0, |c| c.press_ms);
-    let bottom = lanes.last().map(|(y, h)| y + h).unwrap_or(TOP) + 50.0;
-    let (columns, x_label): (Vec<(f64, String)>, &str) = match kind {
+    let sheet = Sheet::new(report, kind, &lanes);
+    let mut svg = String::new();
+    sheet.header(&mut svg, name, report);
+    sheet.grid(&mut svg);
+    if kind == DiagramKind::Time {
+        sheet.step_markers(&mut svg, report);
+        sheet.spans(&mut svg, report);
+    }
+    // Lanes: name, position levels, and the motion.
+    for (i, ((number, pmax), lane)) in report.actuators.iter().zip(&lanes).enumerate() {
+        sheet.lane(
+            &mut svg,
+            report,
+            i,
+            (*pmax).max(1),
+            *lane,
+            actuator(*number),
+        );
+    }
+    // Legend.
+    let _ = writeln!(
+        svg,
+        r##"<text x="{LEFT}" y="{:.1}" fill="#555" font-size="12">one lane per cylinder, position 0 (home) to its end; rising = extends (+), falling = retracts (-)</text>"##,
+        sheet.bottom - 10.0
+    );
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// The page a diagram is drawn on: its size, its horizontal axis and the
+/// time its axis starts at.
+struct Sheet {
+    kind: DiagramKind,
+    /// The time axis starts at the first START press, as the step timing
+    /// of the simulation counts it (step 4 at 2.59 s in the table is drawn
+    /// at 2.59 s, not half a second later where power-up was).
+    origin: u64,
+    bottom: f64,
+    width: f64,
+    columns: Vec<(f64, String)>,
+    x_label: &'static str,
+    column_width: f64,
+}
+
+impl Sheet {
+    fn new(report: &SimReport, kind: DiagramKind, lanes: &[(f64, f64)]) -> Self {
+        let origin = report.cycles.first().map_or(0, |c| c.press_ms);
+        let bottom = lanes.last().map(|(y, h)| y + h).unwrap_or(TOP) + 50.0;
+        let (columns, x_label) = columns(report, kind, origin);
+        let span = columns.last().map(|c| c.0).unwrap_or(1.0).max(1.0);
+        // One grid column is 72 px per step, 60 px per time tick.
+        let column_width = match kind {
+            DiagramKind::Step => 72.0,
+            DiagramKind::Time => 60.0 / columns.get(1).map(|c| c.0).unwrap_or(1.0).max(1.0),
+        };
+        let width = (LEFT + RIGHT + span * column_width).max(720.0);
+        Sheet {
+            kind,
+            origin,
+            bottom,
+            width,
+            columns,
+            x_label,
+            column_width,
+        }
+    }
+
+    fn x_of(&self, value: f64) -> f64 {
+        LEFT + value * self.column_width
+    }
+
+    fn header(&self, svg: &mut String, name: &str, report: &SimReport) {
+        let (width, bottom) = (self.width, self.bottom);
+        let _ = writeln!(
+            svg,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{bottom:.0}" viewBox="0 0 {width:.0} {bottom:.0}" font-family="Helvetica, Arial, sans-serif" font-size="13">"#
+        );
+        let _ = writeln!(svg, r#"<rect width="100%" height="100%" fill="white"/>"#);
+        let title = match self.kind {
+            DiagramKind::Step => "Displacement-step diagram",
+            DiagramKind::Time => "Displacement-time diagram",
+        };
+        let _ = writeln!(
+            svg,
+            r#"<text x="{LEFT}" y="28" font-size="17" font-weight="bold">{title}: {}</text>"#,
+            escape(name)
+        );
+        let _ = writeln!(
+            svg,
+            r##"<text x="{LEFT}" y="50" fill="#555">{}</text>"##,
+            escape(&format!("simulated program: {}", report.verdict()))
+        );
+    }
+
+    /// Vertical grid with labels.
+    fn grid(&self, svg: &mut String) {
+        for (value, label) in &self.columns {
+            let x = self.x_of(*value);
+            let _ = writeln!(
+                svg,
+                r##"<line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="#bbb" stroke-width="1"/>"##,
+                TOP - 12.0,
+                self.bottom - 40.0
+            );
+            let _ = writeln!(
+                svg,
+                r#"<text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+                TOP - 28.0,
+                escape(label)
+            );
+        }
+        let _ = writeln!(
+            svg,
+            r##"<text x="{:.1}" y="{:.1}" text-anchor="end" fill="#555">{}</text>"##,
+            LEFT - 14.0,
+            TOP - 28.0,
+            self.x_label
+        );
+    }
+
+    /// Where each step of every cycle fired, as dashed markers.
+    fn step_markers(&self, svg: &mut String, report: &SimReport) {
+        for (cycle, step) in report
+            .cycles
+            .iter()
+            .flat_map(|c| c.steps.iter().map(move |s| (c, s)))
+        {
+            let ms = (cycle.press_ms + step.start_ms).saturating_sub(self.origin);
+            let x = self.x_of(ms as f64 / 1000.0);
+            let _ = writeln!(
+                svg,
+                r##"<line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="#e67e22" stroke-dasharray="4 3"/><text x="{x:.1}" y="{:.1}" fill="#e67e22" font-size="11" text-anchor="middle">{}</text>"##,
+                TOP - 6.0,
+                self.bottom - 40.0,
+                self.bottom - 26.0,
+                step.step
+            );
+        }
+    }
+
+    /// Dwells and waits on machine inputs, as shaded bands over every lane.
+    fn spans(&self, svg: &mut String, report: &SimReport) {
+        for span in &report.spans {
+            let (x1, x2) = (
+                self.x_of(span.from_ms.saturating_sub(self.origin) as f64 / 1000.0),
+                self.x_of(span.to_ms.saturating_sub(self.origin) as f64 / 1000.0),
+            );
+            let color = if span.label.starts_with("I:") {
+                "#8e44ad"
+            } else {
+                "#1e8449"
+            };
+            let _ = writeln!(
+                svg,
+                r#"<rect x="{x1:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="{color}" fill-opacity="0.12"/><text x="{:.1}" y="{:.1}" fill="{color}" font-size="11" text-anchor="middle">{}</text>"#,
+                TOP - 10.0,
+                (x2 - x1).max(1.0),
+                self.bottom - 50.0 - TOP,
+                (x1 + x2) / 2.0,
+                TOP - 13.0,
+                escape(&span.label)
+            );
+        }
+    }
+
+    /// One actuator's lane: its name, its position levels and its motion.
+    fn lane(
+        &self,
+        svg: &mut String,
+        report: &SimReport,
+        i: usize,
+        pmax: u32,
+        (top, height): (f64, f64),
+        (label, own): (String, Option<String>),
+    ) {
+        let y_of = |position: f64| top + height - position / pmax as f64 * height;
+        let color = COLORS[i % COLORS.len()];
+        let _ = writeln!(
+            svg,
+            r#"<text x="12" y="{:.1}" font-size="15" font-weight="bold" fill="{color}">{}</text>"#,
+            top + height / 2.0 + 5.0,
+            escape(&label)
+        );
+        if let Some(own) = own {
+            let _ = writeln!(
+                svg,
+                r#"<text x="12" y="{:.1}" font-size="11" fill="{color}">{}</text>"#,
+                top + height / 2.0 + 20.0,
+                escape(&own)
+            );
+        }
+        for level in 0..=pmax {
+            let y = y_of(level as f64);
+            let _ = writeln!(
+                svg,
+                r##"<line x1="{LEFT}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="{}" stroke-width="1"/><text x="{:.1}" y="{:.1}" text-anchor="end" fill="#555" font-size="11">{level}</text>"##,
+                self.width - RIGHT,
+                if level == 0 { "#888" } else { "#ddd" },
+                LEFT - 8.0,
+                y + 4.0
+            );
+        }
+        let origin = self.origin;
+        let points: Vec<(f64, f64)> = match self.kind {
+            DiagramKind::Step => step_levels(report)
+                .iter()
+                .enumerate()
+                .filter_map(|(k, positions)| {
+                    positions.get(i).map(|p| (self.x_of(k as f64), y_of(*p)))
+                })
+                .collect(),
+            DiagramKind::Time => report
+                .trace
+                .iter()
+                .filter(|(t, _)| *t >= origin)
+                .filter_map(|(t, positions)| {
+                    positions
+                        .get(i)
+                        .map(|p| (self.x_of((t - origin) as f64 / 1000.0), y_of(*p)))
+                })
+                .collect(),
+        };
+        svg.push_str(r#"<polyline points=""#);
+        for (k, (x, y)) in points.into_iter().enumerate() {
+            let gap = if k == 0 { "" } else { " " };
+            let _ = write!(svg, "{gap}{},{}", Tenths(x), Tenths(y));
+        }
+        let _ = writeln!(
+            svg,
+            r#"" fill="none" stroke="{color}" stroke-width="3" stroke-linejoin="round"/>"#
+        );
+    }
+}
+
+/// The grid columns of the horizontal axis and its label: one per step, or
+/// one per time tick.
+fn columns(
+    report: &SimReport,
+    kind: DiagramKind,
+    origin: u64,
+) -> (Vec<(f64, String)>, &'static str) {
+    match kind {
         DiagramKind::Step => {
             let n = report.step_positions.len().max(2);
             let labels = (0..n)
@@ -125,167 +361,7 @@ pub fn render_svg(
                 "time",
             )
         }
-    };
-    let span = columns.last().map(|c| c.0).unwrap_or(1.0).max(1.0);
-    // One grid column is 72 px per step, 60 px per time tick.
-    let column_width = match kind {
-        DiagramKind::Step => 72.0,
-        DiagramKind::Time => 60.0 / columns.get(1).map(|c| c.0).unwrap_or(1.0).max(1.0),
-    };
-    let width = (LEFT + RIGHT + span * column_width).max(720.0);
-    let x_of = |value: f64| LEFT + value * column_width;
-
-    let mut svg = String::new();
-    let _ = writeln!(
-        svg,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{bottom:.0}" viewBox="0 0 {width:.0} {bottom:.0}" font-family="Helvetica, Arial, sans-serif" font-size="13">"#
-    );
-    let _ = writeln!(svg, r#"<rect width="100%" height="100%" fill="white"/>"#);
-    let title = match kind {
-        DiagramKind::Step => "Displacement-step diagram",
-        DiagramKind::Time => "Displacement-time diagram",
-    };
-    let _ = writeln!(
-        svg,
-        r#"<text x="{LEFT}" y="28" font-size="17" font-weight="bold">{title}: {}</text>"#,
-        escape(name)
-    );
-    let _ = writeln!(
-        svg,
-        r##"<text x="{LEFT}" y="50" fill="#555">{}</text>"##,
-        escape(&format!("simulated program: {}", report.verdict()))
-    );
-    // Vertical grid with labels.
-    for (value, label) in &columns {
-        let x = x_of(*value);
-        let _ = writeln!(
-            svg,
-            r##"<line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="#bbb" stroke-width="1"/>"##,
-            TOP - 12.0,
-            bottom - 40.0
-        );
-        let _ = writeln!(
-            svg,
-            r#"<text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
-            TOP - 28.0,
-            escape(label)
-        );
     }
-    let _ = writeln!(
-        svg,
-        r##"<text x="{:.1}" y="{:.1}" text-anchor="end" fill="#555">{x_label}</text>"##,
-        LEFT - 14.0,
-        TOP - 28.0
-    );
-    if kind == DiagramKind::Time {
-        // Where each step of every cycle fired, as dashed markers.
-        for (cycle, step) in report
-            .cycles
-            .iter()
-            .flat_map(|c| c.steps.iter().map(move |s| (c, s)))
-        {
-            let ms = (cycle.press_ms + step.start_ms).saturating_sub(origin);
-            let x = x_of(ms as f64 / 1000.0);
-            let _ = writeln!(
-                svg,
-                r##"<line x1="{x:.1}" y1="{:.1}" x2="{x:.1}" y2="{:.1}" stroke="#e67e22" stroke-dasharray="4 3"/><text x="{x:.1}" y="{:.1}" fill="#e67e22" font-size="11" text-anchor="middle">{}</text>"##,
-                TOP - 6.0,
-                bottom - 40.0,
-                bottom - 26.0,
-                step.step
-            );
-        }
-    }
-    if kind == DiagramKind::Time {
-        // Dwells and waits on machine inputs, as shaded bands over every lane.
-        for span in &report.spans {
-            let (x1, x2) = (
-                x_of(span.from_ms.saturating_sub(origin) as f64 / 1000.0),
-                x_of(span.to_ms.saturating_sub(origin) as f64 / 1000.0),
-            );
-            let color = if span.label.starts_with("I:") {
-                "#8e44ad"
-            } else {
-                "#1e8449"
-            };
-            let _ = writeln!(
-                svg,
-                r#"<rect x="{x1:.1}" y="{:.1}" width="{:.1}" height="{:.1}" fill="{color}" fill-opacity="0.12"/><text x="{:.1}" y="{:.1}" fill="{color}" font-size="11" text-anchor="middle">{}</text>"#,
-                TOP - 10.0,
-                (x2 - x1).max(1.0),
-                bottom - 50.0 - TOP,
-                (x1 + x2) / 2.0,
-                TOP - 13.0,
-                escape(&span.label)
-            );
-        }
-    }
-    // Lanes: name, position levels, and the motion.
-    for (i, ((number, pmax), (top, height))) in report.actuators.iter().zip(&lanes).enumerate() {
-        let pmax = (*pmax).max(1);
-        let y_of = |position: f64| top + height - position / pmax as f64 * height;
-        let color = COLORS[i % COLORS.len()];
-        let (label, own) = actuator(*number);
-        let _ = writeln!(
-            svg,
-            r#"<text x="12" y="{:.1}" font-size="15" font-weight="bold" fill="{color}">{}</text>"#,
-            top + height / 2.0 + 5.0,
-            escape(&label)
-        );
-        if let Some(own) = own {
-            let _ = writeln!(
-                svg,
-                r#"<text x="12" y="{:.1}" font-size="11" fill="{color}">{}</text>"#,
-                top + height / 2.0 + 20.0,
-                escape(&own)
-            );
-        }
-        for level in 0..=pmax {
-            let y = y_of(level as f64);
-            let _ = writeln!(
-                svg,
-                r##"<line x1="{LEFT}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="{}" stroke-width="1"/><text x="{:.1}" y="{:.1}" text-anchor="end" fill="#555" font-size="11">{level}</text>"##,
-                width - RIGHT,
-                if level == 0 { "#888" } else { "#ddd" },
-                LEFT - 8.0,
-                y + 4.0
-            );
-        }
-        let points: Vec<(f64, f64)> = match kind {
-            DiagramKind::Step => step_levels(report)
-                .iter()
-                .enumerate()
-                .filter_map(|(k, positions)| positions.get(i).map(|p| (x_of(k as f64), y_of(*p))))
-                .collect(),
-            DiagramKind::Time => report
-                .trace
-                .iter()
-                .filter(|(t, _)| *t >= origin)
-                .filter_map(|(t, positions)| {
-                    positions
-                        .get(i)
-                        .map(|p| (x_of((t - origin) as f64 / 1000.0), y_of(*p)))
-                })
-                .collect(),
-        };
-        svg.push_str(r#"<polyline points=""#);
-        for (k, (x, y)) in points.into_iter().enumerate() {
-            let gap = if k == 0 { "" } else { " " };
-            let _ = write!(svg, "{gap}{},{}", Tenths(x), Tenths(y));
-        }
-        let _ = writeln!(
-            svg,
-            r#"" fill="none" stroke="{color}" stroke-width="3" stroke-linejoin="round"/>"#
-        );
-    }
-    // Legend.
-    let _ = writeln!(
-        svg,
-        r##"<text x="{LEFT}" y="{:.1}" fill="#555" font-size="12">one lane per cylinder, position 0 (home) to its end; rising = extends (+), falling = retracts (-)</text>"##,
-        bottom - 10.0
-    );
-    svg.push_str("</svg>\n");
-    svg
 }
 
 /// The positions at the step boundaries (when each step fired) at the

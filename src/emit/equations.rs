@@ -133,10 +133,10 @@ fn instructions(
     }
 }
 
-/// `temporaries`: whether the language needs scratch variables (IL does).
-fn model(s: &Synthesis, title: &str, program: &'static str, temporaries: bool) -> Model {
+/// The end sensors of every cylinder, then the operator's buttons, at
+/// input bits one after the other.
+fn located_inputs(s: &Synthesis) -> Vec<Located> {
     let seq = &s.modified;
-    let names = Names { s };
     let bit = |n: usize| format!("{}.{}", n / 8, n % 8);
     let mut inputs = Vec::new();
     for v in 0..seq.actuators {
@@ -173,6 +173,43 @@ fn model(s: &Synthesis, title: &str, program: &'static str, temporaries: bool) -
             comment: comment.to_string(),
         });
     }
+    inputs
+}
+
+/// Every equation as the templates lay it out, and the most scratch
+/// variables one needs in IL.
+fn equation_models(s: &Synthesis, names: &Names) -> (Vec<EquationModel>, usize) {
+    let seq = &s.modified;
+    let initial = seq.initial_state();
+    let mut most_temps = 0;
+    let equations = s
+        .equations
+        .iter()
+        .map(|e| {
+            let mut il = Vec::new();
+            let mut temps = 0;
+            instructions(&e.expr, &|v| names.state(v), &mut il, &mut temps);
+            most_temps = most_temps.max(temps);
+            EquationModel {
+                output: names.output(e),
+                token: seq.token(e.action),
+                expr: e.expr.text(&|v| names.state(v)),
+                line: equation_line(s, e),
+                il,
+                homes: !seq.is_memory(e.action.var)
+                    && ((initial >> e.action.var) & 1 == 1) == e.action.value,
+            }
+        })
+        .collect();
+    (equations, most_temps)
+}
+
+/// `temporaries`: whether the language needs scratch variables (IL does).
+fn model(s: &Synthesis, title: &str, program: &'static str, temporaries: bool) -> Model {
+    let seq = &s.modified;
+    let names = Names { s };
+    let bit = |n: usize| format!("{}.{}", n / 8, n % 8);
+    let inputs = located_inputs(s);
     let coils = s
         .equations
         .iter()
@@ -200,26 +237,7 @@ fn model(s: &Synthesis, title: &str, program: &'static str, temporaries: bool) -
             },
         })
         .collect();
-    let mut most_temps = 0;
-    let equations = s
-        .equations
-        .iter()
-        .map(|e| {
-            let mut il = Vec::new();
-            let mut temps = 0;
-            instructions(&e.expr, &|v| names.state(v), &mut il, &mut temps);
-            most_temps = most_temps.max(temps);
-            EquationModel {
-                output: names.output(e),
-                token: seq.token(e.action),
-                expr: e.expr.text(&|v| names.state(v)),
-                line: equation_line(s, e),
-                il,
-                homes: !seq.is_memory(e.action.var)
-                    && ((initial >> e.action.var) & 1 == 1) == e.action.value,
-            }
-        })
-        .collect();
+    let (equations, most_temps) = equation_models(s, &names);
     Model {
         title: title.to_string(),
         version: env!("CARGO_PKG_VERSION"),

@@ -1,5 +1,5 @@
 //! The rows of STEP 7's symbol table (`NAME.sdf`), laid out by
-//! `symbols.sdf.j2` from the model [`super::awl`] builds: fixed-width
+//! `symbols.sdf.j2` from the model the AWL emitter (`awl.rs`) builds: fixed-width
 //! quoted fields, the comment at most [`SDF_COMMENT`] characters.
 
 use serde::Serialize;

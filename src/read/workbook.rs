@@ -21,56 +21,93 @@ pub(super) fn read_workbook(
         sheet: None,
         cell: None,
     };
+    if let Some((code, message)) = refusal_before_decoding(format, &bytes) {
+        diags.error(code, whole_file, message);
+        return None;
+    }
+    let mut workbook = open(format, bytes, &whole_file, diags)?;
+    let names = workbook.names();
+    let mut side = SideSheets {
+        file,
+        names: &names,
+        workbook: &mut workbook,
+    };
+    let settings = side.read(SETTINGS_SHEET, "its settings", Code::E030BadSetting, diags);
+    let addresses = side.read(
+        ADDRESSES_SHEET,
+        "its pinned addresses",
+        Code::E035BadPinnedAddress,
+        diags,
+    );
+    let read = |workbook: &mut Box<dyn SheetSource>, name: &str, diags: &mut Diagnostics| {
+        read_sheet(file, workbook, name, diags)
+    };
+    let table = pick_table(&mut workbook, &names, wanted, &whole_file, diags, &read)?;
+    Some(Input {
+        table,
+        settings,
+        addresses,
+        csv_readings: Vec::new(),
+    })
+}
+
+/// What refuses a workbook before calamine decodes it: one that unpacks
+/// too large, or whose structure would make the decoder loop or allocate
+/// without bound.
+fn refusal_before_decoding(format: Format, bytes: &[u8]) -> Option<(Code, String)> {
     if matches!(format, Format::Xlsx | Format::Ods)
-        && let Some(unpacked) = unpacked_size(&bytes)
+        && let Some(unpacked) = unpacked_size(bytes)
         && unpacked > MAX_UNPACKED_BYTES
     {
-        diags.error(
+        return Some((
             Code::E005TooLarge,
-            whole_file,
             format!(
                 "the workbook unpacks to {} MiB; the limit is {} MiB",
                 unpacked / (1024 * 1024),
                 MAX_UNPACKED_BYTES / (1024 * 1024)
             ),
-        );
-        return None;
+        ));
     }
     if format == Format::Xlsx
-        && let Some(why) = guard_xlsx::impossible_string_count(&bytes)
+        && let Some(why) = guard_xlsx::impossible_string_count(bytes)
     {
-        diags.error(
+        return Some((
             Code::E002NotAWorkbook,
-            whole_file.clone(),
             format!("the workbook is damaged and could not be decoded ({why})"),
-        );
-        return None;
+        ));
     }
     if format == Format::Xlsx
-        && let Some(why) = guard_xlsx::overlong_text(&bytes)
+        && let Some(why) = guard_xlsx::overlong_text(bytes)
     {
-        diags.error(Code::E005TooLarge, whole_file.clone(), why);
-        return None;
+        return Some((Code::E005TooLarge, why));
     }
     if format == Format::Ods
-        && let Some(why) = guard_ods::oversized_sheet(&bytes, MAX_FILLED_CELLS as u64)
+        && let Some(why) = guard_ods::oversized_sheet(bytes, MAX_FILLED_CELLS as u64)
     {
-        diags.error(Code::E024TableTooLarge, whole_file, why);
-        return None;
+        return Some((Code::E024TableTooLarge, why));
     }
     if format == Format::Xls
-        && let Some(refusal) = guard_ole::unsafe_to_decode(&bytes)
+        && let Some(refusal) = guard_ole::unsafe_to_decode(bytes)
     {
-        let (code, message) = match refusal {
+        return Some(match refusal {
             guard_ole::Refusal::Damaged(why) => (
                 Code::E002NotAWorkbook,
                 format!("the workbook is damaged and could not be decoded ({why})"),
             ),
             guard_ole::Refusal::TooLarge(why) => (Code::E024TableTooLarge, why),
-        };
-        diags.error(code, whole_file, message);
-        return None;
+        });
     }
+    None
+}
+
+/// The workbook opened by calamine's reader of its format (E002 when it
+/// cannot be).
+fn open(
+    format: Format,
+    bytes: Vec<u8>,
+    whole_file: &Location,
+    diags: &mut Diagnostics,
+) -> Option<Box<dyn SheetSource>> {
     let cursor = Cursor::new(bytes);
     let opened: Result<Box<dyn SheetSource>, String> = match format {
         Format::Xlsx => open_workbook_from_rs::<Xlsx<_>, _>(cursor)
@@ -84,62 +121,85 @@ pub(super) fn read_workbook(
             .map_err(|e| e.to_string()),
         Format::Csv => Err("internal: CSV is not a workbook".to_string()),
     };
-    let mut workbook = match opened {
-        Ok(w) => w,
+    match opened {
+        Ok(w) => Some(w),
         Err(err) => {
             diags.error(
                 Code::E002NotAWorkbook,
-                whole_file,
+                whole_file.clone(),
                 format!("not a readable {} workbook ({err})", format_name(format)),
             );
-            return None;
+            None
         }
-    };
-    let names = workbook.names();
-    let read_sheet = |workbook: &mut Box<dyn SheetSource>, name: &str, diags: &mut Diagnostics| {
-        match workbook.grid(file, name) {
-            Ok(grid) => Some(grid),
-            Err(err) => {
-                let (code, message) = match err {
-                    SheetError::Unreadable(why) => (
-                        Code::E002NotAWorkbook,
-                        format!("sheet could not be read ({why})"),
-                    ),
-                    SheetError::TooManyCells => (
-                        Code::E024TableTooLarge,
-                        format!(
-                            "the sheet has more than {MAX_FILLED_CELLS} filled cells; a table of 10,000 steps × 256 branches has fewer"
-                        ),
-                    ),
-                };
-                let sheet = Location {
-                    file: file.to_string(),
-                    sheet: Some(name.to_string()),
-                    cell: None,
-                };
-                diags.error(code, sheet, message);
-                None
-            }
-        }
-    };
+    }
+}
 
-    // A side sheet (SETTINGS, ADDRESSES) is found by its name in any case
-    // and without the spaces around it; one that is hidden is used all the
-    // same, and said so. Two sheets that both match (`SETTINGS` and
-    // `Settings `) are an error naming both: reading one would drop the
-    // other's rows without a word. `code` is the code of that sheet's rows.
-    let side_sheet = |workbook: &mut Box<dyn SheetSource>,
-                      wanted: &str,
-                      used: &str,
-                      code: Code,
-                      diags: &mut Diagnostics| {
+/// One sheet's grid, or the error that says why it cannot be read.
+fn read_sheet(
+    file: &str,
+    workbook: &mut Box<dyn SheetSource>,
+    name: &str,
+    diags: &mut Diagnostics,
+) -> Option<Grid> {
+    match workbook.grid(file, name) {
+        Ok(grid) => Some(grid),
+        Err(err) => {
+            let (code, message) = match err {
+                SheetError::Unreadable(why) => (
+                    Code::E002NotAWorkbook,
+                    format!("sheet could not be read ({why})"),
+                ),
+                SheetError::TooManyCells => (
+                    Code::E024TableTooLarge,
+                    format!(
+                        "the sheet has more than {MAX_FILLED_CELLS} filled cells; a table of 10,000 steps × 256 branches has fewer"
+                    ),
+                ),
+            };
+            let sheet = Location {
+                file: file.to_string(),
+                sheet: Some(name.to_string()),
+                cell: None,
+            };
+            diags.error(code, sheet, message);
+            None
+        }
+    }
+}
+
+/// The side sheets (SETTINGS, ADDRESSES) of one workbook.
+struct SideSheets<'a> {
+    file: &'a str,
+    names: &'a [String],
+    workbook: &'a mut Box<dyn SheetSource>,
+}
+
+impl SideSheets<'_> {
+    /// A side sheet is found by its name in any case and without the
+    /// spaces around it; one that is hidden is used all the same, and said
+    /// so. Two sheets that both match (`SETTINGS` and `Settings `) are an
+    /// error naming both: reading one would drop the other's rows without a
+    /// word. `code` is the code of that sheet's rows.
+    fn read(
+        &mut self,
+        wanted: &str,
+        used: &str,
+        code: Code,
+        diags: &mut Diagnostics,
+    ) -> Option<Grid> {
+        let names = self.names;
         let matching: Vec<&String> = names.iter().filter(|n| is_side(n, wanted)).collect();
         let name = (*matching.first()?).clone();
         if matching.len() > 1 {
             let quoted: Vec<String> = matching.iter().map(|n| format!("\"{n}\"")).collect();
+            let whole_file = Location {
+                file: self.file.to_string(),
+                sheet: None,
+                cell: None,
+            };
             diags.error(
                 code,
-                whole_file.clone(),
+                whole_file,
                 format!(
                     "{} sheets are each the {wanted} sheet ({}: names are compared without case and the spaces around them); keep one, or merge their rows into one",
                     matching.len(),
@@ -148,8 +208,8 @@ pub(super) fn read_workbook(
             );
             return None;
         }
-        let grid = read_sheet(workbook, &name, diags)?;
-        if workbook.hidden().contains(&name) {
+        let grid = read_sheet(self.file, self.workbook, &name, diags)?;
+        if self.workbook.hidden().contains(&name) {
             diags.warning(
                 Code::W004SheetChoice,
                 grid.sheet_location(),
@@ -157,35 +217,7 @@ pub(super) fn read_workbook(
             );
         }
         Some(grid)
-    };
-    let settings = side_sheet(
-        &mut workbook,
-        SETTINGS_SHEET,
-        "its settings",
-        Code::E030BadSetting,
-        diags,
-    );
-    let addresses = side_sheet(
-        &mut workbook,
-        ADDRESSES_SHEET,
-        "its pinned addresses",
-        Code::E035BadPinnedAddress,
-        diags,
-    );
-    let table = pick_table(
-        &mut workbook,
-        &names,
-        wanted,
-        &whole_file,
-        diags,
-        &read_sheet,
-    )?;
-    Some(Input {
-        table,
-        settings,
-        addresses,
-        csv_readings: Vec::new(),
-    })
+    }
 }
 
 /// Whether the sheet `name` is the side sheet `wanted` (SETTINGS,
@@ -227,37 +259,7 @@ fn pick_table(
             .find(|n| n.trim().eq_ignore_ascii_case(wanted.trim()))
     };
     if let Some(wanted) = wanted {
-        let Some(name) = find(wanted) else {
-            diags.error(
-                Code::E004NoSuchSheet,
-                whole_file,
-                format!(
-                    "no sheet named \"{wanted}\" (the workbook has: {})",
-                    names.join(", ")
-                ),
-            );
-            return None;
-        };
-        // The SETTINGS or ADDRESSES sheet is read as such already: read as
-        // the table too, its cells would be both settings and moves, and
-        // one reading would call the other's cells unread.
-        if let Some(side) = side_sheet_of(name) {
-            let tables: Vec<&str> = names
-                .iter()
-                .filter(|n| side_sheet_of(n).is_none())
-                .map(String::as_str)
-                .collect();
-            diags.error(
-                Code::E004NoSuchSheet,
-                whole_file,
-                format!(
-                    "\"{name}\" is the {side} sheet, read for the table's {}, not a step table; name the sheet that holds the table with --sheet (the other sheets: {})",
-                    if side == SETTINGS_SHEET { "settings" } else { "pinned addresses" },
-                    if tables.is_empty() { "none".to_string() } else { tables.join(", ") }
-                ),
-            );
-            return None;
-        }
+        let name = asked_sheet(names, wanted, &whole_file, diags)?;
         return read_sheet(workbook, name, diags);
     }
     let hidden = workbook.hidden();
@@ -300,6 +302,64 @@ fn pick_table(
         return None;
     };
     let (score, grid) = candidates.swap_remove(best);
+    say_choice(&grid, score, &candidates, find(TABLE_SHEET), diags);
+    Some(grid)
+}
+
+/// The sheet `--sheet` names (E004 when there is none, or when it is a
+/// side sheet).
+fn asked_sheet<'n>(
+    names: &'n [String],
+    wanted: &str,
+    whole_file: &Location,
+    diags: &mut Diagnostics,
+) -> Option<&'n String> {
+    let whole_file = whole_file.clone();
+    let Some(name) = names
+        .iter()
+        .find(|n| n.trim().eq_ignore_ascii_case(wanted.trim()))
+    else {
+        diags.error(
+            Code::E004NoSuchSheet,
+            whole_file,
+            format!(
+                "no sheet named \"{wanted}\" (the workbook has: {})",
+                names.join(", ")
+            ),
+        );
+        return None;
+    };
+    // The SETTINGS or ADDRESSES sheet is read as such already: read as
+    // the table too, its cells would be both settings and moves, and
+    // one reading would call the other's cells unread.
+    if let Some(side) = side_sheet_of(name) {
+        let tables: Vec<&str> = names
+            .iter()
+            .filter(|n| side_sheet_of(n).is_none())
+            .map(String::as_str)
+            .collect();
+        diags.error(
+            Code::E004NoSuchSheet,
+            whole_file,
+            format!(
+                "\"{name}\" is the {side} sheet, read for the table's {}, not a step table; name the sheet that holds the table with --sheet (the other sheets: {})",
+                if side == SETTINGS_SHEET { "settings" } else { "pinned addresses" },
+                if tables.is_empty() { "none".to_string() } else { tables.join(", ") }
+            ),
+        );
+        return None;
+    }
+    Some(name)
+}
+
+/// W004 when the table's sheet was chosen among several, or is hidden.
+fn say_choice(
+    grid: &Grid,
+    score: TableScore,
+    candidates: &[(TableScore, Grid)],
+    table_sheet: Option<&String>,
+    diags: &mut Diagnostics,
+) {
     let others: Vec<String> = candidates
         .iter()
         .map(|(s, g)| {
@@ -313,7 +373,7 @@ fn pick_table(
         .collect();
     let chosen = grid.sheet.clone().unwrap_or_default();
     let mut why = Vec::new();
-    if let Some(name) = find(TABLE_SHEET) {
+    if let Some(name) = table_sheet {
         why.push(format!("the sheet \"{name}\" is hidden"));
     }
     if !score.visible {
@@ -337,7 +397,6 @@ fn pick_table(
             ),
         );
     }
-    Some(grid)
 }
 
 /// How well a sheet holds a step table; `None` when it holds none.

@@ -16,6 +16,9 @@
 //! (and the actuator table's one-cell caption right above its header) are
 //! left alone.
 
+mod actuators;
+mod unread;
+
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::Given;
@@ -23,8 +26,9 @@ use crate::address::{Mnemonic, Target};
 use crate::diag::{CellPos, Code, Diagnostics, or_list};
 use crate::program::{Modes, Safety};
 use crate::read::{CellValue, Grid, GridCell};
-use crate::stroke::{Stroke, parse_duration_ms, parse_scan};
-use crate::valve::ValveType;
+use crate::stroke::parse_scan;
+use actuators::{actuator_columns, read_actuator_rows, said_without_unit};
+use unread::name_the_rest;
 
 /// Where the actuator table's columns are: its header cell and the columns
 /// of extend and retract times, and of the optional valve and load.
@@ -342,543 +346,108 @@ fn read_labels(
         };
         let at = grid.location(value_cell.pos);
         reader.settings.cells.insert(label, at.clone());
-        let lower = value.to_ascii_lowercase();
-        let settings = &mut reader.settings;
-        let mut said = |message: String| {
-            diags.error(
-                Code::E030BadSetting,
-                at.clone(),
-                format!("{label}: {message}"),
-            );
-        };
-        let mut bad =
-            |expected: String| said(format!("\"{value}\" is not valid (expected {expected})"));
-        match label {
-            // `default`: festo, or iec when a board is named (the
-            // template's own value, so that its board list never
-            // conflicts with its target).
-            "target" if lower == "default" => {}
-            "target" => match value.parse::<Target>() {
-                Ok(target) => settings.target = Some(target),
-                Err(_) => {
-                    let mut names = vec!["default"];
-                    names.extend(Target::NAMES);
-                    bad(or_list(&names))
-                }
-            },
-            "board" if lower == "none" => {}
-            "board" => match value.parse::<crate::address::Board>() {
-                Ok(board) => settings.board = Some(board),
-                Err(_) => bad(format!(
-                    "none or one of {}",
-                    crate::address::BOARDS.map(|b| b.name).join(", ")
-                )),
-            },
-            "mnemonic" => match value.parse::<Mnemonic>() {
-                Ok(mnemonic) => settings.mnemonic = Some(mnemonic),
-                Err(_) => bad(or_list(&Mnemonic::names())),
-            },
-            "designations" => match value.parse::<crate::symbols::Scheme>() {
-                Ok(scheme) => settings.designations = Some(scheme),
-                Err(_) => bad(or_list(&crate::symbols::Scheme::ALL.map(|s| s.name()))),
-            },
-            "scan time" => match parse_scan(&value) {
-                Ok(ms) => {
-                    said_without_unit(grid, value_cell, &value, diags);
-                    settings.scan_ms = Some(ms)
-                }
-                Err(_) => bad("a scan time from 1ms to 1s, such as 10ms".to_string()),
-            },
-            // The parsers say which item is wrong (unknown, twice, empty).
-            "safety" => match value.parse::<Safety>() {
-                Ok(safety) => settings.safety = Some(safety),
-                Err(why) => said(why),
-            },
-            "modes" => match value.parse::<Modes>() {
-                Ok(modes) => settings.modes = Some(modes),
-                Err(why) => said(why),
-            },
-            "supervision" if lower == "none" => {}
-            "supervision" => match crate::program::parse_supervision(&value) {
-                Ok(times) => settings.supervision = Some(times),
-                Err(why) => said(why),
-            },
-            "home order" if lower == "default" => {}
-            "home order" => match Modes::parse_home_order(&value) {
-                Ok(order) => settings.home_order = Some(order),
-                Err(why) => said(why),
-            },
-            // The rows that list outputs or inputs by name: read as a list
-            // here, checked against the table once it is read.
-            other => {
-                if let Some(row) = super::halt::Row::from_label(other)
-                    && lower != "none"
-                {
-                    settings
-                        .named
-                        .insert(row, super::halt::NamedList::parse(&value, at.clone()));
-                }
-            }
-        }
+        apply(&mut reader.settings, label, &value, value_cell, grid, diags);
     }
     label_rows
 }
 
-/// The columns of the actuator table headed at `header`; a header cell
-/// that is none of them is named, since its column would not be read.
-fn actuator_columns(
-    reader: &mut Reader,
-    header: CellPos,
-    diags: &mut Diagnostics,
-) -> ActuatorColumns {
-    let mut columns = ActuatorColumns {
-        header,
-        extend: None,
-        retract: None,
-        valve: None,
-        load: None,
-        last_col: header.col,
-    };
-    reader.seen.insert(header);
-    let cells: Vec<&GridCell> = reader
-        .row(header.row)
-        .filter(|c| c.pos.col > header.col)
-        .collect();
-    for cell in cells {
-        // A label beside the table is a setting of its own.
-        if known_label(&cell.value).is_some() {
-            break;
-        }
-        columns.last_col = cell.pos.col;
-        let label = label_of(&cell.value).unwrap_or_default();
-        let slot = match label.as_str() {
-            "extend" => &mut columns.extend,
-            "retract" => &mut columns.retract,
-            "valve" => &mut columns.valve,
-            "load" => &mut columns.load,
-            _ => {
-                reader.warn(
-                    cell.pos,
-                    format!(
-                        "{} heads no column steptable reads (expected {}); its column was not read",
-                        cell.value.describe(),
-                        COLUMNS.join(", ")
-                    ),
-                    diags,
-                );
-                continue;
-            }
-        };
-        if slot.is_some() {
-            reader.error(
-                cell.pos,
-                format!(
-                    "the actuator table has two {label} columns; remove one (this one was not read)"
-                ),
-                diags,
-            );
-            continue;
-        }
-        reader.seen.insert(cell.pos);
-        *slot = Some(cell.pos.col);
-    }
-    columns
-}
-
-/// The rows of an actuator table: from the header down, blank rows
-/// included, to a row that starts with a label, another table's header or
-/// a note (named). A row whose first cell is no actuator (`C2`, `C2
-/// (clamp)`) is an error when it holds values, which would otherwise be
-/// lost; an actuator given twice (in any actuator table) is an error at
-/// the second, naming the first.
-fn read_actuator_rows(
-    reader: &mut Reader,
-    columns: &ActuatorColumns,
-    layout: &Layout,
-    first_rows: &mut BTreeMap<u32, CellPos>,
-    diags: &mut Diagnostics,
-) {
-    let grid = reader.grid;
-    let header = columns.header;
-    let value_cols: Vec<u32> = [columns.extend, columns.retract, columns.valve, columns.load]
-        .into_iter()
-        .flatten()
-        .collect();
-
-    let in_table = |c: &GridCell| (header.col..=columns.last_col).contains(&c.pos.col);
-    let mut rows_read = 0;
-    let mut ended_by_note = false;
-    // Row by row below the header, blank rows skipped (each next row found
-    // in the index: a sheet of many tables is read in time).
-    let mut row = header.row;
-    while let Some(next) = reader.rows.range(row + 1..).next().map(|(r, _)| *r) {
-        row = next;
-        if layout.header_rows.contains(&row) || layout.table_rows.contains(&row) {
-            break;
-        }
-        let cells: Vec<&GridCell> = reader
-            .row(row)
-            .filter(|c| in_table(c) && !reader.seen.contains(&c.pos))
-            .collect();
-        let name_cell = cells.iter().copied().find(|c| c.pos.col == header.col);
-        // A label in the table's first column: the settings go on below.
-        if reader
-            .at(CellPos::new(row, header.col))
-            .is_some_and(|c| known_label(&c.value).is_some())
-        {
-            break;
-        }
-        if cells.is_empty() {
-            continue;
-        }
-        rows_read += 1;
-        // Right of the last headed column, on a row of the table: a value
-        // that would otherwise be lost.
-        let beyond: Vec<&GridCell> = reader
-            .row(row)
-            .filter(|c| c.pos.col > columns.last_col && !reader.seen.contains(&c.pos))
-            .collect();
-        for cell in beyond {
-            reader.warn(
-                cell.pos,
-                format!(
-                    "{} is right of the actuator table, in a column without a header (expected {}); it was not read",
-                    cell.value.describe(),
-                    COLUMNS.join(", ")
-                ),
-                diags,
-            );
-        }
-        let values: Vec<&GridCell> = cells
-            .iter()
-            .copied()
-            .filter(|c| c.pos.col != header.col)
-            .collect();
-        let Some(name_cell) = name_cell else {
-            reader.seen.extend(values.iter().map(|c| c.pos));
-            reader.error(
-                values[0].pos,
-                "this row of the actuator table names no actuator in its first column; write C1, C2, … there".to_string(),
-                diags,
-            );
-            continue;
-        };
-        let name = text_of(&name_cell.value);
-        let Some(actuator) = crate::cell::actuator_name(&name) else {
-            if values.is_empty() && !crate::cell::looks_like_move(&name) {
-                // A note under the table ends it.
-                reader.warn(
-                    name_cell.pos,
-                    format!(
-                        "{} is not an actuator; the actuator table ends above it",
-                        name_cell.value.describe()
-                    ),
-                    diags,
-                );
-                ended_by_note = true;
-                break;
-            }
-            reader.seen.extend(values.iter().map(|c| c.pos));
-            reader.error(
-                name_cell.pos,
-                format!(
-                    "\"{name}\" is not an actuator (expected C1 to C{}, optionally with a comment: C1 (clamp)); the row's values were not read",
-                    crate::cell::MAX_ACTUATOR
-                ),
-                diags,
-            );
-            continue;
-        };
-        reader.seen.extend(values.iter().map(|c| c.pos));
-        let comment = crate::cell::actuator_comment(&name);
-        if values.is_empty() && comment.is_none() {
-            reader.warn(
-                name_cell.pos,
-                format!("C{actuator} has nothing beside it in the actuator table; nothing was read for it"),
-                diags,
-            );
-            continue;
-        }
-        reader.seen.insert(name_cell.pos);
-        if let Some(earlier) = first_rows.get(&actuator) {
-            reader.error(
-                name_cell.pos,
-                format!(
-                    "C{actuator} is given twice in the actuator table: here and at {}; remove one (this row was not read)",
-                    grid.cell_name(*earlier)
-                ),
-                diags,
-            );
-            continue;
-        }
-        first_rows.insert(actuator, name_cell.pos);
-        // `C1 (clamp)`: the engineer's name of the actuator, for every
-        // output (crate::symbols), even on a row with no other value.
-        if let Some(text) = comment {
-            reader.settings.names.insert(
-                actuator,
-                crate::symbols::ActuatorName {
-                    text,
-                    at: grid.location(name_cell.pos),
-                },
-            );
-        }
-        for cell in &values {
-            if !value_cols.contains(&cell.pos.col) {
-                reader.warn(
-                    cell.pos,
-                    format!(
-                        "{} of C{actuator} is in a column without a header (expected {}); it was not read",
-                        cell.value.describe(),
-                        COLUMNS.join(", ")
-                    ),
-                    diags,
-                );
-            }
-        }
-        let at = |col: u32| cells.iter().copied().find(|c| c.pos.col == col);
-        read_actuator_row(grid, actuator, columns, &at, &mut reader.settings, diags);
-    }
-    // Only a note ended it: no row at all.
-    if rows_read <= usize::from(ended_by_note) {
-        reader.warn(
-            header,
-            "this actuator table has no row of an actuator with values below its header; nothing was read from it".to_string(),
-            diags,
-        );
-    }
-}
-
-/// A time typed as text without a unit (`1000`, `0.02`) is read as
-/// seconds, as a number cell is; typed as text, it may have meant
-/// milliseconds: W007 at the cell, with both spellings.
-fn said_without_unit(grid: &Grid, cell: &GridCell, text: &str, diags: &mut Diagnostics) {
-    let text = text.trim();
-    if matches!(cell.value, CellValue::Text(_)) && crate::cell::without_unit(text) {
-        diags.warning(
-            Code::W007Assumed,
-            grid.location(cell.pos),
-            crate::cell::read_as_seconds(text),
-        );
-    }
-}
-
-fn read_actuator_row<'g>(
-    grid: &Grid,
-    actuator: u32,
-    columns: &ActuatorColumns,
-    at: &dyn Fn(u32) -> Option<&'g GridCell>,
+/// The value of one labelled setting, into `settings`; E030 when it is
+/// not valid.
+fn apply(
     settings: &mut Given,
+    label: &'static str,
+    value: &str,
+    value_cell: &GridCell,
+    grid: &Grid,
     diags: &mut Diagnostics,
 ) {
-    if let Some(cell) = columns.valve.and_then(at)
-        && let Some(text) = value_text(grid, cell, diags)
-    {
-        match text.parse::<ValveType>() {
-            Ok(valve) => {
-                settings.valves.insert(actuator, valve);
-                (settings.actuator_cells).insert((actuator, "valve"), grid.location(cell.pos));
-            }
-            // The parser's message says what was probably meant.
-            Err(why) => diags.error(
-                Code::E030BadSetting,
-                grid.location(cell.pos),
-                format!("valve of C{actuator}: {why}"),
-            ),
-        }
-    }
-    if let Some(cell) = columns.load.and_then(at)
-        && let Some(text) = value_text(grid, cell, diags)
-    {
-        match crate::valve::parse_load(&text) {
-            Some(load) => {
-                settings.loads.insert(actuator, load);
-                (settings.actuator_cells).insert((actuator, "load"), grid.location(cell.pos));
-            }
-            None => diags.error(
-                Code::E030BadSetting,
-                grid.location(cell.pos),
-                format!("load of C{actuator}: \"{text}\" is not a drift in stroke per second from 0 to 10, such as 0.05"),
-            ),
-        }
-    }
-    let mut stroke_at = Vec::new();
-    let mut time = |col: Option<u32>, what: &'static str| -> Option<u32> {
-        let cell = col.and_then(at)?;
-        stroke_at.push((what, grid.location(cell.pos)));
-        let text = value_text(grid, cell, diags)?;
-        let ms = parse_duration_ms(&text);
-        if ms.is_some() {
-            said_without_unit(grid, cell, &text, diags);
-        }
-        if ms.is_none() {
-            diags.error(
-                Code::E030BadSetting,
-                grid.location(cell.pos),
-                format!(
-                    "stroke time of C{actuator}: \"{text}\" is not a time such as 1.5s or 800ms"
-                ),
-            );
-        }
-        ms
+    let at = grid.location(value_cell.pos);
+    let lower = value.to_ascii_lowercase();
+    let mut said = |message: String| {
+        diags.error(
+            Code::E030BadSetting,
+            at.clone(),
+            format!("{label}: {message}"),
+        );
     };
-    let (extend, retract) = (
-        time(columns.extend, "extend"),
-        time(columns.retract, "retract"),
-    );
-    if extend.is_none() && retract.is_none() {
-        return;
-    }
-    for (what, at) in stroke_at {
-        settings.actuator_cells.insert((actuator, what), at);
-    }
-    let default = Stroke::default();
-    settings.strokes.insert(
-        actuator,
-        Stroke {
-            extend_ms: extend.unwrap_or(default.extend_ms),
-            retract_ms: retract.unwrap_or(default.retract_ms),
+    let mut bad =
+        |expected: String| said(format!("\"{value}\" is not valid (expected {expected})"));
+    match label {
+        // `default`: festo, or iec when a board is named (the
+        // template's own value, so that its board list never
+        // conflicts with its target).
+        "target" if lower == "default" => {}
+        "target" => match value.parse::<Target>() {
+            Ok(target) => settings.target = Some(target),
+            Err(_) => {
+                let mut names = vec!["default"];
+                names.extend(Target::NAMES);
+                bad(or_list(&names))
+            }
         },
-    );
-}
-
-/// Names every filled cell not read so far. Above the first setting (not
-/// on the row just above it) a row of one cell is the sheet's title or a
-/// note, named only when it holds a setting and its value in one cell or
-/// is spelt like a label; a one-cell row right above an actuator table's
-/// header is its caption.
-fn name_the_rest(
-    reader: &mut Reader,
-    layout: &Layout,
-    label_rows: &BTreeMap<u32, &'static str>,
-    diags: &mut Diagnostics,
-) {
-    let first_row = label_rows
-        .keys()
-        .chain(&layout.header_rows)
-        .copied()
-        .chain(layout.tables.iter().map(|t| t.header.row))
-        .min();
-    let captions: BTreeSet<u32> = layout
-        .tables
-        .iter()
-        .filter_map(|t| t.header.row.checked_sub(1))
-        .collect();
-    let rows: Vec<u32> = reader.rows.keys().copied().collect();
-    for row in rows {
-        let cells: Vec<&GridCell> = reader.row(row).collect();
-        let lone_text = cells.len() == 1 && matches!(cells[0].value, CellValue::Text(_));
-        let note = lone_text
-            && (captions.contains(&row) || first_row.is_some_and(|first| row + 1 < first));
-        for cell in &cells {
-            if reader.seen.contains(&cell.pos) {
-                continue;
+        "board" if lower == "none" => {}
+        "board" => match value.parse::<crate::address::Board>() {
+            Ok(board) => settings.board = Some(board),
+            Err(_) => bad(format!(
+                "none or one of {}",
+                crate::address::BOARDS.map(|b| b.name).join(", ")
+            )),
+        },
+        "mnemonic" => match value.parse::<Mnemonic>() {
+            Ok(mnemonic) => settings.mnemonic = Some(mnemonic),
+            Err(_) => bad(or_list(&Mnemonic::names())),
+        },
+        "designations" => match value.parse::<crate::symbols::Scheme>() {
+            Ok(scheme) => settings.designations = Some(scheme),
+            Err(_) => bad(or_list(&crate::symbols::Scheme::ALL.map(|s| s.name()))),
+        },
+        "scan time" => match parse_scan(value) {
+            Ok(ms) => {
+                said_without_unit(grid, value_cell, value, diags);
+                settings.scan_ms = Some(ms)
             }
-            let word = label_of(&cell.value).unwrap_or_default();
-            if let Some(label) = setting_in_one_cell(&cell.value) {
-                reader.warn(
-                    cell.pos,
-                    format!(
-                        "{} holds the setting {label} and its value in one cell; write the value in the cell right of \"{label}\" (it was not read)",
-                        cell.value.describe()
-                    ),
-                    diags,
-                );
-                continue;
-            }
-            if note && closest_label(&word).is_none() {
-                // The sheet's title and notes, the table's caption.
-                continue;
-            }
-            match unread_cell(&layout.table_rows, cell, &cells, label_rows) {
-                Unread::Row(message) => {
-                    reader.seen.extend(cells.iter().map(|c| c.pos));
-                    reader.warn(cell.pos, message, diags);
-                }
-                Unread::Lost(message) => {
-                    reader.seen.extend(cells.iter().map(|c| c.pos));
-                    reader.error(cell.pos, message, diags);
-                }
-                Unread::Ignored(message) => reader.warn(cell.pos, message, diags),
+            Err(_) => bad("a scan time from 1ms to 1s, such as 10ms".to_string()),
+        },
+        // The parsers say which item is wrong (unknown, twice, empty).
+        "safety" => match value.parse::<Safety>() {
+            Ok(safety) => settings.safety = Some(safety),
+            Err(why) => said(why),
+        },
+        "modes" => match value.parse::<Modes>() {
+            Ok(modes) => settings.modes = Some(modes),
+            Err(why) => said(why),
+        },
+        "supervision" if lower == "none" => {}
+        "supervision" => match crate::program::parse_supervision(value) {
+            Ok(times) => settings.supervision = Some(times),
+            Err(why) => said(why),
+        },
+        "home order" if lower == "default" => {}
+        "home order" => match Modes::parse_home_order(value) {
+            Ok(order) => settings.home_order = Some(order),
+            Err(why) => said(why),
+        },
+        // The rows that list outputs or inputs by name: read as a list
+        // here, checked against the table once it is read.
+        other => {
+            if let Some(row) = super::halt::Row::from_label(other)
+                && lower != "none"
+            {
+                settings
+                    .named
+                    .insert(row, super::halt::NamedList::parse(value, at.clone()));
             }
         }
     }
 }
-
-/// What is said of a cell nothing read.
-enum Unread {
-    /// Values that would be lost (E030): a row of the actuator table
-    /// outside it.
-    Lost(String),
-    /// W003 for a whole row: an unknown label with its values.
-    Row(String),
-    /// W003: a value beside a setting's, any other cell.
-    Ignored(String),
-}
-
-fn unread_cell(
-    table_rows: &BTreeSet<u32>,
-    cell: &GridCell,
-    row: &[&GridCell],
-    label_rows: &BTreeMap<u32, &'static str>,
-) -> Unread {
-    let describe = cell.value.describe();
-    let first_on_row = row.first().is_some_and(|c| c.pos == cell.pos);
-    let text = text_of(&cell.value);
-    if first_on_row && row.len() > 1 && crate::cell::actuator_name(&text).is_some() {
-        let table = if table_rows
-            .first()
-            .is_some_and(|first| *first < cell.pos.row)
-        {
-            "it is below the end of the actuator table (a label, a note or another table ends it)"
-        } else {
-            "no actuator | extend | retract header is above it"
-        };
-        return Unread::Lost(format!(
-            "{describe} reads as a row of the actuator table, but {table}; its values were not read"
-        ));
-    }
-    if let Some(label) = label_rows.get(&cell.pos.row) {
-        return Unread::Ignored(format!(
-            "{describe} is beside the setting {label}, in a column steptable does not read (notes go under a WHAT IT MEANS header); it was not read"
-        ));
-    }
-    let closest = label_of(&cell.value)
-        .and_then(|label| closest_label(&label))
-        .map(|known| format!(" (did you mean {known}?)"))
-        .unwrap_or_default();
-    if first_on_row && row.len() > 1 && !closest.is_empty() {
-        return Unread::Row(format!(
-            "{describe} is not a setting steptable knows{closest} ({}); its row was not read",
-            LABELS.join(", ")
-        ));
-    }
-    Unread::Ignored(format!(
-        "{describe} is not a setting steptable knows{closest}, a setting's value or a row of the actuator table; it was not read"
-    ))
-}
-
-/// `scan-time`, `Safty`, `homeorder`: the label steptable knows within two
-/// letters of `label`, the closest.
-fn closest_label(label: &str) -> Option<&'static str> {
-    LABELS
-        .into_iter()
-        .chain(["actuator"])
-        .map(|known| (edit_distance(&letters(label), &letters(known)), known))
-        .min()
-        .filter(|(distance, _)| *distance <= 2)
-        .map(|(_, known)| known)
-}
-
-fn letters(text: &str) -> String {
-    text.chars().filter(|c| c.is_alphabetic()).collect()
-}
-
-use crate::cell::edit_distance;
 
 #[cfg(test)]
 mod tests {
+    use super::unread::closest_label;
     use super::*;
+    use crate::cell::edit_distance;
+    use crate::stroke::Stroke;
+    use crate::valve::ValveType;
 
     fn grid(rows: &[&[&str]]) -> Grid {
         Grid::from_text_rows("t.xlsx", Some("SETTINGS"), rows)

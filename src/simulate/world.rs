@@ -3,7 +3,7 @@
 //! One scan reads its inputs here ([`read_input`]) and moves the plant
 //! here ([`World::actuate`]), whichever controller runs it: the step
 //! program in a proof or a fault run (`run`), or any controller on the
-//! [`bench`](super::bench), such as a synthesised one. So a converted
+//! bench (`bench.rs`, which builds on this world), such as a synthesised one. So a converted
 //! program and a synthesised controller are proven against the very same
 //! machine, not against two models of it.
 

@@ -16,19 +16,61 @@ pub(super) fn comment(
     actuator: &dyn Fn(u32) -> String,
     name: &dyn Fn(Signal) -> String,
 ) -> String {
-    let pmax = |a: u32| table.actuator(a).map(|x| x.max_position).unwrap_or(1);
-    let run_on = |n: u16| program.run_ons.get(usize::from(n).wrapping_sub(1));
-    let criterion = |n: u16| program.criteria.get(usize::from(n).wrapping_sub(1));
-    // `x21 on`, `x21 off`, by the signal's designation.
-    let wanted = |l: &crate::program::Literal| {
-        format!(
-            "{} {}",
-            name(l.signal),
-            if l.negated { "off" } else { "on" }
-        )
-    };
     match signal {
+        Signal::Sensor { .. }
+        | Signal::Coil { .. }
+        | Signal::SingleCoil { .. }
+        | Signal::StopAt { .. } => actuator_comment(signal, program, table, actuator),
+        Signal::MachineInput(_)
+        | Signal::MachineOutput(_)
+        | Signal::Dwell(_)
+        | Signal::DwellArmed(_) => table_comment(signal, table),
+        Signal::RunOn(_) | Signal::RunOnArmed(_) | Signal::Awaited(_) | Signal::Missing(_) => {
+            program_comment(signal, program, name)
+        }
         Signal::Start => "START push-button".to_string(),
+        Signal::StartMemory => "START in the previous scan (rising edge)".to_string(),
+        Signal::Halt => "sequence stopped by a safety check".to_string(),
+        Signal::Alarm(Alarm::Sensor) => "alarm: two sensors of one cylinder on at once".to_string(),
+        Signal::Alarm(Alarm::Timeout) => "alarm: a step did not finish in time".to_string(),
+        Signal::Alarm(Alarm::Interlock) => "alarm: an interlock input went off".to_string(),
+        Signal::Watchdog => "step watchdog timer".to_string(),
+        Signal::WatchdogArmed => "watchdog is timing a step".to_string(),
+        Signal::InterlockZone(n) => format!("the sequence is in the steps of interlock zone {n}"),
+        Signal::Continuous => "CONTINUOUS switch (on: repeat cycles)".to_string(),
+        Signal::Stop if program.stops_now() => {
+            "STOP push-button, normally closed (0: stop at once, outputs as on stop says)"
+                .to_string()
+        }
+        Signal::Stop => {
+            "STOP push-button, normally closed (0: finish the cycle, then halt)".to_string()
+        }
+        Signal::EStop => "EMERGENCY STOP, normally closed (0: every coil off at once)".to_string(),
+        Signal::Reset => "RESET push-button (home every actuator)".to_string(),
+        Signal::StepMode => {
+            "STEP_MODE switch (on: single step, one step per STEP_PB press)".to_string()
+        }
+        Signal::StepButton => "STEP_PB push-button (single step: fire the next step)".to_string(),
+        Signal::StepPermit => "the sequence may fire a step in this scan".to_string(),
+        Signal::StepMemory => "STEP_PB as read in the previous scan".to_string(),
+        Signal::CycleRequest => "a cycle was asked for".to_string(),
+        Signal::Busy => "a cycle is under way".to_string(),
+        Signal::AutoRun => "continuous operation runs".to_string(),
+        Signal::Homing => "the homing sequence runs".to_string(),
+        Signal::HomeStage(n) => format!("homing stage {n} runs"),
+        Signal::Sequence => "the step sequence".to_string(),
+    }
+}
+
+/// A sensor, coil or stop signal of an actuator.
+fn actuator_comment(
+    signal: Signal,
+    program: &StepProgram,
+    table: &StepTable,
+    actuator: &dyn Fn(u32) -> String,
+) -> String {
+    let pmax = |a: u32| table.actuator(a).map(|x| x.max_position).unwrap_or(1);
+    match signal {
         Signal::Sensor {
             actuator: a,
             position,
@@ -75,13 +117,15 @@ pub(super) fn comment(
                 actuator(a)
             )
         }
-        Signal::StartMemory => "START in the previous scan (rising edge)".to_string(),
-        Signal::Halt => "sequence stopped by a safety check".to_string(),
-        Signal::Alarm(Alarm::Sensor) => "alarm: two sensors of one cylinder on at once".to_string(),
-        Signal::Alarm(Alarm::Timeout) => "alarm: a step did not finish in time".to_string(),
-        Signal::Alarm(Alarm::Interlock) => "alarm: an interlock input went off".to_string(),
-        Signal::Watchdog => "step watchdog timer".to_string(),
-        Signal::WatchdogArmed => "watchdog is timing a step".to_string(),
+        // Only the signals of an actuator are described here.
+        _ => String::new(),
+    }
+}
+
+/// A machine input or output, or a dwell, by the steps of the table that
+/// use it.
+fn table_comment(signal: Signal, table: &StepTable) -> String {
+    match signal {
         Signal::MachineInput(input) => {
             let waits = |s: &Step| s.waits.iter().any(|w| w.input == input);
             let jumps = |s: &Step| s.jumps.iter().any(|j| j.input == input);
@@ -122,6 +166,29 @@ pub(super) fn comment(
                 format!("dwell {n} waits for its branch to finish ({what})")
             }
         }
+        // Only the signals the table's cells name are described here.
+        _ => String::new(),
+    }
+}
+
+/// A run-on timer or a criterion of the step supervision, by what the
+/// program says of it.
+fn program_comment(
+    signal: Signal,
+    program: &StepProgram,
+    name: &dyn Fn(Signal) -> String,
+) -> String {
+    let run_on = |n: u16| program.run_ons.get(usize::from(n).wrapping_sub(1));
+    let criterion = |n: u16| program.criteria.get(usize::from(n).wrapping_sub(1));
+    // `x21 on`, `x21 off`, by the signal's designation.
+    let wanted = |l: &crate::program::Literal| {
+        format!(
+            "{} {}",
+            name(l.signal),
+            if l.negated { "off" } else { "on" }
+        )
+    };
+    match signal {
         Signal::RunOn(n) => match run_on(n) {
             Some(r) => format!(
                 "run-on timer {n}: {} stays on {} after {}",
@@ -135,28 +202,6 @@ pub(super) fn comment(
             Some(r) => format!("{} runs on after {}", name(r.output), r.event.text()),
             None => format!("run-on {n} is timing"),
         },
-        Signal::InterlockZone(n) => format!("the sequence is in the steps of interlock zone {n}"),
-        Signal::Continuous => "CONTINUOUS switch (on: repeat cycles)".to_string(),
-        Signal::Stop if program.stops_now() => {
-            "STOP push-button, normally closed (0: stop at once, outputs as on stop says)"
-                .to_string()
-        }
-        Signal::Stop => {
-            "STOP push-button, normally closed (0: finish the cycle, then halt)".to_string()
-        }
-        Signal::EStop => "EMERGENCY STOP, normally closed (0: every coil off at once)".to_string(),
-        Signal::Reset => "RESET push-button (home every actuator)".to_string(),
-        Signal::StepMode => {
-            "STEP_MODE switch (on: single step, one step per STEP_PB press)".to_string()
-        }
-        Signal::StepButton => "STEP_PB push-button (single step: fire the next step)".to_string(),
-        Signal::StepPermit => "the sequence may fire a step in this scan".to_string(),
-        Signal::StepMemory => "STEP_PB as read in the previous scan".to_string(),
-        Signal::CycleRequest => "a cycle was asked for".to_string(),
-        Signal::Busy => "a cycle is under way".to_string(),
-        Signal::AutoRun => "continuous operation runs".to_string(),
-        Signal::Homing => "the homing sequence runs".to_string(),
-        Signal::HomeStage(n) => format!("homing stage {n} runs"),
         Signal::Awaited(n) => match criterion(n) {
             Some(l) => format!("criterion {n}: the awaited transition needs {}", wanted(l)),
             None => format!("criterion {n}"),
@@ -169,7 +214,8 @@ pub(super) fn comment(
             ),
             None => format!("criteria analysis bit {}", n - 1),
         },
-        Signal::Sequence => "the step sequence".to_string(),
+        // Only run-ons and criteria are described here.
+        _ => String::new(),
     }
 }
 

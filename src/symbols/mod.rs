@@ -104,177 +104,14 @@ pub struct SymbolTable {
 impl SymbolTable {
     /// The names of `program` (of `table`) under `naming`.
     pub fn build(program: &StepProgram, table: &StepTable, naming: &Naming) -> SymbolTable {
-        let mut used: Vec<Signal> = Vec::new();
-        let signals = &program.signals;
-        used.extend(&signals.inputs);
-        used.extend(signals.valves.iter().map(|v| v.extend()));
-        used.extend(signals.valves.iter().filter_map(|v| v.retract()));
-        used.extend(&signals.outputs);
-        used.extend(&signals.memories);
-        used.extend(&program.timers);
-        // Every signal a step or rung reads or writes, so that a lookup
-        // never misses (a sensor an action comment points to).
-        let steps = program.steps.iter().flat_map(|s| {
-            let jumps = s.jumps.iter().flat_map(|j| {
-                j.condition
-                    .iter()
-                    .map(|l| l.signal)
-                    .chain(j.actions.iter().map(|a| a.signal()))
-            });
-            s.condition
-                .iter()
-                .map(|l| l.signal)
-                .chain(s.actions.iter().map(|a| a.signal()))
-                .chain(jumps)
-                .collect::<Vec<_>>()
-        });
-        let rungs = program.rungs.iter().flat_map(|r| {
-            r.condition
-                .iter()
-                .map(|l| l.signal)
-                .chain(r.actions.iter().map(|a| a.signal()))
-        });
-        used.extend(steps);
-        used.extend(rungs);
-        used.extend(program.init.iter().map(|a| a.signal()));
-        for s in &program.steps {
-            for m in &s.moves {
-                used.push(Signal::Sensor {
-                    actuator: m.actuator,
-                    position: m.to,
-                });
-            }
-        }
-        used.push(Signal::Sequence);
-
-        let designate = |s: Signal| naming.designation(s, table);
         let actuators: BTreeMap<u32, (String, Option<String>)> = table
             .actuators
             .iter()
             .map(|a| (a.number, naming.actuator_parts(a.number)))
             .collect();
-        let actuator = |n: u32| naming.actuator_words(n);
-        let mut table_of = BTreeMap::new();
-        for signal in used {
-            if table_of.contains_key(&signal) {
-                continue;
-            }
-            let ident = naming.ident(signal, table);
-            let designation = designate(signal);
-            let words = comment::comment(signal, program, table, &actuator, &designate);
-            // The designation leads the comment where the identifier does
-            // not show it (ISO 1219 designations are no identifiers).
-            let comment = if designation != ident && designation != signal.symbol() {
-                format!("{designation}: {words}")
-            } else {
-                words
-            };
-            table_of.insert(
-                signal,
-                Symbol {
-                    fst: crate::names::fst_stem(&ident),
-                    ident,
-                    designation,
-                    comment,
-                    role: role(signal),
-                },
-            );
-        }
-        let comment_of = |s: Signal| {
-            table_of
-                .get(&s)
-                .map(|x: &Symbol| x.comment.clone())
-                .unwrap_or_default()
-        };
-        let ident_of = |s: Signal| {
-            table_of
-                .get(&s)
-                .map(|x: &Symbol| x.ident.clone())
-                .unwrap_or_default()
-        };
-        let timers = program
-            .timers
-            .iter()
-            .map(|&t| {
-                let iec_stem = match t {
-                    Signal::Watchdog => "wd".to_string(),
-                    other => ident_of(other),
-                };
-                let step7_stem = match t {
-                    Signal::Dwell(n) => format!("dw{n}"),
-                    Signal::RunOn(n) => format!("ro{n}"),
-                    _ => "wd".to_string(),
-                };
-                let (what, preset) = match t {
-                    Signal::Watchdog => (
-                        "watchdog".to_string(),
-                        "watchdog preset of the running step".to_string(),
-                    ),
-                    other => (ident_of(other), format!("{} preset", ident_of(other))),
-                };
-                let own = |ident: String, comment: String| Own { ident, comment };
-                (
-                    t,
-                    TimerNames {
-                        iec_run: own(format!("{iec_stem}_run"), format!("{} runs", comment_of(t))),
-                        iec_preset: own(
-                            format!("{iec_stem}_pt"),
-                            format!("{} preset", comment_of(t)),
-                        ),
-                        step7_run: own(format!("{step7_stem}_run"), format!("{what} runs")),
-                        step7_preset: own(format!("{step7_stem}_pt"), preset),
-                    },
-                )
-            })
-            .collect();
-        let titles: Vec<(String, String)> = program
-            .steps
-            .iter()
-            .map(|s| {
-                let comment = table
-                    .steps
-                    .iter()
-                    .find(|t| t.number == s.number && s.kind == crate::program::StepKind::Table)
-                    .and_then(|t| t.comment.as_deref());
-                let label = match (s.kind, comment) {
-                    (crate::program::StepKind::EndOfCycle, _) => format!("STEP {} (END)", s.number),
-                    (_, Some(c)) => format!("STEP {} ({c})", s.number),
-                    (_, None) => format!("STEP {}", s.number),
-                };
-                let title = match comment {
-                    Some(c) => format!("{} ({c})", s.title),
-                    None => s.title.clone(),
-                };
-                (label, title)
-            })
-            .collect();
-        let steps = program
-            .steps
-            .iter()
-            .enumerate()
-            .map(|(k, s)| {
-                // While the program waits at step k, the SFC step active is
-                // the table step before it (or the initial step).
-                let active = program.step_in(k);
-                let active_title = match k.checked_sub(1).map(|b| (&program.steps[b], b)) {
-                    Some((before, b)) if before.kind == crate::program::StepKind::Table => {
-                        titles[b].1.clone()
-                    }
-                    _ => crate::program::INITIAL_TITLE.to_string(),
-                };
-                StepNames {
-                    number: s.number,
-                    label: titles[k].0.clone(),
-                    title: titles[k].1.clone(),
-                    flag: Own {
-                        ident: format!("step_{active}"),
-                        comment: format!("STEP {active} is active: {active_title}"),
-                    },
-                    active,
-                    active_title,
-                }
-            })
-            .collect();
+        let table_of = signal_symbols(used_signals(program), program, table, naming);
+        let timers = timer_names(program, &table_of);
+        let steps = step_names(program, table);
         SymbolTable {
             scheme: naming.scheme,
             signals: table_of,
@@ -532,6 +369,198 @@ fn role(signal: Signal) -> &'static str {
             _ => "memory",
         },
     }
+}
+
+/// Every signal the program uses: its I/O, memories and timers, and every
+/// signal a step or rung reads or writes, so that a lookup never misses (a
+/// sensor an action comment points to).
+fn used_signals(program: &StepProgram) -> Vec<Signal> {
+    let mut used: Vec<Signal> = Vec::new();
+    let signals = &program.signals;
+    used.extend(&signals.inputs);
+    used.extend(signals.valves.iter().map(|v| v.extend()));
+    used.extend(signals.valves.iter().filter_map(|v| v.retract()));
+    used.extend(&signals.outputs);
+    used.extend(&signals.memories);
+    used.extend(&program.timers);
+    let steps = program.steps.iter().flat_map(|s| {
+        let jumps = s.jumps.iter().flat_map(|j| {
+            j.condition
+                .iter()
+                .map(|l| l.signal)
+                .chain(j.actions.iter().map(|a| a.signal()))
+        });
+        s.condition
+            .iter()
+            .map(|l| l.signal)
+            .chain(s.actions.iter().map(|a| a.signal()))
+            .chain(jumps)
+            .collect::<Vec<_>>()
+    });
+    let rungs = program.rungs.iter().flat_map(|r| {
+        r.condition
+            .iter()
+            .map(|l| l.signal)
+            .chain(r.actions.iter().map(|a| a.signal()))
+    });
+    used.extend(steps);
+    used.extend(rungs);
+    used.extend(program.init.iter().map(|a| a.signal()));
+    for s in &program.steps {
+        for m in &s.moves {
+            used.push(Signal::Sensor {
+                actuator: m.actuator,
+                position: m.to,
+            });
+        }
+    }
+    used.push(Signal::Sequence);
+
+    used
+}
+
+/// The identifier, designation and comment of every used signal.
+fn signal_symbols(
+    used: Vec<Signal>,
+    program: &StepProgram,
+    table: &StepTable,
+    naming: &Naming,
+) -> BTreeMap<Signal, Symbol> {
+    let designate = |s: Signal| naming.designation(s, table);
+    let actuator = |n: u32| naming.actuator_words(n);
+    let mut table_of = BTreeMap::new();
+    for signal in used {
+        if table_of.contains_key(&signal) {
+            continue;
+        }
+        let ident = naming.ident(signal, table);
+        let designation = designate(signal);
+        let words = comment::comment(signal, program, table, &actuator, &designate);
+        // The designation leads the comment where the identifier does
+        // not show it (ISO 1219 designations are no identifiers).
+        let comment = if designation != ident && designation != signal.symbol() {
+            format!("{designation}: {words}")
+        } else {
+            words
+        };
+        table_of.insert(
+            signal,
+            Symbol {
+                fst: crate::names::fst_stem(&ident),
+                ident,
+                designation,
+                comment,
+                role: role(signal),
+            },
+        );
+    }
+    table_of
+}
+
+/// The run flags and presets of every timer, in the IEC outputs and STEP 7.
+fn timer_names(
+    program: &StepProgram,
+    table_of: &BTreeMap<Signal, Symbol>,
+) -> BTreeMap<Signal, TimerNames> {
+    let comment_of = |s: Signal| {
+        table_of
+            .get(&s)
+            .map(|x: &Symbol| x.comment.clone())
+            .unwrap_or_default()
+    };
+    let ident_of = |s: Signal| {
+        table_of
+            .get(&s)
+            .map(|x: &Symbol| x.ident.clone())
+            .unwrap_or_default()
+    };
+    program
+        .timers
+        .iter()
+        .map(|&t| {
+            let iec_stem = match t {
+                Signal::Watchdog => "wd".to_string(),
+                other => ident_of(other),
+            };
+            let step7_stem = match t {
+                Signal::Dwell(n) => format!("dw{n}"),
+                Signal::RunOn(n) => format!("ro{n}"),
+                _ => "wd".to_string(),
+            };
+            let (what, preset) = match t {
+                Signal::Watchdog => (
+                    "watchdog".to_string(),
+                    "watchdog preset of the running step".to_string(),
+                ),
+                other => (ident_of(other), format!("{} preset", ident_of(other))),
+            };
+            let own = |ident: String, comment: String| Own { ident, comment };
+            (
+                t,
+                TimerNames {
+                    iec_run: own(format!("{iec_stem}_run"), format!("{} runs", comment_of(t))),
+                    iec_preset: own(
+                        format!("{iec_stem}_pt"),
+                        format!("{} preset", comment_of(t)),
+                    ),
+                    step7_run: own(format!("{step7_stem}_run"), format!("{what} runs")),
+                    step7_preset: own(format!("{step7_stem}_pt"), preset),
+                },
+            )
+        })
+        .collect()
+}
+
+/// The label, title and active SFC step of every program step.
+fn step_names(program: &StepProgram, table: &StepTable) -> Vec<StepNames> {
+    let titles: Vec<(String, String)> = program
+        .steps
+        .iter()
+        .map(|s| {
+            let comment = table
+                .steps
+                .iter()
+                .find(|t| t.number == s.number && s.kind == crate::program::StepKind::Table)
+                .and_then(|t| t.comment.as_deref());
+            let label = match (s.kind, comment) {
+                (crate::program::StepKind::EndOfCycle, _) => format!("STEP {} (END)", s.number),
+                (_, Some(c)) => format!("STEP {} ({c})", s.number),
+                (_, None) => format!("STEP {}", s.number),
+            };
+            let title = match comment {
+                Some(c) => format!("{} ({c})", s.title),
+                None => s.title.clone(),
+            };
+            (label, title)
+        })
+        .collect();
+    program
+        .steps
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            // While the program waits at step k, the SFC step active is
+            // the table step before it (or the initial step).
+            let active = program.step_in(k);
+            let active_title = match k.checked_sub(1).map(|b| (&program.steps[b], b)) {
+                Some((before, b)) if before.kind == crate::program::StepKind::Table => {
+                    titles[b].1.clone()
+                }
+                _ => crate::program::INITIAL_TITLE.to_string(),
+            };
+            StepNames {
+                number: s.number,
+                label: titles[k].0.clone(),
+                title: titles[k].1.clone(),
+                flag: Own {
+                    ident: format!("step_{active}"),
+                    comment: format!("STEP {active} is active: {active_title}"),
+                },
+                active,
+                active_title,
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -435,11 +435,9 @@ pub(crate) fn out_of_time(original: &Sequence, options: Options) -> SynthError {
     ))
 }
 
-fn synthesize_within(
-    original: &Sequence,
-    options: Options,
-    progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<Synthesis, SynthError> {
+/// A sequence synthesis refuses: one with memories already, an action
+/// that changes nothing, a cycle that does not end where it started.
+fn unsuitable(original: &Sequence) -> Result<(), SynthError> {
     if original.memories > 0 {
         return Err(SynthError::Unsuitable(
             "give the original sequence without memories (W, X, Y, Z): they are what synthesis finds".to_string(),
@@ -463,6 +461,42 @@ fn synthesize_within(
     if !problems.is_empty() {
         return Err(SynthError::Unsuitable(problems.join("; ")));
     }
+    Ok(())
+}
+
+/// The fewest insertions and memories: the exact front's, else a search's,
+/// else the lower bounds (not proven).
+fn minimum(original: &Sequence, front: &[FrontPoint]) -> Minimum {
+    match front.first() {
+        Some(fewest) => Minimum {
+            insertions: fewest.insertions,
+            memories: fewest.memories,
+            proven: true,
+        },
+        None => match search::minimal(original, search::Limits::default()) {
+            Some(m) => Minimum {
+                insertions: m.insertions,
+                memories: m.memories,
+                proven: true,
+            },
+            None => {
+                let (insertions, memories) = search::lower_bounds(original);
+                Minimum {
+                    insertions,
+                    memories,
+                    proven: false,
+                }
+            }
+        },
+    }
+}
+
+fn synthesize_within(
+    original: &Sequence,
+    options: Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Synthesis, SynthError> {
+    unsuitable(original)?;
     let clashes = original.clashes();
     let ga_start = Instant::now();
     let ga_summary = (options.method != Method::Exact).then(|| {
@@ -497,28 +531,7 @@ fn synthesize_within(
             exact.chosen.equations,
         )
     };
-    let minimum = match front.first() {
-        Some(fewest) => Minimum {
-            insertions: fewest.insertions,
-            memories: fewest.memories,
-            proven: true,
-        },
-        None => match search::minimal(original, search::Limits::default()) {
-            Some(m) => Minimum {
-                insertions: m.insertions,
-                memories: m.memories,
-                proven: true,
-            },
-            None => {
-                let (insertions, memories) = search::lower_bounds(original);
-                Minimum {
-                    insertions,
-                    memories,
-                    proven: false,
-                }
-            }
-        },
-    };
+    let minimum = minimum(original, &front);
     let table = TruthTable::of(&modified);
     let mut equations: Vec<Equation> = table
         .columns

@@ -28,6 +28,16 @@ pub fn equation_line(s: &Synthesis, e: &Equation) -> String {
 /// The report as text.
 pub fn report_text(s: &Synthesis, v: &Verification) -> String {
     let mut out = String::new();
+    sequence_section(&mut out, s);
+    truth_table_section(&mut out, s);
+    equations_section(&mut out, s);
+    verification_section(&mut out, s, v);
+    out
+}
+
+/// The sequence, its signal clashes, and the modified sequence with how it
+/// was found.
+fn sequence_section(out: &mut String, s: &Synthesis) {
     let seq = &s.modified;
     out.push_str(&format!("sequence:          {}\n", s.original.text()));
     if s.clashes.is_empty() {
@@ -79,6 +89,11 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
             )),
         }
     }
+}
+
+/// The signal names and the truth table.
+fn truth_table_section(out: &mut String, s: &Synthesis) {
+    let seq = &s.modified;
     out.push_str("\nnames (as written; the programs' signals):\n");
     for line in seq.name_lines() {
         out.push_str(&format!("  {line}\n"));
@@ -109,6 +124,10 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
             seq.token(seq.actions[k])
         ));
     }
+}
+
+/// Each equation with its size, the totals and the front.
+fn equations_section(out: &mut String, s: &Synthesis) {
     out.push_str(&format!(
         "\nequations (each the proven smallest tree; {CONVENTION}):\n"
     ));
@@ -155,6 +174,10 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
             ));
         }
     }
+}
+
+/// The simulation and modes verdicts, the GP total and the time taken.
+fn verification_section(out: &mut String, s: &Synthesis, v: &Verification) {
     out.push_str(&format!(
         "\nsimulation: {} ({} actions in {:.2} s of simulated time{})\n",
         if v.passed { "passed" } else { "FAILED" },
@@ -203,7 +226,6 @@ pub fn report_text(s: &Synthesis, v: &Verification) -> String {
         out.push_str(&format!(", GA + GP {ms} ms"));
     }
     out.push_str(")\n");
-    out
 }
 
 /// What is proven about the total: the smallest of every candidate, or the

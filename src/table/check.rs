@@ -1,8 +1,7 @@
 //! The rules a table must keep, by code: positions and directions (E020),
 //! one move per actuator per step (E021), home at the end (E022), dwells
-//! (E026), machine signal names (E015, E025), and the machine the table
-//! runs on: valves that can stop at middle positions (E031), a home order
-//! that fits the table (E030, W006).
+//! (E026), jumps, machine signal names (E015, E025). The rules on the
+//! machine the table runs on are in [`super::machine`].
 
 use std::collections::BTreeMap;
 
@@ -11,136 +10,6 @@ use super::{Actuator, Dwell, Jump, MAX_DWELLS, Move, Step, StepTable, Switch, Wa
 use crate::cell::{CellItem, JumpTarget, Name, Sign};
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 use crate::read::Grid;
-use crate::valve::Valves;
-
-/// What a table is checked against besides its own rules: the machine it
-/// runs on and the program's options.
-#[derive(Debug, Clone, Copy)]
-pub struct Machine<'a> {
-    pub valves: &'a Valves,
-    pub home_order: Option<&'a [Vec<u32>]>,
-    /// Where the home order was given: its SETTINGS cell, or `None` for
-    /// the command line (`--home-order`).
-    pub home_order_at: Option<&'a Location>,
-    /// Whether the program has the reset mode, which uses the home order.
-    pub reset: bool,
-    /// The (lower-case) names of the operating-mode buttons the program has
-    /// (`stop`, `estop`, …): taken only when their mode is on.
-    pub buttons: &'a [String],
-}
-
-/// Checks a built table against the machine it runs on: the valve types,
-/// the home order (checked whether or not the reset mode uses it) and the
-/// names the operating modes take.
-pub fn check_machine(table: &StepTable, machine: &Machine, grid: &Grid, diags: &mut Diagnostics) {
-    check_valves(table, machine.valves, grid, diags);
-    check_home_order(table, machine, grid, diags);
-    check_button_names(table, machine.buttons, grid, diags);
-}
-
-/// A machine input or output may be called `stop` unless the program has a
-/// STOP button of that name (and likewise for the other buttons): what the
-/// buttons add to the one name check ([`crate::names::signal_problem`]),
-/// which the table's own build ran without them. Said at the name's first
-/// cell, whether a wait, a jump or an output switch.
-fn check_button_names(table: &StepTable, buttons: &[String], grid: &Grid, diags: &mut Diagnostics) {
-    for name in table.inputs.iter().chain(&table.outputs) {
-        let name = name.as_str();
-        if crate::names::signal_problem(name, &[]).is_some() {
-            continue;
-        }
-        if let (Some(why), Some(cell)) = (
-            crate::names::signal_problem(name, buttons),
-            first_use(table, name),
-        ) {
-            diags.error(Code::E015BadName, grid.location(cell), why);
-        }
-    }
-}
-
-/// The first cell (in step order) that names a machine input or output.
-fn first_use(table: &StepTable, name: &str) -> Option<CellPos> {
-    table.steps.iter().find_map(|s| {
-        let waits = s.waits.iter().filter(|w| w.input.as_str() == name);
-        let jumps = s.jumps.iter().filter(|j| j.input.as_str() == name);
-        let switches = s.switches.iter().filter(|w| w.output.as_str() == name);
-        waits
-            .map(|w| w.cell)
-            .chain(jumps.map(|j| j.cell))
-            .chain(switches.map(|w| w.cell))
-            .min()
-    })
-}
-
-/// Where a message about the home order goes: on its SETTINGS cell, or on
-/// the file with the words naming `--home-order` to end the message.
-pub fn home_order_place(at: Option<&Location>, file: &str) -> (Location, &'static str) {
-    match at {
-        Some(at) => (at.clone(), ""),
-        None => (
-            Location {
-                file: file.to_string(),
-                sheet: None,
-                cell: None,
-            },
-            " (--home-order)",
-        ),
-    }
-}
-
-/// A home order is checked against the table whether or not it is used,
-/// and a home order without the reset mode that uses it is said, so that a
-/// forgotten `reset` is not silently a no-op.
-fn check_home_order(table: &StepTable, machine: &Machine, grid: &Grid, diags: &mut Diagnostics) {
-    let Some(order) = machine.home_order else {
-        return;
-    };
-    let (at, source) = home_order_place(machine.home_order_at, &grid.file);
-    if let Err(message) = table.home_stages(Some(order)) {
-        diags.error(Code::E030BadSetting, at, format!("{message}{source}"));
-    } else if !machine.reset {
-        diags.warning(
-            Code::W006NoEffect,
-            at,
-            format!("the home order is used by the reset mode only, which is not on: add reset to the modes, or leave the home order out{source}"),
-        );
-    }
-}
-
-/// A middle position needs a valve with a centre: a 5/2 valve cannot stop a
-/// piston between its ends. Names the cell of the first move that asks for it.
-fn check_valves(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut Diagnostics) {
-    for actuator in table.actuators.iter().filter(|a| a.has_middle_positions()) {
-        let valve = valves.of(actuator.number, actuator.max_position);
-        if valve.has_centre() {
-            continue;
-        }
-        let Some(m) = table
-            .steps
-            .iter()
-            .flat_map(|s| &s.moves)
-            .find(|m| m.actuator == actuator.number && actuator.is_middle(m.to))
-        else {
-            continue;
-        };
-        let centred: Vec<&str> = crate::valve::ValveType::ALL
-            .into_iter()
-            .filter(|v| v.has_centre())
-            .map(|v| v.name())
-            .collect();
-        diags.error(
-            Code::E031ValveCannotStop,
-            grid.location(m.cell),
-            format!(
-                "\"{}\" stops C{} at middle position {}, but its valve is {valve}, which cannot stop a piston between its ends (use {})",
-                m.notation(),
-                actuator.number,
-                m.to,
-                crate::diag::or_list(&centred)
-            ),
-        );
-    }
-}
 
 /// The actuators whose position a refused cell leaves unknown, from the
 /// step (index) of that cell on: a move checked against a position the
@@ -176,200 +45,18 @@ pub(super) fn check(
     refused: &Refused,
     diags: &mut Diagnostics,
 ) -> Option<StepTable> {
-    // pmax(i): the highest position written for Ci; at least 1.
-    let mut max_position: BTreeMap<u32, u32> = BTreeMap::new();
-    for (item, _, _) in parsed.iter().flatten() {
-        if let CellItem::Move(m) = item {
-            let entry = max_position.entry(m.actuator).or_insert(1);
-            if let Some(p) = m.position {
-                *entry = (*entry).max(p);
-            }
-        }
-    }
-
-    let location = |pos: CellPos| -> Location { grid.location(pos) };
-    let mut current: BTreeMap<u32, (u32, Option<CellPos>)> =
-        max_position.keys().map(|a| (*a, (0, None))).collect();
-    let mut names = Names::default();
-    let mut dwell_count = 0usize;
+    let mut rules = Rules::new(grid, refused, diags, &parsed);
     let mut steps = Vec::with_capacity(parsed.len());
     for (index, row) in parsed.into_iter().enumerate() {
-        let number = index + 1;
-        // The engineer's comment on the step's label (`STEP 3 (clamp part)`).
-        let comment = frame.label_cell(grid, index).and_then(|c| match &c.value {
-            crate::read::CellValue::Text(t) => crate::cell::step_comment(t),
-            _ => None,
-        });
-        let mut step = Step {
-            number,
-            comment,
-            moves: Vec::with_capacity(row.len()),
-            dwells: Vec::new(),
-            waits: Vec::new(),
-            switches: Vec::new(),
-            jumps: Vec::new(),
-        };
-        let mut seen: BTreeMap<u32, CellPos> = BTreeMap::new();
-        for (item, pos, branch) in row {
-            let m = match item {
-                CellItem::Move(m) => m,
-                CellItem::Dwell { ms } => {
-                    if step.dwells.iter().any(|d| d.cell == pos) {
-                        diags.error(
-                            Code::E021TwiceInStep,
-                            location(pos),
-                            "a cell holds at most one dwell (T=…); add the times up",
-                        );
-                        continue;
-                    }
-                    dwell_count += 1;
-                    if dwell_count == MAX_DWELLS + 1 {
-                        diags.error(
-                            Code::E026TooManyDwells,
-                            location(pos),
-                            format!(
-                                "this is dwell number {dwell_count}; a table has at most {MAX_DWELLS} (PLCs have 256 timers)"
-                            ),
-                        );
-                    }
-                    step.dwells.push(Dwell {
-                        number: dwell_count.min(u16::MAX as usize) as u16,
-                        ms,
-                        branch,
-                        cell: pos,
-                    });
-                    continue;
-                }
-                CellItem::Wait { input, value } => {
-                    if step.waits.iter().any(|w| w.input == input) {
-                        diags.error(
-                            Code::E021TwiceInStep,
-                            location(pos),
-                            format!("STEP {number} already waits for I:{input}; a step waits for an input once"),
-                        );
-                        continue;
-                    }
-                    names.use_name(input, NameKind::Input, pos, grid, diags);
-                    step.waits.push(Wait {
-                        input,
-                        value,
-                        branch,
-                        cell: pos,
-                    });
-                    continue;
-                }
-                CellItem::Jump {
-                    target,
-                    input,
-                    value,
-                } => {
-                    if step.jumps.iter().any(|j| j.input == input) {
-                        diags.error(
-                            Code::E021TwiceInStep,
-                            location(pos),
-                            format!("STEP {number} already jumps on I:{input}; a step jumps on an input once"),
-                        );
-                        continue;
-                    }
-                    names.use_name(input, NameKind::Input, pos, grid, diags);
-                    step.jumps.push(Jump {
-                        target: match target {
-                            JumpTarget::Step(n) => Some(n as usize),
-                            JumpTarget::End => None,
-                        },
-                        input,
-                        value,
-                        branch,
-                        cell: pos,
-                    });
-                    continue;
-                }
-                CellItem::Switch { output, on } => {
-                    if step.switches.iter().any(|w| w.output == output) {
-                        diags.error(
-                            Code::E021TwiceInStep,
-                            location(pos),
-                            format!("STEP {number} already switches Y:{output}; a step switches an output once"),
-                        );
-                        continue;
-                    }
-                    names.use_name(output, NameKind::Output, pos, grid, diags);
-                    step.switches.push(Switch {
-                        output,
-                        on,
-                        branch,
-                        cell: pos,
-                    });
-                    continue;
-                }
-            };
-            let pmax = max_position.get(&m.actuator).copied().unwrap_or(1);
-            let to = m.position.unwrap_or(match m.sign {
-                Sign::Plus => pmax,
-                Sign::Minus => 0,
-            });
-            let written = m.to_string();
-            if let Some(first) = seen.get(&m.actuator) {
-                diags.error(
-                    Code::E021TwiceInStep,
-                    location(pos),
-                    format!(
-                        "\"{written}\": C{} already moves in STEP {number} (cell {}); an actuator moves at most once per step",
-                        m.actuator,
-                        grid.cell_name(*first)
-                    ),
-                );
-                continue;
-            }
-            seen.insert(m.actuator, pos);
-            let (from, _) = current.get(&m.actuator).copied().unwrap_or((0, None));
-            let ok = match m.sign {
-                Sign::Plus => to > from,
-                Sign::Minus => to < from,
-            };
-            if !ok && !refused.unknown(m.actuator, index) {
-                let (need, verb) = match m.sign {
-                    Sign::Plus => ("higher", "a + move extends"),
-                    Sign::Minus => ("lower", "a - move retracts"),
-                };
-                diags.error(
-                    Code::E020WrongDirection,
-                    location(pos),
-                    format!(
-                        "\"{written}\": C{} stands at position {from} before STEP {number}; {verb}, so it must go to a {need} position than {from}",
-                        m.actuator
-                    ),
-                );
-            }
-            current.insert(m.actuator, (to, Some(pos)));
-            step.moves.push(Move {
-                actuator: m.actuator,
-                sign: m.sign,
-                from,
-                to,
-                branch,
-                cell: pos,
-            });
-        }
-        steps.push(step);
+        steps.push(rules.step(frame, index, row));
     }
-
-    for (actuator, (position, last_cell)) in &current {
-        if *position != 0 && !refused.unknown(*actuator, usize::MAX) {
-            let loc = match last_cell {
-                Some(pos) => location(*pos),
-                None => grid.sheet_location(),
-            };
-            diags.error(
-                Code::E022NotHome,
-                loc,
-                format!(
-                    "C{actuator} ends the cycle at position {position}, not at home; every actuator must be back at position 0 after the last step (add C{actuator}-0)"
-                ),
-            );
-        }
-    }
-
+    rules.home();
+    let Rules {
+        max_position,
+        names,
+        diags,
+        ..
+    } = rules;
     check_jumps(&steps, refused, grid, diags);
     Some(StepTable {
         file: grid.file.clone(),
@@ -386,6 +73,282 @@ pub(super) fn check(
         inputs: names.inputs,
         outputs: names.outputs,
     })
+}
+
+/// The table's rules as its cells are read in step order, one validator
+/// per kind of cell item, each with the codes it reports; the state they
+/// share is where every actuator stands and which names are taken.
+struct Rules<'a> {
+    grid: &'a Grid,
+    refused: &'a Refused,
+    diags: &'a mut Diagnostics,
+    /// pmax(i): the highest position written for Ci; at least 1.
+    max_position: BTreeMap<u32, u32>,
+    /// Where each actuator stands and the cell that last moved it.
+    current: BTreeMap<u32, (u32, Option<CellPos>)>,
+    names: Names,
+    dwell_count: usize,
+}
+
+impl<'a> Rules<'a> {
+    fn new(
+        grid: &'a Grid,
+        refused: &'a Refused,
+        diags: &'a mut Diagnostics,
+        parsed: &[Vec<(CellItem, CellPos, usize)>],
+    ) -> Self {
+        let mut max_position: BTreeMap<u32, u32> = BTreeMap::new();
+        for (item, _, _) in parsed.iter().flatten() {
+            if let CellItem::Move(m) = item {
+                let entry = max_position.entry(m.actuator).or_insert(1);
+                if let Some(p) = m.position {
+                    *entry = (*entry).max(p);
+                }
+            }
+        }
+        let current = max_position.keys().map(|a| (*a, (0, None))).collect();
+        Rules {
+            grid,
+            refused,
+            diags,
+            max_position,
+            current,
+            names: Names::default(),
+            dwell_count: 0,
+        }
+    }
+
+    fn location(&self, pos: CellPos) -> Location {
+        self.grid.location(pos)
+    }
+
+    /// One step of the table, each of its cell items checked.
+    fn step(&mut self, frame: &Frame, index: usize, row: Vec<(CellItem, CellPos, usize)>) -> Step {
+        let number = index + 1;
+        // The engineer's comment on the step's label (`STEP 3 (clamp part)`).
+        let comment = frame
+            .label_cell(self.grid, index)
+            .and_then(|c| match &c.value {
+                crate::read::CellValue::Text(t) => crate::cell::step_comment(t),
+                _ => None,
+            });
+        let mut step = Step {
+            number,
+            comment,
+            moves: Vec::with_capacity(row.len()),
+            dwells: Vec::new(),
+            waits: Vec::new(),
+            switches: Vec::new(),
+            jumps: Vec::new(),
+        };
+        let mut seen: BTreeMap<u32, CellPos> = BTreeMap::new();
+        for (item, pos, branch) in row {
+            match item {
+                CellItem::Move(m) => self.movement(&mut step, &mut seen, index, m, pos, branch),
+                CellItem::Dwell { ms } => self.dwell(&mut step, ms, pos, branch),
+                CellItem::Wait { input, value } => self.wait(&mut step, input, value, pos, branch),
+                CellItem::Jump {
+                    target,
+                    input,
+                    value,
+                } => self.jump(&mut step, target, input, value, pos, branch),
+                CellItem::Switch { output, on } => self.switch(&mut step, output, on, pos, branch),
+            }
+        }
+        step
+    }
+
+    /// E021 (two dwells in a cell), E026 (too many dwells).
+    fn dwell(&mut self, step: &mut Step, ms: u32, pos: CellPos, branch: usize) {
+        if step.dwells.iter().any(|d| d.cell == pos) {
+            self.diags.error(
+                Code::E021TwiceInStep,
+                self.location(pos),
+                "a cell holds at most one dwell (T=…); add the times up",
+            );
+            return;
+        }
+        self.dwell_count += 1;
+        let dwell_count = self.dwell_count;
+        if dwell_count == MAX_DWELLS + 1 {
+            self.diags.error(
+                Code::E026TooManyDwells,
+                self.location(pos),
+                format!(
+                    "this is dwell number {dwell_count}; a table has at most {MAX_DWELLS} (PLCs have 256 timers)"
+                ),
+            );
+        }
+        step.dwells.push(Dwell {
+            number: dwell_count.min(u16::MAX as usize) as u16,
+            ms,
+            branch,
+            cell: pos,
+        });
+    }
+
+    /// E021 when a step names a machine signal `twice` for one purpose
+    /// (`message`); else the name is taken as an input or output. Whether
+    /// the item is read.
+    fn first_use(
+        &mut self,
+        twice: bool,
+        name: Name,
+        kind: NameKind,
+        pos: CellPos,
+        message: impl FnOnce() -> String,
+    ) -> bool {
+        if twice {
+            self.diags
+                .error(Code::E021TwiceInStep, self.location(pos), message());
+            return false;
+        }
+        self.names.use_name(name, kind, pos, self.grid, self.diags);
+        true
+    }
+
+    /// E021 (a step waits for an input twice), and the input's name.
+    fn wait(&mut self, step: &mut Step, input: Name, value: bool, pos: CellPos, branch: usize) {
+        let twice = step.waits.iter().any(|w| w.input == input);
+        let number = step.number;
+        if !self.first_use(twice, input, NameKind::Input, pos, || {
+            format!("STEP {number} already waits for I:{input}; a step waits for an input once")
+        }) {
+            return;
+        }
+        step.waits.push(Wait {
+            input,
+            value,
+            branch,
+            cell: pos,
+        });
+    }
+
+    /// E021 (a step jumps on an input twice), and the input's name.
+    fn jump(
+        &mut self,
+        step: &mut Step,
+        target: JumpTarget,
+        input: Name,
+        value: bool,
+        pos: CellPos,
+        branch: usize,
+    ) {
+        let twice = step.jumps.iter().any(|j| j.input == input);
+        let number = step.number;
+        if !self.first_use(twice, input, NameKind::Input, pos, || {
+            format!("STEP {number} already jumps on I:{input}; a step jumps on an input once")
+        }) {
+            return;
+        }
+        step.jumps.push(Jump {
+            target: match target {
+                JumpTarget::Step(n) => Some(n as usize),
+                JumpTarget::End => None,
+            },
+            input,
+            value,
+            branch,
+            cell: pos,
+        });
+    }
+
+    /// E021 (a step switches an output twice), and the output's name.
+    fn switch(&mut self, step: &mut Step, output: Name, on: bool, pos: CellPos, branch: usize) {
+        let twice = step.switches.iter().any(|w| w.output == output);
+        let number = step.number;
+        if !self.first_use(twice, output, NameKind::Output, pos, || {
+            format!("STEP {number} already switches Y:{output}; a step switches an output once")
+        }) {
+            return;
+        }
+        step.switches.push(Switch {
+            output,
+            on,
+            branch,
+            cell: pos,
+        });
+    }
+
+    /// E021 (an actuator moves twice in a step), E020 (a move against
+    /// where the actuator stands).
+    fn movement(
+        &mut self,
+        step: &mut Step,
+        seen: &mut BTreeMap<u32, CellPos>,
+        index: usize,
+        m: crate::cell::CellMove,
+        pos: CellPos,
+        branch: usize,
+    ) {
+        let number = step.number;
+        let pmax = self.max_position.get(&m.actuator).copied().unwrap_or(1);
+        let to = m.position.unwrap_or(match m.sign {
+            Sign::Plus => pmax,
+            Sign::Minus => 0,
+        });
+        let written = m.to_string();
+        if let Some(first) = seen.get(&m.actuator) {
+            self.diags.error(
+                Code::E021TwiceInStep,
+                self.location(pos),
+                format!(
+                    "\"{written}\": C{} already moves in STEP {number} (cell {}); an actuator moves at most once per step",
+                    m.actuator,
+                    self.grid.cell_name(*first)
+                ),
+            );
+            return;
+        }
+        seen.insert(m.actuator, pos);
+        let (from, _) = self.current.get(&m.actuator).copied().unwrap_or((0, None));
+        let ok = match m.sign {
+            Sign::Plus => to > from,
+            Sign::Minus => to < from,
+        };
+        if !ok && !self.refused.unknown(m.actuator, index) {
+            let (need, verb) = match m.sign {
+                Sign::Plus => ("higher", "a + move extends"),
+                Sign::Minus => ("lower", "a - move retracts"),
+            };
+            self.diags.error(
+                Code::E020WrongDirection,
+                self.location(pos),
+                format!(
+                    "\"{written}\": C{} stands at position {from} before STEP {number}; {verb}, so it must go to a {need} position than {from}",
+                    m.actuator
+                ),
+            );
+        }
+        self.current.insert(m.actuator, (to, Some(pos)));
+        step.moves.push(Move {
+            actuator: m.actuator,
+            sign: m.sign,
+            from,
+            to,
+            branch,
+            cell: pos,
+        });
+    }
+
+    /// E022: every actuator back at position 0 after the last step.
+    fn home(&mut self) {
+        for (actuator, (position, last_cell)) in &self.current {
+            if *position != 0 && !self.refused.unknown(*actuator, usize::MAX) {
+                let loc = match last_cell {
+                    Some(pos) => self.grid.location(*pos),
+                    None => self.grid.sheet_location(),
+                };
+                self.diags.error(
+                    Code::E022NotHome,
+                    loc,
+                    format!(
+                        "C{actuator} ends the cycle at position {position}, not at home; every actuator must be back at position 0 after the last step (add C{actuator}-0)"
+                    ),
+                );
+            }
+        }
+    }
 }
 
 /// Every jump goes to a step the table has, not to where the sequence goes

@@ -1,4 +1,6 @@
 use super::*;
+use crate::diag::Diagnostics;
+use crate::read::Grid;
 
 /// A grid from rows of text, top-left at A1; "" is an empty cell.
 pub(crate) fn grid(rows: &[&[&str]]) -> Grid {

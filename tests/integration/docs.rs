@@ -278,3 +278,24 @@ fn the_reference_lists_every_code_option_and_settings_row() {
         );
     }
 }
+
+/// Every fuzz command of the development notes runs on a fresh clone: a
+/// corpus folder it names exists in git or is made on the same line
+/// (`mkdir -p`), since libFuzzer refuses a folder that is not there.
+#[test]
+fn every_fuzz_command_names_folders_a_fresh_clone_has() {
+    let notes = read(Path::new("docs/development.md"));
+    let mut commands = 0;
+    for line in notes.lines().filter(|l| l.contains("fuzz run ")) {
+        commands += 1;
+        let (made, run) = line.split_once("fuzz run ").unwrap();
+        let folders = run.split(" -- ").next().unwrap().split_whitespace().skip(1);
+        for folder in folders {
+            assert!(
+                root().join(folder).is_dir() || made.contains(&format!("mkdir -p {folder}")),
+                "docs/development.md: `{line}` names {folder}, which a fresh clone does not have (make it with mkdir -p before the run)"
+            );
+        }
+    }
+    assert!(commands >= 6, "the fuzz commands moved: {commands} found");
+}

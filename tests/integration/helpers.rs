@@ -337,26 +337,39 @@ pub struct Refused {
     pub code_at: &'static str,
 }
 
+/// A table (sheet `TABLE`) and its SETTINGS rows written to a workbook and
+/// converted with `args`: the run, asserted to exit with `exit`, and the
+/// output folder it was given (inside the returned temporary folder).
+pub fn convert_sheets(
+    table: &[&[&str]],
+    settings: &[&[&str]],
+    args: &[&str],
+    exit: i32,
+) -> (tempfile::TempDir, PathBuf, assert_cmd::assert::Assert) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("h.xlsx");
+    let mut sheets: Vec<(&str, &[&[&str]])> = vec![("TABLE", table)];
+    if !settings.is_empty() {
+        sheets.push(("SETTINGS", settings));
+    }
+    write_xlsx_sheets(&path, &sheets);
+    let out = dir.path().join("out");
+    let assert = steptable()
+        .arg("convert")
+        .arg(&path)
+        .args(args)
+        .args(["--formats", "st", "-o"])
+        .arg(&out)
+        .assert()
+        .code(exit);
+    (dir, out, assert)
+}
+
 /// Each row through `convert`: exit 1, its code at its cell, nothing
 /// written.
 pub fn assert_refused(cases: &[Refused]) {
     for case in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("h.xlsx");
-        let mut sheets: Vec<(&str, &[&[&str]])> = vec![("TABLE", case.table)];
-        if !case.settings.is_empty() {
-            sheets.push(("SETTINGS", case.settings));
-        }
-        write_xlsx_sheets(&path, &sheets);
-        let out = dir.path().join("out");
-        let assert = steptable()
-            .arg("convert")
-            .arg(&path)
-            .args(case.args)
-            .args(["--formats", "st", "-o"])
-            .arg(&out)
-            .assert()
-            .code(1);
+        let (_dir, out, assert) = convert_sheets(case.table, case.settings, case.args, 1);
         let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
         assert!(
             stderr.contains(case.code_at),

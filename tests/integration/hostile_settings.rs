@@ -6,7 +6,7 @@
 use predicates::prelude::*;
 use predicates::str::contains;
 
-use crate::helpers::{files_below, steptable, write_xlsx_sheets};
+use crate::helpers::{convert_sheets, files_below};
 
 /// One hostile input: the SETTINGS rows, the options, and what must come out.
 struct Case {
@@ -27,23 +27,10 @@ const TWO: &[&[&str]] = &[
     &["C1-0; Y:vacuum-"],
 ];
 
+/// The row through `convert`, as every hostile table is
+/// ([`crate::helpers::convert_sheets`]), with the exit code of the row.
 fn run(case: &Case) {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("h.xlsx");
-    let mut sheets: Vec<(&str, &[&[&str]])> = vec![("TABLE", case.table)];
-    if !case.settings.is_empty() {
-        sheets.push(("SETTINGS", case.settings));
-    }
-    write_xlsx_sheets(&path, &sheets);
-    let out = dir.path().join("out");
-    let assert = steptable()
-        .arg("convert")
-        .arg(&path)
-        .args(case.args)
-        .args(["--formats", "st", "-o"])
-        .arg(&out)
-        .assert()
-        .code(case.exit);
+    let (_dir, out, assert) = convert_sheets(case.table, case.settings, case.args, case.exit);
     let assert = if case.code_at.is_empty() {
         assert.stderr(contains("error[").not())
     } else {

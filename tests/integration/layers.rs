@@ -289,3 +289,21 @@ fn synth_runs_its_controllers_only_on_the_shared_bench() {
         }
     }
 }
+
+/// Inside every module the submodules import one way too (a module's
+/// `mod.rs` holds them together and is left out): a circle such as
+/// `synth::modes` <-> `synth::verify` fails here for any module.
+#[test]
+fn no_module_has_a_circle_inside() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut modules = 0;
+    for entry in std::fs::read_dir(src).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            let module = path.file_name().unwrap().to_string_lossy().to_string();
+            no_circle(&submodule_imports(&module), &format!(" in {module}"));
+            modules += 1;
+        }
+    }
+    assert!(modules >= 10, "{modules} modules found");
+}

@@ -59,6 +59,7 @@ mod snapshots;
 mod stdout;
 mod stepping;
 mod stray_cells;
+mod structure;
 mod supervision;
 mod supervision_hostile;
 mod synth;

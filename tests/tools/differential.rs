@@ -178,14 +178,16 @@ fn st_inside_plcopen_codesys_and_exp_runs_in_matiec_as_simulated() {
     );
 }
 
-/// `check-upload` replays OpenPLC Runtime v3's upload compile.
-pub(crate) fn openplc_accepts(shared: &Path, st: &Path) -> Result<(), String> {
-    let output = Command::new(shared.join("tools/openplc/check-upload"))
+/// Runs an OpenPLC build replay (`script`: v3's `check-upload`, v4's
+/// `check-upload-v4`) on one file: accepted when it exits 0 and prints
+/// `needle`.
+pub(crate) fn replay_accepts(script: &Path, needle: &str, st: &Path) -> Result<(), String> {
+    let output = Command::new(script)
         .arg(st)
         .output()
         .map_err(|e| e.to_string())?;
     let text = String::from_utf8_lossy(&output.stdout);
-    if output.status.success() && text.contains("openplc: accepted") {
+    if output.status.success() && text.contains(needle) {
         Ok(())
     } else {
         Err(format!(
@@ -194,6 +196,15 @@ pub(crate) fn openplc_accepts(shared: &Path, st: &Path) -> Result<(), String> {
             String::from_utf8_lossy(&output.stderr)
         ))
     }
+}
+
+/// `check-upload` replays OpenPLC Runtime v3's upload compile.
+pub(crate) fn openplc_accepts(shared: &Path, st: &Path) -> Result<(), String> {
+    replay_accepts(
+        &shared.join("tools/openplc/check-upload"),
+        "openplc: accepted",
+        st,
+    )
 }
 
 fn openplc_upload_accepts_every_st() {

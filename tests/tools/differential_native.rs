@@ -12,9 +12,8 @@
 //! software with licences no test can hold.
 
 use std::path::Path;
-use std::process::Command;
 
-use crate::differential::{matrix, press_case, run_all, swap_first_after};
+use crate::differential::{matrix, press_case, replay_accepts, run_all, swap_first_after};
 use crate::engines::{Case, rll, scl};
 use crate::helpers::steptable;
 use crate::{Check, Tool, tool};
@@ -157,20 +156,7 @@ fn a_wrong_l5x_file_is_caught() {
 
 /// OpenPLC v4's build (`check-upload-v4`) replayed on one file.
 fn openplc_v4_accepts(st: &Path) -> Result<(), String> {
-    let output = Command::new(tool(Tool::OpenPlc4))
-        .arg(st)
-        .output()
-        .map_err(|e| e.to_string())?;
-    let text = String::from_utf8_lossy(&output.stdout);
-    if output.status.success() && text.contains("openplc4: accepted") {
-        Ok(())
-    } else {
-        Err(format!(
-            "{}: {text}{}",
-            st.display(),
-            String::from_utf8_lossy(&output.stderr)
-        ))
-    }
+    replay_accepts(&tool(Tool::OpenPlc4), "openplc4: accepted", st)
 }
 
 fn openplc_v4_accepts_every_st() {

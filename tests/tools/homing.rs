@@ -4,12 +4,9 @@
 //! lifts the punch before it opens the clamp, in matiec (iec), awlsim
 //! (siemens) and the FST interpreter (festo), scan for scan as simulated.
 
-use steptable::convert;
 use steptable::simulate::Operator;
-use steptable::simulate::scenario::scenario_recording;
 
 use crate::engines::{self, awlsim};
-use crate::helpers::steptable;
 use crate::{Check, Tool, tool};
 
 pub const CHECKS: &[Check] = &[Check::new(
@@ -67,34 +64,17 @@ fn reset_lifts_the_punch_before_it_opens_the_clamp_in_every_engine() {
     let python = awlsim::python(&tool(Tool::Awlsim));
     for (target, format) in [("iec", "st"), ("siemens", "awl"), ("festo", "fst")] {
         let args = ["--target", target, "--modes", "estop,reset"];
-        let out = dir.path().join(format);
-        steptable()
-            .arg("convert")
-            .arg(&input)
-            .args(args)
-            .args(["--formats", format, "-o"])
-            .arg(&out)
-            .assert()
-            .success();
-        let checked = convert::check_path(&input, &engines::settings_for(&args)).unwrap();
-        let (case, ()) = engines::record_with(
-            &format!("stamping {}", args.join(" ")),
-            out.join("stamping"),
-            "stamping",
-            &checked.table,
-            &checked.settings,
-            |program, signals| {
-                let (_, trace) = scenario_recording(
-                    &checked.table,
-                    program,
-                    &checked.settings.simulation,
-                    &script(),
-                    10_000,
-                    signals,
-                );
-                ((), trace)
-            },
-        );
+        let scenario = engines::Scenario {
+            input: &input,
+            out: dir.path().join(format),
+            stem: "stamping",
+            args: &args,
+            formats: format,
+            script: script(),
+            until_ms: 10_000,
+        };
+        let label = format!("stamping {}", args.join(" "));
+        let (case, _) = engines::record_scenario(&scenario, &label, |_| {});
         let outputs = engines::run_written(&case, format, &python);
         case.check(format, outputs).unwrap();
         // The engine's outputs are the trace's: read the order from it.

@@ -4,12 +4,10 @@
 //! exactly one step per press in matiec (iec), awlsim (siemens) and the
 //! FST interpreter (festo), scan for scan as simulated.
 
-use steptable::convert;
 use steptable::simulate::Operator;
-use steptable::simulate::scenario::scenario_recording;
 
 use crate::engines::{self, awlsim};
-use crate::helpers::{sample, steptable};
+use crate::helpers::sample;
 use crate::{Check, Tool, tool};
 
 pub const CHECKS: &[Check] = &[Check::new(
@@ -58,34 +56,18 @@ fn one_step_per_press_in_every_engine() {
     let python = awlsim::python(&tool(Tool::Awlsim));
     for (target, format) in [("iec", "st"), ("siemens", "awl"), ("festo", "fst")] {
         let args = ["--target", target, "--modes", "step"];
-        let out = dir.path().join(format);
-        steptable()
-            .arg("convert")
-            .arg(&input)
-            .args(args)
-            .args(["--formats", format, "-o"])
-            .arg(&out)
-            .assert()
-            .success();
-        let checked = convert::check_path(&input, &engines::settings_for(&args)).unwrap();
-        let (case, fired) = engines::record_with(
-            &format!("paper_example {}", args.join(" ")),
-            out.join("paper_example"),
-            "paper_example",
-            &checked.table,
-            &checked.settings,
-            |program, signals| {
-                let (report, trace) = scenario_recording(
-                    &checked.table,
-                    program,
-                    &checked.settings.simulation,
-                    &script(),
-                    7_500,
-                    signals,
-                );
-                (report.fired, trace)
-            },
-        );
+        let scenario = engines::Scenario {
+            input: &input,
+            out: dir.path().join(format),
+            stem: "paper_example",
+            args: &args,
+            formats: format,
+            script: script(),
+            until_ms: 7_500,
+        };
+        let label = format!("paper_example {}", args.join(" "));
+        let (case, report) = engines::record_scenario(&scenario, &label, |_| {});
+        let fired = report.fired;
         // The simulation this engine must match: steps 1 and 2, each the
         // scan after its press, and nothing else.
         let steps: Vec<usize> = fired.iter().map(|(_, s)| *s).collect();

@@ -8,12 +8,11 @@
 
 use steptable::convert;
 use steptable::program::{Alarm, Signal};
-use steptable::simulate::scenario::scenario_recording;
 use steptable::simulate::{Fault, Operator};
 
 use crate::differential_native::{run_l5x, run_scl};
 use crate::engines::{self, awlsim};
-use crate::helpers::{sample, steptable};
+use crate::helpers::sample;
 use crate::{Check, Tool, tool};
 
 pub const CHECKS: &[Check] = &[Check::new(
@@ -53,39 +52,23 @@ fn the_missing_condition_is_read_in_every_engine() {
     ];
     for (target, format, formats) in runs {
         let args = ["--target", target, "--safety", "criteria"];
-        let out = dir.path().join(format);
-        steptable()
-            .arg("convert")
-            .arg(&input)
-            .args(args)
-            .args(["--formats", formats, "-o"])
-            .arg(&out)
-            .assert()
-            .success();
-        let checked = convert::check_path(&input, &engines::settings_for(&args)).unwrap();
-        let mut simulation = checked.settings.simulation.clone();
-        simulation.faults = vec![Fault {
-            signal: x32,
-            stuck_at: false,
-        }];
-        let (case, fired) = engines::record_with(
-            &format!("paper_example {} with x32 stuck off", args.join(" ")),
-            out.join("paper_example"),
-            "paper_example",
-            &checked.table,
-            &checked.settings,
-            |program, signals| {
-                let (report, trace) = scenario_recording(
-                    &checked.table,
-                    program,
-                    &simulation,
-                    &script(),
-                    12_000,
-                    signals,
-                );
-                (report.fired, trace)
-            },
-        );
+        let scenario = engines::Scenario {
+            input: &input,
+            out: dir.path().join(format),
+            stem: "paper_example",
+            args: &args,
+            formats,
+            script: script(),
+            until_ms: 12_000,
+        };
+        let label = format!("paper_example {} with x32 stuck off", args.join(" "));
+        let (case, report) = engines::record_scenario(&scenario, &label, |simulation| {
+            simulation.faults = vec![Fault {
+                signal: x32,
+                stuck_at: false,
+            }]
+        });
+        let fired = report.fired;
         // The simulation this engine must match: steps 1 to 4, then step
         // 5 waits for x32 until its watchdog runs out.
         let steps: Vec<usize> = fired.iter().map(|(_, s)| *s).collect();
@@ -99,6 +82,7 @@ fn the_missing_condition_is_read_in_every_engine() {
         }
         // The engine's outputs are the trace's: at the end the alarm and
         // x32's missing output are on, no other missing output.
+        let checked = convert::check_path(&input, &engines::settings_for(&args)).unwrap();
         let program = convert::build_program(&checked.table, &checked.settings);
         let signals = &case.trace.signals.outputs;
         let last = &case.trace.scans.last().unwrap().outputs;

@@ -501,74 +501,12 @@ fn draw(svg: &mut String, shape: &Shape) {
             }
             svg.push_str("</g>\n");
         }
-        Shape::Transition { x, y, id, lines } => {
-            let _ = write!(
-                svg,
-                r##"<g class="transition" data-transition="{id}"><line x1="{:.1}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#222" stroke-width="3"/>"##,
-                x - 12.0,
-                x + 12.0
-            );
-            for (k, line) in lines.iter().enumerate() {
-                let _ = write!(
-                    svg,
-                    r#"<text x="{:.1}" y="{:.1}">"#,
-                    x + 22.0,
-                    y + 4.0 + k as f64 * LINE
-                );
-                for (n, term) in line.iter().enumerate() {
-                    if n > 0 {
-                        svg.push_str(" · ");
-                    }
-                    if term.negated {
-                        let _ = write!(
-                            svg,
-                            r#"<tspan text-decoration="overline">{}</tspan>"#,
-                            esc(&term.text)
-                        );
-                    } else {
-                        svg.push_str(&esc(&term.text));
-                    }
-                }
-                svg.push_str("</text>");
-            }
-            svg.push_str("</g>\n");
-        }
+        Shape::Transition { x, y, id, lines } => draw_transition(svg, *x, *y, id, lines),
         Shape::Path {
             points,
             double,
             arrow,
-        } => {
-            let d: Vec<String> = points
-                .iter()
-                .map(|(x, y)| format!("{},{}", Tenths(*x), Tenths(*y)))
-                .collect();
-            let d = d.join(" ");
-            if *double {
-                let (a, b) = (points[0], points[points.len() - 1]);
-                let _ = writeln!(
-                    svg,
-                    r##"<g class="and"><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#222"/><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#222"/></g>"##,
-                    a.0,
-                    a.1 - 2.0,
-                    b.0,
-                    b.1 - 2.0,
-                    a.0,
-                    a.1 + 2.0,
-                    b.0,
-                    b.1 + 2.0
-                );
-            } else {
-                let marker = if *arrow {
-                    r#" marker-end="url(#gr-arrow)""#
-                } else {
-                    ""
-                };
-                let _ = writeln!(
-                    svg,
-                    r##"<polyline points="{d}" fill="none" stroke="#222"{marker}/>"##
-                );
-            }
-        }
+        } => draw_path(svg, points, *double, *arrow),
         Shape::Label { x, y, text, size } => {
             let weight = if *size > FONT {
                 r#" font-weight="bold""#
@@ -581,5 +519,76 @@ fn draw(svg: &mut String, shape: &Shape) {
                 esc(text)
             );
         }
+    }
+}
+
+/// A transition: its bar and its condition, one term line after another
+/// (a negated term overlined).
+fn draw_transition(svg: &mut String, x: f64, y: f64, id: &str, lines: &[Vec<Term>]) {
+    let esc = super::diagram::escape;
+    let _ = write!(
+        svg,
+        r##"<g class="transition" data-transition="{id}"><line x1="{:.1}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#222" stroke-width="3"/>"##,
+        x - 12.0,
+        x + 12.0
+    );
+    for (k, line) in lines.iter().enumerate() {
+        let _ = write!(
+            svg,
+            r#"<text x="{:.1}" y="{:.1}">"#,
+            x + 22.0,
+            y + 4.0 + k as f64 * LINE
+        );
+        for (n, term) in line.iter().enumerate() {
+            if n > 0 {
+                svg.push_str(" · ");
+            }
+            if term.negated {
+                let _ = write!(
+                    svg,
+                    r#"<tspan text-decoration="overline">{}</tspan>"#,
+                    esc(&term.text)
+                );
+            } else {
+                svg.push_str(&esc(&term.text));
+            }
+        }
+        svg.push_str("</text>");
+    }
+    svg.push_str("</g>\n");
+}
+
+/// A connection: a double line for a simultaneous branch, else a polyline
+/// (with an arrow where it goes up).
+fn draw_path(svg: &mut String, points: &[(f64, f64)], double: bool, arrow: bool) {
+    let d: Vec<String> = points
+        .iter()
+        .map(|(x, y)| format!("{},{}", Tenths(*x), Tenths(*y)))
+        .collect();
+    let d = d.join(" ");
+    if double {
+        let (a, b) = (points[0], points[points.len() - 1]);
+        let _ = writeln!(
+            svg,
+            r##"<g class="and"><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#222"/><line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="#222"/></g>"##,
+            a.0,
+            a.1 - 2.0,
+            b.0,
+            b.1 - 2.0,
+            a.0,
+            a.1 + 2.0,
+            b.0,
+            b.1 + 2.0
+        );
+    } else {
+        let marker = if arrow {
+            r#" marker-end="url(#gr-arrow)""#
+        } else {
+            ""
+        };
+        let _ = writeln!(
+            svg,
+            r##"<polyline points="{d}" fill="none" stroke="#222"{marker}/>"##
+        );
     }
 }

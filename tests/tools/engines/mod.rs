@@ -261,6 +261,60 @@ pub fn record_with<R>(
     (case, report)
 }
 
+/// What one engine test of an operating scenario converts and records.
+pub struct Scenario<'a> {
+    pub input: &'a Path,
+    /// The folder the conversion writes to.
+    pub out: PathBuf,
+    /// The input's stem (the written files' base name).
+    pub stem: &'a str,
+    pub args: &'a [&'a str],
+    /// `--formats`.
+    pub formats: &'a str,
+    pub script: Vec<(u64, simulate::Operator)>,
+    pub until_ms: u64,
+}
+
+/// The recording loop of every scenario test (single step, homing,
+/// supervision): converts `input` with `args`, then records the program
+/// on the simulated scenario (the simulation settings changed by
+/// `adjust`, such as a fault). Returns the case the engines replay and the
+/// simulation's report.
+pub fn record_scenario(
+    scenario: &Scenario,
+    label: &str,
+    adjust: impl FnOnce(&mut simulate::SimSettings),
+) -> (Case, simulate::scenario::ScenarioReport) {
+    steptable()
+        .arg("convert")
+        .arg(scenario.input)
+        .args(scenario.args)
+        .args(["--formats", scenario.formats, "-o"])
+        .arg(&scenario.out)
+        .assert()
+        .success();
+    let checked = convert::check_path(scenario.input, &settings_for(scenario.args)).unwrap();
+    let mut simulation = checked.settings.simulation.clone();
+    adjust(&mut simulation);
+    record_with(
+        label,
+        scenario.out.join(scenario.stem),
+        scenario.stem,
+        &checked.table,
+        &checked.settings,
+        |program, signals| {
+            simulate::scenario::scenario_recording(
+                &checked.table,
+                program,
+                &simulation,
+                &scenario.script,
+                scenario.until_ms,
+                signals,
+            )
+        },
+    )
+}
+
 /// Runs the case's written `format` file (`st`, `awl`, else FST) in its
 /// engine over the recorded inputs: the outputs of every scan.
 pub fn run_written(case: &Case, format: &str, python: &Path) -> Result<Vec<Vec<bool>>, String> {

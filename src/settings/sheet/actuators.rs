@@ -1,0 +1,362 @@
+//! The actuator tables of the SETTINGS sheet (`actuator | extend |
+//! retract | valve | load`): their columns, their rows, and each row's
+//! valve, load and stroke times.
+
+use std::collections::BTreeMap;
+
+use super::{ActuatorColumns, COLUMNS, Layout, Reader, known_label, label_of, text_of, value_text};
+use crate::diag::{CellPos, Code, Diagnostics};
+use crate::read::{CellValue, Grid, GridCell};
+use crate::settings::Given;
+use crate::stroke::{Stroke, parse_duration_ms};
+use crate::valve::ValveType;
+
+/// The columns of the actuator table headed at `header`; a header cell
+/// that is none of them is named, since its column would not be read.
+pub(super) fn actuator_columns(
+    reader: &mut Reader,
+    header: CellPos,
+    diags: &mut Diagnostics,
+) -> ActuatorColumns {
+    let mut columns = ActuatorColumns {
+        header,
+        extend: None,
+        retract: None,
+        valve: None,
+        load: None,
+        last_col: header.col,
+    };
+    reader.seen.insert(header);
+    let cells: Vec<&GridCell> = reader
+        .row(header.row)
+        .filter(|c| c.pos.col > header.col)
+        .collect();
+    for cell in cells {
+        // A label beside the table is a setting of its own.
+        if known_label(&cell.value).is_some() {
+            break;
+        }
+        columns.last_col = cell.pos.col;
+        let label = label_of(&cell.value).unwrap_or_default();
+        let slot = match label.as_str() {
+            "extend" => &mut columns.extend,
+            "retract" => &mut columns.retract,
+            "valve" => &mut columns.valve,
+            "load" => &mut columns.load,
+            _ => {
+                reader.warn(
+                    cell.pos,
+                    format!(
+                        "{} heads no column steptable reads (expected {}); its column was not read",
+                        cell.value.describe(),
+                        COLUMNS.join(", ")
+                    ),
+                    diags,
+                );
+                continue;
+            }
+        };
+        if slot.is_some() {
+            reader.error(
+                cell.pos,
+                format!(
+                    "the actuator table has two {label} columns; remove one (this one was not read)"
+                ),
+                diags,
+            );
+            continue;
+        }
+        reader.seen.insert(cell.pos);
+        *slot = Some(cell.pos.col);
+    }
+    columns
+}
+
+/// The rows of an actuator table: from the header down, blank rows
+/// included, to a row that starts with a label, another table's header or
+/// a note (named). A row whose first cell is no actuator (`C2`, `C2
+/// (clamp)`) is an error when it holds values, which would otherwise be
+/// lost; an actuator given twice (in any actuator table) is an error at
+/// the second, naming the first.
+pub(super) fn read_actuator_rows(
+    reader: &mut Reader,
+    columns: &ActuatorColumns,
+    layout: &Layout,
+    first_rows: &mut BTreeMap<u32, CellPos>,
+    diags: &mut Diagnostics,
+) {
+    let grid = reader.grid;
+    let header = columns.header;
+    let value_cols: Vec<u32> = [columns.extend, columns.retract, columns.valve, columns.load]
+        .into_iter()
+        .flatten()
+        .collect();
+
+    let in_table = |c: &GridCell| (header.col..=columns.last_col).contains(&c.pos.col);
+    let mut rows_read = 0;
+    let mut ended_by_note = false;
+    // Row by row below the header, blank rows skipped (each next row found
+    // in the index: a sheet of many tables is read in time).
+    let mut row = header.row;
+    while let Some(next) = reader.rows.range(row + 1..).next().map(|(r, _)| *r) {
+        row = next;
+        if layout.header_rows.contains(&row) || layout.table_rows.contains(&row) {
+            break;
+        }
+        let cells: Vec<&GridCell> = reader
+            .row(row)
+            .filter(|c| in_table(c) && !reader.seen.contains(&c.pos))
+            .collect();
+        let name_cell = cells.iter().copied().find(|c| c.pos.col == header.col);
+        // A label in the table's first column: the settings go on below.
+        if reader
+            .at(CellPos::new(row, header.col))
+            .is_some_and(|c| known_label(&c.value).is_some())
+        {
+            break;
+        }
+        if cells.is_empty() {
+            continue;
+        }
+        rows_read += 1;
+        // Right of the last headed column, on a row of the table: a value
+        // that would otherwise be lost.
+        let beyond: Vec<&GridCell> = reader
+            .row(row)
+            .filter(|c| c.pos.col > columns.last_col && !reader.seen.contains(&c.pos))
+            .collect();
+        for cell in beyond {
+            reader.warn(
+                cell.pos,
+                format!(
+                    "{} is right of the actuator table, in a column without a header (expected {}); it was not read",
+                    cell.value.describe(),
+                    COLUMNS.join(", ")
+                ),
+                diags,
+            );
+        }
+        let values: Vec<&GridCell> = cells
+            .iter()
+            .copied()
+            .filter(|c| c.pos.col != header.col)
+            .collect();
+        let actuator = match row_actuator(reader, name_cell, &values, first_rows, diags) {
+            RowStart::Skip => continue,
+            RowStart::Note => {
+                ended_by_note = true;
+                break;
+            }
+            RowStart::Actuator(actuator) => actuator,
+        };
+        for cell in &values {
+            if !value_cols.contains(&cell.pos.col) {
+                reader.warn(
+                    cell.pos,
+                    format!(
+                        "{} of C{actuator} is in a column without a header (expected {}); it was not read",
+                        cell.value.describe(),
+                        COLUMNS.join(", ")
+                    ),
+                    diags,
+                );
+            }
+        }
+        let at = |col: u32| cells.iter().copied().find(|c| c.pos.col == col);
+        read_actuator_row(grid, actuator, columns, &at, &mut reader.settings, diags);
+    }
+    // Only a note ended it: no row at all.
+    if rows_read <= usize::from(ended_by_note) {
+        reader.warn(
+            header,
+            "this actuator table has no row of an actuator with values below its header; nothing was read from it".to_string(),
+            diags,
+        );
+    }
+}
+
+/// How a row of an actuator table starts.
+enum RowStart {
+    /// Not read (said why).
+    Skip,
+    /// A note under the table, which ends it.
+    Note,
+    Actuator(u32),
+}
+
+/// The actuator a row's first cell names: an error when it names none but
+/// the row holds values, or names one given before; its engineer's name
+/// (`C1 (clamp)`) is kept for every output.
+fn row_actuator(
+    reader: &mut Reader,
+    name_cell: Option<&GridCell>,
+    values: &[&GridCell],
+    first_rows: &mut BTreeMap<u32, CellPos>,
+    diags: &mut Diagnostics,
+) -> RowStart {
+    let grid = reader.grid;
+    let Some(name_cell) = name_cell else {
+        reader.seen.extend(values.iter().map(|c| c.pos));
+        reader.error(
+            values[0].pos,
+            "this row of the actuator table names no actuator in its first column; write C1, C2, … there".to_string(),
+            diags,
+        );
+        return RowStart::Skip;
+    };
+    let name = text_of(&name_cell.value);
+    let Some(actuator) = crate::cell::actuator_name(&name) else {
+        if values.is_empty() && !crate::cell::looks_like_move(&name) {
+            // A note under the table ends it.
+            reader.warn(
+                name_cell.pos,
+                format!(
+                    "{} is not an actuator; the actuator table ends above it",
+                    name_cell.value.describe()
+                ),
+                diags,
+            );
+            return RowStart::Note;
+        }
+        reader.seen.extend(values.iter().map(|c| c.pos));
+        reader.error(
+            name_cell.pos,
+            format!(
+                "\"{name}\" is not an actuator (expected C1 to C{}, optionally with a comment: C1 (clamp)); the row's values were not read",
+                crate::cell::MAX_ACTUATOR
+            ),
+            diags,
+        );
+        return RowStart::Skip;
+    };
+    reader.seen.extend(values.iter().map(|c| c.pos));
+    let comment = crate::cell::actuator_comment(&name);
+    if values.is_empty() && comment.is_none() {
+        reader.warn(
+            name_cell.pos,
+            format!(
+                "C{actuator} has nothing beside it in the actuator table; nothing was read for it"
+            ),
+            diags,
+        );
+        return RowStart::Skip;
+    }
+    reader.seen.insert(name_cell.pos);
+    if let Some(earlier) = first_rows.get(&actuator) {
+        reader.error(
+            name_cell.pos,
+            format!(
+                "C{actuator} is given twice in the actuator table: here and at {}; remove one (this row was not read)",
+                grid.cell_name(*earlier)
+            ),
+            diags,
+        );
+        return RowStart::Skip;
+    }
+    first_rows.insert(actuator, name_cell.pos);
+    // `C1 (clamp)`: the engineer's name of the actuator, for every
+    // output (crate::symbols), even on a row with no other value.
+    if let Some(text) = comment {
+        reader.settings.names.insert(
+            actuator,
+            crate::symbols::ActuatorName {
+                text,
+                at: grid.location(name_cell.pos),
+            },
+        );
+    }
+    RowStart::Actuator(actuator)
+}
+
+/// A time typed as text without a unit (`1000`, `0.02`) is read as
+/// seconds, as a number cell is; typed as text, it may have meant
+/// milliseconds: W007 at the cell, with both spellings.
+pub(super) fn said_without_unit(grid: &Grid, cell: &GridCell, text: &str, diags: &mut Diagnostics) {
+    let text = text.trim();
+    if matches!(cell.value, CellValue::Text(_)) && crate::cell::without_unit(text) {
+        diags.warning(
+            Code::W007Assumed,
+            grid.location(cell.pos),
+            crate::cell::read_as_seconds(text),
+        );
+    }
+}
+
+fn read_actuator_row<'g>(
+    grid: &Grid,
+    actuator: u32,
+    columns: &ActuatorColumns,
+    at: &dyn Fn(u32) -> Option<&'g GridCell>,
+    settings: &mut Given,
+    diags: &mut Diagnostics,
+) {
+    if let Some(cell) = columns.valve.and_then(at)
+        && let Some(text) = value_text(grid, cell, diags)
+    {
+        match text.parse::<ValveType>() {
+            Ok(valve) => {
+                settings.valves.insert(actuator, valve);
+                (settings.actuator_cells).insert((actuator, "valve"), grid.location(cell.pos));
+            }
+            // The parser's message says what was probably meant.
+            Err(why) => diags.error(
+                Code::E030BadSetting,
+                grid.location(cell.pos),
+                format!("valve of C{actuator}: {why}"),
+            ),
+        }
+    }
+    if let Some(cell) = columns.load.and_then(at)
+        && let Some(text) = value_text(grid, cell, diags)
+    {
+        match crate::valve::parse_load(&text) {
+            Some(load) => {
+                settings.loads.insert(actuator, load);
+                (settings.actuator_cells).insert((actuator, "load"), grid.location(cell.pos));
+            }
+            None => diags.error(
+                Code::E030BadSetting,
+                grid.location(cell.pos),
+                format!("load of C{actuator}: \"{text}\" is not a drift in stroke per second from 0 to 10, such as 0.05"),
+            ),
+        }
+    }
+    let mut stroke_at = Vec::new();
+    let mut time = |col: Option<u32>, what: &'static str| -> Option<u32> {
+        let cell = col.and_then(at)?;
+        stroke_at.push((what, grid.location(cell.pos)));
+        let text = value_text(grid, cell, diags)?;
+        let ms = parse_duration_ms(&text);
+        if ms.is_some() {
+            said_without_unit(grid, cell, &text, diags);
+        }
+        if ms.is_none() {
+            diags.error(
+                Code::E030BadSetting,
+                grid.location(cell.pos),
+                format!(
+                    "stroke time of C{actuator}: \"{text}\" is not a time such as 1.5s or 800ms"
+                ),
+            );
+        }
+        ms
+    };
+    let (extend, retract) = (
+        time(columns.extend, "extend"),
+        time(columns.retract, "retract"),
+    );
+    if extend.is_none() && retract.is_none() {
+        return;
+    }
+    for (what, at) in stroke_at {
+        settings.actuator_cells.insert((actuator, what), at);
+    }
+    let default = Stroke::default();
+    settings.strokes.insert(
+        actuator,
+        Stroke {
+            extend_ms: extend.unwrap_or(default.extend_ms),
+            retract_ms: retract.unwrap_or(default.retract_ms),
+        },
+    );
+}

@@ -1,0 +1,142 @@
+//! The cells of the SETTINGS sheet nothing read: each is named (W003, or
+//! E030 where a value would be lost), with the label it was probably
+//! meant as.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::{LABELS, Layout, Reader, label_of, setting_in_one_cell, text_of};
+use crate::cell::edit_distance;
+use crate::diag::Diagnostics;
+use crate::read::{CellValue, GridCell};
+
+/// Names every filled cell not read so far. Above the first setting (not
+/// on the row just above it) a row of one cell is the sheet's title or a
+/// note, named only when it holds a setting and its value in one cell or
+/// is spelt like a label; a one-cell row right above an actuator table's
+/// header is its caption.
+pub(super) fn name_the_rest(
+    reader: &mut Reader,
+    layout: &Layout,
+    label_rows: &BTreeMap<u32, &'static str>,
+    diags: &mut Diagnostics,
+) {
+    let first_row = label_rows
+        .keys()
+        .chain(&layout.header_rows)
+        .copied()
+        .chain(layout.tables.iter().map(|t| t.header.row))
+        .min();
+    let captions: BTreeSet<u32> = layout
+        .tables
+        .iter()
+        .filter_map(|t| t.header.row.checked_sub(1))
+        .collect();
+    let rows: Vec<u32> = reader.rows.keys().copied().collect();
+    for row in rows {
+        let cells: Vec<&GridCell> = reader.row(row).collect();
+        let lone_text = cells.len() == 1 && matches!(cells[0].value, CellValue::Text(_));
+        let note = lone_text
+            && (captions.contains(&row) || first_row.is_some_and(|first| row + 1 < first));
+        for cell in &cells {
+            if reader.seen.contains(&cell.pos) {
+                continue;
+            }
+            let word = label_of(&cell.value).unwrap_or_default();
+            if let Some(label) = setting_in_one_cell(&cell.value) {
+                reader.warn(
+                    cell.pos,
+                    format!(
+                        "{} holds the setting {label} and its value in one cell; write the value in the cell right of \"{label}\" (it was not read)",
+                        cell.value.describe()
+                    ),
+                    diags,
+                );
+                continue;
+            }
+            if note && closest_label(&word).is_none() {
+                // The sheet's title and notes, the table's caption.
+                continue;
+            }
+            match unread_cell(&layout.table_rows, cell, &cells, label_rows) {
+                Unread::Row(message) => {
+                    reader.seen.extend(cells.iter().map(|c| c.pos));
+                    reader.warn(cell.pos, message, diags);
+                }
+                Unread::Lost(message) => {
+                    reader.seen.extend(cells.iter().map(|c| c.pos));
+                    reader.error(cell.pos, message, diags);
+                }
+                Unread::Ignored(message) => reader.warn(cell.pos, message, diags),
+            }
+        }
+    }
+}
+
+/// What is said of a cell nothing read.
+enum Unread {
+    /// Values that would be lost (E030): a row of the actuator table
+    /// outside it.
+    Lost(String),
+    /// W003 for a whole row: an unknown label with its values.
+    Row(String),
+    /// W003: a value beside a setting's, any other cell.
+    Ignored(String),
+}
+
+fn unread_cell(
+    table_rows: &BTreeSet<u32>,
+    cell: &GridCell,
+    row: &[&GridCell],
+    label_rows: &BTreeMap<u32, &'static str>,
+) -> Unread {
+    let describe = cell.value.describe();
+    let first_on_row = row.first().is_some_and(|c| c.pos == cell.pos);
+    let text = text_of(&cell.value);
+    if first_on_row && row.len() > 1 && crate::cell::actuator_name(&text).is_some() {
+        let table = if table_rows
+            .first()
+            .is_some_and(|first| *first < cell.pos.row)
+        {
+            "it is below the end of the actuator table (a label, a note or another table ends it)"
+        } else {
+            "no actuator | extend | retract header is above it"
+        };
+        return Unread::Lost(format!(
+            "{describe} reads as a row of the actuator table, but {table}; its values were not read"
+        ));
+    }
+    if let Some(label) = label_rows.get(&cell.pos.row) {
+        return Unread::Ignored(format!(
+            "{describe} is beside the setting {label}, in a column steptable does not read (notes go under a WHAT IT MEANS header); it was not read"
+        ));
+    }
+    let closest = label_of(&cell.value)
+        .and_then(|label| closest_label(&label))
+        .map(|known| format!(" (did you mean {known}?)"))
+        .unwrap_or_default();
+    if first_on_row && row.len() > 1 && !closest.is_empty() {
+        return Unread::Row(format!(
+            "{describe} is not a setting steptable knows{closest} ({}); its row was not read",
+            LABELS.join(", ")
+        ));
+    }
+    Unread::Ignored(format!(
+        "{describe} is not a setting steptable knows{closest}, a setting's value or a row of the actuator table; it was not read"
+    ))
+}
+
+/// `scan-time`, `Safty`, `homeorder`: the label steptable knows within two
+/// letters of `label`, the closest.
+pub(super) fn closest_label(label: &str) -> Option<&'static str> {
+    LABELS
+        .into_iter()
+        .chain(["actuator"])
+        .map(|known| (edit_distance(&letters(label), &letters(known)), known))
+        .min()
+        .filter(|(distance, _)| *distance <= 2)
+        .map(|(_, known)| known)
+}
+
+fn letters(text: &str) -> String {
+    text.chars().filter(|c| c.is_alphabetic()).collect()
+}

@@ -1,0 +1,320 @@
+//! Building a table from a sheet: its cells found in the frame of its
+//! headers, each parsed (with a hint for a cell that is almost a move),
+//! and the result checked against the rules ([`super::check`]).
+
+use super::check;
+use super::frame::find_frame;
+use super::*;
+use crate::cell::{
+    CellError, ItemError, MAX_ACTUATOR, MAX_POSITION, item_texts, move_attempt, not_a_move_hint,
+    parse_items,
+};
+use crate::diag::{Code, Diagnostics, Location};
+use crate::read::{CellValue, Grid};
+
+/// A table cell found on the sheet, before parsing.
+struct RawCell {
+    pos: CellPos,
+    value: CellValue,
+    branch: usize,
+}
+
+/// Builds the table from a sheet and checks it. Returns `None` when any error
+/// was found (all of them are in `diags`).
+pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
+    let errors_before = diags.error_count();
+    let Some(frame) = find_frame(grid, diags) else {
+        if diags.error_count() == errors_before {
+            diags.error(
+                Code::E003NoTable,
+                grid.sheet_location(),
+                "no step table found: expected BRANCH n / STEP n headers or cells such as C1+1",
+            );
+        }
+        return None;
+    };
+    if frame.branch_cols.len() > MAX_BRANCHES || frame.step_rows.len() > MAX_STEPS {
+        diags.error(
+            Code::E024TableTooLarge,
+            grid.sheet_location(),
+            format!(
+                "table has {} steps × {} branches; the limit is {MAX_STEPS} steps × {MAX_BRANCHES} branches",
+                frame.step_rows.len(),
+                frame.branch_cols.len()
+            ),
+        );
+        return None;
+    }
+
+    // Collect the raw cells of every step row, by row.
+    let row_index: BTreeMap<u32, usize> = frame
+        .step_rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| (*r, i))
+        .collect();
+    let col_index: BTreeMap<u32, usize> = frame
+        .branch_cols
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (*c, i))
+        .collect();
+    let mut rows: Vec<Vec<RawCell>> = (0..frame.step_rows.len()).map(|_| Vec::new()).collect();
+    for cell in &grid.cells {
+        let Some(&r) = row_index.get(&cell.pos.row) else {
+            continue;
+        };
+        if let Some(&branch) = col_index.get(&cell.pos.col) {
+            rows[r].push(RawCell {
+                pos: cell.pos,
+                value: cell.value.clone(),
+                branch,
+            });
+        }
+    }
+    frame::report_unused(grid, &frame, diags);
+
+    // Parse every cell.
+    let mut parsed: Vec<Vec<(CellItem, CellPos, usize)>> = Vec::with_capacity(rows.len());
+    let mut refused = check::Refused::default();
+    for (step, row) in rows.iter().enumerate() {
+        let mut items = Vec::new();
+        for raw in row {
+            let mut refuse = |actuator| refused.add(actuator, step);
+            for item in parse_cell(grid, raw, diags, &mut refuse) {
+                items.push((item, raw.pos, raw.branch));
+            }
+        }
+        parsed.push(items);
+    }
+
+    // Steps without moves: trailing labelled rows are unused template rows;
+    // any other empty step is an error (we never renumber silently).
+    let last_with_moves = rows.iter().rposition(|r| !r.is_empty());
+    let Some(last_with_moves) = last_with_moves else {
+        diags.error(
+            Code::E003NoTable,
+            grid.sheet_location(),
+            "the step table has no moves: fill at least one cell such as C1+1",
+        );
+        return None;
+    };
+    for (i, row) in rows.iter().enumerate().take(last_with_moves) {
+        if row.is_empty() {
+            let first_col = frame.branch_cols.first().copied().unwrap_or(0);
+            let pos = CellPos::new(frame.step_rows[i], first_col);
+            let what = if frame.labelled {
+                format!("STEP {} has no move", i + 1)
+            } else {
+                format!("row {} of the table has no move", i + 1)
+            };
+            diags.error(
+                Code::E023EmptyStep,
+                grid.location(pos),
+                format!("{what}; every step needs at least one move (delete the empty row)"),
+            );
+        }
+    }
+    // An unused template row is dropped, but not the engineer's words on
+    // its label (`STEP 9 (spare)`): said, so a step meant to be filled
+    // is not lost without a word.
+    for index in last_with_moves + 1..frame.step_rows.len() {
+        if let Some(cell) = frame.label_cell(grid, index)
+            && let CellValue::Text(text) = &cell.value
+            && crate::cell::step_comment(text).is_some()
+        {
+            diags.warning(
+                Code::W003Ignored,
+                grid.location(cell.pos),
+                format!("\"{}\" labels a step with no move after the last one; the step and its comment are not used", text.trim()),
+            );
+        }
+    }
+    parsed.truncate(last_with_moves + 1);
+
+    let table = check::check(grid, &frame, parsed, &refused, diags);
+    if diags.error_count() > errors_before {
+        None
+    } else {
+        table
+    }
+}
+
+/// The items of a cell; each refused move-like item is told to `refuse`
+/// with the actuator it was probably about.
+fn parse_cell(
+    grid: &Grid,
+    raw: &RawCell,
+    diags: &mut Diagnostics,
+    refuse: &mut dyn FnMut(Option<u32>),
+) -> Vec<CellItem> {
+    let location = grid.location(raw.pos);
+    let text = match &raw.value {
+        CellValue::Text(t) => t,
+        CellValue::Number(n) => {
+            diags.error(
+                Code::E010NotAMove,
+                location,
+                format!("the number {n} is not a move (expected text such as C2+1)"),
+            );
+            return Vec::new();
+        }
+        CellValue::Bool(b) => {
+            diags.error(
+                Code::E010NotAMove,
+                location,
+                format!(
+                    "the value {} is not a move (expected text such as C2+1)",
+                    if *b { "TRUE" } else { "FALSE" }
+                ),
+            );
+            return Vec::new();
+        }
+        CellValue::Date(_) => {
+            diags.error(
+                Code::E010NotAMove,
+                location,
+                format!(
+                    "{} is not a move: the spreadsheet took what was typed for a date or time; format the cell as text and type the move, e.g. C2+1",
+                    raw.value.describe()
+                ),
+            );
+            return Vec::new();
+        }
+        CellValue::Error(e) => {
+            diags.error(
+                Code::E010NotAMove,
+                location,
+                format!("the cell shows the error {e}, not a move"),
+            );
+            return Vec::new();
+        }
+        CellValue::Uncomputed(formula) => {
+            diags.error(
+                Code::E016FormulaNotComputed,
+                location,
+                format!(
+                    "the formula {formula} has no computed value (the file was saved by a program that does not calculate); open and save it in Excel or LibreOffice, or type the move"
+                ),
+            );
+            return Vec::new();
+        }
+    };
+    let chars = text.chars().count();
+    if chars > MAX_CELL_CHARS {
+        diags.error(
+            Code::E013CellTooLong,
+            location,
+            format!("the cell holds {chars} characters; a move has at most {MAX_CELL_CHARS}"),
+        );
+        return Vec::new();
+    }
+    let results = parse_items(text);
+    if results.is_empty() {
+        diags.error(
+            Code::E010NotAMove,
+            location.clone(),
+            format!(
+                "\"{}\" is not a move (expected C<number>+<position>, e.g. C2+1)",
+                text.trim()
+            ),
+        );
+    }
+    let mut items = Vec::with_capacity(results.len());
+    for (part, result) in item_texts(text).into_iter().zip(results) {
+        match result {
+            Ok(item) => {
+                if let CellItem::Dwell { ms } = item
+                    && crate::cell::without_unit(part)
+                {
+                    let number = part.split_once('=').map_or("", |(_, n)| n.trim());
+                    let seconds = crate::cell::duration_text(ms);
+                    let millis = match number.parse::<u32>() {
+                        Ok(n)
+                            if (crate::cell::MIN_DWELL_MS..=crate::cell::MAX_DWELL_MS)
+                                .contains(&n) =>
+                        {
+                            format!(", or T={n}ms if milliseconds were meant")
+                        }
+                        _ => String::new(),
+                    };
+                    diags.warning(
+                        Code::W007Assumed,
+                        location.clone(),
+                        format!(
+                            "\"{}\" has no unit and is read as {} seconds: write T={seconds}{millis}",
+                            part.trim(),
+                            seconds.trim_end_matches('s'),
+                        ),
+                    );
+                }
+                items.push(item)
+            }
+            Err(error) => {
+                if let Some(actuator) = move_attempt(part) {
+                    refuse(actuator);
+                }
+                report_item_error(error, text, part, &location, diags)
+            }
+        }
+    }
+    items
+}
+
+/// Reports a refused item of the cell `text`: E010 quotes the item
+/// (`part`) and says what it was probably meant to be.
+fn report_item_error(
+    error: ItemError,
+    text: &str,
+    part: &str,
+    location: &Location,
+    diags: &mut Diagnostics,
+) {
+    let location = location.clone();
+    match error {
+        ItemError::Move(CellError::NotAMove) => diags.error(
+            Code::E010NotAMove,
+            location,
+            format!(
+                "\"{}\" is not a move ({})",
+                part.trim(),
+                not_a_move_hint(part)
+            ),
+        ),
+        ItemError::Move(CellError::BadActuator(n)) => diags.error(
+            Code::E011BadActuator,
+            location,
+            format!(
+                "\"{}\": actuator number {n} is out of range (expected 1 to {MAX_ACTUATOR})",
+                text.trim()
+            ),
+        ),
+        ItemError::Move(CellError::BadPosition(n)) => diags.error(
+            Code::E012BadPosition,
+            location,
+            format!(
+                "\"{}\": position {n} is out of range (expected 0 to {MAX_POSITION})",
+                text.trim()
+            ),
+        ),
+        ItemError::BadDwell(message) => diags.error(Code::E014BadDwell, location, message),
+        ItemError::BadName(message) => diags.error(Code::E015BadName, location, message),
+        ItemError::BadJump(message) => diags.error(Code::E017BadJump, location, message),
+    }
+}
+
+/// Builds and checks a table from rows of cell text laid out as a bare grid
+/// from A1 (empty strings are empty cells), as if read from the CSV file
+/// `file`. For tests, benchmarks and generated tables.
+pub fn from_rows<R, S>(file: &str, rows: &[R]) -> Result<StepTable, Vec<crate::diag::Diagnostic>>
+where
+    R: AsRef<[S]>,
+    S: AsRef<str>,
+{
+    let grid = Grid::from_text_rows(file, None, rows);
+    let mut diags = Diagnostics::new();
+    match build(&grid, &mut diags) {
+        Some(table) => Ok(table),
+        None => Err(diags.into_sorted()),
+    }
+}

@@ -1,0 +1,137 @@
+//! The rules a table keeps on the machine it runs on: valves that can stop
+//! at middle positions (E031), a home order that fits the table (E030,
+//! W006), and signal names the operating modes take for their buttons.
+
+use super::StepTable;
+use crate::diag::{CellPos, Code, Diagnostics, Location};
+use crate::read::Grid;
+use crate::valve::Valves;
+
+/// What a table is checked against besides its own rules: the machine it
+/// runs on and the program's options.
+#[derive(Debug, Clone, Copy)]
+pub struct Machine<'a> {
+    pub valves: &'a Valves,
+    pub home_order: Option<&'a [Vec<u32>]>,
+    /// Where the home order was given: its SETTINGS cell, or `None` for
+    /// the command line (`--home-order`).
+    pub home_order_at: Option<&'a Location>,
+    /// Whether the program has the reset mode, which uses the home order.
+    pub reset: bool,
+    /// The (lower-case) names of the operating-mode buttons the program has
+    /// (`stop`, `estop`, …): taken only when their mode is on.
+    pub buttons: &'a [String],
+}
+
+/// Checks a built table against the machine it runs on: the valve types,
+/// the home order (checked whether or not the reset mode uses it) and the
+/// names the operating modes take.
+pub fn check_machine(table: &StepTable, machine: &Machine, grid: &Grid, diags: &mut Diagnostics) {
+    check_valves(table, machine.valves, grid, diags);
+    check_home_order(table, machine, grid, diags);
+    check_button_names(table, machine.buttons, grid, diags);
+}
+
+/// A machine input or output may be called `stop` unless the program has a
+/// STOP button of that name (and likewise for the other buttons): what the
+/// buttons add to the one name check ([`crate::names::signal_problem`]),
+/// which the table's own build ran without them. Said at the name's first
+/// cell, whether a wait, a jump or an output switch.
+fn check_button_names(table: &StepTable, buttons: &[String], grid: &Grid, diags: &mut Diagnostics) {
+    for name in table.inputs.iter().chain(&table.outputs) {
+        let name = name.as_str();
+        if crate::names::signal_problem(name, &[]).is_some() {
+            continue;
+        }
+        if let (Some(why), Some(cell)) = (
+            crate::names::signal_problem(name, buttons),
+            first_use(table, name),
+        ) {
+            diags.error(Code::E015BadName, grid.location(cell), why);
+        }
+    }
+}
+
+/// The first cell (in step order) that names a machine input or output.
+fn first_use(table: &StepTable, name: &str) -> Option<CellPos> {
+    table.steps.iter().find_map(|s| {
+        let waits = s.waits.iter().filter(|w| w.input.as_str() == name);
+        let jumps = s.jumps.iter().filter(|j| j.input.as_str() == name);
+        let switches = s.switches.iter().filter(|w| w.output.as_str() == name);
+        waits
+            .map(|w| w.cell)
+            .chain(jumps.map(|j| j.cell))
+            .chain(switches.map(|w| w.cell))
+            .min()
+    })
+}
+
+/// Where a message about the home order goes: on its SETTINGS cell, or on
+/// the file with the words naming `--home-order` to end the message.
+pub fn home_order_place(at: Option<&Location>, file: &str) -> (Location, &'static str) {
+    match at {
+        Some(at) => (at.clone(), ""),
+        None => (
+            Location {
+                file: file.to_string(),
+                sheet: None,
+                cell: None,
+            },
+            " (--home-order)",
+        ),
+    }
+}
+
+/// A home order is checked against the table whether or not it is used,
+/// and a home order without the reset mode that uses it is said, so that a
+/// forgotten `reset` is not silently a no-op.
+fn check_home_order(table: &StepTable, machine: &Machine, grid: &Grid, diags: &mut Diagnostics) {
+    let Some(order) = machine.home_order else {
+        return;
+    };
+    let (at, source) = home_order_place(machine.home_order_at, &grid.file);
+    if let Err(message) = table.home_stages(Some(order)) {
+        diags.error(Code::E030BadSetting, at, format!("{message}{source}"));
+    } else if !machine.reset {
+        diags.warning(
+            Code::W006NoEffect,
+            at,
+            format!("the home order is used by the reset mode only, which is not on: add reset to the modes, or leave the home order out{source}"),
+        );
+    }
+}
+
+/// A middle position needs a valve with a centre: a 5/2 valve cannot stop a
+/// piston between its ends. Names the cell of the first move that asks for it.
+fn check_valves(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut Diagnostics) {
+    for actuator in table.actuators.iter().filter(|a| a.has_middle_positions()) {
+        let valve = valves.of(actuator.number, actuator.max_position);
+        if valve.has_centre() {
+            continue;
+        }
+        let Some(m) = table
+            .steps
+            .iter()
+            .flat_map(|s| &s.moves)
+            .find(|m| m.actuator == actuator.number && actuator.is_middle(m.to))
+        else {
+            continue;
+        };
+        let centred: Vec<&str> = crate::valve::ValveType::ALL
+            .into_iter()
+            .filter(|v| v.has_centre())
+            .map(|v| v.name())
+            .collect();
+        diags.error(
+            Code::E031ValveCannotStop,
+            grid.location(m.cell),
+            format!(
+                "\"{}\" stops C{} at middle position {}, but its valve is {valve}, which cannot stop a piston between its ends (use {})",
+                m.notation(),
+                actuator.number,
+                m.to,
+                crate::diag::or_list(&centred)
+            ),
+        );
+    }
+}
