@@ -45,7 +45,7 @@ const COMMENT_H: i64 = 30;
 /// A connection: the element it comes from and its points, the first at
 /// the input, the last at the source's output.
 #[derive(Serialize, Clone)]
-pub(crate) struct Wire {
+struct Wire {
     from: u64,
     points: Vec<(i64, i64)>,
 }
