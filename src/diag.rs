@@ -86,7 +86,7 @@ pub enum Code {
     E041BadCommandLine,
     /// The Ladder body (`--formats ld`) was asked for a program with a
     /// timer (a dwell, the watchdog, a run-on), which it does not draw.
-    E042LadderTimer,
+    E043LadderTimer,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -151,7 +151,7 @@ impl Code {
             Code::E029JumpPositions => "E029",
             Code::E040OutputTaken => "E040",
             Code::E041BadCommandLine => "E041",
-            Code::E042LadderTimer => "E042",
+            Code::E043LadderTimer => "E043",
         }
     }
 }

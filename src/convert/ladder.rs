@@ -2,14 +2,14 @@
 //! anything is written: a timer. The step program restarts a timer in the
 //! scan its step fires (a TON called with IN off, then on); set and reset
 //! coils alone cannot do that, so a program with a dwell, the watchdog or a
-//! run-on has no Ladder body (E042), rather than one that times a scan late.
+//! run-on has no Ladder body (E043), rather than one that times a scan late.
 
 use crate::diag::{Code, Diagnostic, Location, Severity};
 use crate::program::{Action, Signal, StepProgram};
 use crate::settings::Settings;
 use crate::table::StepTable;
 
-/// E042 at the first timer of `program`, if the Ladder body was asked for.
+/// E043 at the first timer of `program`, if the Ladder body was asked for.
 pub fn timers_refused(
     table: &StepTable,
     settings: &Settings,
@@ -61,7 +61,7 @@ pub fn timers_refused(
     };
     vec![Diagnostic {
         severity: Severity::Error,
-        code: Code::E042LadderTimer,
+        code: Code::E043LadderTimer,
         location: location.unwrap_or(whole_file),
         message: format!(
             "the Ladder body (--formats ld) has no timers yet, and the program needs {what}: leave ld out of --formats (the ST, SFC and the other programs time it), or the timer out of the table"

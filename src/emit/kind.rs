@@ -200,7 +200,7 @@ impl OutputKind {
                 }
                 // `all`, the only other item the list accepts: every
                 // kind but the Ladder body, which refuses a program with
-                // timers (E042) and so is asked for by name.
+                // timers (E043) and so is asked for by name.
                 None => kinds.extend(
                     OutputKind::ALL
                         .into_iter()

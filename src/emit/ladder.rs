@@ -18,7 +18,7 @@
 //!
 //! Beremiz orders the coils by their height, so the rungs are placed top to
 //! bottom in scan order. Timers have no rung here: a program with one is
-//! refused before rendering (E042), since it needs a TON restarted in the
+//! refused before rendering (E043), since it needs a TON restarted in the
 //! scan its step fires, which coils alone cannot draw.
 
 use minijinja::Value;
@@ -394,7 +394,7 @@ fn ladder(input: &EmitInput) -> Result<Ladder, String> {
 /// the rungs.
 pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
     let (iec, _) = super::st::parts(input, input.scan_ms)?;
-    // Refused before rendering (E042): reaching this is a bug, not the
+    // Refused before rendering (E043): reaching this is a bug, not the
     // engineer's to fix.
     let ladder = ladder(input).map_err(|detail| templates::TemplateError {
         file: "ld.xml.j2".to_string(),

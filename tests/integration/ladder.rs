@@ -14,7 +14,7 @@ use crate::helpers::{files_below, root, samples, steptable};
 use crate::plcopen_geometry::check_file;
 
 /// The option sets the Ladder body is written for (`--safety all` has the
-/// watchdog, a timer: E042).
+/// watchdog, a timer: E043).
 pub const LADDER_OPTIONS: [&[&str]; 3] = [
     &[],
     &["--modes", "all"],
@@ -60,7 +60,7 @@ fn the_paper_ladder_is_snapshotted() {
 }
 
 /// Every sample, every option set: both bodies load in the editors as
-/// drawn; a program with a timer has no ladder (E042), and only then.
+/// drawn; a program with a timer has no ladder (E043), and only then.
 #[test]
 fn every_sfc_and_ladder_body_has_integer_geometry_and_wires_on_their_points() {
     let mut bodies = 0;
@@ -73,7 +73,7 @@ fn every_sfc_and_ladder_body_has_integer_geometry_and_wires_on_their_points() {
                 Ok(files) => files,
                 Err(stderr) => {
                     assert!(
-                        stderr.contains("error[E042]"),
+                        stderr.contains("error[E043]"),
                         "{}: {stderr}",
                         sample.display()
                     );
@@ -176,13 +176,13 @@ const HOSTILE: &[Hostile] = &[
         what: "a dwell, which the ladder cannot time",
         table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,C1-0\n",
         args: &["--formats", "ld"],
-        says: &["t.csv:3:2: error[E042]", "this dwell"],
+        says: &["t.csv:3:2: error[E043]", "this dwell"],
     },
     Hostile {
         what: "the watchdog, asked for beside the ladder",
         table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n",
         args: &["--formats", "ld", "--safety", "watchdog"],
-        says: &["t.csv: error[E042]", "--safety watchdog"],
+        says: &["t.csv: error[E043]", "--safety watchdog"],
     },
     Hostile {
         what: "a machine input named as the ladder's fired bit",
