@@ -89,6 +89,9 @@ pub enum Code {
     /// a button whose mode is off, a step it lacks, a malformed time, two
     /// events contradicting or repeating each other.
     E042BadScenarioEvent,
+    /// The Ladder body (`--formats ld`) was asked for a program with a
+    /// timer (a dwell, the watchdog, a run-on), which it does not draw.
+    E043LadderTimer,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -154,6 +157,7 @@ impl Code {
             Code::E040OutputTaken => "E040",
             Code::E041BadCommandLine => "E041",
             Code::E042BadScenarioEvent => "E042",
+            Code::E043LadderTimer => "E043",
         }
     }
 }

@@ -26,6 +26,9 @@ pub enum OutputKind {
     /// The sequence as an SFC chart in PLCopen XML (`NAME.sfc.xml`): asked
     /// for by name, not written by default (the ST program is).
     Sfc,
+    /// The step program as a Ladder body in PLCopen XML (`NAME.ld.xml`):
+    /// asked for by name, not written by default.
+    Ladder,
     /// TIA Portal SCL external source for the S7-1200/1500 (`.scl`).
     Scl,
     /// Studio 5000 ladder program export (`.L5X`).
@@ -48,7 +51,7 @@ impl OutputKind {
     }
 
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 21] = [
+    pub const ALL: [OutputKind; 22] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -66,6 +69,7 @@ impl OutputKind {
         OutputKind::CodesysV2,
         OutputKind::Beremiz,
         OutputKind::Sfc,
+        OutputKind::Ladder,
         OutputKind::Scl,
         OutputKind::L5x,
         OutputKind::Grafcet,
@@ -77,7 +81,7 @@ impl OutputKind {
     pub fn defaults() -> BTreeSet<OutputKind> {
         OutputKind::ALL
             .into_iter()
-            .filter(|k| *k != OutputKind::Sfc)
+            .filter(|k| !matches!(k, OutputKind::Sfc | OutputKind::Ladder))
             .collect()
     }
 
@@ -101,6 +105,7 @@ impl OutputKind {
             OutputKind::CodesysV2 => "exp",
             OutputKind::Beremiz => "beremiz",
             OutputKind::Sfc => "sfc",
+            OutputKind::Ladder => "ld",
             OutputKind::Scl => "scl",
             OutputKind::L5x => "l5x",
             OutputKind::Grafcet => "grafcet",
@@ -153,6 +158,7 @@ impl OutputKind {
             OutputKind::CodesysV2 => ".exp",
             OutputKind::Beremiz => ".beremiz",
             OutputKind::Sfc => ".sfc.xml",
+            OutputKind::Ladder => ".ld.xml",
             OutputKind::Scl => ".scl",
             // Studio 5000 writes and lists its exports as .L5X.
             OutputKind::L5x => ".L5X",
@@ -192,8 +198,14 @@ impl OutputKind {
                 Some(kind) => {
                     kinds.insert(kind);
                 }
-                // `all`, the only other item the list accepts.
-                None => kinds.extend(OutputKind::ALL),
+                // `all`, the only other item the list accepts: every
+                // kind but the Ladder body, which refuses a program with
+                // timers (E043) and so is asked for by name.
+                None => kinds.extend(
+                    OutputKind::ALL
+                        .into_iter()
+                        .filter(|k| *k != OutputKind::Ladder),
+                ),
             }
         }
         if kinds.is_empty() {

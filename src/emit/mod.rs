@@ -12,6 +12,7 @@ pub mod grafcet;
 pub mod io_csv;
 mod kind;
 pub mod l5x;
+pub mod ladder;
 pub mod lower;
 mod render;
 pub mod report;

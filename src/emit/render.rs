@@ -192,6 +192,7 @@ impl<'a> Renderer<'a> {
             OutputKind::Gvl => self.iec(kind, IecFile::GlobalVariables)?,
             OutputKind::CodesysV2 => self.iec(kind, IecFile::CodesysV2)?,
             OutputKind::Sfc => text(kind, super::sfc::render(&input))?,
+            OutputKind::Ladder => text(kind, super::ladder::render(&input))?,
         };
         Ok(vec![file(bytes)])
     }

@@ -31,6 +31,7 @@ pub const DEFAULTS: &[(&str, &str)] = &[
         include_str!("../../templates/plcopen.xml.j2"),
     ),
     ("sfc.xml.j2", include_str!("../../templates/sfc.xml.j2")),
+    ("ld.xml.j2", include_str!("../../templates/ld.xml.j2")),
     (
         "codesys.xml.j2",
         include_str!("../../templates/codesys.xml.j2"),

@@ -247,6 +247,7 @@ fn the_types_lists_hold_every_value() {
             L5x => 18,
             Grafcet => 19,
             Report => 20,
+            Ladder => 21,
         }
     }
     fn all_of(indices: Vec<usize>, count: usize) {
@@ -256,7 +257,7 @@ fn the_types_lists_hold_every_value() {
     all_of(ValveType::ALL.map(valve).to_vec(), 6);
     all_of(Target::ALL.map(target).to_vec(), 3);
     all_of(Mnemonic::ALL.map(mnemonic).to_vec(), 2);
-    all_of(OutputKind::ALL.map(kind).to_vec(), 21);
+    all_of(OutputKind::ALL.map(kind).to_vec(), 22);
     for name in ValveType::names() {
         assert!(name.parse::<ValveType>().is_ok(), "{name}");
     }

@@ -53,16 +53,16 @@ pub const CHECKS: &[Check] = &[
 ];
 
 /// A random table with its command-line options.
-struct Drawn {
-    rows: Vec<Vec<String>>,
-    args: Vec<String>,
+pub(crate) struct Drawn {
+    pub(crate) rows: Vec<Vec<String>>,
+    pub(crate) args: Vec<String>,
 }
 
 fn pick<'a>(rng: &mut SplitMix64, items: &[&'a str]) -> &'a str {
     items[rng.range(0, items.len() as u32 - 1) as usize]
 }
 
-fn draw(seed: u64) -> Drawn {
+pub(crate) fn draw(seed: u64) -> Drawn {
     let mut rng = SplitMix64::new(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0xD1FF);
     let shape = Shape {
         actuators: rng.range(1, 5),
@@ -163,7 +163,16 @@ fn env_number(name: &str, default: u64) -> u64 {
 }
 
 fn prepare(dir: &Path, seed: u64) -> Case {
-    let drawn = draw(seed);
+    convert_drawn(
+        dir,
+        seed,
+        &draw(seed),
+        "st,awl,fst,sfc,scl,tia,l5x,rockwell",
+    )
+}
+
+/// Writes `drawn` as a workbook in `dir` and converts it to `formats`.
+pub(crate) fn convert_drawn(dir: &Path, seed: u64, drawn: &Drawn, formats: &str) -> Case {
     let input = dir.join(format!("random{seed}.xlsx"));
     let rows: Vec<Vec<&str>> = drawn
         .rows
@@ -173,14 +182,14 @@ fn prepare(dir: &Path, seed: u64) -> Case {
     let rows: Vec<&[&str]> = rows.iter().map(Vec::as_slice).collect();
     write_xlsx(&input, "Sheet1", &rows);
     let mut args: Vec<&str> = drawn.args.iter().map(String::as_str).collect();
-    args.extend(["--formats", "st,awl,fst,sfc,scl,tia,l5x,rockwell"]);
+    args.extend(["--formats", formats]);
     let mut case = engines::prepare(&input, &args, &dir.join(format!("out{seed}")));
     case.label = format!("seed {seed}: {:?} {}", drawn.rows, drawn.args.join(" "));
     case
 }
 
 /// The seeds of a run: `STEPTABLE_DIFF_SEED` on, `STEPTABLE_DIFF_CASES` of them.
-fn seeds() -> Vec<u64> {
+pub(crate) fn seeds() -> Vec<u64> {
     let first = env_number("STEPTABLE_DIFF_SEED", 0);
     let count = env_number("STEPTABLE_DIFF_CASES", 100);
     (first..first + count).collect()

@@ -20,6 +20,7 @@ mod engines;
 mod exports;
 mod halt;
 mod homing;
+mod ladder;
 mod libreoffice;
 mod names;
 mod pinned;
@@ -186,6 +187,7 @@ fn main() {
         step_numbers::CHECKS,
         halt::CHECKS,
         homing::CHECKS,
+        ladder::CHECKS,
         sync::CHECKS,
         synth_engines::CHECKS,
     ]

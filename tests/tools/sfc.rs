@@ -46,7 +46,7 @@ fn beremiz_text(python: &Path, shared: &Path, xml: &Path) -> Result<std::path::P
     Ok(out)
 }
 
-fn xsd_valid(xmllint: &Path, shared: &Path, xml: &Path) -> Result<(), String> {
+pub(crate) fn xsd_valid(xmllint: &Path, shared: &Path, xml: &Path) -> Result<(), String> {
     let output = Command::new(xmllint)
         .arg("--noout")
         .arg("--schema")
@@ -68,9 +68,21 @@ pub(crate) fn run_chart(
     case: &Case,
     xml: &Path,
 ) -> Result<(), String> {
+    run_beremiz(python, shared, case, xml, "Beremiz + matiec .sfc.xml")
+}
+
+/// A PLCopen body of `case` (chart or ladder), turned into ST by Beremiz's
+/// generator, compiled and run by matiec against the simulation.
+pub(crate) fn run_beremiz(
+    python: &Path,
+    shared: &Path,
+    case: &Case,
+    xml: &Path,
+    label: &str,
+) -> Result<(), String> {
     let st = beremiz_text(python, shared, xml).map_err(|e| format!("{}: {e}", case.label))?;
     case.check(
-        "Beremiz + matiec .sfc.xml",
+        label,
         matiec::run(shared, &st, &case.trace, &case.allocation),
     )
 }

@@ -1,0 +1,222 @@
+//! The Ladder body (`--formats ld`, `NAME.ld.xml`) and the editor-load
+//! condition of both graphical bodies (SFC and LD): the snapshot of the
+//! paper's ladder, integer geometry and wires ending on their connection
+//! points for every sample and option set (the checker in
+//! `plcopen_geometry.rs`, seen rejecting a moved point and a decimal size),
+//! and the hostile inputs of the new output, each through the binary with
+//! its exit code, code and cell. The run in Beremiz's generator and matiec
+//! is `tests/tools/ladder.rs`.
+
+use predicates::prelude::*;
+use predicates::str::contains;
+
+use crate::helpers::{files_below, root, samples, steptable};
+use crate::plcopen_geometry::check_file;
+
+/// The option sets the Ladder body is written for (`--safety all` has the
+/// watchdog, a timer: E043).
+pub const LADDER_OPTIONS: [&[&str]; 3] = [
+    &[],
+    &["--modes", "all"],
+    &["--modes", "all", "--safety", "edge,precheck,plausibility"],
+];
+
+/// Converts `input` with `args` into a fresh folder: the written files by
+/// name ending, or the stderr of a refusal.
+fn convert(input: &std::path::Path, args: &[&str]) -> Result<Vec<(String, String)>, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let out = steptable()
+        .arg("convert")
+        .arg(input)
+        .args(args)
+        .arg("-o")
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    if !out.status.success() {
+        return Err(String::from_utf8_lossy(&out.stderr).into_owned());
+    }
+    Ok(files_below(dir.path())
+        .into_iter()
+        .map(|p| {
+            let name = p.file_name().unwrap().to_string_lossy().into_owned();
+            (name, std::fs::read_to_string(&p).unwrap_or_default())
+        })
+        .collect())
+}
+
+#[test]
+fn the_paper_ladder_is_snapshotted() {
+    let files = convert(
+        &root().join("samples/paper_example.csv"),
+        &["--formats", "ld"],
+    )
+    .expect("the paper's table has no timer");
+    let [(name, text)] = &files[..] else {
+        panic!("one file: {files:?}");
+    };
+    assert_eq!(name, "paper_example.ld.xml");
+    insta::assert_snapshot!("paper_example_csv.ld.xml", text);
+}
+
+/// Every sample, every option set: both bodies load in the editors as
+/// drawn; a program with a timer has no ladder (E043), and only then.
+#[test]
+fn every_sfc_and_ladder_body_has_integer_geometry_and_wires_on_their_points() {
+    let mut bodies = 0;
+    let mut refused = 0;
+    for sample in samples() {
+        for options in LADDER_OPTIONS {
+            let mut args = options.to_vec();
+            args.extend(["--formats", "sfc,ld,st"]);
+            let files = match convert(&sample, &args) {
+                Ok(files) => files,
+                Err(stderr) => {
+                    assert!(
+                        stderr.contains("error[E043]"),
+                        "{}: {stderr}",
+                        sample.display()
+                    );
+                    // Refused only where the program times something.
+                    let mut args = options.to_vec();
+                    args.extend(["--formats", "st"]);
+                    let st = convert(&sample, &args).unwrap();
+                    assert!(
+                        st[0].1.contains(": TON;"),
+                        "{}: refused without a timer",
+                        sample.display()
+                    );
+                    refused += 1;
+                    args.pop();
+                    args.push("sfc");
+                    convert(&sample, &args).unwrap()
+                }
+            };
+            for (name, text) in files.iter().filter(|(n, _)| n.ends_with(".xml")) {
+                let wires = check_file(text).unwrap_or_else(|e| panic!("{name} {options:?}: {e}"));
+                assert!(wires > 10, "{name}: {wires} wires");
+                bodies += 1;
+            }
+        }
+    }
+    assert!(
+        refused > 0 && bodies > 30,
+        "{bodies} bodies, {refused} refused"
+    );
+}
+
+/// The checker itself: a wire moved off its source's output by one unit,
+/// and a decimal width, are what the editors mis-draw; both are caught.
+#[test]
+fn the_geometry_check_catches_a_moved_point_and_a_decimal_size() {
+    let files = convert(
+        &root().join("samples/paper_example.csv"),
+        &["--formats", "ld,sfc"],
+    )
+    .unwrap();
+    for (name, text) in &files {
+        check_file(text).unwrap();
+        let anchor = "<position x=\"";
+        let at = text.find("<connection ").unwrap();
+        let first_point = at + text[at..].find(anchor).unwrap() + anchor.len();
+        let moved = format!("{}1{}", &text[..first_point], &text[first_point..]);
+        let err = check_file(&moved).expect_err(name);
+        assert!(err.contains("starts at"), "{name}: {err}");
+        let decimal = text.replacen("width=\"21\"", "width=\"21.5\"", 1).replacen(
+            "width=\"70\"",
+            "width=\"70.5\"",
+            1,
+        );
+        let err = check_file(&decimal).expect_err(name);
+        assert!(err.contains("not an integer"), "{name}: {err}");
+    }
+}
+
+/// `--formats all` writes every kind but the ladder, which is asked for by
+/// name: a table with a dwell still converts with `all`.
+#[test]
+fn all_formats_leave_the_ladder_out() {
+    let files = convert(
+        &root().join("samples/sorting_station.xlsx"),
+        &["--formats", "all"],
+    )
+    .unwrap();
+    assert!(files.iter().any(|(n, _)| n.ends_with(".sfc.xml")));
+    assert!(!files.iter().any(|(n, _)| n.ends_with(".ld.xml")));
+}
+
+struct Hostile {
+    what: &'static str,
+    table: &'static str,
+    args: &'static [&'static str],
+    /// In stderr, with the code and the cell where there is one.
+    says: &'static [&'static str],
+}
+
+const HOSTILE: &[Hostile] = &[
+    Hostile {
+        what: "ld given twice",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n",
+        args: &["--formats", "ld,LD"],
+        says: &["'--formats <LIST>'", "\"ld\" is given twice"],
+    },
+    Hostile {
+        what: "all beside ld",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n",
+        args: &["--formats", "all,ld"],
+        says: &["'--formats <LIST>'"],
+    },
+    Hostile {
+        what: "the output misspelt",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n",
+        args: &["--formats", "ladder"],
+        says: &["\"ladder\" is not an output format", " ld,"],
+    },
+    Hostile {
+        what: "a dwell, which the ladder cannot time",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,C1-0\n",
+        args: &["--formats", "ld"],
+        says: &["t.csv:3:2: error[E043]", "this dwell"],
+    },
+    Hostile {
+        what: "the watchdog, asked for beside the ladder",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n",
+        args: &["--formats", "ld", "--safety", "watchdog"],
+        says: &["t.csv: error[E043]", "--safety watchdog"],
+    },
+    Hostile {
+        what: "a machine input named as the ladder's fired bit",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,I:fired\nSTEP 3,C1-0\n",
+        args: &["--formats", "ld"],
+        says: &["t.csv:3:2: error[E015]", "\"fired\" cannot name"],
+    },
+    Hostile {
+        what: "a machine input named as a step flag of the ladder",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,I:step_2\nSTEP 3,C1-0\n",
+        args: &["--formats", "ld"],
+        says: &["t.csv:3:2: error[E015]", "\"step_2\" cannot name"],
+    },
+];
+
+#[test]
+fn hostile_ladder_requests_are_refused_at_their_cell_and_write_nothing() {
+    for case in HOSTILE {
+        let dir = tempfile::tempdir().unwrap();
+        let table = dir.path().join("t.csv");
+        std::fs::write(&table, case.table).unwrap();
+        let out = dir.path().join("out");
+        let mut assert = steptable()
+            .arg("convert")
+            .arg(&table)
+            .args(case.args)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .code(1);
+        for needle in case.says {
+            assert = assert.stderr(contains(*needle));
+        }
+        assert.stderr(contains("panicked").not());
+        assert!(files_below(&out).is_empty(), "{}: wrote files", case.what);
+    }
+}
