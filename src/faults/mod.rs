@@ -213,6 +213,21 @@ pub fn case_count(program: &StepProgram, at_once: usize) -> usize {
     total
 }
 
+/// Each set's distinct onsets, the earliest first: a later case whose
+/// fault changed nothing until an earlier case's run stood where it stands
+/// ends as that run, found on its trail.
+fn distinct_onsets(onsets: &[Vec<Option<u64>>]) -> Vec<Vec<u64>> {
+    onsets
+        .iter()
+        .map(|at| {
+            let mut distinct: Vec<u64> = at.iter().flatten().copied().collect();
+            distinct.sort_unstable();
+            distinct.dedup();
+            distinct
+        })
+        .collect()
+}
+
 /// Simulates each fault set and classifies it.
 pub fn analyse(
     table: &StepTable,
@@ -335,22 +350,16 @@ pub fn analyse_from(
         }
     };
     let phases_skipped = too_long.then_some(cases_at_every_moment);
-    // Each set's distinct onsets, the earliest first: a later case whose
-    // fault changed nothing until an earlier case's run stood where it
-    // stands ends as that run, found on its trail.
-    let planned: Vec<Vec<u64>> = onsets
-        .iter()
-        .map(|at| {
-            let mut distinct: Vec<u64> = at.iter().flatten().copied().collect();
-            distinct.sort_unstable();
-            distinct.dedup();
-            distinct
-        })
-        .collect();
+    let planned = distinct_onsets(&onsets);
     let total = planned.iter().map(Vec::len).sum();
     let resumed = inputs
         .as_ref()
         .filter(|_| runs == FaultRuns::Resumed)
+        // A copy of a healthy run that found problems carries them (and the
+        // alarms after them) into every run resumed from it, which a faulty
+        // run judged at its first hazard never reaches: such a table's runs
+        // go from power-up.
+        .filter(|_| healthy.problems.is_empty())
         .map(|inputs| {
             let times: Vec<u64> = planned
                 .iter()
