@@ -34,6 +34,9 @@ struct ActuatorColumns {
     retract: Option<u32>,
     valve: Option<u32>,
     load: Option<u32>,
+    /// The engineer's names (the template's `name` column), beside or
+    /// instead of `C1 (clamp)` in the first column.
+    name: Option<u32>,
     /// The last column with a header (read or named) on the header row.
     last_col: u32,
 }
@@ -60,7 +63,7 @@ pub const LABELS: [&str; 17] = [
 ];
 
 /// The columns an actuator table may have, after `actuator`.
-const COLUMNS: [&str; 4] = ["extend", "retract", "valve", "load"];
+const COLUMNS: [&str; 5] = ["extend", "retract", "valve", "load", "name"];
 
 /// Headers of a column of notes beside the settings (the template's `WHAT
 /// IT MEANS`): its cells on the labels' rows are the engineer's, not read.
@@ -437,6 +440,7 @@ fn actuator_columns(
         retract: None,
         valve: None,
         load: None,
+        name: None,
         last_col: header.col,
     };
     reader.seen.insert(header);
@@ -456,6 +460,7 @@ fn actuator_columns(
             "retract" => &mut columns.retract,
             "valve" => &mut columns.valve,
             "load" => &mut columns.load,
+            "name" => &mut columns.name,
             _ => {
                 reader.warn(
                     cell.pos,
@@ -500,10 +505,16 @@ fn read_actuator_rows(
 ) {
     let grid = reader.grid;
     let header = columns.header;
-    let value_cols: Vec<u32> = [columns.extend, columns.retract, columns.valve, columns.load]
-        .into_iter()
-        .flatten()
-        .collect();
+    let value_cols: Vec<u32> = [
+        columns.extend,
+        columns.retract,
+        columns.valve,
+        columns.load,
+        columns.name,
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
 
     let in_table = |c: &GridCell| (header.col..=columns.last_col).contains(&c.pos.col);
     let mut rows_read = 0;
@@ -612,16 +623,14 @@ fn read_actuator_rows(
             continue;
         }
         first_rows.insert(actuator, name_cell.pos);
-        // `C1 (clamp)`: the engineer's name of the actuator, for every
-        // output (crate::symbols), even on a row with no other value.
-        if let Some(text) = comment {
-            reader.settings.names.insert(
-                actuator,
-                crate::symbols::ActuatorName {
-                    text,
-                    at: grid.location(name_cell.pos),
-                },
-            );
+        // `C1 (clamp)` or the name column: the engineer's name of the
+        // actuator, for every output (crate::symbols), even on a row with
+        // no other value.
+        let typed = columns
+            .name
+            .and_then(|col| cells.iter().copied().find(|c| c.pos.col == col));
+        if let Some(name) = actuator_name(grid, actuator, (name_cell, comment), typed, diags) {
+            reader.settings.names.insert(actuator, name);
         }
         for cell in &values {
             if !value_cols.contains(&cell.pos.col) {
@@ -646,6 +655,49 @@ fn read_actuator_rows(
             "this actuator table has no row of an actuator with values below its header; nothing was read from it".to_string(),
             diags,
         );
+    }
+}
+
+/// The name of `actuator` from its first cell's comment (`C1 (clamp)`) or
+/// its name column, with the cell it came from. Both given and different:
+/// E030 at the name column's cell, and the first cell's name is kept.
+fn actuator_name(
+    grid: &Grid,
+    actuator: u32,
+    (first, comment): (&GridCell, Option<String>),
+    typed: Option<&GridCell>,
+    diags: &mut Diagnostics,
+) -> Option<crate::symbols::ActuatorName> {
+    let at = |cell: &GridCell| grid.location(cell.pos);
+    let typed = typed
+        .map(|cell| (cell, crate::cell::visible_text(&text_of(&cell.value))))
+        .filter(|(_, text)| !text.trim().is_empty());
+    match (comment, typed) {
+        (Some(text), Some((cell, name))) if !text.trim().eq_ignore_ascii_case(name.trim()) => {
+            diags.error(
+                Code::E030BadSetting,
+                at(cell),
+                format!(
+                    "C{actuator} is named \"{}\" in {} and \"{}\" here; keep one name (this one was not read)",
+                    text.trim(),
+                    grid.cell_name(first.pos),
+                    name.trim()
+                ),
+            );
+            Some(crate::symbols::ActuatorName {
+                text,
+                at: at(first),
+            })
+        }
+        (Some(text), _) => Some(crate::symbols::ActuatorName {
+            text,
+            at: at(first),
+        }),
+        (None, Some((cell, name))) => Some(crate::symbols::ActuatorName {
+            text: name.trim().to_string(),
+            at: at(cell),
+        }),
+        (None, None) => None,
     }
 }
 

@@ -21,6 +21,7 @@ mod exports;
 mod halt;
 mod homing;
 mod libreoffice;
+mod long_comments;
 mod names;
 mod pinned;
 mod sfc;
@@ -176,6 +177,7 @@ fn main() {
         differential_timing::CHECKS,
         exports::CHECKS,
         libreoffice::CHECKS,
+        long_comments::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
         sfc::CHECKS,
