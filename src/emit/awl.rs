@@ -61,7 +61,7 @@ struct Network {
     lines: Vec<Line>,
 }
 
-/// The characters a network's (and the block's) TITLE is cut to. No
+/// The characters a network's TITLE is cut to. No
 /// source found confirms STEP 7's limit: awlsim 0.77.1's tokenizer reads
 /// `TITLE =` as a descriptor and sets no length, and the pages of Siemens'
 /// "Programming with STEP 7" (A5E02789666-01, rules for STL sources) found
@@ -71,14 +71,16 @@ struct Network {
 pub const NETWORK_TITLE: usize = 64;
 
 /// A network as the template lays it out: its title cut to
-/// [`NETWORK_TITLE`], `full` the whole title when it was cut.
+/// [`NETWORK_TITLE`], and `full`, the whole title, only when it was cut.
 impl Serialize for Network {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeStruct;
         let (title, cut) = super::shorten(&self.title, NETWORK_TITLE);
         let mut network = serializer.serialize_struct("Network", 3)?;
         network.serialize_field("title", &title)?;
-        network.serialize_field("full", if cut { self.title.as_str() } else { "" })?;
+        if cut {
+            network.serialize_field("full", &self.title)?;
+        }
         network.serialize_field("lines", &self.lines)?;
         network.end()
     }
@@ -98,8 +100,6 @@ pub fn shortened_comments(input: &EmitInput) -> Vec<String> {
 #[derive(Serialize)]
 struct Context {
     title: String,
-    /// The title cut to what STEP 7 keeps of a block's TITLE.
-    block_title: String,
     version: &'static str,
     source: String,
     mnemonics: &'static str,
@@ -503,7 +503,6 @@ fn build(input: &EmitInput) -> Context {
     let last_flag = layout.step_flags.last().copied().unwrap_or((0, 0));
     Context {
         title: one_line(input.name),
-        block_title: super::shorten(&one_line(input.name), NETWORK_TITLE).0,
         version: env!("CARGO_PKG_VERSION"),
         source: one_line(&input.source()),
         mnemonics: match input.allocation.mnemonic {

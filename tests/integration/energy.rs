@@ -147,7 +147,7 @@ fn the_carwash_flags_its_stuck_homing_button_and_its_halt_switches_the_motors_of
     );
     assert!(
         row(&["--safety", "all"], "x11 open circuit")
-            .starts_with("x11 open circuit (stuck at 0) safe stall at every moment alarm 3"),
+            .starts_with("x11 open circuit (stuck at 0) safe stall at every moment alarm 2"),
     );
 }
 

@@ -40,6 +40,8 @@ mod modes;
 mod motor;
 mod name_aliases;
 mod name_check;
+mod name_column;
+mod named_findings;
 mod native_outputs;
 mod on_stop;
 mod option_times;
