@@ -188,4 +188,14 @@ mod tests {
         assert_eq!(super::crlf("a\nb\r\nc"), "a\r\nb\r\nc");
         assert_eq!(super::crlf("a\n\n"), "a\r\n\r\n");
     }
+
+    #[test]
+    fn a_long_comment_is_cut_to_the_limit_with_three_dots() {
+        assert_eq!(super::shorten("clamp", 5), ("clamp".to_string(), false));
+        assert_eq!(super::shorten("clamps", 5), ("cl...".to_string(), true));
+        // Characters, not bytes: an umlaut is one.
+        let (cut, was) = super::shorten("Überwachung der Presse", 8);
+        assert_eq!((cut.as_str(), was), ("Überw...", true));
+        assert_eq!(cut.chars().count(), 8);
+    }
 }

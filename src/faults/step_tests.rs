@@ -25,15 +25,23 @@ fn stuck(actuator: u32, position: u32, stuck_at: bool) -> Fault {
     }
 }
 
-/// The judged outcome and step of one fault from power-up.
-fn judged(fault: Fault) -> (Outcome, Option<usize>, String) {
+/// A fault's run from power-up, collisions judged against the healthy
+/// cycle's positions as the fault analysis judges them.
+fn run(fault: Fault) -> crate::simulate::SimReport {
     let (table, program) = paper();
+    let healthy = healthy_run(&table, &program, &SimSettings::default());
     let settings = SimSettings {
         faults: vec![fault],
         stop_at_hazard: true,
+        known_places: Some(std::sync::Arc::new(healthy.report.places)),
         ..SimSettings::default()
     };
-    judge(&simulate(&table, &program, &settings))
+    simulate(&table, &program, &settings)
+}
+
+/// The judged outcome and step of one fault from power-up.
+fn judged(fault: Fault) -> (Outcome, Option<usize>, String) {
+    judge(&run(fault))
 }
 
 #[test]
@@ -67,13 +75,8 @@ fn an_early_start_is_the_step_it_enters() {
 
 #[test]
 fn a_collision_is_the_step_it_comes_about_in() {
-    let (table, program) = paper();
     // The simulator's own collision: x22 short collides during step 4.
-    let settings = SimSettings {
-        faults: vec![stuck(2, 2, true)],
-        ..SimSettings::default()
-    };
-    let report = simulate(&table, &program, &settings);
+    let report = run(stuck(2, 2, true));
     let collision = report
         .problems
         .iter()
@@ -91,6 +94,7 @@ fn a_collision_is_the_step_it_comes_about_in() {
     assert_eq!(judge(&alone).1, Some(3));
     // x21 open while step 4 moves C2 away from it: the run stalls in
     // step 5 (C2 runs through x21) with a collision there.
+    let (table, program) = paper();
     let result = analyse(&table, &program, &SimSettings::default(), 1);
     let x21 = result
         .cases
