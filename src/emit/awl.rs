@@ -419,7 +419,7 @@ fn build(input: &EmitInput) -> Context {
             lines.push(line("SET", "", ""));
             actions(&mut lines, &rung.actions, &[]);
             networks.push(Network {
-                title: one_line(&rung.comment),
+                title: one_line(&symbols.designate(&rung.comment)),
                 lines,
             });
             continue;
@@ -437,7 +437,7 @@ fn build(input: &EmitInput) -> Context {
             comment: String::new(),
         });
         networks.push(Network {
-            title: one_line(&rung.comment),
+            title: one_line(&symbols.designate(&rung.comment)),
             lines,
         });
     }

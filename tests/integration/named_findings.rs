@@ -116,3 +116,32 @@ fn the_simulation_says_its_verdict_in_the_names() {
         "{stdout}"
     );
 }
+
+#[test]
+fn the_programs_own_rung_comments_name_signals_by_their_designation() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .args([
+            "convert",
+            "--designations",
+            "iso",
+            "--formats",
+            "st,awl,fst,l5x",
+            "-o",
+        ])
+        .arg(dir.path())
+        .arg(crate::helpers::sample("paper_example.xlsx"))
+        .assert()
+        .success();
+    let out = dir.path().join("paper_example");
+    for file in [
+        "paper_example.st",
+        "paper_example.awl",
+        "paper_example.fst.txt",
+        "paper_example.L5X",
+    ] {
+        let text = std::fs::read_to_string(out.join(file)).unwrap();
+        assert!(text.contains("middle stop: 2A1 stops at 2B3"), "{file}");
+        assert!(!text.contains("C2 stops at x21"), "{file}");
+    }
+}
