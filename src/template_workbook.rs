@@ -393,9 +393,9 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     sheet.write_string(
         header - 1,
         0,
-        "Stroke times (extend / retract; not listed: 1s / 1s) and valve type per actuator.",
+        "Stroke times (extend / retract; not listed: 1s / 1s), valve type and your name per actuator.",
     )?;
-    for (col, text) in ["actuator", "extend", "retract", "valve"]
+    for (col, text) in ["actuator", "extend", "retract", "valve", "name"]
         .iter()
         .enumerate()
     {
@@ -407,6 +407,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         sheet.write_string_with_format(row, 1, "1s", &f.input)?;
         sheet.write_string_with_format(row, 2, "1s", &f.input)?;
         sheet.write_blank(row, 3, &f.input)?;
+        sheet.write_blank(row, 4, &f.input)?;
     }
     let valves: Vec<&str> = crate::valve::ValveType::ALL
         .iter()
@@ -424,12 +425,25 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
                 "Empty: 52bi (two positions) or 53closed (middle positions). 52mono: one coil, spring return; motor: an electric drive.",
             )?,
     )?;
+    sheet.add_data_validation(
+        header + 1,
+        4,
+        header + 8,
+        4,
+        &DataValidation::new()
+            .allow_any_value()
+            .set_input_title("name")?
+            .set_input_message(
+                "Your name of the actuator (clamp): every output carries it; with designations = names it makes the identifiers (clamp_home, clamp_out). The same as C1 (clamp) in the first column.",
+            )?,
+    )?;
     // Wide enough for the longest label (`de-energise on halt`) in bold.
     let widest = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(10);
     sheet.set_column_width(0, widest as f64 + 3.0)?;
     sheet.set_column_width(1, 14)?;
     sheet.set_column_width(2, 14)?;
     sheet.set_column_width(3, MEANING_WIDTH)?;
+    sheet.set_column_width(4, 16)?;
     sheet.protect();
     Ok(())
 }

@@ -65,7 +65,7 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
         ));
         let symbols = &run.symbols;
         let rows = crate::faults::rows(&run.result, &|s| symbols.designation(s), &|t| {
-            symbols.designate(t)
+            symbols.explain(t)
         });
         let width = rows.iter().map(|r| r[0].len()).max().unwrap_or(5).max(5);
         let when = rows.iter().map(|r| r[2].len()).max().unwrap_or(7).max(7);

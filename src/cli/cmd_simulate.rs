@@ -77,12 +77,14 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
             }
             None => Vec::new(),
         };
+        // Said in the engineer's names (`C1 (clamp)`, `1B2`).
+        let explain = |text: &str| run.symbols.explain(text);
         reporter.say(&format!(
             "{}: {}",
             display_name(input),
-            run.report.verdict()
+            explain(&run.report.verdict())
         ));
-        reporter.say(&crate::simulate::report::step_table(&run.report));
+        reporter.say(&explain(&crate::simulate::report::step_table(&run.report)));
         if let Some(failure) = run.failure() {
             // A script reading JSON sees why the run failed, as convert
             // reports the same machine.

@@ -58,7 +58,7 @@ pub fn run(
     let symbols = SymbolTable::build(&program, &table, &settings.naming);
     let made_by = MadeBy::of_run(&settings, &table.file);
     let file = crate::emit::faults_csv::render(&result, &|s| symbols.designation(s), &|t| {
-        symbols.designate(t)
+        symbols.explain(t)
     })
     .map(|bytes| OutputFile {
         name: OutputKind::Faults.file_name(name),

@@ -22,6 +22,8 @@ pub struct SimulateRun {
     pub table: StepTable,
     pub warnings: Vec<Diagnostic>,
     pub report: SimReport,
+    /// The program's names: what the run found is said in them.
+    pub symbols: SymbolTable,
     /// With a diagram asked for: the paths written, or why not.
     pub diagram: Option<Result<Vec<PathBuf>, WriteError>>,
 }
@@ -39,7 +41,7 @@ impl SimulateRun {
             },
             message: format!(
                 "the generated program fails its simulation: {}",
-                self.report.reason()
+                self.symbols.explain(&self.report.reason())
             ),
         })
     }
@@ -70,10 +72,10 @@ pub fn run(
         return Err(refused(vec![convert::budget_error(&table, why)]));
     }
     let report = simulate::simulate(&table, &program, &settings.simulation);
+    let symbols = SymbolTable::build(&program, &table, &settings.naming);
     let diagram = match diagram {
         Some(dir) => {
             let made_by = MadeBy::of_run(&settings, &table.file);
-            let symbols = SymbolTable::build(&program, &table, &settings.naming);
             let parts = |n| symbols.actuator_parts(n);
             let file = OutputFile {
                 name: CommandFile::TimeDiagram.file_name(name),
@@ -95,6 +97,7 @@ pub fn run(
         table,
         warnings,
         report,
+        symbols,
         diagram,
     })
 }

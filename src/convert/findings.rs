@@ -8,23 +8,26 @@
 use crate::faults::{FaultTable, Outcome};
 use crate::program::Modes;
 use crate::simulate::SimReport;
+use crate::symbols::SymbolTable;
 use crate::table::StepTable;
 
-/// The lines, most important first, without the input's name.
+/// The lines, most important first, without the input's name; each signal
+/// and actuator named as the symbol table names it (`1B2`, `C1 (clamp)`).
 pub fn lines(
     table: &StepTable,
+    symbols: &SymbolTable,
     modes: &Modes,
     simulation: &SimReport,
     faults: Option<&FaultTable>,
 ) -> Vec<String> {
-    let mut lines = vec![format!("simulation {}", simulation.verdict())];
+    let mut lines = vec![symbols.explain(&format!("simulation {}", simulation.verdict()))];
     if let Some(faults) = faults {
-        lines.push(hazards(faults));
+        lines.push(hazards(faults, symbols));
     }
     if modes.reset
         && let Ok(stages) = modes.home_stages(table)
     {
-        lines.push(format!("RESET homes {}", stages_text(&stages)));
+        lines.push(format!("RESET homes {}", stages_text(&stages, symbols)));
     }
     let missing: Vec<&str> = [(modes.stop, "STOP"), (modes.estop, "EMERGENCY STOP")]
         .into_iter()
@@ -41,7 +44,7 @@ pub fn lines(
 
 /// `fault table: 3 hazard(s) among 24 fault case(s); first: x22 open
 /// circuit (stuck at 0) in step 5: …`, or that there is none.
-fn hazards(faults: &FaultTable) -> String {
+fn hazards(faults: &FaultTable, symbols: &SymbolTable) -> String {
     let count = faults.count(Outcome::Hazard);
     let cases = faults.cases.len();
     let Some(first) = faults.cases.iter().find(|c| c.outcome == Outcome::Hazard) else {
@@ -53,15 +56,15 @@ fn hazards(faults: &FaultTable) -> String {
         .unwrap_or_default();
     format!(
         "fault table: {count} hazard(s) among {cases} fault case(s); first: {}{step}: {}",
-        first.fault_text(),
-        first.explanation
+        first.fault_text_as(&|s| symbols.designation(s)),
+        symbols.explain(&first.explanation)
     )
 }
 
 /// `C2, C3 & C4, then C1`: stages in order, actuators of a stage together.
-fn stages_text(stages: &[Vec<u32>]) -> String {
+fn stages_text(stages: &[Vec<u32>], symbols: &SymbolTable) -> String {
     let stage = |s: &Vec<u32>| {
-        let names: Vec<String> = s.iter().map(|n| format!("C{n}")).collect();
+        let names: Vec<String> = s.iter().map(|n| symbols.actuator(*n)).collect();
         match names.split_last() {
             Some((last, rest)) if !rest.is_empty() => format!("{} & {last}", rest.join(", ")),
             _ => names.join(""),
@@ -106,16 +109,23 @@ pub(super) fn shortened_sdf_comments(
 mod tests {
     use super::*;
 
+    fn paper_symbols() -> SymbolTable {
+        let table = crate::program::tests::paper_table();
+        let program = crate::program::build(
+            &table,
+            &crate::program::ProgramOptions::default(),
+            &crate::valve::Valves::default(),
+            &crate::stroke::Strokes::default(),
+        );
+        SymbolTable::build(&program, &table, &Default::default())
+    }
+
     #[test]
     fn stages_read_in_order() {
-        assert_eq!(
-            stages_text(&[vec![2, 3, 4], vec![1]]),
-            "C2, C3 & C4, then C1"
-        );
-        assert_eq!(stages_text(&[vec![1]]), "C1");
-        assert_eq!(
-            stages_text(&[vec![2], vec![1], vec![3]]),
-            "C2, then C1, then C3"
-        );
+        let symbols = paper_symbols();
+        let text = |stages: &[Vec<u32>]| stages_text(stages, &symbols);
+        assert_eq!(text(&[vec![2, 3, 4], vec![1]]), "C2, C3 & C4, then C1");
+        assert_eq!(text(&[vec![1]]), "C1");
+        assert_eq!(text(&[vec![2], vec![1], vec![3]]), "C2, then C1, then C3");
     }
 }

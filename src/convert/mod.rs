@@ -500,6 +500,7 @@ pub fn generate_observed(
     let files = crate::provenance::stamp_all(files, &made_by).map_err(Failure::Internal)?;
     let findings = findings::lines(
         &table,
+        &symbols,
         &settings.program.modes,
         &simulation,
         fault_table.as_ref(),

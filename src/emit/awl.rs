@@ -56,10 +56,34 @@ struct Line {
     comment: String,
 }
 
-#[derive(Serialize)]
 struct Network {
     title: String,
     lines: Vec<Line>,
+}
+
+/// The characters a network's TITLE is cut to. No
+/// source found confirms STEP 7's limit: awlsim 0.77.1's tokenizer reads
+/// `TITLE =` as a descriptor and sets no length, and the pages of Siemens'
+/// "Programming with STEP 7" (A5E02789666-01, rules for STL sources) found
+/// name the TITLE keyword without one. 64 is therefore an assumption, on
+/// the short side; a longer title is cut by [`super::shorten`] and the
+/// whole text follows as a `//` line of the network comment.
+pub const NETWORK_TITLE: usize = 64;
+
+/// A network as the template lays it out: its title cut to
+/// [`NETWORK_TITLE`], and `full`, the whole title, only when it was cut.
+impl Serialize for Network {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let (title, cut) = super::shorten(&self.title, NETWORK_TITLE);
+        let mut network = serializer.serialize_struct("Network", 3)?;
+        network.serialize_field("title", &title)?;
+        if cut {
+            network.serialize_field("full", &self.title)?;
+        }
+        network.serialize_field("lines", &self.lines)?;
+        network.end()
+    }
 }
 
 /// The symbols whose comments `NAME.sdf` cuts to [`super::sdf::SDF_COMMENT`]
@@ -430,7 +454,7 @@ impl Networks<'_> {
                 lines.push(line("SET", "", ""));
                 self.actions(&mut lines, &rung.actions, &[]);
                 self.networks.push(Network {
-                    title: one_line(&rung.comment),
+                    title: one_line(&self.input.symbols.designate(&rung.comment)),
                     lines,
                 });
                 continue;
@@ -442,7 +466,7 @@ impl Networks<'_> {
             self.actions(&mut lines, &rung.actions, &[]);
             lines.push(nop(&skip));
             self.networks.push(Network {
-                title: one_line(&rung.comment),
+                title: one_line(&self.input.symbols.designate(&rung.comment)),
                 lines,
             });
         }

@@ -204,7 +204,7 @@ fn rungs(names: &Names) -> Vec<Rung> {
         let mut outputs = Vec::new();
         names.actions(&r.actions, &mut outputs);
         rungs.push(rung(
-            r.comment.clone(),
+            symbols.designate(&r.comment),
             names.condition(&r.condition),
             &outputs,
         ));

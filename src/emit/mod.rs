@@ -143,6 +143,22 @@ pub fn jump_comment(
     )
 }
 
+/// `text` as a target that holds at most `max` characters takes it: as it
+/// is when it fits, else its first `max - 3` characters and `...` (plain
+/// dots: STEP 7's files are not all Unicode), the same every run; the bool
+/// says it was cut, so that the output can keep the whole text elsewhere
+/// (a comment line, a tooltip) and the run can warn. The one cut of every
+/// length-limited comment: the symbol table's, a network title, a GRAFCET
+/// panel line.
+pub fn shorten(text: &str, max: usize) -> (String, bool) {
+    if text.chars().count() <= max {
+        return (text.to_string(), false);
+    }
+    let mut cut: String = text.chars().take(max.saturating_sub(3)).collect();
+    cut.push_str("...");
+    (cut, true)
+}
+
 /// Text on one line: control characters (a newline in a file name) become spaces.
 pub fn one_line(text: &str) -> String {
     text.chars()
@@ -172,5 +188,15 @@ mod tests {
     fn crlf_ends_every_line_once() {
         assert_eq!(super::crlf("a\nb\r\nc"), "a\r\nb\r\nc");
         assert_eq!(super::crlf("a\n\n"), "a\r\n\r\n");
+    }
+
+    #[test]
+    fn a_long_comment_is_cut_to_the_limit_with_three_dots() {
+        assert_eq!(super::shorten("clamp", 5), ("clamp".to_string(), false));
+        assert_eq!(super::shorten("clamps", 5), ("cl...".to_string(), true));
+        // Characters, not bytes: an umlaut is one.
+        let (cut, was) = super::shorten("Überwachung der Presse", 8);
+        assert_eq!((cut.as_str(), was), ("Überw...", true));
+        assert_eq!(cut.chars().count(), 8);
     }
 }

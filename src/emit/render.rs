@@ -158,7 +158,7 @@ impl<'a> Renderer<'a> {
                     .faults
                     .ok_or_else(|| internal("fault table", "not analysed"))?;
                 super::faults_csv::render(faults, &|s| self.input.symbols.designation(s), &|t| {
-                    self.input.symbols.designate(t)
+                    self.input.symbols.explain(t)
                 })
                 .map_err(|e| internal("fault table", e))?
             }

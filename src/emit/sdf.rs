@@ -26,13 +26,7 @@ pub const SDF_COMMENT: usize = 80;
 /// fixed-width row past what STEP 7 imports, so it is cut to 77
 /// characters and `...`, the same every run; the `.awl` keeps it whole.
 fn sdf_comment(text: &str) -> (String, bool) {
-    let text = one_line(text).replace('"', "'");
-    if text.chars().count() <= SDF_COMMENT {
-        return (text, false);
-    }
-    let mut cut: String = text.chars().take(SDF_COMMENT - 3).collect();
-    cut.push_str("...");
-    (cut, true)
+    super::shorten(&one_line(text).replace('"', "'"), SDF_COMMENT)
 }
 
 impl Symbol {

@@ -315,7 +315,8 @@ pub(super) fn sequence(input: &EmitInput, sp: Spelling) -> (Vec<StepContext>, Ve
         .rungs
         .iter()
         .map(|r| RungContext {
-            comment: comment_text(&r.comment),
+            // The program's own rungs name signals as the symbol table does.
+            comment: comment_text(&symbols.designate(&r.comment)),
             condition: condition(symbols, &r.condition, sp),
             actions: statements(symbols, &r.actions, &[], sp),
         })

@@ -6,6 +6,8 @@
 mod cases;
 mod healthy;
 mod phases;
+#[cfg(test)]
+mod step_tests;
 
 pub use healthy::{Healthy, healthy_run, healthy_run_recording};
 pub use phases::{Moment, Phase, moments};
@@ -47,7 +49,8 @@ pub struct FaultCase {
     pub outcome: Outcome,
     /// The first moment that gives it.
     pub phase: Phase,
-    /// The step concerned (where it stalls or where the hazard happens).
+    /// The SFC step the machine is in when the finding the explanation
+    /// names first happens (see [`judge`]).
     pub step: Option<usize>,
     pub explanation: String,
     /// An alarm output came on in that run: the machine said so.
@@ -443,6 +446,11 @@ pub(crate) const AS_WITHOUT: &str = "the cycle runs as without the fault";
 /// sequence's reason first (the stall, the early step) and then the
 /// combination. A collision found after the first sequence hazard is not
 /// part of the verdict: a run may stop at that hazard.
+///
+/// The step given is the SFC step the machine is in (0 at rest, k while
+/// table step k's moves run) when the finding the explanation names first
+/// happens: the step a move started too early enters, the step a run
+/// stalls in, the step during which a collision comes about.
 pub fn judge(report: &SimReport) -> (Outcome, Option<usize>, String) {
     let sequence = report
         .problems
@@ -457,21 +465,17 @@ pub fn judge(report: &SimReport) -> (Outcome, Option<usize>, String) {
         (Some(s), None) => (Outcome::Hazard, Some(s.step), s.message.clone()),
         (Some(s), Some(c)) => (
             Outcome::Hazard,
-            Some(c.step),
+            Some(s.step),
             format!("{}; {}", s.message, c.message),
         ),
-        (None, Some(c)) => {
-            let reason = if report.stalled_at.is_some() {
-                format!("{}; ", report.reason())
-            } else {
-                String::new()
-            };
-            (
+        (None, Some(c)) => match report.stalled_at {
+            Some(step) => (
                 Outcome::Hazard,
-                Some(c.step),
-                format!("{reason}{}", c.message),
-            )
-        }
+                Some(step),
+                format!("{}; {}", report.reason(), c.message),
+            ),
+            None => (Outcome::Hazard, Some(c.step), c.message.clone()),
+        },
         (None, None) => {
             if let Some(step) = report.stalled_at {
                 return (Outcome::SafeStall, Some(step), report.reason());
@@ -560,9 +564,9 @@ mod tests {
         assert_eq!(case("START", true).outcome, Outcome::Hazard);
         // START stuck at 0: nothing ever starts.
         assert_eq!(case("START", false).outcome, Outcome::SafeStall);
-        // x11 open: step 2 waits for ever.
+        // x11 open: step 2 waits for ever, the machine stalls in step 1.
         assert_eq!(case("x11", false).outcome, Outcome::SafeStall);
-        assert_eq!(case("x11", false).step, Some(2));
+        assert_eq!(case("x11", false).step, Some(1));
         // x11 short: step 2 starts while C1 is still moving.
         assert_eq!(case("x11", true).outcome, Outcome::Hazard);
         assert!(

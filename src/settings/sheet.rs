@@ -38,6 +38,9 @@ struct ActuatorColumns {
     retract: Option<u32>,
     valve: Option<u32>,
     load: Option<u32>,
+    /// The engineer's names (the template's `name` column), beside or
+    /// instead of `C1 (clamp)` in the first column.
+    name: Option<u32>,
     /// The last column with a header (read or named) on the header row.
     last_col: u32,
 }
@@ -64,7 +67,7 @@ pub const LABELS: [&str; 17] = [
 ];
 
 /// The columns an actuator table may have, after `actuator`.
-const COLUMNS: [&str; 4] = ["extend", "retract", "valve", "load"];
+const COLUMNS: [&str; 5] = ["extend", "retract", "valve", "load", "name"];
 
 /// Headers of a column of notes beside the settings (the template's `WHAT
 /// IT MEANS`): its cells on the labels' rows are the engineer's, not read.

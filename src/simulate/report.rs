@@ -53,7 +53,9 @@ impl ProblemKind {
 pub struct Problem {
     pub kind: ProblemKind,
     pub time_ms: u64,
-    /// The step the problem concerns (one-based).
+    /// The SFC step the machine is in when the problem is found (0 at
+    /// rest, k while table step k's moves run; a step started too early is
+    /// the step entered).
     pub step: usize,
     /// The actuator it concerns, where it concerns one (a run-through).
     pub actuator: Option<u32>,
@@ -121,7 +123,8 @@ pub struct SimReport {
     pub passed: bool,
     pub cycles: Vec<CycleReport>,
     pub problems: Vec<Problem>,
-    /// Step the sequence waited at when the run ended (one-based), if stalled.
+    /// The SFC step the machine stalled in (0 at rest, k while table step
+    /// k's moves run: it waits for the transition after step k), if it did.
     pub stalled_at: Option<usize>,
     /// Positions in sensor units of every actuator (table order) at each step
     /// boundary of the first cycle: before step 1, …, after the last step.

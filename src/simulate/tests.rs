@@ -45,7 +45,8 @@ fn without_middle_stops_the_paper_hangs_in_step_5() {
         &SimSettings::default(),
     );
     assert!(!report.passed);
-    assert_eq!(report.stalled_at, Some(5));
+    // Stalled in step 4 (C2's move never ends), waiting for step 5.
+    assert_eq!(report.stalled_at, Some(4));
     assert_eq!(
         report.reason(),
         "step 5 never fires: waiting for x22; C2 ran through x22 to x23 in step 4"
@@ -65,7 +66,8 @@ fn a_stuck_sensor_stalls_or_endangers() {
         ..SimSettings::default()
     };
     let report = run(&paper(), ProgramOptions::default(), &open);
-    assert_eq!(report.stalled_at, Some(2));
+    // In step 1 (C1+ never reaches x11), waiting for step 2.
+    assert_eq!(report.stalled_at, Some(1));
     assert!(report.hazard().is_none(), "{:?}", report.problems);
 
     let short = SimSettings {
@@ -319,7 +321,8 @@ fn a_resumed_run_hands_on_only_the_states_before_its_first_finding() {
             "{:?}",
             report.problems
         );
-        assert_eq!(report.stalled_at, Some(6), "{:?}", report.problems);
+        // In step 5, waiting for step 6.
+        assert_eq!(report.stalled_at, Some(5), "{:?}", report.problems);
         assert!(!passed.is_empty());
         assert!(
             passed

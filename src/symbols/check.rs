@@ -118,6 +118,16 @@ pub fn actuator_entries(table: &StepTable, naming: &Naming, diags: &mut Diagnost
     let mut entries = Vec::new();
     for (&n, name) in &naming.actuators {
         let Some(actuator) = table.actuator(n) else {
+            // A name the engineer typed that no output can carry: said,
+            // so that a name on the wrong row is not lost without a word.
+            diags.warning(
+                Code::W006NoEffect,
+                name.at.clone(),
+                format!(
+                    "C{n} is named \"{}\", but the table does not move C{n}; the name is not used",
+                    name.text
+                ),
+            );
             continue;
         };
         let label = format!("C{n} ({}): ", name.text);

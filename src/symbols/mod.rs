@@ -213,19 +213,27 @@ impl SymbolTable {
                 .filter(|(n, (label, _))| *label != format!("C{n}"))
                 .map(|(n, (label, _))| (format!("C{n}"), label.as_str())),
         );
-        let word = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '+' | '-' | ':');
-        let mut out = String::with_capacity(text.len());
-        let mut rest = text;
-        while let Some(start) = rest.find(word) {
-            out.push_str(&rest[..start]);
-            let tail = &rest[start..];
-            let end = tail.find(|c: char| !word(c)).unwrap_or(tail.len());
-            let token = &tail[..end];
-            out.push_str(by_symbol.get(token).copied().unwrap_or(token));
-            rest = &tail[end..];
+        map_words(text, |token| by_symbol.get(token).copied())
+    }
+
+    /// A finding (a fault's explanation, a simulation's verdict or step
+    /// notes, written in the paper's symbols) in the engineer's notation:
+    /// each signal by its designation ([`Self::designate`]) and each
+    /// actuator the engineer named by its name (`C1 had not reached x11` →
+    /// `C1 (clamp) had not reached x11`, `1A1 (clamp) … 1B2` under ISO). Not
+    /// for text that already names actuators (a rung's comment).
+    pub fn explain(&self, text: &str) -> String {
+        let text = self.designate(text);
+        if self.actuators.values().all(|(_, name)| name.is_none()) {
+            return text;
         }
-        out.push_str(rest);
-        out
+        let named: BTreeMap<&str, String> = self
+            .actuators
+            .iter()
+            .filter(|(_, (_, name))| name.is_some())
+            .map(|(n, (label, _))| (label.as_str(), self.actuator(*n)))
+            .collect();
+        map_words(&text, |token| named.get(token).map(String::as_str))
     }
 
     /// The label of the table's step `number` (`STEP 3 (clamp part)`).
@@ -561,6 +569,24 @@ fn step_names(program: &StepProgram, table: &StepTable) -> Vec<StepNames> {
             }
         })
         .collect()
+}
+
+/// `text` with each whole word (`x10`, `y1+`, `C1`; never part of one:
+/// `C1+1` is a word of its own) that `new` knows replaced.
+fn map_words<'a>(text: &str, new: impl Fn(&str) -> Option<&'a str>) -> String {
+    let word = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '+' | '-' | ':');
+    let mut out = String::with_capacity(text.len() + 16);
+    let mut rest = text;
+    while let Some(start) = rest.find(word) {
+        out.push_str(&rest[..start]);
+        let tail = &rest[start..];
+        let end = tail.find(|c: char| !word(c)).unwrap_or(tail.len());
+        let token = &tail[..end];
+        out.push_str(new(token).unwrap_or(token));
+        rest = &tail[end..];
+    }
+    out.push_str(rest);
+    out
 }
 
 #[cfg(test)]

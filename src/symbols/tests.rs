@@ -262,3 +262,23 @@ fn explanations_speak_in_the_designations() {
     let iso = symbols(&t, &named(Scheme::Iso, &[]));
     assert_eq!(iso.designate("x10 (y1-), x100"), "1B1 (1M2), x100");
 }
+
+#[test]
+fn findings_name_the_engineers_actuators() {
+    let t = table("C1+1, C2+1\nC1-0, C2-0");
+    let finding = "C1+1 waits: C1 had not reached x11; C2 ran through x21";
+    // Under every scheme a named actuator is said with its name; a move
+    // (`C1+1`) stays the table's notation, an unnamed actuator its label.
+    let paper = symbols(&t, &named(Scheme::Paper, &[(1, "clamp")]));
+    assert_eq!(
+        paper.explain(finding),
+        "C1+1 waits: C1 (clamp) had not reached x11; C2 ran through x21"
+    );
+    let iso = symbols(&t, &named(Scheme::Iso, &[(1, "clamp")]));
+    assert_eq!(
+        iso.explain(finding),
+        "C1+1 waits: 1A1 (clamp) had not reached 1B2; 2A1 ran through 2B2"
+    );
+    let none = symbols(&t, &Naming::default());
+    assert_eq!(none.explain(finding), finding);
+}

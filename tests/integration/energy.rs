@@ -40,12 +40,12 @@ fn a_stall_that_leaves_the_heater_on_is_a_hazard_unless_it_is_hold_safe() {
     let input = workbook(dir.path(), &[&["scan time", "10ms"]]);
     assert_eq!(
         x11_open(&faults(&input, &[]).success()),
-        "x11 open circuit (stuck at 0) hazard at every moment 2 step 2 never fires: waiting for x11; the stopped machine keeps heater on (not hold-safe)"
+        "x11 open circuit (stuck at 0) hazard at every moment 1 step 2 never fires: waiting for x11; the stopped machine keeps heater on (not hold-safe)"
     );
     let input = workbook(dir.path(), &[&["hold-safe", "heater"]]);
     assert_eq!(
         x11_open(&faults(&input, &[]).success()),
-        "x11 open circuit (stuck at 0) safe stall at every moment 2 step 2 never fires: waiting for x11"
+        "x11 open circuit (stuck at 0) safe stall at every moment 1 step 2 never fires: waiting for x11"
     );
     // A coil holds its cylinder: a stall with C1's coil on is safe, unless
     // the engineer says the coil must go off.
@@ -69,7 +69,7 @@ fn de_energise_on_halt_switches_the_heater_off_when_the_watchdog_halts() {
     // heater off: what was a hazard of energy is a safe stall.
     assert_eq!(
         x11_open(&faults(&input, &["--safety", "watchdog"]).success()),
-        "x11 open circuit (stuck at 0) safe stall at every moment alarm 2 step 2 never fires: waiting for x11 AND NOT halt (alarm: alarm_wd)"
+        "x11 open circuit (stuck at 0) safe stall at every moment alarm 1 step 2 never fires: waiting for x11 AND NOT halt (alarm: alarm_wd)"
     );
     let out = dir.path().join("conv");
     steptable()
@@ -137,17 +137,17 @@ fn the_carwash_flags_its_stuck_homing_button_and_its_halt_switches_the_motors_of
     for extra in [&[][..], &["--safety", "all"]] {
         assert_eq!(
             row(extra, "RESET_PB short circuit"),
-            "RESET_PB short circuit (stuck at 1) hazard before step 3 fires (1 of 8 moments) 5 unintended motion: C1 moves - although no step moves it that way (RESET reads pressed: the program homes the machine)",
+            "RESET_PB short circuit (stuck at 1) hazard before step 3 fires (1 of 8 moments) 0 unintended motion: C1 moves - although no step moves it that way (RESET reads pressed: the program homes the machine)",
             "{extra:?}"
         );
     }
     assert_eq!(
         row(&[], "x11 open circuit"),
-        "x11 open circuit (stuck at 0) hazard at every moment 3 step 3 never fires: waiting for x11; the stopped machine keeps y1+, spray, brush on (not hold-safe)"
+        "x11 open circuit (stuck at 0) hazard at every moment 2 step 3 never fires: waiting for x11; the stopped machine keeps y1+, spray, brush on (not hold-safe)"
     );
     assert!(
         row(&["--safety", "all"], "x11 open circuit")
-            .starts_with("x11 open circuit (stuck at 0) safe stall at every moment alarm 3"),
+            .starts_with("x11 open circuit (stuck at 0) safe stall at every moment alarm 2"),
     );
 }
 
@@ -176,7 +176,7 @@ fn a_start_permissive_is_an_input_a_cycle_needs_to_start() {
     assert!(st.contains("START AND x10 AND air_ok"), "{st}");
     let stdout = squeezed_stdout(&faults(&input, &[]).success());
     assert!(
-        stdout.contains("air_ok open circuit (stuck at 0) safe stall at every moment 1 step 1 never fires: waiting for air_ok"),
+        stdout.contains("air_ok open circuit (stuck at 0) safe stall at every moment 0 step 1 never fires: waiting for air_ok"),
         "{stdout}"
     );
     assert!(
@@ -319,33 +319,34 @@ fn an_interlock_over_a_step_range_halts_only_there() {
             })
             .collect()
     };
-    // Open before the range, the machine waits before its first step (no
-    // move starts behind an open guard); open inside it, it halts there.
+    // Open before the range, the machine waits in step 1, before the
+    // range's first step (no move starts behind an open guard); open inside
+    // it, it halts there: stalled in steps 1 to 3 (the SFC step it is in).
     let zoned = stalls("guard_closed in steps 2-3");
     assert!(
-        zoned.iter().all(|s| matches!(s, Some(2..=4))),
+        zoned.iter().all(|s| matches!(s, Some(1..=3))),
         "halts only in the zone: {zoned:?}"
     );
     // Over the whole range, not only its first step: in step 2 (waiting
     // for step 3) and in step 3 (waiting for step 4), never in step 4.
     assert!(
-        zoned.contains(&Some(3)) && zoned.contains(&Some(4)),
+        zoned.contains(&Some(2)) && zoned.contains(&Some(3)),
         "halts in both steps of the range: {zoned:?}"
     );
-    // One step written alone is a zone of that step: the machine halts in
-    // step 3, waiting for step 4, whenever the guard opens.
+    // One step written alone is a zone of that step: the machine halts
+    // waiting for step 3 or 4 (in step 2 or 3) whenever the guard opens.
     let one_step = stalls("guard_closed in step 3");
     assert!(
-        one_step.iter().all(|s| matches!(s, Some(3 | 4))),
+        one_step.iter().all(|s| matches!(s, Some(2 | 3))),
         "halts only in step 3: {one_step:?}"
     );
     let everywhere = stalls("guard_closed");
-    assert!(everywhere.contains(&Some(2)), "{everywhere:?}");
+    assert!(everywhere.contains(&Some(1)), "{everywhere:?}");
     // A zone to the last step ends with the cycle (its own END step): the
     // guard may be open at rest, and the next cycle halts in the zone.
     let to_the_end = stalls("guard_closed in steps 3-4");
     assert!(
-        to_the_end.iter().all(|s| matches!(s, Some(3..=5))),
+        to_the_end.iter().all(|s| matches!(s, Some(2..=4))),
         "halts only from step 3 to the end: {to_the_end:?}"
     );
     let settings: &[&[&str]] = &[&["interlock", "guard_closed in steps 3-5"]];

@@ -380,3 +380,30 @@ pub fn assert_refused(cases: &[Refused]) {
         assert!(!out.exists(), "{}: refused but wrote files", case.what);
     }
 }
+
+/// 300 characters, the same every run.
+pub fn long_text(what: &str) -> String {
+    let mut text = format!("{what} ");
+    while text.chars().count() < 300 {
+        text.push_str("and then some more words ");
+    }
+    // Ends in a letter, not a space a cell would lose.
+    text.chars().take(299).chain(['.']).collect()
+}
+
+/// A two-step table whose step 1 comment and C1's name are 300 characters.
+pub fn long_table(dir: &Path) -> PathBuf {
+    let path = dir.join("long.xlsx");
+    let step = format!("STEP 1 ({})", long_text("clamp the part"));
+    let name = format!("C1 ({})", long_text("clamp"));
+    let table: &[&[&str]] = &[&["", "BRANCH 1"], &[&step, "C1+1"], &["STEP 2", "C1-0"]];
+    let settings: &[&[&str]] = &[&["actuator"], &[&name]];
+    write_xlsx_sheets(
+        &path,
+        &[
+            ("SEQUENTIAL CONTROL DESCRIPTION", table),
+            ("SETTINGS", settings),
+        ],
+    );
+    path
+}

@@ -170,12 +170,12 @@ fn a_dead_limit_switch_leaves_the_drive_running_until_a_halt_cuts_it() {
     );
     assert_eq!(
         row(&["C1=motor"]),
-        "x11 open circuit (stuck at 0) hazard at every moment 2 step 2 never fires: waiting for x11; the stopped machine keeps y1+ on (not hold-safe)"
+        "x11 open circuit (stuck at 0) hazard at every moment 1 step 2 never fires: waiting for x11; the stopped machine keeps y1+ on (not hold-safe)"
     );
     // The watchdog halts, and a halt cuts every drive.
     assert!(
         row(&["C1=motor", "--safety", "all"])
-            .starts_with("x11 open circuit (stuck at 0) safe stall at every moment alarm 2"),
+            .starts_with("x11 open circuit (stuck at 0) safe stall at every moment alarm 1"),
         "{}",
         row(&["C1=motor", "--safety", "all"])
     );

@@ -108,16 +108,17 @@ fn an_interlock_keeps_every_range_it_lists() {
         "{st}"
     );
     // The guard opening halts the machine in either range, waiting for
-    // the step after it, and nowhere else.
+    // the step after it, and nowhere else: stalled in the step before
+    // (the SFC step it is in, waiting for steps 3, 4, 6 and 7).
     let halts = stalls(&path);
-    for waiting in [3, 4, 6, 7] {
+    for stalled_in in [2, 3, 5, 6] {
         assert!(
-            halts.contains(&Some(waiting)),
-            "halts waiting for step {waiting}: {halts:?}"
+            halts.contains(&Some(stalled_in)),
+            "halts in step {stalled_in}: {halts:?}"
         );
     }
     assert!(
-        halts.iter().all(|s| matches!(s, None | Some(2..=7))),
+        halts.iter().all(|s| matches!(s, None | Some(1..=6))),
         "only in the ranges: {halts:?}"
     );
 
@@ -140,7 +141,7 @@ fn an_interlock_keeps_every_range_it_lists() {
     );
     // Open in step 4 (waiting for step 5): only the whole-cycle one halts there.
     assert!(
-        stalls(&path).contains(&Some(5)),
+        stalls(&path).contains(&Some(4)),
         "halts outside the range too"
     );
 

@@ -160,7 +160,11 @@ fn a_home_order_by_name_homes_as_the_same_order_by_number() {
         String::from_utf8_lossy(&assert.get_output().stdout).to_string()
     };
     let own = homes(&plain, &[], "own");
-    assert!(own.contains("RESET homes C2, then C1"), "{own}");
+    // Said with the engineer's names.
+    assert!(
+        own.contains("RESET homes C2 (clamp), then C1 (lift)"),
+        "{own}"
+    );
     for (input, args, out) in [
         (&path, &[][..], "row"),
         (&plain, &["--home-order", "1A1, 2a1"][..], "iso"),
@@ -169,7 +173,7 @@ fn a_home_order_by_name_homes_as_the_same_order_by_number() {
     ] {
         let stdout = homes(input, args, out);
         assert!(
-            stdout.contains("RESET homes C1, then C2"),
+            stdout.contains("RESET homes C1 (lift), then C2 (clamp)"),
             "{args:?}: {stdout}"
         );
     }

@@ -22,6 +22,7 @@ mod halt;
 mod homing;
 mod ladder;
 mod libreoffice;
+mod long_comments;
 mod names;
 mod pinned;
 mod scenario;
@@ -178,6 +179,7 @@ fn main() {
         differential_timing::CHECKS,
         exports::CHECKS,
         libreoffice::CHECKS,
+        long_comments::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
         scenario::CHECKS,

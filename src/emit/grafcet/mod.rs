@@ -17,7 +17,7 @@ mod words;
 use std::fmt::Write;
 
 pub use words::Term;
-use words::{actions, branches, line_text, mode_note, receptivity, table_step};
+use words::{actions, branches, line_text, mode_note, panel_lines, receptivity, table_step};
 
 use super::EmitInput;
 use super::diagram::Tenths;
@@ -53,6 +53,8 @@ pub enum Shape {
         h: f64,
         class: &'static str,
         lines: Vec<String>,
+        /// The whole text of lines cut to [`words::PANEL_LINE`], for a tooltip.
+        tip: Option<String>,
     },
     /// A transition bar at (x, y), its receptivity to its right, and
     /// which transition it is (`t3`, `t3j1` for a jump).
@@ -228,6 +230,9 @@ impl Layout {
     /// A panel of text lines with its top left at (x, y); the row grows
     /// below it.
     fn panel(&mut self, x: f64, y: f64, class: &'static str, lines: Vec<String>) -> f64 {
+        // A long step comment or actuator name would stretch the panel
+        // over the page: it is cut, and the whole text is the tooltip.
+        let (lines, tip) = panel_lines(lines);
         let w = lines
             .iter()
             .map(|l| text_width(l, FONT))
@@ -241,6 +246,7 @@ impl Layout {
             h,
             class,
             lines,
+            tip,
         });
         self.y = self.y.max(y + h);
         w
@@ -484,11 +490,16 @@ fn draw(svg: &mut String, shape: &Shape) {
             h,
             class,
             lines,
+            tip,
         } => {
             let fill = if *class == "note" { "#fff8dc" } else { "white" };
+            let _ = write!(svg, r#"<g class="{class}">"#);
+            if let Some(tip) = tip {
+                let _ = write!(svg, "<title>{}</title>", esc(tip));
+            }
             let _ = write!(
                 svg,
-                r##"<g class="{class}"><rect x="{x:.1}" y="{y:.1}" width="{w:.1}" height="{h:.1}" fill="{fill}" stroke="#444"/>"##
+                r##"<rect x="{x:.1}" y="{y:.1}" width="{w:.1}" height="{h:.1}" fill="{fill}" stroke="#444"/>"##
             );
             for (k, line) in lines.iter().enumerate() {
                 let _ = write!(

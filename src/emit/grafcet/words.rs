@@ -237,3 +237,20 @@ pub fn jump_input(jump: &crate::program::StepJump, symbols: &SymbolTable) -> Opt
             negated: !l.negated,
         })
 }
+
+/// The characters a panel line shows: the longest of the samples' is 38
+/// (`initial step: at rest, waits for START`); a step comment or an
+/// actuator name of hundreds would make a panel wider than any page.
+pub const PANEL_LINE: usize = 64;
+
+/// A panel's lines cut to [`PANEL_LINE`] by the one cut of every limited
+/// comment ([`crate::emit::shorten`]), and the whole lines, one per line of the
+/// tooltip, when one was cut.
+pub(super) fn panel_lines(lines: Vec<String>) -> (Vec<String>, Option<String>) {
+    let cut: Vec<(String, bool)> = lines
+        .iter()
+        .map(|l| crate::emit::shorten(l, PANEL_LINE))
+        .collect();
+    let tip = cut.iter().any(|(_, c)| *c).then(|| lines.join("\n"));
+    (cut.into_iter().map(|(l, _)| l).collect(), tip)
+}

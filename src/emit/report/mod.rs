@@ -54,7 +54,7 @@ pub fn render(input: &EmitInput) -> Result<String, String> {
         page,
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{name}: steptable report</title>\n<style>\n{STYLE}</style>\n</head>\n<body>\n<header><h1>{name}</h1><p>{}: {}</p><nav>",
         escape(&input.source()),
-        escape(&simulation.verdict())
+        escape(&input.symbols.explain(&simulation.verdict()))
     );
     for (id, heading) in SECTIONS {
         let _ = write!(page, "<a href=\"#{id}\">{heading}</a> ");
@@ -166,7 +166,7 @@ fn step_timing(input: &EmitInput, simulation: &crate::simulate::SimReport) -> St
     };
     let mut out = format!(
         "<p class=\"verdict {class}\">{}</p>\n",
-        escape(&simulation.verdict())
+        escape(&input.symbols.explain(&simulation.verdict()))
     );
     let Some(cycle) = simulation.cycles.first() else {
         return out;
@@ -179,7 +179,7 @@ fn step_timing(input: &EmitInput, simulation: &crate::simulate::SimReport) -> St
                 crate::simulate::report::seconds(s.start_ms),
                 crate::simulate::report::seconds(s.duration_ms),
                 s.moves.clone(),
-                input.symbols.designate(&s.notes),
+                input.symbols.explain(&s.notes),
             ],
         )
     });
@@ -233,7 +233,7 @@ fn timeline_box(hint: &str, svg: &str, labels: Vec<String>) -> String {
 /// outcome work with the script, every row shows without it.
 fn fault_table(input: &EmitInput, faults: &crate::faults::FaultTable) -> String {
     let rows = super::faults_csv::rows(faults, &|s| input.symbols.designation(s), &|t| {
-        input.symbols.designate(t)
+        input.symbols.explain(t)
     });
     let mut order: Vec<(Outcome, [String; 8])> =
         faults.cases.iter().map(|c| c.outcome).zip(rows).collect();

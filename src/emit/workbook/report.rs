@@ -20,7 +20,7 @@ pub(super) fn simulation_sheet(
 ) -> Result<(), XlsxError> {
     sheet.set_name(SIMULATION_SHEET)?;
     sheet.write_string_with_format(0, 0, "SIMULATION", &f.title)?;
-    sheet.write_string(1, 0, report.verdict())?;
+    sheet.write_string(1, 0, symbols.explain(&report.verdict()))?;
     sheet.write_string(
         2,
         0,
@@ -53,7 +53,7 @@ pub(super) fn simulation_sheet(
                 step.moves.clone(),
             ];
             if notes {
-                row.push(step.notes.clone());
+                row.push(symbols.explain(&step.notes));
             }
             row
         })
@@ -96,7 +96,7 @@ pub(super) fn faults_sheet(
     ];
     headers(sheet, header, &names, f)?;
     let name = |s: Signal| symbols.designation(s);
-    let text = |t: &str| symbols.designate(t);
+    let text = |t: &str| symbols.explain(t);
     let rows = crate::faults::rows(faults, &name, &text);
     // Hazards first, then safe stalls, then faults without effect; in the
     // fault table's order within each.

@@ -24,6 +24,7 @@ pub(super) fn actuator_columns(
         retract: None,
         valve: None,
         load: None,
+        name: None,
         last_col: header.col,
     };
     reader.seen.insert(header);
@@ -43,6 +44,7 @@ pub(super) fn actuator_columns(
             "retract" => &mut columns.retract,
             "valve" => &mut columns.valve,
             "load" => &mut columns.load,
+            "name" => &mut columns.name,
             _ => {
                 reader.warn(
                     cell.pos,
@@ -87,10 +89,16 @@ pub(super) fn read_actuator_rows(
 ) {
     let grid = reader.grid;
     let header = columns.header;
-    let value_cols: Vec<u32> = [columns.extend, columns.retract, columns.valve, columns.load]
-        .into_iter()
-        .flatten()
-        .collect();
+    let value_cols: Vec<u32> = [
+        columns.extend,
+        columns.retract,
+        columns.valve,
+        columns.load,
+        columns.name,
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
 
     let in_table = |c: &GridCell| (header.col..=columns.last_col).contains(&c.pos.col);
     let mut rows_read = 0;
@@ -141,7 +149,12 @@ pub(super) fn read_actuator_rows(
             .copied()
             .filter(|c| c.pos.col != header.col)
             .collect();
-        let actuator = match row_actuator(reader, name_cell, &values, first_rows, diags) {
+        // The template's name column, beside or instead of `C1 (clamp)`.
+        let typed = columns
+            .name
+            .and_then(|col| cells.iter().copied().find(|c| c.pos.col == col));
+        let start = row_actuator(reader, (name_cell, typed), &values, first_rows, diags);
+        let actuator = match start {
             RowStart::Skip => continue,
             RowStart::Note => {
                 ended_by_note = true;
@@ -189,7 +202,7 @@ enum RowStart {
 /// (`C1 (clamp)`) is kept for every output.
 fn row_actuator(
     reader: &mut Reader,
-    name_cell: Option<&GridCell>,
+    (name_cell, typed): (Option<&GridCell>, Option<&GridCell>),
     values: &[&GridCell],
     first_rows: &mut BTreeMap<u32, CellPos>,
     diags: &mut Diagnostics,
@@ -254,18 +267,56 @@ fn row_actuator(
         return RowStart::Skip;
     }
     first_rows.insert(actuator, name_cell.pos);
-    // `C1 (clamp)`: the engineer's name of the actuator, for every
-    // output (crate::symbols), even on a row with no other value.
-    if let Some(text) = comment {
-        reader.settings.names.insert(
-            actuator,
-            crate::symbols::ActuatorName {
-                text,
-                at: grid.location(name_cell.pos),
-            },
-        );
+    // `C1 (clamp)` or the name column: the engineer's name of the
+    // actuator, for every output (crate::symbols), even on a row with no
+    // other value.
+    if let Some(name) = actuator_name(grid, actuator, (name_cell, comment), typed, diags) {
+        reader.settings.names.insert(actuator, name);
     }
     RowStart::Actuator(actuator)
+}
+
+/// The name of `actuator` from its first cell's comment (`C1 (clamp)`) or
+/// its name column, with the cell it came from. Both given and different:
+/// E030 at the name column's cell, and the first cell's name is kept.
+fn actuator_name(
+    grid: &Grid,
+    actuator: u32,
+    (first, comment): (&GridCell, Option<String>),
+    typed: Option<&GridCell>,
+    diags: &mut Diagnostics,
+) -> Option<crate::symbols::ActuatorName> {
+    let at = |cell: &GridCell| grid.location(cell.pos);
+    let typed = typed
+        .map(|cell| (cell, crate::cell::visible_text(&text_of(&cell.value))))
+        .filter(|(_, text)| !text.trim().is_empty());
+    match (comment, typed) {
+        (Some(text), Some((cell, name))) if !text.trim().eq_ignore_ascii_case(name.trim()) => {
+            diags.error(
+                Code::E030BadSetting,
+                at(cell),
+                format!(
+                    "C{actuator} is named \"{}\" in {} and \"{}\" here; keep one name (this one was not read)",
+                    text.trim(),
+                    grid.cell_name(first.pos),
+                    name.trim()
+                ),
+            );
+            Some(crate::symbols::ActuatorName {
+                text,
+                at: at(first),
+            })
+        }
+        (Some(text), _) => Some(crate::symbols::ActuatorName {
+            text,
+            at: at(first),
+        }),
+        (None, Some((cell, name))) => Some(crate::symbols::ActuatorName {
+            text: name.trim().to_string(),
+            at: at(cell),
+        }),
+        (None, None) => None,
+    }
 }
 
 /// A time typed as text without a unit (`1000`, `0.02`) is read as

@@ -274,7 +274,8 @@ impl<'a> Drive<'a> {
                 None => "as its step starts".to_string(),
             },
         );
-        self.run.problem(ProblemKind::CycleDiffers, number, message);
+        let step = self.run.current_step();
+        self.run.problem(ProblemKind::CycleDiffers, step, message);
     }
 
     /// The cycle under way, timed, among the cycles.
@@ -313,7 +314,7 @@ impl<'a> Drive<'a> {
         }
         if complete {
             let window = self.run.world.settings.window;
-            let step = self.run.program.steps.last().map_or(1, |s| s.number);
+            let step = self.run.current_step();
             for p in &self.run.world.pistons {
                 if !p.sensor(0, window) {
                     self.run.problems.push(Problem {
@@ -411,18 +412,21 @@ impl<'a> Drive<'a> {
             .filter(|s| !(at_rest && left_on_by_the_cycle(table, *s)))
             .map(|s| s.symbol())
             .collect();
-        run.problem(ProblemKind::Stall, waiting.number, message.clone());
+        // The step it stalls in, not the one that never fires: the fault
+        // table's step column is where the machine is.
+        let stalled_in = run.current_step();
+        run.problem(ProblemKind::Stall, stalled_in, message.clone());
         if !energised.is_empty() {
             run.problem(
                 ProblemKind::Energised,
-                waiting.number,
+                stalled_in,
                 format!(
                     "{message}; the stopped machine keeps {} on (not hold-safe)",
                     energised.join(", ")
                 ),
             );
         }
-        self.stalled_at = Some(waiting.number);
+        self.stalled_at = Some(stalled_in);
         self.close_report();
         self.stage = Stage::Finished;
     }
@@ -457,7 +461,7 @@ impl<'a> Drive<'a> {
                 run.problems.push(Problem {
                     kind: ProblemKind::CycleDiffers,
                     time_ms: run.time_ms,
-                    step: 1,
+                    step: run.current_step(),
                     actuator: None,
                     message: "the second cycle's step timing differs from the first".to_string(),
                 });

@@ -121,7 +121,7 @@ impl Run<'_> {
                 let number = step.number;
                 self.problem(
                     ProblemKind::Premature,
-                    number,
+                    self.program.step_entered(fired),
                     format!(
                         "step {number} started before the machine gave {}",
                         skipped.join(" and ")
@@ -220,10 +220,9 @@ impl Run<'_> {
             return;
         };
         if !self.machine_gives(jump.input, jump.value) {
-            let number = self.program.steps[fired].number;
             self.problem(
                 ProblemKind::Premature,
-                number,
+                self.program.step_entered(fired),
                 format!(
                     "the sequence took {} after step {waited_at} although the machine did not give I:{}={}",
                     jump.notation(),

@@ -334,11 +334,11 @@ impl Run<'_> {
         result.fired
     }
 
-    /// The one-based number of the step whose moves are under way.
+    /// The SFC step the machine is in (symbols' numbering: 0 at rest, k
+    /// while table step k's moves run): what every problem reports as its
+    /// step, so that the fault table's `step` column means one thing.
     pub(in crate::simulate) fn current_step(&self) -> usize {
-        let n = self.program.steps.len();
-        let last_fired = (self.plc.awaited + n - 1) % n;
-        self.program.steps[last_fired].number
+        self.program.step_in(self.plc.awaited)
     }
 
     pub(in crate::simulate) fn on_fire(

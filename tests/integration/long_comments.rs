@@ -1,0 +1,87 @@
+//! Hostile rows: a 300-character step comment and actuator name. Where a
+//! target limits a comment it is cut by the one cut (`emit::shorten`, three
+//! dots) and the whole text is kept beside it: the `.sdf` comment at 80
+//! characters (W008), the `.awl` network TITLE at 64 with the whole title
+//! as a `//` line, the GRAFCET's panel lines at 64 with the whole text as
+//! the panel's tooltip (`<title>`). (awlsim runs that `.awl`: the tools
+//! check `long_comments`.) Under `--designations names` the name would be
+//! every identifier's stem, longer than any target takes: E025 at its cell.
+
+use crate::helpers::{long_table, long_text, steptable};
+
+#[test]
+fn long_comments_are_cut_where_a_target_limits_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = long_table(dir.path());
+    steptable()
+        .args(["convert", "--formats", "awl,sdf,grafcet", "-o"])
+        .arg(dir.path().join("out"))
+        .arg(&input)
+        .assert()
+        .success()
+        .stderr(predicates::str::contains("W008"));
+    let out = dir.path().join("out").join("long");
+    let comment = long_text("clamp the part");
+    let name = long_text("clamp");
+
+    let awl = std::fs::read_to_string(out.join("long.awl")).unwrap();
+    let titles: Vec<&str> = awl
+        .lines()
+        .filter_map(|l| l.strip_prefix("TITLE = "))
+        .collect();
+    let cut: Vec<&&str> = titles.iter().filter(|t| t.ends_with("...")).collect();
+    assert!(!cut.is_empty(), "{titles:?}");
+    assert!(titles.iter().all(|t| t.chars().count() <= 64), "{titles:?}");
+    assert!(cut.iter().all(|t| t.chars().count() == 64), "{cut:?}");
+    assert!(
+        awl.lines()
+            .any(|l| l.starts_with("// ") && l.contains(&comment))
+    );
+    // The actuator's name is in the line comments whole (no limit known).
+    assert!(awl.contains(&format!("extend C1 ({name})")), "{awl}");
+
+    let sdf = std::fs::read_to_string(out.join("long.sdf")).unwrap();
+    assert!(!sdf.contains(&name[..100]), "the .sdf holds 80 characters");
+
+    let svg = std::fs::read_to_string(out.join("long.grafcet.svg")).unwrap();
+    let shown: Vec<&str> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| t.split_once('>').and_then(|(_, r)| r.split_once("</text>")))
+        .map(|(text, _)| text)
+        .collect();
+    assert!(
+        shown.iter().all(|t| t.chars().count() <= 64 + 40),
+        "no line of hundreds: {shown:?}"
+    );
+    assert!(shown.iter().any(|t| t.ends_with("...")), "{shown:?}");
+    let tip = svg
+        .split("<title>")
+        .nth(1)
+        .and_then(|t| t.split_once("</title>"))
+        .map(|(t, _)| t)
+        .expect("a tooltip");
+    assert!(tip.contains(&comment), "{tip}");
+    // The panel is as wide as its cut lines, not as the comment.
+    let width: f64 = svg
+        .split("width=\"")
+        .nth(1)
+        .and_then(|w| w.split('"').next())
+        .and_then(|w| w.parse().ok())
+        .unwrap();
+    assert!(width < 1000.0, "{width}");
+    steptable()
+        .args([
+            "convert",
+            "--designations",
+            "names",
+            "--formats",
+            "awl,grafcet",
+            "-o",
+        ])
+        .arg(dir.path().join("named"))
+        .arg(&input)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains("SETTINGS!A2: error[E025]: C1 ("));
+}
