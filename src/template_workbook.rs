@@ -390,6 +390,21 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     }
     // Below the rows of settings and a blank row.
     let header = 4 + rows.len() as u32 + 2;
+    actuator_table(sheet, f, header)?;
+    // Wide enough for the longest label (`de-energise on halt`) in bold.
+    let widest = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(10);
+    sheet.set_column_width(0, widest as f64 + 3.0)?;
+    sheet.set_column_width(1, 14)?;
+    sheet.set_column_width(2, 14)?;
+    sheet.set_column_width(3, MEANING_WIDTH)?;
+    sheet.set_column_width(4, 16)?;
+    sheet.protect();
+    Ok(())
+}
+
+/// The actuator table below the settings, its header on row `header`:
+/// stroke times, valve type and the engineer's name of C1 to C8.
+fn actuator_table(sheet: &mut Worksheet, f: &Formats, header: u32) -> Result<(), XlsxError> {
     sheet.write_string(
         header - 1,
         0,
@@ -437,14 +452,6 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
                 "Your name of the actuator (clamp): every output carries it; with designations = names it makes the identifiers (clamp_home, clamp_out). The same as C1 (clamp) in the first column.",
             )?,
     )?;
-    // Wide enough for the longest label (`de-energise on halt`) in bold.
-    let widest = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(10);
-    sheet.set_column_width(0, widest as f64 + 3.0)?;
-    sheet.set_column_width(1, 14)?;
-    sheet.set_column_width(2, 14)?;
-    sheet.set_column_width(3, MEANING_WIDTH)?;
-    sheet.set_column_width(4, 16)?;
-    sheet.protect();
     Ok(())
 }
 

@@ -61,13 +61,10 @@ struct Network {
     lines: Vec<Line>,
 }
 
-/// The characters a network's TITLE is cut to. No
-/// source found confirms STEP 7's limit: awlsim 0.77.1's tokenizer reads
-/// `TITLE =` as a descriptor and sets no length, and the pages of Siemens'
-/// "Programming with STEP 7" (A5E02789666-01, rules for STL sources) found
-/// name the TITLE keyword without one. 64 is therefore an assumption, on
-/// the short side; a longer title is cut by [`super::shorten`] and the
-/// whole text follows as a `//` line of the network comment.
+/// The characters a network's TITLE is cut to: an assumption on the short
+/// side, as no source confirms STEP 7's limit (awlsim 0.77.1 sets none, nor
+/// Siemens' "Programming with STEP 7", A5E02789666-01); the whole title
+/// follows as a `//` line of the network comment.
 pub const NETWORK_TITLE: usize = 64;
 
 /// A network as the template lays it out: its title cut to
