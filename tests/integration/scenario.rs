@@ -341,3 +341,71 @@ fn an_event_whose_step_never_comes_is_said() {
     );
     assert!(!table.contains("x21 stuck"), "{table}");
 }
+
+/// `simulate FILE ARGS` in `work`: exit code and stdout.
+fn simulate_file(work: &std::path::Path, file: &str, args: &[&str]) -> (Option<i32>, String) {
+    let mut line = vec!["simulate".to_string(), file.to_string()];
+    line.extend(args.iter().map(|a| a.to_string()));
+    run_in(work, &line)
+}
+
+/// The time of the final `ended at T s` line, in ms.
+fn ended_at(table: &str) -> u64 {
+    let line = table.lines().find(|l| l.starts_with("ended at ")).unwrap();
+    let seconds: f64 = line["ended at ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    (seconds * 1000.0).round() as u64
+}
+
+/// An event that happens after 600 s (a step of a long cycle) is followed
+/// as any other: the run goes on a healthy cycle and a second after it.
+#[test]
+fn the_run_goes_on_a_cycle_after_an_event_later_than_600_s() {
+    let work = tempfile::tempdir().unwrap();
+    let rows =
+        ",BRANCH 1\nSTEP 1,\"C1+1; T=400s\"\nSTEP 2,\"C2+1; T=400s\"\nSTEP 3,C1-0\nSTEP 4,C2-0\n";
+    std::fs::write(work.path().join("slow.csv"), rows).unwrap();
+    let (_, proof) = simulate_file(work.path(), "slow.csv", &[]);
+    assert!(proof.contains("cycle time 803.94 s"), "{proof}");
+    let (code, table) = simulate_file(
+        work.path(),
+        "slow.csv",
+        &[
+            "--modes",
+            "continuous",
+            "--hold",
+            "CONT@0s",
+            "--stick",
+            "x21=0@step4",
+        ],
+    );
+    assert_eq!(code, Some(0), "{table}");
+    let event = time_of(&table, "x21 stuck at 0");
+    assert!(event > 600_000, "{table}");
+    assert!(ended_at(&table) >= event + 803_940 + 1_000, "{table}");
+    assert!(
+        table.contains("in step 2;"),
+        "the next cycle stalls in step 2:\n{table}"
+    );
+}
+
+/// A run longer than the report's timeline draws its start, says so, and
+/// the page stays as small as the report's.
+#[test]
+fn a_long_scenario_page_draws_the_start_of_the_run_and_says_so() {
+    let work = tempfile::tempdir().unwrap();
+    let input = sample("paper_example.xlsx").display().to_string();
+    let args = ["--scan", "1ms", "--press", "START@15s", "--report", "r"];
+    let (code, said) = simulate_file(work.path(), &input, &args);
+    assert_eq!(code, Some(0), "{said}");
+    let page = work
+        .path()
+        .join("r/paper_example/paper_example.scenario.report.html");
+    let html = std::fs::read_to_string(page).unwrap();
+    assert!(html.contains("The timeline is drawn for at most 20000 scans: this run went on past 20 s at 1 ms a scan"), "{said}");
+    assert!(ended_at(&said) > 20_000, "{said}");
+}

@@ -154,6 +154,14 @@ pub fn render(
             places.join(", ")
         );
     }
+    if let Some(cut) = report.cut_ms {
+        let _ = writeln!(
+            out,
+            "cut at {:.2} s: a scenario runs at most {} scans one by one (quiet ones passed at once do not count)",
+            cut as f64 / 1000.0,
+            super::SCAN_BUDGET
+        );
+    }
     for event in events.iter().skip(report.happened.len()) {
         let _ = writeln!(
             out,
