@@ -158,7 +158,9 @@ pub fn scenario(
         .first()
         .and_then(|c| c.cycle_ms)
         .unwrap_or(10_000);
-    let tail = cycle + 1_000;
+    // An output that runs on after a stop (an oven's fan) is waited for.
+    let run_on = program.run_ons.iter().map(|r| u64::from(r.ms)).max();
+    let tail = cycle + 1_000 + run_on.unwrap_or(0);
     // The events and their tail end the run (or the scan budget does).
     let until = u64::MAX;
     // The page draws as much of the run as the report's timeline does.

@@ -409,3 +409,33 @@ fn a_long_scenario_page_draws_the_start_of_the_run_and_says_so() {
     assert!(html.contains("The timeline is drawn for at most 20000 scans: this run went on past 20 s at 1 ms a scan"), "{said}");
     assert!(ended_at(&said) > 20_000, "{said}");
 }
+
+/// The final line names the outputs still on and says "at rest" only when
+/// the machine is: the oven's fan runs on 20 s after STOP and is waited
+/// for; STOP stuck before START leaves coil and fan on; a cylinder stuck
+/// out is no rest.
+#[test]
+fn the_final_line_names_outputs_on_and_says_at_rest_only_when_true() {
+    let work = tempfile::tempdir().unwrap();
+    let oven = sample("oven.xlsx").display().to_string();
+    let carwash = sample("carwash.xlsx").display().to_string();
+    let (_, table) = simulate_file(work.path(), &oven, &["--press", "STOP@step2"]);
+    let stop = time_of(&table, "STOP pressed");
+    assert!(
+        ended_at(&table) >= stop + 20_000,
+        "the fan runs on:\n{table}"
+    );
+    assert!(
+        table.contains("in step 0 (at rest)\n") || table.ends_with("(at rest)"),
+        "{table}"
+    );
+    let (_, table) = simulate_file(work.path(), &oven, &["--stick", "STOP=1@1s"]);
+    let end = table.lines().find(|l| l.starts_with("ended at")).unwrap();
+    assert!(end.ends_with("in step 0; on: fan, coil"), "{table}");
+    let (_, table) = simulate_file(work.path(), &carwash, &["--stick", "x11=0@0s"]);
+    let end = table.lines().find(|l| l.starts_with("ended at")).unwrap();
+    assert!(
+        end.ends_with("in step 2; C1 at 1.00; on: y1+, brush, spray"),
+        "{table}"
+    );
+}

@@ -137,22 +137,7 @@ pub fn render(
         let _ = writeln!(out, "  {:>6.2} s  {line}", t as f64 / 1000.0);
     }
     if let Some(last) = report.samples.last() {
-        let step = if last.step == 0 {
-            "step 0 (at rest)".to_string()
-        } else {
-            format!("step {}", last.step)
-        };
-        let places: Vec<String> = actuators
-            .iter()
-            .zip(&last.positions)
-            .map(|(n, p)| format!("{} at {p:.2}", (names.actuator)(*n)))
-            .collect();
-        let _ = writeln!(
-            out,
-            "ended at {:.2} s in {step}; {}",
-            last.time_ms as f64 / 1000.0,
-            places.join(", ")
-        );
+        let _ = writeln!(out, "{}", where_it_stands(last, actuators, names));
     }
     if let Some(cut) = report.cut_ms {
         let _ = writeln!(
@@ -170,4 +155,41 @@ pub fn render(
         );
     }
     out.trim_end().to_string()
+}
+
+/// `ended at T s in step K; C1 at 1.00, …; on: y1+, spray`: the step, every
+/// position and every output still on (but a retract coil holding its
+/// cylinder home). "At rest" only when it is: step 0, every cylinder home
+/// and no other output on.
+fn where_it_stands(last: &super::Sample, actuators: &[u32], names: &Names) -> String {
+    let home = last.positions.iter().all(|p| *p == 0.0);
+    // A retract coil holding its cylinder home is how a machine rests.
+    let holds_home = |s: &&Signal| {
+        matches!(s, Signal::Coil { sign: crate::cell::Sign::Minus, actuator }
+            if actuators.iter().zip(&last.positions).any(|(n, p)| n == actuator && *p == 0.0))
+    };
+    let on: Vec<String> = last
+        .outputs_on
+        .iter()
+        .filter(|s| !holds_home(s))
+        .map(|s| (names.signal)(*s))
+        .collect();
+    let step = if last.step == 0 && home && on.is_empty() {
+        "step 0 (at rest)".to_string()
+    } else {
+        format!("step {}", last.step)
+    };
+    let places: Vec<String> = actuators
+        .iter()
+        .zip(&last.positions)
+        .map(|(n, p)| format!("{} at {p:.2}", (names.actuator)(*n)))
+        .collect();
+    let mut line = format!("ended at {:.2} s in {step}", last.time_ms as f64 / 1000.0);
+    if !places.is_empty() {
+        line.push_str(&format!("; {}", places.join(", ")));
+    }
+    if !on.is_empty() {
+        line.push_str(&format!("; on: {}", on.join(", ")));
+    }
+    line
 }
