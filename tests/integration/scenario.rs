@@ -439,3 +439,27 @@ fn the_final_line_names_outputs_on_and_says_at_rest_only_when_true() {
         "{table}"
     );
 }
+
+/// Homing after RESET is what RESET asked for, also the scan that reads
+/// RESET and the one that ends homing: no problem listed.
+#[test]
+fn homing_after_reset_is_no_problem() {
+    let work = tempfile::tempdir().unwrap();
+    for (file, args) in [
+        (
+            "paper_example.xlsx",
+            ["--stick", "x23=0@step2", "--press", "RESET@+4s"],
+        ),
+        (
+            "drilling_station.xlsx",
+            ["--stick", "x21=0@0s", "--press", "RESET@5s"],
+        ),
+    ] {
+        let input = sample(file).display().to_string();
+        let mut line = vec!["--modes", "reset"];
+        line.extend(args);
+        let (_, table) = simulate_file(work.path(), &input, &line);
+        assert!(table.contains("homing done"), "{table}");
+        assert!(!table.contains("problem:"), "{file}:\n{table}");
+    }
+}

@@ -58,7 +58,11 @@ fn lines(
         lines.push((t, 2, what.to_string()));
     }
     // Motion while the program homes the machine is what RESET asked for.
-    let homing = |t: u64| report.at(t).is_some_and(|s| s.homing);
+    // A problem is timed at its scan's start: that scan homes the machine
+    // when homing was on before it (the scan that ends homing still moves
+    // the last cylinder home) or after it (the scan that reads RESET).
+    let homed = |t: u64| report.at(t).is_some_and(|s| s.homing);
+    let homing = |t: u64| homed(t) || homed(t + 1);
     for p in report
         .problems
         .iter()
