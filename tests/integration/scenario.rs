@@ -463,3 +463,23 @@ fn homing_after_reset_is_no_problem() {
         assert!(!table.contains("problem:"), "{file}:\n{table}");
     }
 }
+
+/// At a slow scan the scenario's own START press is held two scans, as
+/// the proof's: the cycle it starts is no "start without a START press".
+#[test]
+fn the_scenarios_start_press_is_seen_at_a_slow_scan() {
+    let work = tempfile::tempdir().unwrap();
+    let input = sample("drilling_station.xlsx").display().to_string();
+    let args = [
+        "--scan",
+        "100ms",
+        "--modes",
+        "estop",
+        "--stick",
+        "x10=1@30s",
+    ];
+    let (code, table) = simulate_file(work.path(), &input, &args);
+    assert_eq!(code, Some(0), "{table}");
+    assert!(table.contains("step 1 "), "{table}");
+    assert!(!table.contains("problem:"), "{table}");
+}

@@ -174,8 +174,11 @@ impl Script for Timed<'_> {
     }
 }
 
-/// How long a press holds a button, as the proof holds START.
-const PRESS_MS: u64 = super::START_PRESS_MS as u64;
+/// How long a press holds a button, as the proof holds START: 0.1 s, and
+/// two scans at least, so that the PLC sees it however slow the scan.
+fn press_ms(world: &super::world::World) -> u64 {
+    u64::from(super::START_PRESS_MS.max(2 * world.settings.scan_ms))
+}
 
 /// A script of events, each armed when the one before it has happened.
 struct Events<'a> {
@@ -230,7 +233,7 @@ impl Script for Events<'_> {
         if self.auto_start && now >= u64::from(super::IDLE_MS) {
             self.auto_start = false;
             self.started_ms = Some(now);
-            self.releases.push((now + PRESS_MS, Signal::Start));
+            self.releases.push((now + press_ms(world), Signal::Start));
             set(&mut world.operator, Signal::Start, true);
         }
         let mut let_go = Vec::new();
@@ -249,7 +252,7 @@ impl Script for Events<'_> {
                 Act::Press(s) => {
                     set(&mut world.operator, s, true);
                     self.releases.retain(|(_, r)| *r != s);
-                    self.releases.push((now + PRESS_MS, s));
+                    self.releases.push((now + press_ms(world), s));
                 }
                 Act::Hold(s) => {
                     set(&mut world.operator, s, true);
