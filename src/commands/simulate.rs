@@ -144,7 +144,7 @@ pub fn scenario(
             Err(why) => bad.push(why),
         }
     }
-    bad.extend(events::check(&events));
+    bad.extend(events::check(&events, settings.simulation.scan_ms));
     if !bad.is_empty() {
         let at = |message| event_error(&table, message);
         return Err(refused(bad.into_iter().map(at).collect()));

@@ -119,6 +119,48 @@ fn events_happen_in_the_order_written_across_options() {
 fn hostile_events_are_refused_with_e042_and_the_option() {
     let rows: &[(&[&str], &str, &str)] = &[
         (
+            &["--press", "START@1s", "--press", "START@+0s"],
+            "--press START@+0s",
+            "written twice for one scan",
+        ),
+        (
+            &["--press", "START@+1s", "--press", "START@1s"],
+            "--press START@1s",
+            "written twice for one scan",
+        ),
+        (
+            &["--stick", "x21=0@1s", "--stick", "x21=1@+0s"],
+            "--stick x21=1@+0s",
+            "contradicts --stick x21=0@1s at the same scan",
+        ),
+        (
+            &["--stick", "x10=0@1.001s", "--stick", "x10=1@1.002s"],
+            "--stick x10=1@1.002s",
+            "contradicts --stick x10=0@1.001s at the same scan",
+        ),
+        (
+            &["--press", "START@+5s", "--press", "START@3s"],
+            "--press START@3s",
+            "before the event written before it (--press START@+5s, at 5 s)",
+        ),
+        (
+            &["--press", "START@500s", "--press", "START@+200s"],
+            "--press START@+200s",
+            "happens after 600 s",
+        ),
+        (
+            &[
+                "--press",
+                "START@step2",
+                "--press",
+                "START@+400s",
+                "--press",
+                "START@+300s",
+            ],
+            "--press START@+300s",
+            "happens after 600 s",
+        ),
+        (
             &["--press", "FOO@1s"],
             "--press FOO@1s",
             "no input called \"FOO\"",
