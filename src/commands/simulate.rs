@@ -147,7 +147,7 @@ pub fn scenario(
             Err(why) => bad.push(why),
         }
     }
-    bad.extend(events::check(&events));
+    bad.extend(events::check(&events, settings.simulation.scan_ms));
     if !bad.is_empty() {
         let at = |message| event_error(&table, message);
         return Err(refused(bad.into_iter().map(at).collect()));
@@ -161,11 +161,16 @@ pub fn scenario(
         .first()
         .and_then(|c| c.cycle_ms)
         .unwrap_or(10_000);
-    let tail = cycle + 1_000;
-    let until = u64::from(events::LATEST_MS) + tail;
-    let signals = report
-        .is_some()
-        .then(|| simulate::io::IoSignals::every(&program));
+    // An output that runs on after a stop (an oven's fan) is waited for.
+    let run_on = program.run_ons.iter().map(|r| u64::from(r.ms)).max();
+    let tail = cycle + 1_000 + run_on.unwrap_or(0);
+    // The events and their tail end the run (or the scan budget does).
+    let until = u64::MAX;
+    // The page draws as much of the run as the report's timeline does.
+    let signals = report.is_some().then(|| simulate::io::IoSignals {
+        max_scans: Some(crate::emit::report::TIMELINE_SCANS),
+        ..simulate::io::IoSignals::every(&program)
+    });
     let (run, trace) = sc::scenario_events(&table, &program, sim, &events, (tail, until), signals);
     let symbols = SymbolTable::build(&program, &table, naming);
     let designation = |s| symbols.designation(s);
@@ -236,10 +241,13 @@ fn write_scenario_page(
         .iter()
         .map(|a| (a.number, a.max_position))
         .collect();
+    // No further than the recording goes (it stops at the report's limit).
+    let recorded = drawn.trace.scans.last().map_or(0, |s| s.time_ms);
     let positions: Vec<(u64, Vec<f64>)> = drawn
         .run
         .samples
         .iter()
+        .take_while(|s| s.time_ms <= recorded)
         .map(|s| (s.time_ms, s.positions.clone()))
         .collect();
     // Each event at the scan it happened in, as the printed table has it.

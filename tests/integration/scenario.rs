@@ -119,6 +119,48 @@ fn events_happen_in_the_order_written_across_options() {
 fn hostile_events_are_refused_with_e042_and_the_option() {
     let rows: &[(&[&str], &str, &str)] = &[
         (
+            &["--press", "START@1s", "--press", "START@+0s"],
+            "--press START@+0s",
+            "written twice for one scan",
+        ),
+        (
+            &["--press", "START@+1s", "--press", "START@1s"],
+            "--press START@1s",
+            "written twice for one scan",
+        ),
+        (
+            &["--stick", "x21=0@1s", "--stick", "x21=1@+0s"],
+            "--stick x21=1@+0s",
+            "contradicts --stick x21=0@1s at the same scan",
+        ),
+        (
+            &["--stick", "x10=0@1.001s", "--stick", "x10=1@1.002s"],
+            "--stick x10=1@1.002s",
+            "contradicts --stick x10=0@1.001s at the same scan",
+        ),
+        (
+            &["--press", "START@+5s", "--press", "START@3s"],
+            "--press START@3s",
+            "before the event written before it (--press START@+5s, at 5 s)",
+        ),
+        (
+            &["--press", "START@500s", "--press", "START@+200s"],
+            "--press START@+200s",
+            "happens after 600 s",
+        ),
+        (
+            &[
+                "--press",
+                "START@step2",
+                "--press",
+                "START@+400s",
+                "--press",
+                "START@+300s",
+            ],
+            "--press START@+300s",
+            "happens after 600 s",
+        ),
+        (
             &["--press", "FOO@1s"],
             "--press FOO@1s",
             "no input called \"FOO\"",
@@ -340,4 +382,146 @@ fn an_event_whose_step_never_comes_is_said() {
         "{table}"
     );
     assert!(!table.contains("x21 stuck"), "{table}");
+}
+
+/// `simulate FILE ARGS` in `work`: exit code and stdout.
+fn simulate_file(work: &std::path::Path, file: &str, args: &[&str]) -> (Option<i32>, String) {
+    let mut line = vec!["simulate".to_string(), file.to_string()];
+    line.extend(args.iter().map(|a| a.to_string()));
+    run_in(work, &line)
+}
+
+/// The time of the final `ended at T s` line, in ms.
+fn ended_at(table: &str) -> u64 {
+    let line = table.lines().find(|l| l.starts_with("ended at ")).unwrap();
+    let seconds: f64 = line["ended at ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    (seconds * 1000.0).round() as u64
+}
+
+/// An event that happens after 600 s (a step of a long cycle) is followed
+/// as any other: the run goes on a healthy cycle and a second after it.
+#[test]
+fn the_run_goes_on_a_cycle_after_an_event_later_than_600_s() {
+    let work = tempfile::tempdir().unwrap();
+    let rows =
+        ",BRANCH 1\nSTEP 1,\"C1+1; T=400s\"\nSTEP 2,\"C2+1; T=400s\"\nSTEP 3,C1-0\nSTEP 4,C2-0\n";
+    std::fs::write(work.path().join("slow.csv"), rows).unwrap();
+    let (_, proof) = simulate_file(work.path(), "slow.csv", &[]);
+    assert!(proof.contains("cycle time 803.94 s"), "{proof}");
+    let (code, table) = simulate_file(
+        work.path(),
+        "slow.csv",
+        &[
+            "--modes",
+            "continuous",
+            "--hold",
+            "CONT@0s",
+            "--stick",
+            "x21=0@step4",
+        ],
+    );
+    assert_eq!(code, Some(0), "{table}");
+    let event = time_of(&table, "x21 stuck at 0");
+    assert!(event > 600_000, "{table}");
+    assert!(ended_at(&table) >= event + 803_940 + 1_000, "{table}");
+    assert!(
+        table.contains("in step 2;"),
+        "the next cycle stalls in step 2:\n{table}"
+    );
+}
+
+/// A run longer than the report's timeline draws its start, says so, and
+/// the page stays as small as the report's.
+#[test]
+fn a_long_scenario_page_draws_the_start_of_the_run_and_says_so() {
+    let work = tempfile::tempdir().unwrap();
+    let input = sample("paper_example.xlsx").display().to_string();
+    let args = ["--scan", "1ms", "--press", "START@15s", "--report", "r"];
+    let (code, said) = simulate_file(work.path(), &input, &args);
+    assert_eq!(code, Some(0), "{said}");
+    let page = work
+        .path()
+        .join("r/paper_example/paper_example.scenario.report.html");
+    let html = std::fs::read_to_string(page).unwrap();
+    assert!(html.contains("The timeline is drawn for at most 20000 scans: this run went on past 20 s at 1 ms a scan"), "{said}");
+    assert!(ended_at(&said) > 20_000, "{said}");
+}
+
+/// The final line names the outputs still on and says "at rest" only when
+/// the machine is: the oven's fan runs on 20 s after STOP and is waited
+/// for; STOP stuck before START leaves coil and fan on; a cylinder stuck
+/// out is no rest.
+#[test]
+fn the_final_line_names_outputs_on_and_says_at_rest_only_when_true() {
+    let work = tempfile::tempdir().unwrap();
+    let oven = sample("oven.xlsx").display().to_string();
+    let carwash = sample("carwash.xlsx").display().to_string();
+    let (_, table) = simulate_file(work.path(), &oven, &["--press", "STOP@step2"]);
+    let stop = time_of(&table, "STOP pressed");
+    assert!(
+        ended_at(&table) >= stop + 20_000,
+        "the fan runs on:\n{table}"
+    );
+    assert!(
+        table.contains("in step 0 (at rest)\n") || table.ends_with("(at rest)"),
+        "{table}"
+    );
+    let (_, table) = simulate_file(work.path(), &oven, &["--stick", "STOP=1@1s"]);
+    let end = table.lines().find(|l| l.starts_with("ended at")).unwrap();
+    assert!(end.ends_with("in step 0; on: fan, coil"), "{table}");
+    let (_, table) = simulate_file(work.path(), &carwash, &["--stick", "x11=0@0s"]);
+    let end = table.lines().find(|l| l.starts_with("ended at")).unwrap();
+    assert!(
+        end.ends_with("in step 2; C1 at 1.00; on: y1+, brush, spray"),
+        "{table}"
+    );
+}
+
+/// Homing after RESET is what RESET asked for, also the scan that reads
+/// RESET and the one that ends homing: no problem listed.
+#[test]
+fn homing_after_reset_is_no_problem() {
+    let work = tempfile::tempdir().unwrap();
+    for (file, args) in [
+        (
+            "paper_example.xlsx",
+            ["--stick", "x23=0@step2", "--press", "RESET@+4s"],
+        ),
+        (
+            "drilling_station.xlsx",
+            ["--stick", "x21=0@0s", "--press", "RESET@5s"],
+        ),
+    ] {
+        let input = sample(file).display().to_string();
+        let mut line = vec!["--modes", "reset"];
+        line.extend(args);
+        let (_, table) = simulate_file(work.path(), &input, &line);
+        assert!(table.contains("homing done"), "{table}");
+        assert!(!table.contains("problem:"), "{file}:\n{table}");
+    }
+}
+
+/// At a slow scan the scenario's own START press is held two scans, as
+/// the proof's: the cycle it starts is no "start without a START press".
+#[test]
+fn the_scenarios_start_press_is_seen_at_a_slow_scan() {
+    let work = tempfile::tempdir().unwrap();
+    let input = sample("drilling_station.xlsx").display().to_string();
+    let args = [
+        "--scan",
+        "100ms",
+        "--modes",
+        "estop",
+        "--stick",
+        "x10=1@30s",
+    ];
+    let (code, table) = simulate_file(work.path(), &input, &args);
+    assert_eq!(code, Some(0), "{table}");
+    assert!(table.contains("step 1 "), "{table}");
+    assert!(!table.contains("problem:"), "{table}");
 }

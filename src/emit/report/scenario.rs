@@ -47,12 +47,26 @@ pub fn render(page: &ScenarioPage) -> String {
     let _ = write!(
         out,
         "<section id=\"timeline\">\n<h2>Timeline of the scenario</h2>\n{}\n</section>\n",
-        timeline_box(
-            "Time from power-up, as in the table above. Red lines: the scenario's events (hover for which).",
-            &svg,
-            labels
-        )
+        timeline_box(&hint(page.trace), &svg, labels)
     );
     let _ = write!(out, "<script>\n{SCRIPT}</script>\n</body>\n</html>\n");
     out
+}
+
+/// How to read the timeline, and how much of the run it draws: at most the
+/// report's [`super::TIMELINE_SCANS`] scans, as the report does.
+fn hint(trace: &IoTrace) -> String {
+    let mut hint = String::from(
+        "Time from power-up, as in the table above. Red lines: the scenario's events (hover for which).",
+    );
+    if trace.cut {
+        let _ = write!(
+            hint,
+            " The timeline is drawn for at most {} scans: this run went on past {} s at {} ms a scan, and only its start is drawn.",
+            super::TIMELINE_SCANS,
+            super::TIMELINE_SCANS as u64 * u64::from(trace.scan_ms) / 1000,
+            trace.scan_ms
+        );
+    }
+    hint
 }

@@ -253,42 +253,78 @@ fn mode_of(button: Signal) -> &'static str {
     }
 }
 
-/// The refusals of a scenario as a whole: an absolute time before an
-/// absolute time given before it, an event written twice, and two events
-/// of one signal at one moment that contradict each other.
-pub fn check(events: &[Event]) -> Vec<String> {
+/// The refusals of a scenario as a whole, its times resolved to the scans
+/// (`scan_ms`) they happen in: an absolute time before the event before it,
+/// an event past [`LATEST_MS`] (also by a chain of `+` times), and one
+/// signal twice at one scan (written twice, or contradicting itself).
+pub fn check(events: &[Event], scan_ms: u32) -> Vec<String> {
+    let scan = u64::from(scan_ms.max(1));
+    let on_scan = |t: u64| t.div_ceil(scan) * scan;
     let mut refused = Vec::new();
-    let mut last_at: Option<(u64, &str)> = None;
-    for (k, event) in events.iter().enumerate() {
-        if let When::At(t) = event.when {
-            if let Some((before, written)) = last_at.filter(|(b, _)| *b > t) {
-                refused.push(format!(
-                    "{}: {} s is before the event written before it ({written}, at {} s): events happen in the order written",
-                    event.written,
-                    t as f64 / 1000.0,
-                    before as f64 / 1000.0
-                ));
+    // The scan of the event before, when known (not after a step's event),
+    // and how far `+` times reach past the last step's event.
+    let mut before: Option<(u64, &str)> = Some((0, ""));
+    let mut resolved: Vec<Option<u64>> = Vec::new();
+    let mut reach = 0;
+    for event in events {
+        let at = match event.when {
+            When::At(t) => {
+                if let Some((b, written)) = before.filter(|(b, w)| !w.is_empty() && *b > on_scan(t))
+                {
+                    refused.push(format!(
+                        "{}: {} s is before the event written before it ({written}, at {} s): events happen in the order written",
+                        event.written,
+                        t as f64 / 1000.0,
+                        b as f64 / 1000.0
+                    ));
+                }
+                reach = 0;
+                Some(on_scan(t))
             }
-            last_at = Some((t, &event.written));
+            When::After(d) => {
+                reach += d;
+                before.map(|(b, _)| on_scan(b + d))
+            }
+            When::Step(_) => {
+                reach = 0;
+                None
+            }
+        };
+        if at.is_some_and(|t| t > u64::from(LATEST_MS)) || reach > u64::from(LATEST_MS) {
+            refused.push(format!(
+                "{}: happens after {} s, the latest an event may name",
+                event.written,
+                LATEST_MS / 1000
+            ));
         }
-        // After the event before it, a repeat is a second press, not
-        // the same one.
-        if matches!(event.when, When::After(_)) {
-            continue;
-        }
-        for other in events[..k].iter().filter(|o| o.when == event.when) {
+        let k = resolved.len();
+        for (o, other) in events[..k].iter().enumerate() {
+            let same = match (at, resolved[o]) {
+                (Some(a), Some(b)) => a == b,
+                _ => other.when == event.when,
+            };
+            if !same || other.act.signal() != event.act.signal() {
+                continue;
+            }
             if other.act == event.act {
                 refused.push(format!(
-                    "{}: written twice; the second would do nothing",
+                    "{}: written twice for one scan; the second would do nothing",
                     event.written
                 ));
-            } else if contradicts(other.act, event.act) {
+            } else {
                 refused.push(format!(
-                    "{}: contradicts {} at the same moment",
-                    event.written, other.written
+                    "{}: {} at the same scan",
+                    event.written,
+                    if contradicts(other.act, event.act) {
+                        format!("contradicts {}", other.written)
+                    } else {
+                        format!("one signal twice with {}", other.written)
+                    }
                 ));
             }
         }
+        resolved.push(at);
+        before = at.map(|t| (t, event.written.as_str()));
     }
     refused
 }

@@ -50,7 +50,15 @@ pub struct ScenarioReport {
     pub happened: Vec<(u64, usize)>,
     /// When START was pressed for an event script without a START event.
     pub auto_start_ms: Option<u64>,
+    /// The run stopped at this time because it had run [`SCAN_BUDGET`]
+    /// scans one by one, before its events and their tail were over.
+    pub cut_ms: Option<u64>,
 }
+
+/// The most scans a scenario runs one by one (quiet scans passed at once
+/// do not count): every one keeps a sample, and an event script must not
+/// fill the memory of the machine it runs on.
+pub const SCAN_BUDGET: usize = 200_000;
 
 impl ScenarioReport {
     /// The sample at or just after `time_ms`.
@@ -104,9 +112,11 @@ pub fn scenario_recording(
 
 /// Runs `program` from power-up with the operator's `events` (each
 /// happening in the order given), until `tail_ms` after the last has
-/// happened, or `until_ms` at the latest; records `signals` at every
-/// scan when given (the timeline, a replay in an engine). Without an
-/// event on START, START is pressed at 0.5 s as in the proof.
+/// happened (an event waiting for a step that has not come `tail_ms`
+/// after the event before it never happens), or `until_ms` at the latest;
+/// records `signals` at every scan when given (the timeline, a replay in
+/// an engine). Without an event on START, START is pressed at 0.5 s as in
+/// the proof. Quiet scans are passed at once, as the proof passes them.
 pub fn scenario_events(
     table: &StepTable,
     program: &StepProgram,
@@ -139,6 +149,12 @@ trait Script {
     fn auto_start_ms(&self) -> Option<u64> {
         None
     }
+    /// The earliest time the script may change anything with time alone
+    /// (a press let go, an event at a time, the run's end): quiet scans
+    /// before it may be passed at once. `None`: run every scan.
+    fn quiet_until(&self) -> Option<u64> {
+        None
+    }
 }
 
 /// A script of operator states by time: each from its time on.
@@ -158,8 +174,11 @@ impl Script for Timed<'_> {
     }
 }
 
-/// How long a press holds a button, as the proof holds START.
-const PRESS_MS: u64 = super::START_PRESS_MS as u64;
+/// How long a press holds a button, as the proof holds START: 0.1 s, and
+/// two scans at least, so that the PLC sees it however slow the scan.
+fn press_ms(world: &super::world::World) -> u64 {
+    u64::from(super::START_PRESS_MS.max(2 * world.settings.scan_ms))
+}
 
 /// A script of events, each armed when the one before it has happened.
 struct Events<'a> {
@@ -214,7 +233,7 @@ impl Script for Events<'_> {
         if self.auto_start && now >= u64::from(super::IDLE_MS) {
             self.auto_start = false;
             self.started_ms = Some(now);
-            self.releases.push((now + PRESS_MS, Signal::Start));
+            self.releases.push((now + press_ms(world), Signal::Start));
             set(&mut world.operator, Signal::Start, true);
         }
         let mut let_go = Vec::new();
@@ -233,7 +252,7 @@ impl Script for Events<'_> {
                 Act::Press(s) => {
                     set(&mut world.operator, s, true);
                     self.releases.retain(|(_, r)| *r != s);
-                    self.releases.push((now + PRESS_MS, s));
+                    self.releases.push((now + press_ms(world), s));
                 }
                 Act::Hold(s) => {
                     set(&mut world.operator, s, true);
@@ -250,7 +269,25 @@ impl Script for Events<'_> {
     }
 
     fn done(&self, now: u64) -> bool {
-        self.next == self.events.len() && now >= self.last_ms + self.tail_ms
+        // A step not entered a healthy cycle (and a second) after the event
+        // before it is not coming: the machine stands or cycles elsewhere.
+        let waiting = match self.events.get(self.next) {
+            None => true,
+            Some(event) => matches!(event.when, When::Step(_)),
+        };
+        waiting && now >= self.last_ms + self.tail_ms
+    }
+
+    fn quiet_until(&self) -> Option<u64> {
+        let next = self.events.get(self.next).and_then(|e| match e.when {
+            When::At(t) => Some(t),
+            When::After(d) => Some(self.last_ms + d),
+            When::Step(_) => None,
+        });
+        let start = self.auto_start.then_some(u64::from(super::IDLE_MS));
+        let releases = self.releases.iter().map(|(t, _)| *t);
+        let end = self.last_ms + self.tail_ms;
+        Some(releases.chain(next).chain(start).fold(end, u64::min))
     }
 
     fn auto_start_ms(&self) -> Option<u64> {
@@ -307,29 +344,30 @@ fn run_script(
     let mut fired = Vec::new();
     let mut samples = Vec::new();
     let mut happened = Vec::new();
+    let mut cut_ms = None;
+    run.event_driven = script.quiet_until().is_some();
     while run.time_ms < until_ms && !script.done(run.time_ms) {
+        if samples.len() >= SCAN_BUDGET {
+            cut_ms = Some(run.time_ms);
+            break;
+        }
         let step = program.step_in(run.plc.awaited);
         script.apply(&mut run.world, run.time_ms, step, &mut happened);
         let before = run.time_ms;
         if let Some(index) = run.tick() {
             fired.push((before, program.steps[index].number));
         }
-        samples.push(Sample {
-            time_ms: run.time_ms,
-            positions: run
-                .world
-                .pistons
-                .iter()
-                .map(Piston::position_units)
-                .collect(),
-            outputs_on: outputs
-                .iter()
-                .filter(|(i, _)| run.plc.bit_at(*i))
-                .map(|(_, s)| *s)
-                .collect(),
-            step: program.step_in(run.plc.awaited),
-            homing: run.plc.bit(Signal::Homing),
-        });
+        samples.push(sample(&run, program, &outputs));
+        // A step just entered is seen by the script at the next scan: that
+        // one runs, whatever follows it.
+        let entered = program.step_in(run.plc.awaited) != step;
+        if let Some(until) = script.quiet_until().filter(|_| !entered) {
+            let at = run.time_ms;
+            run.pass_quiet_scans(until.min(until_ms));
+            if run.time_ms > at {
+                samples.push(sample(&run, program, &outputs));
+            }
+        }
     }
     let report = ScenarioReport {
         fired,
@@ -337,6 +375,27 @@ fn run_script(
         problems: run.problems,
         happened,
         auto_start_ms: script.auto_start_ms(),
+        cut_ms,
     };
     (report, run.io)
+}
+
+/// The machine as the scan just run left it.
+fn sample(run: &Run, program: &StepProgram, outputs: &[(usize, Signal)]) -> Sample {
+    Sample {
+        time_ms: run.time_ms,
+        positions: run
+            .world
+            .pistons
+            .iter()
+            .map(Piston::position_units)
+            .collect(),
+        outputs_on: outputs
+            .iter()
+            .filter(|(i, _)| run.plc.bit_at(*i))
+            .map(|(_, s)| *s)
+            .collect(),
+        step: program.step_in(run.plc.awaited),
+        homing: run.plc.bit(Signal::Homing),
+    }
 }

@@ -58,7 +58,11 @@ fn lines(
         lines.push((t, 2, what.to_string()));
     }
     // Motion while the program homes the machine is what RESET asked for.
-    let homing = |t: u64| report.at(t).is_some_and(|s| s.homing);
+    // A problem is timed at its scan's start: that scan homes the machine
+    // when homing was on before it (the scan that ends homing still moves
+    // the last cylinder home) or after it (the scan that reads RESET).
+    let homed = |t: u64| report.at(t).is_some_and(|s| s.homing);
+    let homing = |t: u64| homed(t) || homed(t + 1);
     for p in report
         .problems
         .iter()
@@ -137,21 +141,14 @@ pub fn render(
         let _ = writeln!(out, "  {:>6.2} s  {line}", t as f64 / 1000.0);
     }
     if let Some(last) = report.samples.last() {
-        let step = if last.step == 0 {
-            "step 0 (at rest)".to_string()
-        } else {
-            format!("step {}", last.step)
-        };
-        let places: Vec<String> = actuators
-            .iter()
-            .zip(&last.positions)
-            .map(|(n, p)| format!("{} at {p:.2}", (names.actuator)(*n)))
-            .collect();
+        let _ = writeln!(out, "{}", where_it_stands(last, actuators, names));
+    }
+    if let Some(cut) = report.cut_ms {
         let _ = writeln!(
             out,
-            "ended at {:.2} s in {step}; {}",
-            last.time_ms as f64 / 1000.0,
-            places.join(", ")
+            "cut at {:.2} s: a scenario runs at most {} scans one by one (quiet ones passed at once do not count)",
+            cut as f64 / 1000.0,
+            super::SCAN_BUDGET
         );
     }
     for event in events.iter().skip(report.happened.len()) {
@@ -162,4 +159,41 @@ pub fn render(
         );
     }
     out.trim_end().to_string()
+}
+
+/// `ended at T s in step K; C1 at 1.00, …; on: y1+, spray`: the step, every
+/// position and every output still on (but a retract coil holding its
+/// cylinder home). "At rest" only when it is: step 0, every cylinder home
+/// and no other output on.
+fn where_it_stands(last: &super::Sample, actuators: &[u32], names: &Names) -> String {
+    let home = last.positions.iter().all(|p| *p == 0.0);
+    // A retract coil holding its cylinder home is how a machine rests.
+    let holds_home = |s: &&Signal| {
+        matches!(s, Signal::Coil { sign: crate::cell::Sign::Minus, actuator }
+            if actuators.iter().zip(&last.positions).any(|(n, p)| n == actuator && *p == 0.0))
+    };
+    let on: Vec<String> = last
+        .outputs_on
+        .iter()
+        .filter(|s| !holds_home(s))
+        .map(|s| (names.signal)(*s))
+        .collect();
+    let step = if last.step == 0 && home && on.is_empty() {
+        "step 0 (at rest)".to_string()
+    } else {
+        format!("step {}", last.step)
+    };
+    let places: Vec<String> = actuators
+        .iter()
+        .zip(&last.positions)
+        .map(|(n, p)| format!("{} at {p:.2}", (names.actuator)(*n)))
+        .collect();
+    let mut line = format!("ended at {:.2} s in {step}", last.time_ms as f64 / 1000.0);
+    if !places.is_empty() {
+        line.push_str(&format!("; {}", places.join(", ")));
+    }
+    if !on.is_empty() {
+        line.push_str(&format!("; on: {}", on.join(", ")));
+    }
+    line
 }
