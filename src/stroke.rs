@@ -70,7 +70,7 @@ pub fn parse_strokes(text: &str) -> Result<BTreeMap<u32, Stroke>, String> {
             retract_ms: parse(retract)?,
         };
         if strokes.insert(actuator, stroke).is_some() {
-            return Err(crate::valve::given_twice(item, actuator));
+            return Err(crate::actuator::given_twice(item, actuator));
         }
     }
     Ok(strokes)

@@ -408,7 +408,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         sheet.write_string_with_format(row, 2, "1s", &f.input)?;
         sheet.write_blank(row, 3, &f.input)?;
     }
-    let valves: Vec<&str> = crate::valve::ValveType::ALL
+    let valves: Vec<&str> = crate::actuator::ActuatorKind::ALL
         .iter()
         .map(|v| v.name())
         .collect();

@@ -95,14 +95,13 @@ pub(super) fn loads_without_effect(
     grid: &read::Grid,
     diags: &mut Diagnostics,
 ) {
-    use crate::valve::ValveType;
     let valves = &settings.simulation.valves;
     for (&n, load) in &settings.simulation.loads {
         let Some(actuator) = table.actuator(n) else {
             continue; // E030 already
         };
         let valve = valves.of(n, actuator.max_position);
-        if !matches!(valve, ValveType::Exhaust53 | ValveType::Pressure53) {
+        if !valve.load_drifts() {
             let cell = sheet.and_then(|s| s.actuator_cells.get(&(n, "load")));
             let (source, at) = match cell {
                 Some(at) if !settings.given.loads.contains_key(&n) => {

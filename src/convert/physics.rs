@@ -7,13 +7,13 @@
 //! input error (E032) rather than reported as a bug.
 
 use super::{Failure, build_program};
+use crate::actuator::ActuatorKind;
 use crate::diag::{Code, Diagnostic, Location, Severity};
 use crate::program::{Action, Signal, StepProgram};
 use crate::settings::Settings;
 use crate::simulate::{self, SimReport, plant::Piston};
 use crate::stroke::Stroke;
 use crate::table::StepTable;
-use crate::valve::ValveType;
 
 /// A setting put back to its default, and how to say so.
 struct Change {
@@ -77,7 +77,7 @@ fn changes(table: &StepTable, settings: &Settings) -> Vec<Change> {
     };
     for a in &table.actuators {
         let n = a.number;
-        let default = ValveType::default_for(a.max_position);
+        let default = ActuatorKind::default_for(a.max_position);
         if sim
             .valves
             .per_actuator

@@ -19,12 +19,12 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::Given;
+use crate::actuator::ActuatorKind;
 use crate::address::{Mnemonic, Target};
 use crate::diag::{CellPos, Code, Diagnostics, or_list};
 use crate::program::{Modes, Safety};
 use crate::read::{CellValue, Grid, GridCell};
 use crate::stroke::{Stroke, parse_duration_ms, parse_scan};
-use crate::valve::ValveType;
 
 /// Where the actuator table's columns are: its header cell and the columns
 /// of extend and retract times, and of the optional valve and load.
@@ -674,7 +674,7 @@ fn read_actuator_row<'g>(
     if let Some(cell) = columns.valve.and_then(at)
         && let Some(text) = value_text(grid, cell, diags)
     {
-        match text.parse::<ValveType>() {
+        match text.parse::<ActuatorKind>() {
             Ok(valve) => {
                 settings.valves.insert(actuator, valve);
                 (settings.actuator_cells).insert((actuator, "valve"), grid.location(cell.pos));
@@ -690,7 +690,7 @@ fn read_actuator_row<'g>(
     if let Some(cell) = columns.load.and_then(at)
         && let Some(text) = value_text(grid, cell, diags)
     {
-        match crate::valve::parse_load(&text) {
+        match crate::actuator::parse_load(&text) {
             Some(load) => {
                 settings.loads.insert(actuator, load);
                 (settings.actuator_cells).insert((actuator, "load"), grid.location(cell.pos));
@@ -911,7 +911,7 @@ mod tests {
             &mut diags,
         );
         assert_eq!(s.loads.get(&1), Some(&0.2));
-        assert_eq!(s.valves.get(&1), Some(&ValveType::Closed53));
+        assert_eq!(s.valves.get(&1), Some(&ActuatorKind::Closed53));
         assert_eq!(s.scan_ms, Some(20));
         let found = diags.into_sorted();
         assert_eq!(found.len(), 1, "{found:?}");
@@ -1065,7 +1065,7 @@ mod tests {
             &mut diags,
         );
         let all: Vec<String> = diags.into_sorted().iter().map(|d| d.to_string()).collect();
-        assert_eq!(s.valves.get(&1), Some(&ValveType::Mono52), "{all:?}");
+        assert_eq!(s.valves.get(&1), Some(&ActuatorKind::Mono52), "{all:?}");
         assert_eq!(s.strokes[&1].extend_ms, 5000);
         assert_eq!(
             s.strokes[&3].extend_ms, 1000,
@@ -1120,7 +1120,7 @@ mod tests {
             &mut diags,
         );
         assert_eq!(s.target, Some(Target::Iec));
-        assert_eq!(s.valves.get(&1), Some(&ValveType::Mono52));
+        assert_eq!(s.valves.get(&1), Some(&ActuatorKind::Mono52));
         assert_eq!(s.strokes[&2].extend_ms, 3000, "a name alone gives nothing");
         let found = cells_and_messages(diags);
         let codes: Vec<&str> = found.iter().map(|(c, _)| c.as_str()).collect();

@@ -3,10 +3,10 @@
 
 use std::collections::BTreeMap;
 
+use crate::actuator::Valves;
 use crate::cell::Name;
 use crate::program::Signal;
 use crate::stroke::{Stroke, Strokes};
-use crate::valve::Valves;
 
 /// Stroke fraction per second a 5/3 piston drifts with no coil on, unless
 /// `--load` says otherwise.

@@ -63,7 +63,7 @@ pub(super) fn comment(
         Signal::StopAt {
             actuator: a,
             position,
-        } if program.signals.motors.contains(&a) => {
+        } if program.signals.drives(a) => {
             format!("drive {} stops at position {position}", actuator(a))
         }
         Signal::StopAt {

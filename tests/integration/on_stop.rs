@@ -132,7 +132,7 @@ fn stop_mid_travel_abandons_the_cycle_until_reset_homes() {
         .simulation
         .valves
         .per_actuator
-        .insert(2, steptable::valve::ValveType::Closed53);
+        .insert(2, steptable::actuator::ActuatorKind::Closed53);
     let (table, program) = (&build.table, build.program());
     let script = vec![
         (
@@ -436,7 +436,7 @@ fn a_held_drive_still_stops_at_its_limit_switch() {
         .simulation
         .valves
         .per_actuator
-        .insert(1, steptable::valve::ValveType::Motor);
+        .insert(1, steptable::actuator::ActuatorKind::Motor);
     let (table, program) = (&build.table, build.program());
     let script = vec![
         (

@@ -4,6 +4,7 @@
 //! faults, and on random tables with dwells, waits, machine outputs, every
 //! valve type and scan time.
 
+use steptable::actuator::ActuatorKind;
 use steptable::convert::{Checked, build_program, check_path};
 use steptable::faults::{Outcome, fault_sets, judge};
 use steptable::program::{self, ProgramOptions, Safety, StepProgram};
@@ -12,7 +13,6 @@ use steptable::settings::Settings;
 use steptable::simulate::{ProblemKind, SimSettings, Stepping, simulate_stepping};
 use steptable::stroke::Stroke;
 use steptable::table::StepTable;
-use steptable::valve::ValveType;
 
 use crate::helpers::samples;
 
@@ -128,17 +128,17 @@ pub(crate) fn random_machine(seed: u64) -> (Vec<Vec<String>>, StepTable, StepPro
         let choice = rng.range(0, 3) as usize;
         let valve = if a.max_position > 1 {
             [
-                ValveType::Closed53,
-                ValveType::Exhaust53,
-                ValveType::Pressure53,
-                ValveType::Motor,
+                ActuatorKind::Closed53,
+                ActuatorKind::Exhaust53,
+                ActuatorKind::Pressure53,
+                ActuatorKind::Motor,
             ][choice]
         } else {
             [
-                ValveType::Bistable52,
-                ValveType::Mono52,
-                ValveType::Closed53,
-                ValveType::Motor,
+                ActuatorKind::Bistable52,
+                ActuatorKind::Mono52,
+                ActuatorKind::Closed53,
+                ActuatorKind::Motor,
             ][choice]
         };
         sim.valves.per_actuator.insert(a.number, valve);
