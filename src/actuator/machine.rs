@@ -4,6 +4,23 @@
 use std::collections::BTreeMap;
 
 use super::ActuatorKind;
+use crate::stroke::{Strokes, given_twice};
+
+/// The machine a table runs on, as the engineer describes it (the
+/// `--valve`, `--stroke` and `--load` options and the SETTINGS actuator
+/// table): each actuator's kind, its stroke times and its load. The
+/// simulation runs this machine; the program reads its kinds and strokes.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Machine {
+    /// Kinds given explicitly (the others get the default for their positions).
+    pub valves: Valves,
+    /// Stroke times of every actuator.
+    pub strokes: Strokes,
+    /// Drift, in stroke per second, of a piston on a 5/3 valve with no coil
+    /// on: the load on an exhausted centre (towards home), the creep of a
+    /// pressurised centre (outwards). Per actuator; default 0.05.
+    pub loads: BTreeMap<u32, f64>,
+}
 
 /// Valve types given explicitly, per actuator number.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
@@ -29,13 +46,6 @@ pub fn parse_load(text: &str) -> Option<f64> {
         .parse::<f64>()
         .ok()
         .filter(|l| (0.0..=10.0).contains(l))
-}
-
-/// An option's list that gives one actuator twice (`--valve
-/// C1=52mono,C1=52bi`): refused, as the SETTINGS sheet refuses a row twice,
-/// rather than the later value silently winning.
-pub fn given_twice(item: &str, actuator: u32) -> String {
-    format!("\"{item}\": C{actuator} is given twice; give each actuator once")
 }
 
 /// Parses `--load C2=0.1,C3=0.05`.

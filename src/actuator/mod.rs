@@ -15,7 +15,7 @@ pub mod plant;
 
 use std::fmt;
 
-pub use machine::{Valves, given_twice, parse_load, parse_loads, parse_valves};
+pub use machine::{Machine, Valves, parse_load, parse_loads, parse_valves};
 pub use plant::Spool;
 
 /// A kind of actuator: a cylinder on one of the directional valves, or an

@@ -95,8 +95,8 @@ pub(super) fn loads_without_effect(
     grid: &read::Grid,
     diags: &mut Diagnostics,
 ) {
-    let valves = &settings.simulation.valves;
-    for (&n, load) in &settings.simulation.loads {
+    let valves = &settings.simulation.machine.valves;
+    for (&n, load) in &settings.simulation.machine.loads {
         let Some(actuator) = table.actuator(n) else {
             continue; // E030 already
         };
@@ -227,21 +227,31 @@ pub(super) fn by_name(
         let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.valves.contains_key(&n));
         if let Some(n) = resolve("valve", name, numbered) {
-            settings.simulation.valves.per_actuator.insert(n, *valve);
+            settings
+                .simulation
+                .machine
+                .valves
+                .per_actuator
+                .insert(n, *valve);
         }
     }
     for (name, stroke) in &given.named_strokes {
         let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.strokes.contains_key(&n));
         if let Some(n) = resolve("stroke", name, numbered) {
-            settings.simulation.strokes.per_actuator.insert(n, *stroke);
+            settings
+                .simulation
+                .machine
+                .strokes
+                .per_actuator
+                .insert(n, *stroke);
         }
     }
     for (name, load) in &given.named_loads {
         let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.loads.contains_key(&n));
         if let Some(n) = resolve("load", name, numbered) {
-            settings.simulation.loads.insert(n, *load);
+            settings.simulation.machine.loads.insert(n, *load);
         }
     }
 }
@@ -368,7 +378,7 @@ pub(super) fn supervision_times(
             settings.origin("safety")
         ));
     }
-    let strokes = &settings.simulation.strokes;
+    let strokes = &settings.simulation.machine.strokes;
     for (&number, &ms) in times {
         let Some(step) = table.steps.iter().find(|s| s.number == number) else {
             refuse(format!(

@@ -263,9 +263,13 @@ impl Settings {
             self.program.supervision = times.clone();
         }
         let simulation = &mut self.simulation;
-        simulation.strokes.per_actuator.extend(&layer.strokes);
-        simulation.valves.per_actuator.extend(&layer.valves);
-        simulation.loads.extend(&layer.loads);
+        simulation
+            .machine
+            .strokes
+            .per_actuator
+            .extend(&layer.strokes);
+        simulation.machine.valves.per_actuator.extend(&layer.valves);
+        simulation.machine.loads.extend(&layer.loads);
         self.naming
             .actuators
             .extend(layer.names.iter().map(|(n, name)| (*n, name.clone())));
@@ -314,8 +318,8 @@ mod tests {
         assert_eq!(merged.target, Target::Iec);
         assert_eq!(merged.mnemonic, Mnemonic::De);
         assert_eq!(merged.simulation.scan_ms, 20);
-        assert_eq!(merged.simulation.strokes.of(1), stroke(500));
-        assert_eq!(merged.simulation.strokes.of(2), stroke(700));
+        assert_eq!(merged.simulation.machine.strokes.of(1), stroke(500));
+        assert_eq!(merged.simulation.machine.strokes.of(2), stroke(700));
         // Without a sheet value the default stays.
         assert_eq!(
             settings.with_sheet(&Given::default()).simulation.scan_ms,

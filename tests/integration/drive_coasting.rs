@@ -29,6 +29,7 @@ fn a_cut_drive_coasts_to_its_limit_switch_in_each_direction() {
     build
         .settings
         .simulation
+        .machine
         .valves
         .per_actuator
         .insert(1, ActuatorKind::Motor);

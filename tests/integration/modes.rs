@@ -303,10 +303,10 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
     let mut seen = Vec::new();
     for valve in ActuatorKind::ALL {
         let mut settings = SimSettings::default();
-        settings.valves.per_actuator.insert(1, valve);
+        settings.machine.valves.per_actuator.insert(1, valve);
         // A light load: a centre valve drifts 1 % of the stroke per second.
-        settings.loads.insert(1, 0.01);
-        settings.strokes.per_actuator.insert(
+        settings.machine.loads.insert(1, 0.01);
+        settings.machine.strokes.per_actuator.insert(
             1,
             steptable::stroke::Stroke {
                 extend_ms: 2000,

@@ -17,6 +17,7 @@ fn gantry(valve: ActuatorKind) -> Build {
     build
         .settings
         .simulation
+        .machine
         .valves
         .per_actuator
         .insert(1, valve);

@@ -130,6 +130,7 @@ fn stop_mid_travel_abandons_the_cycle_until_reset_homes() {
     build
         .settings
         .simulation
+        .machine
         .valves
         .per_actuator
         .insert(2, steptable::actuator::ActuatorKind::Closed53);
@@ -434,6 +435,7 @@ fn a_held_drive_still_stops_at_its_limit_switch() {
     build
         .settings
         .simulation
+        .machine
         .valves
         .per_actuator
         .insert(1, steptable::actuator::ActuatorKind::Motor);

@@ -141,9 +141,9 @@ pub(crate) fn random_machine(seed: u64) -> (Vec<Vec<String>>, StepTable, StepPro
                 ActuatorKind::Motor,
             ][choice]
         };
-        sim.valves.per_actuator.insert(a.number, valve);
+        sim.machine.valves.per_actuator.insert(a.number, valve);
     }
-    let program = program::build(&table, &options, &sim.valves, &sim.strokes);
+    let program = program::build(&table, &options, &sim.machine.valves, &sim.machine.strokes);
     (rows, table, program, sim)
 }
 
@@ -181,14 +181,14 @@ fn random_case(seed: u64) -> (Vec<Vec<String>>, SimSettings, ProgramOptions) {
         ..SimSettings::default()
     };
     for a in 1..=shape.actuators {
-        sim.strokes.per_actuator.insert(
+        sim.machine.strokes.per_actuator.insert(
             a,
             Stroke {
                 extend_ms: rng.range(1, 300) * 10,
                 retract_ms: rng.range(1, 300) * 10,
             },
         );
-        sim.loads.insert(a, rng.range(0, 20) as f64 / 100.0);
+        sim.machine.loads.insert(a, rng.range(0, 20) as f64 / 100.0);
     }
     sim.input_delays.insert(
         steptable::cell::Name::new("in1").expect("name"),
