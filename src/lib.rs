@@ -19,6 +19,7 @@
 //! which imports `tests/integration/layers.rs` forbids, and where to add an
 //! output language, an actuator kind, a setting or an error code.
 
+pub mod actuator;
 pub mod address;
 pub mod alloc_guard;
 pub mod batch;
@@ -45,5 +46,4 @@ pub mod symbols;
 pub mod synth;
 pub mod table;
 pub mod template_workbook;
-pub mod valve;
 pub mod write;

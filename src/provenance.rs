@@ -96,7 +96,7 @@ pub fn settings_source(settings: &Settings) -> String {
             given.valves.keys().copied().collect(),
             given.named_valves.keys().collect(),
         ),
-        sim.valves.per_actuator.keys().copied().collect(),
+        sim.machine.valves.per_actuator.keys().copied().collect(),
     ));
     sheet.extend(per_actuator(
         "stroke",
@@ -104,7 +104,7 @@ pub fn settings_source(settings: &Settings) -> String {
             given.strokes.keys().copied().collect(),
             given.named_strokes.keys().collect(),
         ),
-        sim.strokes.per_actuator.keys().copied().collect(),
+        sim.machine.strokes.per_actuator.keys().copied().collect(),
     ));
     sheet.extend(per_actuator(
         "load",
@@ -112,7 +112,7 @@ pub fn settings_source(settings: &Settings) -> String {
             given.loads.keys().copied().collect(),
             given.named_loads.keys().collect(),
         ),
-        sim.loads.keys().copied().collect(),
+        sim.machine.loads.keys().copied().collect(),
     ));
     sheet.extend(
         settings

@@ -49,6 +49,13 @@ pub fn parse_scan(text: &str) -> Result<u32, String> {
         .ok_or_else(|| format!("\"{text}\" is not a scan time from 1ms to 1s, such as 10ms"))
 }
 
+/// An option's list that gives one actuator twice (`--valve
+/// C1=52mono,C1=52bi`): refused, as the SETTINGS sheet refuses a row twice,
+/// rather than the later value silently winning.
+pub fn given_twice(item: &str, actuator: u32) -> String {
+    format!("\"{item}\": C{actuator} is given twice; give each actuator once")
+}
+
 /// Parses `--stroke` values: `C2=1.5s/0.8s,C3=2s` (extend/retract, or one
 /// time for both). Returns the map or a message saying what is wrong.
 pub fn parse_strokes(text: &str) -> Result<BTreeMap<u32, Stroke>, String> {
@@ -70,7 +77,7 @@ pub fn parse_strokes(text: &str) -> Result<BTreeMap<u32, Stroke>, String> {
             retract_ms: parse(retract)?,
         };
         if strokes.insert(actuator, stroke).is_some() {
-            return Err(crate::valve::given_twice(item, actuator));
+            return Err(given_twice(item, actuator));
         }
     }
     Ok(strokes)

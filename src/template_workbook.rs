@@ -424,7 +424,7 @@ fn actuator_table(sheet: &mut Worksheet, f: &Formats, header: u32) -> Result<(),
         sheet.write_blank(row, 3, &f.input)?;
         sheet.write_blank(row, 4, &f.input)?;
     }
-    let valves: Vec<&str> = crate::valve::ValveType::ALL
+    let valves: Vec<&str> = crate::actuator::ActuatorKind::ALL
         .iter()
         .map(|v| v.name())
         .collect();

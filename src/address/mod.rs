@@ -466,7 +466,7 @@ mod tests {
         let program = crate::program::build(
             &table,
             &crate::program::ProgramOptions::default(),
-            &crate::valve::Valves::default(),
+            &crate::actuator::Valves::default(),
             &crate::stroke::Strokes::default(),
         );
         Allocation::new(&program, target, Mnemonic::En)
@@ -582,7 +582,7 @@ mod tests {
         let program = crate::program::build(
             &table,
             &crate::program::ProgramOptions::default(),
-            &crate::valve::Valves::default(),
+            &crate::actuator::Valves::default(),
             &crate::stroke::Strokes::default(),
         );
         let sensor = |position| Signal::Sensor {

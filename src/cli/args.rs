@@ -244,7 +244,7 @@ pub(crate) struct CommonArgs {
     #[arg(long, value_enum, default_value_t = MessageFormat::Human)]
     pub(crate) message_format: MessageFormat,
     #[arg(long, value_name = "LIST", value_parser = parse_valves, help = valves_help())]
-    pub(crate) valve: Option<Keyed<crate::valve::ValveType>>,
+    pub(crate) valve: Option<Keyed<crate::actuator::ActuatorKind>>,
     #[arg(long, value_name = "LIST", value_parser = parse_safety, help = safety_help())]
     pub(crate) safety: Option<Safety>,
     #[arg(long, value_name = "LIST", value_parser = parse_modes, help = modes_help())]
@@ -315,7 +315,7 @@ pub(crate) fn formats_help() -> String {
 
 /// `--valve` help: every valve type, from the library's list.
 pub(crate) fn valves_help() -> String {
-    let names: Vec<&str> = crate::valve::ValveType::ALL
+    let names: Vec<&str> = crate::actuator::ActuatorKind::ALL
         .iter()
         .map(|v| v.name())
         .collect();
@@ -329,20 +329,20 @@ pub(crate) fn parse_formats(text: &str) -> Result<std::collections::BTreeSet<Out
     OutputKind::parse_list(text)
 }
 
-pub(crate) fn parse_valves(text: &str) -> Result<Keyed<crate::valve::ValveType>, String> {
+pub(crate) fn parse_valves(text: &str) -> Result<Keyed<crate::actuator::ActuatorKind>, String> {
     no_empty_item(text)?;
-    parse_keyed(text, crate::valve::parse_valves, |item, value| {
+    parse_keyed(text, crate::actuator::parse_valves, |item, value| {
         value
-            .parse::<crate::valve::ValveType>()
+            .parse::<crate::actuator::ActuatorKind>()
             .map_err(|e| format!("\"{item}\": {e}"))
     })
 }
 
 pub(crate) fn parse_loads(text: &str) -> Result<Keyed<f64>, String> {
     no_empty_item(text)?;
-    parse_keyed(text, crate::valve::parse_loads, |item, value| {
+    parse_keyed(text, crate::actuator::parse_loads, |item, value| {
         // One item alone, with its value under a placeholder number.
-        crate::valve::parse_loads(&format!("C1={value}"))
+        crate::actuator::parse_loads(&format!("C1={value}"))
             .map(|m| m.into_values().next().unwrap_or_default())
             .map_err(|why| format!("\"{item}\": {why}"))
     })

@@ -286,9 +286,9 @@ fn sheet_settings_synth_drops(
         });
     }
     let sim = &settings.simulation;
-    if !(sim.strokes.per_actuator.is_empty()
-        && sim.valves.per_actuator.is_empty()
-        && sim.loads.is_empty())
+    if !(sim.machine.strokes.per_actuator.is_empty()
+        && sim.machine.valves.per_actuator.is_empty()
+        && sim.machine.loads.is_empty())
     {
         unused.push(Diagnostic {
             severity: Severity::Warning,

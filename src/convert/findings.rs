@@ -114,7 +114,7 @@ mod tests {
         let program = crate::program::build(
             &table,
             &crate::program::ProgramOptions::default(),
-            &crate::valve::Valves::default(),
+            &crate::actuator::Valves::default(),
             &crate::stroke::Strokes::default(),
         );
         SymbolTable::build(&program, &table, &Default::default())

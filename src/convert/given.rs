@@ -95,14 +95,13 @@ pub(super) fn loads_without_effect(
     grid: &read::Grid,
     diags: &mut Diagnostics,
 ) {
-    use crate::valve::ValveType;
-    let valves = &settings.simulation.valves;
-    for (&n, load) in &settings.simulation.loads {
+    let valves = &settings.simulation.machine.valves;
+    for (&n, load) in &settings.simulation.machine.loads {
         let Some(actuator) = table.actuator(n) else {
             continue; // E030 already
         };
         let valve = valves.of(n, actuator.max_position);
-        if !matches!(valve, ValveType::Exhaust53 | ValveType::Pressure53) {
+        if !valve.load_drifts() {
             let cell = sheet.and_then(|s| s.actuator_cells.get(&(n, "load")));
             let (source, at) = match cell {
                 Some(at) if !settings.given.loads.contains_key(&n) => {
@@ -228,21 +227,31 @@ pub(super) fn by_name(
         let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.valves.contains_key(&n));
         if let Some(n) = resolve("valve", name, numbered) {
-            settings.simulation.valves.per_actuator.insert(n, *valve);
+            settings
+                .simulation
+                .machine
+                .valves
+                .per_actuator
+                .insert(n, *valve);
         }
     }
     for (name, stroke) in &given.named_strokes {
         let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.strokes.contains_key(&n));
         if let Some(n) = resolve("stroke", name, numbered) {
-            settings.simulation.strokes.per_actuator.insert(n, *stroke);
+            settings
+                .simulation
+                .machine
+                .strokes
+                .per_actuator
+                .insert(n, *stroke);
         }
     }
     for (name, load) in &given.named_loads {
         let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.loads.contains_key(&n));
         if let Some(n) = resolve("load", name, numbered) {
-            settings.simulation.loads.insert(n, *load);
+            settings.simulation.machine.loads.insert(n, *load);
         }
     }
 }
@@ -369,7 +378,7 @@ pub(super) fn supervision_times(
             settings.origin("safety")
         ));
     }
-    let strokes = &settings.simulation.strokes;
+    let strokes = &settings.simulation.machine.strokes;
     for (&number, &ms) in times {
         let Some(step) = table.steps.iter().find(|s| s.number == number) else {
             refuse(format!(

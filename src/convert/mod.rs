@@ -142,7 +142,7 @@ fn finish_check(
             .map(|b| b.symbol().to_ascii_lowercase())
             .collect();
         let machine = table::Machine {
-            valves: &effective.simulation.valves,
+            valves: &effective.simulation.machine.valves,
             home_order: modes.home_order.as_deref(),
             home_order_at: home_order_at.as_ref(),
             reset: modes.reset,
@@ -165,7 +165,7 @@ fn finish_check(
         let named = &effective.named;
         effective.program.halt = halt::resolve(
             table,
-            &effective.simulation.valves,
+            &effective.simulation.machine.valves,
             &effective.naming,
             named,
             &mut diags,
@@ -406,8 +406,8 @@ pub fn build_program(table: &StepTable, settings: &Settings) -> StepProgram {
     program::build(
         table,
         &settings.program,
-        &settings.simulation.valves,
-        &settings.simulation.strokes,
+        &settings.simulation.machine.valves,
+        &settings.simulation.machine.strokes,
     )
 }
 

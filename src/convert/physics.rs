@@ -7,13 +7,13 @@
 //! input error (E032) rather than reported as a bug.
 
 use super::{Failure, build_program};
+use crate::actuator::ActuatorKind;
 use crate::diag::{Code, Diagnostic, Location, Severity};
 use crate::program::{Action, Signal, StepProgram};
 use crate::settings::Settings;
 use crate::simulate::{self, SimReport, plant::Piston};
 use crate::stroke::Stroke;
 use crate::table::StepTable;
-use crate::valve::ValveType;
 
 /// A setting put back to its default, and how to say so.
 struct Change {
@@ -77,38 +77,39 @@ fn changes(table: &StepTable, settings: &Settings) -> Vec<Change> {
     };
     for a in &table.actuators {
         let n = a.number;
-        let default = ValveType::default_for(a.max_position);
+        let default = ActuatorKind::default_for(a.max_position);
         if sim
+            .machine
             .valves
             .per_actuator
             .get(&n)
             .is_some_and(|v| *v != default)
         {
             with(format!("C{n} on its default valve ({default})"), &|s| {
-                s.simulation.valves.per_actuator.remove(&n);
-                s.simulation.loads.remove(&n);
+                s.simulation.machine.valves.per_actuator.remove(&n);
+                s.simulation.machine.loads.remove(&n);
             });
         }
-        if sim.loads.contains_key(&n) {
+        if sim.machine.loads.contains_key(&n) {
             with(
                 format!("C{n} under the default load (0.05 stroke/s)"),
                 &|s| {
-                    s.simulation.loads.remove(&n);
+                    s.simulation.machine.loads.remove(&n);
                 },
             );
         }
-        if sim.strokes.per_actuator.contains_key(&n) {
+        if sim.machine.strokes.per_actuator.contains_key(&n) {
             with(
                 format!("C{n} at the default stroke (1 s out, 1 s back)"),
                 &|s| {
-                    s.simulation.strokes.per_actuator.remove(&n);
+                    s.simulation.machine.strokes.per_actuator.remove(&n);
                 },
             );
         }
     }
-    if sim.strokes.default != Stroke::default() {
+    if sim.machine.strokes.default != Stroke::default() {
         with("the default stroke (1 s out, 1 s back)".to_string(), &|s| {
-            s.simulation.strokes.default = Stroke::default()
+            s.simulation.machine.strokes.default = Stroke::default()
         });
     }
     // A jump's input given later than its step lasts leaves the path
@@ -152,7 +153,7 @@ pub fn lucky_middle_stops(table: &StepTable, settings: &Settings) -> Vec<Diagnos
             if m.to == 0 || m.to >= actuator.max_position || !said.insert((m.actuator, m.sign)) {
                 continue;
             }
-            let stroke = sim.strokes.of(m.actuator);
+            let stroke = sim.machine.strokes.of(m.actuator);
             let piston = Piston::new(m.actuator, actuator.max_position, stroke, sim.scan_ms);
             let (full_ms, way, flag) = match m.sign {
                 crate::cell::Sign::Plus => (stroke.extend_ms, "out", "extend"),
@@ -236,9 +237,7 @@ pub fn watchdogs_beyond_timers(table: &StepTable, program: &StepProgram) -> Vec<
 fn all_defaults(settings: &Settings) -> Settings {
     let mut all = settings.clone();
     let defaults = simulate::SimSettings::default();
-    all.simulation.valves = defaults.valves;
-    all.simulation.loads = defaults.loads;
-    all.simulation.strokes = defaults.strokes;
+    all.simulation.machine = defaults.machine;
     all.simulation.scan_ms = defaults.scan_ms;
     all
 }
@@ -252,7 +251,7 @@ fn why(table: &StepTable, settings: &Settings) -> String {
         .iter()
         .filter(|a| a.max_position > 1)
         .map(|a| {
-            let stroke = sim.strokes.of(a.number);
+            let stroke = sim.machine.strokes.of(a.number);
             let piston = Piston::new(a.number, a.max_position, stroke, sim.scan_ms);
             let fastest = stroke.extend_ms.min(stroke.retract_ms) as f64;
             (a.number, in_view_ms(&piston, sim.window, fastest))

@@ -49,12 +49,12 @@ pub fn settings_rows(
     ];
     for actuator in &table.actuators {
         let n = actuator.number;
-        let stroke = sim.strokes.of(n);
+        let stroke = sim.machine.strokes.of(n);
         rows.push((
             format!("C{n}"),
             format!(
                 "valve {}, extends in {}, retracts in {}",
-                sim.valves.of(n, actuator.max_position),
+                sim.machine.valves.of(n, actuator.max_position),
                 crate::cell::duration_text(stroke.extend_ms),
                 crate::cell::duration_text(stroke.retract_ms)
             ),

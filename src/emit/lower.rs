@@ -159,9 +159,9 @@ pub fn lower<'p>(program: &'p StepProgram, symbols: &SymbolTable) -> Lowered<'p>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::actuator::Valves;
     use crate::program::{ProgramOptions, build};
     use crate::stroke::Strokes;
-    use crate::valve::Valves;
 
     #[test]
     fn paper_steps_leave_in_sfc_order() {

@@ -548,7 +548,7 @@ mod tests {
         let program = program::build(
             &table,
             &ProgramOptions::default(),
-            &crate::valve::Valves::default(),
+            &crate::actuator::Valves::default(),
             &crate::stroke::Strokes::default(),
         );
         let result = analyse(&table, &program, &SimSettings::default(), 1);

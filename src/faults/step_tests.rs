@@ -12,7 +12,7 @@ fn paper() -> (StepTable, StepProgram) {
     let program = program::build(
         &table,
         &ProgramOptions::default(),
-        &crate::valve::Valves::default(),
+        &crate::actuator::Valves::default(),
         &crate::stroke::Strokes::default(),
     );
     (table, program)

@@ -12,10 +12,10 @@ use super::{
     Action, Alarm, Literal, ProgramOptions, ProgramStep, Rung, RungKind, Signal, StepKind,
     StepProgram,
 };
+use crate::actuator::Valves;
 use crate::cell::Sign;
 use crate::stroke::Strokes;
 use crate::table::{Move, Step, StepTable};
-use crate::valve::Valves;
 
 /// What must hold for a step of the table to be complete: every move at its
 /// target sensor, every wait met, every dwell run out (its arming memory
@@ -370,17 +370,11 @@ fn middle_stop_rungs(signals: &Signals) -> Vec<Rung> {
             continue;
         };
         let sensor = Signal::Sensor { actuator, position };
-        let comment = if signals.motors.contains(&actuator) {
-            format!(
-                "C{actuator} is a drive: at its limit switch {} both outputs off, it stands",
-                sensor.symbol()
-            )
-        } else {
-            format!(
-                "middle stop: C{actuator} stops at {} (both coils off, the 5/3 valve holds it)",
-                sensor.symbol()
-            )
+        // Every stop request is of an actuator of the table, so of a kind.
+        let Some(kind) = signals.kinds.get(&actuator) else {
+            continue;
         };
+        let comment = kind.stop_comment(actuator, &sensor.symbol());
         rungs.push(Rung {
             kind: RungKind::MiddleStop,
             comment,

@@ -315,9 +315,9 @@ pub fn condition_text(
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::actuator::Valves;
     use crate::stroke::Strokes;
     use crate::table::StepTable;
-    use crate::valve::Valves;
 
     /// The paper's example table (DESIGN §4), as a bare grid.
     pub(crate) fn paper_table() -> StepTable {

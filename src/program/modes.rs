@@ -236,7 +236,7 @@ pub(super) fn homing_rungs(
             done.extend(
                 stage
                     .iter()
-                    .filter(|a| signals.motors.contains(a))
+                    .filter(|&&a| signals.drives(a))
                     .map(|&actuator| {
                         Action::Reset(Signal::Coil {
                             actuator,
@@ -324,8 +324,8 @@ pub(super) fn homing_rungs(
 #[cfg(test)]
 mod tests {
     use super::super::{Literal, ProgramOptions, Signal, StepKind, build};
+    use crate::actuator::Valves;
     use crate::stroke::Strokes;
-    use crate::valve::Valves;
 
     /// In single step every way into a table step needs the permit, a
     /// jump too; the way back to step 0 (the closing transition, or a jump

@@ -4,9 +4,10 @@
 
 use super::options::ProgramOptions;
 use super::signal::{Alarm, Signal};
+use crate::actuator::{ActuatorKind, CoilSet, Valves};
 use crate::cell::Sign;
 use crate::table::StepTable;
-use crate::valve::{ValveType, Valves};
+use std::collections::BTreeMap;
 
 /// The coils of one actuator's valve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -18,6 +19,21 @@ pub enum Coils {
 }
 
 impl Coils {
+    /// The coils of actuator `actuator`, as its kind has them.
+    pub fn of(kind: ActuatorKind, actuator: u32) -> Coils {
+        match kind.coils() {
+            CoilSet::Single => Coils::Single { actuator },
+            CoilSet::Double => Coils::Double { actuator },
+        }
+    }
+
+    /// Its coils: the one that extends, then the one that retracts.
+    pub fn signals(self) -> Vec<Signal> {
+        std::iter::once(self.extend())
+            .chain(self.retract())
+            .collect()
+    }
+
     pub fn actuator(self) -> u32 {
         match self {
             Coils::Double { actuator } | Coils::Single { actuator } => actuator,
@@ -59,16 +75,22 @@ pub struct Signals {
     /// Middle-stop requests (and a drive's stop at each of its targets),
     /// then the memories of the safety checks, dwells and modes.
     pub memories: Vec<Signal>,
-    /// The actuators that are electric drives (valve type `motor`): their
-    /// outputs are cut at every target and may not stay on.
-    pub motors: Vec<u32>,
+    /// Each actuator's kind: it decides its coils, its stops and what may
+    /// stay on when the machine halts.
+    pub kinds: BTreeMap<u32, ActuatorKind>,
 }
 
 impl Signals {
+    /// Whether actuator `actuator` is an electric drive (its outputs are
+    /// cut at every target and may not stay on).
+    pub fn drives(&self, actuator: u32) -> bool {
+        self.kinds.get(&actuator).is_some_and(|k| k.is_drive())
+    }
+
     /// Whether `signal` is an output of an electric drive (valve type
     /// `motor`): it runs the drive for as long as it is on.
     pub fn is_drive(&self, signal: Signal) -> bool {
-        matches!(signal, Signal::Coil { actuator, .. } if self.motors.contains(&actuator))
+        matches!(signal, Signal::Coil { actuator, .. } if self.drives(actuator))
     }
 
     /// Every output the machine drives (coils and machine outputs, not
@@ -113,13 +135,15 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
         .chain(mode_inputs)
         .collect();
 
+    let kinds: BTreeMap<u32, ActuatorKind> = table
+        .actuators
+        .iter()
+        .map(|a| (a.number, valves.of(a.number, a.max_position)))
+        .collect();
     let coils = table
         .actuators
         .iter()
-        .map(|a| match valves.of(a.number, a.max_position) {
-            ValveType::Mono52 => Coils::Single { actuator: a.number },
-            _ => Coils::Double { actuator: a.number },
-        })
+        .map(|a| Coils::of(kinds[&a.number], a.number))
         .collect();
     let alarms = [
         (safety.plausibility, Alarm::Sensor),
@@ -135,12 +159,7 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
         .chain(alarms)
         .collect();
 
-    let motors: Vec<u32> = table
-        .actuators
-        .iter()
-        .filter(|a| valves.of(a.number, a.max_position) == ValveType::Motor)
-        .map(|a| a.number)
-        .collect();
+    let drives = |actuator: &u32| kinds.get(actuator).is_some_and(|k| k.is_drive());
     // A drive stops at every target (it runs until its output is cut);
     // a cylinder only at a middle one.
     let mut stops: Vec<(u32, u32)> = table
@@ -148,7 +167,7 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
         .iter()
         .flat_map(|s| &s.moves)
         .filter(|m| {
-            motors.contains(&m.actuator)
+            drives(&m.actuator)
                 || (options.middle_stops
                     && table
                         .actuator(m.actuator)
@@ -195,6 +214,6 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
         valves: coils,
         outputs,
         memories,
-        motors,
+        kinds,
     }
 }

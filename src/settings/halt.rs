@@ -6,12 +6,12 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use crate::actuator::{CoilSet, Valves};
 use crate::cell::Sign;
 use crate::diag::{Code, Diagnostics, Location};
-use crate::program::{HaltPolicy, Interlock, Signal, StopAction};
+use crate::program::{Coils, HaltPolicy, Interlock, Signal, StopAction};
 use crate::symbols::Naming;
 use crate::table::StepTable;
-use crate::valve::{ValveType, Valves};
 
 /// The SETTINGS rows that list outputs or inputs by name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -100,13 +100,7 @@ fn outputs_named(
     let coils = table.actuators.iter().flat_map(|a| {
         let pmax = a.max_position;
         let actuator = a.number;
-        if valves.of(actuator, pmax) == ValveType::Mono52 {
-            vec![Signal::SingleCoil { actuator }]
-        } else {
-            [Sign::Plus, Sign::Minus]
-                .map(|sign| Signal::Coil { actuator, sign })
-                .to_vec()
-        }
+        Coils::of(valves.of(actuator, pmax), actuator).signals()
     });
     for coil in coils {
         // Its identifier (`y1p`), ISO designation (`1M1`) or the
@@ -126,14 +120,7 @@ fn outputs_named(
     let has = |actuator: u32| table.actuator(actuator).is_some();
     if let Some(actuator) = crate::cell::parse_actuator(name).filter(|a| has(*a)) {
         let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
-        if valves.of(actuator, pmax) == ValveType::Mono52 {
-            return Some(vec![Signal::SingleCoil { actuator }]);
-        }
-        return Some(
-            [Sign::Plus, Sign::Minus]
-                .map(|sign| Signal::Coil { actuator, sign })
-                .to_vec(),
-        );
+        return Some(Coils::of(valves.of(actuator, pmax), actuator).signals());
     }
     let coil = lower.strip_prefix('y')?;
     let (number, sign) = match coil.strip_suffix('+') {
@@ -145,7 +132,7 @@ fn outputs_named(
     };
     let actuator: u32 = number.parse().ok().filter(|a| has(*a))?;
     let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
-    let single = valves.of(actuator, pmax) == ValveType::Mono52;
+    let single = valves.of(actuator, pmax).coils() == CoilSet::Single;
     match (sign, single) {
         (Some(sign), false) => Some(vec![Signal::Coil { actuator, sign }]),
         (None, true) => Some(vec![Signal::SingleCoil { actuator }]),
@@ -411,17 +398,9 @@ fn refuse_motion_through_estop(
         }
         let Some(list) = rows.get(&row) else { continue };
         let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
-        let why = if valves.of(actuator, pmax) == ValveType::Motor {
-            format!(
-                "{} is a contactor of drive C{actuator} (valve type motor): left on, it keeps the drive running through the EMERGENCY STOP; every drive stops",
-                signal.symbol()
-            )
-        } else {
-            format!(
-                "{} is a valve coil of C{actuator}: left on, it drives the piston on from wherever it stood when the EMERGENCY STOP came; only a machine output that holds a part (a vacuum, a clamp as Y:clamp) may stay on, and a clamp on a 52bi valve keeps its position with both coils off",
-                signal.symbol()
-            )
-        };
+        let why = valves
+            .of(actuator, pmax)
+            .kept_through_estop(&signal.symbol(), actuator);
         diags.error(
             Code::E030BadSetting,
             list.at.clone(),
@@ -442,11 +421,9 @@ fn not_an_output(
     let mut known: Vec<String> = table.outputs.iter().map(|o| o.to_string()).collect();
     for a in &table.actuators {
         known.push(format!("C{}", a.number));
-        if valves.of(a.number, a.max_position) == ValveType::Mono52 {
-            known.push(format!("y{}", a.number));
-        } else {
-            known.push(format!("y{0}+, y{0}-", a.number));
-        }
+        let coils = Coils::of(valves.of(a.number, a.max_position), a.number).signals();
+        let symbols: Vec<String> = coils.into_iter().map(Signal::symbol).collect();
+        known.push(symbols.join(", "));
     }
     diags.error(
         Code::E030BadSetting,

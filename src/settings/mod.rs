@@ -12,6 +12,7 @@ pub mod user_templates;
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use crate::actuator::ActuatorKind;
 use crate::address::{Board, Mnemonic, Target};
 use crate::emit::OutputKind;
 use crate::emit::diagram::DiagramKind;
@@ -19,7 +20,6 @@ use crate::emit::templates::Templates;
 use crate::program::{Modes, ProgramOptions, Safety};
 use crate::simulate::SimSettings;
 use crate::stroke::Stroke;
-use crate::valve::ValveType;
 
 pub use sheet::{LABELS, parse};
 
@@ -43,13 +43,13 @@ pub struct Given {
     /// Stroke times per actuator.
     pub strokes: BTreeMap<u32, Stroke>,
     /// Valve types per actuator.
-    pub valves: BTreeMap<u32, ValveType>,
+    pub valves: BTreeMap<u32, ActuatorKind>,
     /// Drift rates per actuator (stroke per second).
     pub loads: BTreeMap<u32, f64>,
     /// Valve types and stroke times the command line gives by an
     /// actuator's name (`--valve clamp=52mono`): resolved once the table's
     /// names are read (`convert`).
-    pub named_valves: BTreeMap<String, ValveType>,
+    pub named_valves: BTreeMap<String, ActuatorKind>,
     pub named_strokes: BTreeMap<String, Stroke>,
     pub named_loads: BTreeMap<String, f64>,
     /// The engineer's names of actuators (`C1 (clamp)` in the actuator table).
@@ -263,9 +263,13 @@ impl Settings {
             self.program.supervision = times.clone();
         }
         let simulation = &mut self.simulation;
-        simulation.strokes.per_actuator.extend(&layer.strokes);
-        simulation.valves.per_actuator.extend(&layer.valves);
-        simulation.loads.extend(&layer.loads);
+        simulation
+            .machine
+            .strokes
+            .per_actuator
+            .extend(&layer.strokes);
+        simulation.machine.valves.per_actuator.extend(&layer.valves);
+        simulation.machine.loads.extend(&layer.loads);
         self.naming
             .actuators
             .extend(layer.names.iter().map(|(n, name)| (*n, name.clone())));
@@ -314,8 +318,8 @@ mod tests {
         assert_eq!(merged.target, Target::Iec);
         assert_eq!(merged.mnemonic, Mnemonic::De);
         assert_eq!(merged.simulation.scan_ms, 20);
-        assert_eq!(merged.simulation.strokes.of(1), stroke(500));
-        assert_eq!(merged.simulation.strokes.of(2), stroke(700));
+        assert_eq!(merged.simulation.machine.strokes.of(1), stroke(500));
+        assert_eq!(merged.simulation.machine.strokes.of(2), stroke(700));
         // Without a sheet value the default stays.
         assert_eq!(
             settings.with_sheet(&Given::default()).simulation.scan_ms,
@@ -348,7 +352,7 @@ mod tests {
         assert_eq!("Siemens".parse::<Target>(), Ok(Target::Siemens));
         assert_eq!(" DE ".parse::<Mnemonic>(), Ok(Mnemonic::De));
         assert!("s7".parse::<Target>().is_err());
-        assert_eq!("5/2 mono".parse::<ValveType>(), Ok(ValveType::Mono52));
+        assert_eq!("5/2 mono".parse::<ActuatorKind>(), Ok(ActuatorKind::Mono52));
         assert_eq!(crate::stroke::parse_scan("0,02s"), Ok(20));
         assert!(crate::stroke::parse_scan("2s").is_err());
     }

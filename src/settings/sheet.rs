@@ -450,7 +450,7 @@ mod tests {
     use super::*;
     use crate::cell::edit_distance;
     use crate::stroke::Stroke;
-    use crate::valve::ValveType;
+    use crate::actuator::ActuatorKind;
 
     fn grid(rows: &[&[&str]]) -> Grid {
         Grid::from_text_rows("t.xlsx", Some("SETTINGS"), rows)
@@ -483,7 +483,7 @@ mod tests {
             &mut diags,
         );
         assert_eq!(s.loads.get(&1), Some(&0.2));
-        assert_eq!(s.valves.get(&1), Some(&ValveType::Closed53));
+        assert_eq!(s.valves.get(&1), Some(&ActuatorKind::Closed53));
         assert_eq!(s.scan_ms, Some(20));
         let found = diags.into_sorted();
         assert_eq!(found.len(), 1, "{found:?}");
@@ -637,7 +637,7 @@ mod tests {
             &mut diags,
         );
         let all: Vec<String> = diags.into_sorted().iter().map(|d| d.to_string()).collect();
-        assert_eq!(s.valves.get(&1), Some(&ValveType::Mono52), "{all:?}");
+        assert_eq!(s.valves.get(&1), Some(&ActuatorKind::Mono52), "{all:?}");
         assert_eq!(s.strokes[&1].extend_ms, 5000);
         assert_eq!(
             s.strokes[&3].extend_ms, 1000,
@@ -692,7 +692,7 @@ mod tests {
             &mut diags,
         );
         assert_eq!(s.target, Some(Target::Iec));
-        assert_eq!(s.valves.get(&1), Some(&ValveType::Mono52));
+        assert_eq!(s.valves.get(&1), Some(&ActuatorKind::Mono52));
         assert_eq!(s.strokes[&2].extend_ms, 3000, "a name alone gives nothing");
         let found = cells_and_messages(diags);
         let codes: Vec<&str> = found.iter().map(|(c, _)| c.as_str()).collect();

@@ -1,27 +1,17 @@
 //! The plant model: pistons with stroke times, position sensors with a
 //! detection window, and the valve each actuator sits on (DESIGN §5).
 
+use crate::actuator::ActuatorKind;
+pub use crate::actuator::Spool;
 use crate::cell::Sign;
 use crate::stroke::Stroke;
-use crate::valve::ValveType;
-
-/// Where the valve's spool is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Spool {
-    /// Air to the + side: the piston moves towards higher positions.
-    Plus,
-    /// Air to the - side.
-    Minus,
-    /// 5/3 closed centre: both ports shut, the piston holds.
-    Centre,
-}
 
 /// One actuator of the plant.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Piston {
     pub number: u32,
     pub max_position: u32,
-    pub valve: ValveType,
+    pub valve: ActuatorKind,
     /// Stroke fraction per scan the piston moves with no coil on: towards
     /// home under the load for an exhausted centre, outwards for a
     /// pressurised centre; zero otherwise.
@@ -42,7 +32,7 @@ impl Piston {
             max_position,
             stroke,
             scan_ms,
-            ValveType::default_for(max_position),
+            ActuatorKind::default_for(max_position),
             0.0,
         )
     }
@@ -55,26 +45,18 @@ impl Piston {
         max_position: u32,
         stroke: Stroke,
         scan_ms: u32,
-        valve: ValveType,
+        valve: ActuatorKind,
         drift: f64,
     ) -> Self {
         let per_scan = |ms: u32| scan_ms as f64 / ms.max(1) as f64;
-        let drift_per_scan = match valve {
-            ValveType::Exhaust53 => -drift.abs() * scan_ms as f64 / 1000.0,
-            ValveType::Pressure53 => drift.abs() * scan_ms as f64 / 1000.0,
-            _ => 0.0,
-        };
+        let drift_per_scan = valve.drift_per_second(drift) * scan_ms as f64 / 1000.0;
         Piston {
             number,
             max_position,
             valve,
             drift_per_scan,
             s: 0.0,
-            spool: if valve.has_centre() {
-                Spool::Centre
-            } else {
-                Spool::Minus
-            },
+            spool: valve.rest_spool(),
             extend_per_scan: per_scan(stroke.extend_ms),
             retract_per_scan: per_scan(stroke.retract_ms),
         }
@@ -112,24 +94,8 @@ impl Piston {
     /// For a single-solenoid valve only `plus` is wired: on extends, off lets
     /// the spring retract.
     pub fn drive(&mut self, plus: bool, minus: bool) -> bool {
-        if self.valve == ValveType::Mono52 {
-            self.spool = if plus { Spool::Plus } else { Spool::Minus };
-            return false;
-        }
-        let centre = self.valve.has_centre();
-        match (plus, minus) {
-            (true, false) => self.spool = Spool::Plus,
-            (false, true) => self.spool = Spool::Minus,
-            // No coil: a bistable spool stays, a spring-centred one centres.
-            // Both coils: a 5/2 spool stays where it was; a 5/3 spool is
-            // pushed from both sides and stays centred.
-            (false, false) | (true, true) => {
-                if centre {
-                    self.spool = Spool::Centre;
-                }
-            }
-        }
-        plus && minus
+        self.spool = self.valve.switch(self.spool, plus, minus);
+        self.valve.conflict(plus, minus)
     }
 
     /// A drive cut (its outputs just went off, `was` driving it) while it
@@ -139,7 +105,7 @@ impl Piston {
     /// the same against its end stop). Cut while leaving a switch, it
     /// stands where it is.
     pub fn settle(&mut self, was: Spool, window: f64) {
-        if self.valve != ValveType::Motor || self.spool != Spool::Centre {
+        if !self.valve.coasts() || self.spool != Spool::Centre {
             return;
         }
         let Some(p) = self.sensor_on(window) else {
@@ -270,7 +236,7 @@ mod tests {
 
     /// Drives to the middle sensor of a 3-position piston, switches every
     /// coil off and lets 2 s pass: where does the piston end?
-    fn middle_then_off(valve: ValveType, drift: f64) -> (f64, f64) {
+    fn middle_then_off(valve: ActuatorKind, drift: f64) -> (f64, f64) {
         let mut p = Piston::with_valve(1, 2, Stroke::default(), 10, valve, drift);
         p.drive(true, false);
         while !p.sensor(1, 0.02) {
@@ -287,25 +253,25 @@ mod tests {
     #[test]
     fn each_valve_type_at_a_middle_stop_and_with_every_coil_off() {
         // Closed centre: holds at the middle sensor.
-        let (stopped, after) = middle_then_off(ValveType::Closed53, 0.2);
+        let (stopped, after) = middle_then_off(ActuatorKind::Closed53, 0.2);
         assert!((stopped - 0.5).abs() < 0.03 && after == stopped);
         // Exhausted centre: the load drifts it home (0.2 stroke/s for 2 s = 0.4).
-        let (stopped, after) = middle_then_off(ValveType::Exhaust53, 0.2);
+        let (stopped, after) = middle_then_off(ActuatorKind::Exhaust53, 0.2);
         assert!(
             (after - (stopped - 0.4)).abs() < 0.01,
             "{stopped} -> {after}"
         );
         // Pressurised centre: creeps out towards the end.
-        let (stopped, after) = middle_then_off(ValveType::Pressure53, 0.2);
+        let (stopped, after) = middle_then_off(ActuatorKind::Pressure53, 0.2);
         assert!(
             (after - (stopped + 0.4)).abs() < 0.01,
             "{stopped} -> {after}"
         );
         // 5/2 bistable: no centre, keeps moving to the end with no coil on.
-        let (_, after) = middle_then_off(ValveType::Bistable52, 0.2);
+        let (_, after) = middle_then_off(ActuatorKind::Bistable52, 0.2);
         assert_eq!(after, 1.0);
         // 5/2 single solenoid: coil off means the spring drives it home.
-        let (_, after) = middle_then_off(ValveType::Mono52, 0.2);
+        let (_, after) = middle_then_off(ActuatorKind::Mono52, 0.2);
         assert_eq!(after, 0.0);
     }
 

@@ -3,10 +3,10 @@
 
 use std::collections::BTreeMap;
 
+use crate::actuator::Machine;
 use crate::cell::Name;
 use crate::program::Signal;
-use crate::stroke::{Stroke, Strokes};
-use crate::valve::Valves;
+use crate::stroke::Stroke;
 
 /// Stroke fraction per second a 5/3 piston drifts with no coil on, unless
 /// `--load` says otherwise.
@@ -49,14 +49,8 @@ impl Fault {
 pub struct SimSettings {
     /// PLC scan time in milliseconds.
     pub scan_ms: u32,
-    /// Stroke times of every actuator.
-    pub strokes: Strokes,
-    /// Valve types given explicitly (the others get the default for their positions).
-    pub valves: Valves,
-    /// Drift, in stroke per second, of a piston on a 5/3 valve with no coil
-    /// on: the load on an exhausted centre (towards home), the creep of a
-    /// pressurised centre (outwards). Per actuator; default 0.05.
-    pub loads: BTreeMap<u32, f64>,
+    /// The machine: each actuator's kind, stroke times and load.
+    pub machine: Machine,
     /// Half-width of a sensor's detection window, as a fraction of the stroke.
     pub window: f64,
     /// Number of START presses (cycles) to run.
@@ -93,9 +87,7 @@ impl Default for SimSettings {
     fn default() -> Self {
         SimSettings {
             scan_ms: 10,
-            strokes: Strokes::default(),
-            valves: Valves::default(),
-            loads: BTreeMap::new(),
+            machine: Machine::default(),
             window: 0.02,
             cycles: 2,
             faults: Vec::new(),
@@ -111,7 +103,7 @@ impl Default for SimSettings {
 
 impl SimSettings {
     pub fn stroke(&self, actuator: u32) -> Stroke {
-        self.strokes.of(actuator)
+        self.machine.strokes.of(actuator)
     }
 
     /// How long after its step starts the machine gives `input`.

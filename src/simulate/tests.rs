@@ -4,7 +4,12 @@ use crate::stroke::Stroke;
 
 fn run(rows: &[Vec<&str>], options: ProgramOptions, settings: &SimSettings) -> SimReport {
     let table = crate::table::from_rows("t.csv", rows).expect("valid table");
-    let program = program::build(&table, &options, &settings.valves, &settings.strokes);
+    let program = program::build(
+        &table,
+        &options,
+        &settings.machine.valves,
+        &settings.machine.strokes,
+    );
     simulate(&table, &program, settings)
 }
 
@@ -88,7 +93,7 @@ fn a_stuck_sensor_stalls_or_endangers() {
 #[test]
 fn slow_strokes_change_the_cycle_time() {
     let mut slow = SimSettings::default();
-    slow.strokes.per_actuator.insert(
+    slow.machine.strokes.per_actuator.insert(
         1,
         Stroke {
             extend_ms: 3000,
@@ -124,7 +129,7 @@ fn a_long_last_stroke_ends_before_the_next_start_with_every_closing_step() {
     let rows = vec![vec!["C1+1"], vec!["C1-0"]];
     for retract_ms in [20_000, 26_000, 40_000] {
         let mut settings = SimSettings::default();
-        settings.strokes.per_actuator.insert(
+        settings.machine.strokes.per_actuator.insert(
             1,
             Stroke {
                 extend_ms: 1000,
@@ -178,7 +183,12 @@ fn the_recorded_io_is_the_same_both_ways() {
     ] {
         let table = crate::table::from_rows("t.csv", &rows).expect("valid table");
         let settings = SimSettings::default();
-        let program = program::build(&table, &options, &settings.valves, &settings.strokes);
+        let program = program::build(
+            &table,
+            &options,
+            &settings.machine.valves,
+            &settings.machine.strokes,
+        );
         let signals = io::IoSignals {
             inputs: program.signals.inputs.clone(),
             outputs: program.signals.driven().collect(),
@@ -271,8 +281,8 @@ fn a_resumed_run_hands_on_only_the_states_before_its_first_finding() {
     let program = program::build(
         &table,
         &ProgramOptions::default(),
-        &healthy_settings.valves,
-        &healthy_settings.strokes,
+        &healthy_settings.machine.valves,
+        &healthy_settings.machine.strokes,
     );
     let simulator = Simulator::new(&table, &program);
     let healthy = simulator.run(&healthy_settings);

@@ -95,8 +95,9 @@ pub(in crate::simulate) fn pistons(table: &StepTable, settings: &SimSettings) ->
                 a.max_position,
                 settings.stroke(a.number),
                 scan_ms,
-                settings.valves.of(a.number, a.max_position),
+                settings.machine.valves.of(a.number, a.max_position),
                 settings
+                    .machine
                     .loads
                     .get(&a.number)
                     .copied()

@@ -105,7 +105,7 @@ fn actuator_comment(
         Signal::StopAt {
             actuator: a,
             position,
-        } if program.signals.motors.contains(&a) => {
+        } if program.signals.drives(a) => {
             format!("drive {} stops at position {position}", actuator(a))
         }
         Signal::StopAt {

@@ -1,9 +1,9 @@
 use super::*;
+use crate::actuator::Valves;
 use crate::cell::Sign;
 use crate::names::{KEYWORDS, reserved_name, signal_problem};
 use crate::program::{Alarm, ProgramOptions};
 use crate::stroke::Strokes;
-use crate::valve::Valves;
 
 fn table(csv: &str) -> StepTable {
     let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();

@@ -5,7 +5,7 @@
 use super::StepTable;
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 use crate::read::Grid;
-use crate::valve::Valves;
+use crate::actuator::Valves;
 
 /// What a table is checked against besides its own rules: the machine it
 /// runs on and the program's options.
@@ -117,11 +117,7 @@ fn check_valves(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut Dia
         else {
             continue;
         };
-        let centred: Vec<&str> = crate::valve::ValveType::ALL
-            .into_iter()
-            .filter(|v| v.has_centre())
-            .map(|v| v.name())
-            .collect();
+        let centred = crate::actuator::ActuatorKind::centred();
         diags.error(
             Code::E031ValveCannotStop,
             grid.location(m.cell),

@@ -4,9 +4,9 @@
 //! not where the switch tripped. (The carwash's outputs are the same
 //! either way, so only its positions show a break in one direction.)
 
+use steptable::actuator::ActuatorKind;
 use steptable::simulate::Operator;
 use steptable::simulate::scenario::scenario;
-use steptable::valve::ValveType;
 
 use crate::helpers::{Build, steptable};
 
@@ -29,9 +29,10 @@ fn a_cut_drive_coasts_to_its_limit_switch_in_each_direction() {
     build
         .settings
         .simulation
+        .machine
         .valves
         .per_actuator
-        .insert(1, ValveType::Motor);
+        .insert(1, ActuatorKind::Motor);
     let program = build.program();
     let script = [
         (

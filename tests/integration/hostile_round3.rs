@@ -373,7 +373,7 @@ fn hidden_rows_and_columns_are_read_like_visible_ones() {
 /// for `--valve`, exit 1, nothing written.
 #[test]
 fn an_unknown_valve_lists_every_valve_type() {
-    let every = steptable::valve::ValveType::ALL
+    let every = steptable::actuator::ActuatorKind::ALL
         .iter()
         .map(|v| v.name())
         .collect::<Vec<_>>();

@@ -271,7 +271,7 @@ proptest! {
         };
         let mut settings = steptable::settings::Settings::new();
         for (i, ms) in strokes.iter().enumerate() {
-            settings.simulation.strokes.per_actuator.insert(
+            settings.simulation.machine.strokes.per_actuator.insert(
                 i as u32 + 1,
                 steptable::stroke::Stroke { extend_ms: *ms, retract_ms: *ms },
             );

@@ -159,6 +159,14 @@ fn modules_import_in_pipeline_order_without_circles() {
             &["commands", "batch", "cli"],
             "convert is the pipeline in memory; the commands stand above it",
         ),
+        (
+            "actuator",
+            &[
+                "read", "table", "program", "address", "simulate", "faults", "emit", "settings",
+                "convert", "symbols",
+            ],
+            "the actuator model is a leaf: every stage asks it what a kind is, it asks none",
+        ),
     ];
     for (module, never, why) in forbidden {
         for target in *never {

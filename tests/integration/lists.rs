@@ -5,18 +5,18 @@
 //! lists against the types: a value added to a type cannot be forgotten in
 //! one of the places that list it.
 
+use steptable::actuator::ActuatorKind;
 use steptable::address::{BOARDS, Mnemonic, Target};
 use steptable::emit::OutputKind;
 use steptable::program::{Modes, Safety};
 use steptable::symbols::Scheme;
-use steptable::valve::ValveType;
 
 use crate::helpers::{sample, steptable, write_xlsx_sheets};
 
 /// The values of each list, from the types.
 fn sources() -> Vec<(&'static str, Vec<&'static str>)> {
     vec![
-        ("valve", ValveType::names()),
+        ("valve", ActuatorKind::names()),
         (
             "formats",
             OutputKind::ALL.iter().map(|k| k.name()).collect(),
@@ -129,7 +129,7 @@ fn the_messages_for_a_wrong_value_list_every_value() {
         );
     }
     // A middle position on a valve without a centre: every valve that has one.
-    let centred: Vec<&str> = ValveType::ALL
+    let centred: Vec<&str> = ActuatorKind::ALL
         .into_iter()
         .filter(|v| v.has_centre())
         .map(|v| v.name())
@@ -175,7 +175,7 @@ fn the_templates_lists_offer_every_value() {
         ("mnemonic", with(&[], Mnemonic::names())),
         ("safety", with(&["none", "all"], Safety::NAMES.to_vec())),
         ("modes", with(&["none", "all"], Modes::NAMES.to_vec())),
-        ("valve", with(&[], ValveType::names())),
+        ("valve", with(&[], ActuatorKind::names())),
     ];
     for (label, values) in expected {
         assert_eq!(lists.get(label), Some(&values), "{label}: {lists:?}");
@@ -200,14 +200,14 @@ fn the_templates_lists_offer_every_value() {
 /// name parses, and the names of the checks and modes are all of them.
 #[test]
 fn the_types_lists_hold_every_value() {
-    fn valve(v: ValveType) -> usize {
+    fn valve(v: ActuatorKind) -> usize {
         match v {
-            ValveType::Bistable52 => 0,
-            ValveType::Mono52 => 1,
-            ValveType::Closed53 => 2,
-            ValveType::Exhaust53 => 3,
-            ValveType::Pressure53 => 4,
-            ValveType::Motor => 5,
+            ActuatorKind::Bistable52 => 0,
+            ActuatorKind::Mono52 => 1,
+            ActuatorKind::Closed53 => 2,
+            ActuatorKind::Exhaust53 => 3,
+            ActuatorKind::Pressure53 => 4,
+            ActuatorKind::Motor => 5,
         }
     }
     fn target(t: Target) -> usize {
@@ -254,12 +254,12 @@ fn the_types_lists_hold_every_value() {
         let set: std::collections::BTreeSet<usize> = indices.into_iter().collect();
         assert_eq!(set, (0..count).collect(), "every variant once");
     }
-    all_of(ValveType::ALL.map(valve).to_vec(), 6);
+    all_of(ActuatorKind::ALL.map(valve).to_vec(), 6);
     all_of(Target::ALL.map(target).to_vec(), 3);
     all_of(Mnemonic::ALL.map(mnemonic).to_vec(), 2);
     all_of(OutputKind::ALL.map(kind).to_vec(), 22);
-    for name in ValveType::names() {
-        assert!(name.parse::<ValveType>().is_ok(), "{name}");
+    for name in ActuatorKind::names() {
+        assert!(name.parse::<ActuatorKind>().is_ok(), "{name}");
     }
     for name in Target::NAMES {
         assert!(name.parse::<Target>().is_ok(), "{name}");

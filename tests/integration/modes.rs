@@ -298,15 +298,15 @@ fn default_home_order_is_the_cycles_own_return_order() {
 /// every coil goes off, and the valve decides what the piston does then.
 #[test]
 fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
-    use steptable::valve::ValveType;
+    use steptable::actuator::ActuatorKind;
     let table = from_rows("one.csv", &[["C1+1"], ["C1-0"]]).unwrap();
     let mut seen = Vec::new();
-    for valve in ValveType::ALL {
+    for valve in ActuatorKind::ALL {
         let mut settings = SimSettings::default();
-        settings.valves.per_actuator.insert(1, valve);
+        settings.machine.valves.per_actuator.insert(1, valve);
         // A light load: a centre valve drifts 1 % of the stroke per second.
-        settings.loads.insert(1, 0.01);
-        settings.strokes.per_actuator.insert(
+        settings.machine.loads.insert(1, 0.01);
+        settings.machine.strokes.per_actuator.insert(
             1,
             steptable::stroke::Stroke {
                 extend_ms: 2000,
@@ -332,20 +332,20 @@ fn emergency_stop_mid_stroke_shows_what_each_valve_type_does() {
         assert!((0.4..0.6).contains(&at_stop), "{valve}: {at_stop}");
         seen.push((valve, at_stop, later));
     }
-    let after = |v: ValveType| seen.iter().find(|(t, ..)| *t == v).unwrap().2;
+    let after = |v: ActuatorKind| seen.iter().find(|(t, ..)| *t == v).unwrap().2;
     // The bistable valve keeps its last position: the stroke goes on to the end.
-    assert!(after(ValveType::Bistable52) > 0.99, "{seen:?}");
+    assert!(after(ActuatorKind::Bistable52) > 0.99, "{seen:?}");
     // The spring returns the single-solenoid valve: the piston goes home.
-    assert!(after(ValveType::Mono52) < 0.01, "{seen:?}");
+    assert!(after(ActuatorKind::Mono52) < 0.01, "{seen:?}");
     // A closed centre locks the air in: the piston stays where it was.
     let closed = seen
         .iter()
-        .find(|(t, ..)| *t == ValveType::Closed53)
+        .find(|(t, ..)| *t == ActuatorKind::Closed53)
         .unwrap();
     assert!((closed.2 - closed.1).abs() < 0.01, "{seen:?}");
     // An exhausted centre lets the load pull it home; a pressurised one creeps out.
-    assert!(after(ValveType::Exhaust53) < closed.2, "{seen:?}");
-    assert!(after(ValveType::Pressure53) > closed.2, "{seen:?}");
+    assert!(after(ActuatorKind::Exhaust53) < closed.2, "{seen:?}");
+    assert!(after(ActuatorKind::Pressure53) > closed.2, "{seen:?}");
 }
 
 /// The fault table treats the mode inputs like sensors: a broken STOP or

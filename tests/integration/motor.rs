@@ -3,20 +3,21 @@
 //! rest; a dead limit switch leaves it running, a hazard of energy the halt
 //! of a safety check cuts; RESET homes it and cuts it at home.
 
+use steptable::actuator::ActuatorKind;
 use steptable::program::{Safety, Signal};
 use steptable::simulate::Operator;
 use steptable::simulate::scenario::scenario;
-use steptable::valve::ValveType;
 
 use crate::helpers::{Build, line_with, squeezed_stdout, steptable};
 
 /// A gantry C1 out and back with a clamp C2 in between.
-fn gantry(valve: ValveType) -> Build {
+fn gantry(valve: ActuatorKind) -> Build {
     let rows = [vec!["C1+1"], vec!["C2+1"], vec!["C2-0"], vec!["C1-0"]];
     let mut build = Build::rows("gantry.csv", &rows);
     build
         .settings
         .simulation
+        .machine
         .valves
         .per_actuator
         .insert(1, valve);
@@ -57,7 +58,7 @@ fn a_drive_is_cut_at_every_limit_and_rests_with_its_outputs_off() {
     let end = 12_000;
     // A cylinder keeps its last coil (the valve holds it); a drive is cut.
     let cylinder = outputs_on_at(
-        &gantry(ValveType::Bistable52),
+        &gantry(ActuatorKind::Bistable52),
         "",
         &press(500, start()),
         end,
@@ -66,7 +67,7 @@ fn a_drive_is_cut_at_every_limit_and_rests_with_its_outputs_off() {
         cylinder.contains(&y1(steptable::cell::Sign::Minus)),
         "{cylinder:?}"
     );
-    let drive = gantry(ValveType::Motor);
+    let drive = gantry(ActuatorKind::Motor);
     let after_cycle = outputs_on_at(&drive, "", &press(500, start()), end);
     assert!(
         !after_cycle
@@ -112,7 +113,7 @@ fn a_drive_is_cut_at_every_limit_and_rests_with_its_outputs_off() {
 
 #[test]
 fn reset_homes_a_drive_and_cuts_it_at_home() {
-    let drive = gantry(ValveType::Motor);
+    let drive = gantry(ActuatorKind::Motor);
     // START, EMERGENCY STOP while C1 travels out, RESET: homed, then cut.
     let mut script = press(500, start());
     script.push((
@@ -137,7 +138,12 @@ fn reset_homes_a_drive_and_cuts_it_at_home() {
             .any(|s| matches!(s, Signal::Coil { actuator: 1, .. })),
         "{homed:?}"
     );
-    let cylinder = outputs_on_at(&gantry(ValveType::Closed53), "estop,reset", &script, 6_000);
+    let cylinder = outputs_on_at(
+        &gantry(ActuatorKind::Closed53),
+        "estop,reset",
+        &script,
+        6_000,
+    );
     assert!(
         cylinder
             .iter()
@@ -181,11 +187,11 @@ fn a_dead_limit_switch_leaves_the_drive_running_until_a_halt_cuts_it() {
     );
     let program = Build {
         settings: {
-            let mut s = gantry(ValveType::Motor).settings;
+            let mut s = gantry(ActuatorKind::Motor).settings;
             s.program.safety = Safety::all();
             s
         },
-        ..gantry(ValveType::Motor)
+        ..gantry(ActuatorKind::Motor)
     }
     .program();
     let halt = program

@@ -130,9 +130,10 @@ fn stop_mid_travel_abandons_the_cycle_until_reset_homes() {
     build
         .settings
         .simulation
+        .machine
         .valves
         .per_actuator
-        .insert(2, steptable::valve::ValveType::Closed53);
+        .insert(2, steptable::actuator::ActuatorKind::Closed53);
     let (table, program) = (&build.table, build.program());
     let script = vec![
         (
@@ -434,9 +435,10 @@ fn a_held_drive_still_stops_at_its_limit_switch() {
     build
         .settings
         .simulation
+        .machine
         .valves
         .per_actuator
-        .insert(1, steptable::valve::ValveType::Motor);
+        .insert(1, steptable::actuator::ActuatorKind::Motor);
     let (table, program) = (&build.table, build.program());
     let script = vec![
         (

@@ -618,7 +618,7 @@ fn help_lists_every_format_and_valve() {
             "{help}"
         );
     }
-    let valves: Vec<String> = steptable::valve::ValveType::ALL
+    let valves: Vec<String> = steptable::actuator::ActuatorKind::ALL
         .iter()
         .map(|v| v.name().to_string())
         .collect();

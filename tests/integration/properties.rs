@@ -54,7 +54,7 @@ fn valid_rows(
     }
     let mut settings = SimSettings::default();
     for (i, (_, extend, retract)) in acts.iter().enumerate() {
-        settings.strokes.per_actuator.insert(
+        settings.machine.strokes.per_actuator.insert(
             i as u32 + 1,
             Stroke {
                 extend_ms: *extend,
@@ -79,7 +79,7 @@ proptest! {
         prop_assert!(table.steps.len() <= 40);
         for safety in [Safety::default(), Safety::all()] {
             let options = ProgramOptions { safety, ..ProgramOptions::default() };
-            let program = program::build(&table, &options, &settings.valves, &settings.strokes);
+            let program = program::build(&table, &options, &settings.machine.valves, &settings.machine.strokes);
             let report = simulate(&table, &program, &settings);
             prop_assert!(report.passed, "{:?}: {}\n{:?}", safety, report.verdict(), rows);
         }
@@ -153,7 +153,7 @@ proptest! {
             .map_err(|d| TestCaseError::fail(format!("invalid table: {d:?}\n{rows:?}")))?;
         let modes = steptable::program::Modes::parse(modes).unwrap();
         let options = ProgramOptions { modes, safety, ..ProgramOptions::default() };
-        let program = program::build(&table, &options, &settings.valves, &settings.strokes);
+        let program = program::build(&table, &options, &settings.machine.valves, &settings.machine.strokes);
         let report = simulate(&table, &program, &settings);
         prop_assert!(report.passed, "{}\n{:?}", report.verdict(), rows);
         let cycle = &report.cycles[0];

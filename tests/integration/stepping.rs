@@ -4,6 +4,7 @@
 //! faults, and on random tables with dwells, waits, machine outputs, every
 //! valve type and scan time.
 
+use steptable::actuator::ActuatorKind;
 use steptable::convert::{Checked, build_program, check_path};
 use steptable::faults::{Outcome, fault_sets, judge};
 use steptable::program::{self, ProgramOptions, Safety, StepProgram};
@@ -12,7 +13,6 @@ use steptable::settings::Settings;
 use steptable::simulate::{ProblemKind, SimSettings, Stepping, simulate_stepping};
 use steptable::stroke::Stroke;
 use steptable::table::StepTable;
-use steptable::valve::ValveType;
 
 use crate::helpers::samples;
 
@@ -128,22 +128,22 @@ pub(crate) fn random_machine(seed: u64) -> (Vec<Vec<String>>, StepTable, StepPro
         let choice = rng.range(0, 3) as usize;
         let valve = if a.max_position > 1 {
             [
-                ValveType::Closed53,
-                ValveType::Exhaust53,
-                ValveType::Pressure53,
-                ValveType::Motor,
+                ActuatorKind::Closed53,
+                ActuatorKind::Exhaust53,
+                ActuatorKind::Pressure53,
+                ActuatorKind::Motor,
             ][choice]
         } else {
             [
-                ValveType::Bistable52,
-                ValveType::Mono52,
-                ValveType::Closed53,
-                ValveType::Motor,
+                ActuatorKind::Bistable52,
+                ActuatorKind::Mono52,
+                ActuatorKind::Closed53,
+                ActuatorKind::Motor,
             ][choice]
         };
-        sim.valves.per_actuator.insert(a.number, valve);
+        sim.machine.valves.per_actuator.insert(a.number, valve);
     }
-    let program = program::build(&table, &options, &sim.valves, &sim.strokes);
+    let program = program::build(&table, &options, &sim.machine.valves, &sim.machine.strokes);
     (rows, table, program, sim)
 }
 
@@ -181,14 +181,14 @@ fn random_case(seed: u64) -> (Vec<Vec<String>>, SimSettings, ProgramOptions) {
         ..SimSettings::default()
     };
     for a in 1..=shape.actuators {
-        sim.strokes.per_actuator.insert(
+        sim.machine.strokes.per_actuator.insert(
             a,
             Stroke {
                 extend_ms: rng.range(1, 300) * 10,
                 retract_ms: rng.range(1, 300) * 10,
             },
         );
-        sim.loads.insert(a, rng.range(0, 20) as f64 / 100.0);
+        sim.machine.loads.insert(a, rng.range(0, 20) as f64 / 100.0);
     }
     sim.input_delays.insert(
         steptable::cell::Name::new("in1").expect("name"),

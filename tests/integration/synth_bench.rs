@@ -7,6 +7,7 @@
 //! against a plant or a scan loop that drifts from the one converted
 //! programs run on, one of these fails.
 
+use steptable::actuator::Valves;
 use steptable::program::{ProgramOptions, Signal, StepProgram, build};
 use steptable::simulate::bench::{Bench, Controller};
 use steptable::simulate::plc::{PlcProgram, PlcState};
@@ -17,7 +18,6 @@ use steptable::synth::controller::OnMachine;
 use steptable::synth::equations::Expr;
 use steptable::synth::{self, verify};
 use steptable::table::{StepTable, from_rows};
-use steptable::valve::Valves;
 
 fn table(cells: &[&str]) -> StepTable {
     let rows: Vec<[&str; 1]> = cells.iter().map(|c| [*c]).collect();

@@ -9,7 +9,7 @@ use crate::diag::{CellPos, Code, Diagnostics};
 use crate::read::{CellValue, Grid, GridCell};
 use crate::settings::Given;
 use crate::stroke::{Stroke, parse_duration_ms};
-use crate::valve::ValveType;
+use crate::actuator::ActuatorKind;
 
 /// The columns of the actuator table headed at `header`; a header cell
 /// that is none of them is named, since its column would not be read.
@@ -344,7 +344,7 @@ fn read_actuator_row<'g>(
     if let Some(cell) = columns.valve.and_then(at)
         && let Some(text) = value_text(grid, cell, diags)
     {
-        match text.parse::<ValveType>() {
+        match text.parse::<ActuatorKind>() {
             Ok(valve) => {
                 settings.valves.insert(actuator, valve);
                 (settings.actuator_cells).insert((actuator, "valve"), grid.location(cell.pos));
@@ -360,7 +360,7 @@ fn read_actuator_row<'g>(
     if let Some(cell) = columns.load.and_then(at)
         && let Some(text) = value_text(grid, cell, diags)
     {
-        match crate::valve::parse_load(&text) {
+        match crate::actuator::parse_load(&text) {
             Some(load) => {
                 settings.loads.insert(actuator, load);
                 (settings.actuator_cells).insert((actuator, "load"), grid.location(cell.pos));

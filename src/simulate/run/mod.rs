@@ -283,15 +283,11 @@ impl Run<'_> {
             let piston = &self.world.pistons[i];
             let was_at_rest = piston.at_rest();
             let was_at = piston.s;
-            let motor = piston.valve == crate::valve::ValveType::Motor;
+            let kind = piston.valve;
             let actuated = self.world.actuate(i, plus, minus);
             if actuated.conflict {
                 let step = self.current_step();
-                let who = if motor {
-                    format!("the drive of C{number} gets forward and reverse")
-                } else {
-                    format!("the valve of C{number} sees both coils")
-                };
+                let who = kind.both_on(number);
                 self.problem(
                     ProblemKind::CoilConflict,
                     step,

@@ -102,7 +102,7 @@ pub fn settings_for(args: &[&str]) -> Settings {
                 ..Given::default()
             }),
             ["--valve", v] => settings.give(Given {
-                valves: steptable::valve::parse_valves(v).expect("valve list"),
+                valves: steptable::actuator::parse_valves(v).expect("valve list"),
                 ..Given::default()
             }),
             ["--input-delay", list] => {

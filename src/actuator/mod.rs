@@ -1,0 +1,241 @@
+//! The actuator model: what a kind of actuator is. One type,
+//! [`ActuatorKind`], owns every decision that differs between kinds — its
+//! coils or contactors ([`CoilSet`]), the positions it can hold, what may
+//! stay on when the machine halts, its default, how the simulated plant
+//! moves it ([`plant`]) and how its failures are said. The program, the
+//! settings, the table checks and the simulator ask the kind; none of them
+//! matches on it. Which kind each actuator of a machine is, its loads and
+//! the option parsers are the machine description ([`machine`]).
+//!
+//! Adding a kind: a variant here with its arms, its plant arms in
+//! [`plant`], and its tests.
+
+pub mod machine;
+pub mod plant;
+
+use std::fmt;
+
+pub use machine::{Machine, Valves, parse_load, parse_loads, parse_valves};
+pub use plant::Spool;
+
+/// A kind of actuator: a cylinder on one of the directional valves, or an
+/// electric drive.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum ActuatorKind {
+    /// 5/2 double solenoid, bistable: keeps the last coil's position
+    /// (default for two-position actuators).
+    Bistable52,
+    /// 5/2 single solenoid with spring return: coil on = extend, off = retract.
+    Mono52,
+    /// 5/3 closed centre: no coil holds the piston (default with middle positions).
+    Closed53,
+    /// 5/3 exhausted centre: no coil vents both chambers; a load drifts the piston.
+    Exhaust53,
+    /// 5/3 pressurised centre: no coil pressurises both chambers; the piston
+    /// creeps towards the rod side (the larger area pushes).
+    Pressure53,
+    /// Not a valve: an electric drive (a gantry, a conveyor axis) with
+    /// forward and reverse contactors as its + and - outputs and limit
+    /// switches as its sensors. It runs only while an output is on, so the
+    /// program cuts the drive at every target; with neither on it stands.
+    Motor,
+}
+
+/// The outputs that move an actuator of a kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CoilSet {
+    /// `yi+` and `yi-`: two coils, or a drive's two contactors.
+    Double,
+    /// The one coil `yi` (a spring takes the actuator back).
+    Single,
+}
+
+impl std::str::FromStr for ActuatorKind {
+    type Err = String;
+
+    /// `52bi`, `5/2 mono`, `53-closed`, … in any case.
+    fn from_str(text: &str) -> Result<Self, String> {
+        let t = text
+            .trim()
+            .to_ascii_lowercase()
+            .replace(['/', ' ', '-'], "");
+        ActuatorKind::ALL
+            .into_iter()
+            .find(|v| v.name() == t)
+            .ok_or_else(|| {
+                // `5/2 monostable`, `5/3 closed centre`: the name is its start.
+                let meant = ActuatorKind::ALL
+                    .into_iter()
+                    .filter(|v| t.starts_with(v.name()))
+                    .max_by_key(|v| v.name().len())
+                    .map(|v| format!(": did you mean {v}?"))
+                    .unwrap_or_default();
+                format!(
+                    "\"{}\" is not a valve type{meant} (expected {})",
+                    text.trim(),
+                    crate::diag::or_list(&ActuatorKind::names())
+                )
+            })
+    }
+}
+
+impl ActuatorKind {
+    pub const ALL: [ActuatorKind; 6] = [
+        ActuatorKind::Bistable52,
+        ActuatorKind::Mono52,
+        ActuatorKind::Closed53,
+        ActuatorKind::Exhaust53,
+        ActuatorKind::Pressure53,
+        ActuatorKind::Motor,
+    ];
+
+    /// Every kind's name, as `--valve` and the SETTINGS sheet write it.
+    pub fn names() -> Vec<&'static str> {
+        ActuatorKind::ALL.map(ActuatorKind::name).to_vec()
+    }
+
+    /// The name used in `--valve` and on the SETTINGS sheet.
+    pub fn name(self) -> &'static str {
+        match self {
+            ActuatorKind::Bistable52 => "52bi",
+            ActuatorKind::Mono52 => "52mono",
+            ActuatorKind::Closed53 => "53closed",
+            ActuatorKind::Exhaust53 => "53exhaust",
+            ActuatorKind::Pressure53 => "53pressure",
+            ActuatorKind::Motor => "motor",
+        }
+    }
+
+    /// The kind an actuator gets unless told otherwise.
+    pub fn default_for(max_position: u32) -> ActuatorKind {
+        if max_position > 1 {
+            ActuatorKind::Closed53
+        } else {
+            ActuatorKind::Bistable52
+        }
+    }
+
+    /// Whether the kind stops between its ends with no output on (a 5/3
+    /// valve's centre, a drive standing), so it may hold a middle position.
+    pub fn has_centre(self) -> bool {
+        match self {
+            ActuatorKind::Closed53
+            | ActuatorKind::Exhaust53
+            | ActuatorKind::Pressure53
+            | ActuatorKind::Motor => true,
+            ActuatorKind::Bistable52 | ActuatorKind::Mono52 => false,
+        }
+    }
+
+    /// The kinds that may hold a middle position, for the messages that
+    /// refuse one.
+    pub fn centred() -> Vec<&'static str> {
+        ActuatorKind::ALL
+            .into_iter()
+            .filter(|k| k.has_centre())
+            .map(ActuatorKind::name)
+            .collect()
+    }
+
+    /// The outputs that move it.
+    pub fn coils(self) -> CoilSet {
+        match self {
+            ActuatorKind::Mono52 => CoilSet::Single,
+            ActuatorKind::Bistable52
+            | ActuatorKind::Closed53
+            | ActuatorKind::Exhaust53
+            | ActuatorKind::Pressure53
+            | ActuatorKind::Motor => CoilSet::Double,
+        }
+    }
+
+    /// Whether it runs only while an output is on (an electric drive): the
+    /// program cuts it at every target, and no halt may leave its outputs on.
+    pub fn is_drive(self) -> bool {
+        self == ActuatorKind::Motor
+    }
+
+    /// Whether a load (`--load`) moves it with no output on: only a 5/3
+    /// centre that vents or pressurises its chambers lets one.
+    pub fn load_drifts(self) -> bool {
+        matches!(self, ActuatorKind::Exhaust53 | ActuatorKind::Pressure53)
+    }
+
+    /// Why one of its outputs may not stay on through an EMERGENCY STOP:
+    /// `output` is its symbol (`y1+`), `actuator` its number.
+    pub fn kept_through_estop(self, output: &str, actuator: u32) -> String {
+        if self.is_drive() {
+            format!(
+                "{output} is a contactor of drive C{actuator} (valve type motor): left on, it keeps the drive running through the EMERGENCY STOP; every drive stops"
+            )
+        } else {
+            format!(
+                "{output} is a valve coil of C{actuator}: left on, it drives the piston on from wherever it stood when the EMERGENCY STOP came; only a machine output that holds a part (a vacuum, a clamp as Y:clamp) may stay on, and a clamp on a 52bi valve keeps its position with both coils off"
+            )
+        }
+    }
+
+    /// What seeing both outputs on means for actuator `number` (the start
+    /// of the simulator's hazard).
+    pub fn both_on(self, number: u32) -> String {
+        if self.is_drive() {
+            format!("the drive of C{number} gets forward and reverse")
+        } else {
+            format!("the valve of C{number} sees both coils")
+        }
+    }
+
+    /// The comment of the rung that stops actuator `actuator` at its
+    /// sensor `sensor` (a middle stop, or a drive's every target).
+    pub fn stop_comment(self, actuator: u32, sensor: &str) -> String {
+        if self.is_drive() {
+            format!(
+                "C{actuator} is a drive: at its limit switch {sensor} both outputs off, it stands"
+            )
+        } else {
+            format!(
+                "middle stop: C{actuator} stops at {sensor} (both coils off, the 5/3 valve holds it)"
+            )
+        }
+    }
+}
+
+impl fmt::Display for ActuatorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_parse_by_name() {
+        let monostable = "5/2 monostable".parse::<ActuatorKind>().unwrap_err();
+        assert!(monostable.contains("did you mean 52mono?"), "{monostable}");
+        let closed = "5/3 closed centre".parse::<ActuatorKind>().unwrap_err();
+        assert!(closed.contains("did you mean 53closed?"), "{closed}");
+        // A drive stops anywhere (its outputs off) and is named motor.
+        assert_eq!("Motor".parse::<ActuatorKind>(), Ok(ActuatorKind::Motor));
+        assert!(ActuatorKind::ALL.contains(&ActuatorKind::Motor));
+    }
+
+    #[test]
+    fn each_kind_says_what_it_is() {
+        assert!(ActuatorKind::Motor.has_centre());
+        assert!(!ActuatorKind::Mono52.has_centre());
+        assert_eq!(ActuatorKind::Mono52.coils(), CoilSet::Single);
+        assert_eq!(ActuatorKind::Motor.coils(), CoilSet::Double);
+        assert!(ActuatorKind::Motor.is_drive());
+        assert!(!ActuatorKind::Closed53.is_drive());
+        assert!(ActuatorKind::Exhaust53.load_drifts());
+        assert!(!ActuatorKind::Closed53.load_drifts());
+        assert_eq!(
+            ActuatorKind::centred(),
+            ["53closed", "53exhaust", "53pressure", "motor"]
+        );
+        assert_eq!(ActuatorKind::default_for(3), ActuatorKind::Closed53);
+        assert_eq!(ActuatorKind::default_for(1), ActuatorKind::Bistable52);
+    }
+}
