@@ -76,10 +76,9 @@ pub fn run(
     let diagram = match diagram {
         Some(dir) => {
             let made_by = MadeBy::of_run(&settings, &table.file);
-            let parts = |n| symbols.actuator_parts(n);
             let file = OutputFile {
                 name: CommandFile::TimeDiagram.file_name(name),
-                bytes: render_svg(name, &report, DiagramKind::Time, &parts).into_bytes(),
+                bytes: render_svg(name, &report, DiagramKind::Time, &symbols).into_bytes(),
             };
             let file = provenance::stamp(file, &made_by)
                 .map_err(|why| CommandError::from(Failure::Internal(why)))?;

@@ -6,6 +6,7 @@
 use std::fmt::Write;
 
 use crate::simulate::SimReport;
+use crate::symbols::SymbolTable;
 
 /// Which horizontal axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -81,18 +82,20 @@ fn time_tick(seconds: u64) -> u64 {
     unreachable!("the cycle of factors never ends")
 }
 
-/// Renders the diagram as a standalone SVG document; `actuator` gives each
-/// lane its label and the engineer's name under it (`C1`, `clamp`).
+/// Renders the diagram as a standalone SVG document in the engineer's
+/// notation: each lane labelled as `symbols` names its actuator, with the
+/// engineer's name under it (`C1`, `clamp`), and the verdict in the same
+/// words as every other finding.
 pub fn render_svg(
     name: &str,
     report: &SimReport,
     kind: DiagramKind,
-    actuator: &dyn Fn(u32) -> (String, Option<String>),
+    symbols: &SymbolTable,
 ) -> String {
     let lanes = lanes(report);
     let sheet = Sheet::new(report, kind, &lanes);
     let mut svg = String::new();
-    sheet.header(&mut svg, name, report);
+    sheet.header(&mut svg, name, &symbols.explain(&report.verdict()));
     sheet.grid(&mut svg);
     if kind == DiagramKind::Time {
         sheet.step_markers(&mut svg, report);
@@ -106,7 +109,7 @@ pub fn render_svg(
             i,
             (*pmax).max(1),
             *lane,
-            actuator(*number),
+            symbols.actuator_parts(*number),
         );
     }
     // Legend.
@@ -161,7 +164,7 @@ impl Sheet {
         LEFT + value * self.column_width
     }
 
-    fn header(&self, svg: &mut String, name: &str, report: &SimReport) {
+    fn header(&self, svg: &mut String, name: &str, verdict: &str) {
         let (width, bottom) = (self.width, self.bottom);
         let _ = writeln!(
             svg,
@@ -180,7 +183,7 @@ impl Sheet {
         let _ = writeln!(
             svg,
             r##"<text x="{LEFT}" y="50" fill="#555">{}</text>"##,
-            escape(&format!("simulated program: {}", report.verdict()))
+            escape(&format!("simulated program: {verdict}"))
         );
     }
 
@@ -399,8 +402,15 @@ mod tests {
     use crate::simulate::{SimSettings, simulate};
     use crate::table::StepTable;
 
-    fn plain(n: u32) -> (String, Option<String>) {
-        (format!("C{n}"), None)
+    /// The paper's own names: `C1`, `x10`, no engineer's names.
+    fn plain(table: &StepTable) -> SymbolTable {
+        let program = crate::program::build(
+            table,
+            &Default::default(),
+            &Default::default(),
+            &Default::default(),
+        );
+        SymbolTable::build(&program, table, &Default::default())
     }
 
     /// The healthy run of `table`'s default program, with its position
@@ -473,7 +483,7 @@ mod tests {
     fn the_time_axis_ticks_one_grid_column_apart_from_the_left_edge() {
         let table = crate::program::tests::paper_table();
         let report = simulated(&table, true);
-        let svg = render_svg("paper", &report, DiagramKind::Time, &plain);
+        let svg = render_svg("paper", &report, DiagramKind::Time, &plain(&table));
         let labels = top_labels(&svg);
         let press = report.cycles[0].press_ms;
         let end_s = (report.trace.last().unwrap().0 - press).div_ceil(1000);
@@ -512,7 +522,7 @@ mod tests {
         let press = report.cycles[0].press_ms;
         let tick = time_tick((report.trace.last().unwrap().0 - press).div_ceil(1000)) as f64;
         let x = |ms: u64| LEFT + (ms - press) as f64 / 1000.0 * 60.0 / tick;
-        let svg = render_svg("dwell", &report, DiagramKind::Time, &plain);
+        let svg = render_svg("dwell", &report, DiagramKind::Time, &plain(&table));
         let band = format!(
             r#"<rect x="{:.1}" y="{:.1}" width="{:.1}""#,
             x(span.from_ms),
@@ -523,10 +533,51 @@ mod tests {
     }
 
     #[test]
+    fn a_failed_run_is_told_in_the_engineers_designations() {
+        let table = crate::program::tests::paper_table();
+        let program = crate::program::build(
+            &table,
+            &Default::default(),
+            &Default::default(),
+            &Default::default(),
+        );
+        let dead = crate::program::Signal::Sensor {
+            actuator: 1,
+            position: 1,
+        };
+        let settings = SimSettings {
+            faults: vec![crate::simulate::Fault {
+                signal: dead,
+                stuck_at: false,
+            }],
+            ..SimSettings::default()
+        };
+        let report = simulate(&table, &program, &settings);
+        assert!(report.verdict().contains("x11"), "{}", report.verdict());
+        let naming = crate::symbols::Naming {
+            scheme: crate::symbols::Scheme::Iso,
+            ..Default::default()
+        };
+        let iso = SymbolTable::build(&program, &table, &naming);
+        let svg = render_svg("paper", &report, DiagramKind::Step, &iso);
+        let verdict = svg
+            .lines()
+            .find(|l| l.contains("simulated program"))
+            .unwrap();
+        assert!(verdict.contains("1B2"), "{verdict}");
+        assert!(!verdict.contains("x11"), "{verdict}");
+    }
+
+    #[test]
     fn the_step_axis_puts_each_step_a_column_apart() {
         let table = crate::program::tests::paper_table();
         let report = simulated(&table, false);
-        let labels = top_labels(&render_svg("paper", &report, DiagramKind::Step, &plain));
+        let labels = top_labels(&render_svg(
+            "paper",
+            &report,
+            DiagramKind::Step,
+            &plain(&table),
+        ));
         let texts: Vec<&str> = labels.iter().map(|(_, t)| t.as_str()).collect();
         assert_eq!(texts, ["1", "2", "3", "4", "5", "6", "7", "8", "9=1"]);
         for (k, (x, _)) in labels.iter().enumerate() {

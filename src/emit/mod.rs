@@ -143,21 +143,7 @@ pub fn jump_comment(
     )
 }
 
-/// `text` as a target that holds at most `max` characters takes it: as it
-/// is when it fits, else its first `max - 3` characters and `...` (plain
-/// dots: STEP 7's files are not all Unicode), the same every run; the bool
-/// says it was cut, so that the output can keep the whole text elsewhere
-/// (a comment line, a tooltip) and the run can warn. The one cut of every
-/// length-limited comment: the symbol table's, a network title, a GRAFCET
-/// panel line.
-pub fn shorten(text: &str, max: usize) -> (String, bool) {
-    if text.chars().count() <= max {
-        return (text.to_string(), false);
-    }
-    let mut cut: String = text.chars().take(max.saturating_sub(3)).collect();
-    cut.push_str("...");
-    (cut, true)
-}
+pub use crate::symbols::shorten;
 
 /// Text on one line: control characters (a newline in a file name) become spaces.
 pub fn one_line(text: &str) -> String {

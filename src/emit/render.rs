@@ -148,10 +148,8 @@ impl<'a> Renderer<'a> {
                 let simulation = input
                     .simulation
                     .ok_or_else(|| internal("diagram", "not simulated"))?;
-                super::diagram::render_svg(name, simulation, input.diagram, &|n| {
-                    self.input.symbols.actuator_parts(n)
-                })
-                .into_bytes()
+                super::diagram::render_svg(name, simulation, input.diagram, self.input.symbols)
+                    .into_bytes()
             }
             OutputKind::Faults => {
                 let faults = input

@@ -14,6 +14,7 @@ mod scheme;
 
 use std::collections::BTreeMap;
 
+pub use comment::shorten;
 pub use scheme::{ActuatorName, Naming, Scheme, paper_ident, stem as scheme_stem};
 
 use crate::cell::Sign;
@@ -21,6 +22,9 @@ use crate::program::{Action, Area, Signal, StepProgram};
 use crate::table::StepTable;
 
 pub use crate::names::{FIRED, STEP_COUNTER};
+
+/// The characters of an engineer's actuator name a finding shows.
+pub const FINDING_NAME: usize = 40;
 
 /// Names of the program's own parts, which [`crate::names`] keeps from
 /// every machine signal.
@@ -220,8 +224,11 @@ impl SymbolTable {
     /// notes, written in the paper's symbols) in the engineer's notation:
     /// each signal by its designation ([`Self::designate`]) and each
     /// actuator the engineer named by its name (`C1 had not reached x11` →
-    /// `C1 (clamp) had not reached x11`, `1A1 (clamp) … 1B2` under ISO). Not
-    /// for text that already names actuators (a rung's comment).
+    /// `C1 (clamp) had not reached x11`, `1A1 (clamp) … 1B2` under ISO), a
+    /// name longer than [`FINDING_NAME`] cut as every limited comment is
+    /// ([`shorten`]): a finding names an actuator many times, and the whole
+    /// name stands in the lists. Not for text that already names actuators
+    /// (a rung's comment).
     pub fn explain(&self, text: &str) -> String {
         let text = self.designate(text);
         if self.actuators.values().all(|(_, name)| name.is_none()) {
@@ -231,7 +238,10 @@ impl SymbolTable {
             .actuators
             .iter()
             .filter(|(_, (_, name))| name.is_some())
-            .map(|(n, (label, _))| (label.as_str(), self.actuator(*n)))
+            .map(|(n, (label, name))| {
+                let name = shorten(name.as_deref().unwrap_or_default(), FINDING_NAME).0;
+                (label.as_str(), format!("{label} ({name})"))
+            })
             .collect();
         map_words(&text, |token| named.get(token).map(String::as_str))
     }

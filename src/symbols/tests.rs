@@ -282,3 +282,26 @@ fn findings_name_the_engineers_actuators() {
     let none = symbols(&t, &Naming::default());
     assert_eq!(none.explain(finding), finding);
 }
+
+#[test]
+fn a_long_name_is_cut_in_findings_and_kept_whole_in_the_lists() {
+    let t = table("C1+1\nC1-0");
+    let long = format!("clamp {}", "and then some more words ".repeat(4));
+    let long = long.trim_end();
+    let names = symbols(&t, &named(Scheme::Paper, &[(1, long)]));
+    let said = names.explain("C1 had not reached x11; C1 ran on");
+    let cut = format!("{}...", &long[..FINDING_NAME - 3]);
+    assert_eq!(
+        said,
+        format!("C1 ({cut}) had not reached x11; C1 ({cut}) ran on")
+    );
+    // The lists and comments keep the whole name.
+    assert_eq!(names.actuator(1), format!("C1 ({long})"));
+    // A name that fits is said whole.
+    let short = symbols(&t, &named(Scheme::Paper, &[(1, &long[..FINDING_NAME])]));
+    assert!(
+        short
+            .explain("C1")
+            .ends_with(&format!("{})", &long[..FINDING_NAME]))
+    );
+}

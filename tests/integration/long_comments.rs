@@ -85,3 +85,33 @@ fn long_comments_are_cut_where_a_target_limits_them() {
         .code(1)
         .stderr(predicates::str::contains("SETTINGS!A2: error[E025]: C1 ("));
 }
+
+/// A finding names an actuator each time it speaks of it: the 300-character
+/// name is cut there (40 characters, three dots), and stays whole in the
+/// lists that describe the signal.
+#[test]
+fn a_long_name_is_cut_in_findings_and_whole_in_the_lists() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = long_table(dir.path());
+    steptable()
+        .args(["convert", "--formats", "faults,io", "-o"])
+        .arg(dir.path().join("out"))
+        .arg(&input)
+        .assert()
+        .success();
+    let out = dir.path().join("out").join("long");
+    let name = long_text("clamp");
+    let cut: String = name.chars().take(37).chain("...".chars()).collect();
+    let faults = std::fs::read_to_string(out.join("long.faults.csv")).unwrap();
+    let hazard = faults
+        .lines()
+        .find(|l| l.starts_with("x11 short circuit"))
+        .expect("the early x11 row");
+    assert!(
+        hazard.contains(&format!("C1 ({cut}) had not reached x11")),
+        "{hazard}"
+    );
+    assert!(!faults.contains(&name), "the whole name in a finding");
+    let io = std::fs::read_to_string(out.join("long.io.csv")).unwrap();
+    assert!(io.contains(&name), "the I/O list keeps the whole name");
+}

@@ -137,9 +137,9 @@ fn step_table(input: &EmitInput) -> String {
 }
 
 fn diagrams(input: &EmitInput, simulation: &crate::simulate::SimReport) -> String {
-    let actuator = |n| input.symbols.actuator_parts(n);
-    let step = super::diagram::render_svg(input.name, simulation, DiagramKind::Step, &actuator);
-    let time = super::diagram::render_svg(input.name, simulation, DiagramKind::Time, &actuator);
+    let symbols = input.symbols;
+    let step = super::diagram::render_svg(input.name, simulation, DiagramKind::Step, symbols);
+    let time = super::diagram::render_svg(input.name, simulation, DiagramKind::Time, symbols);
     format!("<div class=\"picture\">{step}</div>\n<div class=\"picture\">{time}</div>")
 }
 
