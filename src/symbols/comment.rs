@@ -233,6 +233,9 @@ fn steps_where(table: &StepTable, test: impl Fn(&Step) -> bool) -> String {
     }
 }
 
+/// The characters of an engineer's actuator name a finding shows.
+pub const FINDING_NAME: usize = 40;
+
 /// `text` as a target that holds at most `max` characters takes it: as it
 /// is when it fits, else its first `max - 3` characters and `...` (plain
 /// dots: STEP 7's files are not all Unicode), the same every run; the bool

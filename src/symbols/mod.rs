@@ -14,7 +14,7 @@ mod scheme;
 
 use std::collections::BTreeMap;
 
-pub use comment::shorten;
+pub use comment::{FINDING_NAME, shorten};
 pub use scheme::{ActuatorName, Naming, Scheme, paper_ident, stem as scheme_stem};
 
 use crate::cell::Sign;
@@ -22,9 +22,6 @@ use crate::program::{Action, Area, Signal, StepProgram};
 use crate::table::StepTable;
 
 pub use crate::names::{FIRED, STEP_COUNTER};
-
-/// The characters of an engineer's actuator name a finding shows.
-pub const FINDING_NAME: usize = 40;
 
 /// Names of the program's own parts, which [`crate::names`] keeps from
 /// every machine signal.
@@ -236,11 +233,10 @@ impl SymbolTable {
         }
         let named: BTreeMap<&str, String> = self
             .actuators
-            .iter()
-            .filter(|(_, (_, name))| name.is_some())
-            .map(|(n, (label, name))| {
-                let name = shorten(name.as_deref().unwrap_or_default(), FINDING_NAME).0;
-                (label.as_str(), format!("{label} ({name})"))
+            .values()
+            .filter_map(|(label, name)| {
+                let name = shorten(name.as_deref()?, FINDING_NAME).0;
+                Some((label.as_str(), format!("{label} ({name})")))
             })
             .collect();
         map_words(&text, |token| named.get(token).map(String::as_str))
