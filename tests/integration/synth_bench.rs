@@ -240,26 +240,19 @@ fn reactions(table: &StepTable, controller: &mut dyn Controller) -> Reactions {
         continuous: true,
         ..Operator::default()
     };
-    let press = |o: Operator| Operator {
-        continuous: true,
-        ..o
-    };
-    let start = press(Operator {
+    let start = Operator {
         start: true,
-        ..Operator::default()
-    });
-    let stop = press(Operator {
-        stop: true,
-        ..Operator::default()
-    });
-    let estop = press(Operator {
+        ..idle
+    };
+    let stop = Operator { stop: true, ..idle };
+    let estop = Operator {
         estop: true,
-        ..Operator::default()
-    });
-    let reset = press(Operator {
+        ..idle
+    };
+    let reset = Operator {
         reset: true,
-        ..Operator::default()
-    });
+        ..idle
+    };
     // STOP pressed once the first move has ended: the cycle goes on to
     // its end, and no other starts.
     let mut stopped_cycle = m.scan(start);
