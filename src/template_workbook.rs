@@ -255,26 +255,77 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
     for (col, header) in [(0, "SETTING"), (1, "VALUE"), (3, "WHAT IT MEANS")] {
         sheet.write_string_with_format(3, col, header, &f.header)?;
     }
-    // Every list from its type's own, so a value added there is offered
-    // here (a test compares them).
-    let choices = |first: &[&'static str], rest: &[&'static str]| -> Vec<&'static str> {
-        first.iter().chain(rest).copied().collect()
-    };
+    let rows: Vec<SettingRow> = [
+        platform_rows().to_vec(),
+        safety_rows().to_vec(),
+        sequence_rows().to_vec(),
+    ]
+    .concat();
+    for (i, (label, value, meaning, choices)) in rows.iter().enumerate() {
+        let row = 4 + i as u32;
+        sheet.write_string_with_format(row, 0, *label, &f.label)?;
+        sheet.write_string_with_format(row, 1, *value, &f.input)?;
+        sheet.write_string_with_format(row, 3, meaning, &f.wrap)?;
+        // Tall enough for the wrapped help: neither Excel nor LibreOffice
+        // grows a row on opening, and a 15 pt row overlaps the next one.
+        sheet.set_row_height(row, row_points(&[meaning.as_str()], &[MEANING_WIDTH]))?;
+        sheet.insert_note(row, 1, &Note::new(meaning).set_author("steptable"))?;
+        if let Some(choices) = choices {
+            let mut validation = DataValidation::new()
+                .allow_list_strings(choices)?
+                .set_input_title(*label)?;
+            // A list may combine choices: warn, but accept other text.
+            if *label == "safety" || *label == "modes" {
+                validation = validation.set_error_style(DataValidationErrorStyle::Information);
+            }
+            sheet.add_data_validation(row, 1, row, 1, &validation)?;
+        }
+    }
+    // Below the rows of settings and a blank row.
+    let header = 4 + rows.len() as u32 + 2;
+    actuator_table(sheet, f, header)?;
+    // Wide enough for the longest label (`de-energise on halt`) in bold.
+    let widest = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(10);
+    sheet.set_column_width(0, widest as f64 + 3.0)?;
+    sheet.set_column_width(1, 14)?;
+    sheet.set_column_width(2, 14)?;
+    sheet.set_column_width(3, MEANING_WIDTH)?;
+    sheet.set_column_width(4, 16)?;
+    sheet.protect();
+    Ok(())
+}
+
+/// One row of the SETTINGS sheet: its label, the template's value, what
+/// it means and the values offered (a list to pick from, or free text).
+type SettingRow = (
+    &'static str,
+    &'static str,
+    String,
+    Option<Vec<&'static str>>,
+);
+
+/// Every list from its type's own, so a value added there is offered here
+/// (a test compares them).
+fn choices(first: &[&'static str], rest: &[&'static str]) -> Vec<&'static str> {
+    first.iter().chain(rest).copied().collect()
+}
+
+fn owned_row(row: (&'static str, &'static str, &str, Option<&[&'static str]>)) -> SettingRow {
+    let (label, value, meaning, choices) = row;
+    (
+        label,
+        value,
+        meaning.to_string(),
+        choices.map(<[_]>::to_vec),
+    )
+}
+
+/// Where the program runs: its addresses, board, operand letters and scan.
+fn platform_rows() -> [SettingRow; 4] {
     let boards = choices(&["none"], &crate::address::BOARDS.map(|b| b.name));
     let targets = choices(&["default"], &crate::address::Target::NAMES);
     let mnemonics = crate::address::Mnemonic::names();
-    let safety = choices(&["none", "all"], &crate::program::Safety::NAMES);
-    let modes = choices(&["none", "all"], &crate::program::Modes::NAMES);
-    let safety_text = format!(
-        "Safety checks built into the program: none, all, or a list of {} (e.g. edge, watchdog).",
-        crate::program::Safety::NAMES.join(", ")
-    );
-    let modes_text = format!(
-        "Operating modes in the program: none, all (every mode but step), or a list of {} (estop brings reset).",
-        crate::program::Modes::NAMES.join(", ")
-    );
-    let schemes = crate::symbols::Scheme::ALL.map(crate::symbols::Scheme::name);
-    let rows: [(&str, &str, &str, Option<&[&str]>); 17] = [
+    let rows: [(&str, &str, &str, Option<&[&str]>); 4] = [
         (
             "target",
             "default",
@@ -299,6 +350,23 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             "PLC cycle of the generated task and of the simulation, from 1ms to 1s.",
             None,
         ),
+    ];
+    rows.map(owned_row)
+}
+
+/// What the program checks and does when the operator or a fault stops it.
+fn safety_rows() -> [SettingRow; 10] {
+    let safety = choices(&["none", "all"], &crate::program::Safety::NAMES);
+    let modes = choices(&["none", "all"], &crate::program::Modes::NAMES);
+    let safety_text = format!(
+        "Safety checks built into the program: none, all, or a list of {} (e.g. edge, watchdog).",
+        crate::program::Safety::NAMES.join(", ")
+    );
+    let modes_text = format!(
+        "Operating modes in the program: none, all (every mode but step), or a list of {} (estop brings reset).",
+        crate::program::Modes::NAMES.join(", ")
+    );
+    let rows: [(&str, &str, &str, Option<&[&str]>); 10] = [
         ("safety", "none", &safety_text, Some(&safety)),
         ("modes", "none", &modes_text, Some(&modes)),
         (
@@ -349,6 +417,14 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             "Machine inputs that must stay on (a guard door's switch), e.g. guard_closed, or only in some steps: guard_closed in steps 3-5. One going off halts the machine where it is and raises alarm_il; RESET clears it.",
             None,
         ),
+    ];
+    rows.map(owned_row)
+}
+
+/// What the lists call a signal, and the homing and supervision times.
+fn sequence_rows() -> [SettingRow; 3] {
+    let schemes = crate::symbols::Scheme::ALL.map(crate::symbols::Scheme::name);
+    let rows: [(&str, &str, &str, Option<&[&str]>); 3] = [
         (
             "designations",
             "paper",
@@ -368,38 +444,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
             None,
         ),
     ];
-    for (i, (label, value, meaning, choices)) in rows.iter().enumerate() {
-        let row = 4 + i as u32;
-        sheet.write_string_with_format(row, 0, *label, &f.label)?;
-        sheet.write_string_with_format(row, 1, *value, &f.input)?;
-        sheet.write_string_with_format(row, 3, *meaning, &f.wrap)?;
-        // Tall enough for the wrapped help: neither Excel nor LibreOffice
-        // grows a row on opening, and a 15 pt row overlaps the next one.
-        sheet.set_row_height(row, row_points(&[meaning], &[MEANING_WIDTH]))?;
-        sheet.insert_note(row, 1, &Note::new(*meaning).set_author("steptable"))?;
-        if let Some(choices) = choices {
-            let mut validation = DataValidation::new()
-                .allow_list_strings(choices)?
-                .set_input_title(*label)?;
-            // A list may combine choices: warn, but accept other text.
-            if *label == "safety" || *label == "modes" {
-                validation = validation.set_error_style(DataValidationErrorStyle::Information);
-            }
-            sheet.add_data_validation(row, 1, row, 1, &validation)?;
-        }
-    }
-    // Below the rows of settings and a blank row.
-    let header = 4 + rows.len() as u32 + 2;
-    actuator_table(sheet, f, header)?;
-    // Wide enough for the longest label (`de-energise on halt`) in bold.
-    let widest = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(10);
-    sheet.set_column_width(0, widest as f64 + 3.0)?;
-    sheet.set_column_width(1, 14)?;
-    sheet.set_column_width(2, 14)?;
-    sheet.set_column_width(3, MEANING_WIDTH)?;
-    sheet.set_column_width(4, 16)?;
-    sheet.protect();
-    Ok(())
+    rows.map(owned_row)
 }
 
 /// The actuator table below the settings, its header on row `header`:

@@ -370,8 +370,8 @@ pub fn proven_program(
         };
         (proof, Some(healthy), trace)
     } else if let Some(signals) = signals {
-        let (simulation, trace) = report::recorded_run(table, &program, sim, signals);
-        (simulation, None, Some(trace))
+        let run = simulate::Simulator::new(table, &program).run_recorded(sim, Some(signals), false);
+        (run.report, None, run.trace)
     } else {
         (simulate::simulate(table, &program, sim), None, None)
     };

@@ -1,28 +1,10 @@
-//! What the report needs that only a conversion knows: the run recorded
-//! scan by scan (the timeline), and the settings in force as rows.
+//! What the report needs that only a conversion knows: the settings in
+//! force as rows (the run recorded scan by scan for its timeline is
+//! [`crate::simulate::Simulator::run_recorded`]).
 
-use crate::program::StepProgram;
 use crate::provenance::MadeBy;
 use crate::settings::Settings;
-use crate::simulate::io::{IoSignals, IoTrace};
-use crate::simulate::{SimReport, SimSettings, Simulator};
 use crate::table::StepTable;
-
-/// The healthy run, recorded: runs the program as
-/// [`crate::simulate::simulate`] does and also keeps every input, output
-/// and the active step at every scan, and the positions.
-pub fn recorded_run(
-    table: &StepTable,
-    program: &StepProgram,
-    sim: &SimSettings,
-    signals: IoSignals,
-) -> (SimReport, IoTrace) {
-    let sim = SimSettings {
-        record_trace: true,
-        ..sim.clone()
-    };
-    Simulator::new(table, program).run_recording(&sim, signals)
-}
 
 /// The settings in force, one row each, for the report.
 pub fn settings_rows(

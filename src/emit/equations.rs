@@ -8,6 +8,7 @@ use minijinja::value::Serde;
 use serde::Serialize;
 
 use super::templates::{TemplateError, Templates};
+use crate::program::Signal;
 use crate::symbols::{CONFIGURATION_NAME, RESOURCE_NAME};
 use crate::synth::equations::Expr;
 use crate::synth::output::{CONVENTION, equation_line};
@@ -152,23 +153,29 @@ fn located_inputs(s: &Synthesis) -> Vec<Located> {
             });
         }
     }
-    for (name, comment) in [
-        ("START", "push button: starts cycling, the machine home"),
+    // The buttons of the `convert` route's programs, by the names the
+    // step program gives them (`RESET_PB`: RESET is an IL keyword).
+    for (button, comment) in [
         (
-            "STOP",
+            Signal::Start,
+            "push button: starts cycling, the machine home",
+        ),
+        (
+            Signal::Stop,
             "normally closed: cycling ends at the end of the cycle",
         ),
         (
-            "ESTOP",
+            Signal::EStop,
             "emergency stop, normally closed: every coil off until RESET",
         ),
         (
-            "RESET_PB",
+            Signal::Reset,
             "push button: memories back, every cylinder home",
         ),
     ] {
+        let name = button.symbol();
         inputs.push(Located {
-            name: name.to_string(),
+            name,
             address: format!("%IX{}", bit(inputs.len())),
             comment: comment.to_string(),
         });

@@ -44,14 +44,11 @@ pub fn healthy_run_recording(
     settings: &SimSettings,
     signals: Option<IoSignals>,
 ) -> (Healthy, Option<IoTrace>) {
-    let settings = SimSettings {
-        record_trace: settings.record_trace || signals.is_some(),
-        ..yardstick_settings(settings)
+    let run =
+        Simulator::new(table, program).run_recorded(&yardstick_settings(settings), signals, true);
+    let healthy = Healthy {
+        report: run.report,
+        log: run.log.unwrap_or_default(),
     };
-    let (report, log, trace) = Simulator::new(table, program).run_logging_inputs(
-        &settings,
-        program.signals.inputs.clone(),
-        signals,
-    );
-    (Healthy { report, log }, trace)
+    (healthy, run.trace)
 }

@@ -138,186 +138,216 @@ pub(super) fn homing_rungs(
     rungs: &mut Vec<Rung>,
 ) {
     let modes = &options.modes;
-    let hold_on_estop = &options.halt.hold_on_estop;
-    let (interlocks, halts) = (&options.interlocks, options.halts());
     let outputs: Vec<Signal> = signals.driven().collect();
-    let memories = &signals.memories;
     if modes.reset {
         let stages = modes.home_stages(table).unwrap_or_default();
-        let mut condition = vec![Literal::is(Signal::Reset)];
-        if modes.estop {
-            condition.push(Literal::is(Signal::EStop));
-        }
-        // Homing moves every actuator: not behind an open guard.
-        condition.extend(
-            interlocks
-                .iter()
-                .filter(|i| i.steps.is_none())
-                .map(|i| Literal::is(Signal::MachineInput(i.input))),
-        );
-        let mut actions: Vec<Action> = outputs.iter().map(|s| Action::Reset(*s)).collect();
-        // Forget the interrupted cycle: requests, stops, dwells, alarms.
-        actions.extend(
-            memories
-                .iter()
-                .filter(|m| {
-                    matches!(
-                        m,
-                        Signal::Halt
-                            | Signal::CycleRequest
-                            | Signal::Busy
-                            | Signal::AutoRun
-                            | Signal::StopAt { .. }
-                            | Signal::DwellArmed(_)
-                            | Signal::RunOnArmed(_)
-                            | Signal::InterlockZone(_)
-                            | Signal::WatchdogArmed
-                            | Signal::Awaited(_)
-                    )
-                })
-                .map(|m| Action::Reset(*m)),
-        );
-        actions.extend(signals.alarms().map(Action::Reset));
-        actions.extend(timers.iter().map(|t| Action::Reset(*t)));
-        actions.push(Action::Set(Signal::Homing));
-        for n in 1..=stages.len() {
-            let stage = Signal::HomeStage(n as u16);
-            actions.push(if n == 1 {
-                Action::Set(stage)
-            } else {
-                Action::Reset(stage)
-            });
-        }
-        actions.push(Action::Reset(Signal::Sequence));
-        rungs.push(Rung {
-            kind: RungKind::Homing,
-            comment: "RESET: abandon the cycle, every output off, home stage by stage".to_string(),
-            condition,
-            actions,
-        });
-        for (i, stage) in stages.iter().enumerate() {
-            let memory = Signal::HomeStage(i as u16 + 1);
-            let names: Vec<String> = stage.iter().map(|a| format!("C{a}")).collect();
-            let mut drive = Vec::new();
-            let mut home = vec![Literal::is(memory)];
-            for &actuator in stage {
-                if signals.valves.contains(&Coils::Single { actuator }) {
-                    drive.push(Action::Reset(Signal::SingleCoil { actuator }));
-                } else {
-                    drive.push(Action::Set(Signal::Coil {
-                        actuator,
-                        sign: Sign::Minus,
-                    }));
-                    drive.push(Action::Reset(Signal::Coil {
-                        actuator,
-                        sign: Sign::Plus,
-                    }));
-                }
-                home.push(Literal::is(Signal::Sensor {
-                    actuator,
-                    position: 0,
-                }));
-            }
-            // A halt while homing (an interlock opening, a plausibility
-            // fault) stops driving: the halt's own rungs then hold or
-            // de-energise the outputs as for any halt.
-            let mut condition = vec![Literal::is(memory)];
-            if halts {
-                condition.push(Literal::not(Signal::Halt));
-            }
-            rungs.push(Rung {
-                kind: RungKind::Homing,
-                comment: format!("homing stage {}: {} home", i + 1, names.join(", ")),
-                condition,
-                actions: drive,
-            });
-            let mut done = vec![Action::Reset(memory)];
-            // A drive runs as long as its output is on: cut it at home.
-            done.extend(
-                stage
-                    .iter()
-                    .filter(|&&a| signals.drives(a))
-                    .map(|&actuator| {
-                        Action::Reset(Signal::Coil {
-                            actuator,
-                            sign: Sign::Minus,
-                        })
-                    }),
-            );
-            done.push(if i + 1 < stages.len() {
-                Action::Set(Signal::HomeStage(i as u16 + 2))
-            } else {
-                Action::Reset(Signal::Homing)
-            });
-            rungs.push(Rung {
-                kind: RungKind::Homing,
-                comment: format!(
-                    "homing stage {} done: {}",
-                    i + 1,
-                    if i + 1 < stages.len() {
-                        "next stage"
-                    } else {
-                        "the machine is home and ready"
-                    }
-                ),
-                condition: home,
-                actions: done,
-            });
-        }
+        rungs.push(reset_rung(signals, timers, options, &outputs, stages.len()));
+        home_stage_rungs(signals, options.halts(), &stages, rungs);
     }
     if modes.estop {
-        let runs_on = |s: &Signal| {
-            run_ons
-                .iter()
-                .any(|r| r.event == super::StopEvent::EStop && r.output == *s)
-        };
-        let mut held: Vec<String> = outputs
+        rungs.push(estop_rung(signals, options, run_ons, &outputs));
+    }
+}
+
+/// RESET abandons the cycle: every output and the cycle's memories off,
+/// the first of `stages` homing stages on.
+fn reset_rung(
+    signals: &Signals,
+    timers: &[Signal],
+    options: &super::ProgramOptions,
+    outputs: &[Signal],
+    stages: usize,
+) -> Rung {
+    let memories = &signals.memories;
+    let mut condition = vec![Literal::is(Signal::Reset)];
+    if options.modes.estop {
+        condition.push(Literal::is(Signal::EStop));
+    }
+    // Homing moves every actuator: not behind an open guard.
+    condition.extend(
+        options
+            .interlocks
             .iter()
-            .filter(|s| hold_on_estop.contains(s))
-            .map(|s| format!("{} (hold on estop)", s.symbol()))
-            .collect();
-        held.extend(
-            run_ons
+            .filter(|i| i.steps.is_none())
+            .map(|i| Literal::is(Signal::MachineInput(i.input))),
+    );
+    let mut actions: Vec<Action> = outputs.iter().map(|s| Action::Reset(*s)).collect();
+    // Forget the interrupted cycle: requests, stops, dwells, alarms.
+    actions.extend(
+        memories
+            .iter()
+            .filter(|m| {
+                matches!(
+                    m,
+                    Signal::Halt
+                        | Signal::CycleRequest
+                        | Signal::Busy
+                        | Signal::AutoRun
+                        | Signal::StopAt { .. }
+                        | Signal::DwellArmed(_)
+                        | Signal::RunOnArmed(_)
+                        | Signal::InterlockZone(_)
+                        | Signal::WatchdogArmed
+                        | Signal::Awaited(_)
+                )
+            })
+            .map(|m| Action::Reset(*m)),
+    );
+    actions.extend(signals.alarms().map(Action::Reset));
+    actions.extend(timers.iter().map(|t| Action::Reset(*t)));
+    actions.push(Action::Set(Signal::Homing));
+    for n in 1..=stages {
+        let stage = Signal::HomeStage(n as u16);
+        actions.push(if n == 1 {
+            Action::Set(stage)
+        } else {
+            Action::Reset(stage)
+        });
+    }
+    actions.push(Action::Reset(Signal::Sequence));
+    Rung {
+        kind: RungKind::Homing,
+        comment: "RESET: abandon the cycle, every output off, home stage by stage".to_string(),
+        condition,
+        actions,
+    }
+}
+
+/// Each homing stage drives its actuators home (unless halted) and, once
+/// they all are, hands on to the next stage or ends the homing.
+fn home_stage_rungs(signals: &Signals, halts: bool, stages: &[Vec<u32>], rungs: &mut Vec<Rung>) {
+    for (i, stage) in stages.iter().enumerate() {
+        let memory = Signal::HomeStage(i as u16 + 1);
+        let names: Vec<String> = stage.iter().map(|a| format!("C{a}")).collect();
+        let mut drive = Vec::new();
+        let mut home = vec![Literal::is(memory)];
+        for &actuator in stage {
+            if signals.valves.contains(&Coils::Single { actuator }) {
+                drive.push(Action::Reset(Signal::SingleCoil { actuator }));
+            } else {
+                drive.push(Action::Set(Signal::Coil {
+                    actuator,
+                    sign: Sign::Minus,
+                }));
+                drive.push(Action::Reset(Signal::Coil {
+                    actuator,
+                    sign: Sign::Plus,
+                }));
+            }
+            home.push(Literal::is(Signal::Sensor {
+                actuator,
+                position: 0,
+            }));
+        }
+        // A halt while homing (an interlock opening, a plausibility
+        // fault) stops driving: the halt's own rungs then hold or
+        // de-energise the outputs as for any halt.
+        let mut condition = vec![Literal::is(memory)];
+        if halts {
+            condition.push(Literal::not(Signal::Halt));
+        }
+        rungs.push(Rung {
+            kind: RungKind::Homing,
+            comment: format!("homing stage {}: {} home", i + 1, names.join(", ")),
+            condition,
+            actions: drive,
+        });
+        let mut done = vec![Action::Reset(memory)];
+        // A drive runs as long as its output is on: cut it at home.
+        done.extend(
+            stage
                 .iter()
-                .filter(|r| r.event == super::StopEvent::EStop)
-                .map(|r| {
-                    format!(
-                        "{} (off after {})",
-                        r.output.symbol(),
-                        crate::cell::duration_text(r.ms)
-                    )
+                .filter(|&&a| signals.drives(a))
+                .map(|&actuator| {
+                    Action::Reset(Signal::Coil {
+                        actuator,
+                        sign: Sign::Minus,
+                    })
                 }),
         );
-        let mut actions: Vec<Action> = outputs
-            .iter()
-            .filter(|s| !hold_on_estop.contains(s) && !runs_on(s))
-            .map(|s| Action::Reset(*s))
-            .collect();
-        actions.push(Action::Set(Signal::Halt));
-        actions.extend(
-            memories
-                .iter()
-                .filter(|m| {
-                    matches!(
-                        m,
-                        Signal::CycleRequest
-                            | Signal::Busy
-                            | Signal::AutoRun
-                            | Signal::Homing
-                            | Signal::HomeStage(_)
-                    )
-                })
-                .map(|m| Action::Reset(*m)),
-        );
-        rungs.push(Rung {
-            kind: RungKind::EmergencyStop,
-            comment: format!(
-                "EMERGENCY STOP (normally closed): {}, START blocked until RESET",
-                all_off_but(&held)
-            ),
-            condition: vec![Literal::not(Signal::EStop)],
-            actions,
+        done.push(if i + 1 < stages.len() {
+            Action::Set(Signal::HomeStage(i as u16 + 2))
+        } else {
+            Action::Reset(Signal::Homing)
         });
+        rungs.push(Rung {
+            kind: RungKind::Homing,
+            comment: format!(
+                "homing stage {} done: {}",
+                i + 1,
+                if i + 1 < stages.len() {
+                    "next stage"
+                } else {
+                    "the machine is home and ready"
+                }
+            ),
+            condition: home,
+            actions: done,
+        });
+    }
+}
+
+/// The EMERGENCY STOP (normally closed): every output off but those held
+/// or run on, the halt set, the cycle and the homing forgotten.
+fn estop_rung(
+    signals: &Signals,
+    options: &super::ProgramOptions,
+    run_ons: &[super::RunOn],
+    outputs: &[Signal],
+) -> Rung {
+    let hold_on_estop = &options.halt.hold_on_estop;
+    let memories = &signals.memories;
+    let runs_on = |s: &Signal| {
+        run_ons
+            .iter()
+            .any(|r| r.event == super::StopEvent::EStop && r.output == *s)
+    };
+    let mut held: Vec<String> = outputs
+        .iter()
+        .filter(|s| hold_on_estop.contains(s))
+        .map(|s| format!("{} (hold on estop)", s.symbol()))
+        .collect();
+    held.extend(
+        run_ons
+            .iter()
+            .filter(|r| r.event == super::StopEvent::EStop)
+            .map(|r| {
+                format!(
+                    "{} (off after {})",
+                    r.output.symbol(),
+                    crate::cell::duration_text(r.ms)
+                )
+            }),
+    );
+    let mut actions: Vec<Action> = outputs
+        .iter()
+        .filter(|s| !hold_on_estop.contains(s) && !runs_on(s))
+        .map(|s| Action::Reset(*s))
+        .collect();
+    actions.push(Action::Set(Signal::Halt));
+    actions.extend(
+        memories
+            .iter()
+            .filter(|m| {
+                matches!(
+                    m,
+                    Signal::CycleRequest
+                        | Signal::Busy
+                        | Signal::AutoRun
+                        | Signal::Homing
+                        | Signal::HomeStage(_)
+                )
+            })
+            .map(|m| Action::Reset(*m)),
+    );
+    Rung {
+        kind: RungKind::EmergencyStop,
+        comment: format!(
+            "EMERGENCY STOP (normally closed): {}, START blocked until RESET",
+            all_off_but(&held)
+        ),
+        condition: vec![Literal::not(Signal::EStop)],
+        actions,
     }
 }
 

@@ -94,6 +94,15 @@ pub struct Simulator<'a> {
     code: plc::PlcProgram,
 }
 
+/// A run kept beyond its report ([`Simulator::run_recorded`]).
+pub struct Recorded {
+    pub report: SimReport,
+    /// When each of the program's inputs changed, when logged.
+    pub log: Option<io::InputLog>,
+    /// The signals and positions of every scan, when recorded.
+    pub trace: Option<io::IoTrace>,
+}
+
 impl<'a> Simulator<'a> {
     pub fn new(table: &'a StepTable, program: &'a StepProgram) -> Self {
         Simulator {
@@ -153,23 +162,32 @@ impl<'a> Simulator<'a> {
         )
     }
 
-    /// Runs under `settings`, logging the scans on which `inputs` change
-    /// (the fault analysis's healthy run), and recording `record` at every
-    /// scan when given.
-    pub fn run_logging_inputs(
+    /// Runs under `settings` as [`Simulator::run`] does, recording
+    /// `signals` and the positions at every scan when given (a report's
+    /// timeline), and logging the scans on which the program's inputs
+    /// change when `log_inputs` (the fault analysis's healthy run): the one
+    /// entry for a healthy run kept beyond its report, whether a
+    /// conversion's proof, the fault table's yardstick or both.
+    pub fn run_recorded(
         &self,
         settings: &SimSettings,
-        inputs: Vec<crate::program::Signal>,
-        record: Option<io::IoSignals>,
-    ) -> (SimReport, io::InputLog, Option<io::IoTrace>) {
-        run::run_logging_inputs(
+        signals: Option<io::IoSignals>,
+        log_inputs: bool,
+    ) -> Recorded {
+        let settings = SimSettings {
+            record_trace: settings.record_trace || signals.is_some(),
+            ..settings.clone()
+        };
+        let inputs = log_inputs.then(|| self.program.signals.inputs.clone());
+        let (report, log, trace) = run::run_logging_inputs(
             self.table,
             self.program,
             &self.code,
-            settings,
+            &settings,
             inputs,
-            record,
-        )
+            signals,
+        );
+        Recorded { report, log, trace }
     }
 
     /// The same as [`simulate_recording`].

@@ -219,9 +219,10 @@ fn the_recorded_io_is_the_same_both_ways() {
             &program,
             &code,
             &settings,
-            signals.inputs.clone(),
+            Some(signals.inputs.clone()),
             None,
         );
+        let log = log.expect("logged");
         assert_eq!(logged, events);
         assert_eq!(log, io::InputLog::of_trace(&scans_io));
         assert!(log.changes.iter().any(|(_, c)| c.len() > 1), "{log:?}");

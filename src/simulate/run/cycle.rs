@@ -12,7 +12,7 @@ use crate::simulate::plc::PlcProgram;
 
 /// Where a run stands between two scans.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub(in crate::simulate) enum Stage {
+pub(super) enum Stage {
     /// Waiting for the press of the next cycle: nothing may happen.
     Idle,
     /// A cycle is under way.
@@ -27,36 +27,36 @@ pub(in crate::simulate) enum Stage {
 /// A run between two scans: the plant and the PLC ([`Run`]) and where the
 /// operator's cycles stand.
 #[derive(Clone)]
-pub(in crate::simulate) struct Drive<'a> {
-    pub(in crate::simulate) run: Run<'a>,
-    pub(in crate::simulate) stage: Stage,
-    pub(in crate::simulate) cycle: usize,
+pub(super) struct Drive<'a> {
+    pub(super) run: Run<'a>,
+    pub(super) stage: Stage,
+    pub(super) cycle: usize,
     cycles_wanted: usize,
     /// More steps than a cycle fires with every jump back taken a few
     /// times over: past it, jumps back never end.
     most_fires: usize,
-    pub(in crate::simulate) press_at: u64,
+    pub(super) press_at: u64,
     timeout: u64,
     /// The cycle under way.
-    pub(in crate::simulate) report: CycleReport,
+    pub(super) report: CycleReport,
     /// When each step of the cycle under way fired.
     /// Which step fired when (a jump fires a step out of order).
-    pub(in crate::simulate) fire_times: Vec<(usize, u64)>,
-    pub(in crate::simulate) last_event: u64,
+    pub(super) fire_times: Vec<(usize, u64)>,
+    pub(super) last_event: u64,
     /// The cycles ended, shared by the copies of the run (the fault
     /// analysis copies it hundreds of times; a cycle's steps are strings).
-    pub(in crate::simulate) cycles: std::sync::Arc<Vec<CycleReport>>,
-    pub(in crate::simulate) step_positions: Vec<Vec<f64>>,
+    pub(super) cycles: std::sync::Arc<Vec<CycleReport>>,
+    pub(super) step_positions: Vec<Vec<f64>>,
     stalled_at: Option<usize>,
     first_cycle_end: u64,
     /// Runs of quiet scans stop at this time: a checkpoint of the fault
     /// analysis wants the run as it stands then.
-    pub(in crate::simulate) horizon: u64,
+    pub(super) horizon: u64,
 }
 
 impl<'a> Drive<'a> {
     /// Power-up, waiting for the first press.
-    pub(in crate::simulate) fn new(
+    pub(super) fn new(
         table: &'a StepTable,
         program: &'a StepProgram,
         code: &'a PlcProgram,
@@ -64,9 +64,8 @@ impl<'a> Drive<'a> {
         record: Option<io::IoSignals>,
         stepping: Stepping,
     ) -> Self {
-        let mut run = Run::new(table, program, code, settings);
-        run.event_driven = stepping == Stepping::Events;
-        run.io = record.map(|signals| io::IoTrace::new(run.world.settings.scan_ms, signals));
+        let run = Run::new(table, program, code, settings)
+            .recording(record, stepping == Stepping::Events);
         let press_at = IDLE_MS as u64;
         let positions = run.positions();
         Drive {
@@ -95,14 +94,14 @@ impl<'a> Drive<'a> {
         }
     }
 
-    pub(in crate::simulate) fn finished(&self) -> bool {
+    pub(super) fn finished(&self) -> bool {
         self.stage == Stage::Finished
     }
 
     /// One scan and what the run makes of it, then the quiet scans after
     /// it; afterwards the next thing the run does is a scan (or nothing,
     /// once finished).
-    pub(in crate::simulate) fn advance(&mut self) {
+    pub(super) fn advance(&mut self) {
         match self.stage {
             Stage::Idle => {
                 self.run.tick();
@@ -432,14 +431,14 @@ impl<'a> Drive<'a> {
     }
 
     /// Runs to the end.
-    pub(in crate::simulate) fn run_to_end(&mut self) {
+    pub(super) fn run_to_end(&mut self) {
         while !self.finished() {
             self.advance();
         }
     }
 
     /// The report of a finished run, and the I/O it recorded.
-    pub(in crate::simulate) fn finish(self) -> (SimReport, Option<io::IoTrace>) {
+    pub(super) fn finish(self) -> (SimReport, Option<io::IoTrace>) {
         let Drive {
             mut run,
             cycles,
@@ -530,24 +529,29 @@ fn jumps_to_take(table: &StepTable) -> impl Iterator<Item = (usize, crate::table
         .flat_map(|(index, step)| step.jumps.iter().map(move |j| (index, *j)))
 }
 
-/// Simulates from power-up to the end, logging when `inputs` change.
+/// Simulates from power-up to the end, logging when `inputs` change when
+/// they are given.
 pub(in crate::simulate) fn run_logging_inputs(
     table: &StepTable,
     program: &StepProgram,
     code: &PlcProgram,
     settings: &SimSettings,
-    inputs: Vec<crate::program::Signal>,
+    inputs: Option<Vec<crate::program::Signal>>,
     record: Option<io::IoSignals>,
-) -> (SimReport, io::InputLog, Option<io::IoTrace>) {
+) -> (SimReport, Option<io::InputLog>, Option<io::IoTrace>) {
     let mut drive = Drive::new(table, program, code, settings, record, Stepping::Events);
-    drive.run.input_log = Some(io::InputLog::new(drive.run.world.settings.scan_ms, inputs));
+    drive.run.input_log =
+        inputs.map(|inputs| io::InputLog::new(drive.run.world.settings.scan_ms, inputs));
     drive.run_to_end();
-    let mut log = drive.run.input_log.take().unwrap_or_default();
-    // The last scan: quiet ones after the last the run stepped through read
-    // what it read.
-    log.last_ms = log
-        .last_ms
-        .max(drive.run.time_ms.saturating_sub(u64::from(log.scan_ms)));
+    let last_ms = drive.run.time_ms;
+    let log = drive.run.input_log.take().map(|mut log| {
+        // The last scan: quiet ones after the last the run stepped through
+        // read what it read.
+        log.last_ms = log
+            .last_ms
+            .max(last_ms.saturating_sub(u64::from(log.scan_ms)));
+        log
+    });
     let (report, trace) = drive.finish();
     (report, log, trace)
 }

@@ -9,7 +9,7 @@ use crate::table::StepTable;
 /// The longest a step may take before the run counts as stalled: well past
 /// the slowest stroke, and past the program's own watchdog so that its alarm
 /// is seen.
-pub(in crate::simulate) fn step_timeout_ms(
+pub(super) fn step_timeout_ms(
     table: &StepTable,
     program: &StepProgram,
     settings: &SimSettings,
@@ -153,7 +153,7 @@ impl<'a> Run<'a> {
     }
 }
 
-pub(in crate::simulate) fn timings(
+pub(super) fn timings(
     program: &StepProgram,
     fire_times: &[(usize, u64)],
     end: u64,

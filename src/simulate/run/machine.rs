@@ -41,7 +41,7 @@ impl Run<'_> {
     /// A dwell must start only once its branch is really done: its moves at
     /// their targets and its waits answered by the machine, not by a faulty
     /// input.
-    pub(in crate::simulate) fn check_dwell_start(&mut self, number: u16) {
+    pub(super) fn check_dwell_start(&mut self, number: u16) {
         let Some((step, dwell)) = self
             .table
             .steps
@@ -82,7 +82,7 @@ impl Run<'_> {
     }
 
     /// Whether the machine itself (not a faulty input) gives what `wait` asks.
-    pub(in crate::simulate) fn machine_gave(&self, wait: &crate::table::Wait) -> bool {
+    pub(super) fn machine_gave(&self, wait: &crate::table::Wait) -> bool {
         self.machine_gives(wait.input, wait.value)
     }
 

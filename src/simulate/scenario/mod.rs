@@ -14,7 +14,6 @@ use std::sync::Arc;
 
 pub use events::{Act, Event, When};
 
-use super::plant::Piston;
 use super::plc::PlcProgram;
 use super::run::Run;
 use super::{Operator, Problem, SimSettings};
@@ -328,8 +327,8 @@ fn run_script(
     record: Option<super::io::IoSignals>,
 ) -> (ScenarioReport, Option<super::io::IoTrace>) {
     let code = PlcProgram::compile(program);
-    let mut run = Run::new(table, program, &code, settings);
-    run.io = record.map(|signals| super::io::IoTrace::new(run.world.settings.scan_ms, signals));
+    let mut run =
+        Run::new(table, program, &code, settings).recording(record, script.quiet_until().is_some());
     let outputs: Vec<(usize, Signal)> = program
         .steps
         .iter()
@@ -337,7 +336,7 @@ fn run_script(
         .chain(program.rungs.iter().flat_map(|r| &r.actions))
         .map(|a| a.signal())
         .filter(|s| s.area() == crate::program::Area::Output)
-        .filter_map(|s| run.plc.index_of(s).map(|i| (i, s)))
+        .filter_map(|s| run.plc().index_of(s).map(|i| (i, s)))
         .collect::<std::collections::BTreeMap<_, _>>()
         .into_iter()
         .collect();
@@ -345,57 +344,52 @@ fn run_script(
     let mut samples = Vec::new();
     let mut happened = Vec::new();
     let mut cut_ms = None;
-    run.event_driven = script.quiet_until().is_some();
-    while run.time_ms < until_ms && !script.done(run.time_ms) {
+    while run.time_ms() < until_ms && !script.done(run.time_ms()) {
         if samples.len() >= SCAN_BUDGET {
-            cut_ms = Some(run.time_ms);
+            cut_ms = Some(run.time_ms());
             break;
         }
-        let step = program.step_in(run.plc.awaited);
-        script.apply(&mut run.world, run.time_ms, step, &mut happened);
-        let before = run.time_ms;
+        let step = run.current_step();
+        let now = run.time_ms();
+        script.apply(run.world_mut(), now, step, &mut happened);
         if let Some(index) = run.tick() {
-            fired.push((before, program.steps[index].number));
+            fired.push((now, program.steps[index].number));
         }
-        samples.push(sample(&run, program, &outputs));
+        samples.push(sample(&run, &outputs));
         // A step just entered is seen by the script at the next scan: that
         // one runs, whatever follows it.
-        let entered = program.step_in(run.plc.awaited) != step;
+        let entered = run.current_step() != step;
         if let Some(until) = script.quiet_until().filter(|_| !entered) {
-            let at = run.time_ms;
+            let at = run.time_ms();
             run.pass_quiet_scans(until.min(until_ms));
-            if run.time_ms > at {
-                samples.push(sample(&run, program, &outputs));
+            if run.time_ms() > at {
+                samples.push(sample(&run, &outputs));
             }
         }
     }
+    let (problems, io) = run.into_findings();
     let report = ScenarioReport {
         fired,
         samples,
-        problems: run.problems,
+        problems,
         happened,
         auto_start_ms: script.auto_start_ms(),
         cut_ms,
     };
-    (report, run.io)
+    (report, io)
 }
 
 /// The machine as the scan just run left it.
-fn sample(run: &Run, program: &StepProgram, outputs: &[(usize, Signal)]) -> Sample {
+fn sample(run: &Run, outputs: &[(usize, Signal)]) -> Sample {
     Sample {
-        time_ms: run.time_ms,
-        positions: run
-            .world
-            .pistons
-            .iter()
-            .map(Piston::position_units)
-            .collect(),
+        time_ms: run.time_ms(),
+        positions: run.positions(),
         outputs_on: outputs
             .iter()
-            .filter(|(i, _)| run.plc.bit_at(*i))
+            .filter(|(i, _)| run.plc().bit_at(*i))
             .map(|(_, s)| *s)
             .collect(),
-        step: program.step_in(run.plc.awaited),
-        homing: run.plc.bit(Signal::Homing),
+        step: run.current_step(),
+        homing: run.plc().bit(Signal::Homing),
     }
 }
