@@ -50,6 +50,13 @@ pub enum CoilSet {
     Single,
 }
 
+/// What says an actuator is at a position: sensor `sensor` showing `on`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Reading {
+    pub sensor: u32,
+    pub on: bool,
+}
+
 impl std::str::FromStr for ActuatorKind {
     type Err = String;
 
@@ -112,6 +119,24 @@ impl ActuatorKind {
             ActuatorKind::Closed53
         } else {
             ActuatorKind::Bistable52
+        }
+    }
+
+    /// The positions whose sensor it has, in address order: every position
+    /// 0…`max_position` of every kind today. The program declares exactly
+    /// these inputs; its conditions, plausibility rungs and homing read them
+    /// through [`ActuatorKind::reading`].
+    pub fn sensed_positions(self, max_position: u32) -> Vec<u32> {
+        (0..=max_position).collect()
+    }
+
+    /// How the program sees that it is at `position`: the sensor it reads
+    /// and the level that sensor shows there (its own sensor on, for every
+    /// kind that has one at `position`).
+    pub fn reading(self, position: u32) -> Reading {
+        Reading {
+            sensor: position,
+            on: true,
         }
     }
 

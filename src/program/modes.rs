@@ -213,10 +213,7 @@ pub(super) fn homing_rungs(
                         sign: Sign::Plus,
                     }));
                 }
-                home.push(Literal::is(Signal::Sensor {
-                    actuator,
-                    position: 0,
-                }));
+                home.push(signals.at(actuator, 0));
             }
             // A halt while homing (an interlock opening, a plausibility
             // fault) stops driving: the halt's own rungs then hold or

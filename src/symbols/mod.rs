@@ -416,10 +416,7 @@ fn used_signals(program: &StepProgram) -> Vec<Signal> {
     used.extend(program.init.iter().map(|a| a.signal()));
     for s in &program.steps {
         for m in &s.moves {
-            used.push(Signal::Sensor {
-                actuator: m.actuator,
-                position: m.to,
-            });
+            used.push(program.signals.at(m.actuator, m.to).signal);
         }
     }
     used.push(Signal::Sequence);

@@ -367,7 +367,7 @@ impl Run<'_> {
                 format!(
                     "C{} had not reached {}",
                     a.mv.actuator,
-                    sensor_symbol(&a.mv)
+                    sensor_symbol(self.program, &a.mv)
                 )
             })
             .collect();
@@ -458,7 +458,7 @@ impl Run<'_> {
                 Some(number),
                 format!(
                     "C{number} ran through {} in step {}",
-                    sensor_symbol(&a.mv),
+                    sensor_symbol(self.program, &a.mv),
                     a.step
                 ),
             );
@@ -564,12 +564,10 @@ fn place_text(actuator: u32, place: u32) -> String {
     }
 }
 
-pub(in crate::simulate) fn sensor_symbol(m: &Move) -> String {
-    Signal::Sensor {
-        actuator: m.actuator,
-        position: m.to,
-    }
-    .symbol()
+/// What shows that move `m` has reached its target (`x11`; `NOT x31` for
+/// a kind that reads a position as another sensor off).
+pub(in crate::simulate) fn sensor_symbol(program: &StepProgram, m: &Move) -> String {
+    literal_text(&program.signals.at(m.actuator, m.to))
 }
 
 pub(in crate::simulate) fn literal_text(l: &Literal) -> String {
