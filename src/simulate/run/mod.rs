@@ -158,7 +158,7 @@ impl Run<'_> {
             .pistons
             .iter()
             .zip(&self.places)
-            .map(|(p, place)| place_text(p.number, *place))
+            .map(|(p, place)| place_text(p, *place))
             .collect();
         let step = self.current_step();
         self.problem(
@@ -471,8 +471,7 @@ impl Run<'_> {
         let window = self.world.settings.window;
         let mut any = false;
         for a in &mut self.active {
-            if !a.reached && !a.ran_through && self.world.pistons[a.piston].sensor(a.mv.to, window)
-            {
+            if !a.reached && !a.ran_through && self.world.pistons[a.piston].reads(a.mv.to, window) {
                 a.reached = true;
                 any = true;
             }
@@ -537,7 +536,7 @@ impl Run<'_> {
     pub(in crate::simulate) fn all_moves_ended(&self) -> bool {
         self.active.iter().all(|a| {
             let p = &self.world.pistons[a.piston];
-            a.reached && p.at_rest() && p.sensor(a.mv.to, self.world.settings.window)
+            a.reached && p.at_rest() && p.reads(a.mv.to, self.world.settings.window)
         })
     }
 
@@ -551,8 +550,20 @@ impl Run<'_> {
 }
 
 /// `C2 at x23`, `C2 between x22 and x23`.
-fn place_text(actuator: u32, place: u32) -> String {
-    let sensor = |position| Signal::Sensor { actuator, position }.symbol();
+fn place_text(piston: &Piston, place: u32) -> String {
+    let actuator = piston.number;
+    // A position its kind reads as another switch off (a gripper released).
+    let sensor = |position| {
+        let r = piston.valve.reading(position);
+        let signal = Signal::Sensor {
+            actuator,
+            position: r.sensor,
+        };
+        literal_text(&Literal {
+            signal,
+            negated: !r.on,
+        })
+    };
     if place.is_multiple_of(2) {
         format!("C{actuator} at {}", sensor(place / 2))
     } else {
