@@ -92,6 +92,9 @@ pub enum Code {
     /// The Ladder body (`--formats ld`) was asked for a program with a
     /// timer (a dwell, the watchdog, a run-on), which it does not draw.
     E043LadderTimer,
+    /// A move asks an actuator for a position its kind cannot hold (a
+    /// vacuum gripper has released 0 and held 1 only).
+    E045KindCannotHold,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -158,6 +161,7 @@ impl Code {
             Code::E041BadCommandLine => "E041",
             Code::E042BadScenarioEvent => "E042",
             Code::E043LadderTimer => "E043",
+            Code::E045KindCannotHold => "E045",
         }
     }
 }

@@ -39,6 +39,15 @@ pub enum ActuatorKind {
     /// switches as its sensors. It runs only while an output is on, so the
     /// program cuts the drive at every target; with neither on it stands.
     Motor,
+    /// Not a cylinder: a vacuum gripper (a suction cup). Its one output
+    /// `yi` switches the vacuum on; its one sensor, the vacuum switch
+    /// `xi1`, reads 1 once the part is held (after the build-up time) and
+    /// drops once the vacuum is gone (after the release time). Position 1
+    /// is held (`Ci+1`), position 0 released (`Ci-0`): the program reads
+    /// "released" as the vacuum switch off. A halt or an EMERGENCY STOP
+    /// keeps the vacuum on unless the engineer says otherwise: switched
+    /// off, it drops the part wherever the arm is.
+    Vacuum,
 }
 
 /// The outputs that move an actuator of a kind.
@@ -48,6 +57,13 @@ pub enum CoilSet {
     Double,
     /// The one coil `yi` (a spring takes the actuator back).
     Single,
+}
+
+/// What says an actuator is at a position: sensor `sensor` showing `on`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Reading {
+    pub sensor: u32,
+    pub on: bool,
 }
 
 impl std::str::FromStr for ActuatorKind {
@@ -80,13 +96,14 @@ impl std::str::FromStr for ActuatorKind {
 }
 
 impl ActuatorKind {
-    pub const ALL: [ActuatorKind; 6] = [
+    pub const ALL: [ActuatorKind; 7] = [
         ActuatorKind::Bistable52,
         ActuatorKind::Mono52,
         ActuatorKind::Closed53,
         ActuatorKind::Exhaust53,
         ActuatorKind::Pressure53,
         ActuatorKind::Motor,
+        ActuatorKind::Vacuum,
     ];
 
     /// Every kind's name, as `--valve` and the SETTINGS sheet write it.
@@ -103,6 +120,7 @@ impl ActuatorKind {
             ActuatorKind::Exhaust53 => "53exhaust",
             ActuatorKind::Pressure53 => "53pressure",
             ActuatorKind::Motor => "motor",
+            ActuatorKind::Vacuum => "vacuum",
         }
     }
 
@@ -115,6 +133,50 @@ impl ActuatorKind {
         }
     }
 
+    /// The positions whose sensor it has, in address order: every position
+    /// 0…`max_position` of every kind today. The program declares exactly
+    /// these inputs; its conditions, plausibility rungs and homing read them
+    /// through [`ActuatorKind::reading`].
+    pub fn sensed_positions(self, max_position: u32) -> Vec<u32> {
+        match self {
+            // The vacuum switch alone: "released" is that switch off.
+            ActuatorKind::Vacuum => vec![1],
+            _ => (0..=max_position).collect(),
+        }
+    }
+
+    /// How the program sees that it is at `position`: the sensor it reads
+    /// and the level that sensor shows there (its own sensor on, for every
+    /// kind that has one at `position`).
+    pub fn reading(self, position: u32) -> Reading {
+        match (self, position) {
+            (ActuatorKind::Vacuum, 0) => Reading {
+                sensor: 1,
+                on: false,
+            },
+            _ => Reading {
+                sensor: position,
+                on: true,
+            },
+        }
+    }
+
+    /// The highest position it can hold, if its kind bounds it: a gripper
+    /// holds (1) or releases (0), nothing further (E045 refuses more).
+    pub fn highest_position(self) -> Option<u32> {
+        match self {
+            ActuatorKind::Vacuum => Some(1),
+            _ => None,
+        }
+    }
+
+    /// Whether its output holds a part and moves nothing: left on through
+    /// a halt or an EMERGENCY STOP by default (switched off, a vacuum
+    /// gripper drops its part wherever the arm stands).
+    pub fn holds_part(self) -> bool {
+        self == ActuatorKind::Vacuum
+    }
+
     /// Whether the kind stops between its ends with no output on (a 5/3
     /// valve's centre, a drive standing), so it may hold a middle position.
     pub fn has_centre(self) -> bool {
@@ -123,7 +185,7 @@ impl ActuatorKind {
             | ActuatorKind::Exhaust53
             | ActuatorKind::Pressure53
             | ActuatorKind::Motor => true,
-            ActuatorKind::Bistable52 | ActuatorKind::Mono52 => false,
+            ActuatorKind::Bistable52 | ActuatorKind::Mono52 | ActuatorKind::Vacuum => false,
         }
     }
 
@@ -140,7 +202,7 @@ impl ActuatorKind {
     /// The outputs that move it.
     pub fn coils(self) -> CoilSet {
         match self {
-            ActuatorKind::Mono52 => CoilSet::Single,
+            ActuatorKind::Mono52 | ActuatorKind::Vacuum => CoilSet::Single,
             ActuatorKind::Bistable52
             | ActuatorKind::Closed53
             | ActuatorKind::Exhaust53
@@ -173,6 +235,42 @@ impl ActuatorKind {
                 "{output} is a valve coil of C{actuator}: left on, it drives the piston on from wherever it stood when the EMERGENCY STOP came; only a machine output that holds a part (a vacuum, a clamp as Y:clamp) may stay on, and a clamp on a 52bi valve keeps its position with both coils off"
             )
         }
+    }
+
+    /// What its one coil does, for the comments of the rungs that switch
+    /// it: on, then off (`52mono`: extend, the spring retracts).
+    pub fn single_coil_words(self) -> (&'static str, &'static str) {
+        if self.holds_part() {
+            ("vacuum on, grip", "vacuum off, release")
+        } else {
+            ("extend", "the spring retracts")
+        }
+    }
+
+    /// What the comments call it: a gripper, or a cylinder (as every
+    /// actuator's sensors have always been commented, drives' too).
+    pub fn noun(self) -> &'static str {
+        if self.holds_part() {
+            "gripper"
+        } else {
+            "cylinder"
+        }
+    }
+
+    /// What its sensor at `position` (of `max_position`) is, for the signal
+    /// comments: `label` is the actuator as the table names it.
+    pub fn sensor_comment(self, label: &str, position: u32, max_position: u32) -> String {
+        if self.holds_part() {
+            return format!("{} {label}, vacuum switch (on: part held)", self.noun());
+        }
+        let which = if position == 0 {
+            "home position 0".to_string()
+        } else if position == max_position {
+            format!("end position {position}")
+        } else {
+            format!("middle position {position}")
+        };
+        format!("{} {label}, {which}", self.noun())
     }
 
     /// What seeing both outputs on means for actuator `number` (the start
@@ -237,5 +335,22 @@ mod tests {
         );
         assert_eq!(ActuatorKind::default_for(3), ActuatorKind::Closed53);
         assert_eq!(ActuatorKind::default_for(1), ActuatorKind::Bistable52);
+    }
+
+    #[test]
+    fn a_vacuum_gripper_reads_released_as_its_switch_off() {
+        let vacuum = "Vacuum".parse::<ActuatorKind>().unwrap();
+        assert_eq!(vacuum, ActuatorKind::Vacuum);
+        assert_eq!(vacuum.coils(), CoilSet::Single);
+        assert_eq!(vacuum.sensed_positions(1), [1]);
+        assert_eq!(ActuatorKind::Mono52.sensed_positions(1), [0, 1]);
+        let released = vacuum.reading(0);
+        assert_eq!((released.sensor, released.on), (1, false));
+        let held = vacuum.reading(1);
+        assert_eq!((held.sensor, held.on), (1, true));
+        assert_eq!(vacuum.highest_position(), Some(1));
+        assert_eq!(ActuatorKind::Closed53.highest_position(), None);
+        assert!(vacuum.holds_part() && !vacuum.has_centre() && !vacuum.is_drive());
+        assert!(!ActuatorKind::centred().contains(&"vacuum"));
     }
 }

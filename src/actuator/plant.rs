@@ -4,6 +4,7 @@
 //! is the simulator's; what differs between kinds is here.
 
 use super::{ActuatorKind, CoilSet};
+use crate::stroke::Stroke;
 
 /// Where the valve's spool is (for a drive: which way it runs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -62,6 +63,36 @@ impl ActuatorKind {
         }
     }
 
+    /// Its own times, if its kind has them, for an actuator the engineer
+    /// gave none (`--stroke`, the actuator table): a suction cup's vacuum
+    /// builds up in 300 ms (its switch then reads 1) and is gone 200 ms
+    /// after the coil drops, where a cylinder's default stroke is 1 s.
+    pub fn default_stroke(self) -> Option<Stroke> {
+        match self {
+            ActuatorKind::Vacuum => Some(Stroke {
+                extend_ms: 300,
+                retract_ms: 200,
+            }),
+            _ => None,
+        }
+    }
+
+    /// What its switch at `position` reads at stroke fraction `s`, for a
+    /// kind whose switch is no position sensor seen within a window (`half`
+    /// its half-width): a vacuum switch reads 1 once the vacuum has built
+    /// up while the coil is on, and keeps reading 1 while the coil is off
+    /// until the vacuum has decayed (the part drops then, after the release
+    /// time, not the moment the coil drops). `None`: a position sensor.
+    pub fn switch_reads(self, position: u32, spool: Spool, s: f64, half: f64) -> Option<bool> {
+        match (self, position) {
+            (ActuatorKind::Vacuum, 1) => Some(match spool {
+                Spool::Plus => s >= 1.0 - half,
+                Spool::Minus | Spool::Centre => s > half,
+            }),
+            _ => None,
+        }
+    }
+
     /// Whether, cut while running onto a limit switch, it coasts to the
     /// switch's point (a drive's braking distance, the same every time).
     pub fn coasts(self) -> bool {
@@ -91,5 +122,28 @@ mod tests {
         assert_eq!(Exhaust53.drift_per_second(0.2), -0.2);
         assert_eq!(Pressure53.drift_per_second(-0.2), 0.2);
         assert_eq!(Closed53.drift_per_second(0.2), 0.0);
+    }
+
+    #[test]
+    fn a_vacuum_gripper_holds_while_its_coil_is_on_and_releases_without() {
+        use ActuatorKind::*;
+        assert_eq!(Vacuum.rest_spool(), Spool::Minus);
+        assert_eq!(Vacuum.switch(Spool::Minus, true, false), Spool::Plus);
+        assert_eq!(Vacuum.switch(Spool::Plus, false, false), Spool::Minus);
+        assert!(!Vacuum.conflict(true, true));
+        assert_eq!(Vacuum.drift_per_second(0.5), 0.0);
+        assert!(!Vacuum.coasts());
+        // Built up only when full; held until the vacuum is nearly gone.
+        assert_eq!(Vacuum.switch_reads(1, Spool::Plus, 0.5, 0.05), Some(false));
+        assert_eq!(Vacuum.switch_reads(1, Spool::Plus, 0.97, 0.05), Some(true));
+        assert_eq!(Vacuum.switch_reads(1, Spool::Minus, 0.5, 0.05), Some(true));
+        assert_eq!(
+            Vacuum.switch_reads(1, Spool::Minus, 0.01, 0.05),
+            Some(false)
+        );
+        assert_eq!(Mono52.switch_reads(1, Spool::Plus, 1.0, 0.05), None);
+        let times = Vacuum.default_stroke().expect("a gripper's own times");
+        assert!(times.extend_ms < Stroke::default().extend_ms);
+        assert_eq!(Bistable52.default_stroke(), None);
     }
 }

@@ -149,6 +149,10 @@ fn finish_check(
             buttons: &buttons,
         };
         table::check_machine(table, &machine, &input.table, &mut diags);
+        // A kind with its own times (a vacuum gripper's build-up and
+        // release) has them unless the engineer gave a stroke.
+        let actuators = table.actuators.iter().map(|a| (a.number, a.max_position));
+        effective.simulation.machine.with_kind_times(actuators);
         let sheet = input.settings.as_ref().zip(sheet_given.as_ref());
         settings_without_their_actuator(table, settings, sheet, &input.table.file, &mut diags);
         loads_without_effect(

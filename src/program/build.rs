@@ -20,16 +20,11 @@ use crate::table::{Move, Step, StepTable};
 /// What must hold for a step of the table to be complete: every move at its
 /// target sensor, every wait met, every dwell run out (its arming memory
 /// cleared when its timer started, and the timer stopped).
-fn completion(step: &Step) -> Vec<Literal> {
+fn completion(signals: &Signals, step: &Step) -> Vec<Literal> {
     let mut literals: Vec<Literal> = step
         .moves
         .iter()
-        .map(|m| {
-            Literal::is(Signal::Sensor {
-                actuator: m.actuator,
-                position: m.to,
-            })
-        })
+        .map(|m| signals.at(m.actuator, m.to))
         .collect();
     literals.extend(step.waits.iter().map(wait_literal));
     for d in &step.dwells {
@@ -48,6 +43,7 @@ fn completion(step: &Step) -> Vec<Literal> {
 /// mode a table step (not the closing transition, which moves nothing)
 /// also needs the step permit a STEP_PB press gives.
 fn guards(
+    signals: &Signals,
     moves: &[Move],
     number: usize,
     table_step: bool,
@@ -64,12 +60,7 @@ fn guards(
         }
     }
     if options.safety.precheck {
-        literals.extend(moves.iter().map(|m| {
-            Literal::not(Signal::Sensor {
-                actuator: m.actuator,
-                position: m.to,
-            })
-        }));
+        literals.extend(moves.iter().map(|m| signals.at(m.actuator, m.to).negate()));
     }
     if options.halts() {
         literals.push(Literal::not(Signal::Halt));
@@ -151,12 +142,7 @@ pub fn build(
     let homes: Vec<Literal> = table
         .actuators
         .iter()
-        .map(|a| {
-            Literal::is(Signal::Sensor {
-                actuator: a.number,
-                position: 0,
-            })
-        })
+        .map(|a| signals.at(a.number, 0))
         .collect();
     // Ready for a cycle: every actuator home and every start permissive on.
     let ready: Vec<Literal> = homes
@@ -170,7 +156,7 @@ pub fn build(
         )
         .collect();
     let mut steps = sequence_steps(table, options, &signals, &ready, strokes);
-    steps.extend(end_of_cycle(table, options));
+    steps.extend(end_of_cycle(table, options, &signals));
     let criteria = if safety.criteria {
         supervision::criteria(&steps, &signals)
     } else {
@@ -180,7 +166,7 @@ pub fn build(
 
     let mut rungs = Vec::new();
     rungs.extend(middle_stop_rungs(&signals));
-    rungs.extend(dwell_rungs(table));
+    rungs.extend(dwell_rungs(table, &signals));
     if modes.any() {
         mode_rungs(
             safety,
@@ -198,7 +184,7 @@ pub fn build(
         rungs.extend(edge_rungs());
     }
     if safety.plausibility {
-        rungs.extend(plausibility_rungs(table));
+        rungs.extend(plausibility_rungs(table, &signals));
     }
     let mut timers = Vec::new();
     if safety.watchdog {
@@ -224,10 +210,10 @@ pub fn build(
         table,
         options,
         &mut steps,
-        |index| completion(&table.steps[index]),
+        |index| completion(&signals, &table.steps[index]),
         |target| {
             let table_step = target.kind == StepKind::Table;
-            guards(&target.moves, target.number, table_step, options)
+            guards(&signals, &target.moves, target.number, table_step, options)
         },
     );
     // After the jumps, which copy their target's actions: each transition
@@ -273,9 +259,9 @@ fn sequence_steps(
             first.extend(homes.iter().copied());
             first
         } else {
-            completion(&table.steps[index - 1])
+            completion(signals, &table.steps[index - 1])
         };
-        condition.extend(guards(&step.moves, step.number, true, options));
+        condition.extend(guards(signals, &step.moves, step.number, true, options));
 
         let mut actions = Vec::new();
         for m in &step.moves {
@@ -333,15 +319,19 @@ fn sequence_steps(
 /// run; it also stops the watchdog, ends `busy` for the modes, and waits
 /// for the last step's inputs and dwells (STEP 1 cannot wait for those,
 /// which nothing gives at power-up).
-fn end_of_cycle(table: &StepTable, options: &ProgramOptions) -> Option<ProgramStep> {
+fn end_of_cycle(
+    table: &StepTable,
+    options: &ProgramOptions,
+    signals: &Signals,
+) -> Option<ProgramStep> {
     let safety = options.safety;
     let modes = &options.modes;
     let last = table.steps.last()?;
     // The end of the cycle is an event of its own: the watchdog must stop
     // once the last moves have finished, not run on while the machine
     // idles, and a new cycle may be asked for only now.
-    let mut condition = completion(last);
-    condition.extend(guards(&[], last.number + 1, false, options));
+    let mut condition = completion(signals, last);
+    condition.extend(guards(signals, &[], last.number + 1, false, options));
     let mut actions = Vec::new();
     if safety.watchdog {
         actions.push(Action::Reset(Signal::Watchdog));
@@ -369,16 +359,16 @@ fn middle_stop_rungs(signals: &Signals) -> Vec<Rung> {
         let Signal::StopAt { actuator, position } = memory else {
             continue;
         };
-        let sensor = Signal::Sensor { actuator, position };
+        let sensor = signals.at(actuator, position);
         // Every stop request is of an actuator of the table, so of a kind.
         let Some(kind) = signals.kinds.get(&actuator) else {
             continue;
         };
-        let comment = kind.stop_comment(actuator, &sensor.symbol());
+        let comment = kind.stop_comment(actuator, &sensor.signal.symbol());
         rungs.push(Rung {
             kind: RungKind::MiddleStop,
             comment,
-            condition: vec![Literal::is(memory), Literal::is(sensor)],
+            condition: vec![Literal::is(memory), sensor],
             actions: vec![
                 Action::Reset(Signal::Coil {
                     actuator,
@@ -396,18 +386,16 @@ fn middle_stop_rungs(signals: &Signals) -> Vec<Rung> {
 }
 
 /// Each dwell starts its timer once the other items of its branch are done.
-fn dwell_rungs(table: &StepTable) -> Vec<Rung> {
+fn dwell_rungs(table: &StepTable, signals: &Signals) -> Vec<Rung> {
     let mut rungs = Vec::new();
     for step in &table.steps {
         for d in &step.dwells {
             // The dwell starts once the other items of its branch are done.
             let mut condition = vec![Literal::is(Signal::DwellArmed(d.number))];
-            condition.extend(step.branch_moves(d.branch).map(|m| {
-                Literal::is(Signal::Sensor {
-                    actuator: m.actuator,
-                    position: m.to,
-                })
-            }));
+            condition.extend(
+                step.branch_moves(d.branch)
+                    .map(|m| signals.at(m.actuator, m.to)),
+            );
             condition.extend(
                 step.waits
                     .iter()
@@ -453,25 +441,23 @@ fn edge_rungs() -> [Rung; 2] {
     ]
 }
 
-/// Two sensors of one actuator on at once halt the sequence.
-fn plausibility_rungs(table: &StepTable) -> Vec<Rung> {
+/// Two sensors of one actuator on at once halt the sequence (of the
+/// sensors its kind has).
+fn plausibility_rungs(table: &StepTable, signals: &Signals) -> Vec<Rung> {
     let mut rungs = Vec::new();
     for a in &table.actuators {
-        for low in 0..a.max_position {
-            for high in low + 1..=a.max_position {
-                let sensor = |position| Signal::Sensor {
-                    actuator: a.number,
-                    position,
-                };
+        let sensors: Vec<Signal> = signals.sensors_of(a.number).collect();
+        for (i, &low) in sensors.iter().enumerate() {
+            for &high in &sensors[i + 1..] {
                 rungs.push(Rung {
                     kind: RungKind::Plausibility,
                     comment: format!(
                         "plausibility: C{} cannot be at {} and {} at once",
                         a.number,
-                        sensor(low).symbol(),
-                        sensor(high).symbol()
+                        low.symbol(),
+                        high.symbol()
                     ),
-                    condition: vec![Literal::is(sensor(low)), Literal::is(sensor(high))],
+                    condition: vec![Literal::is(low), Literal::is(high)],
                     actions: vec![
                         Action::Set(Signal::Halt),
                         Action::Set(Signal::Alarm(Alarm::Sensor)),

@@ -76,6 +76,14 @@ impl Literal {
             negated: true,
         }
     }
+
+    /// The same signal read the other way.
+    pub fn negate(self) -> Self {
+        Literal {
+            negated: !self.negated,
+            ..self
+        }
+    }
 }
 
 /// What a step or rung does to an output, memory bit or timer.

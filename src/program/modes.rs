@@ -234,10 +234,7 @@ fn home_stage_rungs(signals: &Signals, halts: bool, stages: &[Vec<u32>], rungs: 
                     sign: Sign::Plus,
                 }));
             }
-            home.push(Literal::is(Signal::Sensor {
-                actuator,
-                position: 0,
-            }));
+            home.push(signals.at(actuator, 0));
         }
         // A halt while homing (an interlock opening, a plausibility
         // fault) stops driving: the halt's own rungs then hold or

@@ -2,6 +2,7 @@
 //! options: the address allocation lays out exactly these, and the rungs
 //! that reset "every output" or "every memory" read them from here.
 
+use super::Literal;
 use super::options::ProgramOptions;
 use super::signal::{Alarm, Signal};
 use crate::actuator::{ActuatorKind, CoilSet, Valves};
@@ -87,6 +88,36 @@ impl Signals {
         self.kinds.get(&actuator).is_some_and(|k| k.is_drive())
     }
 
+    /// What says actuator `actuator` is at `position`, as its kind reads it
+    /// (its own sensor on, for every kind that has one there).
+    pub fn at(&self, actuator: u32, position: u32) -> Literal {
+        let kind = self.kinds.get(&actuator).copied();
+        let reading = kind.map_or(
+            crate::actuator::Reading {
+                sensor: position,
+                on: true,
+            },
+            |k| k.reading(position),
+        );
+        let sensor = Signal::Sensor {
+            actuator,
+            position: reading.sensor,
+        };
+        if reading.on {
+            Literal::is(sensor)
+        } else {
+            Literal::not(sensor)
+        }
+    }
+
+    /// The sensors actuator `actuator` has, in address order.
+    pub fn sensors_of(&self, actuator: u32) -> impl Iterator<Item = Signal> + '_ {
+        self.inputs
+            .iter()
+            .copied()
+            .filter(move |s| matches!(s, Signal::Sensor { actuator: a, .. } if *a == actuator))
+    }
+
     /// Whether `signal` is an output of an electric drive (valve type
     /// `motor`): it runs the drive for as long as it is on.
     pub fn is_drive(&self, signal: Signal) -> bool {
@@ -121,11 +152,20 @@ impl Signals {
 pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valves) -> Signals {
     let safety = options.safety;
     let modes = &options.modes;
+    let kinds: BTreeMap<u32, ActuatorKind> = table
+        .actuators
+        .iter()
+        .map(|a| (a.number, valves.of(a.number, a.max_position)))
+        .collect();
     let sensors = table.actuators.iter().flat_map(|actuator| {
-        (0..=actuator.max_position).map(|position| Signal::Sensor {
-            actuator: actuator.number,
-            position,
-        })
+        let number = actuator.number;
+        kinds[&number]
+            .sensed_positions(actuator.max_position)
+            .into_iter()
+            .map(move |position| Signal::Sensor {
+                actuator: number,
+                position,
+            })
     });
     let mode_inputs = modes.buttons();
     let inputs = std::iter::once(Signal::Start)
@@ -135,11 +175,6 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
         .chain(mode_inputs)
         .collect();
 
-    let kinds: BTreeMap<u32, ActuatorKind> = table
-        .actuators
-        .iter()
-        .map(|a| (a.number, valves.of(a.number, a.max_position)))
-        .collect();
     let coils = table
         .actuators
         .iter()

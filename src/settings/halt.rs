@@ -9,9 +9,12 @@ use std::collections::{BTreeMap, BTreeSet};
 use crate::actuator::{CoilSet, Valves};
 use crate::cell::Sign;
 use crate::diag::{Code, Diagnostics, Location};
-use crate::program::{Coils, HaltPolicy, Interlock, Signal, StopAction};
+use crate::program::{Coils, HaltPolicy, Signal, StopAction};
 use crate::symbols::Naming;
 use crate::table::StepTable;
+
+mod inputs;
+pub use inputs::{resolve_held_inputs, resolve_interlocks};
 
 /// The SETTINGS rows that list outputs or inputs by name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -335,7 +338,7 @@ pub fn resolve(
             );
         }
     }
-    let policy = HaltPolicy {
+    let mut policy = HaltPolicy {
         hold_safe: halt.with(|a| a == StopAction::Hold),
         off_on_halt: halt.with(|a| a == StopAction::Off),
         hold_on_estop: estop.with(|a| a == StopAction::Hold),
@@ -343,6 +346,7 @@ pub fn resolve(
         on_estop,
         on_halt,
     };
+    hold_parts_by_default(table, valves, &mut policy);
     let run_on_count = policy.run_ons().len();
     let dwells = table.dwells().count();
     if run_on_count + dwells > crate::table::MAX_DWELLS
@@ -360,6 +364,24 @@ pub fn resolve(
         );
     }
     policy
+}
+
+/// A kind whose output holds a part (a vacuum gripper) keeps it on through
+/// an EMERGENCY STOP unless a row says what it does there (`on estop`) or
+/// switches it off at every halt: switched off, the part would drop
+/// wherever the arm stood. A halt keeps every output as it is already.
+fn hold_parts_by_default(table: &StepTable, valves: &Valves, policy: &mut HaltPolicy) {
+    for a in &table.actuators {
+        let kind = valves.of(a.number, a.max_position);
+        if !kind.holds_part() {
+            continue;
+        }
+        for coil in Coils::of(kind, a.number).signals() {
+            if !policy.on_estop.contains_key(&coil) && !policy.off_on_halt.contains(&coil) {
+                policy.hold_on_estop.insert(coil);
+            }
+        }
+    }
 }
 
 /// The emergency stop must stop every motion. What it may leave on is what
@@ -398,9 +420,12 @@ fn refuse_motion_through_estop(
         }
         let Some(list) = rows.get(&row) else { continue };
         let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
-        let why = valves
-            .of(actuator, pmax)
-            .kept_through_estop(&signal.symbol(), actuator);
+        let kind = valves.of(actuator, pmax);
+        // A gripper's vacuum holds the part and moves nothing.
+        if kind.holds_part() {
+            continue;
+        }
+        let why = kind.kept_through_estop(&signal.symbol(), actuator);
         diags.error(
             Code::E030BadSetting,
             list.at.clone(),
@@ -502,146 +527,4 @@ fn stop_actions(
         }
     }
     actions
-}
-
-/// The SETTINGS row `interlock`: inputs that must stay on, each always or
-/// in a range of steps (`guard_closed in steps 3-5`, `door in step 2`).
-/// Every item is kept: one input may hold over several ranges (`guard in
-/// steps 2-3, guard in steps 5-6`), and over the whole cycle beside a range,
-/// each its own interlock. A step the table does not have, a range
-/// backwards, or an item written twice is E030 at the cell.
-pub fn resolve_interlocks(
-    table: &StepTable,
-    buttons: &[String],
-    row: Option<&NamedList>,
-    diags: &mut Diagnostics,
-) -> Vec<Interlock> {
-    let Some(row) = row else {
-        return Vec::new();
-    };
-    let last = table.steps.len();
-    let mut items: Vec<(String, Option<(usize, usize)>)> = Vec::new();
-    for text in &row.names {
-        let lower = text.to_ascii_lowercase();
-        let item = match lower.split_once(" in step") {
-            None => Some((lower.trim().to_string(), None)),
-            Some((name, range)) => {
-                let range = range.trim_start_matches('s').trim();
-                let numbers: Vec<Option<usize>> = range
-                    .split(['-', '\u{2013}'])
-                    .map(|n| n.trim().trim_matches('.').parse().ok())
-                    .collect();
-                let steps = match numbers.as_slice() {
-                    [Some(a)] => Some((*a, *a)),
-                    [Some(a), Some(b)] => Some((*a, *b)),
-                    _ => None,
-                };
-                match steps {
-                    Some((a, b)) if (1..=b).contains(&a) && b <= last => {
-                        Some((name.trim().to_string(), Some((a, b))))
-                    }
-                    _ => {
-                        diags.error(
-                            Code::E030BadSetting,
-                            row.at.clone(),
-                            format!(
-                                "interlock: \"{text}\" has no step range of this table (expected e.g. guard_closed in steps 2-{last}, or guard_closed in step 2; steps 1 to {last})"
-                            ),
-                        );
-                        None
-                    }
-                }
-            }
-        };
-        let Some(item) = item else { continue };
-        if items.contains(&item) {
-            diags.error(
-                Code::E030BadSetting,
-                row.at.clone(),
-                format!("interlock: \"{}\" is named twice", text.trim()),
-            );
-            continue;
-        }
-        items.push(item);
-    }
-    let mut distinct: Vec<String> = Vec::new();
-    for (name, _) in &items {
-        if !distinct.contains(name) {
-            distinct.push(name.clone());
-        }
-    }
-    let names = NamedList {
-        names: distinct,
-        at: row.at.clone(),
-    };
-    let inputs = resolve_held_inputs(table, buttons, Row::Interlock, Some(&names), diags);
-    items
-        .iter()
-        .filter_map(|(name, steps)| {
-            let input = inputs.iter().find(|i| i.as_str() == name.as_str())?;
-            Some(Interlock {
-                input: *input,
-                steps: *steps,
-            })
-        })
-        .collect()
-}
-
-/// The SETTINGS rows `start permissive` and `interlock` (`label`):
-/// machine inputs the table does not wait for, that must be on for a cycle
-/// to start, or stay on. Each must be a name a machine input may have, and
-/// neither an output nor an input the table waits for (that one's value
-/// belongs to its step); else E015 (the name) or E030 at the cell.
-pub fn resolve_held_inputs(
-    table: &StepTable,
-    buttons: &[String],
-    which: Row,
-    row: Option<&NamedList>,
-    diags: &mut Diagnostics,
-) -> Vec<crate::cell::Name> {
-    let Some(row) = row else {
-        return Vec::new();
-    };
-    let label = which.label();
-    let mut names: Vec<crate::cell::Name> = Vec::new();
-    for text in &row.names {
-        let lower = text.to_ascii_lowercase();
-        // A name an input may not have is E015, as in a table cell (the one
-        // name check, the program's buttons included); the rest is E030.
-        let (code, why) = match crate::cell::Name::new(&lower) {
-            Err(why) => (Code::E015BadName, why),
-            Ok(name) => match crate::names::signal_problem(&lower, buttons) {
-                Some(why) => (Code::E015BadName, why),
-                None if names.contains(&name) => {
-                    (Code::E030BadSetting, format!("{lower} is named twice"))
-                }
-                None => match held_input_problem(table, name) {
-                    Some(why) => (Code::E030BadSetting, why),
-                    None => {
-                        names.push(name);
-                        continue;
-                    }
-                },
-            },
-        };
-        diags.error(code, row.at.clone(), format!("{label}: {why}"));
-    }
-    names
-}
-
-/// Why a valid name cannot be a held input: an output, or an input a step
-/// waits for. Names FST cannot tell apart are said by the one check over
-/// the table and its settings (crate::symbols::check).
-fn held_input_problem(table: &StepTable, name: crate::cell::Name) -> Option<String> {
-    if table.outputs.contains(&name) {
-        return Some(format!(
-            "{name} is a machine output of the table, not an input"
-        ));
-    }
-    if table.inputs.contains(&name) {
-        return Some(format!(
-            "the table waits for {name} in a step; name an input no step waits for"
-        ));
-    }
-    None
 }

@@ -75,8 +75,21 @@ impl Piston {
     }
 
     /// Whether sensor `position` sees the piston (within `window` of its point).
+    /// A kind's own switch (a vacuum switch) reads as its kind says.
     pub fn sensor(&self, position: u32, window: f64) -> bool {
-        (self.s - self.sensor_point(position)).abs() <= self.window(window) + 1e-9
+        let half = self.window(window) + 1e-9;
+        if let Some(on) = self.valve.switch_reads(position, self.spool, self.s, half) {
+            return on;
+        }
+        (self.s - self.sensor_point(position)).abs() <= half
+    }
+
+    /// Whether the program's reading of `position` holds (its own sensor
+    /// on; a vacuum gripper's "released" is its vacuum switch off): what
+    /// says a move to `position` has arrived.
+    pub fn reads(&self, position: u32, window: f64) -> bool {
+        let reading = self.valve.reading(position);
+        self.sensor(reading.sensor, window) == reading.on
     }
 
     /// The sensor that currently sees the piston, if any.

@@ -74,16 +74,13 @@ fn actuator_comment(
         Signal::Sensor {
             actuator: a,
             position,
-        } => {
-            let which = if position == 0 {
-                "home position 0".to_string()
-            } else if position == pmax(a) {
-                format!("end position {position}")
-            } else {
-                format!("middle position {position}")
-            };
-            format!("cylinder {}, {which}", actuator(a))
-        }
+        } => program
+            .signals
+            .kinds
+            .get(&a)
+            .copied()
+            .unwrap_or(crate::actuator::ActuatorKind::default_for(pmax(a)))
+            .sensor_comment(&actuator(a), position, pmax(a)),
         Signal::Coil { actuator: a, sign } if program.signals.is_drive(signal) => format!(
             "drive {}, {} (cut at its limit switch)",
             actuator(a),
@@ -97,8 +94,13 @@ fn actuator_comment(
             Sign::Minus => format!("cylinder {}, coil - (retract)", actuator(a)),
         },
         Signal::SingleCoil { actuator: a } => {
+            let kind = program.signals.kinds.get(&a).copied();
+            // Only a kind with one coil has a single coil to comment.
+            let kind = kind.unwrap_or(crate::actuator::ActuatorKind::Mono52);
+            let (on, off) = kind.single_coil_words();
             format!(
-                "cylinder {}, coil (on: extend; off: the spring retracts)",
+                "{} {}, coil (on: {on}; off: {off})",
+                kind.noun(),
                 actuator(a)
             )
         }

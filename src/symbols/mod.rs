@@ -96,6 +96,8 @@ pub struct SymbolTable {
     signals: BTreeMap<Signal, Symbol>,
     /// Each actuator's label (`C1`, `1A1`) and the engineer's name.
     actuators: BTreeMap<u32, (String, Option<String>)>,
+    /// Each actuator's kind, for the words of its coils' comments.
+    kinds: BTreeMap<u32, crate::actuator::ActuatorKind>,
     steps: Vec<StepNames>,
     timers: BTreeMap<Signal, TimerNames>,
     pub step_counter: Own,
@@ -117,6 +119,7 @@ impl SymbolTable {
             scheme: naming.scheme,
             signals: table_of,
             actuators,
+            kinds: program.signals.kinds.clone(),
             steps,
             timers,
             step_counter: Own {
@@ -305,6 +308,14 @@ impl SymbolTable {
         ids
     }
 
+    /// What actuator `actuator`'s one coil does, on and off.
+    fn single_coil_words(&self, actuator: u32) -> (&'static str, &'static str) {
+        // Only a kind with one coil has a single coil to comment.
+        let kind = self.kinds.get(&actuator).copied();
+        kind.unwrap_or(crate::actuator::ActuatorKind::Mono52)
+            .single_coil_words()
+    }
+
     /// A short explanation of an action for a program comment, in the
     /// table's designations (`y1+ on: extend C1 (clamp), C1+1 towards x11`).
     pub fn action_comment(&self, action: Action, moves: &[crate::table::Move]) -> String {
@@ -332,7 +343,8 @@ impl SymbolTable {
                     .find(|m| m.actuator == actuator)
                     .map(|m| format!(", {}", m.notation()))
                     .unwrap_or_default();
-                format!("{symbol} on: extend {}{target}", self.actuator(actuator))
+                let (on, _) = self.single_coil_words(actuator);
+                format!("{symbol} on: {on} {}{target}", self.actuator(actuator))
             }
             Action::Reset(Signal::SingleCoil { actuator }) => {
                 let target = moves
@@ -340,10 +352,8 @@ impl SymbolTable {
                     .find(|m| m.actuator == actuator)
                     .map(|m| format!(", {}", m.notation()))
                     .unwrap_or_default();
-                format!(
-                    "{symbol} off: the spring retracts {}{target}",
-                    self.actuator(actuator)
-                )
+                let (_, off) = self.single_coil_words(actuator);
+                format!("{symbol} off: {off} {}{target}", self.actuator(actuator))
             }
             Action::Set(Signal::StopAt { actuator, position }) => format!(
                 "{symbol}: stop {} at {}",
@@ -422,10 +432,7 @@ fn used_signals(program: &StepProgram) -> Vec<Signal> {
     used.extend(program.init.iter().map(|a| a.signal()));
     for s in &program.steps {
         for m in &s.moves {
-            used.push(Signal::Sensor {
-                actuator: m.actuator,
-                position: m.to,
-            });
+            used.push(program.signals.at(m.actuator, m.to).signal);
         }
     }
     used.push(Signal::Sequence);

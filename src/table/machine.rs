@@ -27,6 +27,7 @@ pub struct Machine<'a> {
 /// the home order (checked whether or not the reset mode uses it) and the
 /// names the operating modes take.
 pub fn check_machine(table: &StepTable, machine: &Machine, grid: &Grid, diags: &mut Diagnostics) {
+    check_positions(table, machine.valves, grid, diags);
     check_valves(table, machine.valves, grid, diags);
     check_home_order(table, machine, grid, diags);
     check_button_names(table, machine.buttons, grid, diags);
@@ -101,12 +102,48 @@ fn check_home_order(table: &StepTable, machine: &Machine, grid: &Grid, diags: &m
     }
 }
 
+/// A kind that holds only so many positions (a vacuum gripper: released 0,
+/// held 1) cannot be asked for more: E045 at the first move past them,
+/// whether that move is the highest or one in the middle.
+fn check_positions(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut Diagnostics) {
+    for actuator in &table.actuators {
+        let kind = valves.of(actuator.number, actuator.max_position);
+        let Some(highest) = kind.highest_position() else {
+            continue;
+        };
+        let asked = |m: &&crate::table::Move| m.actuator == actuator.number;
+        let Some(m) = table
+            .steps
+            .iter()
+            .flat_map(|s| &s.moves)
+            .filter(asked)
+            .find(|m| m.to > highest || (m.to > 0 && actuator.max_position > highest))
+        else {
+            continue;
+        };
+        diags.error(
+            Code::E045KindCannotHold,
+            grid.location(m.cell),
+            format!(
+                "\"{}\" asks C{} for position {}, but C{} is a {kind} actuator, which has positions 0 to {highest} only (a vacuum gripper: C{}+1 holds the part, C{}-0 releases it)",
+                m.notation(),
+                actuator.number,
+                m.to,
+                actuator.number,
+                actuator.number,
+                actuator.number,
+            ),
+        );
+    }
+}
+
 /// A middle position needs a valve with a centre: a 5/2 valve cannot stop a
 /// piston between its ends. Names the cell of the first move that asks for it.
 fn check_valves(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut Diagnostics) {
     for actuator in table.actuators.iter().filter(|a| a.has_middle_positions()) {
         let valve = valves.of(actuator.number, actuator.max_position);
-        if valve.has_centre() {
+        // A kind with fewer positions than asked is said once, by E045.
+        if valve.has_centre() || valve.highest_position().is_some() {
             continue;
         }
         let Some(m) = table

@@ -73,5 +73,6 @@ mod synth_bench;
 mod synth_short;
 mod template;
 mod typed_names;
+mod vacuum;
 mod valves;
 mod written;

@@ -216,10 +216,16 @@ fn openplc_upload_accepts_every_st() {
 }
 
 fn awl_runs_in_awlsim_as_simulated_in_both_mnemonic_sets() {
+    awl_in_awlsim("awlsim", matrix);
+}
+
+/// The cases `cases` converts into a folder with the AWL arguments of each
+/// mnemonic set, run in awlsim: every trace must be the simulation's.
+pub(crate) fn awl_in_awlsim(what: &str, cases: impl Fn(&Path, &[&str]) -> Vec<Case>) {
     let python = awlsim::python(&tool(Tool::Awlsim));
     for mnemonic in ["en", "de"] {
         let dir = tempfile::tempdir().unwrap();
-        let cases = matrix(
+        let cases = cases(
             dir.path(),
             &["--formats", "awl,sdf", "--mnemonic", mnemonic],
         );
@@ -236,7 +242,7 @@ fn awl_runs_in_awlsim_as_simulated_in_both_mnemonic_sets() {
             )
         });
         eprintln!(
-            "awlsim: {} .awl files ({mnemonic}) run, traces equal",
+            "{what}: {} .awl files ({mnemonic}) run, traces equal",
             cases.len()
         );
     }

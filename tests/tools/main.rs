@@ -32,6 +32,7 @@ mod step_numbers;
 mod supervision;
 mod sync;
 mod synth_engines;
+mod vacuum;
 
 use std::collections::BTreeSet;
 use std::path::PathBuf;
@@ -192,6 +193,7 @@ fn main() {
         ladder::CHECKS,
         sync::CHECKS,
         synth_engines::CHECKS,
+        vacuum::CHECKS,
     ]
     .concat();
     let mut missing = BTreeSet::new();

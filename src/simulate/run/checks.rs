@@ -4,7 +4,8 @@
 
 use super::{ActiveMove, Run, read_input};
 use crate::cell::Sign;
-use crate::program::{Literal, Signal};
+use crate::program::{Literal, Signal, StepProgram};
+use crate::simulate::plant::Piston;
 use crate::simulate::{Problem, ProblemKind};
 use crate::table::Move;
 
@@ -61,7 +62,7 @@ impl Run<'_> {
             .pistons
             .iter()
             .zip(&self.places)
-            .map(|(p, place)| place_text(p.number, *place))
+            .map(|(p, place)| place_text(p, *place))
             .collect();
         let step = self.current_step();
         self.problem(
@@ -139,7 +140,7 @@ impl Run<'_> {
                 format!(
                     "C{} had not reached {}",
                     a.mv.actuator,
-                    sensor_symbol(&a.mv)
+                    sensor_symbol(self.program, &a.mv)
                 )
             })
             .collect();
@@ -230,7 +231,7 @@ impl Run<'_> {
                 Some(number),
                 format!(
                     "C{number} ran through {} in step {}",
-                    sensor_symbol(&a.mv),
+                    sensor_symbol(self.program, &a.mv),
                     a.step
                 ),
             );
@@ -243,8 +244,7 @@ impl Run<'_> {
         let window = self.world.settings.window;
         let mut any = false;
         for a in &mut self.active {
-            if !a.reached && !a.ran_through && self.world.pistons[a.piston].sensor(a.mv.to, window)
-            {
+            if !a.reached && !a.ran_through && self.world.pistons[a.piston].reads(a.mv.to, window) {
                 a.reached = true;
                 any = true;
             }
@@ -257,14 +257,26 @@ impl Run<'_> {
     pub(super) fn all_moves_ended(&self) -> bool {
         self.active.iter().all(|a| {
             let p = &self.world.pistons[a.piston];
-            a.reached && p.at_rest() && p.sensor(a.mv.to, self.world.settings.window)
+            a.reached && p.at_rest() && p.reads(a.mv.to, self.world.settings.window)
         })
     }
 }
 
 /// `C2 at x23`, `C2 between x22 and x23`.
-fn place_text(actuator: u32, place: u32) -> String {
-    let sensor = |position| Signal::Sensor { actuator, position }.symbol();
+fn place_text(piston: &Piston, place: u32) -> String {
+    let actuator = piston.number;
+    // A position its kind reads as another switch off (a gripper released).
+    let sensor = |position| {
+        let r = piston.valve.reading(position);
+        let signal = Signal::Sensor {
+            actuator,
+            position: r.sensor,
+        };
+        literal_text(&Literal {
+            signal,
+            negated: !r.on,
+        })
+    };
     if place.is_multiple_of(2) {
         format!("C{actuator} at {}", sensor(place / 2))
     } else {
@@ -276,12 +288,10 @@ fn place_text(actuator: u32, place: u32) -> String {
     }
 }
 
-pub(super) fn sensor_symbol(m: &Move) -> String {
-    Signal::Sensor {
-        actuator: m.actuator,
-        position: m.to,
-    }
-    .symbol()
+/// What shows that move `m` has reached its target (`x11`; `NOT x31` for
+/// a kind that reads a position as another sensor off).
+pub(super) fn sensor_symbol(program: &StepProgram, m: &Move) -> String {
+    literal_text(&program.signals.at(m.actuator, m.to))
 }
 
 pub(super) fn literal_text(l: &Literal) -> String {

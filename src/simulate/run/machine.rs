@@ -58,7 +58,7 @@ impl Run<'_> {
                     .iter()
                     .any(|a| a.mv.actuator == m.actuator && a.reached)
             })
-            .map(|m| format!("C{} reached {}", m.actuator, sensor_symbol(m)))
+            .map(|m| format!("C{} reached {}", m.actuator, sensor_symbol(self.program, m)))
             .collect();
         missing.extend(
             step.waits

@@ -1,0 +1,259 @@
+//! The vacuum gripper (valve type `vacuum`): one coil `y2` switches the
+//! vacuum on, one vacuum switch `x21` reads 1 once the part is held; the
+//! program reads "released" (`C2-0`) as that switch off and has no `x20`.
+//! An EMERGENCY STOP keeps the part held; the fault table has the vacuum
+//! switch stuck at 0 and at 1; a gripper asked for more than held and
+//! released is refused at its cell (E045).
+
+use predicates::str::contains;
+use steptable::program::Signal;
+use steptable::simulate::Operator;
+use steptable::simulate::scenario::scenario;
+
+use crate::helpers::{Refused, assert_refused, line_with, root, squeezed_stdout, steptable};
+
+fn pick_and_place() -> std::path::PathBuf {
+    root().join("tests/fixtures/pick_and_place.csv")
+}
+
+/// The pick and place checked with C2 on `valve`, as `convert` reads it.
+fn checked(valve: &str) -> steptable::convert::Checked {
+    let mut settings = steptable::settings::Settings::new();
+    settings.give(steptable::settings::Given {
+        valves: steptable::actuator::parse_valves(&format!("C2={valve}")).unwrap(),
+        ..steptable::settings::Given::default()
+    });
+    steptable::convert::check_path(&pick_and_place(), &settings).expect("a valid table")
+}
+
+#[test]
+fn a_gripper_has_one_coil_and_its_vacuum_switch_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("convert")
+        .arg(pick_and_place())
+        .args(["--valve", "C2=vacuum", "--formats", "io,st", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let io =
+        std::fs::read_to_string(dir.path().join("pick_and_place/pick_and_place.io.csv")).unwrap();
+    assert!(io.contains(",x21,") && !io.contains(",x20,"), "{io}");
+    assert!(io.contains(",y2,") && !io.contains("y2+"), "{io}");
+    let st = std::fs::read_to_string(dir.path().join("pick_and_place/pick_and_place.st")).unwrap();
+    // Released is the vacuum switch off: the step after C2-0 waits for it.
+    assert!(st.contains("NOT x21"), "{st}");
+    assert!(!st.contains("x20"), "{st}");
+}
+
+#[test]
+fn the_pick_and_place_runs_through_its_cycle_in_the_gripper_s_own_times() {
+    let assert = steptable()
+        .arg("simulate")
+        .arg(pick_and_place())
+        .args(["--valve", "C2=vacuum"])
+        .assert()
+        .success()
+        .stdout(contains("passed"));
+    let said = squeezed_stdout(&assert);
+    // The gripper's steps last its build-up (step 2) and its release (step
+    // 5: the vacuum switch drops once the vacuum is gone, not when the coil
+    // drops), a scan or two more.
+    let duration = |step: &str| -> f64 {
+        let line = line_with(&said, step);
+        let seconds = line.split(' ').nth(3).expect("a duration");
+        seconds.parse().unwrap_or_else(|_| panic!("{line}"))
+    };
+    let (grip, release) = (duration("2 "), duration("5 "));
+    assert!((0.29..0.35).contains(&grip), "{said}");
+    assert!((0.18..0.25).contains(&release), "{said}");
+    let checked = checked("vacuum");
+    let stroke = checked.settings.simulation.machine.strokes.of(2);
+    assert_eq!((stroke.extend_ms, stroke.retract_ms), (300, 200), "{said}");
+    let cylinder = checked.settings.simulation.machine.strokes.of(1);
+    assert_eq!(cylinder.extend_ms, 1000);
+}
+
+#[test]
+fn an_emergency_stop_keeps_the_part_held_by_default() {
+    let at = |valve: &str, modes: &str| {
+        let mut checked = checked(valve);
+        checked.settings.program.modes = modes.parse().unwrap();
+        let program = steptable::program::build(
+            &checked.table,
+            &checked.settings.program,
+            &checked.settings.simulation.machine.valves,
+            &checked.settings.simulation.machine.strokes,
+        );
+        // START at 0.5 s; C1 down by 1.5 s, the part held by 1.8 s, C1 on
+        // its way up when the EMERGENCY STOP comes at 2.2 s.
+        let start = Operator {
+            start: true,
+            ..Operator::default()
+        };
+        let estop = Operator {
+            estop: true,
+            ..Operator::default()
+        };
+        let script = [(500, start), (600, Operator::default()), (2_200, estop)];
+        let report = scenario(
+            &checked.table,
+            &program,
+            &checked.settings.simulation,
+            &script,
+            3_000,
+        );
+        report.at(2_900).expect("sampled").outputs_on.clone()
+    };
+    let held = at("vacuum", "estop");
+    assert!(
+        held.contains(&Signal::SingleCoil { actuator: 2 }),
+        "{held:?}"
+    );
+    assert!(
+        !held.contains(&Signal::Coil {
+            actuator: 1,
+            sign: steptable::cell::Sign::Minus
+        }),
+        "{held:?}"
+    );
+    // A 52mono valve on C2 is a cylinder: the EMERGENCY STOP drops its coil.
+    let dropped = at("52mono", "estop");
+    assert!(
+        !dropped.contains(&Signal::SingleCoil { actuator: 2 }),
+        "{dropped:?}"
+    );
+}
+
+#[test]
+fn the_fault_table_has_the_vacuum_switch_stuck_at_0_and_at_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let assert = steptable()
+        .arg("faults")
+        .arg(pick_and_place())
+        .args(["--valve", "C2=vacuum", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let said = squeezed_stdout(&assert);
+    let csv = dir.path().join("pick_and_place/pick_and_place.faults.csv");
+    let csv = std::fs::read_to_string(csv).unwrap();
+    // Stuck at 1 before the grip: the arm lifts before the part is held.
+    // Failing open while the part is held: "released" reads at once, and
+    // the arm moves on before the part has dropped. Both are hazards.
+    assert!(
+        csv.contains("x21 short circuit (stuck at 1),x21,1,hazard"),
+        "{csv}"
+    );
+    assert!(
+        csv.contains("x21 open circuit (stuck at 0),x21,0,hazard"),
+        "{csv}"
+    );
+    // The gripper has no x20: neither a fault of it nor a place named by it.
+    assert!(
+        !csv.contains("x20") && !said.contains("x20"),
+        "{csv}\n{said}"
+    );
+}
+
+/// A gripper table, its C2 made a gripper on the SETTINGS sheet.
+const GRIPPER: &[&[&str]] = &[&["actuator", "valve"], &["C2", "vacuum"]];
+const PICK: &[&[&str]] = &[
+    &["", "BRANCH 1"],
+    &["STEP 1", "C1+1"],
+    &["STEP 2", "C2+1"],
+    &["STEP 3", "C1-0"],
+    &["STEP 4", "C2-0"],
+];
+
+#[test]
+fn hostile_gripper_settings_are_refused_at_their_cells() {
+    assert_refused(&[
+        Refused {
+            what: "a middle position asked of a gripper",
+            table: &[
+                &["", "BRANCH 1"],
+                &["STEP 1", "C2+1"],
+                &["STEP 2", "C2+2"],
+                &["STEP 3", "C2-0"],
+            ],
+            settings: GRIPPER,
+            args: &[],
+            code_at: "TABLE!B2: error[E045]: \"C2+1\" asks C2 for position 1, but C2 is a vacuum actuator",
+        },
+        Refused {
+            what: "a position past held",
+            table: &[&["", "BRANCH 1"], &["STEP 1", "C2+2"], &["STEP 2", "C2-0"]],
+            settings: GRIPPER,
+            args: &[],
+            code_at: "TABLE!B2: error[E045]: \"C2+2\" asks C2 for position 2",
+        },
+        Refused {
+            what: "the kind given twice",
+            table: PICK,
+            settings: &[&["actuator", "valve"], &["C2", "vacuum"], &["C2", "vacuum"]],
+            args: &[],
+            code_at: "SETTINGS!A3: error[E030]: C2 is given twice in the actuator table",
+        },
+        Refused {
+            what: "contradicting kinds",
+            table: PICK,
+            settings: &[&["actuator", "valve"], &["C2", "vacuum"], &["C2", "52mono"]],
+            args: &[],
+            code_at: "SETTINGS!A3: error[E030]: C2 is given twice in the actuator table",
+        },
+        Refused {
+            what: "an unknown kind",
+            table: PICK,
+            settings: &[&["actuator", "valve"], &["C2", "vacum"]],
+            args: &[],
+            code_at: "SETTINGS!B2: error[E030]: valve of C2: \"vacum\" is not a valve type",
+        },
+        Refused {
+            what: "a kind of an actuator the table lacks",
+            table: PICK,
+            settings: &[&["actuator", "valve"], &["C9", "vacuum"]],
+            args: &[],
+            code_at: "SETTINGS!A2: error[E030]: the actuator table names C9, which the table does not have",
+        },
+        Refused {
+            what: "a wait on the released sensor a gripper does not have",
+            table: &[
+                &["", "BRANCH 1"],
+                &["STEP 1", "C2+1"],
+                &["STEP 2", "C2-0"],
+                &["STEP 3", "I:x20"],
+            ],
+            settings: GRIPPER,
+            args: &[],
+            code_at: "TABLE!B4: error[E015]",
+        },
+    ]);
+}
+
+#[test]
+fn hostile_gripper_options_are_refused() {
+    // The kind twice, contradicting, misspelt.
+    for (valve, said) in [
+        ("C2=vacuum,C2=vacuum", "C2 is given twice"),
+        ("C2=vacuum,C2=52mono", "C2 is given twice"),
+        ("C2=vacum", "\"vacum\" is not a valve type"),
+    ] {
+        steptable()
+            .arg("check")
+            .arg(pick_and_place())
+            .args(["--valve", valve])
+            .assert()
+            .code(1)
+            .stderr(contains(said));
+    }
+    steptable()
+        .arg("check")
+        .arg(pick_and_place())
+        .args(["--valve", "C9=vacuum"])
+        .assert()
+        .code(1)
+        .stderr(contains(
+            "error[E030]: --valve C9=…: the table has no actuator C9",
+        ));
+}
