@@ -185,6 +185,17 @@ fn hostile_events_are_refused_with_e042_and_the_option() {
             "--press STOP@:",
             "nothing after the @",
         ),
+        // In the names the engineer chose.
+        (
+            &["--designations", "iso", "--stick", "1A1=0@1s"],
+            "--stick 1A1=0@1s",
+            "1A1 is an actuator: stick one of its sensors instead (1B1, 1B2)",
+        ),
+        (
+            &["--designations", "iso", "--press", "FOO@1s"],
+            "--press FOO@1s",
+            "2B3",
+        ),
         // Finding 9: events that would do nothing.
         (
             &["--release", "START@1s"],

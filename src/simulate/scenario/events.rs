@@ -219,6 +219,22 @@ fn input(
             mode_of(button)
         ));
     }
+    if let Some(n) = naming
+        .actuator_called(name)
+        .filter(|n| table.actuators.iter().any(|a| a.number == *n))
+    {
+        let sensors: Vec<String> = program
+            .signals
+            .inputs
+            .iter()
+            .filter(|s| matches!(s, Signal::Sensor { actuator, .. } if *actuator == n))
+            .map(|s| naming.designation(*s, table))
+            .collect();
+        return Err(format!(
+            "{name} is an actuator: stick one of its sensors instead ({})",
+            sensors.join(", ")
+        ));
+    }
     let outputs = program.steps.iter().flat_map(|s| &s.actions);
     let outputs = outputs.chain(program.rungs.iter().flat_map(|r| &r.actions));
     if let Some(output) = outputs
@@ -230,13 +246,14 @@ fn input(
             output.symbol()
         ));
     }
+    // In the names the engineer chose (`--designations iso`: 2B3).
     Err(format!(
         "the program has no input called \"{name}\" (its inputs: {})",
         program
             .signals
             .inputs
             .iter()
-            .map(|s| s.symbol())
+            .map(|s| naming.designation(*s, table))
             .collect::<Vec<_>>()
             .join(", ")
     ))
