@@ -71,6 +71,23 @@ pub fn signal_problem(name: &str, buttons: &[String]) -> Option<String> {
     ))
 }
 
+/// The name an operator calls a button by beside its symbol, which
+/// `simulate --press` answers to: RESET for RESET_PB (whose symbol avoids
+/// an FST keyword), STEP for STEP_PB, EMERGENCY_STOP for ESTOP.
+pub const BUTTON_ALIASES: [(&str, &str); 3] = [
+    ("RESET_PB", "RESET"),
+    ("STEP_PB", "STEP"),
+    ("ESTOP", "EMERGENCY_STOP"),
+];
+
+/// The alias of the button whose symbol is `symbol`, if it has one.
+pub fn button_alias(symbol: &str) -> Option<&'static str> {
+    BUTTON_ALIASES
+        .iter()
+        .find(|(s, _)| s.eq_ignore_ascii_case(symbol))
+        .map(|(_, alias)| *alias)
+}
+
 /// Whether two names are one symbol to Festo FST, which keeps only their
 /// first [`FST_SYMBOL_CHARS`] characters (and ignores case).
 pub fn same_in_fst(a: &str, b: &str) -> bool {

@@ -73,6 +73,9 @@ pub enum Durability {
 #[derive(Debug, Clone, Default)]
 pub struct Inputs {
     real: HashSet<PathBuf>,
+    /// The option that named the output folder, when not `-o` (`simulate
+    /// --report DIR`): E040's advice names the option the command has.
+    option: Option<&'static str>,
 }
 
 impl Inputs {
@@ -83,7 +86,25 @@ impl Inputs {
                 .iter()
                 .filter_map(|p| std::fs::canonicalize(p).ok())
                 .collect(),
+            option: None,
         }
+    }
+
+    /// The same, for outputs whose folder the option `option` names.
+    pub fn named_by(mut self, option: &'static str) -> Self {
+        self.option = Some(option);
+        self
+    }
+
+    /// E040's advice in the words of the command run: `-o` is the option
+    /// of most commands, not of all.
+    fn advise(&self, mut problems: Vec<Diagnostic>) -> Vec<Diagnostic> {
+        if let Some(option) = self.option {
+            for p in &mut problems {
+                p.message = p.message.replace(" with -o", &format!(" with {option}"));
+            }
+        }
+        problems
     }
 
     /// No inputs to keep (outputs made from nothing the user named).
@@ -194,17 +215,22 @@ fn write_recorded(
             } else {
                 unrecorded
             };
+            // The record is named only where there is one to read.
+            let see = if found_none {
+                String::new()
+            } else {
+                format!(" (see {})", manifest::FILE_NAME)
+            };
             problems.push(taken(
                 &target,
                 format!(
-                    "{why}; nothing written: move it, or choose another output folder with -o (see {})",
-                    manifest::FILE_NAME
+                    "{why}; nothing written: move it, or choose another output folder with -o{see}"
                 ),
             ));
         }
     }
     if !problems.is_empty() {
-        return Err(WriteError::Taken(problems));
+        return Err(WriteError::Taken(inputs.advise(problems)));
     }
     // Entries whose files are gone are dropped; the rest stay ours.
     recorded
@@ -237,7 +263,8 @@ fn write_recorded(
 /// that this run did not write (a rerun with fewer `--formats`, or after
 /// `faults -o` wrote beside it), where they are still as written: a folder
 /// never holds a program beside the lists of another table. A file changed
-/// since is left alone. Returns the paths written and those removed.
+/// since is left alone, and so is a scenario's page (`simulate --report`),
+/// which no conversion writes again. Returns the paths written and those removed.
 pub fn write_conversion(
     folder: &Path,
     files: &[OutputFile],
@@ -254,6 +281,7 @@ pub fn write_conversion(
         .keys()
         .filter(|name| inside(name))
         .filter(|name| !files.iter().any(|f| &f.name == *name))
+        .filter(|name| !crate::emit::CommandFile::outlives_conversion(name))
         .filter(|name| before.vouches_for(folder, name))
         .cloned()
         .collect();

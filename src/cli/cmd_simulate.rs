@@ -14,8 +14,9 @@ pub(crate) struct SimulateArgs {
     #[arg(long)]
     pub(crate) no_middle_stop: bool,
     /// Also write the run's displacement-time diagram (dwells and waits
-    /// shaded) to DIR/NAME/NAME.time.svg.
-    #[arg(long, value_name = "DIR", conflicts_with = "events")]
+    /// shaded) to DIR/NAME/NAME.time.svg; not with a scenario, whose run
+    /// `--report DIR` draws.
+    #[arg(long, value_name = "DIR")]
     pub(crate) diagram: Option<PathBuf>,
     /// Scenario: press an operator's button at a moment and let go after
     /// 0.1 s: `STOP@step3` (when the program enters step 3), `RESET@+2s`
@@ -50,8 +51,23 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
     settings.program.middle_stops = !args.no_middle_stop;
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
-    let kept = write::Inputs::new(&args.inputs);
+    let kept = write::Inputs::new(&args.inputs).named_by("--diagram");
     let events = written_events(args);
+    if !events.is_empty() && args.diagram.is_some() {
+        // Refused with the reason, where clap's conflict would say only
+        // that the two options do not go together.
+        use clap::CommandFactory;
+        let mut cli = Cli::command().bin_name("steptable");
+        let simulate = cli
+            .find_subcommand_mut("simulate")
+            .map(|c| c.clone().bin_name("steptable simulate"));
+        let err = simulate.unwrap_or(cli).error(
+            clap::error::ErrorKind::ArgumentConflict,
+            "--diagram draws the proof's cycle, which a scenario (--press, --hold, --release, --stick) replaces: draw the scenario's run with --report DIR (its timeline, with the positions), or leave out the events",
+        );
+        let _ = err.print();
+        return EXIT_BAD_INPUT;
+    }
     if !events.is_empty() {
         return run_scenarios(args, &settings, &events, &reporter);
     }
@@ -142,7 +158,7 @@ fn run_scenarios(
 ) -> i32 {
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
-    let kept = write::Inputs::new(&args.inputs);
+    let kept = write::Inputs::new(&args.inputs).named_by("--report");
     for (input, name) in args.inputs.iter().zip(&names) {
         let report = args
             .report

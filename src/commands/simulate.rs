@@ -146,7 +146,7 @@ pub fn scenario(
             Err(why) => bad.push(why),
         }
     }
-    bad.extend(events::check(&events, settings.simulation.scan_ms));
+    bad.extend(sc::check::check(&events, settings.simulation.scan_ms));
     if !bad.is_empty() {
         let at = |message| event_error(&table, message);
         return Err(refused(bad.into_iter().map(at).collect()));
@@ -265,7 +265,7 @@ fn write_scenario_page(
         printed: drawn.printed,
         drawn: timeline::Drawn {
             press_ms: 0,
-            spans: &[],
+            spans: &drawn.run.spans,
             actuators: &actuators,
             positions: &positions,
             marks: &marks,

@@ -290,6 +290,14 @@ impl CommandFile {
     pub fn file_name(self, name: &str) -> String {
         format!("{name}{}", self.suffix())
     }
+
+    /// Whether the file named `file` is one a conversion leaves in its
+    /// folder although it did not write it: a scenario's page records a
+    /// run the engineer chose (its events are in no table), opens beside
+    /// the report, and no rerun of `convert` could write it again.
+    pub fn outlives_conversion(file: &str) -> bool {
+        file.ends_with(CommandFile::ScenarioReport.suffix())
+    }
 }
 
 #[cfg(test)]

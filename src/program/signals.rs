@@ -139,6 +139,15 @@ impl Signals {
             )
     }
 
+    /// The outputs of the criteria analysis (`miss1`…): on while a step
+    /// has run out of time with its criterion unmet.
+    pub fn misses(&self) -> impl Iterator<Item = Signal> + '_ {
+        self.outputs
+            .iter()
+            .copied()
+            .filter(|s| matches!(s, Signal::Missing(_)))
+    }
+
     /// The alarm outputs.
     pub fn alarms(&self) -> impl Iterator<Item = Signal> + '_ {
         self.outputs

@@ -21,13 +21,18 @@ pub struct IoSignals {
 }
 
 impl IoSignals {
-    /// Every input of `program` and every output it drives, alarms last:
-    /// what a logic analyser on the machine would show.
+    /// Every input of `program` and every output it drives, then the
+    /// alarms and the criteria's `miss` outputs: what a logic analyser on
+    /// the machine would show.
     pub fn every(program: &crate::program::StepProgram) -> IoSignals {
         let signals = &program.signals;
         IoSignals {
             inputs: signals.inputs.clone(),
-            outputs: signals.driven().chain(signals.alarms()).collect(),
+            outputs: signals
+                .driven()
+                .chain(signals.alarms())
+                .chain(signals.misses())
+                .collect(),
             max_scans: None,
         }
     }

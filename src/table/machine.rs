@@ -44,13 +44,28 @@ fn check_button_names(table: &StepTable, buttons: &[String], grid: &Grid, diags:
         if crate::names::signal_problem(name, &[]).is_some() {
             continue;
         }
-        if let (Some(why), Some(cell)) = (
-            crate::names::signal_problem(name, buttons),
-            first_use(table, name),
-        ) {
+        let why =
+            crate::names::signal_problem(name, buttons).or_else(|| alias_problem(name, buttons));
+        if let (Some(why), Some(cell)) = (why, first_use(table, name)) {
             diags.error(Code::E015BadName, grid.location(cell), why);
         }
     }
+}
+
+/// A signal named as a button's alias (`emergency_stop` beside the ESTOP
+/// button): `simulate --press EMERGENCY_STOP@1s` would find two signals of
+/// one name. Only the whole name: the alias is no PLC symbol, so FST's
+/// 9 characters do not matter.
+fn alias_problem(name: &str, buttons: &[String]) -> Option<String> {
+    let (button, alias) = buttons.iter().find_map(|b| {
+        crate::names::button_alias(b)
+            .filter(|a| a.eq_ignore_ascii_case(name))
+            .map(|a| (b, a))
+    })?;
+    Some(format!(
+        "\"{name}\" cannot name a machine signal while the program has the operating-mode button {}: scenarios (simulate --press {alias}@…) call that button {alias}; rename the signal, or leave that mode out",
+        button.to_ascii_uppercase()
+    ))
 }
 
 /// The first cell (in step order) that names a machine input or output.

@@ -338,27 +338,56 @@ pub struct Refused {
 }
 
 /// A table (sheet `TABLE`) and its SETTINGS rows written to a workbook and
-/// converted with `args`: the run, asserted to exit with `exit`, and the
-/// output folder it was given (inside the returned temporary folder).
+/// converted with `args` (and `--formats st`): the run, asserted to exit
+/// with `exit`, and the output folder it was given (inside the returned
+/// temporary folder).
 pub fn convert_sheets(
     table: &[&[&str]],
     settings: &[&[&str]],
     args: &[&str],
     exit: i32,
 ) -> (tempfile::TempDir, PathBuf, assert_cmd::assert::Assert) {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("h.xlsx");
     let mut sheets: Vec<(&str, &[&[&str]])> = vec![("TABLE", table)];
     if !settings.is_empty() {
         sheets.push(("SETTINGS", settings));
     }
-    write_xlsx_sheets(&path, &sheets);
+    let args: Vec<&str> = args.iter().copied().chain(["--formats", "st"]).collect();
+    convert_written(
+        "h.xlsx",
+        |path| write_xlsx_sheets(path, &sheets),
+        &args,
+        exit,
+    )
+}
+
+/// A table written as `t.csv` (messages name its cells `t.csv:3:2`) and
+/// converted with `args`, as [`convert_sheets`] converts a workbook.
+pub fn convert_csv(
+    table: &str,
+    args: &[&str],
+    exit: i32,
+) -> (tempfile::TempDir, PathBuf, assert_cmd::assert::Assert) {
+    let write = |path: &Path| std::fs::write(path, table).unwrap();
+    convert_written("t.csv", write, args, exit)
+}
+
+/// The one runner of both: `file` written by `write` into a new temporary
+/// folder, then `convert FILE ARGS -o out`.
+fn convert_written(
+    file: &str,
+    write: impl FnOnce(&Path),
+    args: &[&str],
+    exit: i32,
+) -> (tempfile::TempDir, PathBuf, assert_cmd::assert::Assert) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(file);
+    write(&path);
     let out = dir.path().join("out");
     let assert = steptable()
         .arg("convert")
         .arg(&path)
         .args(args)
-        .args(["--formats", "st", "-o"])
+        .arg("-o")
         .arg(&out)
         .assert()
         .code(exit);

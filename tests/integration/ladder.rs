@@ -201,18 +201,7 @@ const HOSTILE: &[Hostile] = &[
 #[test]
 fn hostile_ladder_requests_are_refused_at_their_cell_and_write_nothing() {
     for case in HOSTILE {
-        let dir = tempfile::tempdir().unwrap();
-        let table = dir.path().join("t.csv");
-        std::fs::write(&table, case.table).unwrap();
-        let out = dir.path().join("out");
-        let mut assert = steptable()
-            .arg("convert")
-            .arg(&table)
-            .args(case.args)
-            .arg("-o")
-            .arg(&out)
-            .assert()
-            .code(1);
+        let (_dir, out, mut assert) = crate::helpers::convert_csv(case.table, case.args, 1);
         for needle in case.says {
             assert = assert.stderr(contains(*needle));
         }

@@ -58,6 +58,7 @@ mod report;
 mod rerun;
 mod safety;
 mod scenario;
+mod scenario_promises;
 mod settings_rows;
 mod simulate;
 mod single_step;

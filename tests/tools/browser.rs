@@ -150,59 +150,65 @@ fn the_grafcet_renders_without_overlaps_in_chromium() {
 /// Lists the resources the page fetched into `#requests`, `done` last.
 const REQUESTS: &str = "<script>(function () { var p = document.createElement('pre'); p.id = 'requests'; p.textContent = performance.getEntriesByType('resource').map(function (e) { return e.name + '\\n'; }).join('') + 'done'; document.body.appendChild(p); })();</script>";
 
-/// Every sample's report in Chromium: its script ran without a console
-/// error (it marks the page and shows the controls), every section is in
-/// the DOM, and the page fetched nothing (its resource timing is empty).
+/// Opens a copy of `written` with a probe after the page's own script in
+/// Chromium and checks what every page of steptable keeps: the script ran
+/// (it marks the page and shows the controls), the console logged no
+/// error, and the page fetched nothing beyond itself (every resource it
+/// fetched, a style's font or image too, as the browser's resource timing
+/// lists them). Returns the DOM; `what` names the page in a failure.
+fn open_probed(written: &Path, dir: &Path, what: &str) -> String {
+    let page = dir.join(format!("{what}.probed.html"));
+    let html = std::fs::read_to_string(written).unwrap();
+    std::fs::write(
+        &page,
+        html.replace("</body>", &format!("{REQUESTS}</body>")),
+    )
+    .unwrap();
+    let (dom, log) = dump_dom(&page, &dir.join("profile"));
+    assert!(
+        dom.contains("data-js=\"on\""),
+        "{what}: the script did not run\n{log}"
+    );
+    let errors: Vec<&str> = log
+        .lines()
+        .filter(|l| l.contains("CONSOLE") || l.contains("Uncaught"))
+        .collect();
+    assert!(errors.is_empty(), "{what}: {errors:#?}");
+    assert!(
+        !dom.contains("<div class=\"controls\" hidden"),
+        "{what}: the controls stay hidden"
+    );
+    let requests = dom
+        .split("<pre id=\"requests\">")
+        .nth(1)
+        .and_then(|r| r.split("</pre>").next())
+        .unwrap_or_else(|| panic!("{what}: the probe did not run"));
+    assert_eq!(
+        requests, "done",
+        "{what}: the page asked for more than itself"
+    );
+    dom
+}
+
+/// Every sample's report in Chromium opens as every page must
+/// ([`open_probed`]), with every section in the DOM.
 fn every_report_opens_in_chromium_without_errors_or_requests() {
     let dir = tempfile::tempdir().unwrap();
     for path in samples() {
         let (stem, out) = convert(&path, dir.path(), &["--formats", "report"]);
         let written = out.join(&stem).join(format!("{stem}.report.html"));
-        // A copy with a probe after the page's own script: every resource
-        // the page fetched (a style's font or image too), as the browser's
-        // resource timing lists them.
-        let page = dir.path().join(format!("{stem}.probed.html"));
-        let html = std::fs::read_to_string(&written).unwrap();
-        std::fs::write(
-            &page,
-            html.replace("</body>", &format!("{REQUESTS}</body>")),
-        )
-        .unwrap();
-        let (dom, log) = dump_dom(&page, &dir.path().join("profile"));
-        assert!(
-            dom.contains("data-js=\"on\""),
-            "{stem}: the script did not run\n{log}"
-        );
-        let errors: Vec<&str> = log
-            .lines()
-            .filter(|l| l.contains("CONSOLE") || l.contains("Uncaught"))
-            .collect();
-        assert!(errors.is_empty(), "{stem}: {errors:#?}");
+        let dom = open_probed(&written, dir.path(), &stem);
         for (id, _) in steptable::emit::report::SECTIONS {
             assert!(
                 dom.contains(&format!("<section id=\"{id}\">")),
                 "{stem}: {id}"
             );
         }
-        assert!(
-            !dom.contains("<div class=\"controls\" hidden"),
-            "{stem}: the controls stay hidden"
-        );
-        let requests = dom
-            .split("<pre id=\"requests\">")
-            .nth(1)
-            .and_then(|r| r.split("</pre>").next())
-            .unwrap_or_else(|| panic!("{stem}: the probe did not run"));
-        assert_eq!(
-            requests, "done",
-            "{stem}: the page asked for more than itself"
-        );
     }
 }
 
-/// `simulate --press … --report DIR` on the paper's example: the page runs
-/// its script, logs no error, asks for nothing beyond itself, and shows
-/// its zoom controls and a mark per event.
+/// `simulate --press … --report DIR` on the paper's example: the page opens
+/// as every page must ([`open_probed`]), with a mark per event.
 fn a_scenario_page_opens_in_chromium_without_errors_or_requests() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("r");
@@ -215,36 +221,10 @@ fn a_scenario_page_opens_in_chromium_without_errors_or_requests() {
         .assert()
         .success();
     let written = out.join("paper_example/paper_example.scenario.report.html");
-    let page = dir.path().join("probed.html");
-    let html = std::fs::read_to_string(&written).unwrap();
-    std::fs::write(
-        &page,
-        html.replace("</body>", &format!("{REQUESTS}</body>")),
-    )
-    .unwrap();
-    let (dom, log) = dump_dom(&page, &dir.path().join("profile"));
-    assert!(
-        dom.contains("data-js=\"on\""),
-        "the script did not run\n{log}"
-    );
-    let errors: Vec<&str> = log
-        .lines()
-        .filter(|l| l.contains("CONSOLE") || l.contains("Uncaught"))
-        .collect();
-    assert!(errors.is_empty(), "{errors:#?}");
-    assert!(
-        !dom.contains("<div class=\"controls\" hidden"),
-        "the controls stay hidden"
-    );
+    let dom = open_probed(&written, dir.path(), "scenario");
     assert_eq!(
         dom.matches("class=\"mark\"").count(),
         2,
         "one mark per event"
     );
-    let requests = dom
-        .split("<pre id=\"requests\">")
-        .nth(1)
-        .and_then(|r| r.split("</pre>").next())
-        .expect("the probe ran");
-    assert_eq!(requests, "done", "the page asked for more than itself");
 }

@@ -196,36 +196,13 @@ fn timeline_html(
     simulation: &crate::simulate::SimReport,
     trace: &crate::simulate::io::IoTrace,
 ) -> String {
-    let drawn = timeline::Drawn::of(simulation);
-    let lanes = timeline::lanes(trace, drawn.press_ms, &|s| input.symbols.designation(s));
-    let (svg, labels) = timeline::render(&drawn, trace, &lanes, &|n| input.symbols.actuator(n));
-    timeline_box(
-        "Time from the START press, as in the step timing above. Shaded: dwells (green) and waits for a machine input (violet).",
-        &svg,
-        labels,
+    timeline::section(
+        &timeline::Drawn::of(simulation),
+        trace,
+        "Time from the START press, as in the step timing above.",
+        &|s| input.symbols.designation(s),
+        &|n| input.symbols.actuator(n),
     )
-}
-
-/// The timeline with its zoom buttons and the lanes' labels beside it.
-fn timeline_box(hint: &str, svg: &str, labels: Vec<String>) -> String {
-    let mut out = format!(
-        "<p class=\"hint\">{hint}</p>\n<div class=\"controls\" hidden><button type=\"button\" data-zoom=\"0.5\">zoom out</button> <button type=\"button\" data-zoom=\"2\">zoom in</button> <button type=\"button\" data-zoom=\"0\">fit</button></div>\n<div class=\"timeline-box\"><div class=\"lane-labels\">",
-    );
-    for label in labels {
-        let mut parts = label.splitn(3, '|');
-        let (text, kind, height) = (
-            parts.next().unwrap_or(""),
-            parts.next().unwrap_or(""),
-            parts.next().unwrap_or("22"),
-        );
-        let _ = write!(
-            out,
-            "<div class=\"{kind}\" style=\"height:{height}px\">{}</div>",
-            escape(text)
-        );
-    }
-    let _ = write!(out, "</div><div class=\"lanes\">{svg}</div></div>");
-    out
 }
 
 /// The fault table: hazards first, then safe stalls, then the rest, each

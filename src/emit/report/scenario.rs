@@ -7,7 +7,7 @@
 use std::fmt::Write;
 
 use super::timeline::{self, Drawn};
-use super::{SCRIPT, STYLE, timeline_box};
+use super::{SCRIPT, STYLE};
 use crate::emit::diagram::escape;
 use crate::program::Signal;
 use crate::simulate::io::IoTrace;
@@ -31,8 +31,6 @@ pub struct ScenarioPage<'a> {
 /// The page.
 pub fn render(page: &ScenarioPage) -> String {
     let name = escape(&crate::emit::one_line(page.name));
-    let lanes = timeline::lanes(page.trace, page.drawn.press_ms, page.signal);
-    let (svg, labels) = timeline::render(&page.drawn, page.trace, &lanes, page.actuator);
     let mut out = String::with_capacity(64 * 1024);
     let _ = write!(
         out,
@@ -44,10 +42,16 @@ pub fn render(page: &ScenarioPage) -> String {
         "<section id=\"happened\">\n<h2>What happened</h2>\n<pre>{}</pre>\n</section>\n",
         escape(page.printed)
     );
+    let timeline = timeline::section(
+        &page.drawn,
+        page.trace,
+        &hint(page.trace),
+        page.signal,
+        page.actuator,
+    );
     let _ = write!(
         out,
-        "<section id=\"timeline\">\n<h2>Timeline of the scenario</h2>\n{}\n</section>\n",
-        timeline_box(&hint(page.trace), &svg, labels)
+        "<section id=\"timeline\">\n<h2>Timeline of the scenario</h2>\n{timeline}\n</section>\n"
     );
     let _ = write!(out, "<script>\n{SCRIPT}</script>\n</body>\n</html>\n");
     out

@@ -20,7 +20,8 @@ const GAP: f64 = 6.0;
 const AXIS: f64 = 24.0;
 
 /// What the timeline draws beside the digital lanes: where its time axis
-/// starts, the shaded spans, each actuator's position at every scan, and
+/// starts, the shaded spans (dwells and waits: the proof's first cycle,
+/// or a scenario's whole run), each actuator's position at every scan, and
 /// the moments marked with a line across every lane (a scenario's events).
 pub struct Drawn<'a> {
     /// The run's time that is 0 on the axis.
@@ -111,6 +112,46 @@ fn edges_attr(edges: &[(u64, u32)]) -> String {
         .join(" ")
 }
 
+/// A page's timeline: how to read it (`hint`, then what the shading
+/// means), the zoom buttons, the lanes' labels and the lanes, each signal
+/// named by `signal`: the one builder of the report's timeline and the
+/// scenario page's, so that both draw the same lanes and shading.
+pub fn section(
+    drawn: &Drawn,
+    trace: &IoTrace,
+    hint: &str,
+    signal: &dyn Fn(crate::program::Signal) -> String,
+    actuator: &dyn Fn(u32) -> String,
+) -> String {
+    let lanes = lanes(trace, drawn.press_ms, signal);
+    let (svg, labels) = render(drawn, trace, &lanes, actuator);
+    let hint = format!("{hint} Shaded: dwells (green) and waits for a machine input (violet).");
+    timeline_box(&hint, &svg, labels)
+}
+
+/// The timeline with its zoom buttons and the lanes' labels beside it.
+fn timeline_box(hint: &str, svg: &str, labels: Vec<String>) -> String {
+    let mut out = format!(
+        "<p class=\"hint\">{}</p>\n<div class=\"controls\" hidden><button type=\"button\" data-zoom=\"0.5\">zoom out</button> <button type=\"button\" data-zoom=\"2\">zoom in</button> <button type=\"button\" data-zoom=\"0\">fit</button></div>\n<div class=\"timeline-box\"><div class=\"lane-labels\">",
+        escape(hint)
+    );
+    for label in labels {
+        let mut parts = label.splitn(3, '|');
+        let (text, kind, height) = (
+            parts.next().unwrap_or(""),
+            parts.next().unwrap_or(""),
+            parts.next().unwrap_or("22"),
+        );
+        let _ = write!(
+            out,
+            "<div class=\"{kind}\" style=\"height:{height}px\">{}</div>",
+            escape(text)
+        );
+    }
+    let _ = write!(out, "</div><div class=\"lanes\">{svg}</div></div>");
+    out
+}
+
 /// The timeline as an SVG (lanes only; their labels are the HTML beside
 /// it, so that they stay put while the lanes scroll and zoom).
 pub fn render(
@@ -120,10 +161,14 @@ pub fn render(
     actuator: &dyn Fn(u32) -> String,
 ) -> (String, Vec<String>) {
     let press = report.press_ms;
+    // To the end of the last scan: its outputs hold until then, and the
+    // run's printed end is that time.
     let end_ms = trace
         .scans
         .last()
-        .map_or(0, |s| s.time_ms.saturating_sub(press))
+        .map_or(0, |s| {
+            (s.time_ms + u64::from(trace.scan_ms)).saturating_sub(press)
+        })
         .max(1000);
     let width = (end_ms as f64 / 1000.0 * PX_PER_S).ceil() + 20.0;
     let x = |ms: u64| ms as f64 / 1000.0 * PX_PER_S;
@@ -134,7 +179,7 @@ pub fn render(
         svg,
         r##"<svg xmlns="http://www.w3.org/2000/svg" class="timeline" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" preserveAspectRatio="none" data-px-per-s="{PX_PER_S}" data-end-ms="{end_ms}">"##
     );
-    // Dwells and waits of the first cycle, shaded over every lane.
+    // Dwells and waits, shaded over every lane.
     for span in report.spans {
         let (a, b) = (
             x(span.from_ms.saturating_sub(press)),

@@ -21,7 +21,8 @@ pub enum When {
     /// At this time of the run (milliseconds from power-up).
     At(u64),
     /// When the program enters this SFC step (0 at rest, k while table
-    /// step k's moves run), the first time after the event before it.
+    /// step k's moves run), the first time after the event before it: at
+    /// a later scan than that event, never the one it happened in.
     Step(usize),
     /// This long after the event before it (after power-up for the first).
     After(u64),
@@ -83,12 +84,21 @@ pub fn parse(
     let (what, when) = text.rsplit_once('@').ok_or_else(|| {
         refuse("expected SIGNAL@WHEN (`STOP@4.0s`, `STOP@500ms`, `STOP@step3`, `STOP@+2s`)".into())
     })?;
+    if what.contains('@') {
+        return Err(refuse(
+            "more than one @: an option gives one event (`--press STOP@4.0s --press STOP@+2s`)"
+                .into(),
+        ));
+    }
     let when = parse_when(when.trim(), program).map_err(refuse)?;
     let act = match option {
         "stick" => {
             let (name, value) = what.rsplit_once('=').ok_or_else(|| {
                 refuse("expected SIGNAL=0 or SIGNAL=1 before the @ (`x21=0@4.0s`)".into())
             })?;
+            if name.trim().is_empty() {
+                return Err(refuse("no signal named before the =".into()));
+            }
             let value = match value.trim() {
                 "0" => false,
                 "1" => true,
@@ -112,18 +122,19 @@ pub fn parse(
 }
 
 fn parse_when(text: &str, program: &StepProgram) -> Result<When, String> {
-    if let Some(step) = text.strip_prefix("step") {
-        let table_step =
-            |s: &&crate::program::ProgramStep| s.kind == crate::program::StepKind::Table;
-        let steps = program.steps.iter().filter(table_step);
-        let last = steps.map(|s| s.number).max().unwrap_or(0);
-        return match step.parse::<usize>() {
-            Ok(k) if k <= last => Ok(When::Step(k)),
-            Ok(k) => Err(format!(
-                "the program has no step {k}: its steps are 0 (at rest) to {last}"
-            )),
-            Err(_) => Err(format!("\"{step}\" is not a step number (`step3`)")),
-        };
+    const FORMS: &str = "(`4.0s`, `500ms`, `step3`, `+2s`)";
+    if text.is_empty() {
+        return Err(format!("nothing after the @: write when {FORMS}"));
+    }
+    let lower = text.to_ascii_lowercase();
+    if let Some(step) = lower.strip_prefix("step") {
+        return parse_step(step, program);
+    }
+    if lower.starts_with("+step") {
+        return Err(format!(
+            "\"{text}\" is a step with a +: write {} (the next time the program enters it after the event before)",
+            &text[1..]
+        ));
     }
     if text.starts_with('-') {
         return Err(format!(
@@ -137,17 +148,48 @@ fn parse_when(text: &str, program: &StepProgram) -> Result<When, String> {
     if crate::cell::without_unit(time) {
         return Err(format!("\"{time}\" has no unit: write {time}s or {time}ms"));
     }
+    if time.contains(',') {
+        // `1,5s` is 1.5 s to a spreadsheet in some languages, and 15 s or
+        // an error in others: a command line writes the point.
+        return Err(format!(
+            "\"{time}\" has a decimal comma: write {}",
+            time.replace(',', ".")
+        ));
+    }
     let ms = parse_duration_in(time, 0..=LATEST_MS).ok_or_else(|| {
-        format!(
-            "\"{time}\" is not a time from 0 s to {} s (`4.0s`, `500ms`, `step3`, `+2s`)",
-            LATEST_MS / 1000
-        )
+        let finer = crate::cell::plain_time(time)
+            && parse_duration_in(time, 0..=u32::MAX).is_none()
+            && time.split_once('.').is_some();
+        if finer {
+            format!("\"{time}\" is finer than a millisecond: times are whole milliseconds (`1.5s`, `1500ms`)")
+        } else {
+            format!(
+                "\"{time}\" is not a time from 0 s to {} s {FORMS}",
+                LATEST_MS / 1000
+            )
+        }
     })? as u64;
     Ok(if relative {
         When::After(ms)
     } else {
         When::At(ms)
     })
+}
+
+/// `stepK` (the text after `step`): an SFC step of the program, 0 at rest
+/// to its last table step. The closing transition enters step 0, as the
+/// printed table says (`step 0   end of cycle: at rest`).
+fn parse_step(step: &str, program: &StepProgram) -> Result<When, String> {
+    let table_step = |s: &&crate::program::ProgramStep| s.kind == crate::program::StepKind::Table;
+    let steps = program.steps.iter().filter(table_step);
+    let last = steps.map(|s| s.number).max().unwrap_or(0);
+    match step.parse::<usize>() {
+        Ok(k) if k <= last => Ok(When::Step(k)),
+        Ok(k) => Err(format!(
+            "the program has no step {k}: its steps are 0 (at rest, entered again at the end of a cycle) to {last}"
+        )),
+        Err(_) => Err(format!("\"{step}\" is not a step number (`step3`)")),
+    }
 }
 
 /// The program input called `name` by any of its names.
@@ -177,6 +219,22 @@ fn input(
             mode_of(button)
         ));
     }
+    if let Some(n) = naming
+        .actuator_called(name)
+        .filter(|n| table.actuators.iter().any(|a| a.number == *n))
+    {
+        let sensors: Vec<String> = program
+            .signals
+            .inputs
+            .iter()
+            .filter(|s| matches!(s, Signal::Sensor { actuator, .. } if *actuator == n))
+            .map(|s| naming.designation(*s, table))
+            .collect();
+        return Err(format!(
+            "{name} is an actuator: stick one of its sensors instead ({})",
+            sensors.join(", ")
+        ));
+    }
     let outputs = program.steps.iter().flat_map(|s| &s.actions);
     let outputs = outputs.chain(program.rungs.iter().flat_map(|r| &r.actions));
     if let Some(output) = outputs
@@ -188,13 +246,14 @@ fn input(
             output.symbol()
         ));
     }
+    // In the names the engineer chose (`--designations iso`: 2B3).
     Err(format!(
         "the program has no input called \"{name}\" (its inputs: {})",
         program
             .signals
             .inputs
             .iter()
-            .map(|s| s.symbol())
+            .map(|s| naming.designation(*s, table))
             .collect::<Vec<_>>()
             .join(", ")
     ))
@@ -230,16 +289,12 @@ pub const BUTTONS: [Signal; 7] = [
     Signal::StepButton,
 ];
 
-/// The name an operator calls a button beside its symbol: RESET for
-/// RESET_PB (whose symbol avoids an FST keyword), STEP for STEP_PB.
+/// The name an operator calls a button beside its symbol (RESET for
+/// RESET_PB): the one list the table's names are checked against too.
 fn alias(signal: Signal) -> String {
-    match signal {
-        Signal::Reset => "RESET",
-        Signal::StepButton => "STEP",
-        Signal::EStop => "EMERGENCY_STOP",
-        _ => "",
-    }
-    .to_string()
+    crate::names::button_alias(&signal.symbol())
+        .unwrap_or("")
+        .to_string()
 }
 
 /// The `--modes` word that gives the program `button`.
@@ -250,96 +305,5 @@ fn mode_of(button: Signal) -> &'static str {
         Signal::Reset => "reset",
         Signal::Continuous => "continuous",
         _ => "step",
-    }
-}
-
-/// The refusals of a scenario as a whole, its times resolved to the scans
-/// (`scan_ms`) they happen in: an absolute time before the event before it,
-/// an event past [`LATEST_MS`] (also by a chain of `+` times), and one
-/// signal twice at one scan (written twice, or contradicting itself).
-pub fn check(events: &[Event], scan_ms: u32) -> Vec<String> {
-    let scan = u64::from(scan_ms.max(1));
-    let on_scan = |t: u64| t.div_ceil(scan) * scan;
-    let mut refused = Vec::new();
-    // The scan of the event before, when known (not after a step's event),
-    // and how far `+` times reach past the last step's event.
-    let mut before: Option<(u64, &str)> = Some((0, ""));
-    let mut resolved: Vec<Option<u64>> = Vec::new();
-    let mut reach = 0;
-    for event in events {
-        let at = match event.when {
-            When::At(t) => {
-                if let Some((b, written)) = before.filter(|(b, w)| !w.is_empty() && *b > on_scan(t))
-                {
-                    refused.push(format!(
-                        "{}: {} s is before the event written before it ({written}, at {} s): events happen in the order written",
-                        event.written,
-                        t as f64 / 1000.0,
-                        b as f64 / 1000.0
-                    ));
-                }
-                reach = 0;
-                Some(on_scan(t))
-            }
-            When::After(d) => {
-                reach += d;
-                before.map(|(b, _)| on_scan(b + d))
-            }
-            When::Step(_) => {
-                reach = 0;
-                None
-            }
-        };
-        if at.is_some_and(|t| t > u64::from(LATEST_MS)) || reach > u64::from(LATEST_MS) {
-            refused.push(format!(
-                "{}: happens after {} s, the latest an event may name",
-                event.written,
-                LATEST_MS / 1000
-            ));
-        }
-        let k = resolved.len();
-        for (o, other) in events[..k].iter().enumerate() {
-            let same = match (at, resolved[o]) {
-                (Some(a), Some(b)) => a == b,
-                _ => other.when == event.when,
-            };
-            if !same || other.act.signal() != event.act.signal() {
-                continue;
-            }
-            if other.act == event.act {
-                refused.push(format!(
-                    "{}: written twice for one scan; the second would do nothing",
-                    event.written
-                ));
-            } else {
-                refused.push(format!(
-                    "{}: {} at the same scan",
-                    event.written,
-                    if contradicts(other.act, event.act) {
-                        format!("contradicts {}", other.written)
-                    } else {
-                        format!("one signal twice with {}", other.written)
-                    }
-                ));
-            }
-        }
-        resolved.push(at);
-        before = at.map(|t| (t, event.written.as_str()));
-    }
-    refused
-}
-
-/// Two acts on one signal that cannot both hold at one moment: a press
-/// and a release, stuck at 0 and at 1, a button pressed and stuck.
-fn contradicts(a: Act, b: Act) -> bool {
-    if a.signal() != b.signal() {
-        return false;
-    }
-    match (a, b) {
-        (Act::Release(_), Act::Release(_)) => false,
-        (Act::Release(_), _) | (_, Act::Release(_)) => true,
-        (Act::Stick(_, x), Act::Stick(_, y)) => x != y,
-        (Act::Stick(..), _) | (_, Act::Stick(..)) => true,
-        _ => false,
     }
 }

@@ -7,6 +7,7 @@ use crate::program::Signal;
 use crate::program::StepProgram;
 use crate::table::StepTable;
 
+pub mod check;
 pub mod events;
 pub mod table;
 
@@ -52,6 +53,9 @@ pub struct ScenarioReport {
     /// The run stopped at this time because it had run [`SCAN_BUDGET`]
     /// scans one by one, before its events and their tail were over.
     pub cut_ms: Option<u64>,
+    /// Dwells and waits for a machine input, as they ran (the timeline
+    /// shades them as the report's does).
+    pub spans: Vec<super::Span>,
 }
 
 /// The most scans a scenario runs one by one (quiet scans passed at once
@@ -263,6 +267,9 @@ impl Script for Events<'_> {
             happened.push((now, self.next));
             self.last_ms = now;
             self.next += 1;
+            // A step's event after this one waits for the program to enter
+            // its step anew: being in it now is not entering it.
+            self.step_before = Some(step);
         }
         self.step_before = Some(step);
     }
@@ -375,6 +382,7 @@ fn run_script(
         happened,
         auto_start_ms: script.auto_start_ms(),
         cut_ms,
+        spans: std::mem::take(&mut run.spans),
     };
     (report, io)
 }

@@ -6,7 +6,7 @@
 use std::fmt::Write;
 
 use super::{Event, ScenarioReport};
-use crate::program::{Signal, StepProgram};
+use crate::program::{Signal, StepKind, StepProgram};
 use crate::simulate::ProblemKind;
 
 /// What the table names things by: the naming authority's designation of
@@ -36,16 +36,15 @@ fn lines(
     if let Some(press) = report.auto_start_ms {
         lines.push((press, 0, "START pressed (as in the proof)".to_string()));
     }
-    for (t, step) in &report.fired {
-        let title = program
-            .steps
-            .iter()
-            .find(|s| s.number == *step)
-            .map_or(String::new(), |s| s.title.clone());
-        let title = if *step == 0 {
-            "at rest".to_string()
-        } else {
-            title
+    // Each step by the SFC step it enters, the number `@stepK` takes: the
+    // closing transition enters step 0.
+    for (t, number) in &report.fired {
+        let index = program.steps.iter().position(|s| s.number == *number);
+        let step = index.map_or(*number, |i| program.step_entered(i));
+        let title = match index.map(|i| &program.steps[i]) {
+            Some(s) if s.kind == StepKind::Table => s.title.clone(),
+            Some(_) => "end of cycle: at rest".to_string(),
+            None => String::new(),
         };
         lines.push((*t, 1, format!("step {step:<3} {title}")));
     }
@@ -158,7 +157,24 @@ pub fn render(
             event.written
         );
     }
+    if let Some(why) = no_start(report, events) {
+        let _ = writeln!(out, "{why}");
+    }
     out.trim_end().to_string()
+}
+
+/// Why no cycle ran when events waited for one: a START event turns off
+/// the press at 0.5 s, and the START events written came after the ones
+/// waiting.
+fn no_start(report: &ScenarioReport, events: &[Event]) -> Option<String> {
+    let waiting = report.happened.len() < events.len();
+    let start = events.iter().find(|e| e.act.signal() == Signal::Start)?;
+    (waiting && report.fired.is_empty() && report.auto_start_ms.is_none()).then(|| {
+        format!(
+            "no cycle ran: with a START event ({}) the scenario presses START only where it says, not at 0.5 s as the proof does",
+            start.written
+        )
+    })
 }
 
 /// `ended at T s in step K; C1 at 1.00, …; on: y1+, spray`: the step, every
