@@ -167,9 +167,17 @@ pub fn mitigations(
         .into_iter()
         .filter(|n| !has(options.safety, n))
         .collect();
+    // The checks alone, side by side: each is a program of its own.
+    use rayon::prelude::*;
+    let alone: Vec<Option<Vec<Trial>>> = missing
+        .par_iter()
+        .map(|name| run_trials(table, options, settings, &hazards, &[name]))
+        .collect();
     let mut trials: Vec<Vec<Trial>> = vec![Vec::new(); hazards.len()];
-    for name in &missing {
-        add_trials(table, options, settings, &hazards, &[name], &mut trials);
+    for found in alone.into_iter().flatten() {
+        for (i, trial) in found.into_iter().enumerate() {
+            trials[i].push(trial);
+        }
     }
     // Together, for the hazards no single check catches.
     let uncaught: Vec<usize> = (0..hazards.len())
@@ -177,10 +185,9 @@ pub fn mitigations(
         .collect();
     if missing.len() > 1 && !uncaught.is_empty() {
         let rest: Vec<&FaultCase> = uncaught.iter().map(|&i| hazards[i]).collect();
-        let mut together = vec![Vec::new(); rest.len()];
-        add_trials(table, options, settings, &rest, &missing, &mut together);
-        for (i, mut t) in uncaught.into_iter().zip(together) {
-            trials[i].append(&mut t);
+        let together = run_trials(table, options, settings, &rest, &missing);
+        for (i, trial) in uncaught.into_iter().zip(together.into_iter().flatten()) {
+            trials[i].push(trial);
         }
     }
     let mut verified = hazards.iter().zip(trials).map(|(case, trials)| {
@@ -194,22 +201,24 @@ pub fn mitigations(
     faults
         .cases
         .iter()
-        .map(|c| (c.outcome == Outcome::Hazard).then(|| verified.next()).flatten())
+        .map(|c| {
+            (c.outcome == Outcome::Hazard)
+                .then(|| verified.next())
+                .flatten()
+        })
         .collect()
 }
 
-/// Runs `cases` on the program with the checks `added` and pushes each
-/// one's trial. A program that does not pass its own healthy cycle with
-/// them (a check that stops a sound machine) is no mitigation: nothing is
-/// pushed.
-fn add_trials(
+/// Runs `cases` on the program with the checks `added`: each one's trial,
+/// in their order. A program that does not pass its own healthy cycle with
+/// them (a check that stops a sound machine) is no mitigation: `None`.
+fn run_trials(
     table: &StepTable,
     options: &ProgramOptions,
     settings: &SimSettings,
     cases: &[&FaultCase],
     added: &[&'static str],
-    trials: &mut [Vec<Trial>],
-) {
+) -> Option<Vec<Trial>> {
     let safety = added.iter().fold(options.safety, |s, n| with(s, n));
     let options = ProgramOptions {
         safety,
@@ -226,7 +235,7 @@ fn add_trials(
         },
     );
     if !healthy.report.passed {
-        return;
+        return None;
     }
     let sets = cases.iter().map(|c| c.faults.clone()).collect();
     let run = analyse_sets(
@@ -239,14 +248,13 @@ fn add_trials(
         Some(healthy),
     );
     let moments = run.moments.len();
-    for (case, out) in run.cases.into_iter().zip(trials.iter_mut()) {
-        out.push(Trial {
-            safety,
-            added: added.to_vec(),
-            case,
-            moments,
-        });
-    }
+    let trials = run.cases.into_iter().map(|case| Trial {
+        safety,
+        added: added.to_vec(),
+        case,
+        moments,
+    });
+    Some(trials.collect())
 }
 
 /// What would catch the hazard that remains, by what it is: the kinds of

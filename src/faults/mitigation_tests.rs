@@ -39,7 +39,10 @@ fn mitigation_of(
         .expect("the fault is in the table");
     let case = faults.cases[i].clone();
     assert_eq!(case.outcome, Outcome::Hazard, "{}", case.explanation);
-    (case, verified[i].clone().expect("a hazard has a mitigation"))
+    (
+        case,
+        verified[i].clone().expect("a hazard has a mitigation"),
+    )
 }
 
 fn trial<'m>(m: &'m Mitigation, option: &str) -> &'m Trial {
@@ -80,7 +83,11 @@ fn the_watchdog_catches_a_dead_sensor_that_leaves_a_heater_on() {
     let mut options = ProgramOptions::default();
     options.halt.off_on_halt.insert(heater);
     let (case, m) = mitigation_of(&t, &options, "x11", false);
-    assert!(case.explanation.contains("not hold-safe"), "{}", case.explanation);
+    assert!(
+        case.explanation.contains("not hold-safe"),
+        "{}",
+        case.explanation
+    );
     let watchdog = trial(&m, "--safety watchdog");
     assert!(watchdog.catches());
     assert_eq!(watchdog.case.outcome, Outcome::SafeStall);
@@ -111,7 +118,10 @@ fn precheck_and_plausibility_narrow_a_shorted_end_sensor_to_its_travel() {
         let narrowed = trial(&m, option);
         assert!(!narrowed.catches());
         let left = hazard_phases(narrowed, &t, &options);
-        assert!(!left.is_empty() && left.len() < narrowed.moments, "{left:?}");
+        assert!(
+            !left.is_empty() && left.len() < narrowed.moments,
+            "{left:?}"
+        );
         assert!(
             left.iter()
                 .all(|p| matches!(p, Phase::Moving(1) | Phase::BeforeStep(2))),
@@ -119,14 +129,23 @@ fn precheck_and_plausibility_narrow_a_shorted_end_sensor_to_its_travel() {
         );
     }
     for option in ["--safety edge", "--safety watchdog"] {
-        assert_eq!(trial(&m, option).hazard_moments(), trial(&m, option).moments);
+        assert_eq!(
+            trial(&m, option).hazard_moments(),
+            trial(&m, option).moments
+        );
     }
     // None catches it alone, so all four are tried together.
     assert!(!trial(&m, "--safety all").catches());
     assert!(m.remedy.contains("minimum travel time"), "{}", m.remedy);
     let text = m.text();
-    assert!(text.contains("not caught by --safety edge or --safety watchdog"), "{text}");
-    assert!(text.contains("no built-in check catches it at every moment"), "{text}");
+    assert!(
+        text.contains("not caught by --safety edge or --safety watchdog"),
+        "{text}"
+    );
+    assert!(
+        text.contains("no built-in check catches it at every moment"),
+        "{text}"
+    );
 }
 
 /// START shorted starts the machine by itself. With the edge check a

@@ -52,7 +52,11 @@ fn report_hazards(page: &str) -> (Vec<String>, BTreeMap<String, String>) {
     let header = head.captures_iter(body).map(|c| c[1].to_string()).collect();
     let row = Regex::new(r#"(?s)<tr class="hazard"[^>]*>(.*?)</tr>"#).unwrap();
     let cell = Regex::new(r"(?s)<td>(.*?)</td>").unwrap();
-    let unescape = |t: &str| t.replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&");
+    let unescape = |t: &str| {
+        t.replace("&lt;", "<")
+            .replace("&gt;", ">")
+            .replace("&amp;", "&")
+    };
     let hazards = row
         .captures_iter(body)
         .map(|r| {
@@ -109,7 +113,11 @@ fn the_reports_mitigations_are_what_faults_with_each_check_shows() {
             if outcome != "hazard" {
                 caught = true;
                 let alarm = if detected == "alarm" { ", alarm" } else { "" };
-                assert_eq!(clause, format!("caught by {option} ({outcome}{alarm})"), "{fault}");
+                assert_eq!(
+                    clause,
+                    format!("caught by {option} ({outcome}{alarm})"),
+                    "{fault}"
+                );
             } else if appears != "at every moment" {
                 assert!(clause.starts_with("under "), "{fault}: {clause}");
                 assert!(
@@ -121,7 +129,9 @@ fn the_reports_mitigations_are_what_faults_with_each_check_shows() {
             }
         }
         assert_eq!(
-            cell.contains("no built-in check catches it at every moment; what would (not simulated): "),
+            cell.contains(
+                "no built-in check catches it at every moment; what would (not simulated): "
+            ),
             !caught,
             "{fault}: {cell}"
         );

@@ -118,9 +118,16 @@ fn check_page(folder: &Path, build: &Build) {
     let rows = fault_rows(&page);
     for row in &rows {
         let mitigation = row.last().unwrap();
-        assert_eq!(row[3] == "hazard", !mitigation.is_empty(), "{what}: {row:?}");
+        assert_eq!(
+            row[3] == "hazard",
+            !mitigation.is_empty(),
+            "{what}: {row:?}"
+        );
     }
-    let rows: Vec<Vec<String>> = rows.into_iter().map(|r| r[..r.len() - 1].to_vec()).collect();
+    let rows: Vec<Vec<String>> = rows
+        .into_iter()
+        .map(|r| r[..r.len() - 1].to_vec())
+        .collect();
     assert_eq!(rows, expected, "{what}");
 
     // The timeline is the simulated run, scan for scan at sampled moments.
