@@ -472,6 +472,7 @@ pub fn generate_observed(
         symbols: &symbols,
         simulation: Some(&simulation),
         faults: None,
+        mitigations: None,
         io_trace: io_trace.as_ref(),
         settings: &settings_rows,
         templates: &settings.templates,
@@ -549,10 +550,24 @@ fn render_beside_faults(
                     healthy,
                 )
             });
+            // The report names, per hazard, what catches it: verified by
+            // running the hazards again under each check the program lacks.
+            let mitigations = fault_table
+                .as_ref()
+                .filter(|_| late.contains(&OutputKind::Report))
+                .map(|f| {
+                    faults::mitigation::mitigations(
+                        table,
+                        &settings.program,
+                        &settings.simulation,
+                        f,
+                    )
+                });
             let late = emit::render_each(
                 late,
                 EmitInput {
                     faults: fault_table.as_ref(),
+                    mitigations: mitigations.as_deref(),
                     ..input
                 },
             );

@@ -61,6 +61,9 @@ pub struct EmitInput<'a> {
     pub simulation: Option<&'a SimReport>,
     /// The fault table, for the FAULTS sheet.
     pub faults: Option<&'a FaultTable>,
+    /// The verified mitigation of each hazard of `faults`, in its cases'
+    /// order (`None` for a case that is no hazard), for the report.
+    pub mitigations: Option<&'a [Option<crate::faults::mitigation::Mitigation>]>,
     /// Every scan of the simulation's inputs, outputs and step, for the
     /// report's timeline (recorded only when the report is written).
     pub io_trace: Option<&'a crate::simulate::io::IoTrace>,

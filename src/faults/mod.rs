@@ -5,6 +5,7 @@
 
 mod cases;
 mod healthy;
+pub mod mitigation;
 mod phases;
 #[cfg(test)]
 mod step_tests;
@@ -299,8 +300,22 @@ pub fn analyse_from(
     progress: &(dyn Fn(usize, usize) + Sync),
     healthy: Option<Healthy>,
 ) -> FaultTable {
+    let sets = fault_sets(program, at_once);
+    analyse_sets(table, program, settings, sets, runs, progress, healthy)
+}
+
+/// Like [`analyse_from`], for the fault sets given rather than every set of
+/// up to so many faults: the mitigations re-run a table's hazards alone.
+pub fn analyse_sets(
+    table: &StepTable,
+    program: &StepProgram,
+    settings: &SimSettings,
+    mut sets: Vec<Vec<Fault>>,
+    runs: FaultRuns,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    healthy: Option<Healthy>,
+) -> FaultTable {
     use rayon::prelude::*;
-    let mut sets = fault_sets(program, at_once);
     let simulator = Simulator::new(table, program);
     // What the healthy cycle does is the yardstick: the combinations of
     // positions it reaches are the ones a faulty run may reach, its

@@ -37,6 +37,7 @@ mod long_comments;
 mod machine;
 mod machine_limits;
 mod messy;
+mod mitigation;
 mod modes;
 mod motor;
 mod name_aliases;

@@ -257,6 +257,7 @@ fn step_programs_and_template_contexts() {
             symbols: &c.symbols,
             simulation: Some(&c.simulation),
             faults: c.faults.as_ref(),
+            mitigations: None,
             io_trace: None,
             settings: &[],
             templates: &settings.templates,

@@ -204,6 +204,25 @@ fn every_report_opens_in_chromium_without_errors_or_requests() {
                 "{stem}: {id}"
             );
         }
+        // The fault table's mitigation column, filled for each hazard
+        // (what it says is checked against `faults --safety` in
+        // tests/integration/mitigation.rs).
+        assert!(
+            dom.contains("<th>mitigation</th>"),
+            "{stem}: no mitigation column"
+        );
+        let hazard_rows = dom.matches("<tr class=\"hazard\"").count();
+        let mitigated = [
+            "caught by --safety",
+            "it stays a hazard",
+            "not caught by --safety",
+        ]
+        .iter()
+        .any(|m| dom.contains(m));
+        assert!(
+            hazard_rows == 0 || mitigated,
+            "{stem}: hazards without a mitigation"
+        );
     }
 }
 

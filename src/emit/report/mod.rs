@@ -16,6 +16,7 @@ use std::fmt::Write;
 use super::EmitInput;
 use super::diagram::{DiagramKind, escape};
 use crate::faults::Outcome;
+use crate::faults::mitigation::Mitigation;
 
 const STYLE: &str = include_str!("report.css");
 const SCRIPT: &str = include_str!("report.js");
@@ -48,6 +49,7 @@ pub const SECTIONS: [(&str, &str); 8] = [
 pub fn render(input: &EmitInput) -> Result<String, String> {
     let simulation = input.simulation.ok_or("not simulated")?;
     let faults = input.faults.ok_or("no fault analysis")?;
+    let mitigations = input.mitigations.ok_or("no mitigations of the hazards")?;
     let name = escape(&super::one_line(input.name));
     let mut page = String::with_capacity(256 * 1024);
     let _ = write!(
@@ -86,7 +88,7 @@ pub fn render(input: &EmitInput) -> Result<String, String> {
         ),
     };
     section(&mut page, 6, &timeline);
-    section(&mut page, 7, &fault_table(input, faults));
+    section(&mut page, 7, &fault_table(input, faults, mitigations));
     let _ = write!(page, "<script>\n{SCRIPT}</script>\n</body>\n</html>\n");
     Ok(page)
 }
@@ -207,26 +209,44 @@ fn timeline_html(
 
 /// The fault table: hazards first, then safe stalls, then the rest, each
 /// in the analysis's order, coloured by outcome; filters by signal and
-/// outcome work with the script, every row shows without it.
-fn fault_table(input: &EmitInput, faults: &crate::faults::FaultTable) -> String {
+/// outcome work with the script, every row shows without it. Each row is
+/// `NAME.faults.csv`'s with one more cell: for a hazard, its verified
+/// mitigation (`crate::faults::mitigation`).
+fn fault_table(
+    input: &EmitInput,
+    faults: &crate::faults::FaultTable,
+    mitigations: &[Option<Mitigation>],
+) -> String {
     let rows = super::faults_csv::rows(faults, &|s| input.symbols.designation(s), &|t| {
         input.symbols.explain(t)
     });
-    let mut order: Vec<(Outcome, [String; 8])> =
-        faults.cases.iter().map(|c| c.outcome).zip(rows).collect();
+    let mut order: Vec<(Outcome, Vec<String>)> = faults
+        .cases
+        .iter()
+        .zip(rows)
+        .enumerate()
+        .map(|(i, (case, cells))| {
+            let mut cells = cells.to_vec();
+            let mitigation = mitigations.get(i).and_then(Option::as_ref);
+            cells.push(mitigation.map_or_else(String::new, |m| input.symbols.explain(&m.text())));
+            (case.outcome, cells)
+        })
+        .collect();
     order.sort_by_key(|(outcome, _)| std::cmp::Reverse(*outcome as u8));
     let hazards = order.iter().filter(|(o, _)| *o == Outcome::Hazard).count();
     let mut out = format!(
-        "<p>{hazards} hazard(s) among {} fault case(s): every input stuck at 1 and at 0, appearing at every moment of the cycle.</p>\n<div class=\"controls\" hidden><label>signal <input type=\"search\" id=\"fault-signal\" placeholder=\"e.g. x11\"></label> <label>outcome <select id=\"fault-outcome\"><option value=\"\">any</option><option>hazard</option><option>safe stall</option><option>no effect</option></select></label> <span id=\"fault-count\"></span></div>\n",
+        "<p>{hazards} hazard(s) among {} fault case(s): every input stuck at 1 and at 0, appearing at every moment of the cycle. The mitigation of each hazard is verified: its faults are run again, at every moment, with each safety check the program does not carry; a check catches the hazard when no moment gives one any more.</p>\n<div class=\"controls\" hidden><label>signal <input type=\"search\" id=\"fault-signal\" placeholder=\"e.g. x11\"></label> <label>outcome <select id=\"fault-outcome\"><option value=\"\">any</option><option>hazard</option><option>safe stall</option><option>no effect</option></select></label> <span id=\"fault-count\"></span></div>\n",
         order.len()
     );
     let rows = order.into_iter().map(|(outcome, cells)| {
         let class = outcome.label().replace(' ', "-");
         (
             format!(" class=\"{class}\" data-signals=\"{}\"", escape(&cells[1])),
-            cells.to_vec(),
+            cells,
         )
     });
-    out.push_str(&table("faults", &super::faults_csv::COLUMNS, rows));
+    let mut header = super::faults_csv::COLUMNS.to_vec();
+    header.push("mitigation");
+    out.push_str(&table("faults", &header, rows));
     out
 }

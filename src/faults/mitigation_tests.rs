@@ -1,0 +1,226 @@
+//! One small table per kind of mitigation, where the answer is known: a
+//! halt that switches a heater off, checks that narrow a short to the
+//! moments its cylinder travels, the edge on START, and a dead middle
+//! sensor nothing in the program catches; and every trial is the fault
+//! table `faults --safety …` gives for the program with those checks.
+
+use super::*;
+use crate::faults::{Phase, analyse};
+
+fn table(rows: &[&[&str]]) -> StepTable {
+    crate::table::from_rows("t.csv", rows).expect("a valid table")
+}
+
+fn build(table: &StepTable, options: &ProgramOptions) -> crate::program::StepProgram {
+    program::build(
+        table,
+        options,
+        &crate::actuator::Valves::default(),
+        &crate::stroke::Strokes::default(),
+    )
+}
+
+/// The table's fault analysis under `options` and the mitigation of the
+/// hazard of `signal` stuck at `stuck_at`.
+fn mitigation_of(
+    table: &StepTable,
+    options: &ProgramOptions,
+    signal: &str,
+    stuck_at: bool,
+) -> (FaultCase, Mitigation) {
+    let settings = SimSettings::default();
+    let faults = analyse(table, &build(table, options), &settings, 1);
+    let verified = mitigations(table, options, &settings, &faults);
+    assert_eq!(verified.len(), faults.cases.len());
+    let i = faults
+        .cases
+        .iter()
+        .position(|c| c.faults[0].signal.symbol() == signal && c.faults[0].stuck_at == stuck_at)
+        .expect("the fault is in the table");
+    let case = faults.cases[i].clone();
+    assert_eq!(case.outcome, Outcome::Hazard, "{}", case.explanation);
+    (
+        case,
+        verified[i].clone().expect("a hazard has a mitigation"),
+    )
+}
+
+fn trial<'m>(m: &'m Mitigation, option: &str) -> &'m Trial {
+    m.trials
+        .iter()
+        .find(|t| t.option() == option)
+        .unwrap_or_else(|| panic!("{option} tried: {}", m.text()))
+}
+
+/// The phases at which a trial still gives a hazard.
+fn hazard_phases(t: &Trial, table: &StepTable, options: &ProgramOptions) -> Vec<Phase> {
+    let options = ProgramOptions {
+        safety: t.safety,
+        ..options.clone()
+    };
+    let faults = analyse(table, &build(table, &options), &SimSettings::default(), 1);
+    faults
+        .moments
+        .iter()
+        .zip(&t.case.outcomes)
+        .filter(|(_, o)| **o == Outcome::Hazard)
+        .map(|(m, _)| m.phase)
+        .collect()
+}
+
+/// A dead end sensor stops the machine with its heater on: an energy
+/// hazard. With SETTINGS `on halt | heater off` the watchdog catches it: it
+/// halts the machine, and the halt switches the heater off (a safe stall
+/// with its alarm, at every moment). Without that row a halt leaves the
+/// heater on, and the watchdog is no mitigation.
+#[test]
+fn the_watchdog_catches_a_dead_sensor_that_leaves_a_heater_on() {
+    let t = table(&[&["C1+1; Y:heater+"], &["C1-0; Y:heater-"]]);
+    let (_, m) = mitigation_of(&t, &ProgramOptions::default(), "x11", false);
+    assert!(!trial(&m, "--safety watchdog").catches(), "{}", m.text());
+    assert!(m.remedy.contains("on halt"), "{}", m.remedy);
+    let heater = Signal::MachineOutput(crate::cell::Name::new("heater").unwrap());
+    let mut options = ProgramOptions::default();
+    options.halt.off_on_halt.insert(heater);
+    let (case, m) = mitigation_of(&t, &options, "x11", false);
+    assert!(
+        case.explanation.contains("not hold-safe"),
+        "{}",
+        case.explanation
+    );
+    let watchdog = trial(&m, "--safety watchdog");
+    assert!(watchdog.catches());
+    assert_eq!(watchdog.case.outcome, Outcome::SafeStall);
+    assert!(watchdog.case.detected);
+    assert!(!trial(&m, "--safety edge").catches());
+    assert!(m.remedy.is_empty(), "caught: no remedy outside the program");
+    assert!(
+        m.text()
+            .starts_with("caught by --safety watchdog (safe stall, alarm)"),
+        "{}",
+        m.text()
+    );
+    // Caught by a single check: the checks together are not tried.
+    assert!(m.trials.iter().all(|t| t.added.len() == 1));
+}
+
+/// A shorted end sensor starts the next step early. The precheck (the
+/// move waits for its target sensor to be off) and the plausibility check
+/// (two sensors of one cylinder on) catch it when it is there before the
+/// cylinder leaves; a short while the cylinder travels towards the sensor
+/// reads as the arrival, and stays a hazard under every check.
+#[test]
+fn precheck_and_plausibility_narrow_a_shorted_end_sensor_to_its_travel() {
+    let t = table(&[&["C1+1"], &["C1-0"]]);
+    let options = ProgramOptions::default();
+    let (_, m) = mitigation_of(&t, &options, "x11", true);
+    for option in ["--safety precheck", "--safety plausibility"] {
+        let narrowed = trial(&m, option);
+        assert!(!narrowed.catches());
+        let left = hazard_phases(narrowed, &t, &options);
+        assert!(
+            !left.is_empty() && left.len() < narrowed.moments,
+            "{left:?}"
+        );
+        assert!(
+            left.iter()
+                .all(|p| matches!(p, Phase::Moving(1) | Phase::BeforeStep(2))),
+            "{option}: {left:?}"
+        );
+    }
+    for option in ["--safety edge", "--safety watchdog"] {
+        assert_eq!(
+            trial(&m, option).hazard_moments(),
+            trial(&m, option).moments
+        );
+    }
+    // None catches it alone, so all four are tried together.
+    assert!(!trial(&m, "--safety all").catches());
+    assert!(m.remedy.contains("minimum travel time"), "{}", m.remedy);
+    let text = m.text();
+    assert!(
+        text.contains("not caught by --safety edge or --safety watchdog"),
+        "{text}"
+    );
+    assert!(
+        text.contains("no built-in check catches it at every moment"),
+        "{text}"
+    );
+}
+
+/// START shorted starts the machine by itself. With the edge check a
+/// START held from power-up is no press; shorting at rest after a cycle
+/// it reads exactly as one.
+#[test]
+fn the_edge_narrows_a_shorted_start_to_rest_after_the_cycle() {
+    let t = table(&[&["C1+1"], &["C1-0"]]);
+    let options = ProgramOptions::default();
+    let (_, m) = mitigation_of(&t, &options, "START", true);
+    let edge = trial(&m, "--safety edge");
+    assert_eq!(hazard_phases(edge, &t, &options), [Phase::AtRest]);
+    assert!(m.remedy.contains("two-channel"), "{}", m.remedy);
+}
+
+/// A dead middle sensor lets its cylinder run on into positions the
+/// cycle never has: no check on the inputs catches the overrun in time.
+#[test]
+fn no_check_catches_a_dead_middle_sensor() {
+    let t = crate::program::tests::paper_table();
+    let options = ProgramOptions::default();
+    let (case, m) = mitigation_of(&t, &options, "x22", false);
+    assert!(m.trials.iter().all(|t| !t.catches()));
+    assert_eq!(m.trials.len(), 5, "four checks alone, then all four");
+    for t in &m.trials {
+        assert_eq!(t.case.outcomes[0], Outcome::Hazard, "{}", t.option());
+    }
+    assert!(m.remedy.starts_with("a mechanical stop"), "{}", m.remedy);
+    assert!(case.explanation.contains(" ran through "));
+}
+
+/// Verified, not guessed: each trial is the case of the same faults in the
+/// fault table of the program with those checks, as `faults --safety`
+/// makes it; the checks the program carries are not proposed, and the
+/// option names them with the one added (`--safety` replaces the list).
+#[test]
+fn each_trial_is_the_fault_table_of_the_program_with_its_checks() {
+    let t = crate::program::tests::paper_table();
+    let options = ProgramOptions {
+        safety: Safety {
+            plausibility: true,
+            ..Safety::default()
+        },
+        ..ProgramOptions::default()
+    };
+    let settings = SimSettings::default();
+    let faults = analyse(&t, &build(&t, &options), &settings, 1);
+    let verified = mitigations(&t, &options, &settings, &faults);
+    let mut checked = 0;
+    for (case, m) in faults.cases.iter().zip(&verified) {
+        let Some(m) = m else {
+            assert_ne!(case.outcome, Outcome::Hazard);
+            continue;
+        };
+        for trial in &m.trials {
+            assert!(!trial.added.contains(&"plausibility"));
+            assert!(trial.safety.plausibility, "the check carried stays");
+            let with = ProgramOptions {
+                safety: trial.safety,
+                ..options.clone()
+            };
+            let full = analyse(&t, &build(&t, &with), &settings, 1);
+            let same = full.cases.iter().find(|c| c.faults == case.faults).unwrap();
+            assert_eq!(&trial.case, same, "{}", trial.option());
+            assert_eq!(trial.moments, full.moments.len());
+            checked += 1;
+        }
+    }
+    assert!(checked > 0);
+    let m = verified.iter().flatten().next().unwrap();
+    assert!(
+        m.trials
+            .iter()
+            .any(|t| t.option() == "--safety precheck,plausibility"),
+        "{}",
+        m.text()
+    );
+}
