@@ -137,8 +137,11 @@ impl<'a> Run<'a> {
         &self.plc
     }
 
-    /// The problems found and the I/O recorded, once the run is over.
-    pub(in crate::simulate) fn into_findings(self) -> (Vec<Problem>, Option<io::IoTrace>) {
-        (self.problems, self.io)
+    /// The problems found, the I/O recorded and the dwell and wait spans
+    /// the run went through, once it is over.
+    pub(in crate::simulate) fn into_findings(
+        self,
+    ) -> (Vec<Problem>, Option<io::IoTrace>, Vec<Span>) {
+        (self.problems, self.io, self.spans)
     }
 }

@@ -374,7 +374,7 @@ fn run_script(
             }
         }
     }
-    let (problems, io) = run.into_findings();
+    let (problems, io, spans) = run.into_findings();
     let report = ScenarioReport {
         fired,
         samples,
@@ -382,7 +382,7 @@ fn run_script(
         happened,
         auto_start_ms: script.auto_start_ms(),
         cut_ms,
-        spans: std::mem::take(&mut run.spans),
+        spans,
     };
     (report, io)
 }
