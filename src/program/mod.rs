@@ -27,6 +27,7 @@
 
 mod build;
 mod jumps;
+mod manual;
 mod modes;
 mod options;
 mod signal;
@@ -162,6 +163,8 @@ pub enum RungKind {
     StopNow,
     /// An output running on after STOP.
     RunOn,
+    /// Manual mode: the automatic cycle's end and the jogs.
+    Manual,
 }
 
 impl RungKind {
@@ -180,6 +183,7 @@ impl RungKind {
             RungKind::Interlock => "INTERLOCK",
             RungKind::StopNow => "STOP",
             RungKind::RunOn => "RUN-ON",
+            RungKind::Manual => "MANUAL",
         }
     }
 }

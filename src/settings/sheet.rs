@@ -448,9 +448,9 @@ fn apply(
 mod tests {
     use super::unread::closest_label;
     use super::*;
+    use crate::actuator::ActuatorKind;
     use crate::cell::edit_distance;
     use crate::stroke::Stroke;
-    use crate::actuator::ActuatorKind;
 
     fn grid(rows: &[&[&str]]) -> Grid {
         Grid::from_text_rows("t.xlsx", Some("SETTINGS"), rows)

@@ -3,9 +3,9 @@
 //! W006), and signal names the operating modes take for their buttons.
 
 use super::StepTable;
+use crate::actuator::Valves;
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 use crate::read::Grid;
-use crate::actuator::Valves;
 
 /// What a table is checked against besides its own rules: the machine it
 /// runs on and the program's options.

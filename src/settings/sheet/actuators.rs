@@ -5,11 +5,11 @@
 use std::collections::BTreeMap;
 
 use super::{ActuatorColumns, COLUMNS, Layout, Reader, known_label, label_of, text_of, value_text};
+use crate::actuator::ActuatorKind;
 use crate::diag::{CellPos, Code, Diagnostics};
 use crate::read::{CellValue, Grid, GridCell};
 use crate::settings::Given;
 use crate::stroke::{Stroke, parse_duration_ms};
-use crate::actuator::ActuatorKind;
 
 /// The columns of the actuator table headed at `header`; a header cell
 /// that is none of them is named, since its column would not be read.
