@@ -41,7 +41,7 @@ pub use options::{
     HaltPolicy, Interlock, Modes, ProgramOptions, RunOn, Safety, StopAction, StopEvent,
 };
 pub use signal::{Alarm, Area, Signal};
-pub use signals::{Coils, Signals};
+pub use signals::{Coils, Signals, jog_buttons};
 pub use supervision::{
     describe as describe_criterion, expected_ms as expected_step_ms,
     parse_times as parse_supervision,

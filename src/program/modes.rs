@@ -265,9 +265,6 @@ pub(super) fn homing_rungs(
             });
         }
     }
-    if modes.manual {
-        rungs.extend(super::manual::rungs(signals, timers, options));
-    }
     if modes.estop {
         let runs_on = |s: &Signal| {
             run_ons

@@ -468,26 +468,6 @@ impl Run<'_> {
         }
     }
 
-    /// Whether a motion is the operator's in manual mode: its jog button is
-    /// held, or it is what its valve does after a jog without a coil on (a
-    /// 5/2 bistable finishes the stroke a jog began, a single-solenoid
-    /// valve's spring retracts, a 5/3 centre lets a load drift). A 5/3
-    /// closed centre and a drive stop on release: their motion without the
-    /// button stays unintended.
-    fn jogged(&self, piston: usize, direction: Sign) -> bool {
-        use crate::actuator::ActuatorKind;
-        let p = &self.world.pistons[piston];
-        let read = |s| read_input(s, &self.world);
-        if !self.program.signals.inputs.contains(&Signal::ManualMode) || !read(Signal::ManualMode) {
-            return false;
-        }
-        let jog = Signal::Jog {
-            actuator: p.number,
-            sign: direction,
-        };
-        read(jog) || !matches!(p.valve, ActuatorKind::Closed53 | ActuatorKind::Motor)
-    }
-
     /// Marks the moves that have reached their target; returns whether one
     /// just did.
     pub(in crate::simulate) fn update_reached(&mut self) -> bool {
