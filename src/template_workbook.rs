@@ -270,7 +270,7 @@ fn settings_sheet(sheet: &mut Worksheet, f: &Formats) -> Result<(), XlsxError> {
         crate::program::Safety::NAMES.join(", ")
     );
     let modes_text = format!(
-        "Operating modes in the program: none, all (every mode but step), or a list of {} (estop brings reset).",
+        "Operating modes in the program: none, all (every mode, step and manual too), or a list of {} (estop brings reset).",
         crate::program::Modes::NAMES.join(", ")
     );
     let schemes = crate::symbols::Scheme::ALL.map(crate::symbols::Scheme::name);

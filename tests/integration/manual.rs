@@ -287,8 +287,8 @@ fn a_pinned_jog_address_that_collides_is_refused_at_its_cell() {
     let io = std::fs::read_to_string(out.join("pinned/pinned.io.csv")).unwrap();
     let line = io
         .lines()
-        .find(|l| l.contains("jog1m"))
-        .expect("jog1m listed");
+        .find(|l| l.contains(",jog1-,"))
+        .expect("jog1- listed");
     assert!(line.contains("I1.0"), "{line}");
 }
 
