@@ -74,10 +74,11 @@ pub fn signal_problem(name: &str, buttons: &[String]) -> Option<String> {
 /// The name an operator calls a button by beside its symbol, which
 /// `simulate --press` answers to: RESET for RESET_PB (whose symbol avoids
 /// an FST keyword), STEP for STEP_PB, EMERGENCY_STOP for ESTOP.
-pub const BUTTON_ALIASES: [(&str, &str); 3] = [
+pub const BUTTON_ALIASES: [(&str, &str); 4] = [
     ("RESET_PB", "RESET"),
     ("STEP_PB", "STEP"),
     ("ESTOP", "EMERGENCY_STOP"),
+    ("MAN_MODE", "MANUAL"),
 ];
 
 /// The alias of the button whose symbol is `symbol`, if it has one.

@@ -363,7 +363,7 @@ fn safety_rows() -> [SettingRow; 10] {
         crate::program::Safety::NAMES.join(", ")
     );
     let modes_text = format!(
-        "Operating modes in the program: none, all (every mode but step), or a list of {} (estop brings reset).",
+        "Operating modes in the program: none, all (every mode, step and manual too), or a list of {} (estop brings reset).",
         crate::program::Modes::NAMES.join(", ")
     );
     let rows: [(&str, &str, &str, Option<&[&str]>); 10] = [

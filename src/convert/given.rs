@@ -455,3 +455,60 @@ pub(super) fn rows_without_their_event(effective: &Settings, diags: &mut Diagnos
         }
     }
 }
+
+/// Manual mode on a table that moves no actuator has nothing to jog: the
+/// MAN_MODE selector would only end cycles. The mode is left out of the
+/// program (so `--modes all` serves such a table too) and W006 says so, at
+/// the `modes` cell or naming `--modes`.
+pub(super) fn manual_without_actuators(
+    table: &StepTable,
+    settings: &mut Settings,
+    file: &str,
+    diags: &mut Diagnostics,
+) {
+    if !settings.program.modes.manual || !table.actuators.is_empty() {
+        return;
+    }
+    settings.program.modes.manual = false;
+    let (at, source) = match settings.cells.get("modes") {
+        Some(at) => (at.clone(), "modes"),
+        None => (
+            Location {
+                file: file.to_string(),
+                sheet: None,
+                cell: None,
+            },
+            "--modes",
+        ),
+    };
+    diags.warning(
+        Code::W006NoEffect,
+        at,
+        format!(
+            "{source}: manual mode jogs actuators, and the table moves none (no C1+1 cell); it is left out of the program"
+        ),
+    );
+}
+
+/// The names manual mode's jog buttons take (`jog1p`, `jog1m`, and under
+/// any scheme the engineer's `clamp_jog_out`), lower-case: none without
+/// the mode.
+pub(super) fn jog_names(table: &StepTable, settings: &Settings) -> Vec<String> {
+    if !settings.program.modes.manual {
+        return Vec::new();
+    }
+    let valves = &settings.simulation.machine.valves;
+    let kinds = table
+        .actuators
+        .iter()
+        .map(|a| (a.number, valves.of(a.number, a.max_position)))
+        .collect();
+    crate::program::jog_buttons(&kinds)
+        .into_iter()
+        .flat_map(|jog| {
+            let own = settings.naming.own_alias(jog, table);
+            std::iter::once(crate::symbols::paper_ident(jog)).chain(own)
+        })
+        .map(|name| name.to_ascii_lowercase())
+        .collect()
+}

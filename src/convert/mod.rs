@@ -136,11 +136,13 @@ fn finish_check(
             &input.table.file,
             &mut diags,
         );
+        given::manual_without_actuators(table, &mut effective, &input.table.file, &mut diags);
         let modes = &effective.program.modes;
-        let buttons: Vec<String> = modes
+        let mut buttons: Vec<String> = modes
             .buttons()
             .map(|b| b.symbol().to_ascii_lowercase())
             .collect();
+        buttons.extend(given::jog_names(table, &effective));
         let machine = table::Machine {
             valves: &effective.simulation.machine.valves,
             home_order: modes.home_order.as_deref(),

@@ -222,6 +222,15 @@ pub fn build(
     if modes.any() {
         homing_rungs(table, &signals, &timers, options, &run_ons, &mut rungs);
     }
+    if modes.manual {
+        // Before the emergency stop's rung, which stays the last word.
+        let at = rungs
+            .iter()
+            .position(|r| r.kind == RungKind::EmergencyStop)
+            .unwrap_or(rungs.len());
+        let manual = super::manual::rungs(&signals, &timers, options);
+        rungs.splice(at..at, manual);
+    }
     StepProgram {
         criteria,
         init,

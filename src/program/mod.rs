@@ -27,6 +27,7 @@
 
 mod build;
 mod jumps;
+mod manual;
 mod modes;
 mod options;
 mod signal;
@@ -40,7 +41,7 @@ pub use options::{
     HaltPolicy, Interlock, Modes, ProgramOptions, RunOn, Safety, StopAction, StopEvent,
 };
 pub use signal::{Alarm, Area, Signal};
-pub use signals::{Coils, Signals};
+pub use signals::{Coils, Signals, jog_buttons};
 pub use supervision::{
     describe as describe_criterion, expected_ms as expected_step_ms,
     parse_times as parse_supervision,
@@ -170,6 +171,8 @@ pub enum RungKind {
     StopNow,
     /// An output running on after STOP.
     RunOn,
+    /// Manual mode: the automatic cycle's end and the jogs.
+    Manual,
 }
 
 impl RungKind {
@@ -188,6 +191,7 @@ impl RungKind {
             RungKind::Interlock => "INTERLOCK",
             RungKind::StopNow => "STOP",
             RungKind::RunOn => "RUN-ON",
+            RungKind::Manual => "MANUAL",
         }
     }
 }

@@ -336,9 +336,12 @@ pub struct Modes {
     pub reset: bool,
     /// Single-step mode: with the STEP_MODE switch on, each transition
     /// fires only on a press of STEP_PB (its conditions still checked), at
-    /// most one per press. Not part of `all`: a commissioning aid, asked
-    /// for by name.
+    /// most one per press.
     pub step: bool,
+    /// Manual mode: with the MAN_MODE selector at 1 the automatic cycle
+    /// ends and each actuator moves only while its jog button is held,
+    /// where it may move (`manual.rs`).
+    pub manual: bool,
     /// Homing stages, each a set of actuators homed together; `None` is the
     /// default (the order the cycle returns them home).
     pub home_order: Option<Vec<Vec<u32>>>,
@@ -347,7 +350,7 @@ pub struct Modes {
 impl Modes {
     /// The modes by name, as `--modes` and the SETTINGS sheet write them
     /// (besides `all` and `none`).
-    pub const NAMES: [&str; 5] = ["continuous", "stop", "estop", "reset", "step"];
+    pub const NAMES: [&str; 6] = ["continuous", "stop", "estop", "reset", "step", "manual"];
 
     /// What `--modes` and the SETTINGS row accept, for messages.
     pub fn expected() -> String {
@@ -356,10 +359,10 @@ impl Modes {
         crate::diag::or_list(&all)
     }
 
-    /// Parses `continuous,stop,estop,reset,step` (any subset; `all`, `none`;
-    /// `all` is every mode but `step`, which changes how the machine runs
-    /// and is asked for by name). An emergency stop needs RESET as its way
-    /// out, so `estop` brings `reset`.
+    /// Parses `continuous,stop,estop,reset,step,manual` (any subset; `all`,
+    /// `none`; `all` is every mode, the commissioning modes step and manual
+    /// too, as issue 42 asks: a machine-ready program has them all). An
+    /// emergency stop needs RESET as its way out, so `estop` brings `reset`.
     pub fn parse(text: &str) -> Result<Modes, String> {
         let mut modes = Modes::default();
         for item in named_set(text, &Modes::NAMES, "an operating mode", Modes::expected)? {
@@ -369,12 +372,15 @@ impl Modes {
                     modes.stop = true;
                     modes.estop = true;
                     modes.reset = true;
+                    modes.step = true;
+                    modes.manual = true;
                 }
                 "continuous" => modes.continuous = true,
                 "stop" => modes.stop = true,
                 "estop" => modes.estop = true,
                 "reset" => modes.reset = true,
                 "step" => modes.step = true,
+                "manual" => modes.manual = true,
                 _ => {}
             }
         }
@@ -433,7 +439,7 @@ impl Modes {
     }
 
     pub fn any(&self) -> bool {
-        self.continuous || self.stop || self.estop || self.reset || self.step
+        self.continuous || self.stop || self.estop || self.reset || self.step || self.manual
     }
 
     /// The input of each mode that is on, in address order.
@@ -446,6 +452,7 @@ impl Modes {
             (self.reset, Signal::Reset),
             (self.step, Signal::StepMode),
             (self.step, Signal::StepButton),
+            (self.manual, Signal::ManualMode),
         ]
         .into_iter()
         .filter_map(|(on, signal)| on.then_some(signal))

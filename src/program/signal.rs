@@ -86,6 +86,15 @@ pub enum Signal {
     /// the STEP_PB push-button.
     StepMode,
     StepButton,
+    /// Manual mode (`--modes manual`): the MAN_MODE selector (1 = manual,
+    /// 0 = automatic) and the jog buttons of actuator `actuator`: `+`
+    /// extends (a drive runs forward), `-` retracts (reverse). A
+    /// single-solenoid valve has only `+`: its spring is the way back.
+    ManualMode,
+    Jog {
+        actuator: u32,
+        sign: Sign,
+    },
     /// Memory: the sequence may fire a transition in this scan (always in
     /// automatic, for one scan after a STEP_PB press in single-step).
     StepPermit,
@@ -123,7 +132,9 @@ impl Signal {
             | Signal::EStop
             | Signal::Reset
             | Signal::StepMode
-            | Signal::StepButton => Area::Input,
+            | Signal::StepButton
+            | Signal::ManualMode
+            | Signal::Jog { .. } => Area::Input,
             Signal::Coil { .. }
             | Signal::SingleCoil { .. }
             | Signal::Alarm(_)
@@ -183,6 +194,8 @@ impl Signal {
             Signal::Reset => "RESET_PB".to_string(),
             Signal::StepMode => "STEP_MODE".to_string(),
             Signal::StepButton => "STEP_PB".to_string(),
+            Signal::ManualMode => "MAN_MODE".to_string(),
+            Signal::Jog { actuator, sign } => format!("jog{actuator}{}", sign.symbol()),
             Signal::StepPermit => "step_ok".to_string(),
             Signal::StepMemory => "step_mem".to_string(),
             Signal::CycleRequest => "cycle_req".to_string(),

@@ -177,13 +177,18 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
             })
     });
     let mode_inputs = modes.buttons();
+    let jogs = if modes.manual {
+        jog_buttons(&kinds)
+    } else {
+        Vec::new()
+    };
     let inputs = std::iter::once(Signal::Start)
         .chain(sensors)
         .chain(table.inputs.iter().map(|n| Signal::MachineInput(*n)))
         .chain(options.held_inputs().into_iter().map(Signal::MachineInput))
         .chain(mode_inputs)
+        .chain(jogs)
         .collect();
-
     let coils = table
         .actuators
         .iter()
@@ -260,4 +265,22 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
         memories,
         kinds,
     }
+}
+
+/// The jog buttons of manual mode, actuator by actuator: `+` then `-`; a
+/// single-solenoid valve only `+` (its spring retracts it, no button can
+/// do more).
+pub fn jog_buttons(kinds: &BTreeMap<u32, ActuatorKind>) -> Vec<Signal> {
+    kinds
+        .iter()
+        .flat_map(|(&actuator, kind)| {
+            let signs: &[Sign] = match kind.coils() {
+                CoilSet::Single => &[Sign::Plus],
+                CoilSet::Double => &[Sign::Plus, Sign::Minus],
+            };
+            signs
+                .iter()
+                .map(move |&sign| Signal::Jog { actuator, sign })
+        })
+        .collect()
 }

@@ -100,6 +100,47 @@ pub struct Operator {
     pub step_mode: bool,
     /// STEP_PB pressed.
     pub step: bool,
+    /// The MAN_MODE selector at 1 (manual).
+    pub manual: bool,
+    /// The jog buttons held.
+    pub jogs: Jogs,
+}
+
+/// The jog buttons an operator holds: at most [`Jogs::HANDS`] at once (a
+/// scenario naming more is refused), so that the operator stays a value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Jogs([Option<crate::program::Signal>; Jogs::HANDS]);
+
+impl Jogs {
+    /// How many jog buttons a scenario may hold in all.
+    pub const HANDS: usize = 4;
+    pub const NONE: Jogs = Jogs([None; Jogs::HANDS]);
+
+    /// Whether `jog` is held.
+    pub fn held(self, jog: crate::program::Signal) -> bool {
+        self.0.contains(&Some(jog))
+    }
+
+    /// `jog` held too; `None` when every hand is full.
+    pub fn with(self, jog: crate::program::Signal) -> Option<Jogs> {
+        if self.held(jog) {
+            return Some(self);
+        }
+        let mut jogs = self;
+        *jogs.0.iter_mut().find(|j| j.is_none())? = Some(jog);
+        Some(jogs)
+    }
+
+    /// `jog` let go of.
+    pub fn without(self, jog: crate::program::Signal) -> Jogs {
+        let mut jogs = self;
+        for j in &mut jogs.0 {
+            if *j == Some(jog) {
+                *j = None;
+            }
+        }
+        jogs
+    }
 }
 
 /// One complete or interrupted cycle.

@@ -129,6 +129,8 @@ pub(in crate::simulate) fn read_input(signal: Signal, world: &World) -> bool {
         Signal::Reset => operator.reset,
         Signal::StepMode => operator.step_mode,
         Signal::StepButton => operator.step,
+        Signal::ManualMode => operator.manual,
+        Signal::Jog { .. } => operator.jogs.held(signal),
         _ => false,
     }
 }

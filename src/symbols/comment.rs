@@ -20,6 +20,7 @@ pub(super) fn comment(
         Signal::Sensor { .. }
         | Signal::Coil { .. }
         | Signal::SingleCoil { .. }
+        | Signal::Jog { .. }
         | Signal::StopAt { .. } => actuator_comment(signal, program, table, actuator),
         Signal::MachineInput(_)
         | Signal::MachineOutput(_)
@@ -51,6 +52,9 @@ pub(super) fn comment(
             "STEP_MODE switch (on: single step, one step per STEP_PB press)".to_string()
         }
         Signal::StepButton => "STEP_PB push-button (single step: fire the next step)".to_string(),
+        Signal::ManualMode => {
+            "MAN_MODE selector (1 = manual: the cycle ends, jog buttons move the actuators; 0 = automatic)".to_string()
+        }
         Signal::StepPermit => "the sequence may fire a step in this scan".to_string(),
         Signal::StepMemory => "STEP_PB as read in the previous scan".to_string(),
         Signal::CycleRequest => "a cycle was asked for".to_string(),
@@ -118,6 +122,15 @@ fn actuator_comment(
                 "cylinder {} stops at middle position {position}",
                 actuator(a)
             )
+        }
+        Signal::Jog { actuator: a, sign } => {
+            let what = match (program.signals.drives(a), sign) {
+                (true, Sign::Plus) => format!("drive {}, run forward", actuator(a)),
+                (true, Sign::Minus) => format!("drive {}, run in reverse", actuator(a)),
+                (false, Sign::Plus) => format!("cylinder {}, extend", actuator(a)),
+                (false, Sign::Minus) => format!("cylinder {}, retract", actuator(a)),
+            };
+            format!("jog push-button: {what} while held (manual mode)")
         }
         // Only the signals of an actuator are described here.
         _ => String::new(),

@@ -388,6 +388,8 @@ fn role(signal: Signal) -> &'static str {
         Signal::Reset => "reset",
         Signal::StepMode => "step mode",
         Signal::StepButton => "step",
+        Signal::ManualMode => "manual mode",
+        Signal::Jog { .. } => "jog",
         other => match other.area() {
             Area::Timer => "timer",
             _ => "memory",
@@ -464,10 +466,16 @@ fn signal_symbols(
         } else {
             words
         };
+        // FST keeps 9 characters: `clamp_jog_out` and `clamp_jog_in` would
+        // be one symbol there, so a jog button keeps its paper symbol.
+        let fst = match signal {
+            Signal::Jog { .. } => paper_ident(signal),
+            _ => crate::names::fst_stem(&ident),
+        };
         table_of.insert(
             signal,
             Symbol {
-                fst: crate::names::fst_stem(&ident),
+                fst,
                 ident,
                 designation,
                 comment,

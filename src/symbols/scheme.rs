@@ -269,6 +269,13 @@ fn named_by(
             })
         }
         Signal::SingleCoil { actuator } => Some(format!("{}_out", stem(actuator)?)),
+        Signal::Jog { actuator, sign } => {
+            let name = stem(actuator)?;
+            Some(match sign {
+                Sign::Plus => format!("{name}_jog_out"),
+                Sign::Minus => format!("{name}_jog_in"),
+            })
+        }
         _ => None,
     }
 }
@@ -309,6 +316,12 @@ pub fn paper_ident(signal: Signal) -> String {
     match signal {
         Signal::Coil { actuator, sign } => {
             format!("y{actuator}{}", if sign == Sign::Plus { 'p' } else { 'm' })
+        }
+        Signal::Jog { actuator, sign } => {
+            format!(
+                "jog{actuator}{}",
+                if sign == Sign::Plus { 'p' } else { 'm' }
+            )
         }
         other => other.symbol(),
     }

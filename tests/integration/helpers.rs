@@ -436,3 +436,17 @@ pub fn long_table(dir: &Path) -> PathBuf {
     );
     path
 }
+
+/// The manual-mode scenario both the simulation test and its engine
+/// replay run (`tests/fixtures/manual_scenario.txt`): `(option, text)`.
+pub fn manual_events() -> Vec<(String, String)> {
+    let path = root().join("tests/fixtures/manual_scenario.txt");
+    let text = std::fs::read_to_string(path).expect("the manual scenario");
+    text.lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+        .map(|l| {
+            let (option, event) = l.split_once(' ').expect("OPTION TEXT");
+            (option.to_string(), event.to_string())
+        })
+        .collect()
+}

@@ -21,6 +21,8 @@ const IDLE: Operator = Operator {
     reset: false,
     step_mode: false,
     step: false,
+    manual: false,
+    jogs: steptable::simulate::Jogs::NONE,
 };
 
 fn position(report: &ScenarioReport, time_ms: u64, actuator: usize) -> f64 {

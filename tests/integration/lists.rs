@@ -278,11 +278,8 @@ fn the_types_lists_hold_every_value() {
     for name in Safety::NAMES {
         assert_ne!(Safety::parse(name), Ok(Safety::default()), "{name}");
     }
-    // `all` is every mode but single step, which is asked for by name.
-    let every = Modes {
-        step: true,
-        ..Modes::parse("all").unwrap()
-    };
+    // `all` is every mode, single step and manual among them.
+    let every = Modes::parse("all").unwrap();
     assert_eq!(Modes::parse(&Modes::NAMES.join(",")), Ok(every));
     for name in Modes::NAMES {
         assert_ne!(Modes::parse(name), Ok(Modes::default()), "{name}");

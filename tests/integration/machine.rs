@@ -340,7 +340,24 @@ fn every_name_the_program_declares_is_reserved() {
                     let ident = ident.to_ascii_lowercase();
                     // The mode buttons are taken while their mode is on:
                     // `a_machine_signal_may_be_called_stop_unless_the_program_has_stop`.
-                    let button = ["cont", "stop", "estop", "reset_pb"].contains(&ident.as_str());
+                    // Single step's and manual mode's too (`all` has them):
+                    // `single_step.rs`, `manual.rs` test them taken.
+                    let jog = ident.strip_prefix("jog").is_some_and(|n| {
+                        n.len() > 1
+                            && (n.ends_with('p') || n.ends_with('m'))
+                            && n[..n.len() - 1].chars().all(|c| c.is_ascii_digit())
+                    });
+                    let button = [
+                        "cont",
+                        "stop",
+                        "estop",
+                        "reset_pb",
+                        "step_mode",
+                        "step_pb",
+                        "man_mode",
+                    ]
+                    .contains(&ident.as_str())
+                        || jog;
                     if ident.is_empty()
                         || ident.starts_with("(*")
                         || machine.contains(&ident)

@@ -36,6 +36,7 @@ mod lists;
 mod long_comments;
 mod machine;
 mod machine_limits;
+mod manual;
 mod messy;
 mod mitigation;
 mod modes;

@@ -31,6 +31,8 @@ const IDLE: Operator = Operator {
     reset: false,
     step_mode: false,
     step: false,
+    manual: false,
+    jogs: steptable::simulate::Jogs::NONE,
 };
 
 fn press(at: u64, button: Operator) -> Vec<(u64, Operator)> {

@@ -18,6 +18,8 @@ const IDLE: Operator = Operator {
     reset: false,
     step_mode: false,
     step: false,
+    manual: false,
+    jogs: steptable::simulate::Jogs::NONE,
 };
 
 /// The bundled oven through the binary: its addresses are the paper's

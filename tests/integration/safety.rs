@@ -136,6 +136,12 @@ fn table_inputs(path: &std::path::Path) -> usize {
         .sum::<usize>()
         + checked.table.inputs.len()
         + checked.settings.program.modes.buttons().count()
+        + convert::build_program(&checked.table, &checked.settings)
+            .signals
+            .inputs
+            .iter()
+            .filter(|s| matches!(s, Signal::Jog { .. }))
+            .count()
 }
 
 #[test]

@@ -101,18 +101,22 @@ fn several_faults_at_once_leave_out_the_sets_a_smaller_one_stands_for() {
         String::from_utf8_lossy(&assert.get_output().stdout).to_string()
     };
     let pairs = run(&["--faults", "2"]);
-    // 8 inputs: 16 singles and 4·28 = 112 pairs, of which 50 hold CONT
-    // stuck at 0, STOP or ESTOP stuck at 1 or RESET stuck at 0.
+    // 13 inputs (its `modes | all` brings single step and manual too:
+    // STEP_MODE, STEP_PB, MAN_MODE and the drive's jog1+, jog1-): 26
+    // singles and 4·78 = 312 pairs, of which 180 hold one of the nine
+    // faults that never read other than healthy (CONT, RESET_PB,
+    // STEP_MODE, STEP_PB, MAN_MODE, jog1+, jog1- stuck at 0, STOP or ESTOP
+    // stuck at 1): 312 - 132 pairs of the other 17 faults.
     assert!(
         pairs.starts_with(&format!(
-            "{}: 78 fault case(s) at 8 moments of the cycle (",
+            "{}: 158 fault case(s) at 8 moments of the cycle (",
             sample("carwash.xlsx").display()
         )),
         "{pairs}"
     );
     assert!(
         pairs.contains(
-            "50 set(s) left out, each holding a fault that never reads other than without it"
+            "180 set(s) left out, each holding a fault that never reads other than without it"
         ),
         "{pairs}"
     );

@@ -19,6 +19,8 @@ const STEPPING: Operator = Operator {
     reset: false,
     step_mode: true,
     step: false,
+    manual: false,
+    jogs: steptable::simulate::Jogs::NONE,
 };
 
 fn paper_with(modes: &str) -> (StepTable, StepProgram) {

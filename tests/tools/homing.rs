@@ -25,6 +25,8 @@ const IDLE: Operator = Operator {
     reset: false,
     step_mode: false,
     step: false,
+    manual: false,
+    jogs: steptable::simulate::Jogs::NONE,
 };
 
 /// START at 0.5 s; the clamp closes (1 s), the punch goes down (1 s) and

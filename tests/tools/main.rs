@@ -23,6 +23,7 @@ mod homing;
 mod ladder;
 mod libreoffice;
 mod long_comments;
+mod manual;
 mod names;
 mod pinned;
 mod scenario;
@@ -181,6 +182,7 @@ fn main() {
         exports::CHECKS,
         libreoffice::CHECKS,
         long_comments::CHECKS,
+        manual::CHECKS,
         names::CHECKS,
         pinned::CHECKS,
         scenario::CHECKS,

@@ -25,6 +25,8 @@ const STEPPING: Operator = Operator {
     reset: false,
     step_mode: true,
     step: false,
+    manual: false,
+    jogs: steptable::simulate::Jogs::NONE,
 };
 
 /// START at 0.5 s; STEP_PB at 1 s (step 1: C1 out, 1 s), at 1.3 s (C1 not

@@ -203,6 +203,7 @@ pub fn mode_note(program: &crate::program::StepProgram, symbols: &SymbolTable) -
                 | RungKind::Watchdog
                 | RungKind::Plausibility
                 | RungKind::RunOn
+                | RungKind::Manual
         );
         if !shown || seen.contains(&rung.kind) {
             continue;

@@ -192,6 +192,9 @@ impl Run<'_> {
             .filter(|a| a.mv.sign == direction)
             .cloned();
         let Some(a) = commanded else {
+            if self.jogged(piston, direction) {
+                return;
+            }
             let step = self.current_step();
             let homing = self.program.signals.memories.contains(&Signal::Homing)
                 && (self.plc.bit(Signal::Homing) || read_input(Signal::Reset, &self.world));

@@ -251,3 +251,32 @@ pub(super) fn rest_value(table: &StepTable, input: Name) -> Option<bool> {
 fn wait_text(w: &crate::table::Wait) -> String {
     format!("{}={}", w.input, u8::from(w.value))
 }
+
+/// The operator's own motion in manual mode.
+impl Run<'_> {
+    /// Whether a motion is the operator's in manual mode: its jog button is
+    /// held, or it is what its valve does after a jog without a coil on (a
+    /// 5/2 bistable finishes the stroke a jog began, a single-solenoid
+    /// valve's spring retracts, a 5/3 centre lets a load drift). A 5/3
+    /// closed centre and a drive stop on release: their motion without the
+    /// button stays unintended.
+    pub(in crate::simulate) fn jogged(&self, piston: usize, direction: crate::cell::Sign) -> bool {
+        use crate::actuator::ActuatorKind;
+        let p = &self.world.pistons[piston];
+        let read = |s| super::read_input(s, &self.world);
+        if !self
+            .program
+            .signals
+            .inputs
+            .contains(&crate::program::Signal::ManualMode)
+            || !read(crate::program::Signal::ManualMode)
+        {
+            return false;
+        }
+        let jog = crate::program::Signal::Jog {
+            actuator: p.number,
+            sign: direction,
+        };
+        read(jog) || !matches!(p.valve, ActuatorKind::Closed53 | ActuatorKind::Motor)
+    }
+}

@@ -31,6 +31,7 @@ pub fn check(events: &[Event], scan_ms: u32) -> Vec<String> {
             refused.push(why);
         }
     }
+    refused.extend(super::events::too_many_jogs(events));
     refused
 }
 

@@ -212,6 +212,17 @@ fn input(
     if let Some(signal) = program.signals.inputs.iter().copied().find(|s| calls(*s)) {
         return Ok(signal);
     }
+    let jog = name.to_ascii_lowercase();
+    if jog.starts_with("jog") || jog.contains("_jog_") {
+        return Err(format!(
+            "the program has no jog button called \"{name}\": {}",
+            if program.signals.inputs.contains(&Signal::ManualMode) {
+                "each actuator has jogN+ and jogN- (a single-solenoid valve only jogN+)".to_string()
+            } else {
+                "manual mode is off (turn it on with --modes manual)".to_string()
+            }
+        ));
+    }
     if let Some(button) = BUTTONS.iter().copied().find(|s| calls(*s)) {
         return Err(format!(
             "the program has no {} button: its mode is off (turn it on with --modes {})",
@@ -267,7 +278,7 @@ fn button(
     naming: &Naming,
 ) -> Result<Signal, String> {
     let signal = input(name, program, table, naming)?;
-    if BUTTONS.contains(&signal) {
+    if BUTTONS.contains(&signal) || matches!(signal, Signal::Jog { .. }) {
         Ok(signal)
     } else {
         Err(format!(
@@ -278,8 +289,9 @@ fn button(
     }
 }
 
-/// The operator's buttons and switches.
-pub const BUTTONS: [Signal; 7] = [
+/// The operator's buttons and switches (and each actuator's jog buttons
+/// in manual mode).
+pub const BUTTONS: [Signal; 8] = [
     Signal::Start,
     Signal::Stop,
     Signal::EStop,
@@ -287,6 +299,7 @@ pub const BUTTONS: [Signal; 7] = [
     Signal::Continuous,
     Signal::StepMode,
     Signal::StepButton,
+    Signal::ManualMode,
 ];
 
 /// The name an operator calls a button beside its symbol (RESET for
@@ -304,6 +317,32 @@ fn mode_of(button: Signal) -> &'static str {
         Signal::EStop => "estop",
         Signal::Reset => "reset",
         Signal::Continuous => "continuous",
+        Signal::ManualMode => "manual",
         _ => "step",
     }
+}
+
+/// More jog buttons held at once, in the order the events are written,
+/// than [`crate::simulate::Jogs::HANDS`]: the operator is modelled with
+/// that many hands (a press lets go by itself).
+pub(super) fn too_many_jogs(events: &[Event]) -> Option<String> {
+    let mut held: Vec<Signal> = Vec::new();
+    for event in events {
+        match event.act {
+            Act::Hold(jog @ Signal::Jog { .. }) if !held.contains(&jog) => held.push(jog),
+            Act::Release(jog) => held.retain(|h| *h != jog),
+            _ => {}
+        }
+        let pressed =
+            matches!(event.act, Act::Press(jog @ Signal::Jog { .. }) if !held.contains(&jog));
+        if held.len() + usize::from(pressed) > crate::simulate::Jogs::HANDS {
+            return Some(format!(
+                "{}: at most {} jog buttons can be held at once ({} are)",
+                event.written,
+                crate::simulate::Jogs::HANDS,
+                held.len() + usize::from(pressed)
+            ));
+        }
+    }
+    None
 }

@@ -321,6 +321,12 @@ fn set(operator: &mut Operator, signal: Signal, on: bool) {
         Signal::Continuous => operator.continuous = on,
         Signal::StepMode => operator.step_mode = on,
         Signal::StepButton => operator.step = on,
+        Signal::ManualMode => operator.manual = on,
+        // The scenario's check keeps the jogs within the operator's hands.
+        Signal::Jog { .. } if on => {
+            operator.jogs = operator.jogs.with(signal).unwrap_or(operator.jogs)
+        }
+        Signal::Jog { .. } => operator.jogs = operator.jogs.without(signal),
         _ => {}
     }
 }
