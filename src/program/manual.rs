@@ -193,7 +193,7 @@ mod tests {
             .iter()
             .filter(|r| r.kind == RungKind::Manual)
             .collect();
-        assert_eq!(rungs.len(), 1 + 2 * 3);
+        assert_eq!(rungs.len(), 1 + 2 * 4);
         assert!(
             rungs[0]
                 .actions
@@ -224,7 +224,7 @@ mod tests {
             .iter()
             .filter(|s| matches!(s, Signal::Jog { .. }))
             .count();
-        assert_eq!(jogs, 6);
+        assert_eq!(jogs, 8);
         assert!(program.signals.inputs.contains(&Signal::Jog {
             actuator: 3,
             sign: Sign::Minus
