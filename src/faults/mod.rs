@@ -409,14 +409,32 @@ pub fn analyse_sets(
             runs
         })
         .collect();
+    let cases = worst_cases(sets, &moments, &onsets, &verdicts);
+    FaultTable {
+        cases,
+        moments,
+        runs: total,
+        phases_skipped,
+        equivalent,
+    }
+}
+
+/// Each fault set's case: the worst verdict over the moments its faults
+/// appeared at (`onsets[i]`, the scan its run left the healthy one, per
+/// moment; `None`: it never did), with the outcome at every moment.
+fn worst_cases(
+    sets: Vec<Vec<Fault>>,
+    moments: &[Moment],
+    onsets: &[Vec<Option<u64>>],
+    verdicts: &[SetRuns],
+) -> Vec<FaultCase> {
     let no_effect = Verdict {
         outcome: Outcome::NoEffect,
         step: None,
         explanation: "the input never reads other than without the fault".to_string(),
         detected: false,
     };
-    let cases = sets
-        .into_iter()
+    sets.into_iter()
         .enumerate()
         .map(|(i, faults)| {
             let mut outcomes = Vec::with_capacity(moments.len());
@@ -441,14 +459,7 @@ pub fn analyse_sets(
                 outcomes,
             }
         })
-        .collect();
-    FaultTable {
-        cases,
-        moments,
-        runs: total,
-        phases_skipped,
-        equivalent,
-    }
+        .collect()
 }
 
 /// Why a fault has no effect, when its run is the healthy one's.
