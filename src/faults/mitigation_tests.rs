@@ -224,3 +224,23 @@ fn each_trial_is_the_fault_table_of_the_program_with_its_checks() {
         m.text()
     );
 }
+
+/// A program that carries every check has none to propose: each hazard
+/// gets no trial, and the cell says no built-in check catches it, with
+/// what would.
+#[test]
+fn a_program_with_every_check_gets_only_the_remedy() {
+    let t = crate::program::tests::paper_table();
+    let options = ProgramOptions {
+        safety: Safety::all(),
+        ..ProgramOptions::default()
+    };
+    let (_, m) = mitigation_of(&t, &options, "x22", false);
+    assert!(m.trials.is_empty());
+    assert!(
+        m.text()
+            .starts_with("no built-in check catches it at every moment; what would (not simulated): a mechanical stop"),
+        "{}",
+        m.text()
+    );
+}

@@ -338,9 +338,35 @@ pub fn analyse_sets(
         .saturating_mul(table.steps.len().max(1))
         .saturating_mul(1 + jumps)
         > MAX_PHASE_WORK;
+    let mut equivalent = 0;
     // Faults at every moment but for a cycle too long for them.
     let inputs = (!too_long).then(|| phases::HealthyInputs::new(log));
-    let (onsets, equivalent) = onsets_of(inputs.as_ref(), &mut sets, &mut moments);
+    let onsets: Vec<Vec<Option<u64>>> = match &inputs {
+        None => {
+            moments.truncate(1);
+            sets.iter().map(|_| vec![Some(0)]).collect()
+        }
+        Some(inputs) => {
+            // A fault that never reads other than the healthy input (STOP
+            // stuck at 1: it is normally closed) adds nothing to a set: the set
+            // is the smaller one, already in the table.
+            let inert = |f: &Fault| inputs.divergence(std::slice::from_ref(f), 0).is_none();
+            let before = sets.len();
+            sets.retain(|set| set.len() == 1 || !set.iter().any(inert));
+            equivalent = before - sets.len();
+            // Each set at each moment, as the moment its run leaves the
+            // healthy one.
+            sets.iter()
+                .map(|set| {
+                    let columns = inputs.columns(set);
+                    moments
+                        .iter()
+                        .map(|m| inputs.divergence_of(&columns, m.at_ms))
+                        .collect()
+                })
+                .collect()
+        }
+    };
     let phases_skipped = too_long.then_some(cases_at_every_moment);
     let planned = distinct_onsets(&onsets);
     let total = planned.iter().map(Vec::len).sum();
@@ -393,47 +419,9 @@ pub fn analyse_sets(
     }
 }
 
-/// When each set's run leaves the healthy one, at each moment (`None`:
-/// never), and how many sets were dropped as equal to a smaller one. With
-/// no healthy inputs (a cycle too long for every moment) only power-up is
-/// tried.
-fn onsets_of(
-    inputs: Option<&phases::HealthyInputs>,
-    sets: &mut Vec<Vec<Fault>>,
-    moments: &mut Vec<Moment>,
-) -> (Vec<Vec<Option<u64>>>, usize) {
-    let mut equivalent = 0;
-    let onsets = match inputs {
-        None => {
-            moments.truncate(1);
-            sets.iter().map(|_| vec![Some(0)]).collect()
-        }
-        Some(inputs) => {
-            // A fault that never reads other than the healthy input (STOP
-            // stuck at 1: it is normally closed) adds nothing to a set: the set
-            // is the smaller one, already in the table.
-            let inert = |f: &Fault| inputs.divergence(std::slice::from_ref(f), 0).is_none();
-            let before = sets.len();
-            sets.retain(|set| set.len() == 1 || !set.iter().any(inert));
-            equivalent = before - sets.len();
-            // Each set at each moment, as the moment its run leaves the
-            // healthy one.
-            sets.iter()
-                .map(|set| {
-                    let columns = inputs.columns(set);
-                    moments
-                        .iter()
-                        .map(|m| inputs.divergence_of(&columns, m.at_ms))
-                        .collect()
-                })
-                .collect()
-        }
-    };
-    (onsets, equivalent)
-}
-
-/// Each set's case: its outcome at every moment and its worst, with the
-/// phase, step and explanation of that worst run.
+/// Each fault set's case: the worst verdict over the moments its faults
+/// appeared at (`onsets[i]`, the scan its run left the healthy one, per
+/// moment; `None`: it never did), with the outcome at every moment.
 fn worst_cases(
     sets: Vec<Vec<Fault>>,
     moments: &[Moment],

@@ -3,7 +3,7 @@
 //! program text, a tag export and an I/O list describe a signal alike.
 
 use crate::cell::Sign;
-use crate::program::{Alarm, Signal, StepProgram};
+use crate::program::{Alarm, Area, Signal, StepProgram};
 use crate::table::{Step, StepTable};
 
 /// The comment of `signal` in `program` of `table`; `actuator` names an
@@ -265,4 +265,47 @@ pub fn shorten(text: &str, max: usize) -> (String, bool) {
     let mut cut: String = text.chars().take(max.saturating_sub(3)).collect();
     cut.push_str("...");
     (cut, true)
+}
+
+/// The `kind` column of the allocation list.
+pub(super) fn role(signal: Signal) -> &'static str {
+    match signal {
+        Signal::Start => "start",
+        Signal::Sensor { .. } => "sensor",
+        Signal::Coil { .. } | Signal::SingleCoil { .. } => "coil",
+        Signal::Alarm(_) => "alarm",
+        Signal::Missing(_) => "missing",
+        Signal::MachineInput(_) => "input",
+        Signal::MachineOutput(_) => "output",
+        Signal::Continuous => "continuous",
+        Signal::Stop => "stop",
+        Signal::EStop => "estop",
+        Signal::Reset => "reset",
+        Signal::StepMode => "step mode",
+        Signal::StepButton => "step",
+        Signal::ManualMode => "manual mode",
+        Signal::Jog { .. } => "jog",
+        other => match other.area() {
+            Area::Timer => "timer",
+            _ => "memory",
+        },
+    }
+}
+
+/// `text` with each whole word (`x10`, `y1+`, `C1`; never part of one:
+/// `C1+1` is a word of its own) that `new` knows replaced.
+pub(super) fn map_words<'a>(text: &str, new: impl Fn(&str) -> Option<&'a str>) -> String {
+    let word = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '+' | '-' | ':');
+    let mut out = String::with_capacity(text.len() + 16);
+    let mut rest = text;
+    while let Some(start) = rest.find(word) {
+        out.push_str(&rest[..start]);
+        let tail = &rest[start..];
+        let end = tail.find(|c: char| !word(c)).unwrap_or(tail.len());
+        let token = &tail[..end];
+        out.push_str(new(token).unwrap_or(token));
+        rest = &tail[end..];
+    }
+    out.push_str(rest);
+    out
 }

@@ -15,10 +15,11 @@ mod scheme;
 use std::collections::BTreeMap;
 
 pub use comment::{FINDING_NAME, shorten};
+use comment::{map_words, role};
 pub use scheme::{ActuatorName, Naming, Scheme, paper_ident, stem as scheme_stem};
 
 use crate::cell::Sign;
-use crate::program::{Action, Area, Signal, StepProgram};
+use crate::program::{Action, Signal, StepProgram};
 use crate::table::StepTable;
 
 pub use crate::names::{FIRED, STEP_COUNTER};
@@ -372,31 +373,6 @@ impl SymbolTable {
     }
 }
 
-/// The `kind` column of the allocation list.
-fn role(signal: Signal) -> &'static str {
-    match signal {
-        Signal::Start => "start",
-        Signal::Sensor { .. } => "sensor",
-        Signal::Coil { .. } | Signal::SingleCoil { .. } => "coil",
-        Signal::Alarm(_) => "alarm",
-        Signal::Missing(_) => "missing",
-        Signal::MachineInput(_) => "input",
-        Signal::MachineOutput(_) => "output",
-        Signal::Continuous => "continuous",
-        Signal::Stop => "stop",
-        Signal::EStop => "estop",
-        Signal::Reset => "reset",
-        Signal::StepMode => "step mode",
-        Signal::StepButton => "step",
-        Signal::ManualMode => "manual mode",
-        Signal::Jog { .. } => "jog",
-        other => match other.area() {
-            Area::Timer => "timer",
-            _ => "memory",
-        },
-    }
-}
-
 /// Every signal the program uses: its I/O, memories and timers, and every
 /// signal a step or rung reads or writes, so that a lookup never misses (a
 /// sensor an action comment points to).
@@ -590,24 +566,6 @@ fn step_names(program: &StepProgram, table: &StepTable) -> Vec<StepNames> {
             }
         })
         .collect()
-}
-
-/// `text` with each whole word (`x10`, `y1+`, `C1`; never part of one:
-/// `C1+1` is a word of its own) that `new` knows replaced.
-fn map_words<'a>(text: &str, new: impl Fn(&str) -> Option<&'a str>) -> String {
-    let word = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '+' | '-' | ':');
-    let mut out = String::with_capacity(text.len() + 16);
-    let mut rest = text;
-    while let Some(start) = rest.find(word) {
-        out.push_str(&rest[..start]);
-        let tail = &rest[start..];
-        let end = tail.find(|c: char| !word(c)).unwrap_or(tail.len());
-        let token = &tail[..end];
-        out.push_str(new(token).unwrap_or(token));
-        rest = &tail[end..];
-    }
-    out.push_str(rest);
-    out
 }
 
 #[cfg(test)]

@@ -70,7 +70,13 @@ fn step_flags(awl: &Path) -> Result<Vec<(usize, Bit)>, String> {
         let (Some(symbol), Some(address)) = (fields.get(1), fields.get(3)) else {
             continue;
         };
-        let Some(number) = symbol.trim().strip_prefix("step_") else {
+        // `step_3` is a step flag; `step_ok` and `step_mem` (single step)
+        // are not.
+        let Some(number) = symbol
+            .trim()
+            .strip_prefix("step_")
+            .filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+        else {
             continue;
         };
         let number = number
