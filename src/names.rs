@@ -195,6 +195,7 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "auto_run",
         "step_ok",
         "step_mem",
+        "man_mem",
         "homing",
         FIRED,
         STEP_COUNTER,

@@ -70,6 +70,9 @@ pub struct Mitigation {
     /// What would catch what remains, outside the program; empty when a
     /// trial catches it.
     pub remedy: String,
+    /// The moments the hazard appears at without any added check: a trial
+    /// that leaves as many narrows nothing.
+    pub hazard_moments: usize,
 }
 
 impl Mitigation {
@@ -97,7 +100,7 @@ impl Mitigation {
                     trial.option(),
                     trial.case.outcome.label()
                 ));
-            } else if trial.hazard_moments() < trial.moments {
+            } else if trial.hazard_moments() < self.hazard_moments {
                 let left = trial.case.appears(trial.moments);
                 match narrowed.iter_mut().find(|(l, _)| *l == left) {
                     Some((_, options)) => options.push(trial.option()),
@@ -196,7 +199,16 @@ pub fn mitigations(
         } else {
             remedy(table, case, &trials).to_string()
         };
-        Mitigation { trials, remedy }
+        let hazard_moments = case
+            .outcomes
+            .iter()
+            .filter(|o| **o == Outcome::Hazard)
+            .count();
+        Mitigation {
+            trials,
+            remedy,
+            hazard_moments,
+        }
     });
     faults
         .cases

@@ -11,9 +11,15 @@
 //! - Every output goes off but those the halt policy lets stay on in a
 //!   stopped machine (a vacuum holding its part); a coil is on only in the
 //!   scan its jog rung sets it, so only while its button is held.
-//! - Both buttons of one actuator held: neither coil.
-//! - Not while the EMERGENCY STOP is pressed, not while any interlock input
-//!   is off (ranged ones too: manual has no step to exempt).
+//! - Both buttons of one actuator held: neither coil; a jog switches the
+//!   other coil of its valve off (one a halt held on), never two at once.
+//! - Not while the EMERGENCY STOP is pressed, nor while a halt (the
+//!   emergency stop's, a check's) waits for RESET, not while any interlock
+//!   input is off (ranged ones too: manual has no step to exempt).
+//! - The scan manual ends in switches off what the jogs left on (a button
+//!   still held as the selector turns), as entering it does.
+//! - A coil that holds a part (a vacuum) stays on by itself: its jogN+
+//!   switches it on, its jogN- off.
 //! - A drive is cut at the limit switch of the way it runs.
 
 use super::signals::{Coils, Signals};
@@ -24,25 +30,62 @@ use crate::cell::Sign;
 /// They run after the homing rungs and before the emergency stop's, which
 /// stays the last word on every coil.
 pub(super) fn rungs(signals: &Signals, timers: &[Signal], options: &ProgramOptions) -> Vec<Rung> {
-    let mut rungs = vec![end_of_automatic(signals, timers, options)];
+    let mut rungs = vec![
+        end_of_manual(signals, options),
+        end_of_automatic(signals, timers, options),
+        Rung {
+            kind: RungKind::Manual,
+            comment: "MAN_MODE remembered for the scan manual ends in".to_string(),
+            condition: vec![Literal::is(Signal::ManualMode)],
+            actions: vec![Action::Set(Signal::ManualMemory)],
+        },
+    ];
     for valve in &signals.valves {
         rungs.extend(jog_rungs(*valve, signals, options));
     }
     rungs
 }
 
-/// MAN_MODE at 1: the automatic cycle ends, every output off but those
-/// the halt policy holds.
-fn end_of_automatic(signals: &Signals, timers: &[Signal], options: &ProgramOptions) -> Rung {
+/// The outputs a stopped machine may keep on (the halt policy's), and the
+/// resets of every other.
+fn all_off_but_held(signals: &Signals, options: &ProgramOptions) -> (Vec<Signal>, Vec<Action>) {
     let held: Vec<Signal> = signals
         .driven()
         .filter(|s| !signals.is_drive(*s) && options.halt.may_stay_on(*s, false))
         .collect();
-    let mut actions: Vec<Action> = signals
+    let actions = signals
         .driven()
         .filter(|s| !held.contains(s))
         .map(Action::Reset)
         .collect();
+    (held, actions)
+}
+
+/// MAN_MODE back at 0: in that scan every output goes off but those the
+/// halt policy holds, so a jog button still held as the selector turns
+/// leaves nothing running in automatic.
+fn end_of_manual(signals: &Signals, options: &ProgramOptions) -> Rung {
+    let (held, mut actions) = all_off_but_held(signals, options);
+    actions.push(Action::Reset(Signal::ManualMemory));
+    let kept: Vec<String> = held.iter().map(|s| s.symbol()).collect();
+    Rung {
+        kind: RungKind::Manual,
+        comment: format!(
+            "MAN_MODE back to 0: manual ends, {}",
+            super::stops::all_off_but(&kept)
+        ),
+        condition: vec![
+            Literal::not(Signal::ManualMode),
+            Literal::is(Signal::ManualMemory),
+        ],
+        actions,
+    }
+}
+
+/// MAN_MODE at 1: the automatic cycle ends, every output off but those
+/// the halt policy holds.
+fn end_of_automatic(signals: &Signals, timers: &[Signal], options: &ProgramOptions) -> Rung {
+    let (held, mut actions) = all_off_but_held(signals, options);
     actions.extend(
         signals
             .memories
@@ -85,12 +128,15 @@ fn end_of_automatic(signals: &Signals, timers: &[Signal], options: &ProgramOptio
     }
 }
 
-/// What every jog needs: manual mode, the EMERGENCY STOP not pressed,
-/// every interlock closed.
-fn may_jog(options: &ProgramOptions) -> Vec<Literal> {
+/// What every jog needs: manual mode, the EMERGENCY STOP not pressed and
+/// no halt waiting for RESET, every interlock closed.
+fn may_jog(signals: &Signals, options: &ProgramOptions) -> Vec<Literal> {
     let mut condition = vec![Literal::is(Signal::ManualMode)];
     if options.modes.estop {
         condition.push(Literal::is(Signal::EStop));
+    }
+    if signals.memories.contains(&Signal::Halt) {
+        condition.push(Literal::not(Signal::Halt));
     }
     for interlock in &options.interlocks {
         let closed = Literal::is(Signal::MachineInput(interlock.input));
@@ -121,28 +167,58 @@ fn jog_rungs(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Vec<R
     let jog = |sign| Signal::Jog { actuator, sign };
     let mut rungs = Vec::new();
     for sign in [Sign::Plus, Sign::Minus] {
-        let coil = match (valve, sign) {
-            (Coils::Single { .. }, Sign::Minus) => continue,
-            (Coils::Single { .. }, Sign::Plus) => valve.extend(),
-            (Coils::Double { .. }, _) => Signal::Coil { actuator, sign },
+        if !signals.inputs.contains(&jog(sign)) {
+            continue;
+        }
+        // A single coil's jogN- (a vacuum's release) switches it off.
+        let (coil, action) = match valve {
+            Coils::Single { .. } if sign == Sign::Minus => {
+                (valve.extend(), Action::Reset(valve.extend()))
+            }
+            Coils::Single { .. } => (valve.extend(), Action::Set(valve.extend())),
+            Coils::Double { .. } => {
+                let coil = Signal::Coil { actuator, sign };
+                (coil, Action::Set(coil))
+            }
         };
-        let mut condition = may_jog(options);
+        let mut condition = may_jog(signals, options);
         condition.push(Literal::is(jog(sign)));
-        if let Coils::Double { .. } = valve {
+        if signals.inputs.contains(&jog(sign.opposite())) {
             condition.push(Literal::not(jog(sign.opposite())));
         }
+        let mut actions = vec![action];
+        if let Coils::Double { .. } = valve {
+            // The other coil off first: a halt may have held it on.
+            actions.insert(
+                0,
+                Action::Reset(Signal::Coil {
+                    actuator,
+                    sign: sign.opposite(),
+                }),
+            );
+        }
+        let words = signals.kinds.get(&actuator).map(|k| k.single_coil_words());
         let verb = match (drive, sign) {
+            (false, _) if matches!(valve, Coils::Single { .. }) => {
+                let (on, off) = words.unwrap_or(("extends", "retracts"));
+                if sign == Sign::Plus { on } else { off }
+            }
             (true, Sign::Plus) => "runs forward",
             (true, Sign::Minus) => "runs in reverse",
             (false, Sign::Plus) => "extends",
             (false, Sign::Minus) => "retracts",
         };
+        let state = if matches!(action, Action::Reset(_)) {
+            "off"
+        } else {
+            "on"
+        };
         let mut comment = format!(
-            "jog C{actuator}: {} on while {} is held",
+            "jog C{actuator}: {} {state} while {} is held",
             coil.symbol(),
             jog(sign).symbol()
         );
-        if let Coils::Double { .. } = valve {
+        if signals.inputs.contains(&jog(sign.opposite())) {
             comment.push_str(&format!(" and {} is not", jog(sign.opposite()).symbol()));
         }
         if drive {
@@ -160,7 +236,7 @@ fn jog_rungs(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Vec<R
             kind: RungKind::Manual,
             comment,
             condition,
-            actions: vec![Action::Set(coil)],
+            actions,
         });
     }
     rungs
@@ -193,20 +269,37 @@ mod tests {
             .iter()
             .filter(|r| r.kind == RungKind::Manual)
             .collect();
-        assert_eq!(rungs.len(), 1 + 2 * 4);
+        assert_eq!(rungs.len(), 3 + 2 * 4);
+        // Leaving manual switches every coil off (the jog a button still
+        // held left on); entering it ends the cycle.
+        let leave = rungs[0];
+        assert!(leave.condition.contains(&Literal::not(Signal::ManualMode)));
+        assert!(leave.condition.contains(&Literal::is(Signal::ManualMemory)));
+        assert!(leave.actions.contains(&super::Action::Reset(Signal::Coil {
+            actuator: 2,
+            sign: Sign::Plus
+        })));
         assert!(
-            rungs[0]
+            rungs[1]
                 .actions
                 .contains(&super::Action::Reset(Signal::Sequence))
         );
-        for rung in &rungs[1..] {
-            let [super::Action::Set(Signal::Coil { actuator, sign })] = rung.actions[..] else {
+        assert!(program.signals.memories.contains(&Signal::Halt));
+        for rung in &rungs[3..] {
+            let [
+                super::Action::Reset(Signal::Coil { sign: other, .. }),
+                super::Action::Set(Signal::Coil { actuator, sign }),
+            ] = rung.actions[..]
+            else {
                 panic!("{rung:?}");
             };
+            // Never both coils: the other goes off as this one comes on.
+            assert_eq!(other, sign.opposite());
             let jog = |sign| Signal::Jog { actuator, sign };
             for literal in [
                 Literal::is(Signal::ManualMode),
                 Literal::is(Signal::EStop),
+                Literal::not(Signal::Halt),
                 Literal::is(jog(sign)),
                 Literal::not(jog(sign.opposite())),
             ] {

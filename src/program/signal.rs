@@ -95,6 +95,9 @@ pub enum Signal {
         actuator: u32,
         sign: Sign,
     },
+    /// Memory: MAN_MODE as read in the previous scan, so that the scan
+    /// manual ends in switches off what a jog left on.
+    ManualMemory,
     /// Memory: the sequence may fire a transition in this scan (always in
     /// automatic, for one scan after a STEP_PB press in single-step).
     StepPermit,
@@ -154,6 +157,7 @@ impl Signal {
             | Signal::HomeStage(_)
             | Signal::StepPermit
             | Signal::StepMemory
+            | Signal::ManualMemory
             | Signal::Awaited(_)
             | Signal::Sequence => Area::Memory,
             Signal::Watchdog | Signal::Dwell(_) | Signal::RunOn(_) => Area::Timer,
@@ -198,6 +202,7 @@ impl Signal {
             Signal::Jog { actuator, sign } => format!("jog{actuator}{}", sign.symbol()),
             Signal::StepPermit => "step_ok".to_string(),
             Signal::StepMemory => "step_mem".to_string(),
+            Signal::ManualMemory => "man_mem".to_string(),
             Signal::CycleRequest => "cycle_req".to_string(),
             Signal::Busy => "busy".to_string(),
             Signal::AutoRun => "auto_run".to_string(),

@@ -253,6 +253,9 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
         memories.push(Signal::StepPermit);
         memories.push(Signal::StepMemory);
     }
+    if modes.manual {
+        memories.push(Signal::ManualMemory);
+    }
     if modes.reset {
         memories.push(Signal::Homing);
         let stages = modes.home_stages(table).map(|s| s.len()).unwrap_or(0);
@@ -274,9 +277,11 @@ pub fn jog_buttons(kinds: &BTreeMap<u32, ActuatorKind>) -> Vec<Signal> {
     kinds
         .iter()
         .flat_map(|(&actuator, kind)| {
+            // A single coil's spring is the way back; a coil that holds a
+            // part stays on by itself, so its jogN- switches it off.
             let signs: &[Sign] = match kind.coils() {
-                CoilSet::Single => &[Sign::Plus],
-                CoilSet::Double => &[Sign::Plus, Sign::Minus],
+                CoilSet::Single if !kind.holds_part() => &[Sign::Plus],
+                _ => &[Sign::Plus, Sign::Minus],
             };
             signs
                 .iter()

@@ -57,6 +57,10 @@ pub(super) fn comment(
         }
         Signal::StepPermit => "the sequence may fire a step in this scan".to_string(),
         Signal::StepMemory => "STEP_PB as read in the previous scan".to_string(),
+        Signal::ManualMemory => {
+            "MAN_MODE as read in the previous scan (leaving manual switches the jogs' coils off)"
+                .to_string()
+        }
         Signal::CycleRequest => "a cycle was asked for".to_string(),
         Signal::Busy => "a cycle is under way".to_string(),
         Signal::AutoRun => "continuous operation runs".to_string(),

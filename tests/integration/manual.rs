@@ -102,6 +102,33 @@ fn jogs_move_each_actuator_refuse_forbidden_jogs_and_auto_starts_after_reset() {
     assert!(last.positions.iter().all(|p| p.abs() < 0.05));
 }
 
+/// Red-team findings: leaving manual with jog2+ still held switches the
+/// coil off in that scan (C2, a 5/3 closed centre, stops where it is); a
+/// jog after the EMERGENCY STOP was released but not reset moves nothing.
+#[test]
+fn leaving_manual_with_a_jog_held_and_a_halt_not_reset_move_nothing() {
+    let build = Build::paper().modes("all");
+    let written = [
+        ("hold", "MAN_MODE@0.5s"),
+        ("hold", "jog2+@1s"),
+        ("release", "MAN_MODE@1.5s"),
+        ("release", "jog2+@3s"),
+        ("press", "ESTOP@4s"),
+        ("hold", "MAN_MODE@5s"),
+        ("hold", "jog1+@5.5s"),
+        ("release", "jog1+@6.5s"),
+    ]
+    .map(|(o, t)| (o.to_string(), t.to_string()));
+    let (_, _, report) = run(&build, &written);
+    assert!(always(&report, (1_100, 1_450), coil(2, true), true));
+    assert!(always(&report, (1_520, 4_000), coil(2, true), false));
+    let stopped = position(&report, 1_600, 2);
+    assert_eq!(stopped, position(&report, 3_900, 2), "C2 stands");
+    // The halt the emergency stop left waits for RESET: no jog.
+    assert!(always(&report, (5_500, 6_500), coil(1, true), false));
+    assert!(position(&report, 6_450, 1) < 0.05);
+}
+
 /// MAN_MODE mid-cycle: the sequence is back at step 0 the scan after and
 /// every coil is off; leaving manual away from home, START does nothing.
 #[test]

@@ -97,8 +97,11 @@ fn the_reports_mitigations_are_what_faults_with_each_check_shows() {
         .iter()
         .map(|c| (*c, faults_with(&input, c, dir.path())))
         .collect();
+    let without = faults_with(&input, "none", dir.path());
     for (fault, cell) in &hazards {
         let mut caught = false;
+        // A check that leaves the hazard at as many moments narrows nothing.
+        let before = &without[fault][4];
         for check in checks {
             let option = format!("--safety {check}");
             let row = &runs[check][fault];
@@ -118,7 +121,7 @@ fn the_reports_mitigations_are_what_faults_with_each_check_shows() {
                     format!("caught by {option} ({outcome}{alarm})"),
                     "{fault}"
                 );
-            } else if appears != "at every moment" {
+            } else if appears != before {
                 assert!(clause.starts_with("under "), "{fault}: {clause}");
                 assert!(
                     clause.ends_with(&format!(" it stays a hazard {appears}")),
