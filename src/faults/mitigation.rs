@@ -56,8 +56,7 @@ impl Trial {
 
     /// How many moments still give a hazard.
     fn hazard_moments(&self) -> usize {
-        let hazards = self.case.outcomes.iter();
-        hazards.filter(|o| **o == Outcome::Hazard).count()
+        self.case.hazard_moments()
     }
 }
 
@@ -199,11 +198,7 @@ pub fn mitigations(
         } else {
             remedy(table, case, &trials).to_string()
         };
-        let hazard_moments = case
-            .outcomes
-            .iter()
-            .filter(|o| **o == Outcome::Hazard)
-            .count();
+        let hazard_moments = case.hazard_moments();
         Mitigation {
             trials,
             remedy,

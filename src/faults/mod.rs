@@ -61,6 +61,14 @@ pub struct FaultCase {
 }
 
 impl FaultCase {
+    /// How many moments the faults give a hazard at.
+    pub fn hazard_moments(&self) -> usize {
+        self.outcomes
+            .iter()
+            .filter(|o| **o == Outcome::Hazard)
+            .count()
+    }
+
     /// `x11 short circuit (stuck at 1) + x20 open circuit (stuck at 0)`.
     pub fn fault_text(&self) -> String {
         self.fault_text_as(&|s: Signal| s.symbol())
