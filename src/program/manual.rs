@@ -90,21 +90,7 @@ fn end_of_automatic(signals: &Signals, timers: &[Signal], options: &ProgramOptio
         signals
             .memories
             .iter()
-            .filter(|m| {
-                matches!(
-                    m,
-                    Signal::CycleRequest
-                        | Signal::Busy
-                        | Signal::AutoRun
-                        | Signal::StopAt { .. }
-                        | Signal::DwellArmed(_)
-                        | Signal::InterlockZone(_)
-                        | Signal::WatchdogArmed
-                        | Signal::Awaited(_)
-                        | Signal::Homing
-                        | Signal::HomeStage(_)
-                )
-            })
+            .filter(|m| super::stops::ends_with_the_cycle(m))
             .map(|m| Action::Reset(*m)),
     );
     // A run-on keeps its own timer: it switches its output off itself.

@@ -180,21 +180,7 @@ pub(super) fn stop_now_rungs(
                 Signal::StopAt { actuator, .. } => !still_driven(*actuator),
                 _ => true,
             })
-            .filter(|m| {
-                matches!(
-                    m,
-                    Signal::CycleRequest
-                        | Signal::Busy
-                        | Signal::AutoRun
-                        | Signal::StopAt { .. }
-                        | Signal::DwellArmed(_)
-                        | Signal::InterlockZone(_)
-                        | Signal::WatchdogArmed
-                        | Signal::Awaited(_)
-                        | Signal::Homing
-                        | Signal::HomeStage(_)
-                )
-            })
+            .filter(|m| ends_with_the_cycle(m))
             .map(|m| Action::Reset(*m)),
     );
     actions.extend(
@@ -222,4 +208,22 @@ pub(super) fn all_off_but(kept: &[String]) -> String {
     } else {
         format!("every coil and output off but {}", kept.join(", "))
     }
+}
+
+/// The memories a cycle leaves that end with it (a STOP at once, manual
+/// mode): requests, stop requests, dwells, zones, the watchdog, homing.
+pub(super) fn ends_with_the_cycle(m: &Signal) -> bool {
+    matches!(
+        m,
+        Signal::CycleRequest
+            | Signal::Busy
+            | Signal::AutoRun
+            | Signal::StopAt { .. }
+            | Signal::DwellArmed(_)
+            | Signal::InterlockZone(_)
+            | Signal::WatchdogArmed
+            | Signal::Awaited(_)
+            | Signal::Homing
+            | Signal::HomeStage(_)
+    )
 }
