@@ -62,9 +62,12 @@ pub fn signal_problem(name: &str, buttons: &[String]) -> Option<String> {
             "\"{name}\" cannot name a machine signal: Festo FST keeps its first {FST_SYMBOL_CHARS} characters, \"{stem}\", and {reason}"
         ));
     }
+    // The button of that very name before one that is only the same to
+    // FST (`clamp_jog_in` is the retract jog, not `clamp_jog_out`).
     let button = buttons
         .iter()
-        .find(|b| b.eq_ignore_ascii_case(&name) || same_in_fst(b, &name))?;
+        .find(|b| b.eq_ignore_ascii_case(&name))
+        .or_else(|| buttons.iter().find(|b| same_in_fst(b, &name)))?;
     Some(format!(
         "\"{name}\" cannot name a machine signal while the program has the operating-mode button {} (IEC names ignore case): rename the signal, or leave that mode out",
         button.to_ascii_uppercase()

@@ -332,7 +332,13 @@ pub(super) fn names_of_the_whole_table(
             .collect();
         later.extend(check::row_entries(Row::Interlock.label(), &inputs, &row.at));
     }
-    later.extend(check::actuator_entries(table, &settings.naming, diags));
+    let jogs = jog_buttons(table, settings);
+    later.extend(check::actuator_entries(
+        table,
+        &settings.naming,
+        &jogs,
+        diags,
+    ));
     later.sort_by_key(|e| check::sheet_order(&e.at));
     entries.extend(later);
     check::check_entries(&entries, diags);
@@ -490,10 +496,8 @@ pub(super) fn manual_without_actuators(
     );
 }
 
-/// The names manual mode's jog buttons take (`jog1p`, `jog1m`, and under
-/// any scheme the engineer's `clamp_jog_out`), lower-case: none without
-/// the mode.
-pub(super) fn jog_names(table: &StepTable, settings: &Settings) -> Vec<String> {
+/// Manual mode's jog buttons (none without the mode).
+fn jog_buttons(table: &StepTable, settings: &Settings) -> Vec<crate::program::Signal> {
     if !settings.program.modes.manual {
         return Vec::new();
     }
@@ -504,6 +508,13 @@ pub(super) fn jog_names(table: &StepTable, settings: &Settings) -> Vec<String> {
         .map(|a| (a.number, valves.of(a.number, a.max_position)))
         .collect();
     crate::program::jog_buttons(&kinds)
+}
+
+/// The names manual mode's jog buttons take (`jog1p`, `jog1m`, and under
+/// any scheme the engineer's `clamp_jog_out`), lower-case: none without
+/// the mode.
+pub(super) fn jog_names(table: &StepTable, settings: &Settings) -> Vec<String> {
+    jog_buttons(table, settings)
         .into_iter()
         .flat_map(|jog| {
             let own = settings.naming.own_alias(jog, table);

@@ -50,6 +50,10 @@ pub struct Entry {
     /// Whether it names a signal (an actuator's bare name names none, so
     /// what FST keeps of it does not matter).
     pub symbol: bool,
+    /// Whether it is an operating-mode button's name (a jog button's):
+    /// a machine signal meets those in [`crate::names::signal_problem`],
+    /// so here it is held only against the other actuators' names.
+    pub button: bool,
 }
 
 /// The machine inputs and outputs of `table`, each at the first cell
@@ -73,6 +77,7 @@ pub fn table_entries(table: &StepTable, grid: &Grid) -> Vec<Entry> {
             label: String::new(),
             actuator: None,
             symbol: true,
+            button: false,
             name,
         });
     }
@@ -101,6 +106,7 @@ pub fn row_entries(label: &str, names: &[crate::cell::Name], at: &Location) -> V
             label: format!("{label}: "),
             actuator: None,
             symbol: true,
+            button: false,
         })
         .collect()
 }
@@ -111,10 +117,16 @@ pub fn sheet_order(at: &Location) -> (u32, u32) {
     at.cell.map_or((0, 0), |c| (c.row, c.col))
 }
 
-/// The identifiers the engineer's names give (`clamp_home`, `clamp_out`),
-/// and each name itself, at the actuator table's cell; a name that gives
-/// no identifier under the names scheme is E015 there.
-pub fn actuator_entries(table: &StepTable, naming: &Naming, diags: &mut Diagnostics) -> Vec<Entry> {
+/// The identifiers the engineer's names give (`clamp_home`, `clamp_out`,
+/// and the jog buttons `jogs` of manual mode: `clamp_jog_out`), and each
+/// name itself, at the actuator table's cell; a name that gives no
+/// identifier under the names scheme is E015 there.
+pub fn actuator_entries(
+    table: &StepTable,
+    naming: &Naming,
+    jogs: &[crate::program::Signal],
+    diags: &mut Diagnostics,
+) -> Vec<Entry> {
     let mut entries = Vec::new();
     for (&n, name) in &naming.actuators {
         let Some(actuator) = table.actuator(n) else {
@@ -152,6 +164,7 @@ pub fn actuator_entries(table: &StepTable, naming: &Naming, diags: &mut Diagnost
             label: label.clone(),
             actuator: Some(n),
             symbol,
+            button: false,
         };
         // The name itself may not read as a reserved word or another
         // actuator's (`C1 (C2)`, `C1 (y1)`, `C1 (none)`): a row naming it
@@ -192,6 +205,22 @@ pub fn actuator_entries(table: &StepTable, naming: &Naming, diags: &mut Diagnost
             }
             entries.push(entry(id, names));
         }
+        // A jog button keeps its paper symbol in FST (`jog1p`), so only
+        // its whole name can meet another's: `c_jog_out` is C1 (c)'s jog
+        // and C2 (c_jog)'s coil.
+        let own_jogs = jogs.iter().filter(
+            |jog| matches!(jog, crate::program::Signal::Jog { actuator, .. } if *actuator == n),
+        );
+        for &jog in own_jogs {
+            if let Some(id) = naming.own_alias(jog, table) {
+                entries.push(Entry {
+                    origin: format!("for C{n}'s jog button at {}", place(&name.at)),
+                    label: format!("{label}its jog button "),
+                    button: true,
+                    ..entry(id, false)
+                });
+            }
+        }
     }
     entries
 }
@@ -206,6 +235,13 @@ pub fn check_entries(entries: &[Entry], diags: &mut Diagnostics) {
         for earlier in &entries[..i] {
             let same_actuator = entry.actuator.is_some() && entry.actuator == earlier.actuator;
             let other = earlier.name.to_ascii_lowercase();
+            // A machine signal named like a button is E015 where it is
+            // written (names::signal_problem), said once.
+            let signal_and_button = (entry.button && earlier.actuator.is_none())
+                || (earlier.button && entry.actuator.is_none());
+            if signal_and_button {
+                continue;
+            }
             let message = if lower == other {
                 // One input in two rows (a permissive that is an
                 // interlock too) is one signal.

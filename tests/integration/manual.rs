@@ -209,6 +209,41 @@ const CASES: &[Refused] = &[
         code_at: "TABLE!A2: error[E015]",
     },
     Refused {
+        what: "C2's extend coil named like C1's jog button (C1 c, C2 c_jog)",
+        table: &[&["C1+1"], &["C2+1"], &["C2-0"], &["C1-0"]],
+        settings: &[
+            &["modes", "manual"],
+            &["actuator", "name"],
+            &["C1", "c"],
+            &["C2", "c_jog"],
+        ],
+        args: &["--designations", "names"],
+        code_at: "SETTINGS!B4: error[E025]: C2 (c_jog): c_jog_out is named for C1's jog button at SETTINGS!B3 too",
+    },
+    Refused {
+        what: "C1's jog button named like C2's retract coil, the jog later (C1 c_jog, C2 c)",
+        table: &[&["C1+1"], &["C2+1"], &["C2-0"], &["C1-0"]],
+        settings: &[
+            &["modes", "manual"],
+            &["actuator", "name"],
+            &["C1", "c_jog"],
+            &["C2", "c"],
+        ],
+        args: &[],
+        code_at: "SETTINGS!B4: error[E025]: C2 (c): its jog button c_jog_out is named for C1 at SETTINGS!B3 too",
+    },
+    Refused {
+        what: "a machine input named like the retract jog names that jog, not the extend one",
+        table: &[&["C1+1"], &["I:clamp_jog_in"], &["C1-0"]],
+        settings: &[
+            &["modes", "manual"],
+            &["actuator", "name"],
+            &["C1", "clamp"],
+        ],
+        args: &["--designations", "names"],
+        code_at: "the operating-mode button CLAMP_JOG_IN ",
+    },
+    Refused {
         what: "an interlock input named like a jog button",
         table: &[&["C1+1"], &["C1-0"]],
         settings: &[&["modes", "manual"], &["interlock", "jog1m"]],
