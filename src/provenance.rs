@@ -121,6 +121,11 @@ pub fn settings_source(settings: &Settings) -> String {
             .filter(|row| !given.named.contains_key(row))
             .map(|row| row.label().to_string()),
     );
+    // The names of the actuator table come only from the sheet, and every
+    // comment and identifier shows them.
+    if !naming.actuators.is_empty() {
+        sheet.push("actuator names".to_string());
+    }
     sheet.sort();
     sheet.dedup();
     let first = match settings.invocation {

@@ -55,21 +55,43 @@ pub fn step_comment(text: &str) -> Option<String> {
     label_comment(after)
 }
 
-/// The comment after a label's number (`(clamp part)`, `: eject`), without
-/// its separator and a closing bracket; `None` when nothing is left.
+/// The comment after a label's number (`(clamp part)`, `: eject`, `- lift`)
+/// without its separator: brackets only where they enclose the whole
+/// comment (`(clamp) extra` keeps both, `((x))` keeps the inner pair), a
+/// dash only where a space follows it (`-5 bar` and `-> z` are the
+/// comment); `None` when nothing is left.
 fn label_comment(after: &str) -> Option<String> {
-    let bracketed = after.trim_start().starts_with('(');
-    let comment = after.trim_start_matches(|c: char| {
-        c.is_whitespace() || matches!(c, ':' | '-' | '–' | '—' | '(' | '.' | ',' | ';' | '=')
-    });
-    let comment = if bracketed {
-        comment.trim_end().strip_suffix(')').unwrap_or(comment)
+    let after = after.trim();
+    let comment = if let Some(inner) = enclosed(after) {
+        inner
+    } else if let Some(rest) = after.strip_prefix([':', '.', ',', ';', '=']) {
+        rest
     } else {
-        comment
+        let dash = after.strip_prefix(['-', '–', '—']);
+        match dash {
+            Some(rest) if rest.starts_with(char::is_whitespace) => rest,
+            _ => after,
+        }
     };
     let comment = visible_text(comment);
     let comment = comment.trim();
     (!comment.is_empty()).then(|| comment.to_string())
+}
+
+/// What a pair of brackets encloses when the first `(` of `text` closes
+/// at its last character.
+fn enclosed(text: &str) -> Option<&str> {
+    let inner = text.strip_prefix('(')?.strip_suffix(')')?;
+    let mut depth = 0usize;
+    for c in inner.chars() {
+        match c {
+            '(' => depth += 1,
+            ')' if depth == 0 => return None,
+            ')' => depth -= 1,
+            _ => {}
+        }
+    }
+    Some(inner)
 }
 
 /// Free text (a comment, an actuator's name) as the engineer sees it: a

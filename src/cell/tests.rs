@@ -283,6 +283,29 @@ fn label_comments_are_read_without_their_separators() {
         Some("gripper arm")
     );
     assert_eq!(actuator_comment("C2 lift").as_deref(), Some("lift"));
+    // Only what the engineer used as a separator goes: brackets that
+    // enclose the whole comment, one colon, a dash before a space.
+    for (label, comment) in [
+        ("STEP 3 ((x))", "(x)"),
+        ("STEP 4: (y)", "(y)"),
+        ("STEP 5 (clamp) extra", "(clamp) extra"),
+        ("STEP 1 -5 bar", "-5 bar"),
+        ("STEP 5 (-- dashes --)", "-- dashes --"),
+        ("STEP 7 -> z", "-> z"),
+        ("STEP 2 – lift", "lift"),
+        ("STEP 6 (a) (b)", "(a) (b)"),
+        ("STEP 8 (open (", "(open ("),
+    ] {
+        assert_eq!(step_comment(label).as_deref(), Some(comment), "{label}");
+    }
+    assert_eq!(
+        actuator_comment("C3 (lift) extra").as_deref(),
+        Some("(lift) extra")
+    );
+    assert_eq!(
+        actuator_comment("C4 (mark) (x)").as_deref(),
+        Some("(mark) (x)")
+    );
     assert_eq!(actuator_comment("C2"), None);
     assert_eq!(actuator_comment("clamp"), None);
 }

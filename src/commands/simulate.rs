@@ -173,7 +173,7 @@ pub fn scenario(
     let (run, trace) = sc::scenario_events(&table, &program, sim, &events, (tail, until), signals);
     let symbols = SymbolTable::build(&program, &table, naming);
     let designation = |s| symbols.designation(s);
-    let actuator = |n| symbols.actuator(n);
+    let actuator = |n| symbols.actuator_in_finding(n);
     let names = printed::Names {
         signal: &designation,
         actuator: &actuator,

@@ -64,7 +64,7 @@ fn hazards(faults: &FaultTable, symbols: &SymbolTable) -> String {
 /// `C2, C3 & C4, then C1`: stages in order, actuators of a stage together.
 fn stages_text(stages: &[Vec<u32>], symbols: &SymbolTable) -> String {
     let stage = |s: &Vec<u32>| {
-        let names: Vec<String> = s.iter().map(|n| symbols.actuator(*n)).collect();
+        let names: Vec<String> = s.iter().map(|n| symbols.actuator_in_finding(*n)).collect();
         match names.split_last() {
             Some((last, rest)) if !rest.is_empty() => format!("{} & {last}", rest.join(", ")),
             _ => names.join(""),

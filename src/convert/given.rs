@@ -256,6 +256,16 @@ pub(super) fn by_name(
     }
 }
 
+/// The longest run of two or more `items` that, joined by `_`, an
+/// actuator is called (`gripper`, `arm` → `gripper_arm`): how many, and
+/// that name.
+fn spaced_name(naming: &crate::symbols::Naming, items: &[String]) -> Option<(usize, String)> {
+    (2..=items.len()).rev().find_map(|run| {
+        let joined = items[..run].join("_");
+        naming.actuator_called(&joined).map(|_| (run, joined))
+    })
+}
+
 /// The home order in force, its actuators read by the naming authority
 /// (`C1`, `1A1`, `clamp`): put in force as numbers for the table check and
 /// the program; an item no actuator answers to is E030 on its SETTINGS
@@ -277,11 +287,26 @@ pub(super) fn home_order_by_name(
     let mut known = true;
     for stage in &order {
         let mut actuators = Vec::new();
-        for item in stage {
+        let mut items = stage.iter().enumerate();
+        while let Some((i, item)) = items.next() {
             match naming.actuator_called(item) {
                 Some(n) => actuators.push(n),
                 None => {
                     known = false;
+                    // `gripper arm` parted at its space into two items:
+                    // the name it is, said once.
+                    if let Some((run, name)) = spaced_name(naming, &stage[i..]) {
+                        diags.error(
+                            Code::E030BadSetting,
+                            at.clone(),
+                            format!(
+                                "the home order names \"{}\" as {run} actuators, but a space parts the actuators of a stage: write the name as {name}{source}",
+                                stage[i..i + run].join(" ")
+                            ),
+                        );
+                        items.nth(run - 2);
+                        continue;
+                    }
                     let like = naming
                         .actuator_like(item, &numbers)
                         .map(|name| format!("; did you mean {name}?"))
@@ -304,13 +329,15 @@ pub(super) fn home_order_by_name(
 }
 
 /// The one check of every name against every other, over the table and
-/// its settings (see [`crate::symbols::check`]): table cells first, then
+/// its settings (see [`crate::symbols::check`]), the program's operating
+/// -mode buttons (`buttons`, lower case) among them: table cells first, then
 /// the SETTINGS rows and the actuator names in sheet order, so that an
 /// error falls on the later of two names.
 pub(super) fn names_of_the_whole_table(
     table: &StepTable,
     grid: &read::Grid,
     settings: &Settings,
+    buttons: &[String],
     diags: &mut Diagnostics,
 ) {
     use crate::symbols::check;
@@ -337,6 +364,7 @@ pub(super) fn names_of_the_whole_table(
         table,
         &settings.naming,
         &jogs,
+        buttons,
         diags,
     ));
     later.sort_by_key(|e| check::sheet_order(&e.at));

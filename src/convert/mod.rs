@@ -185,7 +185,7 @@ fn finish_check(
         );
         effective.program.interlocks =
             halt::resolve_interlocks(table, &buttons, named.get(&Row::Interlock), &mut diags);
-        names_of_the_whole_table(table, &input.table, &effective, &mut diags);
+        names_of_the_whole_table(table, &input.table, &effective, &buttons, &mut diags);
         delays_without_their_input(table, &effective, &input.table, &mut diags);
         rows_without_their_event(&effective, &mut diags);
     }

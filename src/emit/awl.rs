@@ -451,7 +451,7 @@ impl Networks<'_> {
                 lines.push(line("SET", "", ""));
                 self.actions(&mut lines, &rung.actions, &[]);
                 self.networks.push(Network {
-                    title: one_line(&self.input.symbols.designate(&rung.comment)),
+                    title: one_line(&self.input.symbols.explain(&rung.comment)),
                     lines,
                 });
                 continue;
@@ -463,7 +463,7 @@ impl Networks<'_> {
             self.actions(&mut lines, &rung.actions, &[]);
             lines.push(nop(&skip));
             self.networks.push(Network {
-                title: one_line(&self.input.symbols.designate(&rung.comment)),
+                title: one_line(&self.input.symbols.explain(&rung.comment)),
                 lines,
             });
         }

@@ -209,7 +209,7 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         .rungs
         .iter()
         .map(|r| RungContext {
-            comment: one_line(&symbols.designate(&r.comment)),
+            comment: one_line(&symbols.explain(&r.comment)),
             condition: condition(&r.condition, festo, symbols),
             actions: actions(&r.actions, festo, symbols, &[]),
         })

@@ -204,7 +204,7 @@ fn rungs(names: &Names) -> Vec<Rung> {
         let mut outputs = Vec::new();
         names.actions(&r.actions, &mut outputs);
         rungs.push(rung(
-            symbols.designate(&r.comment),
+            symbols.explain(&r.comment),
             names.condition(&r.condition),
             &outputs,
         ));

@@ -316,7 +316,7 @@ pub(super) fn sequence(input: &EmitInput, sp: Spelling) -> (Vec<StepContext>, Ve
         .iter()
         .map(|r| RungContext {
             // The program's own rungs name signals as the symbol table does.
-            comment: comment_text(&symbols.designate(&r.comment)),
+            comment: comment_text(&symbols.explain(&r.comment)),
             condition: condition(symbols, &r.condition, sp),
             actions: statements(symbols, &r.actions, &[], sp),
         })

@@ -125,6 +125,7 @@ pub fn actuator_entries(
     table: &StepTable,
     naming: &Naming,
     jogs: &[crate::program::Signal],
+    buttons: &[String],
     diags: &mut Diagnostics,
 ) -> Vec<Entry> {
     let mut entries = Vec::new();
@@ -143,6 +144,14 @@ pub fn actuator_entries(
             continue;
         };
         let label = format!("C{n} ({}): ", name.text);
+        if let Some(why) = reads_as_another(&name.text, n, buttons) {
+            diags.error(
+                Code::E015BadName,
+                name.at.clone(),
+                format!("{label}\"{}\" cannot name an actuator: {why}", name.text),
+            );
+            continue;
+        }
         let Some(stem) = name.stem() else {
             if naming.scheme == Scheme::Names {
                 diags.error(
@@ -223,6 +232,52 @@ pub fn actuator_entries(
         }
     }
     entries
+}
+
+/// Why the name `text` of actuator `n` would read as something else where
+/// a row or an option names an actuator or a signal: as an actuator the
+/// table reader takes it for (`С2` with a Cyrillic С, `c 2`, `C₂`), as an
+/// ISO 1219 designation other than its own `nA1` (`2A1`, `1M1`, `1B2`:
+/// rows take those too), or as one of the program's operating-mode
+/// buttons (`estop`, `jog1p`).
+fn reads_as_another(text: &str, n: u32, buttons: &[String]) -> Option<String> {
+    let folded = crate::cell::normalize(text);
+    if let Some(other) = folded
+        .strip_prefix('C')
+        .filter(|d| !d.is_empty() && d.chars().all(|c| c.is_ascii_digit()))
+    {
+        return Some(format!(
+            "it reads as actuator C{} (the table reads a Cyrillic or full-width C, spaces and small digits as C and 0-9)",
+            other.trim_start_matches('0')
+        ));
+    }
+    let iso = iso_designation(&folded);
+    if let Some(circuit) = iso
+        && folded != format!("{n}A1")
+    {
+        return Some(format!(
+            "it reads as an ISO 1219 designation ({circuit}A1 is C{circuit}, {circuit}B1 and {circuit}B2 its sensors, {circuit}M1 and {circuit}M2 its solenoids), which rows and options take too"
+        ));
+    }
+    let lower = text.trim().to_ascii_lowercase();
+    buttons.iter().find(|b| **b == lower).map(|b| {
+        format!(
+            "it is the program's operating-mode button {}",
+            b.to_ascii_uppercase()
+        )
+    })
+}
+
+/// `2A1`, `1M2`, `10B3` (upper case, no spaces): the circuit number.
+fn iso_designation(folded: &str) -> Option<u32> {
+    let letter_at = folded.find(|c: char| !c.is_ascii_digit())?;
+    let (circuit, rest) = folded.split_at(letter_at);
+    let mut chars = rest.chars();
+    let letter = chars.next()?;
+    let number = chars.as_str();
+    let digits = |t: &str| !t.is_empty() && t.chars().all(|c| c.is_ascii_digit());
+    let iso = digits(circuit) && matches!(letter, 'A' | 'B' | 'M') && digits(number);
+    iso.then(|| circuit.parse().ok()).flatten()
 }
 
 /// Every entry against every earlier one: the same name after case folding

@@ -307,7 +307,15 @@ pub(super) fn map_words<'a>(text: &str, new: impl Fn(&str) -> Option<&'a str>) -
         let tail = &rest[start..];
         let end = tail.find(|c: char| !word(c)).unwrap_or(tail.len());
         let token = &tail[..end];
-        out.push_str(new(token).unwrap_or(token));
+        // `x31:` ends a clause (`short of x31: C3 runs`); `I:part` is a name.
+        match (new(token), token.strip_suffix(':')) {
+            (Some(mapped), _) => out.push_str(mapped),
+            (None, Some(bare)) if new(bare).is_some() => {
+                out.push_str(new(bare).unwrap_or(bare));
+                out.push(':');
+            }
+            _ => out.push_str(token),
+        }
         rest = &tail[end..];
     }
     out.push_str(rest);

@@ -184,6 +184,16 @@ impl SymbolTable {
         }
     }
 
+    /// Actuator `n` as a printed finding names it: [`Self::actuator`] with
+    /// the engineer's name cut to [`FINDING_NAME`], as [`Self::explain`]
+    /// cuts it.
+    pub fn actuator_in_finding(&self, n: u32) -> String {
+        match self.actuator_parts(n) {
+            (head, Some(name)) => format!("{head} ({})", shorten(&name, FINDING_NAME).0),
+            (head, None) => head,
+        }
+    }
+
     /// Actuator `n` as a diagram labels its lane: `C1` (`1A1` under ISO)
     /// and the engineer's name, if it has one.
     pub fn actuator_parts(&self, n: u32) -> (String, Option<String>) {
@@ -228,8 +238,9 @@ impl SymbolTable {
     /// `C1 (clamp) had not reached x11`, `1A1 (clamp) … 1B2` under ISO), a
     /// name longer than [`FINDING_NAME`] cut as every limited comment is
     /// ([`shorten`]): a finding names an actuator many times, and the whole
-    /// name stands in the lists. Not for text that already names actuators
-    /// (a rung's comment).
+    /// name stands in the lists. A rung's comment (`homing stage 1: C2
+    /// home`, `jog C3: … short of x31`) is such a text: the program writes
+    /// it in paper symbols, naming no actuator by the engineer's name.
     pub fn explain(&self, text: &str) -> String {
         let text = self.designate(text);
         if self.actuators.values().all(|(_, name)| name.is_none()) {

@@ -305,3 +305,16 @@ fn a_long_name_is_cut_in_findings_and_kept_whole_in_the_lists() {
             .ends_with(&format!("{})", &long[..FINDING_NAME]))
     );
 }
+
+#[test]
+fn a_signal_before_a_colon_is_designated_and_a_machine_name_kept() {
+    let words = |t: &str| match t {
+        "x31" => Some("belt_end"),
+        "I:x31" => Some("never"),
+        _ => None,
+    };
+    assert_eq!(
+        super::comment::map_words("short of x31: C3 runs, I:part", words),
+        "short of belt_end: C3 runs, I:part"
+    );
+}

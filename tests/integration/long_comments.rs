@@ -115,3 +115,40 @@ fn a_long_name_is_cut_in_findings_and_whole_in_the_lists() {
     let io = std::fs::read_to_string(out.join("long.io.csv")).unwrap();
     assert!(io.contains(&name), "the I/O list keeps the whole name");
 }
+
+/// Every printed line that names an actuator cuts a long name as the
+/// findings do: `convert`'s `RESET homes …` line, the rung comments of a
+/// program (homing stages), and the last line of a scenario.
+#[test]
+fn a_long_name_is_cut_in_every_printed_line_and_rung_comment() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = long_table(dir.path());
+    let name = long_text("clamp");
+    let cut: String = name.chars().take(37).chain("...".chars()).collect();
+    let run = steptable()
+        .args(["convert", "--modes", "reset", "--formats", "st", "-o"])
+        .arg(dir.path().join("out"))
+        .arg(&input)
+        .assert()
+        .success();
+    let stdout = String::from_utf8_lossy(&run.get_output().stdout).into_owned();
+    let homes = stdout
+        .lines()
+        .find(|l| l.contains("RESET homes"))
+        .expect("the home order is printed");
+    assert!(homes.contains(&format!("C1 ({cut})")), "{homes}");
+    assert!(!stdout.contains(&name), "the whole name printed: {stdout}");
+    let st = std::fs::read_to_string(dir.path().join("out/long/long.st")).unwrap();
+    assert!(
+        st.contains(&format!("homing stage 1: C1 ({cut}) home")),
+        "the homing rung names C1 by its name"
+    );
+    let run = steptable()
+        .args(["simulate", "--stick", "x11=0@step1"])
+        .arg(&input)
+        .assert();
+    let stdout = String::from_utf8_lossy(&run.get_output().stdout).into_owned();
+    let last = stdout.lines().last().unwrap_or_default();
+    assert!(last.contains(&format!("C1 ({cut}) at")), "{last}");
+    assert!(!stdout.contains(&name), "the whole name printed: {stdout}");
+}

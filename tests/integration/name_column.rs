@@ -94,6 +94,48 @@ fn a_name_column_refuses_what_would_mean_two_things() {
             code_at: "SETTINGS!E2: error[E015]: C1 (C2)",
         },
         Refused {
+            what: "another actuator's ISO designation (the punch named 1A1, C1's)",
+            table: TABLE,
+            settings: &[HEADER, &["C2", "", "", "", "1A1"]],
+            args: &[],
+            code_at: "SETTINGS!E2: error[E015]: C2 (1A1): \"1A1\" cannot name an actuator: it reads as an ISO 1219 designation (1A1 is C1",
+        },
+        Refused {
+            what: "a solenoid's ISO designation",
+            table: TABLE,
+            settings: &[HEADER, &["C1", "", "", "", "2m1"]],
+            args: &[],
+            code_at: "SETTINGS!E2: error[E015]: C1 (2m1)",
+        },
+        Refused {
+            what: "another actuator's label with a Cyrillic C",
+            table: TABLE,
+            settings: &[HEADER, &["C1", "", "", "", "С2"]],
+            args: &[],
+            code_at: "SETTINGS!E2: error[E015]: C1 (С2): \"С2\" cannot name an actuator: it reads as actuator C2",
+        },
+        Refused {
+            what: "another actuator's label with a space and a subscript digit",
+            table: TABLE,
+            settings: &[HEADER, &["C1", "", "", "", "c ₂"]],
+            args: &[],
+            code_at: "SETTINGS!E2: error[E015]: C1 (c ₂)",
+        },
+        Refused {
+            what: "the EMERGENCY STOP button's name under --modes all",
+            table: TABLE,
+            settings: &[HEADER, &["C2", "", "", "", "EStop"]],
+            args: &["--modes", "all"],
+            code_at: "SETTINGS!E2: error[E015]: C2 (EStop): \"EStop\" cannot name an actuator: it is the program's operating-mode button ESTOP",
+        },
+        Refused {
+            what: "a jog button's paper name under --modes manual",
+            table: TABLE,
+            settings: &[HEADER, &["C2", "", "", "", "jog1p"]],
+            args: &["--modes", "manual"],
+            code_at: "SETTINGS!E2: error[E015]: C2 (jog1p)",
+        },
+        Refused {
             what: "two name columns",
             table: TABLE,
             settings: &[&["actuator", "name", "name"], &["C1", "clamp", "gripper"]],
@@ -101,6 +143,22 @@ fn a_name_column_refuses_what_would_mean_two_things() {
             code_at: "SETTINGS!C1: error[E030]: the actuator table has two name columns",
         },
     ]);
+}
+
+/// An actuator may carry its own ISO designation as its name, and a
+/// button's name is free for an actuator while the program has no such
+/// button.
+#[test]
+fn its_own_designation_and_an_absent_buttons_name_are_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("own.xlsx");
+    let settings: &[&[&str]] = &[
+        HEADER,
+        &["C1", "", "", "", "1A1"],
+        &["C2", "", "", "", "estop"],
+    ];
+    write_xlsx_sheets(&path, &[("TABLE", TABLE), ("SETTINGS", settings)]);
+    steptable().arg("check").arg(&path).assert().success();
 }
 
 #[test]

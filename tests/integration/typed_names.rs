@@ -57,6 +57,27 @@ fn the_home_order_and_load_take_names_and_refuse_what_no_actuator_answers_to() {
             never: &[],
         },
         Case {
+            what: "a name with a space parted into two items of a stage",
+            sheets: &[
+                ("TABLE", TWO),
+                (
+                    "SETTINGS",
+                    &[
+                        &["modes", "all"],
+                        &["actuator", "extend", "retract"],
+                        &["C1 (gripper arm)", "1s", "1s"],
+                        &["C2 (clamp)", "1s", "1s"],
+                    ],
+                ),
+            ],
+            args: &["--home-order", "clamp, gripper arm", "--formats", "st"],
+            exit: 1,
+            says: &[
+                "h.xlsx: error[E030]: the home order names \"gripper arm\" as 2 actuators, but a space parts the actuators of a stage: write the name as gripper_arm (--home-order)",
+            ],
+            never: &["\"arm\", which is no actuator"],
+        },
+        Case {
             what: "one actuator under two names",
             sheets: &[("TABLE", TWO), ("SETTINGS", MODES)],
             args: &["--home-order", "clamp, 2A1, lift", "--formats", "st"],
@@ -182,7 +203,8 @@ fn a_home_order_by_name_homes_as_the_same_order_by_number() {
 /// The line each output records of how it was made names an actuator whose
 /// settings came from the SETTINGS sheet as the engineer's actuator table
 /// writes it (`C1 (lift) stroke`), and not one the command line set by its
-/// name (`--stroke clamp=2s`).
+/// name (`--stroke clamp=2s`); the names themselves came from the sheet
+/// too (`actuator names`).
 #[test]
 fn the_made_by_line_names_the_actuators_as_the_engineer_wrote_them() {
     let dir = tempfile::tempdir().unwrap();
@@ -199,7 +221,7 @@ fn the_made_by_line_names_the_actuators_as_the_engineer_wrote_them() {
     let st = std::fs::read_to_string(out.join("h/h.st")).unwrap();
     let line = st.lines().next().unwrap();
     assert!(
-        line.contains("settings: the command line, the SETTINGS sheet (C1 (lift) stroke), defaults for the rest"),
+        line.contains("settings: the command line, the SETTINGS sheet (C1 (lift) stroke, actuator names), defaults for the rest"),
         "{line}"
     );
 }

@@ -215,7 +215,7 @@ pub fn mode_note(program: &crate::program::StepProgram, symbols: &SymbolTable) -
         } else {
             String::new()
         };
-        let comment = symbols.designate(&rung.comment);
+        let comment = symbols.explain(&rung.comment);
         // Most comments already begin with what the rung is.
         if comment.starts_with(rung.kind.label()) {
             lines.push(format!("{comment}{tail}"));
