@@ -199,8 +199,14 @@ fn jog_rungs(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Vec<R
         } else {
             "on"
         };
+        // A coil that holds a part stays as its jog left it (a vacuum
+        // keeps the part until its release jog); the others drop with
+        // their button.
+        let holds = signals.kinds.get(&actuator).is_some_and(|k| k.holds_part());
+        let when = if holds { "when" } else { "while" };
+        let pressed = if holds { "pressed" } else { "held" };
         let mut comment = format!(
-            "jog C{actuator}: {} {state} while {} is held",
+            "jog C{actuator}: {} {state} {when} {} is {pressed}",
             coil.symbol(),
             jog(sign).symbol()
         );

@@ -128,13 +128,37 @@ fn actuator_comment(
             )
         }
         Signal::Jog { actuator: a, sign } => {
-            let what = match (program.signals.drives(a), sign) {
-                (true, Sign::Plus) => format!("drive {}, run forward", actuator(a)),
-                (true, Sign::Minus) => format!("drive {}, run in reverse", actuator(a)),
-                (false, Sign::Plus) => format!("cylinder {}, extend", actuator(a)),
-                (false, Sign::Minus) => format!("cylinder {}, retract", actuator(a)),
+            let kind = program.signals.kinds.get(&a).copied();
+            let holds = kind.is_some_and(|k| k.holds_part());
+            let what = match (program.signals.drives(a), holds, sign) {
+                (true, _, Sign::Plus) => format!("drive {}, run forward while held", actuator(a)),
+                (true, _, Sign::Minus) => {
+                    format!("drive {}, run in reverse while held", actuator(a))
+                }
+                // Its coil stays on by itself: the part is held until the
+                // release jog.
+                (false, true, Sign::Plus) => {
+                    format!(
+                        "{} {}, vacuum on: grip (stays on)",
+                        kind.map_or("gripper", |k| k.noun()),
+                        actuator(a)
+                    )
+                }
+                (false, true, Sign::Minus) => {
+                    format!(
+                        "{} {}, vacuum off: release",
+                        kind.map_or("gripper", |k| k.noun()),
+                        actuator(a)
+                    )
+                }
+                (false, false, Sign::Plus) => {
+                    format!("cylinder {}, extend while held", actuator(a))
+                }
+                (false, false, Sign::Minus) => {
+                    format!("cylinder {}, retract while held", actuator(a))
+                }
             };
-            format!("jog push-button: {what} while held (manual mode)")
+            format!("jog push-button: {what} (manual mode)")
         }
         // Only the signals of an actuator are described here.
         _ => String::new(),

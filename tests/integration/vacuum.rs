@@ -46,6 +46,39 @@ fn a_gripper_has_one_coil_and_its_vacuum_switch_alone() {
     assert!(!st.contains("x20"), "{st}");
 }
 
+/// In manual mode the gripper's jogs say what they do: `jog2p` switches the
+/// vacuum on and it stays on (holding the part) until `jog2m` releases it,
+/// where a cylinder's jog moves it only while held.
+#[test]
+fn a_gripper_s_jogs_say_the_vacuum_stays_on_until_released() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("convert")
+        .arg(pick_and_place())
+        .args([
+            "--valve",
+            "C2=vacuum",
+            "--modes",
+            "manual",
+            "--formats",
+            "st",
+            "-o",
+        ])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let st = std::fs::read_to_string(dir.path().join("pick_and_place/pick_and_place.st")).unwrap();
+    for said in [
+        "jog push-button: gripper 2, vacuum on: grip (stays on) (manual mode)",
+        "jog push-button: gripper 2, vacuum off: release (manual mode)",
+        "jog C2: y2 on when jog2+ is pressed",
+        "jog push-button: cylinder 1, extend while held (manual mode)",
+    ] {
+        assert!(st.contains(said), "{said}: {st}");
+    }
+    assert!(!st.contains("cylinder 2, extend"), "{st}");
+}
+
 #[test]
 fn the_pick_and_place_runs_through_its_cycle_in_the_gripper_s_own_times() {
     let assert = steptable()
