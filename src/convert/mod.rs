@@ -553,26 +553,43 @@ fn render_beside_faults(
                 )
             });
             // The report names, per hazard, what catches it: verified by
-            // running the hazards again under each check the program lacks.
-            let mitigations = fault_table
-                .as_ref()
-                .filter(|_| late.contains(&OutputKind::Report))
-                .map(|f| {
-                    faults::mitigation::mitigations(
-                        table,
-                        &settings.program,
-                        &settings.simulation,
-                        f,
-                    )
-                });
-            let late = emit::render_each(
-                late,
+            // running the hazards again under each check the program lacks,
+            // most of the report's cost on a long line. The report alone
+            // waits for that: the other outputs that show the fault table
+            // render beside it.
+            let (report, others): (Vec<OutputKind>, Vec<OutputKind>) =
+                late.into_iter().partition(|k| *k == OutputKind::Report);
+            let shown = EmitInput {
+                faults: fault_table.as_ref(),
+                ..input
+            };
+            let (mitigations, others) = rayon::join(
+                || {
+                    fault_table
+                        .as_ref()
+                        .filter(|_| !report.is_empty())
+                        .map(|f| {
+                            faults::mitigation::mitigations(
+                                table,
+                                &settings.program,
+                                &settings.simulation,
+                                f,
+                            )
+                        })
+                },
+                || emit::render_each(others, shown),
+            );
+            let report = emit::render_each(
+                report,
                 EmitInput {
-                    faults: fault_table.as_ref(),
                     mitigations: mitigations.as_deref(),
-                    ..input
+                    ..shown
                 },
             );
+            let late = others.and_then(|mut others| {
+                others.extend(report?);
+                Ok(others)
+            });
             (fault_table, late)
         },
         || emit::render_each(early, input),
