@@ -2,7 +2,10 @@
 //! - simulating the paper's example (two cycles), event-driven and scan by scan,
 //! - its single-fault table and `faults --pairs` (every pair of stuck inputs),
 //! - simulating a 100-actuator × 1,000-step table (two cycles), both ways,
-//! - converting the paper's sample in memory (read → every output).
+//! - converting the paper's sample in memory (read → every output),
+//! - what the report adds to a conversion, on the paper's example and on the
+//!   two lines of docs/development.md ("What the report costs"), which it
+//!   writes to `target/report-tables/` for measuring whole processes.
 //!
 //! Run with `cargo bench --bench simulation`.
 
@@ -10,6 +13,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use steptable::convert;
+use steptable::emit::OutputKind;
 use steptable::faults;
 use steptable::random_table::{Shape, random_rows};
 use steptable::settings::Settings;
@@ -124,4 +128,86 @@ fn main() {
         "convert paper example in memory (with simulation and single faults): median {:.2} ms over 21 runs",
         t.as_secs_f64() * 1e3
     );
+    report_cost(&paper);
+}
+
+/// A 40-step line of 20 cylinders, `C1+1 … C20+1, C20-0 … C1-0` (82 single
+/// faults, 40 of them hazards), and 30 steps of 6 cylinders on two branches
+/// (C1–C3 out and home five times on one, C4–C6 four times on the other).
+fn report_tables() -> [(&'static str, String); 2] {
+    let line: Vec<String> = (1..=20)
+        .map(|i| format!("C{i}+1"))
+        .chain((1..=20).rev().map(|i| format!("C{i}-0")))
+        .collect();
+    let round = |first: u32| {
+        let out = (first..first + 3).map(move |i| format!("C{i}+1"));
+        out.chain((first..first + 3).map(|i| format!("C{i}-0")))
+    };
+    let one: Vec<String> = (0..5).flat_map(|_| round(1)).collect();
+    let other: Vec<String> = (0..4).flat_map(|_| round(4)).collect();
+    let csv = |branches: &[&[String]]| {
+        let header: Vec<String> = (1..=branches.len())
+            .map(|b| format!(",BRANCH {b}"))
+            .collect();
+        let mut text = format!("{}\n", header.concat());
+        for k in 0..branches[0].len() {
+            text.push_str(&format!("STEP {}", k + 1));
+            for moves in branches {
+                text.push_str(&format!(",{}", moves.get(k).map_or("", String::as_str)));
+            }
+            text.push('\n');
+        }
+        text
+    };
+    [
+        ("two_branches_30.csv", csv(&[&one, &other])),
+        ("line_40.csv", csv(&[&line])),
+    ]
+}
+
+/// `convert` in memory with every output and with every output but the
+/// report, and the mitigations alone; the tables are written out beside.
+fn report_cost(paper: &std::path::Path) {
+    let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/report-tables");
+    std::fs::create_dir_all(&folder).expect("a folder for the tables");
+    let mut inputs = vec![paper.to_path_buf()];
+    for (name, csv) in report_tables() {
+        let path = folder.join(name);
+        std::fs::write(&path, csv).expect("table written");
+        inputs.push(path);
+    }
+    let with = Settings::new();
+    let mut without = Settings::new();
+    without.formats.remove(&OutputKind::Report);
+    for path in inputs {
+        let convert =
+            |settings: &Settings| convert::convert_path(&path, settings).expect("converts");
+        let (t_with, conversion) = time(11, || convert(&with));
+        let (t_without, _) = time(11, || convert(&without));
+        let report = conversion
+            .files
+            .iter()
+            .find(|f| f.name.ends_with(".report.html"))
+            .map_or(0, |f| f.bytes.len());
+        let faults = conversion
+            .faults
+            .as_ref()
+            .expect("the report shows the faults");
+        let (t_mitigations, _) = time(11, || {
+            faults::mitigation::mitigations(
+                &conversion.table,
+                &with.program,
+                &with.simulation,
+                faults,
+            )
+        });
+        println!(
+            "convert {} in memory: median {:.1} ms with the report, {:.1} ms without ({:.2}x); its mitigations alone {:.1} ms; report {report} bytes",
+            path.display(),
+            t_with.as_secs_f64() * 1e3,
+            t_without.as_secs_f64() * 1e3,
+            t_with.as_secs_f64() / t_without.as_secs_f64(),
+            t_mitigations.as_secs_f64() * 1e3,
+        );
+    }
 }

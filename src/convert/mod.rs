@@ -2,6 +2,7 @@
 //! → every output file. Writing to disk is [`crate::write`]'s job.
 
 mod allocate;
+mod beside;
 pub use allocate::{allocate, festo_allocation};
 mod findings;
 mod given;
@@ -503,7 +504,7 @@ pub fn generate_observed(
         return Err(Failure::Input(vec![budget_error(&table, why)]));
     }
     let (files, fault_table) =
-        render_beside_faults(input, early, late, settings, progress, healthy)?;
+        beside::render_beside_faults(input, early, late, settings, progress, healthy)?;
     let files = crate::provenance::stamp_all(files, &made_by).map_err(Failure::Internal)?;
     let findings = findings::lines(
         &table,
@@ -525,67 +526,6 @@ pub fn generate_observed(
         files,
         warnings,
     })
-}
-
-/// Renders the outputs that need no fault table at once and, beside them,
-/// runs the fault analysis and then renders the outputs that show it;
-/// every file in the order of its kind.
-fn render_beside_faults(
-    input: EmitInput,
-    early: Vec<OutputKind>,
-    late: Vec<OutputKind>,
-    settings: &Settings,
-    progress: &(dyn Fn(usize, usize) + Sync),
-    healthy: Option<faults::Healthy>,
-) -> Result<(Vec<emit::OutputFile>, Option<faults::FaultTable>), Failure> {
-    let (table, program) = (input.table, input.program);
-    let ((fault_table, late), early) = rayon::join(
-        || {
-            let fault_table = (!late.is_empty()).then(|| {
-                faults::analyse_from(
-                    table,
-                    program,
-                    &settings.simulation,
-                    1,
-                    faults::FaultRuns::Resumed,
-                    progress,
-                    healthy,
-                )
-            });
-            // The report names, per hazard, what catches it: verified by
-            // running the hazards again under each check the program lacks.
-            let mitigations = fault_table
-                .as_ref()
-                .filter(|_| late.contains(&OutputKind::Report))
-                .map(|f| {
-                    faults::mitigation::mitigations(
-                        table,
-                        &settings.program,
-                        &settings.simulation,
-                        f,
-                    )
-                });
-            let late = emit::render_each(
-                late,
-                EmitInput {
-                    faults: fault_table.as_ref(),
-                    mitigations: mitigations.as_deref(),
-                    ..input
-                },
-            );
-            (fault_table, late)
-        },
-        || emit::render_each(early, input),
-    );
-    let emitted = |e| match e {
-        emit::EmitError::Template(e) => Failure::Template(e),
-        emit::EmitError::Internal(why) => Failure::Internal(why),
-    };
-    let mut kinds = early.map_err(emitted)?;
-    kinds.extend(late.map_err(emitted)?);
-    kinds.sort_by_key(|(kind, _)| *kind);
-    let files = kinds.into_iter().flat_map(|(_, files)| files).collect();
-    Ok((files, fault_table))
 }
 
 #[cfg(test)]
