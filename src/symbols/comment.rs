@@ -70,6 +70,17 @@ pub(super) fn comment(
     }
 }
 
+/// The kind of actuator `a`: as the program keeps it, else its default.
+fn kind_of(program: &StepProgram, table: &StepTable, a: u32) -> crate::actuator::ActuatorKind {
+    let pmax = table.actuator(a).map(|x| x.max_position).unwrap_or(1);
+    program
+        .signals
+        .kinds
+        .get(&a)
+        .copied()
+        .unwrap_or(crate::actuator::ActuatorKind::default_for(pmax))
+}
+
 /// A sensor, coil or stop signal of an actuator.
 fn actuator_comment(
     signal: Signal,
@@ -82,13 +93,7 @@ fn actuator_comment(
         Signal::Sensor {
             actuator: a,
             position,
-        } => program
-            .signals
-            .kinds
-            .get(&a)
-            .copied()
-            .unwrap_or(crate::actuator::ActuatorKind::default_for(pmax(a)))
-            .sensor_comment(&actuator(a), position, pmax(a)),
+        } => kind_of(program, table, a).sensor_comment(&actuator(a), position, pmax(a)),
         Signal::Coil { actuator: a, sign } if program.signals.is_drive(signal) => format!(
             "drive {}, {} (cut at its limit switch)",
             actuator(a),
@@ -97,10 +102,14 @@ fn actuator_comment(
                 Sign::Minus => "reverse (-)",
             }
         ),
-        Signal::Coil { actuator: a, sign } => match sign {
-            Sign::Plus => format!("cylinder {}, coil + (extend)", actuator(a)),
-            Sign::Minus => format!("cylinder {}, coil - (retract)", actuator(a)),
-        },
+        Signal::Coil { actuator: a, sign } => {
+            let kind = kind_of(program, table, a);
+            let (plus, minus) = kind.coil_words();
+            match sign {
+                Sign::Plus => format!("{} {}, coil + ({plus})", kind.noun(), actuator(a)),
+                Sign::Minus => format!("{} {}, coil - ({minus})", kind.noun(), actuator(a)),
+            }
+        }
         Signal::SingleCoil { actuator: a } => {
             let kind = program.signals.kinds.get(&a).copied();
             // Only a kind with one coil has a single coil to comment.
@@ -128,11 +137,13 @@ fn actuator_comment(
             )
         }
         Signal::Jog { actuator: a, sign } => {
+            let kind = kind_of(program, table, a);
+            let (plus, minus) = kind.coil_words();
             let what = match (program.signals.drives(a), sign) {
                 (true, Sign::Plus) => format!("drive {}, run forward", actuator(a)),
                 (true, Sign::Minus) => format!("drive {}, run in reverse", actuator(a)),
-                (false, Sign::Plus) => format!("cylinder {}, extend", actuator(a)),
-                (false, Sign::Minus) => format!("cylinder {}, retract", actuator(a)),
+                (false, Sign::Plus) => format!("{} {}, {plus}", kind.noun(), actuator(a)),
+                (false, Sign::Minus) => format!("{} {}, {minus}", kind.noun(), actuator(a)),
             };
             format!("jog push-button: {what} while held (manual mode)")
         }
