@@ -49,6 +49,13 @@ pub enum ActuatorKind {
     /// keeps the vacuum on unless the engineer says otherwise: switched
     /// off, it drops the part wherever the arm is.
     Vacuum,
+    /// Not a cylinder: a pneumatic swivel (semi-rotary) drive, as on the
+    /// Festo MPS stations' swivel arms (a DSM/DRVS vane drive), on a 5/2
+    /// double-solenoid valve. `yi+` swivels it to its end stop at 180°
+    /// (position 1), `yi-` back to 0° (position 0, home), a proximity
+    /// sensor at each end stop. It keeps turning to the stop its valve last
+    /// chose and cannot stand between the stops: a middle position is E045.
+    Swivel,
 }
 
 /// The outputs that move an actuator of a kind.
@@ -97,7 +104,7 @@ impl std::str::FromStr for ActuatorKind {
 }
 
 impl ActuatorKind {
-    pub const ALL: [ActuatorKind; 7] = [
+    pub const ALL: [ActuatorKind; 8] = [
         ActuatorKind::Bistable52,
         ActuatorKind::Mono52,
         ActuatorKind::Closed53,
@@ -105,6 +112,7 @@ impl ActuatorKind {
         ActuatorKind::Pressure53,
         ActuatorKind::Motor,
         ActuatorKind::Vacuum,
+        ActuatorKind::Swivel,
     ];
 
     /// Every kind's name, as `--valve` and the SETTINGS sheet write it.
@@ -122,6 +130,7 @@ impl ActuatorKind {
             ActuatorKind::Pressure53 => "53pressure",
             ActuatorKind::Motor => "motor",
             ActuatorKind::Vacuum => "vacuum",
+            ActuatorKind::Swivel => "swivel",
         }
     }
 
@@ -163,10 +172,11 @@ impl ActuatorKind {
     }
 
     /// The highest position it can hold, if its kind bounds it: a gripper
-    /// holds (1) or releases (0), nothing further (E045 refuses more).
+    /// holds (1) or releases (0), a swivel drive stands at one of its two
+    /// end stops, nothing further (E045 refuses more).
     pub fn highest_position(self) -> Option<u32> {
         match self {
-            ActuatorKind::Vacuum => Some(1),
+            ActuatorKind::Vacuum | ActuatorKind::Swivel => Some(1),
             _ => None,
         }
     }
@@ -186,7 +196,10 @@ impl ActuatorKind {
             | ActuatorKind::Exhaust53
             | ActuatorKind::Pressure53
             | ActuatorKind::Motor => true,
-            ActuatorKind::Bistable52 | ActuatorKind::Mono52 | ActuatorKind::Vacuum => false,
+            ActuatorKind::Bistable52
+            | ActuatorKind::Mono52
+            | ActuatorKind::Vacuum
+            | ActuatorKind::Swivel => false,
         }
     }
 
@@ -208,7 +221,8 @@ impl ActuatorKind {
             | ActuatorKind::Closed53
             | ActuatorKind::Exhaust53
             | ActuatorKind::Pressure53
-            | ActuatorKind::Motor => CoilSet::Double,
+            | ActuatorKind::Motor
+            | ActuatorKind::Swivel => CoilSet::Double,
         }
     }
 
@@ -279,5 +293,19 @@ mod tests {
         assert_eq!(ActuatorKind::Closed53.highest_position(), None);
         assert!(vacuum.holds_part() && !vacuum.has_centre() && !vacuum.is_drive());
         assert!(!ActuatorKind::centred().contains(&"vacuum"));
+    }
+
+    #[test]
+    fn a_swivel_drive_has_two_coils_and_its_two_end_stops_only() {
+        let swivel = "Swivel".parse::<ActuatorKind>().unwrap();
+        assert_eq!(swivel, ActuatorKind::Swivel);
+        let words = "swivel drive".parse::<ActuatorKind>().unwrap_err();
+        assert!(words.contains("did you mean swivel?"), "{words}");
+        assert_eq!(swivel.coils(), CoilSet::Double);
+        assert_eq!(swivel.sensed_positions(1), [0, 1]);
+        assert_eq!(swivel.highest_position(), Some(1));
+        assert!(!swivel.has_centre() && !swivel.is_drive() && !swivel.holds_part());
+        assert!(!swivel.load_drifts());
+        assert_eq!(ActuatorKind::default_for(1), ActuatorKind::Bistable52);
     }
 }

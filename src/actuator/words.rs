@@ -11,7 +11,11 @@ impl ActuatorKind {
     /// Why one of its outputs may not stay on through an EMERGENCY STOP:
     /// `output` is its symbol (`y1+`), `actuator` its number.
     pub fn kept_through_estop(self, output: &str, actuator: u32) -> String {
-        if self.is_drive() {
+        if self == ActuatorKind::Swivel {
+            format!(
+                "{output} is a valve coil of swivel drive C{actuator}: left on, it swings the arm on to its end stop from wherever it stood when the EMERGENCY STOP came; only a machine output that holds a part (a vacuum, a clamp as Y:clamp) may stay on"
+            )
+        } else if self.is_drive() {
             format!(
                 "{output} is a contactor of drive C{actuator} (valve type motor): left on, it keeps the drive running through the EMERGENCY STOP; every drive stops"
             )
@@ -35,10 +39,10 @@ impl ActuatorKind {
     /// What the comments call it: a gripper, or a cylinder (as every
     /// actuator's sensors have always been commented, drives' too).
     pub fn noun(self) -> &'static str {
-        if self.holds_part() {
-            "gripper"
-        } else {
-            "cylinder"
+        match self {
+            _ if self.holds_part() => "gripper",
+            ActuatorKind::Swivel => "swivel drive",
+            _ => "cylinder",
         }
     }
 
@@ -47,6 +51,10 @@ impl ActuatorKind {
     pub fn sensor_comment(self, label: &str, position: u32, max_position: u32) -> String {
         if self.holds_part() {
             return format!("{} {label}, vacuum switch (on: part held)", self.noun());
+        }
+        if self == ActuatorKind::Swivel {
+            let at = if position == 0 { "0° (home)" } else { "180°" };
+            return format!("{} {label}, at {at}", self.noun());
         }
         let which = if position == 0 {
             "home position 0".to_string()
@@ -63,6 +71,8 @@ impl ActuatorKind {
     pub fn both_on(self, number: u32) -> String {
         if self.is_drive() {
             format!("the drive of C{number} gets forward and reverse")
+        } else if self == ActuatorKind::Swivel {
+            format!("the 5/2 valve of swivel drive C{number} sees both coils")
         } else {
             format!("the valve of C{number} sees both coils")
         }
@@ -82,23 +92,34 @@ impl ActuatorKind {
         }
     }
 
-    /// What its `+` and `-` coils do, for the coils' comments and the
-    /// actions that set them (`extend`, `retract`).
+    /// What its `+` and `-` coils (or jog buttons) do, for their comments
+    /// and the actions that set them (`extend`, `retract`).
     pub fn coil_words(self) -> (&'static str, &'static str) {
-        ("extend", "retract")
+        match self {
+            // A gripper's jog buttons grip and release.
+            _ if self.holds_part() => ("grip", "release"),
+            ActuatorKind::Swivel => ("swivel to 180°", "swivel back to 0°"),
+            _ => ("extend", "retract"),
+        }
     }
 
     /// What it does while its `+` or `-` output is on, for the manual jog
     /// rungs of a valve's coils and the convert report's stroke times
     /// (`extends`, `retracts`; a drive's jog says which way it runs).
     pub fn move_words(self) -> (&'static str, &'static str) {
-        ("extends", "retracts")
+        match self {
+            ActuatorKind::Swivel => ("swivels to 180°", "swivels back to 0°"),
+            _ => ("extends", "retracts"),
+        }
     }
 
     /// What its no-output state holds still against a load, for the W006
     /// of a `--load` it ignores.
     pub fn moving_part(self) -> &'static str {
-        "piston"
+        match self {
+            ActuatorKind::Swivel => "arm at its end stop",
+            _ => "piston",
+        }
     }
 
     /// How the table moves actuator `actuator` of a kind with positions
@@ -106,8 +127,50 @@ impl ActuatorKind {
     pub fn positions_said(self, actuator: u32) -> String {
         if self.holds_part() {
             format!("a vacuum gripper: C{actuator}+1 holds the part, C{actuator}-0 releases it")
+        } else if self == ActuatorKind::Swivel {
+            format!(
+                "a swivel drive: C{actuator}+1 swivels it to 180°, C{actuator}-0 back to 0°, its home; it cannot stop between its end stops"
+            )
         } else {
             format!("C{actuator}+1 moves it to its end, C{actuator}-0 home")
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every sentence an engineer reads of a swivel drive calls it one and
+    /// says where it turns; a cylinder's words stay a cylinder's.
+    #[test]
+    fn a_swivel_drive_is_said_as_one() {
+        let swivel = ActuatorKind::Swivel;
+        assert_eq!(swivel.noun(), "swivel drive");
+        assert_eq!(
+            swivel.sensor_comment("3", 0, 1),
+            "swivel drive 3, at 0° (home)"
+        );
+        assert_eq!(swivel.sensor_comment("3", 1, 1), "swivel drive 3, at 180°");
+        assert_eq!(swivel.coil_words(), ("swivel to 180°", "swivel back to 0°"));
+        assert_eq!(
+            swivel.move_words(),
+            ("swivels to 180°", "swivels back to 0°")
+        );
+        assert!(swivel.both_on(3).contains("swivel drive C3"));
+        let kept = swivel.kept_through_estop("y3+", 3);
+        assert!(
+            kept.contains("swivel drive C3") && !kept.contains("piston"),
+            "{kept}"
+        );
+        assert!(swivel.positions_said(3).contains("C3+1 swivels it to 180°"));
+        assert_eq!(swivel.moving_part(), "arm at its end stop");
+        let cylinder = ActuatorKind::Bistable52;
+        assert_eq!(
+            cylinder.sensor_comment("1", 0, 1),
+            "cylinder 1, home position 0"
+        );
+        assert_eq!(cylinder.coil_words(), ("extend", "retract"));
+        assert_eq!(cylinder.moving_part(), "piston");
     }
 }

@@ -209,6 +209,7 @@ fn the_types_lists_hold_every_value() {
             ActuatorKind::Pressure53 => 4,
             ActuatorKind::Motor => 5,
             ActuatorKind::Vacuum => 6,
+            ActuatorKind::Swivel => 7,
         }
     }
     fn target(t: Target) -> usize {
