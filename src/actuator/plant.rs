@@ -103,6 +103,15 @@ impl ActuatorKind {
         }
     }
 
+    /// Whether it may move on once a jog button is released (a 5/2
+    /// bistable or a swivel drive finishes the swing a jog began, a spring
+    /// retracts, a 5/3 centre lets a load drift): the simulator counts that
+    /// motion as the operator's. A 5/3 closed centre and a drive stop on
+    /// release, so any motion of theirs without the button is unintended.
+    pub fn moves_on_after_a_jog(self) -> bool {
+        !matches!(self, ActuatorKind::Closed53 | ActuatorKind::Motor)
+    }
+
     /// Whether, cut while running onto a limit switch, it coasts to the
     /// switch's point (a drive's braking distance, the same every time).
     pub fn coasts(self) -> bool {
@@ -146,6 +155,8 @@ mod tests {
         assert!(Swivel.conflict(true, true));
         assert_eq!(Swivel.drift_per_second(0.5), 0.0);
         assert!(!Swivel.coasts());
+        assert!(Swivel.moves_on_after_a_jog() && Bistable52.moves_on_after_a_jog());
+        assert!(!Closed53.moves_on_after_a_jog() && !Motor.moves_on_after_a_jog());
         assert_eq!(Swivel.switch_reads(1, Spool::Plus, 1.0, 0.05), None);
     }
 
