@@ -8,10 +8,11 @@
 //! the option parsers are the machine description ([`machine`]).
 //!
 //! Adding a kind: a variant here with its arms, its plant arms in
-//! [`plant`], and its tests.
+//! [`plant`], its words in `words.rs`, and its tests.
 
 pub mod machine;
 pub mod plant;
+mod words;
 
 use std::fmt;
 
@@ -48,6 +49,13 @@ pub enum ActuatorKind {
     /// keeps the vacuum on unless the engineer says otherwise: switched
     /// off, it drops the part wherever the arm is.
     Vacuum,
+    /// Not a cylinder: a pneumatic swivel (semi-rotary) drive, as on the
+    /// Festo MPS stations' swivel arms (a DSM/DRVS vane drive), on a 5/2
+    /// double-solenoid valve. `yi+` swivels it to its end stop at 180°
+    /// (position 1), `yi-` back to 0° (position 0, home), a proximity
+    /// sensor at each end stop. It keeps turning to the stop its valve last
+    /// chose and cannot stand between the stops: a middle position is E045.
+    Swivel,
 }
 
 /// The outputs that move an actuator of a kind.
@@ -96,7 +104,7 @@ impl std::str::FromStr for ActuatorKind {
 }
 
 impl ActuatorKind {
-    pub const ALL: [ActuatorKind; 7] = [
+    pub const ALL: [ActuatorKind; 8] = [
         ActuatorKind::Bistable52,
         ActuatorKind::Mono52,
         ActuatorKind::Closed53,
@@ -104,6 +112,7 @@ impl ActuatorKind {
         ActuatorKind::Pressure53,
         ActuatorKind::Motor,
         ActuatorKind::Vacuum,
+        ActuatorKind::Swivel,
     ];
 
     /// Every kind's name, as `--valve` and the SETTINGS sheet write it.
@@ -121,6 +130,7 @@ impl ActuatorKind {
             ActuatorKind::Pressure53 => "53pressure",
             ActuatorKind::Motor => "motor",
             ActuatorKind::Vacuum => "vacuum",
+            ActuatorKind::Swivel => "swivel",
         }
     }
 
@@ -162,10 +172,11 @@ impl ActuatorKind {
     }
 
     /// The highest position it can hold, if its kind bounds it: a gripper
-    /// holds (1) or releases (0), nothing further (E045 refuses more).
+    /// holds (1) or releases (0), a swivel drive stands at one of its two
+    /// end stops, nothing further (E045 refuses more).
     pub fn highest_position(self) -> Option<u32> {
         match self {
-            ActuatorKind::Vacuum => Some(1),
+            ActuatorKind::Vacuum | ActuatorKind::Swivel => Some(1),
             _ => None,
         }
     }
@@ -185,7 +196,10 @@ impl ActuatorKind {
             | ActuatorKind::Exhaust53
             | ActuatorKind::Pressure53
             | ActuatorKind::Motor => true,
-            ActuatorKind::Bistable52 | ActuatorKind::Mono52 | ActuatorKind::Vacuum => false,
+            ActuatorKind::Bistable52
+            | ActuatorKind::Mono52
+            | ActuatorKind::Vacuum
+            | ActuatorKind::Swivel => false,
         }
     }
 
@@ -207,7 +221,8 @@ impl ActuatorKind {
             | ActuatorKind::Closed53
             | ActuatorKind::Exhaust53
             | ActuatorKind::Pressure53
-            | ActuatorKind::Motor => CoilSet::Double,
+            | ActuatorKind::Motor
+            | ActuatorKind::Swivel => CoilSet::Double,
         }
     }
 
@@ -221,80 +236,6 @@ impl ActuatorKind {
     /// centre that vents or pressurises its chambers lets one.
     pub fn load_drifts(self) -> bool {
         matches!(self, ActuatorKind::Exhaust53 | ActuatorKind::Pressure53)
-    }
-
-    /// Why one of its outputs may not stay on through an EMERGENCY STOP:
-    /// `output` is its symbol (`y1+`), `actuator` its number.
-    pub fn kept_through_estop(self, output: &str, actuator: u32) -> String {
-        if self.is_drive() {
-            format!(
-                "{output} is a contactor of drive C{actuator} (valve type motor): left on, it keeps the drive running through the EMERGENCY STOP; every drive stops"
-            )
-        } else {
-            format!(
-                "{output} is a valve coil of C{actuator}: left on, it drives the piston on from wherever it stood when the EMERGENCY STOP came; only a machine output that holds a part (a vacuum, a clamp as Y:clamp) may stay on, and a clamp on a 52bi valve keeps its position with both coils off"
-            )
-        }
-    }
-
-    /// What its one coil does, for the comments of the rungs that switch
-    /// it: on, then off (`52mono`: extend, the spring retracts).
-    pub fn single_coil_words(self) -> (&'static str, &'static str) {
-        if self.holds_part() {
-            ("vacuum on, grip", "vacuum off, release")
-        } else {
-            ("extend", "the spring retracts")
-        }
-    }
-
-    /// What the comments call it: a gripper, or a cylinder (as every
-    /// actuator's sensors have always been commented, drives' too).
-    pub fn noun(self) -> &'static str {
-        if self.holds_part() {
-            "gripper"
-        } else {
-            "cylinder"
-        }
-    }
-
-    /// What its sensor at `position` (of `max_position`) is, for the signal
-    /// comments: `label` is the actuator as the table names it.
-    pub fn sensor_comment(self, label: &str, position: u32, max_position: u32) -> String {
-        if self.holds_part() {
-            return format!("{} {label}, vacuum switch (on: part held)", self.noun());
-        }
-        let which = if position == 0 {
-            "home position 0".to_string()
-        } else if position == max_position {
-            format!("end position {position}")
-        } else {
-            format!("middle position {position}")
-        };
-        format!("{} {label}, {which}", self.noun())
-    }
-
-    /// What seeing both outputs on means for actuator `number` (the start
-    /// of the simulator's hazard).
-    pub fn both_on(self, number: u32) -> String {
-        if self.is_drive() {
-            format!("the drive of C{number} gets forward and reverse")
-        } else {
-            format!("the valve of C{number} sees both coils")
-        }
-    }
-
-    /// The comment of the rung that stops actuator `actuator` at its
-    /// sensor `sensor` (a middle stop, or a drive's every target).
-    pub fn stop_comment(self, actuator: u32, sensor: &str) -> String {
-        if self.is_drive() {
-            format!(
-                "C{actuator} is a drive: at its limit switch {sensor} both outputs off, it stands"
-            )
-        } else {
-            format!(
-                "middle stop: C{actuator} stops at {sensor} (both coils off, the 5/3 valve holds it)"
-            )
-        }
     }
 }
 
@@ -352,5 +293,19 @@ mod tests {
         assert_eq!(ActuatorKind::Closed53.highest_position(), None);
         assert!(vacuum.holds_part() && !vacuum.has_centre() && !vacuum.is_drive());
         assert!(!ActuatorKind::centred().contains(&"vacuum"));
+    }
+
+    #[test]
+    fn a_swivel_drive_has_two_coils_and_its_two_end_stops_only() {
+        let swivel = "Swivel".parse::<ActuatorKind>().unwrap();
+        assert_eq!(swivel, ActuatorKind::Swivel);
+        let words = "swivel drive".parse::<ActuatorKind>().unwrap_err();
+        assert!(words.contains("did you mean swivel?"), "{words}");
+        assert_eq!(swivel.coils(), CoilSet::Double);
+        assert_eq!(swivel.sensed_positions(1), [0, 1]);
+        assert_eq!(swivel.highest_position(), Some(1));
+        assert!(!swivel.has_centre() && !swivel.is_drive() && !swivel.holds_part());
+        assert!(!swivel.load_drifts());
+        assert_eq!(ActuatorKind::default_for(1), ActuatorKind::Bistable52);
     }
 }

@@ -67,11 +67,21 @@ impl ActuatorKind {
     /// gave none (`--stroke`, the actuator table): a suction cup's vacuum
     /// builds up in 300 ms (its switch then reads 1) and is gone 200 ms
     /// after the coil drops, where a cylinder's default stroke is 1 s.
+    ///
+    /// A swivel drive turns its 180° in 500 ms each way. Festo gives a
+    /// DSM-16 vane drive (part 547574) a swivel frequency of at most 2 Hz
+    /// at 6 bar, a swing of 250 ms at the least; its DSR/DSRL catalogue
+    /// asks for 6 bar once throttled below 180°/s, a swing of 1 s. A swivel
+    /// arm with its load is throttled between the two: 500 ms for 180°.
     pub fn default_stroke(self) -> Option<Stroke> {
         match self {
             ActuatorKind::Vacuum => Some(Stroke {
                 extend_ms: 300,
                 retract_ms: 200,
+            }),
+            ActuatorKind::Swivel => Some(Stroke {
+                extend_ms: 500,
+                retract_ms: 500,
             }),
             _ => None,
         }
@@ -91,6 +101,15 @@ impl ActuatorKind {
             }),
             _ => None,
         }
+    }
+
+    /// Whether it may move on once a jog button is released (a 5/2
+    /// bistable or a swivel drive finishes the swing a jog began, a spring
+    /// retracts, a 5/3 centre lets a load drift): the simulator counts that
+    /// motion as the operator's. A 5/3 closed centre and a drive stop on
+    /// release, so any motion of theirs without the button is unintended.
+    pub fn moves_on_after_a_jog(self) -> bool {
+        !matches!(self, ActuatorKind::Closed53 | ActuatorKind::Motor)
     }
 
     /// Whether, cut while running onto a limit switch, it coasts to the
@@ -124,6 +143,23 @@ mod tests {
         assert_eq!(Closed53.drift_per_second(0.2), 0.0);
     }
 
+    /// A swivel drive's 5/2 valve keeps its spool as a `52bi` does: the arm
+    /// turns on to the end stop last chosen, and both coils conflict.
+    #[test]
+    fn a_swivel_drive_keeps_turning_to_its_last_end_stop() {
+        use ActuatorKind::*;
+        assert_eq!(Swivel.rest_spool(), Spool::Minus);
+        assert_eq!(Swivel.switch(Spool::Plus, false, false), Spool::Plus);
+        assert_eq!(Swivel.switch(Spool::Minus, true, false), Spool::Plus);
+        assert_eq!(Swivel.switch(Spool::Plus, false, true), Spool::Minus);
+        assert!(Swivel.conflict(true, true));
+        assert_eq!(Swivel.drift_per_second(0.5), 0.0);
+        assert!(!Swivel.coasts());
+        assert!(Swivel.moves_on_after_a_jog() && Bistable52.moves_on_after_a_jog());
+        assert!(!Closed53.moves_on_after_a_jog() && !Motor.moves_on_after_a_jog());
+        assert_eq!(Swivel.switch_reads(1, Spool::Plus, 1.0, 0.05), None);
+    }
+
     #[test]
     fn a_vacuum_gripper_holds_while_its_coil_is_on_and_releases_without() {
         use ActuatorKind::*;
@@ -143,6 +179,8 @@ mod tests {
         );
         assert_eq!(Mono52.switch_reads(1, Spool::Plus, 1.0, 0.05), None);
         let times = Vacuum.default_stroke().expect("a gripper's own times");
+        let swing = Swivel.default_stroke().expect("a swivel drive's own time");
+        assert_eq!((swing.extend_ms, swing.retract_ms), (500, 500));
         assert!(times.extend_ms < Stroke::default().extend_ms);
         assert_eq!(Bistable52.default_stroke(), None);
     }

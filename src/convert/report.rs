@@ -32,11 +32,12 @@ pub fn settings_rows(
     for actuator in &table.actuators {
         let n = actuator.number;
         let stroke = sim.machine.strokes.of(n);
+        let valve = sim.machine.valves.of(n, actuator.max_position);
+        let (plus, minus) = valve.move_words();
         rows.push((
             format!("C{n}"),
             format!(
-                "valve {}, extends in {}, retracts in {}",
-                sim.machine.valves.of(n, actuator.max_position),
+                "valve {valve}, {plus} in {}, {minus} in {}",
                 crate::cell::duration_text(stroke.extend_ms),
                 crate::cell::duration_text(stroke.retract_ms)
             ),

@@ -183,17 +183,13 @@ fn jog_rungs(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Vec<R
                 }),
             );
         }
-        let words = signals.kinds.get(&actuator).map(|k| k.single_coil_words());
-        let verb = match (drive, sign) {
-            (false, _) if matches!(valve, Coils::Single { .. }) => {
-                let (on, off) = words.unwrap_or(("extends", "retracts"));
-                if sign == Sign::Plus { on } else { off }
-            }
-            (true, Sign::Plus) => "runs forward",
-            (true, Sign::Minus) => "runs in reverse",
-            (false, Sign::Plus) => "extends",
-            (false, Sign::Minus) => "retracts",
+        let kind = signals.kinds.get(&actuator);
+        let (plus, minus) = match valve {
+            _ if drive => ("runs forward", "runs in reverse"),
+            Coils::Single { .. } => kind.map_or(("extends", "retracts"), |k| k.single_coil_words()),
+            Coils::Double { .. } => kind.map_or(("extends", "retracts"), |k| k.move_words()),
         };
+        let verb = if sign == Sign::Plus { plus } else { minus };
         let state = if matches!(action, Action::Reset(_)) {
             "off"
         } else {
@@ -202,7 +198,7 @@ fn jog_rungs(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Vec<R
         // A coil that holds a part stays as its jog left it (a vacuum
         // keeps the part until its release jog); the others drop with
         // their button.
-        let holds = signals.kinds.get(&actuator).is_some_and(|k| k.holds_part());
+        let holds = kind.is_some_and(|k| k.holds_part());
         let when = if holds { "when" } else { "while" };
         let pressed = if holds { "pressed" } else { "held" };
         let mut comment = format!(

@@ -70,6 +70,17 @@ pub(super) fn comment(
     }
 }
 
+/// The kind of actuator `a`: as the program keeps it, else its default.
+fn kind_of(program: &StepProgram, table: &StepTable, a: u32) -> crate::actuator::ActuatorKind {
+    let pmax = table.actuator(a).map(|x| x.max_position).unwrap_or(1);
+    program
+        .signals
+        .kinds
+        .get(&a)
+        .copied()
+        .unwrap_or(crate::actuator::ActuatorKind::default_for(pmax))
+}
+
 /// A sensor, coil or stop signal of an actuator.
 fn actuator_comment(
     signal: Signal,
@@ -82,13 +93,7 @@ fn actuator_comment(
         Signal::Sensor {
             actuator: a,
             position,
-        } => program
-            .signals
-            .kinds
-            .get(&a)
-            .copied()
-            .unwrap_or(crate::actuator::ActuatorKind::default_for(pmax(a)))
-            .sensor_comment(&actuator(a), position, pmax(a)),
+        } => kind_of(program, table, a).sensor_comment(&actuator(a), position, pmax(a)),
         Signal::Coil { actuator: a, sign } if program.signals.is_drive(signal) => format!(
             "drive {}, {} (cut at its limit switch)",
             actuator(a),
@@ -97,10 +102,14 @@ fn actuator_comment(
                 Sign::Minus => "reverse (-)",
             }
         ),
-        Signal::Coil { actuator: a, sign } => match sign {
-            Sign::Plus => format!("cylinder {}, coil + (extend)", actuator(a)),
-            Sign::Minus => format!("cylinder {}, coil - (retract)", actuator(a)),
-        },
+        Signal::Coil { actuator: a, sign } => {
+            let kind = kind_of(program, table, a);
+            let (plus, minus) = kind.coil_words();
+            match sign {
+                Sign::Plus => format!("{} {}, coil + ({plus})", kind.noun(), actuator(a)),
+                Sign::Minus => format!("{} {}, coil - ({minus})", kind.noun(), actuator(a)),
+            }
+        }
         Signal::SingleCoil { actuator: a } => {
             let kind = program.signals.kinds.get(&a).copied();
             // Only a kind with one coil has a single coil to comment.
@@ -128,34 +137,25 @@ fn actuator_comment(
             )
         }
         Signal::Jog { actuator: a, sign } => {
-            let kind = program.signals.kinds.get(&a).copied();
-            let holds = kind.is_some_and(|k| k.holds_part());
-            let what = match (program.signals.drives(a), holds, sign) {
-                (true, _, Sign::Plus) => format!("drive {}, run forward while held", actuator(a)),
-                (true, _, Sign::Minus) => {
+            let kind = kind_of(program, table, a);
+            let (plus, minus) = kind.coil_words();
+            // A coil that holds a part stays on by itself until the
+            // release jog; the others move only while their button is held.
+            let (plus_tail, minus_tail) = if kind.holds_part() {
+                (" (stays on)", "")
+            } else {
+                (" while held", " while held")
+            };
+            let what = match (program.signals.drives(a), sign) {
+                (true, Sign::Plus) => format!("drive {}, run forward while held", actuator(a)),
+                (true, Sign::Minus) => {
                     format!("drive {}, run in reverse while held", actuator(a))
                 }
-                // Its coil stays on by itself: the part is held until the
-                // release jog.
-                (false, true, Sign::Plus) => {
-                    format!(
-                        "{} {}, vacuum on: grip (stays on)",
-                        kind.map_or("gripper", |k| k.noun()),
-                        actuator(a)
-                    )
+                (false, Sign::Plus) => {
+                    format!("{} {}, {plus}{plus_tail}", kind.noun(), actuator(a))
                 }
-                (false, true, Sign::Minus) => {
-                    format!(
-                        "{} {}, vacuum off: release",
-                        kind.map_or("gripper", |k| k.noun()),
-                        actuator(a)
-                    )
-                }
-                (false, false, Sign::Plus) => {
-                    format!("cylinder {}, extend while held", actuator(a))
-                }
-                (false, false, Sign::Minus) => {
-                    format!("cylinder {}, retract while held", actuator(a))
+                (false, Sign::Minus) => {
+                    format!("{} {}, {minus}{minus_tail}", kind.noun(), actuator(a))
                 }
             };
             format!("jog push-button: {what} (manual mode)")

@@ -328,6 +328,13 @@ impl SymbolTable {
             .single_coil_words()
     }
 
+    /// What actuator `actuator`'s `+` and `-` coils do.
+    fn kind_words(&self, actuator: u32) -> (&'static str, &'static str) {
+        self.kinds
+            .get(&actuator)
+            .map_or(("extend", "retract"), |k| k.coil_words())
+    }
+
     /// A short explanation of an action for a program comment, in the
     /// table's designations (`y1+ on: extend C1 (clamp), C1+1 towards x11`).
     pub fn action_comment(&self, action: Action, moves: &[crate::table::Move]) -> String {
@@ -341,11 +348,8 @@ impl SymbolTable {
                     .find(|m| m.actuator == actuator && m.sign == sign)
                     .map(|m| format!(", {} towards {}", m.notation(), sensor(actuator, m.to)))
                     .unwrap_or_default();
-                let verb = if sign == Sign::Plus {
-                    "extend"
-                } else {
-                    "retract"
-                };
+                let (plus, minus) = self.kind_words(actuator);
+                let verb = if sign == Sign::Plus { plus } else { minus };
                 format!("{symbol} on: {verb} {}{target}", self.actuator(actuator))
             }
             Action::Reset(Signal::Coil { .. }) => format!("{symbol} off"),

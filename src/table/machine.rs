@@ -140,13 +140,12 @@ fn check_positions(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut 
             Code::E045KindCannotHold,
             grid.location(m.cell),
             format!(
-                "\"{}\" asks C{} for position {}, but C{} is a {kind} actuator, which has positions 0 to {highest} only (a vacuum gripper: C{}+1 holds the part, C{}-0 releases it)",
+                "\"{}\" asks C{} for position {}, but C{} is a {kind} actuator, which has positions 0 to {highest} only ({})",
                 m.notation(),
                 actuator.number,
                 m.to,
                 actuator.number,
-                actuator.number,
-                actuator.number,
+                kind.positions_said(actuator.number),
             ),
         );
     }

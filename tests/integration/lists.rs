@@ -209,6 +209,7 @@ fn the_types_lists_hold_every_value() {
             ActuatorKind::Pressure53 => 4,
             ActuatorKind::Motor => 5,
             ActuatorKind::Vacuum => 6,
+            ActuatorKind::Swivel => 7,
         }
     }
     fn target(t: Target) -> usize {
@@ -255,7 +256,7 @@ fn the_types_lists_hold_every_value() {
         let set: std::collections::BTreeSet<usize> = indices.into_iter().collect();
         assert_eq!(set, (0..count).collect(), "every variant once");
     }
-    all_of(ActuatorKind::ALL.map(valve).to_vec(), 7);
+    all_of(ActuatorKind::ALL.map(valve).to_vec(), 8);
     all_of(Target::ALL.map(target).to_vec(), 3);
     all_of(Mnemonic::ALL.map(mnemonic).to_vec(), 2);
     all_of(OutputKind::ALL.map(kind).to_vec(), 22);

@@ -71,6 +71,7 @@ mod stray_cells;
 mod structure;
 mod supervision;
 mod supervision_hostile;
+mod swivel;
 mod synth;
 mod synth_bench;
 mod synth_short;

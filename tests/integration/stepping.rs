@@ -117,7 +117,8 @@ fn both_simulators_agree_on_every_sample_under_every_fault() {
 /// steps, and random plant settings.
 /// A random table with its program and the plant it runs: valves
 /// centred where a middle stop needs them, 5/2 ones (bistable or spring
-/// return) or vacuum grippers elsewhere, or electric drives, by the dice.
+/// return), vacuum grippers or swivel drives elsewhere, or electric
+/// drives, by the dice.
 pub(crate) fn random_machine(seed: u64) -> (Vec<Vec<String>>, StepTable, StepProgram, SimSettings) {
     let (rows, mut sim, options) = random_case(seed);
     let Ok(table) = steptable::table::from_rows("random.csv", &rows) else {
@@ -125,7 +126,7 @@ pub(crate) fn random_machine(seed: u64) -> (Vec<Vec<String>>, StepTable, StepPro
     };
     let mut rng = SplitMix64::new(seed);
     for a in &table.actuators {
-        let choice = rng.range(0, 4) as usize;
+        let choice = rng.range(0, 5) as usize;
         let valve = if a.max_position > 1 {
             [
                 ActuatorKind::Closed53,
@@ -134,13 +135,15 @@ pub(crate) fn random_machine(seed: u64) -> (Vec<Vec<String>>, StepTable, StepPro
                 ActuatorKind::Motor,
             ][choice % 4]
         } else {
-            // A two-position actuator may also be a vacuum gripper.
+            // A two-position actuator may also be a vacuum gripper or a
+            // swivel drive.
             [
                 ActuatorKind::Bistable52,
                 ActuatorKind::Mono52,
                 ActuatorKind::Closed53,
                 ActuatorKind::Motor,
                 ActuatorKind::Vacuum,
+                ActuatorKind::Swivel,
             ][choice]
         };
         sim.machine.valves.per_actuator.insert(a.number, valve);

@@ -69,8 +69,8 @@ fn a_gripper_s_jogs_say_the_vacuum_stays_on_until_released() {
         .success();
     let st = std::fs::read_to_string(dir.path().join("pick_and_place/pick_and_place.st")).unwrap();
     for said in [
-        "jog push-button: gripper 2, vacuum on: grip (stays on) (manual mode)",
-        "jog push-button: gripper 2, vacuum off: release (manual mode)",
+        "jog push-button: gripper 2, grip (stays on) (manual mode)",
+        "jog push-button: gripper 2, release (manual mode)",
         "jog C2: y2 on when jog2+ is pressed",
         "jog push-button: cylinder 1, extend while held (manual mode)",
     ] {

@@ -10,6 +10,7 @@
 #[allow(dead_code)]
 #[path = "../integration/helpers.rs"]
 mod helpers;
+mod kinds;
 
 mod browser;
 mod differential;
@@ -31,6 +32,7 @@ mod sfc;
 mod single_step;
 mod step_numbers;
 mod supervision;
+mod swivel;
 mod sync;
 mod synth_engines;
 mod vacuum;
@@ -195,6 +197,7 @@ fn main() {
         ladder::CHECKS,
         sync::CHECKS,
         synth_engines::CHECKS,
+        swivel::CHECKS,
         vacuum::CHECKS,
     ]
     .concat();

@@ -5,11 +5,8 @@
 //! matiec (iec), awlsim (siemens) and the FST interpreter (festo), scan
 //! for scan as simulated.
 
-use steptable::convert;
-use steptable::simulate::scenario::{events, scenario_events};
-
 use crate::engines::{self, awlsim};
-use crate::helpers::{manual_events, sample, steptable};
+use crate::helpers::{manual_events, sample};
 use crate::{Check, Tool, tool};
 
 pub const CHECKS: &[Check] = &[Check::new(
@@ -26,34 +23,8 @@ fn jogs_run_as_simulated_in_every_engine() {
     for (target, format) in [("iec", "st"), ("siemens", "awl"), ("festo", "fst")] {
         let args = ["--target", target, "--modes", "all"];
         let out = dir.path().join(format);
-        steptable()
-            .arg("convert")
-            .arg(&input)
-            .args(args)
-            .args(["--formats", format, "-o"])
-            .arg(&out)
-            .assert()
-            .success();
-        let checked = convert::check_path(&input, &engines::settings_for(&args)).unwrap();
-        let (table, settings) = (&checked.table, &checked.settings);
-        let (case, report) = engines::record_with(
-            &format!("paper_example {}", args.join(" ")),
-            out.join("paper_example"),
-            "paper_example",
-            table,
-            settings,
-            |program, signals| {
-                let parsed: Vec<_> = written
-                    .iter()
-                    .map(|(o, t)| events::parse(o, t, program, table, &settings.naming))
-                    .collect::<Result<_, _>>()
-                    .unwrap();
-                let sim = &settings.simulation;
-                let (report, trace) =
-                    scenario_events(table, program, sim, &parsed, (8_000, 60_000), Some(signals));
-                (report, trace.unwrap())
-            },
-        );
+        let (case, report) =
+            engines::convert_and_record(&input, &out, "paper_example", &args, format, &written);
         let label = &case.label;
         assert_eq!(report.happened.len(), written.len(), "{label}: every event");
         let steps: Vec<usize> = report.fired.iter().map(|(_, s)| *s).collect();

@@ -5,9 +5,6 @@
 //! scan as simulated, in matiec (iec), awlsim (siemens) and the FST
 //! interpreter (festo).
 
-use steptable::convert;
-use steptable::simulate::scenario::{events, scenario_events};
-
 use crate::engines::{self, awlsim};
 use crate::helpers::{sample, steptable};
 use crate::{Check, Tool, tool};
@@ -36,40 +33,8 @@ fn stop_estop_and_reset_run_as_printed_in_every_engine() {
         for (target, format) in [("iec", "st"), ("siemens", "awl"), ("festo", "fst")] {
             let args = ["--target", target, "--modes", "stop,estop,reset"];
             let out = dir.path().join(format);
-            steptable()
-                .arg("convert")
-                .arg(&input)
-                .args(args)
-                .args(["--formats", format, "-o"])
-                .arg(&out)
-                .assert()
-                .success();
-            let checked = convert::check_path(&input, &engines::settings_for(&args)).unwrap();
-            let (table, settings) = (&checked.table, &checked.settings);
-            let (case, report) = engines::record_with(
-                &format!("{name} {}", args.join(" ")),
-                out.join(name),
-                name,
-                table,
-                settings,
-                |program, signals| {
-                    let events: Vec<_> = EVENTS
-                        .iter()
-                        .map(|(o, t)| events::parse(o, t, program, table, &settings.naming))
-                        .collect::<Result<_, _>>()
-                        .unwrap();
-                    let sim = &settings.simulation;
-                    let (report, trace) = scenario_events(
-                        table,
-                        program,
-                        sim,
-                        &events,
-                        (8_000, 60_000),
-                        Some(signals),
-                    );
-                    (report, trace.unwrap())
-                },
-            );
+            let (case, report) =
+                engines::convert_and_record(&input, &out, name, &args, format, &EVENTS);
             let label = &case.label;
             // The run the engines replay is the one the command printed.
             let happened: Vec<u64> = report.happened.iter().map(|(t, _)| *t).collect();

@@ -5,9 +5,8 @@
 //! steptable simulated them, scan by scan, for every target and with every
 //! safety check and mode.
 
-use crate::differential::{openplc_accepts, run_all};
-use crate::engines::{self, Case, matiec};
-use crate::{Check, Tool, shared};
+use crate::kinds;
+use crate::{Check, Tool};
 
 pub const CHECKS: &[Check] = &[
     Check::new(
@@ -22,46 +21,13 @@ pub const CHECKS: &[Check] = &[
     ),
 ];
 
-const OPTIONS: [&[&str]; 3] = [
-    &[],
-    &["--safety", "all"],
-    &["--modes", "all", "--safety", "all"],
-];
-
-/// The pick and place, gripper C2 on vacuum, for every target and set of
-/// options, converted into `dir` with `extra` arguments.
-fn cases(dir: &std::path::Path, extra: &[&str]) -> Vec<Case> {
-    let table = crate::helpers::root().join("tests/fixtures/pick_and_place.csv");
-    let mut cases = Vec::new();
-    for target in ["festo", "iec", "siemens"] {
-        for (o, options) in OPTIONS.iter().enumerate() {
-            let mut args = vec!["--target", target, "--valve", "C2=vacuum"];
-            args.extend_from_slice(options);
-            args.extend_from_slice(extra);
-            let out = dir.join(format!("{target}-{o}"));
-            cases.push(engines::prepare(&table, &args, &out));
-        }
-    }
-    cases
-}
+const FIXTURE: &str = "pick_and_place.csv";
+const VALVES: &str = "C2=vacuum";
 
 fn a_vacuum_gripper_runs_in_matiec_and_openplc_as_simulated() {
-    let shared = shared();
-    let dir = tempfile::tempdir().unwrap();
-    let cases = cases(dir.path(), &["--formats", "st"]);
-    run_all(&cases, |c| {
-        c.check_stepped(
-            "matiec .st",
-            matiec::run_stepped(&shared, &c.file(".st"), &c.trace, &c.allocation),
-        )?;
-        openplc_accepts(&shared, &c.file(".st"))
-    });
-    eprintln!(
-        "vacuum: {} .st files run in matiec and accepted by OpenPLC, traces equal",
-        cases.len()
-    );
+    kinds::in_matiec_and_openplc("vacuum", FIXTURE, VALVES);
 }
 
 fn a_vacuum_gripper_runs_in_awlsim_as_simulated() {
-    crate::differential::awl_in_awlsim("vacuum: awlsim", cases);
+    kinds::in_awlsim("vacuum", FIXTURE, VALVES);
 }

@@ -261,7 +261,6 @@ impl Run<'_> {
     /// closed centre and a drive stop on release: their motion without the
     /// button stays unintended.
     pub(in crate::simulate) fn jogged(&self, piston: usize, direction: crate::cell::Sign) -> bool {
-        use crate::actuator::ActuatorKind;
         let p = &self.world.pistons[piston];
         let read = |s| super::read_input(s, &self.world);
         if !self
@@ -277,6 +276,6 @@ impl Run<'_> {
             actuator: p.number,
             sign: direction,
         };
-        read(jog) || !matches!(p.valve, ActuatorKind::Closed53 | ActuatorKind::Motor)
+        read(jog) || p.valve.moves_on_after_a_jog()
     }
 }

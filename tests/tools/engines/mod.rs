@@ -315,6 +315,52 @@ pub fn record_scenario(
     )
 }
 
+/// Converts `input` with `args` into `format` under `out` and records the
+/// written program on the events the command line would give (`("press",
+/// "STOP@step2")`, as `simulate --press` reads them), 8 s after the last,
+/// 60 s at most: the case the engines replay, labelled `stem` and the
+/// arguments, and what the simulation saw.
+pub fn convert_and_record<S: AsRef<str>>(
+    input: &Path,
+    out: &Path,
+    stem: &str,
+    args: &[&str],
+    format: &str,
+    written: &[(S, S)],
+) -> (Case, simulate::scenario::ScenarioReport) {
+    use simulate::scenario::{events, scenario_events};
+    steptable()
+        .arg("convert")
+        .arg(input)
+        .args(args)
+        .args(["--formats", format, "-o"])
+        .arg(out)
+        .assert()
+        .success();
+    let checked = convert::check_path(input, &settings_for(args)).unwrap();
+    let (table, settings) = (&checked.table, &checked.settings);
+    record_with(
+        &format!("{stem} {}", args.join(" ")),
+        out.join(stem),
+        stem,
+        table,
+        settings,
+        |program, signals| {
+            let parsed: Vec<_> = written
+                .iter()
+                .map(|(o, t)| {
+                    events::parse(o.as_ref(), t.as_ref(), program, table, &settings.naming)
+                })
+                .collect::<Result<_, _>>()
+                .unwrap();
+            let sim = &settings.simulation;
+            let (report, trace) =
+                scenario_events(table, program, sim, &parsed, (8_000, 60_000), Some(signals));
+            (report, trace.unwrap())
+        },
+    )
+}
+
 /// Runs the case's written `format` file (`st`, `awl`, else FST) in its
 /// engine over the recorded inputs: the outputs of every scan.
 pub fn run_written(case: &Case, format: &str, python: &Path) -> Result<Vec<Vec<bool>>, String> {

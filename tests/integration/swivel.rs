@@ -1,0 +1,259 @@
+//! The swivel (semi-rotary) drive (valve type `swivel`): the distributing
+//! station's swivel arm C2 on a 5/2 double-solenoid valve, `y2+` to its end
+//! stop at 180° (`x21`), `y2-` back to 0° (`x20`, home), 500 ms each way
+//! unless told otherwise. Every list, comment and message calls it a
+//! swivel drive; a middle position is refused at its cell (E045); its
+//! hostile settings and options are refused at theirs.
+
+use predicates::str::contains;
+
+use crate::helpers::{
+    Refused, assert_refused, convert_csv, convert_sheets, line_with, root, squeezed_stdout,
+    steptable,
+};
+
+fn station() -> std::path::PathBuf {
+    root().join("tests/fixtures/distributing_station.csv")
+}
+
+/// The swivel arm and the vacuum cup it carries.
+const VALVES: &str = "C2=swivel,C3=vacuum";
+
+fn written(dir: &std::path::Path, suffix: &str) -> String {
+    let path = dir.join(format!("distributing_station/distributing_station{suffix}"));
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+#[test]
+fn a_swivel_drive_is_named_as_one_in_its_lists_and_programs() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("convert")
+        .arg(station())
+        .args([
+            "--valve",
+            VALVES,
+            "--modes",
+            "all",
+            "--formats",
+            "io,st",
+            "-o",
+        ])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let io = written(dir.path(), ".io.csv");
+    for said in [
+        "x20,sensor,2,0,,\"swivel drive 2, at 0° (home)\"",
+        "x21,sensor,2,1,,\"swivel drive 2, at 180°\"",
+        "\"swivel drive 2, coil + (swivel to 180°)\"",
+        "\"swivel drive 2, coil - (swivel back to 0°)\"",
+        "\"jog push-button: swivel drive 2, swivel to 180° while held (manual mode)\"",
+        // The cylinder beside it is still a cylinder, the cup a gripper.
+        "\"cylinder 1, home position 0\"",
+        "\"jog push-button: gripper 3, release (manual mode)\"",
+    ] {
+        assert!(io.contains(said), "{said}:\n{io}");
+    }
+    assert!(!io.contains("cylinder 2"), "{io}");
+    let st = written(dir.path(), ".st");
+    for said in [
+        "y2+ on: swivel to 180° C2, C2+1 towards x21",
+        "y2- on: swivel back to 0° C2, C2-0 towards x20",
+        "C2 swivels to 180°",
+        "C2 swivels back to 0°",
+    ] {
+        assert!(st.contains(said), "{said}:\n{st}");
+    }
+    assert!(
+        !st.contains("C2 extends") && !st.contains("extend C2"),
+        "{st}"
+    );
+}
+
+#[test]
+fn the_station_runs_in_the_swivel_drive_s_own_time() {
+    let assert = steptable()
+        .arg("simulate")
+        .arg(station())
+        .args(["--valve", VALVES])
+        .assert()
+        .success()
+        .stdout(contains("passed"));
+    let said = squeezed_stdout(&assert);
+    // Step 5 swivels the arm home alone: its 500 ms and a scan or two.
+    let line = line_with(&said, "5 ");
+    let seconds: f64 = line.split(' ').nth(3).expect("a duration").parse().unwrap();
+    assert!((0.49..0.56).contains(&seconds), "{said}");
+    // The report says the time it gave the drive, in the drive's words.
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("convert")
+        .arg(station())
+        .args(["--valve", VALVES, "--formats", "report", "-o"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let report = written(dir.path(), ".report.html");
+    assert!(
+        report.contains("valve swivel, swivels to 180° in 500ms, swivels back to 0° in 500ms"),
+        "{report}"
+    );
+}
+
+#[test]
+fn the_fault_table_has_both_end_stop_sensors_of_the_swivel_drive() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("faults")
+        .arg(station())
+        .args(["--valve", VALVES, "-o"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let csv = written(dir.path(), ".faults.csv");
+    // A dead end-stop sensor holds the cycle where it waits for it; a
+    // shorted one is passed over here because the ejector's stroke beside
+    // the swing (step 3) and the cycle's end (step 5) outlast it.
+    for row in [
+        "x20 open circuit (stuck at 0),x20,0,safe stall,at every moment,,0,step 1 never fires: waiting for x20",
+        "x20 short circuit (stuck at 1),x20,1,no effect,",
+        "x21 open circuit (stuck at 0),x21,0,safe stall,at every moment,,3,step 4 never fires: waiting for x21",
+        "x21 short circuit (stuck at 1),x21,1,no effect,",
+    ] {
+        assert!(csv.contains(row), "{row}:\n{csv}");
+    }
+    assert!(!csv.contains("cylinder 2"), "{csv}");
+}
+
+/// The station's table with C2 a swivel drive on the SETTINGS sheet.
+const SWIVEL: &[&[&str]] = &[&["actuator", "valve"], &["C2", "swivel"]];
+const TABLE: &[&[&str]] = &[
+    &["", "BRANCH 1"],
+    &["STEP 1", "C1+1"],
+    &["STEP 2", "C2+1"],
+    &["STEP 3", "C1-0"],
+    &["STEP 4", "C2-0"],
+];
+
+#[test]
+fn hostile_swivel_settings_are_refused_at_their_cells() {
+    assert_refused(&[
+        Refused {
+            what: "a middle position asked of a swivel drive",
+            table: &[
+                &["", "BRANCH 1"],
+                &["STEP 1", "C2+1"],
+                &["STEP 2", "C2+2"],
+                &["STEP 3", "C2-0"],
+            ],
+            settings: SWIVEL,
+            args: &[],
+            code_at: "TABLE!B2: error[E045]: \"C2+1\" asks C2 for position 1, but C2 is a swivel actuator, which has positions 0 to 1 only (a swivel drive: C2+1 swivels it to 180°, C2-0 back to 0°",
+        },
+        Refused {
+            what: "a position past 180°",
+            table: &[&["", "BRANCH 1"], &["STEP 1", "C2+2"], &["STEP 2", "C2-0"]],
+            settings: SWIVEL,
+            args: &[],
+            code_at: "TABLE!B2: error[E045]: \"C2+2\" asks C2 for position 2",
+        },
+        Refused {
+            what: "the kind given twice",
+            table: TABLE,
+            settings: &[&["actuator", "valve"], &["C2", "swivel"], &["C2", "swivel"]],
+            args: &[],
+            code_at: "SETTINGS!A3: error[E030]: C2 is given twice in the actuator table",
+        },
+        Refused {
+            what: "contradicting kinds",
+            table: TABLE,
+            settings: &[&["actuator", "valve"], &["C2", "swivel"], &["C2", "52bi"]],
+            args: &[],
+            code_at: "SETTINGS!A3: error[E030]: C2 is given twice in the actuator table",
+        },
+        Refused {
+            what: "a misspelt kind",
+            table: TABLE,
+            settings: &[&["actuator", "valve"], &["C2", "swivle"]],
+            args: &[],
+            code_at: "SETTINGS!B2: error[E030]: valve of C2: \"swivle\" is not a valve type",
+        },
+        Refused {
+            what: "the kind in words",
+            table: TABLE,
+            settings: &[&["actuator", "valve"], &["C2", "swivel drive"]],
+            args: &[],
+            code_at: "SETTINGS!B2: error[E030]: valve of C2: \"swivel drive\" is not a valve type: did you mean swivel?",
+        },
+        Refused {
+            what: "a kind of an actuator the table lacks",
+            table: TABLE,
+            settings: &[&["actuator", "valve"], &["C9", "swivel"]],
+            args: &[],
+            code_at: "SETTINGS!A2: error[E030]: the actuator table names C9, which the table does not have",
+        },
+        Refused {
+            what: "a coil of the swivel drive kept on through the EMERGENCY STOP",
+            table: TABLE,
+            settings: &[
+                &["actuator", "valve"],
+                &["C2", "swivel"],
+                &["hold on estop", "y2+"],
+                &["modes", "estop"],
+            ],
+            args: &[],
+            code_at: "y2+ is a valve coil of swivel drive C2: left on, it swings the arm on to its end stop",
+        },
+        Refused {
+            what: "a name colliding with a generated one",
+            table: TABLE,
+            settings: &[&["actuator", "valve", "name"], &["C2", "swivel", "x21"]],
+            args: &[],
+            code_at: "SETTINGS!C2: error[E015]: C2 (x21): \"x21\" cannot name an actuator",
+        },
+    ]);
+}
+
+#[test]
+fn hostile_swivel_options_are_refused() {
+    for (valve, said) in [
+        ("C2=swivel,C2=swivel", "C2 is given twice"),
+        ("C2=swivel,C2=52bi", "C2 is given twice"),
+        ("C2=swivle", "\"swivle\" is not a valve type"),
+    ] {
+        steptable()
+            .arg("check")
+            .arg(station())
+            .args(["--valve", valve])
+            .assert()
+            .code(1)
+            .stderr(contains(said));
+    }
+    // A middle position on the command line's swivel drive: E045 at its cell.
+    let table = ",BRANCH 1\nSTEP 1,C2+1\nSTEP 2,C2+2\nSTEP 3,C2-0\n";
+    let (_dir, out, assert) = convert_csv(table, &["--valve", "C2=swivel"], 1);
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(stderr.contains("t.csv:2:2: error[E045]"), "{stderr}");
+    assert!(stderr.contains("a swivel drive"), "{stderr}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn the_command_line_s_kind_wins_over_the_sheet_s_and_says_so() {
+    // SETTINGS says 52bi, --valve says swivel: the drive is a swivel drive,
+    // and the overridden cell is W006 at that cell.
+    let settings: &[&[&str]] = &[&["actuator", "valve"], &["C2", "52bi"]];
+    let (_dir, out, assert) = convert_sheets(TABLE, settings, &["--valve", "C2=swivel"], 0);
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(stderr.contains("SETTINGS!B2: warning[W006]"), "{stderr}");
+    let st = std::fs::read_to_string(out.join("h/h.st")).unwrap();
+    assert!(st.contains("swivel to 180° C2"), "{st}");
+    // A load on a swivel drive does nothing, and says what holds it.
+    let (_dir, _, assert) = convert_sheets(TABLE, SWIVEL, &["--load", "C2=0.1"], 0);
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("warning[W006]: --load C2=0.1: C2's valve is swivel, which holds the arm at its end stop"),
+        "{stderr}"
+    );
+}
