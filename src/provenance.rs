@@ -104,7 +104,18 @@ pub fn settings_source(settings: &Settings) -> String {
             given.strokes.keys().copied().collect(),
             given.named_strokes.keys().collect(),
         ),
-        sim.machine.strokes.per_actuator.keys().copied().collect(),
+        // A kind's own times (a gripper's build-up and release) are a
+        // default, not the sheet's, unless the engineer gave other ones.
+        sim.machine
+            .strokes
+            .per_actuator
+            .iter()
+            .filter(|(n, stroke)| {
+                let kind = sim.machine.valves.per_actuator.get(n);
+                kind.and_then(|k| k.default_stroke()).as_ref() != Some(*stroke)
+            })
+            .map(|(n, _)| *n)
+            .collect(),
     ));
     sheet.extend(per_actuator(
         "load",

@@ -77,6 +77,12 @@ fn a_gripper_s_jogs_say_the_vacuum_stays_on_until_released() {
         assert!(st.contains(said), "{said}: {st}");
     }
     assert!(!st.contains("cylinder 2, extend"), "{st}");
+    // The gripper's own times are a default: a CSV has no SETTINGS sheet.
+    let made_by = st.lines().next().unwrap_or_default();
+    assert!(
+        made_by.contains("settings: the command line, defaults for the rest"),
+        "{made_by}"
+    );
 }
 
 #[test]
