@@ -116,10 +116,13 @@ fn pins<'n>(e: &'n Node, names: &[&str], block: &str) -> Vec<(Option<String>, &'
     found
 }
 
+/// An output's formal parameter (a block's) and where it is.
+type Output = (Option<String>, (i64, i64));
+
 /// Checks one graphical body (`<SFC>`, `<LD>`, `<FBD>`); returns how many
 /// wires were checked, or the first fault, named by element.
 pub fn check_body(body: &Node) -> Result<usize, String> {
-    let mut outputs: BTreeMap<String, Vec<(Option<String>, (i64, i64))>> = BTreeMap::new();
+    let mut outputs: BTreeMap<String, Vec<Output>> = BTreeMap::new();
     let mut placed = BTreeMap::new();
     for e in &body.children {
         let Some(id) = e.attrs.get("localId") else {
