@@ -326,7 +326,10 @@ mod tests {
             let err = OutputKind::parse_list(list).unwrap_err();
             assert!(err.contains(said), "{list}: {err}");
         }
-        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 21);
+        // `all` is every kind, the Ladder body too (it draws every timer).
+        let all = OutputKind::parse_list("ALL").unwrap();
+        assert_eq!(all.len(), 22);
+        assert!(all.contains(&OutputKind::Ladder) && all.contains(&OutputKind::Sfc));
         assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(crate::cell::edit_distance("kitten", "sitting"), 3);
     }

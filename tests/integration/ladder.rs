@@ -247,7 +247,11 @@ const HOSTILE: &[Hostile] = &[
         what: "a machine input named as the block type MOVE",
         table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,I:MOVE\nSTEP 4,C1-0\n",
         args: &["--formats", "ld"],
-        says: &["t.csv:4:2: error[E015]", "\"move\" cannot name", "standard function"],
+        says: &[
+            "t.csv:4:2: error[E015]",
+            "\"move\" cannot name",
+            "standard function",
+        ],
     },
     Hostile {
         what: "a machine input named as the ladder's fired bit",
