@@ -89,9 +89,6 @@ pub enum Code {
     /// a button whose mode is off, a step it lacks, a malformed time, two
     /// events contradicting or repeating each other.
     E042BadScenarioEvent,
-    /// The Ladder body (`--formats ld`) was asked for a program with a
-    /// timer (a dwell, the watchdog, a run-on), which it does not draw.
-    E043LadderTimer,
     /// A move asks an actuator for a position its kind cannot hold (a
     /// vacuum gripper has released 0 and held 1 only).
     E045KindCannotHold,
@@ -160,7 +157,6 @@ impl Code {
             Code::E040OutputTaken => "E040",
             Code::E041BadCommandLine => "E041",
             Code::E042BadScenarioEvent => "E042",
-            Code::E043LadderTimer => "E043",
             Code::E045KindCannotHold => "E045",
         }
     }

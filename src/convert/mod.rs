@@ -6,7 +6,6 @@ mod beside;
 pub use allocate::{allocate, festo_allocation};
 mod findings;
 mod given;
-mod ladder;
 use given::{
     by_name, delays_without_their_input, home_order_by_name, loads_without_effect,
     names_of_the_whole_table, overridden_by_the_command_line, rows_without_their_event,
@@ -457,10 +456,6 @@ pub fn generate_observed(
         shows_faults.then_some(1),
         record,
     )?;
-    let refused = ladder::timers_refused(&table, settings, &program);
-    if !refused.is_empty() {
-        return Err(Failure::Input(refused));
-    }
     let made_by = crate::provenance::MadeBy::of_run(settings, &table.file);
     let settings_rows = report::settings_rows(settings, &table, &made_by);
     let allocation = allocate(&program, settings, &table.file).map_err(Failure::Input)?;

@@ -27,7 +27,8 @@ pub enum OutputKind {
     /// for by name, not written by default (the ST program is).
     Sfc,
     /// The step program as a Ladder body in PLCopen XML (`NAME.ld.xml`):
-    /// asked for by name, not written by default.
+    /// asked for by name or with `all`, not written by default (the ST
+    /// program is).
     Ladder,
     /// TIA Portal SCL external source for the S7-1200/1500 (`.scl`).
     Scl,
@@ -198,14 +199,10 @@ impl OutputKind {
                 Some(kind) => {
                     kinds.insert(kind);
                 }
-                // `all`, the only other item the list accepts: every
-                // kind but the Ladder body, which refuses a program with
-                // timers (E043) and so is asked for by name.
-                None => kinds.extend(
-                    OutputKind::ALL
-                        .into_iter()
-                        .filter(|k| *k != OutputKind::Ladder),
-                ),
+                // `all`, the only other item the list accepts: every kind,
+                // the graphical bodies too (every program has them, timers
+                // drawn as TON blocks).
+                None => kinds.extend(OutputKind::ALL),
             }
         }
         if kinds.is_empty() {
@@ -329,7 +326,10 @@ mod tests {
             let err = OutputKind::parse_list(list).unwrap_err();
             assert!(err.contains(said), "{list}: {err}");
         }
-        assert_eq!(OutputKind::parse_list("ALL").unwrap().len(), 21);
+        // `all` is every kind, the Ladder body too (it draws every timer).
+        let all = OutputKind::parse_list("ALL").unwrap();
+        assert_eq!(all.len(), 22);
+        assert!(all.contains(&OutputKind::Ladder) && all.contains(&OutputKind::Sfc));
         assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(crate::cell::edit_distance("kitten", "sitting"), 3);
     }

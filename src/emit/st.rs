@@ -202,7 +202,7 @@ impl Spelling {
 
     /// A signal: an input or output is a tag, anything else the block's own;
     /// a timer reads as its run flag.
-    fn signal(self, symbols: &SymbolTable, signal: Signal) -> String {
+    pub(super) fn signal(self, symbols: &SymbolTable, signal: Signal) -> String {
         match (self, signal.area()) {
             (_, Area::Timer) => self.own(&timer_run(symbols, signal)),
             (Spelling::Scl, Area::Input | Area::Output) => {

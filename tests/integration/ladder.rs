@@ -14,11 +14,11 @@ use crate::helpers::{files_below, root, samples, steptable};
 use crate::plcopen_geometry::check_file;
 
 /// The option sets the Ladder body is written for (`--safety all` has the
-/// watchdog, a timer: E043).
+/// watchdog, `--modes all` the oven's run-on: TON blocks).
 pub const LADDER_OPTIONS: [&[&str]; 3] = [
     &[],
     &["--modes", "all"],
-    &["--modes", "all", "--safety", "edge,precheck,plausibility"],
+    &["--modes", "all", "--safety", "all"],
 ];
 
 /// Converts `input` with `args` into a fresh folder: the written files by
@@ -60,49 +60,92 @@ fn the_paper_ladder_is_snapshotted() {
 }
 
 /// Every sample, every option set: both bodies load in the editors as
-/// drawn; a program with a timer has no ladder (E043), and only then.
+/// drawn, the timers' blocks too.
 #[test]
 fn every_sfc_and_ladder_body_has_integer_geometry_and_wires_on_their_points() {
     let mut bodies = 0;
-    let mut refused = 0;
+    let mut timed = 0;
     for sample in samples() {
         for options in LADDER_OPTIONS {
             let mut args = options.to_vec();
             args.extend(["--formats", "sfc,ld,st"]);
-            let files = match convert(&sample, &args) {
-                Ok(files) => files,
-                Err(stderr) => {
-                    assert!(
-                        stderr.contains("error[E043]"),
-                        "{}: {stderr}",
-                        sample.display()
-                    );
-                    // Refused only where the program times something.
-                    let mut args = options.to_vec();
-                    args.extend(["--formats", "st"]);
-                    let st = convert(&sample, &args).unwrap();
-                    assert!(
-                        st[0].1.contains(": TON;"),
-                        "{}: refused without a timer",
-                        sample.display()
-                    );
-                    refused += 1;
-                    args.pop();
-                    args.push("sfc");
-                    convert(&sample, &args).unwrap()
-                }
-            };
+            let files = convert(&sample, &args)
+                .unwrap_or_else(|e| panic!("{} {options:?}: {e}", sample.display()));
             for (name, text) in files.iter().filter(|(n, _)| n.ends_with(".xml")) {
                 let wires = check_file(text).unwrap_or_else(|e| panic!("{name} {options:?}: {e}"));
                 assert!(wires > 10, "{name}: {wires} wires");
                 bodies += 1;
+                timed +=
+                    usize::from(name.ends_with(".ld.xml") && text.contains("typeName=\"TON\""));
             }
         }
     }
     assert!(
-        refused > 0 && bodies > 30,
-        "{bodies} bodies, {refused} refused"
+        bodies > 50 && timed > 10,
+        "{bodies} bodies, {timed} ladders with timers"
     );
+}
+
+/// Each timer E043 refused before is drawn: a dwell, the watchdog (asked
+/// for and by a supervision time), a run-on after STOP. The ladder has the
+/// TON, its instance among the POU's own variables, the restart's MOVE and
+/// two calls, and the geometry the editors need.
+#[test]
+fn every_kind_of_timer_is_drawn_as_a_ton_block() {
+    let cases: [(&str, &str, &[&str]); 4] = [
+        (
+            "a dwell",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,C1-0\n",
+            &[],
+        ),
+        (
+            "the watchdog",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n",
+            &["--safety", "watchdog"],
+        ),
+        (
+            "a supervision time",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n",
+            &["--safety", "watchdog", "--supervision", "2=3s"],
+        ),
+        ("the oven's run-on", "", &["--modes", "all"]),
+    ];
+    for (what, table, args) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let input = if table.is_empty() {
+            root().join("samples/oven.xlsx")
+        } else {
+            let path = dir.path().join("t.csv");
+            std::fs::write(&path, table).unwrap();
+            path
+        };
+        let mut all = args.to_vec();
+        all.extend(["--formats", "ld"]);
+        let files = convert(&input, &all).unwrap_or_else(|e| panic!("{what}: {e}"));
+        let [(_, text)] = &files[..] else {
+            panic!("{what}: one file: {files:?}");
+        };
+        check_file(text).unwrap_or_else(|e| panic!("{what}: {e}"));
+        let local = text
+            .split("<localVars>")
+            .nth(1)
+            .and_then(|l| l.split("</localVars>").next());
+        let local = local.unwrap_or_else(|| panic!("{what}: no TON among the POU's own variables"));
+        assert!(local.contains("<derived name=\"TON\"/>"), "{what}: {local}");
+        for needle in [
+            "typeName=\"MOVE\"",
+            "formalParameter=\"ENO\"",
+            "<expression>FALSE</expression>",
+            "<expression>TRUE</expression>",
+        ] {
+            assert!(text.contains(needle), "{what}: no {needle}");
+        }
+        let calls = text.matches("typeName=\"TON\"").count();
+        assert!(
+            calls >= 3,
+            "{what}: {calls} TON blocks (the timer's rung and two per restart)"
+        );
+    }
 }
 
 /// The checker itself: a wire moved off its source's output by one unit,
@@ -132,17 +175,21 @@ fn the_geometry_check_catches_a_moved_point_and_a_decimal_size() {
     }
 }
 
-/// `--formats all` writes every kind but the ladder, which is asked for by
-/// name: a table with a dwell still converts with `all`.
+/// `--formats all` writes every kind, the ladder too: a table with a dwell
+/// converts with `all`, its ladder timing the dwell.
 #[test]
-fn all_formats_leave_the_ladder_out() {
+fn all_formats_include_the_ladder() {
     let files = convert(
         &root().join("samples/sorting_station.xlsx"),
         &["--formats", "all"],
     )
     .unwrap();
     assert!(files.iter().any(|(n, _)| n.ends_with(".sfc.xml")));
-    assert!(!files.iter().any(|(n, _)| n.ends_with(".ld.xml")));
+    let (_, ld) = files
+        .iter()
+        .find(|(n, _)| n.ends_with(".ld.xml"))
+        .expect("all writes the ladder");
+    assert!(ld.contains("typeName=\"TON\""));
 }
 
 struct Hostile {
@@ -173,16 +220,38 @@ const HOSTILE: &[Hostile] = &[
         says: &["\"ladder\" is not an output format", " ld,"],
     },
     Hostile {
-        what: "a dwell, which the ladder cannot time",
-        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,C1-0\n",
+        what: "a machine input named as a timer's preset, which the ladder's MOVE writes",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,I:dwell1_pt\nSTEP 4,C1-0\n",
         args: &["--formats", "ld"],
-        says: &["t.csv:3:2: error[E043]", "this dwell"],
+        says: &["t.csv:4:2: error[E015]", "\"dwell1_pt\" cannot name"],
     },
     Hostile {
-        what: "the watchdog, asked for beside the ladder",
-        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n",
-        args: &["--formats", "ld", "--safety", "watchdog"],
-        says: &["t.csv: error[E043]", "--safety watchdog"],
+        what: "a machine input named as a timer's run flag, the ladder's coil",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,I:dwell1_run\nSTEP 4,C1-0\n",
+        args: &["--formats", "ld"],
+        says: &["t.csv:4:2: error[E015]", "\"dwell1_run\" cannot name"],
+    },
+    Hostile {
+        what: "a machine input named as the TON instance",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,I:dwell1\nSTEP 4,C1-0\n",
+        args: &["--formats", "ld"],
+        says: &["t.csv:4:2: error[E015]", "\"dwell1\" cannot name"],
+    },
+    Hostile {
+        what: "a machine input named as the block type TON",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,I:TON\nSTEP 4,C1-0\n",
+        args: &["--formats", "ld"],
+        says: &["t.csv:4:2: error[E015]", "\"ton\" cannot name", "keyword"],
+    },
+    Hostile {
+        what: "a machine input named as the block type MOVE",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,I:MOVE\nSTEP 4,C1-0\n",
+        args: &["--formats", "ld"],
+        says: &[
+            "t.csv:4:2: error[E015]",
+            "\"move\" cannot name",
+            "standard function",
+        ],
     },
     Hostile {
         what: "a machine input named as the ladder's fired bit",

@@ -93,10 +93,36 @@ fn point(node: &Node, what: &str) -> Result<(i64, i64), String> {
 /// The connection points an element offers to wires that leave it.
 const OUTPUTS: [&str; 2] = ["connectionPointOut", "connectionPointOutAction"];
 
+/// An element's connection points named `names`, and a block's (inside
+/// its `inputVariables` or `outputVariables`, each with its formal
+/// parameter).
+fn pins<'n>(e: &'n Node, names: &[&str], block: &str) -> Vec<(Option<String>, &'n Node)> {
+    let mut found: Vec<(Option<String>, &Node)> = names
+        .iter()
+        .flat_map(|name| e.children.iter().filter(move |c| c.name == *name))
+        .map(|c| (None, c))
+        .collect();
+    for variables in e.children.iter().filter(|c| c.name == block) {
+        for v in variables.children.iter().filter(|c| c.name == "variable") {
+            for c in v
+                .children
+                .iter()
+                .filter(|c| names.contains(&c.name.as_str()))
+            {
+                found.push((v.attrs.get("formalParameter").cloned(), c));
+            }
+        }
+    }
+    found
+}
+
+/// An output's formal parameter (a block's) and where it is.
+type Output = (Option<String>, (i64, i64));
+
 /// Checks one graphical body (`<SFC>`, `<LD>`, `<FBD>`); returns how many
 /// wires were checked, or the first fault, named by element.
 pub fn check_body(body: &Node) -> Result<usize, String> {
-    let mut outputs: BTreeMap<String, Vec<(i64, i64)>> = BTreeMap::new();
+    let mut outputs: BTreeMap<String, Vec<Output>> = BTreeMap::new();
     let mut placed = BTreeMap::new();
     for e in &body.children {
         let Some(id) = e.attrs.get("localId") else {
@@ -110,15 +136,13 @@ pub fn check_body(body: &Node) -> Result<usize, String> {
             &what,
         )?;
         let mut outs = Vec::new();
-        for name in OUTPUTS {
-            for out in e.all(name) {
-                let rel = point(
-                    out.child("relPosition")
-                        .ok_or(format!("{what}: no relPosition"))?,
-                    &what,
-                )?;
-                outs.push((at.0 + rel.0, at.1 + rel.1));
-            }
+        for (formal, out) in pins(e, &OUTPUTS, "outputVariables") {
+            let rel = point(
+                out.child("relPosition")
+                    .ok_or(format!("{what}: no relPosition"))?,
+                &what,
+            )?;
+            outs.push((formal, (at.0 + rel.0, at.1 + rel.1)));
         }
         outputs.insert(id.clone(), outs);
         placed.insert(id.clone(), at);
@@ -133,7 +157,7 @@ pub fn check_body(body: &Node) -> Result<usize, String> {
         };
         let what = format!("{} {id}", e.name);
         let at = placed[id];
-        for input in e.all("connectionPointIn") {
+        for (_, input) in pins(e, &["connectionPointIn"], "inputVariables") {
             let rel = point(
                 input
                     .child("relPosition")
@@ -155,9 +179,20 @@ pub fn check_body(body: &Node) -> Result<usize, String> {
                         "{what}: the wire from {from} starts at {first:?}, not at the input {pin:?}"
                     ));
                 }
-                let outs = outputs.get(from).ok_or(format!(
-                    "{what}: a wire from {from}, which is not in the body"
-                ))?;
+                let outs: Vec<(i64, i64)> = outputs
+                    .get(from)
+                    .ok_or(format!(
+                        "{what}: a wire from {from}, which is not in the body"
+                    ))?
+                    .iter()
+                    .filter(|(formal, _)| {
+                        // A wire from a block names the output it leaves.
+                        wire.attrs
+                            .get("formalParameter")
+                            .is_none_or(|f| formal.as_ref() == Some(f))
+                    })
+                    .map(|(_, p)| *p)
+                    .collect();
                 if !outs.contains(last) {
                     return Err(format!(
                         "{what}: the wire from {from} ends at {last:?}, not at one of its outputs {outs:?}"

@@ -17,73 +17,48 @@
 //! clears the step left.
 //!
 //! Beremiz orders the coils by their height, so the rungs are placed top to
-//! bottom in scan order. Timers have no rung here: a program with one is
-//! refused before rendering (E043), since it needs a TON restarted in the
-//! scan its step fires, which coils alone cannot draw.
+//! bottom in scan order. A timer is a TON block, as the ST program's: one
+//! rung per timer at the top of the scan calls it with its run flag and
+//! clears the flag when the time is up (`t(IN := t_run, PT := t_pt)`); a
+//! rung that starts it restarts it in that very scan, so that its time
+//! runs from the scan its step fired, as in the simulation: a MOVE writes
+//! the preset, and two calls of the same TON, IN off then on, chained
+//! through EN/ENO, set its run flag (see `place.rs`).
 
 use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
 
+mod place;
+
 use super::lower::{Lowered, lower};
-use super::st::comment_text;
+use super::st::{Spelling, comment_text};
 use super::{EmitInput, templates};
 use crate::program::{Action, INITIAL_STEP, Literal, Signal};
+use place::{COMMENT_H, ELEMENT_H, ELEMENT_W, PIN_Y, Placer, RAIL_W, RAIL_X, Rung};
 
-/// Element sizes and spacing, in PLCopen units (Beremiz's defaults for
-/// contacts and coils: 21 × 15, a power rail 3 wide).
-const ELEMENT_W: i64 = 21;
-const ELEMENT_H: i64 = 15;
-/// The height of an element's connection points over its top.
-const PIN_Y: i64 = 8;
-const RAIL_W: i64 = 3;
-const RAIL_X: i64 = 20;
-const CONTACT_STEP: i64 = 50;
-const ROW: i64 = 40;
-const COMMENT_H: i64 = 30;
-
-/// A connection: the element it comes from and its points, the first at
-/// the input, the last at the source's output.
-#[derive(Serialize, Clone)]
-struct Wire {
-    from: u64,
-    points: Vec<(i64, i64)>,
+/// A timer as its rungs name it: the TON instance, its run flag and its
+/// preset variable (the ST program's names).
+#[derive(Clone, PartialEq, Eq)]
+struct Timer {
+    instance: String,
+    preset: String,
 }
 
-#[derive(Serialize)]
-struct Contact {
-    id: u64,
-    x: i64,
-    y: i64,
-    variable: String,
-    negated: bool,
-    input: Wire,
-}
-
-#[derive(Serialize)]
-struct Coil {
-    id: u64,
-    x: i64,
-    y: i64,
-    variable: String,
-    /// `set` or `reset`.
-    storage: &'static str,
-    input: Wire,
-}
-
-#[derive(Serialize)]
-struct Rung {
-    comment_id: u64,
-    comment: String,
-    comment_y: i64,
-    left_id: u64,
-    left_y: i64,
-    height: i64,
-    contacts: Vec<Contact>,
-    coils: Vec<Coil>,
-    right_id: u64,
-    right_x: i64,
-    right_inputs: Vec<(i64, Wire)>,
+/// What drives a coil besides the rung's contacts.
+#[derive(Clone, PartialEq, Eq)]
+enum Via {
+    /// Straight from the rung's power.
+    Power,
+    /// The timer's own rung: the TON called in every scan (EN from the
+    /// rail: a restart leaves EN off in the instance, and matiec keeps an
+    /// FB's EN until a call gives it again), IN from a contact on the run
+    /// flag, PT its preset variable; its Q drives the coil.
+    Call(Timer),
+    /// The timer restarted with `ms` (a MOVE into its preset, the TON
+    /// called with IN off then on, chained by EN/ENO): the coil sets its
+    /// run flag.
+    Restart(Timer, u32),
 }
 
 /// One coil before it is placed: the variable and the value it writes.
@@ -91,6 +66,17 @@ struct Rung {
 struct Write {
     variable: String,
     value: bool,
+    via: Via,
+}
+
+impl Write {
+    fn coil(variable: impl Into<String>, value: bool) -> Write {
+        Write {
+            variable: variable.into(),
+            value,
+            via: Via::Power,
+        }
+    }
 }
 
 /// A rung before it is placed.
@@ -132,33 +118,43 @@ struct Names<'a> {
 }
 
 impl Names<'_> {
+    /// A signal as a variable: a timer reads as its run flag, as in ST.
+    fn variable(&self, s: Signal) -> String {
+        Spelling::Iec.signal(self.input.symbols, s)
+    }
+
     fn contact(&self, l: &Literal) -> (String, bool) {
-        (self.input.symbols.ident(l.signal), l.negated)
+        (self.variable(l.signal), l.negated)
+    }
+
+    fn timer(&self, timer: Signal) -> Result<Timer, String> {
+        let names = self.input.symbols.timer(timer).ok_or_else(|| {
+            format!(
+                "{} has no run flag and preset",
+                self.input.symbols.ident(timer)
+            )
+        })?;
+        Ok(Timer {
+            instance: self.input.symbols.ident(timer),
+            preset: names.iec_preset.ident.clone(),
+        })
     }
 
     fn writes(&self, actions: &[Action], out: &mut Vec<Write>) -> Result<(), String> {
         for action in actions {
             match *action {
                 Action::Reset(Signal::Sequence) => {
-                    out.extend(self.lowered.flags.iter().map(|f| Write {
-                        variable: f.clone(),
-                        value: false,
-                    }));
-                    out.push(Write {
-                        variable: self.lowered.flag(INITIAL_STEP).to_string(),
-                        value: true,
-                    });
+                    out.extend(self.lowered.flags.iter().map(|f| Write::coil(f, false)));
+                    out.push(Write::coil(self.lowered.flag(INITIAL_STEP), true));
                 }
-                Action::StartTimer(timer, _) => {
-                    return Err(format!(
-                        "{} is a timer: the Ladder body has none",
-                        self.input.symbols.ident(timer)
-                    ));
-                }
-                Action::Set(s) | Action::Reset(s) => out.push(Write {
-                    variable: self.input.symbols.ident(s),
-                    value: action.value(),
+                Action::StartTimer(timer, ms) => out.push(Write {
+                    variable: self.variable(timer),
+                    value: true,
+                    via: Via::Restart(self.timer(timer)?, ms),
                 }),
+                Action::Set(s) | Action::Reset(s) => {
+                    out.push(Write::coil(self.variable(s), action.value()))
+                }
             }
         }
         Ok(())
@@ -168,14 +164,12 @@ impl Names<'_> {
     fn plans(&self) -> Result<Vec<Plan>, String> {
         let lowered = &self.lowered;
         let fired = lowered.fired.clone();
-        let mut plans = vec![Plan {
+        let mut plans = self.timer_calls()?;
+        plans.push(Plan {
             comment: "no step has fired yet in this scan".to_string(),
             contacts: Vec::new(),
-            writes: vec![Write {
-                variable: fired.clone(),
-                value: false,
-            }],
-        }];
+            writes: vec![Write::coil(&fired, false)],
+        });
         for step in &lowered.steps {
             let flag = lowered.flag(step.index).to_string();
             for t in step.transitions() {
@@ -185,16 +179,10 @@ impl Names<'_> {
                 contacts.extend(t.condition.iter().map(|l| self.contact(l)));
                 let mut writes = Vec::new();
                 self.writes(t.actions, &mut writes)?;
-                writes.push(Write {
-                    variable: next.clone(),
-                    value: true,
-                });
+                writes.push(Write::coil(&next, true));
                 let same = next == flag;
                 if same {
-                    writes.push(Write {
-                        variable: fired.clone(),
-                        value: true,
-                    });
+                    writes.push(Write::coil(&fired, true));
                 }
                 plans.push(Plan {
                     comment: format!("{title}; {}", t.comment),
@@ -208,16 +196,7 @@ impl Names<'_> {
                             t.enters
                         ),
                         contacts: vec![(flag.clone(), false), (next, false)],
-                        writes: vec![
-                            Write {
-                                variable: fired.clone(),
-                                value: true,
-                            },
-                            Write {
-                                variable: flag.clone(),
-                                value: false,
-                            },
-                        ],
+                        writes: vec![Write::coil(&fired, true), Write::coil(&flag, false)],
                     });
                 }
             }
@@ -233,93 +212,33 @@ impl Names<'_> {
         }
         plans.into_iter().map(Plan::ordered).collect()
     }
-}
 
-/// Places the rungs one under the other; every coil in one column.
-struct Placer {
-    next_id: u64,
-    y: i64,
-    coil_x: i64,
-}
-
-impl Placer {
-    fn id(&mut self) -> u64 {
-        self.next_id += 1;
-        self.next_id
-    }
-
-    fn rung(&mut self, plan: Plan) -> Rung {
-        let comment_id = self.id();
-        let comment_y = self.y;
-        let line = self.y + COMMENT_H + 30;
-        let rows = plan.writes.len().max(1) as i64;
-        let left_id = self.id();
-        let left_out = (RAIL_X + RAIL_W, line);
-        let mut source = (left_id, left_out);
-        let mut contacts = Vec::new();
-        for (i, (variable, negated)) in plan.contacts.into_iter().enumerate() {
-            let id = self.id();
-            let x = RAIL_X + 60 + CONTACT_STEP * i as i64;
-            contacts.push(Contact {
-                id,
-                x,
-                y: line - PIN_Y,
-                variable,
-                negated,
-                input: Wire {
-                    from: source.0,
-                    points: vec![(x, line), source.1],
-                },
-            });
-            source = (id, (x + ELEMENT_W, line));
-        }
-        let right_x = self.coil_x + ELEMENT_W + 40;
-        let mut coils = Vec::new();
-        let mut right_inputs = Vec::new();
-        for (j, w) in plan.writes.into_iter().enumerate() {
-            let id = self.id();
-            let y = line + ROW * j as i64;
-            let mut points = vec![(self.coil_x, y)];
-            if j > 0 {
-                points.push((self.coil_x - 20, y));
-                points.push((self.coil_x - 20, line));
-            }
-            points.push(source.1);
-            coils.push(Coil {
-                id,
-                x: self.coil_x,
-                y: y - PIN_Y,
-                variable: w.variable,
-                storage: if w.value { "set" } else { "reset" },
-                input: Wire {
-                    from: source.0,
-                    points,
-                },
-            });
-            right_inputs.push((
-                y - (line - 20),
-                Wire {
-                    from: id,
-                    points: vec![(right_x, y), (self.coil_x + ELEMENT_W, y)],
-                },
-            ));
-        }
-        let right_id = self.id();
-        let height = ROW * rows;
-        self.y = line - 20 + height + 20;
-        Rung {
-            comment_id,
-            comment: comment_text(&plan.comment),
-            comment_y,
-            left_id,
-            left_y: line - 20,
-            height,
-            contacts,
-            coils,
-            right_id,
-            right_x,
-            right_inputs,
-        }
+    /// The timers' rungs, first in the scan as the ST program calls them:
+    /// the TON runs while its run flag is on, and its Q clears the flag.
+    fn timer_calls(&self) -> Result<Vec<Plan>, String> {
+        let program = self.input.program;
+        program
+            .timers
+            .iter()
+            .map(|&t| {
+                let timer = self.timer(t)?;
+                let run = self.variable(t);
+                Ok(Plan {
+                    comment: format!(
+                        "{} runs while {run} is set and clears it when its preset has elapsed",
+                        timer.instance
+                    ),
+                    // The run flag's contact feeds the TON's IN, not the
+                    // rung: the TON is called in every scan.
+                    contacts: Vec::new(),
+                    writes: vec![Write {
+                        variable: run,
+                        value: false,
+                        via: Via::Call(timer),
+                    }],
+                })
+            })
+            .collect()
     }
 }
 
@@ -333,6 +252,8 @@ struct Flag {
 #[derive(Serialize)]
 struct Ladder {
     rungs: Vec<Rung>,
+    /// The TON instances, the POU's own variables.
+    instances: Vec<String>,
     flags: Vec<Flag>,
     step_counter: String,
     element_w: i64,
@@ -351,12 +272,7 @@ fn ladder(input: &EmitInput) -> Result<Ladder, String> {
         lowered: lower(input.program, input.symbols),
     };
     let plans = names.plans()?;
-    let widest = plans.iter().map(|p| p.contacts.len()).max().unwrap_or(0) as i64;
-    let mut placer = Placer {
-        next_id: 0,
-        y: 20,
-        coil_x: RAIL_X + 60 + CONTACT_STEP * widest + 40,
-    };
+    let mut placer = Placer::new(&plans);
     let rungs: Vec<Rung> = plans.into_iter().map(|p| placer.rung(p)).collect();
     let symbols = input.symbols;
     let mut flags: Vec<Flag> = (0..names.lowered.steps.len())
@@ -376,8 +292,15 @@ fn ladder(input: &EmitInput) -> Result<Ladder, String> {
         initial: false,
         comment: comment_text(&symbols.fired.comment),
     });
+    let instances = input
+        .program
+        .timers
+        .iter()
+        .map(|&t| symbols.ident(t))
+        .collect();
     Ok(Ladder {
         rungs,
+        instances,
         flags,
         step_counter: symbols.step_counter.ident.clone(),
         element_w: ELEMENT_W,
@@ -385,7 +308,7 @@ fn ladder(input: &EmitInput) -> Result<Ladder, String> {
         pin_y: PIN_Y,
         rail_w: RAIL_W,
         rail_x: RAIL_X,
-        comment_w: placer.coil_x + ELEMENT_W + 40 - RAIL_X,
+        comment_w: placer.right_x() - RAIL_X,
         comment_h: COMMENT_H,
     })
 }
@@ -394,8 +317,8 @@ fn ladder(input: &EmitInput) -> Result<Ladder, String> {
 /// the rungs.
 pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
     let (iec, _) = super::st::parts(input, input.scan_ms)?;
-    // Refused before rendering (E043): reaching this is a bug, not the
-    // engineer's to fix.
+    // A rung that would switch two of its own contacts off is not the
+    // engineer's to fix: reaching this is a bug.
     let ladder = ladder(input).map_err(|detail| templates::TemplateError {
         file: "ld.xml.j2".to_string(),
         user: false,
