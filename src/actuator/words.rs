@@ -36,11 +36,12 @@ impl ActuatorKind {
         }
     }
 
-    /// What the comments call it: a gripper, or a cylinder (as every
-    /// actuator's sensors have always been commented, drives' too).
+    /// What the comments call it: a gripper, a drive (a motor's limit
+    /// switches are no cylinder's), a swivel drive or a cylinder.
     pub fn noun(self) -> &'static str {
         match self {
             _ if self.holds_part() => "gripper",
+            _ if self.is_drive() => "drive",
             ActuatorKind::Swivel => "swivel drive",
             _ => "cylinder",
         }
@@ -113,12 +114,15 @@ impl ActuatorKind {
         }
     }
 
-    /// What its no-output state holds still against a load, for the W006
-    /// of a `--load` it ignores.
-    pub fn moving_part(self) -> &'static str {
+    /// Why a load does not move it with no output on, for the W006 of a
+    /// `--load` it ignores (`C2's valve is 52mono, …`).
+    pub fn holds_against_a_load(self) -> &'static str {
         match self {
-            ActuatorKind::Swivel => "arm at its end stop",
-            _ => "piston",
+            _ if self.holds_part() => "a gripper's: no load moves what it holds",
+            _ if self.is_drive() => "a drive's, which stands with neither contactor on",
+            ActuatorKind::Mono52 => "whose spring holds the piston home with no coil on",
+            ActuatorKind::Swivel => "which holds the arm at its end stop",
+            _ => "which holds the piston",
         }
     }
 
@@ -164,13 +168,27 @@ mod tests {
             "{kept}"
         );
         assert!(swivel.positions_said(3).contains("C3+1 swivels it to 180°"));
-        assert_eq!(swivel.moving_part(), "arm at its end stop");
+        assert!(
+            swivel
+                .holds_against_a_load()
+                .contains("arm at its end stop")
+        );
         let cylinder = ActuatorKind::Bistable52;
         assert_eq!(
             cylinder.sensor_comment("1", 0, 1),
             "cylinder 1, home position 0"
         );
         assert_eq!(cylinder.coil_words(), ("extend", "retract"));
-        assert_eq!(cylinder.moving_part(), "piston");
+        assert_eq!(cylinder.holds_against_a_load(), "which holds the piston");
+        assert!(
+            !ActuatorKind::Vacuum
+                .holds_against_a_load()
+                .contains("piston")
+        );
+        assert!(
+            !ActuatorKind::Motor
+                .holds_against_a_load()
+                .contains("piston")
+        );
     }
 }

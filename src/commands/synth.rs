@@ -286,6 +286,27 @@ fn sheet_settings_synth_drops(
         });
     }
     let sim = &settings.simulation;
+    // The equations pulse a coil and count on the valve to keep the
+    // position: a spring return, a 5/3 centre, a drive or a gripper would
+    // not do what the proof shows.
+    for (n, kind) in &sim.machine.valves.per_actuator {
+        let keeps = kind.coils() == crate::actuator::CoilSet::Double && !kind.has_centre();
+        if !keeps {
+            refused.push(Diagnostic {
+                severity: Severity::Error,
+                code: Code::E034NotSynthesisable,
+                location: Location {
+                    file: file.to_string(),
+                    sheet: Some("SETTINGS".to_string()),
+                    cell: None,
+                },
+                message: format!(
+                    "C{n} is a {} on valve type {kind}: synth's equations drive two-position actuators whose valve keeps its position with no coil on (52bi, swivel) only; {convert}",
+                    kind.noun()
+                ),
+            });
+        }
+    }
     if !(sim.machine.strokes.per_actuator.is_empty()
         && sim.machine.valves.per_actuator.is_empty()
         && sim.machine.loads.is_empty())

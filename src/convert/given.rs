@@ -3,6 +3,8 @@
 //! nothing, cells the command line overrides, options naming actuators by
 //! name, and the one check of every name over the table and its settings.
 
+use std::collections::BTreeMap;
+
 use crate::diag::{Code, Diagnostics, Location};
 use crate::read;
 use crate::settings::Settings;
@@ -113,8 +115,8 @@ pub(super) fn loads_without_effect(
                 Code::W006NoEffect,
                 at,
                 format!(
-                    "{source} C{n}={load}: C{n}'s valve is {valve}, which holds the {} (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing",
-                    valve.moving_part()
+                    "{source} C{n}={load}: C{n}'s valve is {valve}, {} (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing",
+                    valve.holds_against_a_load()
                 ),
             );
         }
@@ -253,6 +255,30 @@ pub(super) fn by_name(
         let numbered = n.is_some_and(|n| given.loads.contains_key(&n));
         if let Some(n) = resolve("load", name, numbered) {
             settings.simulation.machine.loads.insert(n, *load);
+        }
+    }
+    // One actuator under two names in one option (`arm=swivel,2A1=vacuum`):
+    // neither value may win unsaid.
+    let options = [
+        ("valve", given.named_valves.keys().collect::<Vec<_>>()),
+        ("stroke", given.named_strokes.keys().collect()),
+        ("load", given.named_loads.keys().collect()),
+    ];
+    for (option, names) in options {
+        let mut first: BTreeMap<u32, &String> = BTreeMap::new();
+        for name in names {
+            let Some(n) = naming.actuator_called(name) else {
+                continue;
+            };
+            if let Some(earlier) = first.insert(n, name) {
+                diags.error(
+                    Code::E030BadSetting,
+                    at.clone(),
+                    format!(
+                        "--{option} {name}=…: {name} is C{n}, which --{option} gives as {earlier} too; give each actuator once"
+                    ),
+                );
+            }
         }
     }
 }

@@ -369,7 +369,10 @@ pub fn resolve(
 /// A kind whose output holds a part (a vacuum gripper) keeps it on through
 /// an EMERGENCY STOP unless a row says what it does there (`on estop`) or
 /// switches it off at every halt: switched off, the part would drop
-/// wherever the arm stood. A halt keeps every output as it is already.
+/// wherever the arm stood. A STOP that acts at once (an `on stop` row
+/// naming other outputs) keeps it too, unless that row names it: the
+/// milder stop must not drop what the emergency stop keeps. A halt keeps
+/// every output as it is already.
 fn hold_parts_by_default(table: &StepTable, valves: &Valves, policy: &mut HaltPolicy) {
     for a in &table.actuators {
         let kind = valves.of(a.number, a.max_position);
@@ -377,8 +380,14 @@ fn hold_parts_by_default(table: &StepTable, valves: &Valves, policy: &mut HaltPo
             continue;
         }
         for coil in Coils::of(kind, a.number).signals() {
-            if !policy.on_estop.contains_key(&coil) && !policy.off_on_halt.contains(&coil) {
+            if policy.off_on_halt.contains(&coil) {
+                continue;
+            }
+            if !policy.on_estop.contains_key(&coil) {
                 policy.hold_on_estop.insert(coil);
+            }
+            if !policy.on_stop.is_empty() {
+                policy.on_stop.entry(coil).or_insert(StopAction::Hold);
             }
         }
     }

@@ -125,6 +125,26 @@ fn synth_refuses_the_safety_rows_it_cannot_build_and_names_the_rest() {
             "error[E034]: start permissive: synth does not build",
         ),
         (
+            &[&["actuator", "valve"], &["C1", "vacuum"]],
+            1,
+            "error[E034]: C1 is a gripper on valve type vacuum: synth's equations drive",
+        ),
+        (
+            &[&["actuator", "valve"], &["C2", "motor"]],
+            1,
+            "error[E034]: C2 is a drive on valve type motor",
+        ),
+        (
+            &[&["actuator", "valve"], &["C2", "52mono"]],
+            1,
+            "error[E034]: C2 is a cylinder on valve type 52mono",
+        ),
+        (
+            &[&["actuator", "valve"], &["C2", "swivel"]],
+            0,
+            "warning[W006]: synth does not use the actuator table",
+        ),
+        (
             &[&["target", "siemens"]],
             0,
             "SETTINGS!B1: warning[W006]: target: synth does not use this setting",

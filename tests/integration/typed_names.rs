@@ -78,6 +78,16 @@ fn the_home_order_and_load_take_names_and_refuse_what_no_actuator_answers_to() {
             never: &["\"arm\", which is no actuator"],
         },
         Case {
+            what: "one actuator's valve given by its name and its ISO designation",
+            sheets: &[("TABLE", TWO), ("SETTINGS", MODES)],
+            args: &["--valve", "lift=52mono,1A1=52bi", "--formats", "st"],
+            exit: 1,
+            says: &[
+                "h.xlsx: error[E030]: --valve lift=…: lift is C1, which --valve gives as 1A1 too; give each actuator once",
+            ],
+            never: &[],
+        },
+        Case {
             what: "one actuator under two names",
             sheets: &[("TABLE", TWO), ("SETTINGS", MODES)],
             args: &["--home-order", "clamp, 2A1, lift", "--formats", "st"],

@@ -295,4 +295,53 @@ fn hostile_gripper_options_are_refused() {
         .stderr(contains(
             "error[E030]: --valve C9=…: the table has no actuator C9",
         ));
+    // A load on the gripper does nothing, and the warning says why in a
+    // gripper's words (no piston).
+    steptable()
+        .arg("check")
+        .arg(pick_and_place())
+        .args(["--valve", "C2=vacuum", "--load", "C2=0.2"])
+        .assert()
+        .success()
+        .stderr(contains(
+            "warning[W006]: --load C2=0.2: C2's valve is vacuum, a gripper's: no load moves what it holds",
+        ));
+}
+
+/// A STOP that acts at once (an `on stop` row naming another output)
+/// keeps the gripper's part as the EMERGENCY STOP does, unless the row
+/// names the gripper: the milder stop must not drop the part mid-swing.
+#[test]
+fn a_stop_at_once_keeps_the_part_unless_its_row_names_the_gripper() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("stop.xlsx");
+    let table: &[&[&str]] = &[
+        &["", "BRANCH 1", "BRANCH 2"],
+        &["STEP 1", "C1+1", ""],
+        &["STEP 2", "C2+1", ""],
+        &["STEP 3", "C1-0", "C3+1"],
+        &["STEP 4", "C1+1", ""],
+        &["STEP 5", "C2-0", ""],
+        &["STEP 6", "C1-0", "C3-0"],
+    ];
+    let ended = |on_stop: &str| {
+        let settings: &[&[&str]] = &[
+            &["modes", "all"],
+            &["on stop", on_stop],
+            &["actuator", "valve"],
+            &["C2", "vacuum"],
+        ];
+        crate::helpers::write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);
+        let run = steptable()
+            .arg("simulate")
+            .arg(&path)
+            .args(["--press", "STOP@step4"])
+            .assert();
+        let stdout = String::from_utf8_lossy(&run.get_output().stdout).into_owned();
+        stdout.lines().last().unwrap_or_default().to_string()
+    };
+    let kept = ended("C3 off");
+    assert!(kept.contains("on: y2"), "{kept}");
+    let dropped = ended("C3 off, C2 off");
+    assert!(!dropped.contains("y2"), "{dropped}");
 }
