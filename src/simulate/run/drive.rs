@@ -110,6 +110,7 @@ impl<'a> Run<'a> {
             alarmed: false,
             places: Vec::new(),
             visited: Places::default(),
+            last_scan: None,
         };
         run.dwells = table
             .dwells()

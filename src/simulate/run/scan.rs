@@ -61,6 +61,13 @@ impl Run<'_> {
         if let Some(fired) = result.fired {
             self.on_fire(fired, result.waited_at, result.jumped);
         }
+        // A cycle abandoned (manual mode, RESET, a STOP at once) leaves no
+        // step under way: the next cycle starts fresh, and its step 1 is
+        // not "started before" the abandoned step finished.
+        if result.abandoned.is_some() {
+            self.active.clear();
+        }
+        self.last_scan = Some(result);
         self.track_dwells(now);
 
         // Outputs to valves, then the plant moves for one scan period. With
