@@ -273,6 +273,56 @@ impl ActuatorKind {
         format!("{} {label}, {which}", self.noun())
     }
 
+    /// Why a load (`--load`) on actuator `number` of this kind moves
+    /// nothing, for W006: a cylinder's valve holds its piston, a drive
+    /// stands, a gripper has no piston at all.
+    pub fn load_held(self, number: u32) -> String {
+        match self {
+            ActuatorKind::Vacuum => format!(
+                "C{number} is a vacuum {} (valve type vacuum), not a cylinder: it has no piston for a load to drift",
+                self.noun()
+            ),
+            ActuatorKind::Motor => format!(
+                "C{number} is an electric drive (valve type motor), which stands with both contactors off"
+            ),
+            _ => format!(
+                "C{number}'s valve is {}, which holds the piston",
+                self.name()
+            ),
+        }
+    }
+
+    /// Whether it has a jog button for `-` as well as `+`: a single coil's
+    /// spring is the way back (`52mono`), but a coil that holds a part
+    /// (a vacuum) stays on by itself, so its jogN- switches it off.
+    pub fn jogs_back(self) -> bool {
+        self.coils() == CoilSet::Double || self.holds_part()
+    }
+
+    /// The kinds with one jog button only, for the message that refuses
+    /// a second: `52mono cylinder`.
+    pub fn one_jog() -> Vec<String> {
+        ActuatorKind::ALL
+            .into_iter()
+            .filter(|k| !k.jogs_back())
+            .map(|k| format!("{} {}", k.name(), k.noun()))
+            .collect()
+    }
+
+    /// What its jog button for `plus` (or minus) does, for the signal
+    /// comments: `extend while held`, `vacuum on, grip, on until its
+    /// release jog`.
+    pub fn jog_words(self, plus: bool) -> String {
+        match (self.holds_part(), self.is_drive(), plus) {
+            (true, _, true) => format!("{}, on until its release jog", self.single_coil_words().0),
+            (true, _, false) => self.single_coil_words().1.to_string(),
+            (false, true, true) => "run forward while held".to_string(),
+            (false, true, false) => "run in reverse while held".to_string(),
+            (false, false, true) => "extend while held".to_string(),
+            (false, false, false) => "retract while held".to_string(),
+        }
+    }
+
     /// What seeing both outputs on means for actuator `number` (the start
     /// of the simulator's hazard).
     pub fn both_on(self, number: u32) -> String {

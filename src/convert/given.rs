@@ -113,7 +113,8 @@ pub(super) fn loads_without_effect(
                 Code::W006NoEffect,
                 at,
                 format!(
-                    "{source} C{n}={load}: C{n}'s valve is {valve}, which holds the piston (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing"
+                    "{source} C{n}={load}: {} (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing",
+                    valve.load_held(n)
                 ),
             );
         }

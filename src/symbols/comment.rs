@@ -128,13 +128,20 @@ fn actuator_comment(
             )
         }
         Signal::Jog { actuator: a, sign } => {
-            let what = match (program.signals.drives(a), sign) {
-                (true, Sign::Plus) => format!("drive {}, run forward", actuator(a)),
-                (true, Sign::Minus) => format!("drive {}, run in reverse", actuator(a)),
-                (false, Sign::Plus) => format!("cylinder {}, extend", actuator(a)),
-                (false, Sign::Minus) => format!("cylinder {}, retract", actuator(a)),
+            let kind = program.signals.kinds.get(&a).copied();
+            let kind = kind.unwrap_or(crate::actuator::ActuatorKind::default_for(pmax(a)));
+            // Drives have always been called drives here, every other
+            // actuator by its kind's noun (a cylinder, a gripper).
+            let noun = if kind.is_drive() {
+                "drive"
+            } else {
+                kind.noun()
             };
-            format!("jog push-button: {what} while held (manual mode)")
+            format!(
+                "jog push-button: {noun} {}, {} (manual mode)",
+                actuator(a),
+                kind.jog_words(sign == Sign::Plus)
+            )
         }
         // Only the signals of an actuator are described here.
         _ => String::new(),
