@@ -279,7 +279,7 @@ impl ActuatorKind {
     pub fn load_held(self, number: u32) -> String {
         match self {
             ActuatorKind::Vacuum => format!(
-                "C{number} is a vacuum {} (valve type vacuum), not a cylinder: it has no piston for a load to drift",
+                "C{number} is a vacuum {} (valve type vacuum), not a cylinder: it has no piston",
                 self.noun()
             ),
             ActuatorKind::Motor => format!(

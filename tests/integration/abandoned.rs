@@ -194,7 +194,7 @@ fn a_load_that_does_nothing_names_the_actuator_by_its_kind() {
         (
             "pick_and_place.csv",
             &["--valve", "C2=vacuum", "--load", "C2=0.3"],
-            "warning[W006]: --load C2=0.3: C2 is a vacuum gripper (valve type vacuum), not a cylinder: it has no piston for a load to drift",
+            "warning[W006]: --load C2=0.3: C2 is a vacuum gripper (valve type vacuum), not a cylinder: it has no piston (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing",
         ),
         (
             "carwash.xlsx",
