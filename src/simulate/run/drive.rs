@@ -106,6 +106,7 @@ impl<'a> Run<'a> {
             hazard_seen: false,
             collided: false,
             fired_any: false,
+            start_before: false,
             alarm_bits: Vec::new(),
             alarmed: false,
             places: Vec::new(),

@@ -100,6 +100,9 @@ pub(in crate::simulate) struct Run<'a> {
     /// A step has fired in this run: before the first, the machine stands
     /// at power-up and no step is under way.
     fired_any: bool,
+    /// The operator held START in the scan before: a cycle request START
+    /// set then (the last scan of its press) fires step 1 in this one.
+    start_before: bool,
     /// The PLC indices of the alarm outputs, and whether one came on.
     alarm_bits: Vec<usize>,
     alarmed: bool,

@@ -138,6 +138,7 @@ impl Run<'_> {
             self.active.clear();
         }
         self.last_scan = Some(result);
+        self.start_before = self.world.start_pressed || self.world.operator.start;
     }
 
     /// The SFC step the machine is in (symbols' numbering: 0 at rest, k

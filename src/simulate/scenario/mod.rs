@@ -30,7 +30,8 @@ pub struct Sample {
     /// The step the program is in (its `active_step`): 0 at rest, k while
     /// table step k's moves run.
     pub step: usize,
-    /// Homing runs (the `homing` memory is set).
+    /// Homing runs (the `homing` memory is set), or ran within this scan
+    /// (RESET with every actuator home, or nearly: set and done at once).
     pub homing: bool,
 }
 
@@ -363,6 +364,7 @@ fn run_script(
     let mut cut_ms = None;
     let mut abandoned = Vec::new();
     let mut arrived = None;
+    let mut arrivals = Arrivals::default();
     while run.time_ms() < until_ms && !script.done(run.time_ms()) {
         if samples.len() >= SCAN_BUDGET {
             cut_ms = Some(run.time_ms());
@@ -374,15 +376,17 @@ fn run_script(
         if let Some(index) = run.tick() {
             fired.push((now, program.steps[index].number));
         }
-        samples.push(sample(&run, &outputs));
         let scan = run.last_scan();
+        let mut taken = sample(&run, &outputs);
+        taken.homing |= scan.is_some_and(|s| s.homed);
         if let Some(left) = scan.and_then(|s| s.abandoned) {
             abandoned.push((now, program.step_in(left.waited_at), left.by));
         }
-        arrived = scan.and_then(|s| arrival(program, s));
-        // A step just entered (or left) is seen by the script at the next
-        // scan: that one runs, whatever follows it.
-        let entered = arrived.is_some() || run.current_step() != step;
+        arrived = scan.and_then(|s| arrivals.arrival(program, s, taken.homing));
+        samples.push(taken);
+        // A step just entered (or left), or homing just done, is seen by
+        // the script at the next scan: that one runs, whatever follows it.
+        let entered = arrived.is_some() || arrivals.homed || run.current_step() != step;
         if let Some(until) = script.quiet_until().filter(|_| !entered) {
             let at = run.time_ms();
             run.pass_quiet_scans(until.min(until_ms));
@@ -405,19 +409,40 @@ fn run_script(
     (report, io)
 }
 
-/// The SFC step a scan arrived at, the one `@stepK` waits for: the step a
-/// transition entered (step 0 by the closing transition: the end of a
-/// cycle), or step 0 when homing after RESET is done (the machine home,
-/// ready for START). A cycle abandoned (manual mode, RESET starting to
-/// home, a STOP at once) arrives nowhere: the sequence is back in step 0
-/// but no cycle ended and the machine is not ready.
-fn arrival(program: &StepProgram, scan: super::plc::ScanResult) -> Option<usize> {
-    if scan.abandoned.is_some() {
-        return None;
-    }
-    match scan.fired {
-        Some(index) => Some(program.step_entered(index)),
-        None => scan.homed.then_some(crate::program::INITIAL_STEP),
+/// Where the sequence arrives, scan by scan, for `@stepK`.
+#[derive(Default)]
+struct Arrivals {
+    /// The scan before homed (or went on homing, as it does while RESET
+    /// is held).
+    homing: bool,
+    /// Its homing was done by the homing rungs (not cut by manual mode).
+    homed: bool,
+}
+
+impl Arrivals {
+    /// The SFC step a scan arrived at, the one `@stepK` waits for: the
+    /// step a transition entered (step 0 by the closing transition: the
+    /// end of a cycle), or step 0 at the first scan without homing after
+    /// homing was done (the machine home, RESET let go: ready for START;
+    /// the scan printed `homing done`). A cycle abandoned (manual mode,
+    /// RESET starting to home, a STOP at once) arrives nowhere: the
+    /// sequence is back in step 0 but no cycle ended and the machine is
+    /// not ready.
+    fn arrival(
+        &mut self,
+        program: &StepProgram,
+        scan: super::plc::ScanResult,
+        homing: bool,
+    ) -> Option<usize> {
+        let homing_done = self.homing && self.homed && !homing;
+        (self.homing, self.homed) = (homing, scan.homed);
+        if scan.abandoned.is_some() {
+            return None;
+        }
+        match scan.fired {
+            Some(index) => Some(program.step_entered(index)),
+            None => homing_done.then_some(crate::program::INITIAL_STEP),
+        }
     }
 }
 
