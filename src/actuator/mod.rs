@@ -237,6 +237,23 @@ impl ActuatorKind {
     pub fn load_drifts(self) -> bool {
         matches!(self, ActuatorKind::Exhaust53 | ActuatorKind::Pressure53)
     }
+
+    /// Whether it has a jog button for `-` as well as `+`: a single coil's
+    /// spring is the way back (`52mono`), but a coil that holds a part
+    /// (a vacuum) stays on by itself, so its jogN- switches it off.
+    pub fn jogs_back(self) -> bool {
+        self.coils() == CoilSet::Double || self.holds_part()
+    }
+
+    /// The kinds with one jog button only, for the message that refuses
+    /// a second: `52mono cylinder`.
+    pub fn one_jog() -> Vec<String> {
+        ActuatorKind::ALL
+            .into_iter()
+            .filter(|k| !k.jogs_back())
+            .map(|k| format!("{} {}", k.name(), k.noun()))
+            .collect()
+    }
 }
 
 impl fmt::Display for ActuatorKind {

@@ -114,15 +114,26 @@ impl ActuatorKind {
         }
     }
 
-    /// Why a load does not move it with no output on, for the W006 of a
-    /// `--load` it ignores (`C2's valve is 52mono, …`).
-    pub fn holds_against_a_load(self) -> &'static str {
+    /// Why a load (`--load`) on actuator `number` of this kind moves
+    /// nothing, for W006: a cylinder's valve holds its piston (a 52mono's
+    /// spring holds it home), a swivel drive its arm, a drive stands, a
+    /// gripper has no piston at all.
+    pub fn load_held(self, number: u32) -> String {
         match self {
-            _ if self.holds_part() => "a gripper's: no load moves what it holds",
-            _ if self.is_drive() => "a drive's, which stands with neither contactor on",
-            ActuatorKind::Mono52 => "whose spring holds the piston home with no coil on",
-            ActuatorKind::Swivel => "which holds the arm at its end stop",
-            _ => "which holds the piston",
+            _ if self.holds_part() => format!(
+                "C{number} is a vacuum {} (valve type {self}), not a cylinder: it has no piston",
+                self.noun()
+            ),
+            _ if self.is_drive() => format!(
+                "C{number} is an electric drive (valve type {self}), which stands with both contactors off"
+            ),
+            ActuatorKind::Mono52 => format!(
+                "C{number}'s valve is {self}, whose spring holds the piston home with no coil on"
+            ),
+            ActuatorKind::Swivel => {
+                format!("C{number}'s valve is {self}, which holds the arm at its end stop")
+            }
+            _ => format!("C{number}'s valve is {self}, which holds the piston"),
         }
     }
 
@@ -168,27 +179,22 @@ mod tests {
             "{kept}"
         );
         assert!(swivel.positions_said(3).contains("C3+1 swivels it to 180°"));
-        assert!(
-            swivel
-                .holds_against_a_load()
-                .contains("arm at its end stop")
-        );
+        assert!(swivel.load_held(3).contains("arm at its end stop"));
         let cylinder = ActuatorKind::Bistable52;
         assert_eq!(
             cylinder.sensor_comment("1", 0, 1),
             "cylinder 1, home position 0"
         );
         assert_eq!(cylinder.coil_words(), ("extend", "retract"));
-        assert_eq!(cylinder.holds_against_a_load(), "which holds the piston");
+        assert_eq!(
+            cylinder.load_held(1),
+            "C1's valve is 52bi, which holds the piston"
+        );
         assert!(
             !ActuatorKind::Vacuum
-                .holds_against_a_load()
-                .contains("piston")
+                .load_held(2)
+                .contains("holds the piston")
         );
-        assert!(
-            !ActuatorKind::Motor
-                .holds_against_a_load()
-                .contains("piston")
-        );
+        assert!(!ActuatorKind::Motor.load_held(2).contains("piston"));
     }
 }

@@ -115,8 +115,8 @@ pub(super) fn loads_without_effect(
                 Code::W006NoEffect,
                 at,
                 format!(
-                    "{source} C{n}={load}: C{n}'s valve is {valve}, {} (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing",
-                    valve.holds_against_a_load()
+                    "{source} C{n}={load}: {} (a load drifts only a piston on a 53exhaust or 53pressure valve's centre); the load does nothing",
+                    valve.load_held(n)
                 ),
             );
         }

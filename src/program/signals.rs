@@ -277,11 +277,10 @@ pub fn jog_buttons(kinds: &BTreeMap<u32, ActuatorKind>) -> Vec<Signal> {
     kinds
         .iter()
         .flat_map(|(&actuator, kind)| {
-            // A single coil's spring is the way back; a coil that holds a
-            // part stays on by itself, so its jogN- switches it off.
-            let signs: &[Sign] = match kind.coils() {
-                CoilSet::Single if !kind.holds_part() => &[Sign::Plus],
-                _ => &[Sign::Plus, Sign::Minus],
+            let signs: &[Sign] = if kind.jogs_back() {
+                &[Sign::Plus, Sign::Minus]
+            } else {
+                &[Sign::Plus]
             };
             signs
                 .iter()

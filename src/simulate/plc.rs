@@ -8,7 +8,7 @@
 use std::collections::BTreeMap;
 
 use crate::program::Signal;
-use crate::program::{Action, Literal, StepProgram};
+use crate::program::{Action, Literal, RungKind, StepProgram};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Lit {
@@ -52,6 +52,11 @@ pub struct PlcProgram {
     /// Per step, its jumps in the order they are tested.
     jumps: Vec<Vec<Jump>>,
     rungs: Vec<Rule>,
+    /// Each rung's kind: what abandoned a cycle (manual mode, RESET, a
+    /// STOP at once), and which rung ends homing.
+    kinds: Vec<RungKind>,
+    /// The index of the `homing` memory, if the program homes.
+    homing: Option<usize>,
     init: Vec<Op>,
 }
 
@@ -113,6 +118,8 @@ impl PlcProgram {
                     .iter()
                     .map(|r| (&r.condition[..], &r.actions[..])),
             ),
+            kinds: program.rungs.iter().map(|r| r.kind).collect(),
+            homing: index.get(&Signal::Homing).copied(),
             init: compile(&index, &[], &program.init).actions,
             signals,
             index,
@@ -261,6 +268,10 @@ impl<'a> PlcState<'a> {
         }
     }
 
+    fn homing(&self) -> bool {
+        self.code.homing.is_some_and(|i| self.bits[i])
+    }
+
     fn holds(&self, condition: &[Lit], input: &dyn Fn(Signal) -> bool) -> bool {
         condition.iter().all(|l| {
             let raw = if l.input {
@@ -312,6 +323,22 @@ pub struct ScanResult {
     /// A scan that changed nothing is repeated exactly by the next one that
     /// reads the same inputs, until a timer runs out.
     pub changed: bool,
+    /// A rung sent the sequence back to step 0 from the step it waited at
+    /// (manual mode, RESET, a STOP at once): the cycle under way was
+    /// abandoned, not finished.
+    pub abandoned: Option<Abandoned>,
+    /// Homing ended with the machine home (its last stage's rung), not cut
+    /// short by manual mode or a STOP.
+    pub homed: bool,
+}
+
+/// A cycle abandoned by a rung: where the sequence waited, and the kind of
+/// rung that sent it back to step 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Abandoned {
+    /// Index of the step the sequence waited at.
+    pub waited_at: usize,
+    pub by: RungKind,
 }
 
 /// Runs one PLC scan of `scan_ms` milliseconds. `input` gives the value of an
@@ -342,9 +369,19 @@ pub fn scan(state: &mut PlcState, input: &dyn Fn(Signal) -> bool, scan_ms: u64) 
         changed = true;
         state.awaited = (awaited + 1) % code.steps.len();
     }
-    for rung in &code.rungs {
+    let mut abandoned = None;
+    let mut homed = false;
+    for (rung, kind) in code.rungs.iter().zip(&code.kinds) {
         if state.holds(&rung.condition, input) {
+            let (waiting, homing) = (state.awaited, state.homing());
             changed |= state.apply(&rung.actions);
+            if state.awaited != waiting && abandoned.is_none() {
+                abandoned = Some(Abandoned {
+                    waited_at: waiting,
+                    by: *kind,
+                });
+            }
+            homed |= *kind == RungKind::Homing && homing && !state.homing();
         }
     }
     ScanResult {
@@ -352,5 +389,7 @@ pub fn scan(state: &mut PlcState, input: &dyn Fn(Signal) -> bool, scan_ms: u64) 
         waited_at: awaited,
         jumped,
         changed,
+        abandoned,
+        homed,
     }
 }

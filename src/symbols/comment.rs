@@ -142,7 +142,7 @@ fn actuator_comment(
             // A coil that holds a part stays on by itself until the
             // release jog; the others move only while their button is held.
             let (plus_tail, minus_tail) = if kind.holds_part() {
-                (" (stays on)", "")
+                (", on until its release jog", "")
             } else {
                 (" while held", " while held")
             };

@@ -2,6 +2,7 @@
 //! executable on the bundled samples and on broken workbooks made by helpers.
 //! The checks that need a tool outside the crate are in `tests/tools/`.
 
+mod abandoned;
 mod batch;
 mod boards;
 mod broken;

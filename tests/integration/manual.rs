@@ -374,7 +374,7 @@ fn hostile_jog_events_are_refused() {
                 "--hold",
                 "jog1-@1s",
             ],
-            "--hold jog1-@1s: the program has no jog button called \"jog1-\"",
+            "--hold jog1-@1s: the program has no jog button called \"jog1-\": each actuator has jogN+ and jogN- (a 52mono cylinder only jogN+: its spring is the way back)",
         ),
         (
             &[

@@ -69,7 +69,7 @@ fn a_gripper_s_jogs_say_the_vacuum_stays_on_until_released() {
         .success();
     let st = std::fs::read_to_string(dir.path().join("pick_and_place/pick_and_place.st")).unwrap();
     for said in [
-        "jog push-button: gripper 2, grip (stays on) (manual mode)",
+        "jog push-button: gripper 2, grip, on until its release jog (manual mode)",
         "jog push-button: gripper 2, release (manual mode)",
         "jog C2: y2 on when jog2+ is pressed",
         "jog push-button: cylinder 1, extend while held (manual mode)",
@@ -297,14 +297,16 @@ fn hostile_gripper_options_are_refused() {
         ));
     // A load on the gripper does nothing, and the warning says why in a
     // gripper's words (no piston).
+    let dir = tempfile::tempdir().unwrap();
     steptable()
-        .arg("check")
+        .arg("convert")
         .arg(pick_and_place())
-        .args(["--valve", "C2=vacuum", "--load", "C2=0.2"])
+        .args(["--valve", "C2=vacuum", "--load", "C2=0.2", "--formats", "st", "-o"])
+        .arg(dir.path())
         .assert()
         .success()
         .stderr(contains(
-            "warning[W006]: --load C2=0.2: C2's valve is vacuum, a gripper's: no load moves what it holds",
+            "warning[W006]: --load C2=0.2: C2 is a vacuum gripper (valve type vacuum), not a cylinder: it has no piston",
         ));
 }
 

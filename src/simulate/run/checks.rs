@@ -124,7 +124,11 @@ impl Run<'_> {
         // later fires its step 1.
         let stepped = operator.step_mode && operator.step;
         if fired == 0
-            && !(self.world.start_pressed || operator.start || operator.continuous || stepped)
+            && !(self.world.start_pressed
+                || operator.start
+                || self.start_before
+                || operator.continuous
+                || stepped)
         {
             self.problem(
                 ProblemKind::UnexpectedStart,

@@ -106,10 +106,12 @@ impl<'a> Run<'a> {
             hazard_seen: false,
             collided: false,
             fired_any: false,
+            start_before: false,
             alarm_bits: Vec::new(),
             alarmed: false,
             places: Vec::new(),
             visited: Places::default(),
+            last_scan: None,
         };
         run.dwells = table
             .dwells()

@@ -100,12 +100,18 @@ pub(in crate::simulate) struct Run<'a> {
     /// A step has fired in this run: before the first, the machine stands
     /// at power-up and no step is under way.
     fired_any: bool,
+    /// The operator held START in the scan before: a cycle request START
+    /// set then (the last scan of its press) fires step 1 in this one.
+    start_before: bool,
     /// The PLC indices of the alarm outputs, and whether one came on.
     alarm_bits: Vec<usize>,
     alarmed: bool,
     /// Every piston's [`Piston::place`] now, and the combinations reached.
     places: Vec<u32>,
     visited: Places,
+    /// What the last scan run one by one did (a scenario reads it: a
+    /// cycle abandoned, homing done).
+    last_scan: Option<super::plc::ScanResult>,
 }
 
 /// What a scripted scenario (`scenario`) does with a run: it presses the
@@ -135,6 +141,11 @@ impl<'a> Run<'a> {
 
     pub(in crate::simulate) fn plc(&self) -> &PlcState<'a> {
         &self.plc
+    }
+
+    /// What the last scan run by [`Run::tick`] did.
+    pub(in crate::simulate) fn last_scan(&self) -> Option<super::plc::ScanResult> {
+        self.last_scan
     }
 
     /// The problems found, the I/O recorded and the dwell and wait spans

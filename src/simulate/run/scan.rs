@@ -6,7 +6,7 @@ use crate::program::Signal;
 use crate::simulate::ProblemKind;
 use crate::simulate::io;
 use crate::simulate::plant::Piston;
-use crate::simulate::plc::scan;
+use crate::simulate::plc::{ScanResult, scan};
 
 impl Run<'_> {
     /// One PLC scan plus one scan period of the plant. Returns the index of the
@@ -58,9 +58,7 @@ impl Run<'_> {
         }
         quiet &= !result.changed;
         self.alarmed |= result.changed && self.alarm_bits.iter().any(|&i| self.plc.bit_at(i));
-        if let Some(fired) = result.fired {
-            self.on_fire(fired, result.waited_at, result.jumped);
-        }
+        self.on_scan(result);
         self.track_dwells(now);
 
         // Outputs to valves, then the plant moves for one scan period. With
@@ -126,6 +124,21 @@ impl Run<'_> {
             record_point(&mut self.trace, self.time_ms, positions);
         }
         result.fired
+    }
+
+    /// What the sequence did in the scan just run: a step fired, or a
+    /// cycle abandoned (manual mode, RESET, a STOP at once), which leaves
+    /// no step under way: the next cycle starts fresh, and its step 1 is
+    /// not "started before" the abandoned step finished.
+    fn on_scan(&mut self, result: ScanResult) {
+        if let Some(fired) = result.fired {
+            self.on_fire(fired, result.waited_at, result.jumped);
+        }
+        if result.abandoned.is_some() {
+            self.active.clear();
+        }
+        self.last_scan = Some(result);
+        self.start_before = self.world.start_pressed || self.world.operator.start;
     }
 
     /// The SFC step the machine is in (symbols' numbering: 0 at rest, k

@@ -217,7 +217,10 @@ fn input(
         return Err(format!(
             "the program has no jog button called \"{name}\": {}",
             if program.signals.inputs.contains(&Signal::ManualMode) {
-                "each actuator has jogN+ and jogN- (a single-solenoid valve only jogN+)".to_string()
+                format!(
+                    "each actuator has jogN+ and jogN- (a {} only jogN+: its spring is the way back)",
+                    crate::diag::or_list(&crate::actuator::ActuatorKind::one_jog())
+                )
             } else {
                 "manual mode is off (turn it on with --modes manual)".to_string()
             }

@@ -30,7 +30,8 @@ pub struct Sample {
     /// The step the program is in (its `active_step`): 0 at rest, k while
     /// table step k's moves run.
     pub step: usize,
-    /// Homing runs (the `homing` memory is set).
+    /// Homing runs (the `homing` memory is set), or ran within this scan
+    /// (RESET with every actuator home, or nearly: set and done at once).
     pub homing: bool,
 }
 
@@ -56,6 +57,10 @@ pub struct ScenarioReport {
     /// Dwells and waits for a machine input, as they ran (the timeline
     /// shades them as the report's does).
     pub spans: Vec<super::Span>,
+    /// `(time_ms, SFC step left, what did it)` of every cycle abandoned:
+    /// the sequence sent back to step 0 by a rung (manual mode, RESET, a
+    /// STOP at once), not by its closing transition.
+    pub abandoned: Vec<(u64, usize, crate::program::RungKind)>,
 }
 
 /// The most scans a scenario runs one by one (quiet scans passed at once
@@ -135,13 +140,13 @@ pub fn scenario_events(
 /// What the operator does, scan by scan.
 trait Script {
     /// Sets the buttons and faults for the scan about to run at `now`;
-    /// `step` is the SFC step the program is in, `happened` gathers the
-    /// events that happen now.
+    /// `arrived` is the SFC step the scan before arrived at (see
+    /// [`arrival`]), `happened` gathers the events that happen now.
     fn apply(
         &mut self,
         world: &mut super::world::World,
         now: u64,
-        step: usize,
+        arrived: Option<usize>,
         happened: &mut Vec<(u64, usize)>,
     );
     /// Whether the run may end now.
@@ -168,7 +173,7 @@ impl Script for Timed<'_> {
         &mut self,
         world: &mut super::world::World,
         now: u64,
-        _: usize,
+        _: Option<usize>,
         _: &mut Vec<(u64, usize)>,
     ) {
         if let Some((_, operator)) = self.0.iter().rev().find(|(t, _)| *t <= now) {
@@ -189,8 +194,8 @@ struct Events<'a> {
     next: usize,
     /// When the last event happened (0 before the first).
     last_ms: u64,
-    /// The step the program was in at the scan before, to see it enter one.
-    step_before: Option<usize>,
+    /// The step the scan before arrived at, until an event takes it.
+    arrived: Option<usize>,
     /// Buttons pressed (not held), with when they are let go.
     releases: Vec<(u64, Signal)>,
     /// START pressed at 0.5 s when no event touches it.
@@ -207,7 +212,7 @@ impl<'a> Events<'a> {
             events,
             next: 0,
             last_ms: 0,
-            step_before: None,
+            arrived: None,
             releases: Vec::new(),
             auto_start,
             started_ms: None,
@@ -216,11 +221,11 @@ impl<'a> Events<'a> {
     }
 
     /// Whether event `k` happens at the scan at `now`.
-    fn due(&self, k: usize, now: u64, step: usize) -> bool {
+    fn due(&self, k: usize, now: u64) -> bool {
         match self.events[k].when {
             When::At(t) => now >= t,
             When::After(d) => now >= self.last_ms + d,
-            When::Step(s) => step == s && self.step_before.is_some_and(|b| b != s),
+            When::Step(s) => self.arrived == Some(s),
         }
     }
 }
@@ -230,9 +235,10 @@ impl Script for Events<'_> {
         &mut self,
         world: &mut super::world::World,
         now: u64,
-        step: usize,
+        arrived: Option<usize>,
         happened: &mut Vec<(u64, usize)>,
     ) {
+        self.arrived = arrived;
         if self.auto_start && now >= u64::from(super::IDLE_MS) {
             self.auto_start = false;
             self.started_ms = Some(now);
@@ -250,7 +256,7 @@ impl Script for Events<'_> {
         for signal in let_go {
             set(&mut world.operator, signal, false);
         }
-        while self.next < self.events.len() && self.due(self.next, now, step) {
+        while self.next < self.events.len() && self.due(self.next, now) {
             match self.events[self.next].act {
                 Act::Press(s) => {
                     set(&mut world.operator, s, true);
@@ -267,11 +273,10 @@ impl Script for Events<'_> {
             happened.push((now, self.next));
             self.last_ms = now;
             self.next += 1;
-            // A step's event after this one waits for the program to enter
-            // its step anew: being in it now is not entering it.
-            self.step_before = Some(step);
+            // A step's event after this one waits for the program to
+            // arrive at its step anew: being in it now is not arriving.
+            self.arrived = None;
         }
-        self.step_before = Some(step);
     }
 
     fn done(&self, now: u64) -> bool {
@@ -357,6 +362,9 @@ fn run_script(
     let mut samples = Vec::new();
     let mut happened = Vec::new();
     let mut cut_ms = None;
+    let mut abandoned = Vec::new();
+    let mut arrived = None;
+    let mut arrivals = Arrivals::default();
     while run.time_ms() < until_ms && !script.done(run.time_ms()) {
         if samples.len() >= SCAN_BUDGET {
             cut_ms = Some(run.time_ms());
@@ -364,14 +372,21 @@ fn run_script(
         }
         let step = run.current_step();
         let now = run.time_ms();
-        script.apply(run.world_mut(), now, step, &mut happened);
+        script.apply(run.world_mut(), now, arrived, &mut happened);
         if let Some(index) = run.tick() {
             fired.push((now, program.steps[index].number));
         }
-        samples.push(sample(&run, &outputs));
-        // A step just entered is seen by the script at the next scan: that
-        // one runs, whatever follows it.
-        let entered = run.current_step() != step;
+        let scan = run.last_scan();
+        let mut taken = sample(&run, &outputs);
+        taken.homing |= scan.is_some_and(|s| s.homed);
+        if let Some(left) = scan.and_then(|s| s.abandoned) {
+            abandoned.push((now, program.step_in(left.waited_at), left.by));
+        }
+        arrived = scan.and_then(|s| arrivals.arrival(program, s, taken.homing));
+        samples.push(taken);
+        // A step just entered (or left), or homing just done, is seen by
+        // the script at the next scan: that one runs, whatever follows it.
+        let entered = arrived.is_some() || arrivals.homed || run.current_step() != step;
         if let Some(until) = script.quiet_until().filter(|_| !entered) {
             let at = run.time_ms();
             run.pass_quiet_scans(until.min(until_ms));
@@ -389,8 +404,46 @@ fn run_script(
         auto_start_ms: script.auto_start_ms(),
         cut_ms,
         spans,
+        abandoned,
     };
     (report, io)
+}
+
+/// Where the sequence arrives, scan by scan, for `@stepK`.
+#[derive(Default)]
+struct Arrivals {
+    /// The scan before homed (or went on homing, as it does while RESET
+    /// is held).
+    homing: bool,
+    /// Its homing was done by the homing rungs (not cut by manual mode).
+    homed: bool,
+}
+
+impl Arrivals {
+    /// The SFC step a scan arrived at, the one `@stepK` waits for: the
+    /// step a transition entered (step 0 by the closing transition: the
+    /// end of a cycle), or step 0 at the first scan without homing after
+    /// homing was done (the machine home, RESET let go: ready for START;
+    /// the scan printed `homing done`). A cycle abandoned (manual mode,
+    /// RESET starting to home, a STOP at once) arrives nowhere: the
+    /// sequence is back in step 0 but no cycle ended and the machine is
+    /// not ready.
+    fn arrival(
+        &mut self,
+        program: &StepProgram,
+        scan: super::plc::ScanResult,
+        homing: bool,
+    ) -> Option<usize> {
+        let homing_done = self.homing && self.homed && !homing;
+        (self.homing, self.homed) = (homing, scan.homed);
+        if scan.abandoned.is_some() {
+            return None;
+        }
+        match scan.fired {
+            Some(index) => Some(program.step_entered(index)),
+            None => homing_done.then_some(crate::program::INITIAL_STEP),
+        }
+    }
 }
 
 /// The machine as the scan just run left it.

@@ -6,7 +6,7 @@
 use std::fmt::Write;
 
 use super::{Event, ScenarioReport};
-use crate::program::{Signal, StepKind, StepProgram};
+use crate::program::{RungKind, Signal, StepKind, StepProgram};
 use crate::simulate::ProblemKind;
 
 /// What the table names things by: the naming authority's designation of
@@ -48,6 +48,9 @@ fn lines(
         };
         lines.push((*t, 1, format!("step {step:<3} {title}")));
     }
+    for (t, step, by) in &report.abandoned {
+        lines.push((*t, 1, abandoned_line(*step, *by, names)));
+    }
     for (t, signal, on) in alarm_changes(report) {
         let what = if on { "on" } else { "off" };
         lines.push((t, 2, format!("{} {what}", (names.signal)(signal))));
@@ -71,6 +74,22 @@ fn lines(
     }
     lines.sort_by_key(|(t, order, _)| (*t, *order));
     lines
+}
+
+/// `step 0   cycle abandoned in step 2: manual mode (MAN_MODE)`: the
+/// sequence sent back to step 0 by a rung, with what did it, printed where
+/// a step that fires is.
+fn abandoned_line(step: usize, by: RungKind, names: &Names) -> String {
+    let why = match by {
+        RungKind::Manual => format!("manual mode ({})", (names.signal)(Signal::ManualMode)),
+        RungKind::Homing => format!("{} homes the machine", (names.signal)(Signal::Reset)),
+        RungKind::StopNow => format!("{} at once", (names.signal)(Signal::Stop)),
+        other => other.label().to_lowercase(),
+    };
+    format!(
+        "step {:<3} cycle abandoned in step {step}: {why}",
+        crate::program::INITIAL_STEP
+    )
 }
 
 /// `STOP pressed`, with the signal by its designation when it differs.
