@@ -137,6 +137,40 @@ impl ActuatorKind {
         }
     }
 
+    /// Where actuator `actuator` stands in a finding, for a kind whose
+    /// positions are no places (`place`: 0 at position 0, 1 between 0 and
+    /// 1, 2 at 1; `sensor` the reading of a position): a gripper holds its
+    /// part or has released it. `None`: a place on its stroke.
+    pub fn place_said(
+        self,
+        actuator: u32,
+        place: u32,
+        sensor: &dyn Fn(u32) -> String,
+    ) -> Option<String> {
+        if !self.holds_part() {
+            return None;
+        }
+        Some(match place {
+            0 => format!("C{actuator} released ({})", sensor(0)),
+            2 => format!("C{actuator} holding its part ({})", sensor(1)),
+            _ => format!("C{actuator} building up or losing its vacuum"),
+        })
+    }
+
+    /// That actuator `actuator` had not reached position `to` (`sensor` its
+    /// reading there), for a kind whose positions are no places: a gripper
+    /// had not gripped or released. `None`: "had not reached" a sensor.
+    pub fn unreached_said(self, actuator: u32, to: u32, sensor: &str) -> Option<String> {
+        if !self.holds_part() {
+            return None;
+        }
+        Some(if to == 0 {
+            format!("C{actuator} had not released its part (waiting for {sensor})")
+        } else {
+            format!("C{actuator} had not gripped its part (waiting for {sensor})")
+        })
+    }
+
     /// How the table moves actuator `actuator` of a kind with positions
     /// 0 to [`ActuatorKind::highest_position`] only, for E045.
     pub fn positions_said(self, actuator: u32) -> String {

@@ -136,16 +136,26 @@ fn check_positions(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut 
         else {
             continue;
         };
+        let n = actuator.number;
+        // Within its positions, the move is refused for the higher one the
+        // table asks elsewhere, which makes it a middle position.
+        let asks = if m.to > highest {
+            format!("asks C{n} for position {}", m.to)
+        } else {
+            format!(
+                "makes position {} a middle position of C{n}, since the table also asks C{n} for position {}",
+                m.to, actuator.max_position
+            )
+        };
         diags.error(
             Code::E045KindCannotHold,
             grid.location(m.cell),
             format!(
-                "\"{}\" asks C{} for position {}, but C{} is a {kind} actuator, which has positions 0 to {highest} only ({})",
+                "\"{}\" {asks}, but C{n} is a {} (valve type {kind}), which has positions {} only ({})",
                 m.notation(),
-                actuator.number,
-                m.to,
-                actuator.number,
-                kind.positions_said(actuator.number),
+                kind.noun(),
+                if highest == 1 { "0 and 1".to_string() } else { format!("0 to {highest}") },
+                kind.positions_said(n),
             ),
         );
     }

@@ -149,7 +149,7 @@ fn hostile_swivel_settings_are_refused_at_their_cells() {
             ],
             settings: SWIVEL,
             args: &[],
-            code_at: "TABLE!B2: error[E045]: \"C2+1\" asks C2 for position 1, but C2 is a swivel actuator, which has positions 0 to 1 only (a swivel drive: C2+1 swivels it to 180°, C2-0 back to 0°",
+            code_at: "TABLE!B2: error[E045]: \"C2+1\" makes position 1 a middle position of C2, since the table also asks C2 for position 2, but C2 is a swivel drive (valve type swivel), which has positions 0 and 1 only (a swivel drive: C2+1 swivels it to 180°, C2-0 back to 0°",
         },
         Refused {
             what: "a position past 180°",

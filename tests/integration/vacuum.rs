@@ -193,6 +193,16 @@ fn the_fault_table_has_the_vacuum_switch_stuck_at_0_and_at_1() {
         !csv.contains("x20") && !said.contains("x20"),
         "{csv}\n{said}"
     );
+    // Its positions are no places: it grips, holds or releases its part.
+    assert!(
+        !csv.contains("reached NOT") && !csv.contains("between NOT"),
+        "{csv}"
+    );
+    assert!(
+        csv.contains("C2 had not released its part (waiting for NOT x21)")
+            || csv.contains("C2 had not gripped its part (waiting for x21)"),
+        "{csv}"
+    );
 }
 
 /// A gripper table, its C2 made a gripper on the SETTINGS sheet.
@@ -218,7 +228,7 @@ fn hostile_gripper_settings_are_refused_at_their_cells() {
             ],
             settings: GRIPPER,
             args: &[],
-            code_at: "TABLE!B2: error[E045]: \"C2+1\" asks C2 for position 1, but C2 is a vacuum actuator",
+            code_at: "TABLE!B2: error[E045]: \"C2+1\" makes position 1 a middle position of C2, since the table also asks C2 for position 2, but C2 is a gripper (valve type vacuum), which has positions 0 and 1 only",
         },
         Refused {
             what: "a position past held",

@@ -141,11 +141,10 @@ impl Run<'_> {
             .iter()
             .filter(|a| !a.reached)
             .map(|a| {
-                format!(
-                    "C{} had not reached {}",
-                    a.mv.actuator,
-                    sensor_symbol(self.program, &a.mv)
-                )
+                let (n, sensor) = (a.mv.actuator, sensor_symbol(self.program, &a.mv));
+                let kind = self.program.signals.kinds.get(&n);
+                kind.and_then(|k| k.unreached_said(n, a.mv.to, &sensor))
+                    .unwrap_or_else(|| format!("C{n} had not reached {sensor}"))
             })
             .collect();
         // The closing transition starts nothing: the last step's moves are
@@ -284,6 +283,9 @@ fn place_text(piston: &Piston, place: u32) -> String {
             negated: !r.on,
         })
     };
+    if let Some(said) = piston.valve.place_said(actuator, place, &sensor) {
+        return said;
+    }
     if place.is_multiple_of(2) {
         format!("C{actuator} at {}", sensor(place / 2))
     } else {
