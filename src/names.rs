@@ -229,11 +229,12 @@ pub fn reserved_name(name: &str) -> Option<String> {
     // Followed by a digit these read as the program's own names or as an
     // address of STEP 7 (I0, MW2, DB1, T3, Z4) or FST (FW1, TP0, R3, V10).
     let numbered = [
-        "x", "y", "m", "t", "dwell", "dw", "runon", "ro", "zone", "home", "step_", "crit", "miss",
-        "p", "f", "i", "o", "q", "e", "a", "l", "c", "z", "r", "v", "db", "di", "fb", "fc", "ob",
-        "sfb", "sfc", "mb", "mw", "md", "ib", "iw", "id", "qb", "qw", "qd", "eb", "ew", "ed", "ab",
-        "aw", "ad", "pib", "piw", "pid", "pqb", "pqw", "pqd", "peb", "pew", "ped", "pab", "paw",
-        "pad", "dbx", "dbb", "dbw", "dbd", "fw", "ow", "tp", "tw", "cp", "cw", "lb", "lw", "ld",
+        "x", "y", "m", "t", "jogged", "dwell", "dw", "runon", "ro", "zone", "home", "step_",
+        "crit", "miss", "p", "f", "i", "o", "q", "e", "a", "l", "c", "z", "r", "v", "db", "di",
+        "fb", "fc", "ob", "sfb", "sfc", "mb", "mw", "md", "ib", "iw", "id", "qb", "qw", "qd", "eb",
+        "ew", "ed", "ab", "aw", "ad", "pib", "piw", "pid", "pqb", "pqw", "pqd", "peb", "pew",
+        "ped", "pab", "paw", "pad", "dbx", "dbb", "dbw", "dbd", "fw", "ow", "tp", "tw", "cp", "cw",
+        "lb", "lw", "ld",
     ];
     let after_prefix_is_number = |prefix: &str| {
         name.strip_prefix(prefix)

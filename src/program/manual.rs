@@ -20,6 +20,9 @@
 //!   still held as the selector turns), as entering it does.
 //! - A coil that holds a part (a vacuum) stays on by itself: its jogN+
 //!   switches it on, its jogN- off.
+//! - A coil a halt row holds on stays on into manual until a jog of its
+//!   actuator is pressed (`joggedN`); from then on it follows its button,
+//!   so a tap never latches it.
 //! - A drive is cut at the limit switch of the way it runs.
 
 use super::signals::{Coils, Signals};
@@ -30,7 +33,14 @@ use crate::cell::Sign;
 /// They run after the homing rungs and before the emergency stop's, which
 /// stays the last word on every coil.
 pub(super) fn rungs(signals: &Signals, timers: &[Signal], options: &ProgramOptions) -> Vec<Rung> {
-    let mut rungs = vec![
+    // First the held coils a jog took over: they follow their buttons, and
+    // go off with manual, before the memory saying so is cleared.
+    let mut rungs: Vec<Rung> = signals
+        .valves
+        .iter()
+        .flat_map(|valve| follow_rungs(*valve, signals, options))
+        .collect();
+    rungs.extend([
         end_of_manual(signals, options),
         end_of_automatic(signals, timers, options),
         Rung {
@@ -39,11 +49,67 @@ pub(super) fn rungs(signals: &Signals, timers: &[Signal], options: &ProgramOptio
             condition: vec![Literal::is(Signal::ManualMode)],
             actions: vec![Action::Set(Signal::ManualMemory)],
         },
-    ];
+    ]);
     for valve in &signals.valves {
+        rungs.extend(taken_over(*valve, signals, options));
         rungs.extend(jog_rungs(*valve, signals, options));
     }
     rungs
+}
+
+/// A jog of `valve`'s actuator pressed in manual: its held coils are the
+/// jog buttons' from now until manual ends.
+fn taken_over(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Vec<Rung> {
+    let actuator = valve.actuator();
+    if signals.held_by_jog(valve, options).is_empty() {
+        return Vec::new();
+    }
+    [Sign::Plus, Sign::Minus]
+        .map(|sign| Signal::Jog { actuator, sign })
+        .into_iter()
+        .filter(|jog| signals.inputs.contains(jog))
+        .map(|jog| Rung {
+            kind: RungKind::Manual,
+            comment: format!(
+                "{} pressed in manual: C{actuator}'s held coils follow its jog buttons until manual ends",
+                jog.symbol()
+            ),
+            condition: vec![Literal::is(Signal::ManualMode), Literal::is(jog)],
+            actions: vec![Action::Set(Signal::Jogged(actuator))],
+        })
+        .collect()
+}
+
+/// Each held coil a jog took over: off while its button is not held, and
+/// off in the scan manual ends (its button may still be held then).
+fn follow_rungs(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Vec<Rung> {
+    let actuator = valve.actuator();
+    let jogged = Signal::Jogged(actuator);
+    signals
+        .held_by_jog(valve, options)
+        .into_iter()
+        .flat_map(|coil| {
+            let jog = super::signals::jog_of(coil);
+            [
+                Rung {
+                    kind: RungKind::Manual,
+                    comment: format!(
+                        "C{actuator} jogged: {} on only while {} is held",
+                        coil.symbol(),
+                        jog.symbol()
+                    ),
+                    condition: vec![Literal::is(jogged), Literal::not(jog)],
+                    actions: vec![Action::Reset(coil)],
+                },
+                Rung {
+                    kind: RungKind::Manual,
+                    comment: format!("C{actuator} jogged: {} off as manual ends", coil.symbol()),
+                    condition: vec![Literal::is(jogged), Literal::not(Signal::ManualMode)],
+                    actions: vec![Action::Reset(coil)],
+                },
+            ]
+        })
+        .collect()
 }
 
 /// The outputs a stopped machine may keep on (the halt policy's), and the
@@ -67,6 +133,13 @@ fn all_off_but_held(signals: &Signals, options: &ProgramOptions) -> (Vec<Signal>
 fn end_of_manual(signals: &Signals, options: &ProgramOptions) -> Rung {
     let (held, mut actions) = all_off_but_held(signals, options);
     actions.push(Action::Reset(Signal::ManualMemory));
+    actions.extend(
+        signals
+            .memories
+            .iter()
+            .filter(|m| matches!(m, Signal::Jogged(_)))
+            .map(|m| Action::Reset(*m)),
+    );
     let kept: Vec<String> = held.iter().map(|s| s.symbol()).collect();
     Rung {
         kind: RungKind::Manual,

@@ -98,6 +98,10 @@ pub enum Signal {
     /// Memory: MAN_MODE as read in the previous scan, so that the scan
     /// manual ends in switches off what a jog left on.
     ManualMemory,
+    /// Memory: actuator n was jogged in this manual spell, so its coils a
+    /// halt row holds on follow its jog buttons (on while held) until
+    /// manual ends.
+    Jogged(u32),
     /// Memory: the sequence may fire a transition in this scan (always in
     /// automatic, for one scan after a STEP_PB press in single-step).
     StepPermit,
@@ -158,6 +162,7 @@ impl Signal {
             | Signal::StepPermit
             | Signal::StepMemory
             | Signal::ManualMemory
+            | Signal::Jogged(_)
             | Signal::Awaited(_)
             | Signal::Sequence => Area::Memory,
             Signal::Watchdog | Signal::Dwell(_) | Signal::RunOn(_) => Area::Timer,
@@ -203,6 +208,7 @@ impl Signal {
             Signal::StepPermit => "step_ok".to_string(),
             Signal::StepMemory => "step_mem".to_string(),
             Signal::ManualMemory => "man_mem".to_string(),
+            Signal::Jogged(n) => format!("jogged{n}"),
             Signal::CycleRequest => "cycle_req".to_string(),
             Signal::Busy => "busy".to_string(),
             Signal::AutoRun => "auto_run".to_string(),

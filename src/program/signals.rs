@@ -261,12 +261,59 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
         let stages = modes.home_stages(table).map(|s| s.len()).unwrap_or(0);
         memories.extend((1..=stages).map(|n| Signal::HomeStage(n as u16)));
     }
-    Signals {
+    let mut signals = Signals {
         inputs,
         valves: coils,
         outputs,
         memories,
         kinds,
+    };
+    let jogged = signals.jogged_memories(options);
+    signals.memories.extend(jogged);
+    signals
+}
+
+/// The jog button that switches `coil` on.
+pub(super) fn jog_of(coil: Signal) -> Signal {
+    match coil {
+        Signal::Coil { actuator, sign } => Signal::Jog { actuator, sign },
+        Signal::SingleCoil { actuator } => Signal::Jog {
+            actuator,
+            sign: Sign::Plus,
+        },
+        other => other,
+    }
+}
+
+impl Signals {
+    /// Manual mode's memory of each actuator whose held coils a jog takes
+    /// over (after every other memory, so none of theirs moves).
+    fn jogged_memories(&self, options: &ProgramOptions) -> Vec<Signal> {
+        self.valves
+            .iter()
+            .filter(|v| !self.held_by_jog(**v, options).is_empty())
+            .map(|v| Signal::Jogged(v.actuator()))
+            .collect()
+    }
+
+    /// The coils of `valve` a halt row holds on (hold-safe, `on stop … hold`)
+    /// that its jogs take over: each stays on into manual as the halt left it,
+    /// until a jog of its actuator is pressed; from then on it is on only while
+    /// its button is held, as every other coil. A drive is never held; a coil
+    /// that holds a part (a vacuum) stays as its jogs leave it.
+    pub(super) fn held_by_jog(&self, valve: Coils, options: &ProgramOptions) -> Vec<Signal> {
+        let signals = self;
+        let actuator = valve.actuator();
+        let kind = signals.kinds.get(&actuator);
+        if signals.drives(actuator) || kind.is_some_and(|k| k.holds_part()) {
+            return Vec::new();
+        }
+        valve
+            .signals()
+            .into_iter()
+            .filter(|coil| options.halt.may_stay_on(*coil, false))
+            .filter(|coil| signals.inputs.contains(&jog_of(*coil)))
+            .collect()
     }
 }
 

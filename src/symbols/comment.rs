@@ -61,6 +61,9 @@ pub(super) fn comment(
             "MAN_MODE as read in the previous scan (leaving manual switches the jogs' coils off)"
                 .to_string()
         }
+        Signal::Jogged(n) => format!(
+            "C{n} was jogged in this manual spell: the coils a halt row holds on follow its jog buttons until manual ends"
+        ),
         Signal::CycleRequest => "a cycle was asked for".to_string(),
         Signal::Busy => "a cycle is under way".to_string(),
         Signal::AutoRun => "continuous operation runs".to_string(),

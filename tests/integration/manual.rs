@@ -446,3 +446,54 @@ fn the_fault_table_classifies_the_manual_inputs() {
         }
     }
 }
+
+/// A coil a halt row holds on (`hold-safe | C1`, C1 a spring-return clamp)
+/// stays on into manual as the halt left it; once its jog is pressed it is
+/// the button's, on only while held, as every other coil: a tap does not
+/// latch it (the 53closed piston stops where the tap left it).
+#[test]
+fn a_held_coil_stays_until_jogged_then_follows_its_button() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("held.xlsx");
+    let table: &[&[&str]] = &[&["C1+1"], &["C2+1"], &["C2-0"], &["C1-0"]];
+    let last_line = |valve: &str, events: &[&str]| {
+        let settings: &[&[&str]] = &[
+            &["modes", "all"],
+            &["hold-safe", "C1"],
+            &["actuator", "valve", "extend", "retract"],
+            &["C1", valve, "2s", "2s"],
+        ];
+        crate::helpers::write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);
+        let run = steptable().arg("simulate").arg(&path).args(events).assert();
+        let stdout = String::from_utf8_lossy(&run.get_output().stdout).into_owned();
+        stdout.lines().last().unwrap_or_default().to_string()
+    };
+    let into_manual = ["--press", "START@0.5s", "--hold", "MAN_MODE@step2"];
+    let kept = last_line("52mono", &into_manual);
+    assert!(
+        kept.contains("C1 at 1.00") && kept.contains("on: y1"),
+        "{kept}"
+    );
+    let mut tapped = into_manual.to_vec();
+    tapped.extend(["--press", "jog1+@+1s"]);
+    let released = last_line("52mono", &tapped);
+    assert!(
+        released.contains("C1 at 0.00") && !released.contains("y1"),
+        "{released}"
+    );
+    let tap = [
+        "--hold",
+        "MAN_MODE@0.3s",
+        "--hold",
+        "jog1+@0.5s",
+        "--release",
+        "jog1+@0.6s",
+        "--release",
+        "MAN_MODE@4s",
+    ];
+    let stopped = last_line("53closed", &tap);
+    assert!(
+        stopped.contains("C1 at 0.0") && !stopped.contains("y1+"),
+        "{stopped}"
+    );
+}
