@@ -450,3 +450,14 @@ pub fn manual_events() -> Vec<(String, String)> {
         })
         .collect()
 }
+
+/// A labelled table moving C1 out, C2 out, C1 home, C2 home: the one the
+/// hostile rows of an actuator kind (C2 a gripper, a swivel drive) refuse
+/// their settings on.
+pub const TWO_ACTUATORS: &[&[&str]] = &[
+    &["", "BRANCH 1"],
+    &["STEP 1", "C1+1"],
+    &["STEP 2", "C2+1"],
+    &["STEP 3", "C1-0"],
+    &["STEP 4", "C2-0"],
+];

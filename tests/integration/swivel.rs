@@ -128,13 +128,6 @@ fn the_fault_table_has_both_end_stop_sensors_of_the_swivel_drive() {
 
 /// The station's table with C2 a swivel drive on the SETTINGS sheet.
 const SWIVEL: &[&[&str]] = &[&["actuator", "valve"], &["C2", "swivel"]];
-const TABLE: &[&[&str]] = &[
-    &["", "BRANCH 1"],
-    &["STEP 1", "C1+1"],
-    &["STEP 2", "C2+1"],
-    &["STEP 3", "C1-0"],
-    &["STEP 4", "C2-0"],
-];
 
 #[test]
 fn hostile_swivel_settings_are_refused_at_their_cells() {
@@ -160,42 +153,42 @@ fn hostile_swivel_settings_are_refused_at_their_cells() {
         },
         Refused {
             what: "the kind given twice",
-            table: TABLE,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[&["actuator", "valve"], &["C2", "swivel"], &["C2", "swivel"]],
             args: &[],
             code_at: "SETTINGS!A3: error[E030]: C2 is given twice in the actuator table",
         },
         Refused {
             what: "contradicting kinds",
-            table: TABLE,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[&["actuator", "valve"], &["C2", "swivel"], &["C2", "52bi"]],
             args: &[],
             code_at: "SETTINGS!A3: error[E030]: C2 is given twice in the actuator table",
         },
         Refused {
             what: "a misspelt kind",
-            table: TABLE,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[&["actuator", "valve"], &["C2", "swivle"]],
             args: &[],
             code_at: "SETTINGS!B2: error[E030]: valve of C2: \"swivle\" is not a valve type",
         },
         Refused {
             what: "the kind in words",
-            table: TABLE,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[&["actuator", "valve"], &["C2", "swivel drive"]],
             args: &[],
             code_at: "SETTINGS!B2: error[E030]: valve of C2: \"swivel drive\" is not a valve type: did you mean swivel?",
         },
         Refused {
             what: "a kind of an actuator the table lacks",
-            table: TABLE,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[&["actuator", "valve"], &["C9", "swivel"]],
             args: &[],
             code_at: "SETTINGS!A2: error[E030]: the actuator table names C9, which the table does not have",
         },
         Refused {
             what: "a coil of the swivel drive kept on through the EMERGENCY STOP",
-            table: TABLE,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[
                 &["actuator", "valve"],
                 &["C2", "swivel"],
@@ -207,7 +200,7 @@ fn hostile_swivel_settings_are_refused_at_their_cells() {
         },
         Refused {
             what: "a name colliding with a generated one",
-            table: TABLE,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[&["actuator", "valve", "name"], &["C2", "swivel", "x21"]],
             args: &[],
             code_at: "SETTINGS!C2: error[E015]: C2 (x21): \"x21\" cannot name an actuator",
@@ -244,13 +237,23 @@ fn the_command_line_s_kind_wins_over_the_sheet_s_and_says_so() {
     // SETTINGS says 52bi, --valve says swivel: the drive is a swivel drive,
     // and the overridden cell is W006 at that cell.
     let settings: &[&[&str]] = &[&["actuator", "valve"], &["C2", "52bi"]];
-    let (_dir, out, assert) = convert_sheets(TABLE, settings, &["--valve", "C2=swivel"], 0);
+    let (_dir, out, assert) = convert_sheets(
+        crate::helpers::TWO_ACTUATORS,
+        settings,
+        &["--valve", "C2=swivel"],
+        0,
+    );
     let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
     assert!(stderr.contains("SETTINGS!B2: warning[W006]"), "{stderr}");
     let st = std::fs::read_to_string(out.join("h/h.st")).unwrap();
     assert!(st.contains("swivel to 180° C2"), "{st}");
     // A load on a swivel drive does nothing, and says what holds it.
-    let (_dir, _, assert) = convert_sheets(TABLE, SWIVEL, &["--load", "C2=0.1"], 0);
+    let (_dir, _, assert) = convert_sheets(
+        crate::helpers::TWO_ACTUATORS,
+        SWIVEL,
+        &["--load", "C2=0.1"],
+        0,
+    );
     let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
     assert!(
         stderr.contains("warning[W006]: --load C2=0.1: C2's valve is swivel, which holds the arm at its end stop"),

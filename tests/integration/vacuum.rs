@@ -207,13 +207,6 @@ fn the_fault_table_has_the_vacuum_switch_stuck_at_0_and_at_1() {
 
 /// A gripper table, its C2 made a gripper on the SETTINGS sheet.
 const GRIPPER: &[&[&str]] = &[&["actuator", "valve"], &["C2", "vacuum"]];
-const PICK: &[&[&str]] = &[
-    &["", "BRANCH 1"],
-    &["STEP 1", "C1+1"],
-    &["STEP 2", "C2+1"],
-    &["STEP 3", "C1-0"],
-    &["STEP 4", "C2-0"],
-];
 
 #[test]
 fn hostile_gripper_settings_are_refused_at_their_cells() {
@@ -239,28 +232,28 @@ fn hostile_gripper_settings_are_refused_at_their_cells() {
         },
         Refused {
             what: "the kind given twice",
-            table: PICK,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[&["actuator", "valve"], &["C2", "vacuum"], &["C2", "vacuum"]],
             args: &[],
             code_at: "SETTINGS!A3: error[E030]: C2 is given twice in the actuator table",
         },
         Refused {
             what: "contradicting kinds",
-            table: PICK,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[&["actuator", "valve"], &["C2", "vacuum"], &["C2", "52mono"]],
             args: &[],
             code_at: "SETTINGS!A3: error[E030]: C2 is given twice in the actuator table",
         },
         Refused {
             what: "an unknown kind",
-            table: PICK,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[&["actuator", "valve"], &["C2", "vacum"]],
             args: &[],
             code_at: "SETTINGS!B2: error[E030]: valve of C2: \"vacum\" is not a valve type",
         },
         Refused {
             what: "a kind of an actuator the table lacks",
-            table: PICK,
+            table: crate::helpers::TWO_ACTUATORS,
             settings: &[&["actuator", "valve"], &["C9", "vacuum"]],
             args: &[],
             code_at: "SETTINGS!A2: error[E030]: the actuator table names C9, which the table does not have",
