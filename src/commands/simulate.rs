@@ -152,17 +152,7 @@ pub fn scenario(
         return Err(refused(bad.into_iter().map(at).collect()));
     }
     let sim = &settings.simulation;
-    let proof = simulate::simulate(&table, &program, sim);
-    // As long after the last event as a healthy cycle takes, and a second
-    // to see the machine stand.
-    let cycle = proof
-        .cycles
-        .first()
-        .and_then(|c| c.cycle_ms)
-        .unwrap_or(10_000);
-    // An output that runs on after a stop (an oven's fan) is waited for.
-    let run_on = program.run_ons.iter().map(|r| u64::from(r.ms)).max();
-    let tail = cycle + 1_000 + run_on.unwrap_or(0);
+    let tail = sc::tail_after_events(&table, &program, sim);
     // The events and their tail end the run (or the scan budget does).
     let until = u64::MAX;
     // The page draws as much of the run as the report's timeline does.

@@ -27,7 +27,12 @@ pub fn lines(
     if modes.reset
         && let Ok(stages) = modes.home_stages(table)
     {
-        lines.push(format!("RESET homes {}", stages_text(&stages, symbols)));
+        lines.push(if stages.is_empty() {
+            "RESET abandons the cycle; no actuator to home, the machine is ready at once"
+                .to_string()
+        } else {
+            format!("RESET homes {}", stages_text(&stages, symbols))
+        });
     }
     let missing: Vec<&str> = [(modes.stop, "STOP"), (modes.estop, "EMERGENCY STOP")]
         .into_iter()

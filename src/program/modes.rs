@@ -216,6 +216,16 @@ fn reset_rung(
 /// Each homing stage drives its actuators home (unless halted) and, once
 /// they all are, hands on to the next stage or ends the homing.
 fn home_stage_rungs(signals: &Signals, halts: bool, stages: &[Vec<u32>], rungs: &mut Vec<Rung>) {
+    // A machine without actuators (an oven) has nothing to home: the
+    // homing RESET started ends the next scan, or START would wait forever.
+    if stages.is_empty() {
+        rungs.push(Rung {
+            kind: RungKind::Homing,
+            comment: "homing done: no actuator to home, the machine is ready".to_string(),
+            condition: vec![Literal::is(Signal::Homing)],
+            actions: vec![Action::Reset(Signal::Homing)],
+        });
+    }
     for (i, stage) in stages.iter().enumerate() {
         let memory = Signal::HomeStage(i as u16 + 1);
         let names: Vec<String> = stage.iter().map(|a| format!("C{a}")).collect();

@@ -263,3 +263,42 @@ fn the_templates_help_says_the_default_home_order() {
         );
     }
 }
+
+/// A machine without actuators (the oven: a horn, a heater, a fan) has
+/// nothing to home: RESET after the EMERGENCY STOP leaves it ready, and
+/// START runs the next cycle. It used to wait for a homing that never
+/// ended, so START was ignored for good.
+#[test]
+fn reset_on_a_machine_without_actuators_makes_it_ready_at_once() {
+    let oven = crate::helpers::sample("oven.xlsx");
+    let out = steptable()
+        .arg("simulate")
+        .arg(&oven)
+        .args(["--modes", "stop,estop,reset"])
+        .args(["--press", "START@0.5s", "--press", "ESTOP@step1"])
+        .args(["--press", "RESET@+1s", "--press", "START@step0"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let out = String::from_utf8(out).unwrap();
+    assert!(out.contains("homing done"), "{out}");
+    let cycles = out.lines().filter(|l| l.contains("step 1 ")).count();
+    assert_eq!(cycles, 2, "a second cycle after RESET: {out}");
+    let converted = steptable()
+        .arg("convert")
+        .arg(&oven)
+        .args(["--modes", "stop,estop,reset", "--formats", "st", "-o"])
+        .arg(tempfile::tempdir().unwrap().path())
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let converted = String::from_utf8(converted).unwrap();
+    assert!(
+        converted.contains("no actuator to home, the machine is ready at once"),
+        "{converted}"
+    );
+}

@@ -354,8 +354,16 @@ pub fn convert_and_record<S: AsRef<str>>(
                 .collect::<Result<_, _>>()
                 .unwrap();
             let sim = &settings.simulation;
-            let (report, trace) =
-                scenario_events(table, program, sim, &parsed, (8_000, 60_000), Some(signals));
+            // As long a run as `simulate` makes of the same events.
+            let tail = simulate::scenario::tail_after_events(table, program, sim);
+            let (report, trace) = scenario_events(
+                table,
+                program,
+                sim,
+                &parsed,
+                (tail, u64::MAX),
+                Some(signals),
+            );
             (report, trace.unwrap())
         },
     )
