@@ -293,3 +293,32 @@ fn a_supervision_time_times_a_waiting_step() {
         [Literal::is(Signal::MachineInput(part))]
     );
 }
+
+/// A scenario runs on long enough for the supervision it arms: a 12 s
+/// supervision of step 4 with x32 stuck at 0 raises `alarm_wd` and names
+/// x32 missing within `simulate`'s run. The run used to end a healthy
+/// cycle and a second after the event, at 10.94 s, before the alarm at
+/// 15.09 s, so the engineer saw a silent stall.
+#[test]
+fn a_scenario_lasts_until_the_supervision_it_arms_runs_out() {
+    let out = crate::helpers::steptable()
+        .arg("simulate")
+        .arg(crate::helpers::sample("paper_example.csv"))
+        .args(["--safety", "criteria", "--supervision", "4=12s"])
+        .args(["--stick", "x32=0@step3"])
+        .assert()
+        .get_output()
+        .stdout
+        .clone();
+    let out = String::from_utf8(out).unwrap();
+    let alarm = out
+        .lines()
+        .find(|l| l.contains("alarm_wd on"))
+        .unwrap_or_else(|| panic!("the alarm within the run: {out}"));
+    assert!(alarm.trim_start().starts_with("15.09 s"), "{alarm}");
+    let last = out.lines().last().unwrap();
+    assert!(
+        last.contains("in step 4") && last.contains("miss"),
+        "{last}"
+    );
+}

@@ -120,9 +120,11 @@ pub fn scenario_recording(
 
 /// How long a scenario runs on after its last event: as long as a
 /// healthy cycle takes (10 s when none completes), a second to see the
-/// machine stand, and the longest run-on of an output after a stop (an
-/// oven's fan), so that what the last event starts is seen to its end.
-/// `simulate`'s scenarios and their replays in the engines share it.
+/// machine stand, the longest run-on of an output after a stop (an oven's
+/// fan) and the longest step supervision time (a stall the event causes
+/// raises its alarm within the run), so that what the last event starts
+/// is seen to its end. `simulate`'s scenarios and their replays in the
+/// engines share it.
 pub fn tail_after_events(table: &StepTable, program: &StepProgram, settings: &SimSettings) -> u64 {
     let proof = super::simulate(table, program, settings);
     let cycle = proof
@@ -131,7 +133,16 @@ pub fn tail_after_events(table: &StepTable, program: &StepProgram, settings: &Si
         .and_then(|c| c.cycle_ms)
         .unwrap_or(10_000);
     let run_on = program.run_ons.iter().map(|r| u64::from(r.ms)).max();
-    cycle + 1_000 + run_on.unwrap_or(0)
+    let supervision = program
+        .steps
+        .iter()
+        .flat_map(|s| &s.actions)
+        .filter_map(|a| match a {
+            crate::program::Action::StartTimer(Signal::Watchdog, ms) => Some(u64::from(*ms)),
+            _ => None,
+        })
+        .max();
+    cycle + 1_000 + run_on.unwrap_or(0) + supervision.unwrap_or(0)
 }
 
 /// Runs `program` from power-up with the operator's `events` (each
