@@ -185,6 +185,10 @@ impl Address {
 /// machine's I/O, and below where Festo's and Siemens' input images end.
 pub const MAX_PINNED_UNIT: u32 = 255;
 
+/// The width of the word an HMI reads the criteria analysis as: a Festo
+/// output word, an S7 output word (two bytes), two OpenPLC coil bytes.
+const MISS_WORD_BITS: u32 = 16;
+
 /// Lays out `default` (in address order) around the pinned signals: a
 /// pinned signal keeps its address, the others keep their order and take
 /// the free bits from where the layout starts.
@@ -311,16 +315,19 @@ impl Allocation {
             .last()
             .map(|a| a.address.unit * width + a.address.bit + 1)
             .unwrap_or(0);
-        outputs.extend(
-            signals
-                .outputs
-                .iter()
-                .zip(next_output..)
-                .map(|(&signal, index)| Assigned {
-                    signal,
-                    address: Address::from_index(Area::Output, target, index),
-                }),
-        );
+        let mut index = next_output;
+        for &signal in &signals.outputs {
+            // The criteria analysis starts a word of its own, so that an
+            // HMI reads it as whole words (bit k of the first = miss(k+1)).
+            if signal == Signal::Missing(1) {
+                index = index.div_ceil(MISS_WORD_BITS) * MISS_WORD_BITS;
+            }
+            outputs.push(Assigned {
+                signal,
+                address: Address::from_index(Area::Output, target, index),
+            });
+            index += 1;
+        }
 
         let memories = lay_out(Area::Memory, target, signals.memories.iter().copied());
         // T0 is the watchdog's; dwell n gets timer n, run-on n the n-th

@@ -16,7 +16,8 @@ pub fn resolve(
     naming: &crate::symbols::Naming,
     diags: &mut Diagnostics,
 ) -> Vec<Assigned> {
-    // Every input and output of the allocation list: the alarm lamps too.
+    // Every input and output of the allocation list: the alarm lamps and
+    // the criteria analysis's outputs too.
     let signals: Vec<Signal> = program
         .signals
         .inputs
@@ -24,6 +25,7 @@ pub fn resolve(
         .copied()
         .chain(program.signals.driven())
         .chain(program.signals.alarms())
+        .chain(program.signals.misses())
         .collect();
     let mut pins: Vec<(Assigned, &PinRow)> = Vec::new();
     for row in rows {

@@ -252,13 +252,14 @@ fn program_comment(
             Some(l) => format!("criterion {n}: the awaited transition needs {}", wanted(l)),
             None => format!("criterion {n}"),
         },
+        // No "bit k of a word": which bit of which word depends on the
+        // target's byte order (the allocation list gives the address).
         Signal::Missing(n) => match criterion(n) {
             Some(l) => format!(
-                "criteria analysis bit {}: the step ran out of time and {} is not met",
-                n - 1,
+                "criterion {n} missing: the step ran out of time and {} is not met",
                 wanted(l)
             ),
-            None => format!("criteria analysis bit {}", n - 1),
+            None => format!("criterion {n} missing"),
         },
         // Only run-ons and criteria are described here.
         _ => String::new(),

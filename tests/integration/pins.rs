@@ -266,3 +266,70 @@ fn an_alarm_output_can_be_pinned() {
     let st = std::fs::read_to_string(out.join("line/line.st")).unwrap();
     assert!(st.contains("AT %QX3.7"), "{st}");
 }
+
+/// The criteria analysis reads as whole words: its outputs start a 16-bit
+/// word of their own on every target (red team rt7 F8: they began mid-word
+/// and straddled two words, while the allocation list labelled each "bit
+/// k" of a word that matched no address), and they can be pinned like the
+/// alarm lamps (F9: "miss1 is not an input or output of this program").
+#[test]
+fn the_criteria_outputs_start_a_word_and_can_be_pinned() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("paper.csv");
+    let rows: Vec<String> = PAPER_EXAMPLE.iter().map(|r| r.join(",")).collect();
+    std::fs::write(&csv, rows.join("\n")).unwrap();
+    for (target, alarm, first, last) in [
+        ("festo", "O1.5", "O2.0", "O2.10"),
+        ("iec", "%QX1.0", "%QX2.0", "%QX3.2"),
+        ("siemens", "Q1.0", "Q2.0", "Q3.2"),
+    ] {
+        let out = dir.path().join(target);
+        steptable()
+            .arg("convert")
+            .arg(&csv)
+            .args(["--safety", "criteria", "--target", target, "-o"])
+            .arg(&out)
+            .args(["--formats", "io"])
+            .assert()
+            .success();
+        let io = std::fs::read_to_string(out.join("paper/paper.io.csv")).unwrap();
+        let rows = io_rows(&io);
+        let at = |symbol: &str| rows.iter().find(|(_, s)| s == symbol).unwrap().0.clone();
+        assert_eq!(
+            (at("alarm_wd"), at("miss1"), at("miss11")),
+            (alarm.into(), first.into(), last.into()),
+            "{target}"
+        );
+        assert!(
+            !io.contains(" bit "),
+            "no word bit the address contradicts: {io}"
+        );
+        assert!(io.contains("criterion 9 missing: the step ran out of time and x32 on is not met"));
+    }
+    let mut pins: Vec<Vec<String>> = vec![vec!["SIGNAL".into(), "ADDRESS".into()]];
+    pins.extend((1..=11).map(|n| vec![format!("miss{n}"), format!("Q8.{}", (n - 1) % 8 + 0)]));
+    pins[9][1] = "Q9.0".into();
+    pins[10][1] = "Q9.1".into();
+    pins[11][1] = "Q9.2".into();
+    let pins: Vec<Vec<&str>> = pins
+        .iter()
+        .map(|r| r.iter().map(String::as_str).collect())
+        .collect();
+    let pins: Vec<&[&str]> = pins.iter().map(|r| &r[..]).collect();
+    let input = workbook(dir.path(), &pins);
+    let out = dir.path().join("pinned");
+    steptable()
+        .arg("convert")
+        .arg(&input)
+        .args(["--safety", "criteria", "--target", "siemens", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let io = std::fs::read_to_string(out.join("line/line.io.csv")).unwrap();
+    let rows = io_rows(&io);
+    let at = |symbol: &str| rows.iter().find(|(_, s)| s == symbol).unwrap().0.clone();
+    assert_eq!(
+        (at("miss1"), at("miss8"), at("miss11")),
+        ("Q8.0".into(), "Q8.7".into(), "Q9.2".into())
+    );
+}
