@@ -40,6 +40,7 @@ mod machine_limits;
 mod manual;
 mod messy;
 mod mitigation;
+mod mode_faults;
 mod modes;
 mod motor;
 mod name_aliases;

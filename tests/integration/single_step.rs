@@ -309,3 +309,31 @@ fn the_sorting_stations_paths_run_with_the_mode() {
         .assert()
         .success();
 }
+
+/// The guide's worked example of single step is what `simulate` prints,
+/// line for line (the command as the guide writes it, on the sample).
+#[test]
+fn the_guides_worked_example_is_what_simulate_prints() {
+    let guide = std::fs::read_to_string(crate::helpers::root().join("docs/guide.md")).unwrap();
+    let start = "$ steptable simulate paper_example.xlsx --modes step";
+    let block: Vec<&str> = guide[guide.find(start).expect("the example")..]
+        .lines()
+        .take_while(|l| !l.starts_with("```"))
+        .collect();
+    let command_lines = block.iter().take_while(|l| l.ends_with('\\')).count() + 1;
+    let command: String = block[..command_lines]
+        .iter()
+        .map(|l| l.trim_end_matches('\\'))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let args: Vec<&str> = command.split_whitespace().skip(4).collect();
+    let run = steptable()
+        .arg("simulate")
+        .arg(crate::helpers::sample("paper_example.xlsx"))
+        .args(&args)
+        .assert()
+        .success();
+    let out = String::from_utf8_lossy(&run.get_output().stdout).into_owned();
+    let printed: Vec<&str> = out.lines().skip(1).collect();
+    assert_eq!(printed, block[command_lines..], "{out}");
+}

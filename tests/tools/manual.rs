@@ -3,18 +3,23 @@
 //! (each actuator jogged out and home, both buttons of C3 at once, a jog
 //! under the EMERGENCY STOP, START in manual, then RESET and a cycle) in
 //! matiec (iec), awlsim (siemens) and the FST interpreter (festo), scan
-//! for scan as simulated. A second run jogs a drive (`motor`, cut at its
-//! limit switch while the button is still held) and a single-solenoid
-//! cylinder (`52mono`, its spring the way back), abandons a cycle by
-//! manual mode and runs the next one after RESET, in the same engines.
+//! for scan as simulated; the two stamping-like samples (the press
+//! station, the drilling station: clamp or feed, tool, eject) run the same
+//! kind of scenario, written by [`jog_events`]. A second run jogs a drive
+//! (`motor`, cut at its limit switch while the button is still held) and a
+//! single-solenoid cylinder (`52mono`, its spring the way back), abandons
+//! a cycle by manual mode and runs the next one after RESET; a third
+//! enters manual with a coil a halt row holds on (`hold-safe | C1`) and
+//! jogs it, in the same engines.
 
 use std::path::Path;
 
+use steptable::program::Signal;
 use steptable::simulate::io::IoTrace;
 use steptable::simulate::scenario::ScenarioReport;
 
 use crate::engines::{self, awlsim};
-use crate::helpers::{manual_events, sample};
+use crate::helpers::{manual_events, sample, write_xlsx_sheets};
 use crate::{Check, Tool, tool};
 
 pub const CHECKS: &[Check] = &[
@@ -24,9 +29,24 @@ pub const CHECKS: &[Check] = &[
         jogs_run_as_simulated_in_every_engine,
     ),
     Check::new(
+        "manual::the_press_station_jogs_as_simulated_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        the_press_station_jogs_as_simulated_in_every_engine,
+    ),
+    Check::new(
+        "manual::the_drilling_station_jogs_as_simulated_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        the_drilling_station_jogs_as_simulated_in_every_engine,
+    ),
+    Check::new(
         "manual::drive_and_52mono_jogs_run_as_simulated_in_every_engine",
         &[Tool::Shared, Tool::Awlsim],
         drive_and_52mono_jogs_run_as_simulated_in_every_engine,
+    ),
+    Check::new(
+        "manual::a_held_coil_stays_until_jogged_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        a_held_coil_stays_until_jogged_in_every_engine,
     ),
 ];
 
@@ -62,43 +82,169 @@ fn replay_in_every_engine(
     }
 }
 
-fn jogs_run_as_simulated_in_every_engine() {
-    let input = sample("paper_example.xlsx");
+/// The events, as `(option, text)`.
+fn events(list: &[(&str, &str)]) -> Vec<(String, String)> {
+    list.iter()
+        .map(|(o, t)| (o.to_string(), t.to_string()))
+        .collect()
+}
+
+/// The manual scenario of the paper's fixture for a table of `actuators`
+/// two-coil cylinders and `steps` steps: MAN_MODE on; both buttons of C1
+/// at once; each actuator jogged out and home, two seconds each way
+/// (longer than every stroke of the samples); START in manual; jog1+
+/// under the EMERGENCY STOP; MAN_MODE off, RESET and a cycle, with STOP
+/// pressed halfway through it (the cycle finishes; the run goes on 8 s
+/// after its last event, and the press station's cycle is 9 s long).
+fn jog_events(actuators: u32, steps: usize) -> Vec<(String, String)> {
+    let mut written = events(&[
+        ("hold", "MAN_MODE@0.3s"),
+        ("hold", "jog1+@+0.2s"),
+        ("hold", "jog1-@+0s"),
+        ("release", "jog1+@+1s"),
+        ("release", "jog1-@+0s"),
+    ]);
+    for n in 1..=actuators {
+        for (option, text) in [
+            ("hold", format!("jog{n}+@+0.2s")),
+            ("release", format!("jog{n}+@+2s")),
+            ("hold", format!("jog{n}-@+0.2s")),
+            ("release", format!("jog{n}-@+2s")),
+        ] {
+            written.push((option.to_string(), text));
+        }
+    }
+    written.extend(events(&[
+        ("press", "START@+0.2s"),
+        ("hold", "ESTOP@+0.2s"),
+        ("hold", "jog1+@+0.5s"),
+        ("release", "jog1+@+1s"),
+        ("release", "ESTOP@+0.5s"),
+        ("release", "MAN_MODE@+0.5s"),
+        ("press", "RESET@+0.5s"),
+        ("press", "START@+1s"),
+    ]));
+    written.push(("press".to_string(), format!("STOP@step{}", steps / 2)));
+    written
+}
+
+/// The button an event works (`jog3-` of `jog3-@7.5s`).
+fn button(text: &str) -> &str {
+    text.split('@').next().unwrap_or(text)
+}
+
+/// When the first event `option BUTTON@…` of `written` happened.
+fn when(written: &[(String, String)], report: &ScenarioReport, option: &str, name: &str) -> u64 {
+    let at = written
+        .iter()
+        .position(|(o, t)| o == option && button(t) == name)
+        .unwrap_or_else(|| panic!("{option} {name} is an event"));
+    report.happened[at].0
+}
+
+/// From when to when both jog buttons of one actuator are first held
+/// together in `written`, and that actuator.
+fn both_held(written: &[(String, String)], report: &ScenarioReport) -> (u64, u64, String) {
+    let mut held: Vec<&str> = Vec::new();
+    let mut both: Option<(u64, String)> = None;
+    for (k, (option, text)) in written.iter().enumerate() {
+        let name = button(text);
+        let at = report.happened[k].0;
+        match (option.as_str(), &both) {
+            ("hold", None) => {
+                let other = name
+                    .strip_suffix('+')
+                    .map(|n| format!("{n}-"))
+                    .or_else(|| name.strip_suffix('-').map(|n| format!("{n}+")));
+                if other.is_some_and(|o| held.contains(&o.as_str())) {
+                    both = Some((at, name[3..name.len() - 1].to_string()));
+                }
+                held.push(name);
+            }
+            ("release", Some((from, actuator))) => return (*from, at, actuator.clone()),
+            ("release", None) => held.retain(|h| *h != name),
+            _ => {}
+        }
+    }
+    panic!("no actuator has both jog buttons held")
+}
+
+/// What the engineer sees in an engine's trace of a jog scenario: one
+/// whole cycle after RESET (`steps` table steps, then the closing step
+/// back to rest); every coil came on in
+/// manual (before MAN_MODE went back to 0); neither coil of the actuator
+/// whose two buttons were held together.
+fn jogs_as_seen(
+    label: &str,
+    written: &[(String, String)],
+    steps: usize,
+    report: &ScenarioReport,
+    trace: &IoTrace,
+) {
+    let fired: Vec<usize> = report.fired.iter().map(|(_, s)| *s).collect();
+    assert_eq!(
+        fired,
+        (1..=steps + 1).collect::<Vec<_>>(),
+        "{label}: one cycle"
+    );
+    let scans = &trace.scans;
+    let signals = &trace.signals.outputs;
+    let manual_ends = when(written, report, "release", "MAN_MODE");
+    let mut seen = vec![false; signals.len()];
+    for scan in scans.iter().filter(|s| s.time_ms < manual_ends) {
+        for (i, on) in scan.outputs.iter().enumerate() {
+            seen[i] |= *on;
+        }
+    }
+    for (i, signal) in signals.iter().enumerate() {
+        if matches!(signal, Signal::Coil { .. }) {
+            assert!(seen[i], "{label}: {} jogged in manual", signal.symbol());
+        }
+    }
+    let (from, to, n) = both_held(written, report);
+    let index = |s: &str| signals.iter().position(|x| x.symbol() == s).unwrap();
+    let (plus, minus) = (index(&format!("y{n}+")), index(&format!("y{n}-")));
+    let both = scans.iter().filter(|s| (from..to).contains(&s.time_ms));
+    assert!(
+        both.clone().all(|s| !s.outputs[plus] && !s.outputs[minus]),
+        "{label}: both buttons of C{n} move nothing"
+    );
+    assert!(both.count() > 10, "{label}: C{n}'s buttons held together");
+}
+
+/// The jog scenario `written` on `sample` converted with `--modes all`,
+/// whose cycle has `steps` table steps.
+fn jog_scenario(sample_name: &str, written: &[(String, String)], steps: usize) {
+    let input = sample(sample_name);
     replay_in_every_engine(
         &input,
         &["--modes", "all"],
-        &manual_events(),
-        |label, report, trace| {
-            let steps: Vec<usize> = report.fired.iter().map(|(_, s)| *s).collect();
-            assert_eq!(steps, (1..=9).collect::<Vec<_>>(), "{label}: one cycle");
-            // What the engineer sees in the engine's trace: every coil of the
-            // paper's four cylinders came on in manual (before the cycle's
-            // START at 19 s), y3+ and y3- never while both jogs were held.
-            let scans = &trace.scans;
-            let signals = &trace.signals.outputs;
-            let manual = scans.iter().filter(|s| s.time_ms < 17_500);
-            let mut seen = vec![false; signals.len()];
-            for scan in manual {
-                for (i, on) in scan.outputs.iter().enumerate() {
-                    seen[i] |= *on;
-                }
-            }
-            for (i, signal) in signals.iter().enumerate() {
-                if matches!(signal, steptable::program::Signal::Coil { .. }) {
-                    assert!(seen[i], "{label}: {} jogged in manual", signal.symbol());
-                }
-            }
-            let both = scans.iter().filter(|s| (7_500..8_500).contains(&s.time_ms));
-            let c3 = |s: &str| signals.iter().position(|x| x.symbol() == s).unwrap();
-            let (y3p, y3m) = (c3("y3+"), c3("y3-"));
-            assert!(
-                both.clone().all(|s| !s.outputs[y3p] && !s.outputs[y3m]),
-                "{label}"
-            );
-        },
+        written,
+        |label, report, trace| jogs_as_seen(label, written, steps, report, trace),
     );
+}
+
+fn jogs_run_as_simulated_in_every_engine() {
+    jog_scenario("paper_example.xlsx", &manual_events(), 8);
     eprintln!(
         "manual: matiec, awlsim and the FST interpreter jog each cylinder of the paper's example, refuse both buttons and a jog under the EMERGENCY STOP, ignore START in manual and run the cycle after RESET, scan for scan as simulated"
+    );
+}
+
+/// The press station: C1 the transfer slide, C2 the gripper lift, C3 the
+/// press; its vacuum (`hold-safe`, no jog) is no cylinder.
+fn the_press_station_jogs_as_simulated_in_every_engine() {
+    jog_scenario("press_station.xlsx", &jog_events(3, 10), 10);
+    eprintln!(
+        "manual: matiec, awlsim and the FST interpreter jog the press station's slide, lift and press out and home, refuse both buttons of C1 and a jog under the EMERGENCY STOP, ignore START in manual and run the cycle after RESET, scan for scan as simulated"
+    );
+}
+
+/// The drilling station: C1 the clamp, C2 the drill feed, C3 the ejector.
+fn the_drilling_station_jogs_as_simulated_in_every_engine() {
+    jog_scenario("drilling_station.xlsx", &jog_events(3, 6), 6);
+    eprintln!(
+        "manual: matiec, awlsim and the FST interpreter jog the drilling station's clamp, drill feed and ejector out and home, refuse both buttons of C1 and a jog under the EMERGENCY STOP, ignore START in manual and run the cycle after RESET, scan for scan as simulated"
     );
 }
 
@@ -146,16 +292,7 @@ fn drive_and_52mono_jogs_run_as_simulated_in_every_engine() {
         let others: Vec<_> = report.problems.iter().filter(|p| !homing(p)).collect();
         assert!(others.is_empty(), "{label}: {others:?}");
         let at = |k: usize| report.happened[k].0;
-        let signals = &trace.signals.outputs;
-        let index = |s: &str| signals.iter().position(|x| x.symbol() == s).unwrap();
-        let on = |s: &str, from: u64, to: u64| {
-            trace
-                .scans
-                .iter()
-                .filter(|scan| (from..to).contains(&scan.time_ms))
-                .map(|scan| scan.outputs[index(s)])
-                .collect::<Vec<bool>>()
-        };
+        let on = |s: &str, from: u64, to: u64| output_between(trace, s, from, to);
         // The one coil of C1 only while jog1+ is held.
         assert!(on("y1", at(2) + 20, at(3)).iter().all(|b| *b), "{label}");
         assert!(on("y1", at(3) + 20, at(4)).iter().all(|b| !*b), "{label}");
@@ -184,5 +321,77 @@ fn drive_and_52mono_jogs_run_as_simulated_in_every_engine() {
     });
     eprintln!(
         "manual: matiec, awlsim and the FST interpreter jog a 52mono cylinder (its spring back on release) and a drive (cut at its limit switch with the button held), abandon a cycle by MAN_MODE and run the next after RESET, scan for scan as simulated"
+    );
+}
+
+/// Output `symbol` of every scan of `trace` from `from` to `to` (ms).
+fn output_between(trace: &IoTrace, symbol: &str, from: u64, to: u64) -> Vec<bool> {
+    let signals = &trace.signals.outputs;
+    let index = signals.iter().position(|x| x.symbol() == symbol);
+    let index = index.unwrap_or_else(|| panic!("{symbol} is an output"));
+    trace
+        .scans
+        .iter()
+        .filter(|scan| (from..to).contains(&scan.time_ms))
+        .map(|scan| scan.outputs[index])
+        .collect()
+}
+
+/// C1 a clamp on a spring-return valve (`52mono`) that a halt row holds
+/// on (`hold-safe | C1`), C2 a `52bi` cylinder: C1 out, C2 out, C2 home,
+/// C1 home, with every mode.
+fn held_clamp_workbook(path: &Path) {
+    let table: &[&[&str]] = &[&["C1+1"], &["C2+1"], &["C2-0"], &["C1-0"]];
+    let settings: &[&[&str]] = &[
+        &["modes", "all"],
+        &["hold-safe", "C1"],
+        &["actuator", "valve", "extend", "retract"],
+        &["C1", "52mono", "2s", "2s"],
+    ];
+    write_xlsx_sheets(path, &[("TABLE", table), ("SETTINGS", settings)]);
+}
+
+/// MAN_MODE selected in step 2 with the clamp out: y1 stays on (the halt
+/// row holds it) for a second, until jog1+ is pressed; from then on it is
+/// the button's: off as the tap is let go (the spring takes C1 home), on
+/// while jog1+ is held again, off in the scan manual ends although the
+/// button is still held. In matiec, awlsim and the FST interpreter, scan
+/// for scan as simulated (the memory `jogged1` in every language).
+fn a_held_coil_stays_until_jogged_in_every_engine() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("held_clamp.xlsx");
+    held_clamp_workbook(&input);
+    let written = events(&[
+        ("press", "START@0.5s"),
+        ("hold", "MAN_MODE@step2"),
+        ("hold", "jog1+@+1s"),
+        ("release", "jog1+@+0.5s"),
+        ("hold", "jog1+@+2.5s"),
+        ("release", "MAN_MODE@+1s"),
+        ("release", "jog1+@+0.5s"),
+    ]);
+    replay_in_every_engine(&input, &[], &written, |label, report, trace| {
+        assert_eq!(report.abandoned.len(), 1, "{label}: step 2 ended by manual");
+        let at = |k: usize| report.happened[k].0;
+        let y1 = |from: u64, to: u64| output_between(trace, "y1", from + 20, to);
+        let all = |v: Vec<bool>, on: bool| !v.is_empty() && v.iter().all(|b| *b == on);
+        assert!(all(y1(at(1), at(2)), true), "{label}: held on into manual");
+        assert!(
+            all(y1(at(2), at(3)), true),
+            "{label}: on while jog1+ is held"
+        );
+        assert!(all(y1(at(3), at(4)), false), "{label}: off after the tap");
+        assert!(
+            report.at(at(4)).unwrap().positions[0] < 0.05,
+            "{label}: the spring took C1 home"
+        );
+        assert!(all(y1(at(4), at(5)), true), "{label}: jog1+ held again");
+        assert!(
+            all(y1(at(5), at(6)), false),
+            "{label}: off as manual ends, jog1+ still held"
+        );
+    });
+    eprintln!(
+        "manual: matiec, awlsim and the FST interpreter keep a hold-safe clamp's coil on into manual until its jog is pressed, then on only while the button is held and off as manual ends, scan for scan as simulated"
     );
 }

@@ -4,7 +4,10 @@
 //! and lights x32's missing output, and x32's alone, in matiec (iec),
 //! awlsim (siemens) and the FST interpreter (festo), and in the SCL and
 //! RLL interpreters (the TIA Portal SCL, the Studio 5000 L5X), scan for
-//! scan as simulated.
+//! scan as simulated. The two stamping-like samples (the press station,
+//! the drilling station) stall in step 2 with x21 dead (the gripper lift,
+//! the drill feed never seen out) and name x21 missing in the same three
+//! engines.
 
 use steptable::convert;
 use steptable::program::{Alarm, Signal};
@@ -15,11 +18,39 @@ use crate::engines::{self, awlsim};
 use crate::helpers::sample;
 use crate::{Check, Tool, tool};
 
-pub const CHECKS: &[Check] = &[Check::new(
-    "supervision::the_missing_condition_is_read_in_every_engine",
-    &[Tool::Shared, Tool::Awlsim],
-    the_missing_condition_is_read_in_every_engine,
-)];
+pub const CHECKS: &[Check] = &[
+    Check::new(
+        "supervision::the_missing_condition_is_read_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        the_missing_condition_is_read_in_every_engine,
+    ),
+    Check::new(
+        "supervision::the_press_stations_missing_sensor_is_read_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        the_press_stations_missing_sensor_is_read_in_every_engine,
+    ),
+    Check::new(
+        "supervision::the_drilling_stations_missing_sensor_is_read_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        the_drilling_stations_missing_sensor_is_read_in_every_engine,
+    ),
+];
+
+/// A sample stalled by a dead sensor: the steps that fire before the
+/// stall, how long the run lasts (past the watchdog's time), and whether
+/// the native SCL and L5X programs run it too.
+struct Stalled {
+    stem: &'static str,
+    dead: Signal,
+    fired: &'static [usize],
+    until_ms: u64,
+    native: bool,
+}
+
+/// Sensor `position` of C`actuator`.
+const fn sensor(actuator: u32, position: u32) -> Signal {
+    Signal::Sensor { actuator, position }
+}
 
 /// START pressed from 0.5 s to 0.6 s.
 fn script() -> Vec<(u64, Operator)> {
@@ -35,13 +66,56 @@ fn script() -> Vec<(u64, Operator)> {
 }
 
 fn the_missing_condition_is_read_in_every_engine() {
+    missing_sensor_is_read(&Stalled {
+        stem: "paper_example",
+        dead: sensor(3, 2),
+        fired: &[1, 2, 3, 4],
+        until_ms: 12_000,
+        native: true,
+    });
+    eprintln!(
+        "supervision: matiec, awlsim, the FST, SCL and RLL interpreters raise the timeout alarm of the paper's example with x32 stuck off and name x32, and only x32, missing, as simulated"
+    );
+}
+
+/// The press station: step 1 waits for its part, step 2 lowers the
+/// gripper and waits for x21 (its supervision time 2.2 s).
+fn the_press_stations_missing_sensor_is_read_in_every_engine() {
+    missing_sensor_is_read(&Stalled {
+        stem: "press_station",
+        dead: sensor(2, 1),
+        fired: &[1, 2],
+        until_ms: 6_000,
+        native: false,
+    });
+    eprintln!(
+        "supervision: matiec, awlsim and the FST interpreter raise the timeout alarm of the press station with x21 stuck off and name x21, and only x21, missing, as simulated"
+    );
+}
+
+/// The drilling station: step 2 feeds the drill and waits for x21 (its
+/// supervision time 3 s).
+fn the_drilling_stations_missing_sensor_is_read_in_every_engine() {
+    missing_sensor_is_read(&Stalled {
+        stem: "drilling_station",
+        dead: sensor(2, 1),
+        fired: &[1, 2],
+        until_ms: 7_000,
+        native: false,
+    });
+    eprintln!(
+        "supervision: matiec, awlsim and the FST interpreter raise the timeout alarm of the drilling station with x21 stuck off and name x21, and only x21, missing, as simulated"
+    );
+}
+
+/// `stalled` converted with `--safety criteria`, its sensor dead, runs
+/// START in every engine, and in the native programs' interpreters when
+/// it says so.
+fn missing_sensor_is_read(stalled: &Stalled) {
     let dir = tempfile::tempdir().unwrap();
-    let input = sample("paper_example.xlsx");
+    let input = sample(&format!("{}.xlsx", stalled.stem));
     let python = awlsim::python(&tool(Tool::Awlsim));
-    let x32 = Signal::Sensor {
-        actuator: 3,
-        position: 2,
-    };
+    let dead = stalled.dead;
     // Beside each engine's own file, the native programs of the two largest
     // PLC families: the TIA Portal SCL with its tag table (siemens), the
     // Studio 5000 L5X with its tags (iec), each in its interpreter.
@@ -50,38 +124,45 @@ fn the_missing_condition_is_read_in_every_engine() {
         ("siemens", "awl", "awl,scl,tia"),
         ("festo", "fst", "fst"),
     ];
-    for (target, format, formats) in runs {
+    for (target, format, native) in runs {
+        let formats = if stalled.native { native } else { format };
         let args = ["--target", target, "--safety", "criteria"];
         let scenario = engines::Scenario {
             input: &input,
             out: dir.path().join(format),
-            stem: "paper_example",
+            stem: stalled.stem,
             args: &args,
             formats,
             script: script(),
-            until_ms: 12_000,
+            until_ms: stalled.until_ms,
         };
-        let label = format!("paper_example {} with x32 stuck off", args.join(" "));
+        let label = format!(
+            "{} {} with {} stuck off",
+            stalled.stem,
+            args.join(" "),
+            dead.symbol()
+        );
         let (case, report) = engines::record_scenario(&scenario, &label, |simulation| {
             simulation.faults = vec![Fault {
-                signal: x32,
+                signal: dead,
                 stuck_at: false,
             }]
         });
         let fired = report.fired;
-        // The simulation this engine must match: steps 1 to 4, then step
-        // 5 waits for x32 until its watchdog runs out.
+        // The simulation this engine must match: the steps before the
+        // stall, then the next waits for the dead sensor until its
+        // watchdog runs out.
         let steps: Vec<usize> = fired.iter().map(|(_, s)| *s).collect();
-        assert_eq!(steps, [1, 2, 3, 4], "{}: {fired:?}", case.label);
+        assert_eq!(steps, stalled.fired, "{}: {fired:?}", case.label);
         let outputs = engines::run_written(&case, format, &python);
         case.check(format, outputs).unwrap();
-        match target {
-            "siemens" => case.check_stepped("scl", run_scl(&case)).unwrap(),
-            "iec" => case.check_stepped("l5x", run_l5x(&case)).unwrap(),
+        match (target, stalled.native) {
+            ("siemens", true) => case.check_stepped("scl", run_scl(&case)).unwrap(),
+            ("iec", true) => case.check_stepped("l5x", run_l5x(&case)).unwrap(),
             _ => {}
         }
         // The engine's outputs are the trace's: at the end the alarm and
-        // x32's missing output are on, no other missing output.
+        // the dead sensor's missing output are on, no other missing output.
         let checked = convert::check_path(&input, &engines::settings_for(&args)).unwrap();
         let program = convert::build_program(&checked.table, &checked.settings);
         let signals = &case.trace.signals.outputs;
@@ -95,7 +176,7 @@ fn the_missing_condition_is_read_in_every_engine() {
         let n = program
             .criteria
             .iter()
-            .position(|c| c.signal == x32)
+            .position(|c| c.signal == dead)
             .unwrap();
         assert_eq!(
             on,
@@ -104,7 +185,4 @@ fn the_missing_condition_is_read_in_every_engine() {
             case.label
         );
     }
-    eprintln!(
-        "supervision: matiec, awlsim, the FST, SCL and RLL interpreters raise the timeout alarm of the paper's example with x32 stuck off and name x32, and only x32, missing, as simulated"
-    );
 }
