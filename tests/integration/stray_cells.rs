@@ -258,7 +258,7 @@ fn is_bare_actuator_row(rows: &[Vec<String>], row: usize, col: usize) -> bool {
     let text = text_at(rows, row, col);
     col == 0
         && header.is_some_and(|h| row > h)
-        && steptable::cell::actuator_name(&text).is_some()
+        && steptable::cell::actuator_name(text).is_some()
         && !text.contains('(')
         && rows[row].iter().skip(1).all(|c| c.trim().is_empty())
 }

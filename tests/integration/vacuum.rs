@@ -115,7 +115,7 @@ fn the_pick_and_place_runs_through_its_cycle_in_the_gripper_s_own_times() {
 /// cylinder's sensor sees its piston: with 1 s given both ways, the grip
 /// step lasts the whole second, and so does the step that waits for the
 /// release. Broken on purpose (the switch read within the sensor window
-/// again) the steps lasted 0.98 s and 0.96 s and this failed.
+/// again) this failed on the grip step.
 #[test]
 fn the_vacuum_switch_waits_for_the_whole_build_up_and_release() {
     let assert = steptable()
@@ -387,8 +387,8 @@ struct KindTimes {
 /// template's `1s` is kept and said at its cell (W007, naming the kind's
 /// own time); the command line's stroke wins without W007. Broken on
 /// purpose (an empty half back to the cylinder's 1 s) the half row ran its
-/// release in 1 s and this failed; with W007 removed, the old template's
-/// rows failed.
+/// release in 1 s and this failed; with the bare rows' W003 back, the
+/// first row failed.
 #[test]
 fn a_gripper_s_time_cells_left_empty_take_its_own_times() {
     const HEAD: &[&str] = &["actuator", "extend", "retract", "valve"];
