@@ -447,14 +447,31 @@ fn sequence_rows() -> [SettingRow; 3] {
     rows.map(owned_row)
 }
 
+/// The actuator table's caption: what an empty time cell means, with
+/// each kind's own times as the plant and the watchdog take them.
+fn actuator_caption() -> String {
+    use crate::actuator::ActuatorKind::{Swivel, Vacuum};
+    let own = |kind: crate::actuator::ActuatorKind| {
+        let s = kind.default_stroke().unwrap_or_default();
+        let text = crate::cell::duration_text;
+        (text(s.extend_ms), text(s.retract_ms))
+    };
+    let cylinder = crate::stroke::Stroke::default();
+    let (swing_out, swing_back) = own(Swivel);
+    let (build_up, release) = own(Vacuum);
+    format!(
+        "Stroke times (extend / retract; an empty cell takes the kind's own: a cylinder {} / {}, \
+         a swivel drive {swing_out} / {swing_back}, a vacuum gripper {build_up} build-up / {release} release), \
+         valve type and your name per actuator.",
+        crate::cell::duration_text(cylinder.extend_ms),
+        crate::cell::duration_text(cylinder.retract_ms),
+    )
+}
+
 /// The actuator table below the settings, its header on row `header`:
 /// stroke times, valve type and the engineer's name of C1 to C8.
 fn actuator_table(sheet: &mut Worksheet, f: &Formats, header: u32) -> Result<(), XlsxError> {
-    sheet.write_string(
-        header - 1,
-        0,
-        "Stroke times (extend / retract; not listed: 1s / 1s), valve type and your name per actuator.",
-    )?;
+    sheet.write_string(header - 1, 0, actuator_caption())?;
     for (col, text) in ["actuator", "extend", "retract", "valve", "name"]
         .iter()
         .enumerate()
@@ -464,8 +481,10 @@ fn actuator_table(sheet: &mut Worksheet, f: &Formats, header: u32) -> Result<(),
     for i in 0..8u32 {
         let row = header + 1 + i;
         sheet.write_string_with_format(row, 0, format!("C{}", i + 1), &f.input)?;
-        sheet.write_string_with_format(row, 1, "1s", &f.input)?;
-        sheet.write_string_with_format(row, 2, "1s", &f.input)?;
+        // Empty, not 1s: a time written here would be the engineer's and
+        // override a swivel drive's or a vacuum gripper's own.
+        sheet.write_blank(row, 1, &f.input)?;
+        sheet.write_blank(row, 2, &f.input)?;
         sheet.write_blank(row, 3, &f.input)?;
         sheet.write_blank(row, 4, &f.input)?;
     }

@@ -38,20 +38,6 @@ impl Valves {
     }
 }
 
-impl Machine {
-    /// Gives each actuator of `actuators` (number, highest position) whose
-    /// kind has its own times (a vacuum gripper's build-up and release)
-    /// those times, unless the engineer gave it a stroke.
-    pub fn with_kind_times(&mut self, actuators: impl IntoIterator<Item = (u32, u32)>) {
-        for (number, max_position) in actuators {
-            let kind = self.valves.of(number, max_position);
-            if let Some(times) = kind.default_stroke() {
-                self.strokes.per_actuator.entry(number).or_insert(times);
-            }
-        }
-    }
-}
-
 /// A drift rate in stroke per second, from 0 to 10 (`0.05`; a decimal comma
 /// as a spreadsheet cell may hold it, `0,05`).
 pub fn parse_load(text: &str) -> Option<f64> {

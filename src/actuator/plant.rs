@@ -87,17 +87,22 @@ impl ActuatorKind {
         }
     }
 
-    /// What its switch at `position` reads at stroke fraction `s`, for a
-    /// kind whose switch is no position sensor seen within a window (`half`
-    /// its half-width): a vacuum switch reads 1 once the vacuum has built
-    /// up while the coil is on, and keeps reading 1 while the coil is off
-    /// until the vacuum has decayed (the part drops then, after the release
-    /// time, not the moment the coil drops). `None`: a position sensor.
-    pub fn switch_reads(self, position: u32, spool: Spool, s: f64, half: f64) -> Option<bool> {
+    /// What its switch at `position` reads at `s`, the fraction of its
+    /// stroke (for a gripper: of its full vacuum), for a kind whose switch
+    /// is no position sensor seen within a window: a vacuum switch reads 1
+    /// once the vacuum has fully built up while the coil is on (after the
+    /// build-up time), and keeps reading 1 while the coil is off until the
+    /// vacuum has fully decayed (the part drops then, after the whole
+    /// release time, not the moment the coil drops, nor the 4 % before
+    /// the end at which a cylinder's sensor sees its piston). `None`: a
+    /// position sensor.
+    pub fn switch_reads(self, position: u32, spool: Spool, s: f64) -> Option<bool> {
+        // Rounding of the per-scan steps, not a window.
+        const FULL: f64 = 1e-9;
         match (self, position) {
             (ActuatorKind::Vacuum, 1) => Some(match spool {
-                Spool::Plus => s >= 1.0 - half,
-                Spool::Minus | Spool::Centre => s > half,
+                Spool::Plus => s >= 1.0 - FULL,
+                Spool::Minus | Spool::Centre => s > FULL,
             }),
             _ => None,
         }
@@ -157,7 +162,7 @@ mod tests {
         assert!(!Swivel.coasts());
         assert!(Swivel.moves_on_after_a_jog() && Bistable52.moves_on_after_a_jog());
         assert!(!Closed53.moves_on_after_a_jog() && !Motor.moves_on_after_a_jog());
-        assert_eq!(Swivel.switch_reads(1, Spool::Plus, 1.0, 0.05), None);
+        assert_eq!(Swivel.switch_reads(1, Spool::Plus, 1.0), None);
     }
 
     #[test]
@@ -169,15 +174,14 @@ mod tests {
         assert!(!Vacuum.conflict(true, true));
         assert_eq!(Vacuum.drift_per_second(0.5), 0.0);
         assert!(!Vacuum.coasts());
-        // Built up only when full; held until the vacuum is nearly gone.
-        assert_eq!(Vacuum.switch_reads(1, Spool::Plus, 0.5, 0.05), Some(false));
-        assert_eq!(Vacuum.switch_reads(1, Spool::Plus, 0.97, 0.05), Some(true));
-        assert_eq!(Vacuum.switch_reads(1, Spool::Minus, 0.5, 0.05), Some(true));
-        assert_eq!(
-            Vacuum.switch_reads(1, Spool::Minus, 0.01, 0.05),
-            Some(false)
-        );
-        assert_eq!(Mono52.switch_reads(1, Spool::Plus, 1.0, 0.05), None);
+        // Built up only when full; held until the vacuum is all gone.
+        assert_eq!(Vacuum.switch_reads(1, Spool::Plus, 0.5), Some(false));
+        assert_eq!(Vacuum.switch_reads(1, Spool::Plus, 0.97), Some(false));
+        assert_eq!(Vacuum.switch_reads(1, Spool::Plus, 1.0), Some(true));
+        assert_eq!(Vacuum.switch_reads(1, Spool::Minus, 0.5), Some(true));
+        assert_eq!(Vacuum.switch_reads(1, Spool::Minus, 0.01), Some(true));
+        assert_eq!(Vacuum.switch_reads(1, Spool::Minus, 0.0), Some(false));
+        assert_eq!(Mono52.switch_reads(1, Spool::Plus, 1.0), None);
         let times = Vacuum.default_stroke().expect("a gripper's own times");
         let swing = Swivel.default_stroke().expect("a swivel drive's own time");
         assert_eq!((swing.extend_ms, swing.retract_ms), (500, 500));

@@ -99,16 +99,20 @@ impl ActuatorKind {
         match self {
             // A gripper's jog buttons grip and release.
             _ if self.holds_part() => ("grip", "release"),
+            // A drive's contactors run it, as its jog buttons say.
+            _ if self.is_drive() => ("run forward", "run in reverse"),
             ActuatorKind::Swivel => ("swivel to 180°", "swivel back to 0°"),
             _ => ("extend", "retract"),
         }
     }
 
     /// What it does while its `+` or `-` output is on, for the manual jog
-    /// rungs of a valve's coils and the convert report's stroke times
-    /// (`extends`, `retracts`; a drive's jog says which way it runs).
+    /// rungs and the convert report's stroke times (`extends`, `retracts`;
+    /// a drive runs forward or in reverse, a gripper grips and releases).
     pub fn move_words(self) -> (&'static str, &'static str) {
         match self {
+            _ if self.holds_part() => ("grips", "releases"),
+            _ if self.is_drive() => ("runs forward", "runs in reverse"),
             ActuatorKind::Swivel => ("swivels to 180°", "swivels back to 0°"),
             _ => ("extends", "retracts"),
         }

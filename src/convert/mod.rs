@@ -6,6 +6,7 @@ mod beside;
 pub use allocate::{allocate, festo_allocation};
 mod findings;
 mod given;
+mod kind_times;
 use given::{
     by_name, delays_without_their_input, home_order_by_name, loads_without_effect,
     names_of_the_whole_table, overridden_by_the_command_line, rows_without_their_event,
@@ -151,10 +152,7 @@ fn finish_check(
             buttons: &buttons,
         };
         table::check_machine(table, &machine, &input.table, &mut diags);
-        // A kind with its own times (a vacuum gripper's build-up and
-        // release) has them unless the engineer gave a stroke.
-        let actuators = table.actuators.iter().map(|a| (a.number, a.max_position));
-        effective.simulation.machine.with_kind_times(actuators);
+        kind_times::kind_times(table, &mut effective, sheet_given.as_ref(), &mut diags);
         let sheet = input.settings.as_ref().zip(sheet_given.as_ref());
         settings_without_their_actuator(table, settings, sheet, &input.table.file, &mut diags);
         loads_without_effect(

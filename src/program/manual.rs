@@ -258,7 +258,7 @@ fn jog_rungs(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Vec<R
         }
         let kind = signals.kinds.get(&actuator);
         let (plus, minus) = match valve {
-            _ if drive => ("runs forward", "runs in reverse"),
+            _ if drive => crate::actuator::ActuatorKind::Motor.move_words(),
             Coils::Single { .. } => kind.map_or(("extends", "retracts"), |k| k.single_coil_words()),
             Coils::Double { .. } => kind.map_or(("extends", "retracts"), |k| k.move_words()),
         };

@@ -77,10 +77,10 @@ impl Piston {
     /// Whether sensor `position` sees the piston (within `window` of its point).
     /// A kind's own switch (a vacuum switch) reads as its kind says.
     pub fn sensor(&self, position: u32, window: f64) -> bool {
-        let half = self.window(window) + 1e-9;
-        if let Some(on) = self.valve.switch_reads(position, self.spool, self.s, half) {
+        if let Some(on) = self.valve.switch_reads(position, self.spool, self.s) {
             return on;
         }
+        let half = self.window(window) + 1e-9;
         (self.s - self.sensor_point(position)).abs() <= half
     }
 
@@ -185,9 +185,13 @@ impl Piston {
         // The sums of per-scan steps may round a hair past the nearest
         // threshold (never past the next: a step is far wider than the
         // rounding); step a copy as the run will and check where it ends.
+        // Every sensor's reading, not only the place: a vacuum switch
+        // drops at the vacuum's full decay, within the home window.
         let watched = |p: &Piston| {
             let beyond = mark.map(|(low, high)| (p.s < low, p.s > high));
-            (p.place(window), p.at_rest(), beyond)
+            let sensors = (0..=p.max_position.min(63))
+                .fold(0u64, |bits, q| bits | u64::from(p.sensor(q, window)) << q);
+            (p.place(window), p.at_rest(), beyond, sensors)
         };
         let mut copy = self.clone();
         for _ in 0..estimate {

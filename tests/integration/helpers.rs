@@ -148,6 +148,30 @@ pub fn line_with(text: &str, start: &str) -> String {
         .to_string()
 }
 
+/// How long step `step` lasted in a `simulate` report (squeezed by
+/// [`squeezed_stdout`]), in seconds.
+pub fn step_seconds(said: &str, step: u32) -> f64 {
+    let line = line_with(said, &format!("{step} "));
+    let seconds = line.split(' ').nth(3).expect("a duration");
+    seconds.parse().unwrap_or_else(|_| panic!("{line}"))
+}
+
+/// `simulate` of a workbook of a table (sheet `TABLE`) and its SETTINGS
+/// rows, with `args`: its stdout squeezed, its stderr, its exit code.
+pub fn simulate_sheets(
+    table: &[&[&str]],
+    settings: &[&[&str]],
+    args: &[&str],
+) -> (String, String, Option<i32>) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("h.xlsx");
+    write_xlsx_sheets(&path, &[("TABLE", table), ("SETTINGS", settings)]);
+    let assert = steptable().arg("simulate").arg(&path).args(args).assert();
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    let code = assert.get_output().status.code();
+    (squeezed_stdout(&assert), stderr, code)
+}
+
 pub fn xlsx_part(path: &Path, part: &str) -> String {
     use std::io::Read;
     let file = std::fs::File::open(path).expect("open");

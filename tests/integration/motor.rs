@@ -204,3 +204,43 @@ fn a_dead_limit_switch_leaves_the_drive_running_until_a_halt_cuts_it() {
         "HALT: y1+, y1- off (drives, and de-energise on halt)"
     );
 }
+
+/// Red team on the kinds: a drive's step actions were commented "extend
+/// C1" / "retract C1" in every language. Its contactors run it: each step
+/// and rung comment of the ST, AWL and FST, and the report's times, say it
+/// runs forward or in reverse, while the cylinder beside it still extends.
+/// Broken on purpose (a drive's coil words back to extend/retract) this
+/// failed on the ST.
+#[test]
+fn a_drive_s_step_comments_say_it_runs_in_every_language() {
+    let dir = tempfile::tempdir().unwrap();
+    let table = dir.path().join("gantry.csv");
+    std::fs::write(&table, "C1+1\nC2+1\nC2-0\nC1-0\n").unwrap();
+    steptable()
+        .args(["convert", "--valve", "C1=motor", "--modes", "all", "-o"])
+        .arg(dir.path())
+        .args(["--formats", "st,awl,fst,report"])
+        .arg(&table)
+        .assert()
+        .success();
+    for suffix in [".st", ".awl", ".fst.txt"] {
+        let text = std::fs::read_to_string(dir.path().join(format!("gantry/gantry{suffix}")))
+            .unwrap_or_else(|e| panic!("{suffix}: {e}"));
+        for said in [
+            "y1+ on: run forward C1, C1+1 towards x11",
+            "y1- on: run in reverse C1, C1-0 towards x10",
+            "y2+ on: extend C2, C2+1 towards x21",
+        ] {
+            assert!(text.contains(said), "{suffix}: {said}\n{text}");
+        }
+        assert!(
+            !text.contains("extend C1") && !text.contains("retract C1"),
+            "{suffix}: {text}"
+        );
+    }
+    let report = std::fs::read_to_string(dir.path().join("gantry/gantry.report.html")).unwrap();
+    assert!(
+        report.contains("valve motor, runs forward in 1s, runs in reverse in 1s"),
+        "{report}"
+    );
+}

@@ -8,8 +8,8 @@
 use predicates::str::contains;
 
 use crate::helpers::{
-    Refused, assert_refused, convert_csv, convert_sheets, line_with, root, squeezed_stdout,
-    steptable,
+    Refused, TWO_ACTUATORS, assert_refused, convert_csv, convert_sheets, line_with, read_sheet,
+    root, simulate_sheets, squeezed_stdout, step_seconds, steptable,
 };
 
 fn station() -> std::path::PathBuf {
@@ -259,4 +259,89 @@ fn the_command_line_s_kind_wins_over_the_sheet_s_and_says_so() {
         stderr.contains("warning[W006]: --load C2=0.1: C2's valve is swivel, which holds the arm at its end stop"),
         "{stderr}"
     );
+}
+
+/// The template's own SETTINGS sheet, as an engineer fills it who only
+/// picks the kinds in the valve column (C1 a swivel drive, C2 a vacuum
+/// gripper), with `times` in both time cells of those two rows.
+fn template_settings(times: &str) -> Vec<Vec<String>> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("tpl.xlsx");
+    steptable()
+        .args(["template", "-o"])
+        .arg(&path)
+        .assert()
+        .success();
+    let mut rows = read_sheet(&path, "SETTINGS");
+    let header = rows
+        .iter()
+        .position(|r| r.first().is_some_and(|c| c == "actuator"))
+        .expect("the template's actuator table");
+    for (row, kind) in [(header + 1, "swivel"), (header + 2, "vacuum")] {
+        let cells = &mut rows[row];
+        cells.resize(cells.len().max(4), String::new());
+        // The template leaves the times empty; the old one wrote 1s.
+        assert_eq!(cells[1..3], ["", ""], "{cells:?}");
+        cells[1] = times.to_string();
+        cells[2] = times.to_string();
+        cells[3] = kind.to_string();
+    }
+    rows
+}
+
+/// Finding 8 of the red team on the kinds: an engineer who only picks
+/// `swivel` and `vacuum` in the template's valve column gets the kinds' own
+/// times (its time cells are empty), without a warning; a workbook of the
+/// old template (1s in every row) keeps its 1 s and says so at each cell,
+/// with the kind's own time. Broken on purpose (the template writing 1s
+/// again) the first half failed on the empty cells; with W007 removed, the
+/// second half failed.
+#[test]
+fn the_template_leaves_a_swivel_drive_and_a_gripper_their_own_times() {
+    let run = |times: &str| {
+        let rows = template_settings(times);
+        let rows: Vec<Vec<&str>> = rows
+            .iter()
+            .map(|r| r.iter().map(String::as_str).collect())
+            .collect();
+        let rows: Vec<&[&str]> = rows.iter().map(Vec::as_slice).collect();
+        let header = 1 + rows
+            .iter()
+            .position(|r| r.first() == Some(&"actuator"))
+            .unwrap();
+        let (said, stderr, code) = simulate_sheets(TWO_ACTUATORS, &rows, &[]);
+        (said, stderr, code, header)
+    };
+    let (said, stderr, code, _) = run("");
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(!stderr.contains("warning"), "{stderr}");
+    // Swing out, grip, swing back, release: each its own time and a scan.
+    for (step, ms) in [(1, 500), (2, 300), (3, 500), (4, 200)] {
+        let seconds = step_seconds(&said, step);
+        let own = f64::from(ms) / 1000.0;
+        assert!(
+            (own - 0.011..=own + 0.011).contains(&seconds),
+            "step {step}:\n{said}"
+        );
+    }
+
+    let (said, stderr, code, header) = run("1s");
+    assert_eq!(code, Some(0), "{stderr}");
+    for (cell, own) in [
+        (format!("B{}", header + 1), "swivels to 180° in 500ms"),
+        (format!("C{}", header + 1), "swivels back to 0° in 500ms"),
+        (format!("B{}", header + 2), "grips in 300ms"),
+        (format!("C{}", header + 2), "releases in 200ms"),
+    ] {
+        let text = format!("SETTINGS!{cell}: warning[W007]");
+        let line = stderr.lines().find(|l| l.contains(&text));
+        assert!(
+            line.is_some_and(|l| l.contains(own) && l.contains("1s is taken as given")),
+            "{text} {own}:\n{stderr}"
+        );
+    }
+    for step in 1..=4 {
+        let seconds = step_seconds(&said, step);
+        assert!((0.96..=1.011).contains(&seconds), "step {step}:\n{said}");
+    }
 }

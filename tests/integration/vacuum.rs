@@ -10,7 +10,9 @@ use steptable::program::Signal;
 use steptable::simulate::Operator;
 use steptable::simulate::scenario::scenario;
 
-use crate::helpers::{Refused, assert_refused, line_with, root, squeezed_stdout, steptable};
+use crate::helpers::{
+    Refused, assert_refused, root, simulate_sheets, squeezed_stdout, step_seconds, steptable,
+};
 
 fn pick_and_place() -> std::path::PathBuf {
     root().join("tests/fixtures/pick_and_place.csv")
@@ -98,12 +100,7 @@ fn the_pick_and_place_runs_through_its_cycle_in_the_gripper_s_own_times() {
     // The gripper's steps last its build-up (step 2) and its release (step
     // 5: the vacuum switch drops once the vacuum is gone, not when the coil
     // drops), a scan or two more.
-    let duration = |step: &str| -> f64 {
-        let line = line_with(&said, step);
-        let seconds = line.split(' ').nth(3).expect("a duration");
-        seconds.parse().unwrap_or_else(|_| panic!("{line}"))
-    };
-    let (grip, release) = (duration("2 "), duration("5 "));
+    let (grip, release) = (step_seconds(&said, 2), step_seconds(&said, 5));
     assert!((0.29..0.35).contains(&grip), "{said}");
     assert!((0.18..0.25).contains(&release), "{said}");
     let checked = checked("vacuum");
@@ -111,6 +108,28 @@ fn the_pick_and_place_runs_through_its_cycle_in_the_gripper_s_own_times() {
     assert_eq!((stroke.extend_ms, stroke.retract_ms), (300, 200), "{said}");
     let cylinder = checked.settings.simulation.machine.strokes.of(1);
     assert_eq!(cylinder.extend_ms, 1000);
+}
+
+/// The vacuum switch reads 1 once the vacuum has fully built up and 0 once
+/// it has fully decayed, not at the 2 % short of the end at which a
+/// cylinder's sensor sees its piston: with 1 s given both ways, the grip
+/// step lasts the whole second, and so does the step that waits for the
+/// release. Broken on purpose (the switch read within the sensor window
+/// again) this failed on the grip step.
+#[test]
+fn the_vacuum_switch_waits_for_the_whole_build_up_and_release() {
+    let assert = steptable()
+        .arg("simulate")
+        .arg(pick_and_place())
+        .args(["--valve", "C2=vacuum", "--stroke", "C2=1s"])
+        .assert()
+        .success()
+        .stdout(contains("passed"));
+    let said = squeezed_stdout(&assert);
+    // One scan (10 ms) at most for the program to see the switch.
+    let (grip, release) = (step_seconds(&said, 2), step_seconds(&said, 5));
+    assert!((1.0..=1.01).contains(&grip), "{said}");
+    assert!((1.0..=1.01).contains(&release), "{said}");
 }
 
 #[test]
@@ -349,4 +368,98 @@ fn a_stop_at_once_keeps_the_part_unless_its_row_names_the_gripper() {
     assert!(kept.contains("on: y2"), "{kept}");
     let dropped = ended("C3 off, C2 off");
     assert!(!dropped.contains("y2"), "{dropped}");
+}
+
+/// One row of the actuator table's times for a gripper: its SETTINGS rows,
+/// options, what stderr must say (each at its cell) or that it warns of
+/// nothing, and the grip and release steps' times it runs in.
+struct KindTimes {
+    what: &'static str,
+    settings: &'static [&'static [&'static str]],
+    args: &'static [&'static str],
+    said: &'static [&'static str],
+    grip_ms: u32,
+    release_ms: u32,
+}
+
+/// An empty time cell takes the gripper's own time (the template leaves
+/// them empty); a row naming only its actuator says nothing; the old
+/// template's `1s` is kept and said at its cell (W007, naming the kind's
+/// own time); the command line's stroke wins without W007. Broken on
+/// purpose (an empty half back to the cylinder's 1 s) the half row ran its
+/// release in 1 s and this failed; with the bare rows' W003 back, the
+/// first row failed.
+#[test]
+fn a_gripper_s_time_cells_left_empty_take_its_own_times() {
+    const HEAD: &[&str] = &["actuator", "extend", "retract", "valve"];
+    let rows = [
+        KindTimes {
+            what: "the template's rows: only the valve chosen, unused actuators bare",
+            settings: &[HEAD, &["C1"], &["C2", "", "", "vacuum"], &["C5"], &["C8"]],
+            args: &[],
+            said: &[],
+            grip_ms: 300,
+            release_ms: 200,
+        },
+        KindTimes {
+            what: "half a row: the build-up given, the release empty",
+            settings: &[HEAD, &["C2", "2s", "", "vacuum"]],
+            args: &[],
+            said: &[],
+            grip_ms: 2000,
+            release_ms: 200,
+        },
+        KindTimes {
+            what: "a bare row repeated, then the actuator's row",
+            settings: &[HEAD, &["C2"], &["C2"], &["C2", "", "", "vacuum"]],
+            args: &[],
+            said: &[],
+            grip_ms: 300,
+            release_ms: 200,
+        },
+        KindTimes {
+            what: "the old template's 1s / 1s beside a gripper",
+            settings: &[HEAD, &["C1", "1s", "1s"], &["C2", "1s", "1s", "vacuum"]],
+            args: &[],
+            said: &[
+                "SETTINGS!B3: warning[W007]: extend of C2: 1s is taken as given, though C2 is a gripper (valve type vacuum), which grips in 300ms of its own",
+                "SETTINGS!C3: warning[W007]: retract of C2: 1s is taken as given",
+                "empty the cell to take 200ms",
+            ],
+            grip_ms: 1000,
+            release_ms: 1000,
+        },
+        KindTimes {
+            what: "the old template's 1s under a --stroke of the command line",
+            settings: &[HEAD, &["C2", "1s", "1s", "vacuum"]],
+            args: &["--stroke", "C2=500ms"],
+            said: &["SETTINGS!B2: warning[W006]: extend of C2: --stroke on the command line wins"],
+            grip_ms: 500,
+            release_ms: 500,
+        },
+    ];
+    for row in rows {
+        let (said, stderr, code) =
+            simulate_sheets(crate::helpers::TWO_ACTUATORS, row.settings, row.args);
+        assert_eq!(code, Some(0), "{}: {stderr}", row.what);
+        if row.said.is_empty() {
+            assert!(!stderr.contains("warning"), "{}: {stderr}", row.what);
+        }
+        for text in row.said {
+            assert!(stderr.contains(text), "{}: {text}\n{stderr}", row.what);
+        }
+        if !row.said.iter().any(|s| s.contains("W007")) {
+            assert!(!stderr.contains("W007"), "{}: {stderr}", row.what);
+        }
+        // A scan (10 ms) or two for the program to see the switch.
+        for (step, ms) in [(2, row.grip_ms), (4, row.release_ms)] {
+            let seconds = step_seconds(&said, step);
+            let given = f64::from(ms) / 1000.0;
+            assert!(
+                (given..=given + 0.021).contains(&seconds),
+                "{}: step {step}\n{said}",
+                row.what
+            );
+        }
+    }
 }

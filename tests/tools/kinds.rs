@@ -1,13 +1,14 @@
 //! One actuator kind in the engines: a fixture converted with its
 //! `--valve` list for every target and set of options, the written
-//! programs run in matiec (ST), OpenPLC's upload and awlsim (AWL, both
-//! mnemonic sets) against the trace steptable simulated, scan by scan.
+//! programs run in matiec (ST), OpenPLC's upload, awlsim (AWL, both
+//! mnemonic sets) and the FST interpreter against the trace steptable
+//! simulated, scan by scan.
 //! `vacuum.rs` and `swivel.rs` prove their kinds through it.
 
 use std::path::Path;
 
 use crate::differential::{openplc_accepts, run_all};
-use crate::engines::{self, Case, matiec};
+use crate::engines::{self, Case, fst, matiec};
 use crate::shared;
 
 /// Plain, with every safety check, and with every mode and safety check.
@@ -59,4 +60,22 @@ pub fn in_awlsim(what: &str, fixture: &str, valves: &str) {
     crate::differential::awl_in_awlsim(&format!("{what}: awlsim"), |dir, extra| {
         cases(fixture, valves, dir, extra)
     });
+}
+
+/// The `.fst.txt` of every case run in the FST interpreter as simulated
+/// (the festo target's, and the others' FST beside their own language).
+pub fn in_fst(what: &str, fixture: &str, valves: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = cases(fixture, valves, dir.path(), &["--formats", "fst"]);
+    run_all(&cases, |c| {
+        let text = std::fs::read_to_string(c.file(".fst.txt")).map_err(|e| e.to_string())?;
+        c.check_stepped(
+            "FST interpreter",
+            fst::run_stepped(&text, &c.trace, &c.festo),
+        )
+    });
+    eprintln!(
+        "{what}: {} .fst.txt files run in the FST interpreter, traces equal",
+        cases.len()
+    );
 }

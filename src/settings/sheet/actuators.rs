@@ -244,17 +244,14 @@ fn row_actuator(
     };
     reader.seen.extend(values.iter().map(|c| c.pos));
     let comment = crate::cell::actuator_comment(&name);
+    reader.seen.insert(name_cell.pos);
+    // The template lists C1 to C8 with their cells empty: a row naming
+    // only its actuator says "the defaults", which is what it gets. It
+    // reads as nothing, so it may repeat or name an actuator the table
+    // lacks without a word.
     if values.is_empty() && comment.is_none() {
-        reader.warn(
-            name_cell.pos,
-            format!(
-                "C{actuator} has nothing beside it in the actuator table; nothing was read for it"
-            ),
-            diags,
-        );
         return RowStart::Skip;
     }
-    reader.seen.insert(name_cell.pos);
     if let Some(earlier) = first_rows.get(&actuator) {
         reader.error(
             name_cell.pos,
