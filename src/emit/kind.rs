@@ -30,6 +30,12 @@ pub enum OutputKind {
     /// asked for by name or with `all`, not written by default (the ST
     /// program is).
     Ladder,
+    /// A Beremiz / OpenPLC Editor project folder whose `plc.xml` is the SFC
+    /// chart (`NAME.sfc.beremiz/`): asked for by name or with `all`.
+    BeremizSfc,
+    /// A Beremiz / OpenPLC Editor project folder whose `plc.xml` is the
+    /// Ladder body (`NAME.ld.beremiz/`): asked for by name or with `all`.
+    BeremizLd,
     /// TIA Portal SCL external source for the S7-1200/1500 (`.scl`).
     Scl,
     /// Studio 5000 ladder program export (`.L5X`).
@@ -52,7 +58,7 @@ impl OutputKind {
     }
 
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 22] = [
+    pub const ALL: [OutputKind; 24] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -71,6 +77,8 @@ impl OutputKind {
         OutputKind::Beremiz,
         OutputKind::Sfc,
         OutputKind::Ladder,
+        OutputKind::BeremizSfc,
+        OutputKind::BeremizLd,
         OutputKind::Scl,
         OutputKind::L5x,
         OutputKind::Grafcet,
@@ -78,12 +86,23 @@ impl OutputKind {
     ];
 
     /// What a conversion writes when `--formats` is not given: every kind
-    /// but the chart bodies, which are asked for by name.
+    /// but the graphical bodies, which are asked for by name.
     pub fn defaults() -> BTreeSet<OutputKind> {
         OutputKind::ALL
             .into_iter()
-            .filter(|k| !matches!(k, OutputKind::Sfc | OutputKind::Ladder))
+            .filter(|k| k.body().is_none())
             .collect()
+    }
+
+    /// The graphical body a kind carries in place of the ST program, if
+    /// any: the kind whose file it is (`NAME.sfc.xml` for the SFC project
+    /// folder).
+    pub fn body(self) -> Option<OutputKind> {
+        match self {
+            OutputKind::Sfc | OutputKind::BeremizSfc => Some(OutputKind::Sfc),
+            OutputKind::Ladder | OutputKind::BeremizLd => Some(OutputKind::Ladder),
+            _ => None,
+        }
     }
 
     /// The name used with `--formats`.
@@ -107,6 +126,8 @@ impl OutputKind {
             OutputKind::Beremiz => "beremiz",
             OutputKind::Sfc => "sfc",
             OutputKind::Ladder => "ld",
+            OutputKind::BeremizSfc => "beremiz-sfc",
+            OutputKind::BeremizLd => "beremiz-ld",
             OutputKind::Scl => "scl",
             OutputKind::L5x => "l5x",
             OutputKind::Grafcet => "grafcet",
@@ -116,7 +137,15 @@ impl OutputKind {
 
     /// How many files it writes: a Beremiz project folder holds two.
     pub fn file_count(self) -> usize {
-        if self == OutputKind::Beremiz { 2 } else { 1 }
+        if self.is_project_folder() { 2 } else { 1 }
+    }
+
+    /// Whether it is a Beremiz project folder (`plc.xml`, `beremiz.xml`).
+    pub fn is_project_folder(self) -> bool {
+        matches!(
+            self,
+            OutputKind::Beremiz | OutputKind::BeremizSfc | OutputKind::BeremizLd
+        )
     }
 
     /// Whether its lines end in CRLF: the lists Windows tools import (STEP 7
@@ -160,6 +189,8 @@ impl OutputKind {
             OutputKind::Beremiz => ".beremiz",
             OutputKind::Sfc => ".sfc.xml",
             OutputKind::Ladder => ".ld.xml",
+            OutputKind::BeremizSfc => ".sfc.beremiz",
+            OutputKind::BeremizLd => ".ld.beremiz",
             OutputKind::Scl => ".scl",
             // Studio 5000 writes and lists its exports as .L5X.
             OutputKind::L5x => ".L5X",
