@@ -36,6 +36,12 @@ pub enum OutputKind {
     /// A Beremiz / OpenPLC Editor project folder whose `plc.xml` is the
     /// Ladder body (`NAME.ld.beremiz/`): asked for by name or with `all`.
     BeremizLd,
+    /// The SFC chart as CODESYS V3 imports it (`NAME.sfc.codesys.xml`):
+    /// asked for by name or with `all`.
+    CodesysSfc,
+    /// The Ladder body as CODESYS V3 imports it (`NAME.ld.codesys.xml`):
+    /// asked for by name or with `all`.
+    CodesysLd,
     /// TIA Portal SCL external source for the S7-1200/1500 (`.scl`).
     Scl,
     /// Studio 5000 ladder program export (`.L5X`).
@@ -58,7 +64,7 @@ impl OutputKind {
     }
 
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 24] = [
+    pub const ALL: [OutputKind; 26] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -79,6 +85,8 @@ impl OutputKind {
         OutputKind::Ladder,
         OutputKind::BeremizSfc,
         OutputKind::BeremizLd,
+        OutputKind::CodesysSfc,
+        OutputKind::CodesysLd,
         OutputKind::Scl,
         OutputKind::L5x,
         OutputKind::Grafcet,
@@ -99,8 +107,12 @@ impl OutputKind {
     /// folder).
     pub fn body(self) -> Option<OutputKind> {
         match self {
-            OutputKind::Sfc | OutputKind::BeremizSfc => Some(OutputKind::Sfc),
-            OutputKind::Ladder | OutputKind::BeremizLd => Some(OutputKind::Ladder),
+            OutputKind::Sfc | OutputKind::BeremizSfc | OutputKind::CodesysSfc => {
+                Some(OutputKind::Sfc)
+            }
+            OutputKind::Ladder | OutputKind::BeremizLd | OutputKind::CodesysLd => {
+                Some(OutputKind::Ladder)
+            }
             _ => None,
         }
     }
@@ -128,6 +140,8 @@ impl OutputKind {
             OutputKind::Ladder => "ld",
             OutputKind::BeremizSfc => "beremiz-sfc",
             OutputKind::BeremizLd => "beremiz-ld",
+            OutputKind::CodesysSfc => "codesys-sfc",
+            OutputKind::CodesysLd => "codesys-ld",
             OutputKind::Scl => "scl",
             OutputKind::L5x => "l5x",
             OutputKind::Grafcet => "grafcet",
@@ -191,6 +205,8 @@ impl OutputKind {
             OutputKind::Ladder => ".ld.xml",
             OutputKind::BeremizSfc => ".sfc.beremiz",
             OutputKind::BeremizLd => ".ld.beremiz",
+            OutputKind::CodesysSfc => ".sfc.codesys.xml",
+            OutputKind::CodesysLd => ".ld.codesys.xml",
             OutputKind::Scl => ".scl",
             // Studio 5000 writes and lists its exports as .L5X.
             OutputKind::L5x => ".L5X",

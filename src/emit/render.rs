@@ -193,6 +193,13 @@ impl<'a> Renderer<'a> {
             OutputKind::CodesysV2 => self.iec(kind, IecFile::CodesysV2)?,
             OutputKind::Sfc => text(kind, super::sfc::render(&input))?,
             OutputKind::Ladder => text(kind, super::ladder::render(&input))?,
+            OutputKind::CodesysSfc => {
+                text(kind, super::codesys_body::render(&input, OutputKind::Sfc))?
+            }
+            OutputKind::CodesysLd => text(
+                kind,
+                super::codesys_body::render(&input, OutputKind::Ladder),
+            )?,
         };
         Ok(vec![file(bytes)])
     }
