@@ -1,6 +1,7 @@
 //! The Beremiz project folders of the graphical bodies (`--formats
 //! beremiz-sfc,beremiz-ld`: `NAME.sfc.beremiz/`, `NAME.ld.beremiz/`, issue
-//! 39 item 3): each folder's `plc.xml` is the chart's or the ladder's file
+//! 39 item 3) and their CODESYS files (`codesys-sfc`, `codesys-ld`: the
+//! POUs proven in Beremiz byte for byte, `GVL_IO`, the task's calls): each folder's `plc.xml` is the chart's or the ladder's file
 //! byte for byte, its `beremiz.xml` the ST project's, the ST project is
 //! unchanged beside them, and neither folder is written unless asked for
 //! (or with `all`); the hostile requests, each through the binary with its
@@ -49,9 +50,69 @@ fn the_body_projects_hold_the_chart_and_the_ladder_as_written() {
     }
 }
 
+/// The text between `from` and the next `to` in `text`.
+fn between<'t>(text: &'t str, from: &str, to: &str) -> &'t str {
+    let (_, rest) = text.split_once(from).unwrap_or_else(|| panic!("no {from}"));
+    rest.split_once(to).unwrap_or_else(|| panic!("no {to}")).0
+}
+
+/// The CODESYS files of the bodies carry the POUs proven in Beremiz and
+/// matiec byte for byte, the ST export's `GVL_IO`, and a task calling the
+/// chart's timer program, the chart and its rung program in that order.
+#[test]
+fn the_codesys_bodies_hold_the_proven_pous() {
+    let dir = tempfile::tempdir().unwrap();
+    steptable()
+        .arg("convert")
+        .arg(root().join("samples/sorting_station.xlsx"))
+        .args(["--modes", "all", "--safety", "all", "--formats"])
+        .arg("sfc,ld,codesys,codesys-sfc,codesys-ld")
+        .arg("-o")
+        .arg(dir.path())
+        .assert()
+        .success();
+    let out = dir.path().join("sorting_station");
+    let text = |name: &str| String::from_utf8(read(&out, name)).unwrap();
+    let st = text("sorting_station.codesys.xml");
+    let gvl_io = between(&st, "<globalVars name=\"GVL_IO\">", "<addData>");
+    for (body, calls) in [
+        (
+            "sfc",
+            &["steptable_pre", "steptable_main", "steptable_post"][..],
+        ),
+        ("ld", &["steptable_main"][..]),
+    ] {
+        let beremiz = text(&format!("sorting_station.{body}.xml"));
+        let codesys = text(&format!("sorting_station.{body}.codesys.xml"));
+        assert!(codesys.contains("xmlns=\"http://www.plcopen.org/xml/tc6_0200\""));
+        assert_eq!(
+            between(&codesys, "<pous>", "</pous>"),
+            between(&beremiz, "<pous>", "</pous>"),
+            "{body}: the POUs"
+        );
+        assert_eq!(
+            between(&codesys, "<globalVars name=\"GVL_IO\">", "<addData>"),
+            gvl_io,
+            "{body}: GVL_IO"
+        );
+        let task = between(&codesys, "<task name=\"MainTask\"", "</task>");
+        let called: Vec<&str> = task
+            .split("<pouInstance name=\"")
+            .skip(1)
+            .map(|r| r.split('"').next().unwrap())
+            .collect();
+        assert_eq!(called, calls, "{body}: the task's calls");
+        let state = between(&codesys, "<globalVars name=\"GVL_steptable\">", "<addData>");
+        assert!(
+            state.contains("<variable name=\"halt\">"),
+            "{body}: {state}"
+        );
+    }
+}
+
 #[test]
 fn the_body_projects_are_written_when_asked_for_or_with_all() {
-    let has = |args: &[&str]| -> (bool, bool) {
+    let has = |args: &[&str]| -> [bool; 4] {
         let dir = tempfile::tempdir().unwrap();
         steptable()
             .arg("convert")
@@ -61,16 +122,26 @@ fn the_body_projects_are_written_when_asked_for_or_with_all() {
             .arg(dir.path())
             .assert()
             .success();
-        let folder = |s: &str| {
-            dir.path()
-                .join(format!("paper_example/paper_example{s}"))
-                .is_dir()
-        };
-        (folder(".sfc.beremiz"), folder(".ld.beremiz"))
+        let place = |s: &str| dir.path().join(format!("paper_example/paper_example{s}"));
+        [
+            ".sfc.beremiz",
+            ".ld.beremiz",
+            ".sfc.codesys.xml",
+            ".ld.codesys.xml",
+        ]
+        .map(|s| place(s).exists())
     };
-    assert_eq!(has(&["--formats", "st"]), (false, false));
-    assert_eq!(has(&["--formats", "all"]), (true, true));
-    assert_eq!(has(&["--formats", "beremiz-ld"]), (false, true));
+    assert_eq!(has(&[]), [false; 4]);
+    assert_eq!(has(&["--formats", "st,beremiz,codesys"]), [false; 4]);
+    assert_eq!(has(&["--formats", "all"]), [true; 4]);
+    assert_eq!(
+        has(&["--formats", "beremiz-ld"]),
+        [false, true, false, false]
+    );
+    assert_eq!(
+        has(&["--formats", "codesys-sfc"]),
+        [false, false, true, false]
+    );
 }
 
 struct Hostile {
@@ -112,6 +183,39 @@ const HOSTILE: &[Hostile] = &[
         says: &["\"sfc.beremiz\" is not an output format", "beremiz-sfc"],
     },
     Hostile {
+        what: "codesys-ld given twice",
+        table: TWO_STEPS,
+        args: &["--formats", "codesys-ld,CODESYS-LD"],
+        says: &["'--formats <LIST>'", "\"codesys-ld\" is given twice"],
+    },
+    Hostile {
+        what: "the CODESYS body misspelt",
+        table: TWO_STEPS,
+        args: &["--formats", "codesys_sfc"],
+        says: &[
+            "\"codesys_sfc\" is not an output format",
+            "did you mean codesys-sfc (writes NAME.sfc.codesys.xml)?",
+        ],
+    },
+    Hostile {
+        what: "a machine input named as CODESYS's I/O list (names are not case sensitive there)",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,I:GVL_IO\nSTEP 3,C1-0\n",
+        args: &["--formats", "codesys-sfc"],
+        says: &["t.csv:3:2: error[E015]", "\"gvl_io\" cannot name"],
+    },
+    Hostile {
+        what: "a machine input named as the body's state list",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,I:gvl_steptable\nSTEP 3,C1-0\n",
+        args: &["--formats", "codesys-ld"],
+        says: &["t.csv:3:2: error[E015]", "\"gvl_steptable\" cannot name"],
+    },
+    Hostile {
+        what: "a machine input named as CODESYS's task",
+        table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,I:MainTask\nSTEP 3,C1-0\n",
+        args: &["--formats", "codesys-sfc"],
+        says: &["t.csv:3:2: error[E015]", "\"maintask\" cannot name"],
+    },
+    Hostile {
         what: "a machine input named as the chart's timer program",
         table: ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=2s\nSTEP 3,I:steptable_pre\nSTEP 4,C1-0\n",
         args: &["--formats", "beremiz-sfc"],
@@ -149,7 +253,7 @@ fn hostile_body_project_requests_are_refused_and_write_nothing() {
 #[test]
 fn a_body_project_folder_never_overwrites_what_is_in_its_way() {
     type Place = fn(&std::path::Path) -> std::path::PathBuf;
-    let rows: [(&str, &str, Place, &str); 3] = [
+    let rows: [(&str, &str, Place, &str); 4] = [
         (
             "beremiz-sfc",
             "a file of the user's as plc.xml",
@@ -158,6 +262,15 @@ fn a_body_project_folder_never_overwrites_what_is_in_its_way() {
                 std::fs::create_dir_all(&dir).unwrap();
                 std::fs::write(dir.join("plc.xml"), "mine").unwrap();
                 dir.join("plc.xml")
+            },
+            "no steptable run recorded writing this file",
+        ),
+        (
+            "codesys-ld",
+            "a file of the user's as the CODESYS body",
+            |t| {
+                std::fs::write(t.join("t.ld.codesys.xml"), "mine").unwrap();
+                t.join("t.ld.codesys.xml")
             },
             "no steptable run recorded writing this file",
         ),
