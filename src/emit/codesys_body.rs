@@ -23,7 +23,7 @@ pub fn render(input: &EmitInput, body: OutputKind) -> Result<String, TemplateErr
     let (internals, _) = st::internals(input);
     let (template, what, file, globals) = if body == OutputKind::Ladder {
         let file = super::ladder::render(input)?;
-        let globals = super::ladder::globals(input, internals).map_err(|detail| bug(detail))?;
+        let globals = super::ladder::globals(input, internals).map_err(bug)?;
         ("ld.xml.j2", "the step program in Ladder", file, globals)
     } else {
         let file = super::sfc::render(input)?;

@@ -36,6 +36,9 @@ const EVENTS: [(&str, &str); 3] = [
 /// done: a full cycle after the reset shows that the body is back in its
 /// initial step (a scenario with a START event presses START only where
 /// it says).
+/// Events as `simulate` reads them: (`press`, `STOP@step2`).
+type Events<'a> = &'a [(&'a str, &'a str)];
+
 const EVENTS_THEN_START: [(&str, &str); 5] = [
     ("press", "START@0.5s"),
     EVENTS[0],
@@ -102,7 +105,7 @@ fn stop_estop_and_reset_run_as_printed_in_the_beremiz_projects() {
     let xmllint = tool(Tool::Xmllint);
     let dir = tempfile::tempdir().unwrap();
     let oven = [("press", "STOP@15s")];
-    let runs: [(&str, &str, &[(&str, &str)]); 3] = [
+    let runs: [(&str, &str, Events); 3] = [
         ("paper_example", "stop,estop,reset", &EVENTS_THEN_START),
         ("drilling_station", "stop,estop,reset", &EVENTS_THEN_START),
         ("oven", "stop", &oven),
