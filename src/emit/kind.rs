@@ -373,10 +373,16 @@ mod tests {
             let err = OutputKind::parse_list(list).unwrap_err();
             assert!(err.contains(said), "{list}: {err}");
         }
-        // `all` is every kind, the Ladder body too (it draws every timer).
+        // `all` is every kind, the graphical bodies and their Beremiz and
+        // CODESYS containers too (the ladder draws every timer).
         let all = OutputKind::parse_list("ALL").unwrap();
-        assert_eq!(all.len(), 22);
+        assert_eq!(all.len(), 26);
         assert!(all.contains(&OutputKind::Ladder) && all.contains(&OutputKind::Sfc));
+        assert!(all.contains(&OutputKind::BeremizSfc) && all.contains(&OutputKind::CodesysLd));
+        // None of them by default: the ST program stays the default.
+        let defaults = OutputKind::defaults();
+        assert_eq!(defaults.len(), 20);
+        assert!(defaults.iter().all(|k| k.body().is_none()));
         assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(crate::cell::edit_distance("kitten", "sitting"), 3);
     }
