@@ -219,6 +219,12 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "steptable_post",
         "pre_instance",
         "post_instance",
+        // The objects of the CODESYS files (CODESYS names are not case
+        // sensitive): a variable named like a global variable list or the
+        // task would be ambiguous there.
+        "gvl_io",
+        "gvl_steptable",
+        "maintask",
         // The blocks of the TIA Portal SCL source and the program and
         // routine of the Studio 5000 export (TIA_CYCLIC_OB, …, lower case).
         "main",

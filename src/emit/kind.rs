@@ -30,6 +30,18 @@ pub enum OutputKind {
     /// asked for by name or with `all`, not written by default (the ST
     /// program is).
     Ladder,
+    /// A Beremiz / OpenPLC Editor project folder whose `plc.xml` is the SFC
+    /// chart (`NAME.sfc.beremiz/`): asked for by name or with `all`.
+    BeremizSfc,
+    /// A Beremiz / OpenPLC Editor project folder whose `plc.xml` is the
+    /// Ladder body (`NAME.ld.beremiz/`): asked for by name or with `all`.
+    BeremizLd,
+    /// The SFC chart as CODESYS V3 imports it (`NAME.sfc.codesys.xml`):
+    /// asked for by name or with `all`.
+    CodesysSfc,
+    /// The Ladder body as CODESYS V3 imports it (`NAME.ld.codesys.xml`):
+    /// asked for by name or with `all`.
+    CodesysLd,
     /// TIA Portal SCL external source for the S7-1200/1500 (`.scl`).
     Scl,
     /// Studio 5000 ladder program export (`.L5X`).
@@ -52,7 +64,7 @@ impl OutputKind {
     }
 
     /// Every kind, in the order files are listed.
-    pub const ALL: [OutputKind; 22] = [
+    pub const ALL: [OutputKind; 26] = [
         OutputKind::Workbook,
         OutputKind::StructuredText,
         OutputKind::Fst,
@@ -71,6 +83,10 @@ impl OutputKind {
         OutputKind::Beremiz,
         OutputKind::Sfc,
         OutputKind::Ladder,
+        OutputKind::BeremizSfc,
+        OutputKind::BeremizLd,
+        OutputKind::CodesysSfc,
+        OutputKind::CodesysLd,
         OutputKind::Scl,
         OutputKind::L5x,
         OutputKind::Grafcet,
@@ -78,12 +94,27 @@ impl OutputKind {
     ];
 
     /// What a conversion writes when `--formats` is not given: every kind
-    /// but the chart bodies, which are asked for by name.
+    /// but the graphical bodies, which are asked for by name.
     pub fn defaults() -> BTreeSet<OutputKind> {
         OutputKind::ALL
             .into_iter()
-            .filter(|k| !matches!(k, OutputKind::Sfc | OutputKind::Ladder))
+            .filter(|k| k.body().is_none())
             .collect()
+    }
+
+    /// The graphical body a kind carries in place of the ST program, if
+    /// any: the kind whose file it is (`NAME.sfc.xml` for the SFC project
+    /// folder).
+    pub fn body(self) -> Option<OutputKind> {
+        match self {
+            OutputKind::Sfc | OutputKind::BeremizSfc | OutputKind::CodesysSfc => {
+                Some(OutputKind::Sfc)
+            }
+            OutputKind::Ladder | OutputKind::BeremizLd | OutputKind::CodesysLd => {
+                Some(OutputKind::Ladder)
+            }
+            _ => None,
+        }
     }
 
     /// The name used with `--formats`.
@@ -107,6 +138,10 @@ impl OutputKind {
             OutputKind::Beremiz => "beremiz",
             OutputKind::Sfc => "sfc",
             OutputKind::Ladder => "ld",
+            OutputKind::BeremizSfc => "beremiz-sfc",
+            OutputKind::BeremizLd => "beremiz-ld",
+            OutputKind::CodesysSfc => "codesys-sfc",
+            OutputKind::CodesysLd => "codesys-ld",
             OutputKind::Scl => "scl",
             OutputKind::L5x => "l5x",
             OutputKind::Grafcet => "grafcet",
@@ -116,7 +151,15 @@ impl OutputKind {
 
     /// How many files it writes: a Beremiz project folder holds two.
     pub fn file_count(self) -> usize {
-        if self == OutputKind::Beremiz { 2 } else { 1 }
+        if self.is_project_folder() { 2 } else { 1 }
+    }
+
+    /// Whether it is a Beremiz project folder (`plc.xml`, `beremiz.xml`).
+    pub fn is_project_folder(self) -> bool {
+        matches!(
+            self,
+            OutputKind::Beremiz | OutputKind::BeremizSfc | OutputKind::BeremizLd
+        )
     }
 
     /// Whether its lines end in CRLF: the lists Windows tools import (STEP 7
@@ -160,6 +203,10 @@ impl OutputKind {
             OutputKind::Beremiz => ".beremiz",
             OutputKind::Sfc => ".sfc.xml",
             OutputKind::Ladder => ".ld.xml",
+            OutputKind::BeremizSfc => ".sfc.beremiz",
+            OutputKind::BeremizLd => ".ld.beremiz",
+            OutputKind::CodesysSfc => ".sfc.codesys.xml",
+            OutputKind::CodesysLd => ".ld.codesys.xml",
             OutputKind::Scl => ".scl",
             // Studio 5000 writes and lists its exports as .L5X.
             OutputKind::L5x => ".L5X",
@@ -326,10 +373,16 @@ mod tests {
             let err = OutputKind::parse_list(list).unwrap_err();
             assert!(err.contains(said), "{list}: {err}");
         }
-        // `all` is every kind, the Ladder body too (it draws every timer).
+        // `all` is every kind, the graphical bodies and their Beremiz and
+        // CODESYS containers too (the ladder draws every timer).
         let all = OutputKind::parse_list("ALL").unwrap();
-        assert_eq!(all.len(), 22);
+        assert_eq!(all.len(), 26);
         assert!(all.contains(&OutputKind::Ladder) && all.contains(&OutputKind::Sfc));
+        assert!(all.contains(&OutputKind::BeremizSfc) && all.contains(&OutputKind::CodesysLd));
+        // None of them by default: the ST program stays the default.
+        let defaults = OutputKind::defaults();
+        assert_eq!(defaults.len(), 20);
+        assert!(defaults.iter().all(|k| k.body().is_none()));
         assert!(OutputKind::parse_list(" ").is_err());
         assert_eq!(crate::cell::edit_distance("kitten", "sitting"), 3);
     }

@@ -4,6 +4,7 @@
 //! comment is in [`crate::symbols`]; templates in `templates/` only lay out.
 
 pub mod awl;
+pub mod codesys_body;
 pub mod diagram;
 pub mod equations;
 pub mod faults_csv;

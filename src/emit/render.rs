@@ -175,7 +175,9 @@ impl<'a> Renderer<'a> {
             OutputKind::Rockwell => text(kind, super::tables::render_rockwell(&input))?,
             OutputKind::Scl => text(kind, super::scl::render(&input))?,
             OutputKind::L5x => text(kind, super::l5x::render(&input))?,
-            OutputKind::Beremiz => return self.beremiz(),
+            OutputKind::Beremiz | OutputKind::BeremizSfc | OutputKind::BeremizLd => {
+                return self.beremiz(kind);
+            }
             OutputKind::Grafcet => super::grafcet::render_svg(&input).into_bytes(),
             OutputKind::Report => super::report::render(&input)
                 .map_err(|e| internal("report", e))?
@@ -191,6 +193,13 @@ impl<'a> Renderer<'a> {
             OutputKind::CodesysV2 => self.iec(kind, IecFile::CodesysV2)?,
             OutputKind::Sfc => text(kind, super::sfc::render(&input))?,
             OutputKind::Ladder => text(kind, super::ladder::render(&input))?,
+            OutputKind::CodesysSfc => {
+                text(kind, super::codesys_body::render(&input, OutputKind::Sfc))?
+            }
+            OutputKind::CodesysLd => text(
+                kind,
+                super::codesys_body::render(&input, OutputKind::Ladder),
+            )?,
         };
         Ok(vec![file(bytes)])
     }
@@ -214,14 +223,19 @@ impl<'a> Renderer<'a> {
         text(kind, super::st::render(&input, &model, file))
     }
 
-    /// A project folder Beremiz and the OpenPLC Editor open as it is: the
-    /// PLCopen XML as `plc.xml` (the same bytes as `NAME.plcopen.xml`), and
-    /// `beremiz.xml`.
-    fn beremiz(&mut self) -> Result<Vec<OutputFile>, EmitError> {
-        let folder = format!("{}{}", self.input.name, OutputKind::Beremiz.suffix());
-        let plc = match self.plcopen.clone() {
-            Some(bytes) => bytes,
-            None => self.iec(OutputKind::PlcOpen, IecFile::PlcOpen)?,
+    /// A project folder Beremiz and the OpenPLC Editor open as it is: as
+    /// `plc.xml` the PLCopen XML (the same bytes as `NAME.plcopen.xml`), or
+    /// for the graphical bodies their file's bytes (`NAME.sfc.xml`,
+    /// `NAME.ld.xml`), and `beremiz.xml`.
+    fn beremiz(&mut self, kind: OutputKind) -> Result<Vec<OutputFile>, EmitError> {
+        let folder = format!("{}{}", self.input.name, kind.suffix());
+        let plc = match (kind.body(), self.plcopen.clone()) {
+            (Some(body), _) => {
+                let mut files = self.render(body)?;
+                files.pop().map(|f| f.bytes).unwrap_or_default()
+            }
+            (None, Some(bytes)) => bytes,
+            (None, None) => self.iec(OutputKind::PlcOpen, IecFile::PlcOpen)?,
         };
         let project = self.iec(OutputKind::Beremiz, IecFile::BeremizProject)?;
         Ok(vec![

@@ -36,6 +36,10 @@ pub const DEFAULTS: &[(&str, &str)] = &[
         "codesys.xml.j2",
         include_str!("../../templates/codesys.xml.j2"),
     ),
+    (
+        "codesys_body.xml.j2",
+        include_str!("../../templates/codesys_body.xml.j2"),
+    ),
     ("gvl.txt.j2", include_str!("../../templates/gvl.txt.j2")),
     (
         "program.awl.j2",

@@ -250,6 +250,10 @@ fn the_types_lists_hold_every_value() {
             Grafcet => 19,
             Report => 20,
             Ladder => 21,
+            BeremizSfc => 22,
+            BeremizLd => 23,
+            CodesysSfc => 24,
+            CodesysLd => 25,
         }
     }
     fn all_of(indices: Vec<usize>, count: usize) {
@@ -259,7 +263,7 @@ fn the_types_lists_hold_every_value() {
     all_of(ActuatorKind::ALL.map(valve).to_vec(), 8);
     all_of(Target::ALL.map(target).to_vec(), 3);
     all_of(Mnemonic::ALL.map(mnemonic).to_vec(), 2);
-    all_of(OutputKind::ALL.map(kind).to_vec(), 22);
+    all_of(OutputKind::ALL.map(kind).to_vec(), 26);
     for name in ActuatorKind::names() {
         assert!(name.parse::<ActuatorKind>().is_ok(), "{name}");
     }

@@ -5,6 +5,7 @@
 mod abandoned;
 mod batch;
 mod boards;
+mod body_projects;
 mod broken;
 mod budgets;
 mod codes;

@@ -17,6 +17,7 @@ mod differential;
 mod differential_native;
 mod differential_random;
 mod differential_timing;
+mod editor_load;
 mod engines;
 mod exports;
 mod halt;
@@ -195,6 +196,7 @@ fn main() {
         halt::CHECKS,
         homing::CHECKS,
         ladder::CHECKS,
+        editor_load::CHECKS,
         sync::CHECKS,
         synth_engines::CHECKS,
         swivel::CHECKS,

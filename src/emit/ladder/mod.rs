@@ -32,7 +32,7 @@ use serde::Serialize;
 mod place;
 
 use super::lower::{Lowered, lower};
-use super::st::{Spelling, comment_text};
+use super::st::{Internal, Spelling, comment_text};
 use super::{EmitInput, templates};
 use crate::program::{Action, INITIAL_STEP, Literal, Signal};
 use place::{COMMENT_H, ELEMENT_H, ELEMENT_W, PIN_Y, Placer, RAIL_W, RAIL_X, Rung};
@@ -311,6 +311,29 @@ fn ladder(input: &EmitInput) -> Result<Ladder, String> {
         comment_w: placer.right_x() - RAIL_X,
         comment_h: COMMENT_H,
     })
+}
+
+/// The ladder's variables besides its I/O and its TON instances (which are
+/// the POU's own), as a global variable list declares them: the ST
+/// program's memories, run flags and presets, then the step flags and
+/// `fired`. `internals` are the ST program's.
+pub(super) fn globals(
+    input: &EmitInput,
+    internals: Vec<Internal>,
+) -> Result<Vec<Internal>, String> {
+    let ladder = ladder(input)?;
+    let flags = ladder.flags.into_iter().map(|f| Internal {
+        ident: f.ident,
+        data_type: "BOOL",
+        derived: false,
+        initial: Some(if f.initial { "TRUE" } else { "FALSE" }.to_string()),
+        comment: f.comment,
+    });
+    Ok(internals
+        .into_iter()
+        .filter(|v| v.ident != ladder.step_counter && v.data_type != "TON")
+        .chain(flags)
+        .collect())
 }
 
 /// Renders `NAME.ld.xml`: the IEC context (variables, configuration) and
