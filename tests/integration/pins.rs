@@ -307,10 +307,13 @@ fn the_criteria_outputs_start_a_word_and_can_be_pinned() {
         assert!(io.contains("criterion 9 missing: the step ran out of time and x32 on is not met"));
     }
     let mut pins: Vec<Vec<String>> = vec![vec!["SIGNAL".into(), "ADDRESS".into()]];
-    pins.extend((1..=11).map(|n| vec![format!("miss{n}"), format!("Q8.{}", (n - 1) % 8 + 0)]));
-    pins[9][1] = "Q9.0".into();
-    pins[10][1] = "Q9.1".into();
-    pins[11][1] = "Q9.2".into();
+    // miss1 … miss8 at Q8.0 … Q8.7, miss9 … miss11 at Q9.0 … Q9.2.
+    pins.extend((0..11).map(|k| {
+        vec![
+            format!("miss{}", k + 1),
+            format!("Q{}.{}", 8 + k / 8, k % 8),
+        ]
+    }));
     let pins: Vec<Vec<&str>> = pins
         .iter()
         .map(|r| r.iter().map(String::as_str).collect())
