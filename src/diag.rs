@@ -92,6 +92,10 @@ pub enum Code {
     /// A move asks an actuator for a position its kind cannot hold (a
     /// vacuum gripper has released 0 and held 1 only).
     E045KindCannotHold,
+    /// A SETTINGS label that is a known setting misspelt (`mode`, `hold
+    /// safe`, `supervison`), or a setting and its value in one cell: the
+    /// program would be written without the setting.
+    E046MistypedSetting,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -158,6 +162,7 @@ impl Code {
             Code::E041BadCommandLine => "E041",
             Code::E042BadScenarioEvent => "E042",
             Code::E045KindCannotHold => "E045",
+            Code::E046MistypedSetting => "E046",
         }
     }
 }

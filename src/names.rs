@@ -199,6 +199,7 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "step_ok",
         "step_mem",
         "man_mem",
+        "jog_ok",
         "homing",
         FIRED,
         STEP_COUNTER,

@@ -26,6 +26,15 @@ impl ActuatorKind {
         }
     }
 
+    /// A coil's verb said of its actuator, the actuator after the verb's
+    /// first word: `extend C1`, `run C1 forward`, `swivel C3 back to 0°`.
+    pub fn verb_of(verb: &str, actuator: &str) -> String {
+        match verb.split_once(' ') {
+            Some((first, rest)) => format!("{first} {actuator} {rest}"),
+            None => format!("{verb} {actuator}"),
+        }
+    }
+
     /// What its one coil does, for the comments of the rungs that switch
     /// it: on, then off (`52mono`: extend, the spring retracts).
     pub fn single_coil_words(self) -> (&'static str, &'static str) {
@@ -206,6 +215,15 @@ mod tests {
         );
         assert_eq!(swivel.sensor_comment("3", 1, 1), "swivel drive 3, at 180°");
         assert_eq!(swivel.coil_words(), ("swivel to 180°", "swivel back to 0°"));
+        assert_eq!(
+            ActuatorKind::verb_of("swivel back to 0°", "C3"),
+            "swivel C3 back to 0°"
+        );
+        assert_eq!(ActuatorKind::verb_of("run forward", "C1"), "run C1 forward");
+        assert_eq!(
+            ActuatorKind::verb_of("extend", "C1 (clamp)"),
+            "extend C1 (clamp)"
+        );
         assert_eq!(
             swivel.move_words(),
             ("swivels to 180°", "swivels back to 0°")

@@ -449,12 +449,32 @@ pub(super) fn supervision_times(
             continue;
         };
         let (longest, dwell) = crate::program::expected_step_ms(table, step, strokes);
+        let text = |ms: u64| crate::cell::duration_text(ms.min(u64::from(u32::MAX)) as u32);
         let takes = longest + dwell;
         if u64::from(ms) <= takes {
             refuse(format!(
                 "step {number}'s {} is not longer than the {} the step takes in a healthy machine (its longest move, plus its dwell): the alarm would come every cycle",
                 crate::cell::duration_text(ms),
-                crate::cell::duration_text(takes.min(u64::from(u32::MAX)) as u32)
+                text(takes)
+            ));
+            continue;
+        }
+        // The proof answers a wait after its input's delay: no alarm there.
+        let delay_of = |w: &crate::table::Wait| settings.simulation.input_delay_ms(&w.input);
+        let waits = step
+            .waits
+            .iter()
+            .map(|w| (&w.input, u64::from(delay_of(w))));
+        let Some((input, delay)) = waits.max_by_key(|(_, delay)| *delay) else {
+            continue;
+        };
+        let waited = longest.max(delay) + dwell;
+        if u64::from(ms) <= waited {
+            refuse(format!(
+                "step {number}'s {} is not longer than the {} the step takes in the program's proof, which answers its wait for I:{input} after {} (--input-delay), plus its dwell: the proof would raise the alarm; give step {number} a longer time, or I:{input} a shorter delay with --input-delay {input}=…",
+                crate::cell::duration_text(ms),
+                text(waited),
+                text(delay)
             ));
         }
     }

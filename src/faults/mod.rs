@@ -7,6 +7,7 @@ mod cases;
 mod healthy;
 pub mod mitigation;
 mod phases;
+mod single_step;
 #[cfg(test)]
 mod step_tests;
 
@@ -417,7 +418,10 @@ pub fn analyse_sets(
             runs
         })
         .collect();
-    let cases = worst_cases(sets, &moments, &onsets, &verdicts);
+    let mut cases = worst_cases(sets, &moments, &onsets, &verdicts);
+    if program.signals.inputs.contains(&Signal::StepButton) {
+        single_step::judge_step_button(&mut cases, table, program, settings);
+    }
     FaultTable {
         cases,
         moments,

@@ -13,7 +13,9 @@
 //!   scan its jog rung sets it, so only while its button is held.
 //! - Both buttons of one actuator held: neither coil; a jog switches the
 //!   other coil of its valve off (one a halt held on), never two at once.
-//! - Not while the EMERGENCY STOP is pressed, nor while a halt (the
+//! - Not until every jog button has read released in manual (`jog_ok`):
+//!   a button held or stuck as the selector turns moves nothing.
+//! - Not while the EMERGENCY STOP or STOP is pressed, nor while a halt (the
 //!   emergency stop's, a check's) waits for RESET, not while any interlock
 //!   input is off (ranged ones too: manual has no step to exempt).
 //! - The scan manual ends in switches off what the jogs left on (a button
@@ -24,6 +26,11 @@
 //!   actuator is pressed (`joggedN`); from then on it follows its button,
 //!   so a tap never latches it.
 //! - A drive is cut at the limit switch of the way it runs.
+//! - A held coil keeps its actuator's stop request (a 5/3 piston stops at
+//!   the middle position it was heading for, as after a halt) until a jog
+//!   of the actuator takes it over.
+//! - RESET clears the halt and the alarms, homes nothing, touches no
+//!   output.
 
 use super::signals::{Coils, Signals};
 use super::{Action, Literal, ProgramOptions, Rung, RungKind, Signal};
@@ -43,12 +50,16 @@ pub(super) fn rungs(signals: &Signals, timers: &[Signal], options: &ProgramOptio
     rungs.extend([
         end_of_manual(signals, options),
         end_of_automatic(signals, timers, options),
+    ]);
+    rungs.extend(reset_rung(signals, options));
+    rungs.extend([
         Rung {
             kind: RungKind::Manual,
             comment: "MAN_MODE remembered for the scan manual ends in".to_string(),
             condition: vec![Literal::is(Signal::ManualMode)],
             actions: vec![Action::Set(Signal::ManualMemory)],
         },
+        jogs_released(signals),
     ]);
     for valve in &signals.valves {
         rungs.extend(taken_over(*valve, signals, options));
@@ -57,13 +68,41 @@ pub(super) fn rungs(signals: &Signals, timers: &[Signal], options: &ProgramOptio
     rungs
 }
 
+/// Every jog button read released in manual: from then on the jogs may
+/// act. A button held or stuck as the selector turns moves nothing (a mode
+/// change alone must not start motion) until every button reads released.
+fn jogs_released(signals: &Signals) -> Rung {
+    let mut condition = vec![Literal::is(Signal::ManualMode)];
+    condition.extend(
+        signals
+            .inputs
+            .iter()
+            .filter(|s| matches!(s, Signal::Jog { .. }))
+            .map(|jog| Literal::not(*jog)),
+    );
+    Rung {
+        kind: RungKind::Manual,
+        comment: "every jog button released in manual: the jogs may act (one held or stuck as the selector turns moves nothing)".to_string(),
+        condition,
+        actions: vec![Action::Set(Signal::JogsReleased)],
+    }
+}
+
 /// A jog of `valve`'s actuator pressed in manual: its held coils are the
 /// jog buttons' from now until manual ends.
 fn taken_over(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Vec<Rung> {
     let actuator = valve.actuator();
-    if signals.held_by_jog(valve, options).is_empty() {
+    let held = signals.held_by_jog(valve, options);
+    if held.is_empty() {
         return Vec::new();
     }
+    // The stop request a held coil kept is the operator's once he jogs.
+    let stop_requests: Vec<Signal> = signals
+        .memories
+        .iter()
+        .filter(|m| super::stops::stop_request_of(m, &held))
+        .copied()
+        .collect();
     [Sign::Plus, Sign::Minus]
         .map(|sign| Signal::Jog { actuator, sign })
         .into_iter()
@@ -74,8 +113,14 @@ fn taken_over(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Vec<
                 "{} pressed in manual: C{actuator}'s held coils follow its jog buttons until manual ends",
                 jog.symbol()
             ),
-            condition: vec![Literal::is(Signal::ManualMode), Literal::is(jog)],
-            actions: vec![Action::Set(Signal::Jogged(actuator))],
+            condition: vec![
+                Literal::is(Signal::ManualMode),
+                Literal::is(Signal::JogsReleased),
+                Literal::is(jog),
+            ],
+            actions: std::iter::once(Action::Set(Signal::Jogged(actuator)))
+                .chain(stop_requests.iter().map(|m| Action::Reset(*m)))
+                .collect(),
         })
         .collect()
 }
@@ -108,6 +153,16 @@ fn follow_rungs(valve: Coils, signals: &Signals, options: &ProgramOptions) -> Ve
                     actions: vec![Action::Reset(coil)],
                 },
             ]
+            .into_iter()
+            .chain(options.modes.stop.then(|| Rung {
+                kind: RungKind::Manual,
+                comment: format!(
+                    "C{actuator} jogged: {} off while STOP is pressed (its jog stopped)",
+                    coil.symbol()
+                ),
+                condition: vec![Literal::is(jogged), Literal::not(Signal::Stop)],
+                actions: vec![Action::Reset(coil)],
+            }))
         })
         .collect()
 }
@@ -133,6 +188,7 @@ fn all_off_but_held(signals: &Signals, options: &ProgramOptions) -> (Vec<Signal>
 fn end_of_manual(signals: &Signals, options: &ProgramOptions) -> Rung {
     let (held, mut actions) = all_off_but_held(signals, options);
     actions.push(Action::Reset(Signal::ManualMemory));
+    actions.push(Action::Reset(Signal::JogsReleased));
     actions.extend(
         signals
             .memories
@@ -159,11 +215,14 @@ fn end_of_manual(signals: &Signals, options: &ProgramOptions) -> Rung {
 /// the halt policy holds.
 fn end_of_automatic(signals: &Signals, timers: &[Signal], options: &ProgramOptions) -> Rung {
     let (held, mut actions) = all_off_but_held(signals, options);
+    // A held coil keeps its actuator's stop request, as a halt does: a 5/3
+    // piston still stops at the middle position it was heading for.
     actions.extend(
         signals
             .memories
             .iter()
             .filter(|m| super::stops::ends_with_the_cycle(m))
+            .filter(|m| !super::stops::stop_request_of(m, &held))
             .map(|m| Action::Reset(*m)),
     );
     // A run-on keeps its own timer: it switches its output off itself.
@@ -187,12 +246,43 @@ fn end_of_automatic(signals: &Signals, timers: &[Signal], options: &ProgramOptio
     }
 }
 
-/// What every jog needs: manual mode, the EMERGENCY STOP not pressed and
+/// RESET in manual: the halt and the alarms cleared, nothing homed and
+/// no output touched (the automatic RESET rung, which switches every
+/// output off and starts the homing, needs MAN_MODE off).
+fn reset_rung(signals: &Signals, options: &ProgramOptions) -> Option<Rung> {
+    if !options.modes.reset {
+        return None;
+    }
+    let mut condition = super::modes::reset_pressed(options);
+    condition.insert(1, Literal::is(Signal::ManualMode));
+    let mut actions: Vec<Action> = signals
+        .memories
+        .iter()
+        .filter(|m| **m == Signal::Halt)
+        .map(|m| Action::Reset(*m))
+        .collect();
+    actions.extend(signals.alarms().map(Action::Reset));
+    (!actions.is_empty()).then(|| Rung {
+        kind: RungKind::Manual,
+        comment: "RESET in manual: the halt and the alarms cleared, nothing homed".to_string(),
+        condition,
+        actions,
+    })
+}
+
+/// What every jog needs: manual mode, the EMERGENCY STOP and STOP not
+/// pressed (a stop overrides the jog it relates to, as in automatic) and
 /// no halt waiting for RESET, every interlock closed.
 fn may_jog(signals: &Signals, options: &ProgramOptions) -> Vec<Literal> {
-    let mut condition = vec![Literal::is(Signal::ManualMode)];
+    let mut condition = vec![
+        Literal::is(Signal::ManualMode),
+        Literal::is(Signal::JogsReleased),
+    ];
     if options.modes.estop {
         condition.push(Literal::is(Signal::EStop));
+    }
+    if options.modes.stop {
+        condition.push(Literal::is(Signal::Stop));
     }
     if signals.memories.contains(&Signal::Halt) {
         condition.push(Literal::not(Signal::Halt));
@@ -330,7 +420,8 @@ mod tests {
             .iter()
             .filter(|r| r.kind == RungKind::Manual)
             .collect();
-        assert_eq!(rungs.len(), 3 + 2 * 4);
+        // The cycle's two ends, RESET in manual, man_mem, jog_ok, the jogs.
+        assert_eq!(rungs.len(), 5 + 2 * 4);
         // Leaving manual switches every coil off (the jog a button still
         // held left on); entering it ends the cycle.
         let leave = rungs[0];
@@ -346,7 +437,7 @@ mod tests {
                 .contains(&super::Action::Reset(Signal::Sequence))
         );
         assert!(program.signals.memories.contains(&Signal::Halt));
-        for rung in &rungs[3..] {
+        for rung in &rungs[5..] {
             let [
                 super::Action::Reset(Signal::Coil { sign: other, .. }),
                 super::Action::Set(Signal::Coil { actuator, sign }),
@@ -359,6 +450,7 @@ mod tests {
             let jog = |sign| Signal::Jog { actuator, sign };
             for literal in [
                 Literal::is(Signal::ManualMode),
+                Literal::is(Signal::JogsReleased),
                 Literal::is(Signal::EStop),
                 Literal::not(Signal::Halt),
                 Literal::is(jog(sign)),

@@ -27,6 +27,7 @@ pub(super) fn mode_rungs(
     }
     ready.extend(homes.iter().copied());
 
+    rungs.extend(forget_request(modes));
     let mut start = vec![Literal::is(Signal::Start)];
     if safety.edge {
         start.push(Literal::not(Signal::StartMemory));
@@ -79,6 +80,39 @@ pub(super) fn mode_rungs(
     if modes.step {
         rungs.extend(step_rungs());
     }
+}
+
+/// A cycle request step 1 did not take in the scan it could is forgotten
+/// (the START rung after these sets it again while START is held): a START
+/// refused (a precheck, an interlock) must not start the cycle when the
+/// fault is cleared minutes later. In single step the request waits for
+/// the STEP_PB press that may fire step 1, and is forgotten once a press
+/// did not, or as single step is switched off.
+fn forget_request(modes: &Modes) -> Vec<Rung> {
+    let rung = |comment: &str, extra: Option<Literal>| Rung {
+        kind: RungKind::Mode,
+        comment: comment.to_string(),
+        condition: std::iter::once(Literal::is(Signal::CycleRequest))
+            .chain(extra)
+            .collect(),
+        actions: vec![Action::Reset(Signal::CycleRequest)],
+    };
+    if !modes.step {
+        return vec![rung(
+            "a cycle request step 1 did not take is forgotten: START must be pressed again",
+            None,
+        )];
+    }
+    vec![
+        rung(
+            "a cycle request step 1 did not take with its permit is forgotten: START must be pressed again",
+            Some(Literal::is(Signal::StepPermit)),
+        ),
+        rung(
+            "STEP_MODE off: a request left from single step is forgotten, START must be pressed again",
+            Some(Literal::not(Signal::StepMode)),
+        ),
+    ]
 }
 
 /// Single-step mode: the permit every table step's transition needs. In
@@ -142,11 +176,28 @@ pub(super) fn homing_rungs(
     if modes.reset {
         let stages = modes.home_stages(table).unwrap_or_default();
         rungs.push(reset_rung(signals, timers, options, &outputs, stages.len()));
-        home_stage_rungs(signals, options.halts(), &stages, rungs);
+        home_stage_rungs(signals, options, &stages, rungs);
     }
     if modes.estop {
         rungs.push(estop_rung(signals, options, run_ons, &outputs));
     }
+}
+
+/// RESET pressed where it may act: not under the EMERGENCY STOP, and
+/// (homing moves every actuator) not behind an open guard.
+pub(super) fn reset_pressed(options: &super::ProgramOptions) -> Vec<Literal> {
+    let mut condition = vec![Literal::is(Signal::Reset)];
+    if options.modes.estop {
+        condition.push(Literal::is(Signal::EStop));
+    }
+    condition.extend(
+        options
+            .interlocks
+            .iter()
+            .filter(|i| i.steps.is_none())
+            .map(|i| Literal::is(Signal::MachineInput(i.input))),
+    );
+    condition
 }
 
 /// RESET abandons the cycle: every output and the cycle's memories off,
@@ -159,18 +210,11 @@ fn reset_rung(
     stages: usize,
 ) -> Rung {
     let memories = &signals.memories;
-    let mut condition = vec![Literal::is(Signal::Reset)];
-    if options.modes.estop {
-        condition.push(Literal::is(Signal::EStop));
+    let mut condition = reset_pressed(options);
+    // In manual RESET homes nothing (its own rung: `manual::reset_rung`).
+    if options.modes.manual {
+        condition.push(Literal::not(Signal::ManualMode));
     }
-    // Homing moves every actuator: not behind an open guard.
-    condition.extend(
-        options
-            .interlocks
-            .iter()
-            .filter(|i| i.steps.is_none())
-            .map(|i| Literal::is(Signal::MachineInput(i.input))),
-    );
     let mut actions: Vec<Action> = outputs.iter().map(|s| Action::Reset(*s)).collect();
     // Forget the interrupted cycle: requests, stops, dwells, alarms.
     actions.extend(
@@ -215,7 +259,12 @@ fn reset_rung(
 
 /// Each homing stage drives its actuators home (unless halted) and, once
 /// they all are, hands on to the next stage or ends the homing.
-fn home_stage_rungs(signals: &Signals, halts: bool, stages: &[Vec<u32>], rungs: &mut Vec<Rung>) {
+fn home_stage_rungs(
+    signals: &Signals,
+    options: &super::ProgramOptions,
+    stages: &[Vec<u32>],
+    rungs: &mut Vec<Rung>,
+) {
     // A machine without actuators (an oven) has nothing to home: the
     // homing RESET started ends the next scan, or START would wait forever.
     if stages.is_empty() {
@@ -250,8 +299,13 @@ fn home_stage_rungs(signals: &Signals, halts: bool, stages: &[Vec<u32>], rungs: 
         // fault) stops driving: the halt's own rungs then hold or
         // de-energise the outputs as for any halt.
         let mut condition = vec![Literal::is(memory)];
-        if halts {
+        if options.halts() {
             condition.push(Literal::not(Signal::Halt));
+        }
+        // Nor in manual, whose rung ends the homing later in this scan:
+        // a coil a halt row holds would keep what this rung set.
+        if options.modes.manual {
+            condition.push(Literal::not(Signal::ManualMode));
         }
         rungs.push(Rung {
             kind: RungKind::Homing,

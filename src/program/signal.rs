@@ -98,6 +98,9 @@ pub enum Signal {
     /// Memory: MAN_MODE as read in the previous scan, so that the scan
     /// manual ends in switches off what a jog left on.
     ManualMemory,
+    /// Memory: every jog button has read released in this manual spell, so
+    /// a button held or stuck as the selector turns moves nothing.
+    JogsReleased,
     /// Memory: actuator n was jogged in this manual spell, so its coils a
     /// halt row holds on follow its jog buttons (on while held) until
     /// manual ends.
@@ -162,6 +165,7 @@ impl Signal {
             | Signal::StepPermit
             | Signal::StepMemory
             | Signal::ManualMemory
+            | Signal::JogsReleased
             | Signal::Jogged(_)
             | Signal::Awaited(_)
             | Signal::Sequence => Area::Memory,
@@ -208,6 +212,7 @@ impl Signal {
             Signal::StepPermit => "step_ok".to_string(),
             Signal::StepMemory => "step_mem".to_string(),
             Signal::ManualMemory => "man_mem".to_string(),
+            Signal::JogsReleased => "jog_ok".to_string(),
             Signal::Jogged(n) => format!("jogged{n}"),
             Signal::CycleRequest => "cycle_req".to_string(),
             Signal::Busy => "busy".to_string(),

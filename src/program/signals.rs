@@ -270,6 +270,10 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
     };
     let jogged = signals.jogged_memories(options);
     signals.memories.extend(jogged);
+    // Last, so that no other memory moves.
+    if modes.manual {
+        signals.memories.push(Signal::JogsReleased);
+    }
     signals
 }
 

@@ -166,20 +166,15 @@ pub(super) fn stop_now_rungs(
     // An actuator whose coil or contactor stays on keeps its stop requests:
     // without them a drive runs past its limit switch and a piston past
     // the middle position it was heading for.
-    let still_driven = |actuator: u32| {
-        signals.driven().any(|s| {
-            matches!(s, Signal::Coil { actuator: a, .. } | Signal::SingleCoil { actuator: a } if a == actuator)
-                && !matches!(policy.on_stop.get(&s), None | Some(StopAction::Off))
-        })
-    };
+    let still_driven: Vec<Signal> = signals
+        .driven()
+        .filter(|s| !matches!(policy.on_stop.get(s), None | Some(StopAction::Off)))
+        .collect();
     actions.extend(
         signals
             .memories
             .iter()
-            .filter(|m| match m {
-                Signal::StopAt { actuator, .. } => !still_driven(*actuator),
-                _ => true,
-            })
+            .filter(|m| !stop_request_of(m, &still_driven))
             .filter(|m| ends_with_the_cycle(m))
             .map(|m| Action::Reset(*m)),
     );
@@ -199,6 +194,18 @@ pub(super) fn stop_now_rungs(
         condition: vec![Literal::not(Signal::Stop)],
         actions,
     });
+}
+
+/// Whether `m` is the stop request (middle stop, a drive's limit) of an
+/// actuator one of whose coils is in `kept_on`: that coil still drives it,
+/// so the request must stay to stop it where the sequence meant it to.
+pub(super) fn stop_request_of(m: &Signal, kept_on: &[Signal]) -> bool {
+    let Signal::StopAt { actuator, .. } = *m else {
+        return false;
+    };
+    kept_on.iter().any(|s| {
+        matches!(*s, Signal::Coil { actuator: a, .. } | Signal::SingleCoil { actuator: a } if a == actuator)
+    })
 }
 
 /// `every coil and output off`, `… off but fan (off after 20s)`.

@@ -194,6 +194,12 @@ impl<'g> Reader<'g> {
         diags.warning(Code::W003Ignored, self.grid.location(pos), message);
     }
 
+    /// E046: a setting misspelt or written with its value in one cell.
+    fn mistyped(&mut self, pos: CellPos, message: String, diags: &mut Diagnostics) {
+        self.seen.insert(pos);
+        diags.error(Code::E046MistypedSetting, self.grid.location(pos), message);
+    }
+
     fn error(&mut self, pos: CellPos, message: String, diags: &mut Diagnostics) {
         self.seen.insert(pos);
         diags.error(Code::E030BadSetting, self.grid.location(pos), message);
@@ -512,19 +518,20 @@ mod tests {
             .iter()
             .map(|d| d.location.cell.unwrap().a1())
             .collect();
-        // A label spelt like a known one is named once for its row; other
-        // words and their values each.
+        // A label spelt like a known one is named once for its row (E046:
+        // the setting would be lost); other words and their values each.
         assert_eq!(
             cells,
             ["A1", "A2", "A3", "A4", "B4", "A5", "B5", "A6", "B6"],
             "{found:?}"
         );
         assert!(
-            found[0].message.contains("did you mean scan time?"),
+            found[0].message.contains("did you mean `scan time`?")
+                && found[0].code == Code::E046MistypedSetting,
             "{found:?}"
         );
         assert!(
-            found[1].message.contains("did you mean safety?"),
+            found[1].message.contains("did you mean `safety`?"),
             "{found:?}"
         );
         assert!(!found[3].message.contains("did you mean"), "{found:?}");
@@ -648,7 +655,7 @@ mod tests {
             "a blank row does not end the table"
         );
         let expected = [
-            "SETTINGS!A1: warning[W003]: \"scan-time\" is not a setting",
+            "SETTINGS!A1: error[E046]: \"scan-time\" is not a setting",
             "SETTINGS!E4: warning[W003]: \"remark\" heads no column",
             "SETTINGS!E5: warning[W003]: \"old valve\" of C1",
             "SETTINGS!B6: error[E030]: this row of the actuator table names no actuator",
@@ -750,7 +757,8 @@ mod tests {
         );
         let found = cells_and_messages(diags);
         let codes: Vec<&str> = found.iter().map(|(c, _)| c.as_str()).collect();
-        assert_eq!(codes, ["W003 C1", "W003 A2", "W003 E3"], "{found:#?}");
+        // The setting and its value in one cell would be lost: E046.
+        assert_eq!(codes, ["W003 C1", "E046 A2", "W003 E3"], "{found:#?}");
         assert!(found[0].1.contains("beside the setting target"));
         assert!(
             found[1]

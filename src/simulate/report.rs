@@ -16,6 +16,8 @@ pub enum ProblemKind {
     Premature,
     /// A cycle started without a START press.
     UnexpectedStart,
+    /// In single step, a step fired without a STEP_PB press.
+    UnexpectedStep,
     /// The cycle ended with an actuator away from home.
     NotHome,
     /// The second cycle differs from the first.

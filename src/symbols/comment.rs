@@ -61,6 +61,9 @@ pub(super) fn comment(
             "MAN_MODE as read in the previous scan (leaving manual switches the jogs' coils off)"
                 .to_string()
         }
+        Signal::JogsReleased => {
+            "every jog button read released in this manual spell: the jogs may act".to_string()
+        }
         Signal::Jogged(n) => format!(
             "C{n} was jogged in this manual spell: the coils a halt row holds on follow its jog buttons until manual ends"
         ),

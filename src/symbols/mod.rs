@@ -350,7 +350,8 @@ impl SymbolTable {
                     .unwrap_or_default();
                 let (plus, minus) = self.kind_words(actuator);
                 let verb = if sign == Sign::Plus { plus } else { minus };
-                format!("{symbol} on: {verb} {}{target}", self.actuator(actuator))
+                let said = crate::actuator::ActuatorKind::verb_of(verb, &self.actuator(actuator));
+                format!("{symbol} on: {said}{target}")
             }
             Action::Reset(Signal::Coil { .. }) => format!("{symbol} off"),
             Action::Set(Signal::SingleCoil { actuator }) => {

@@ -219,3 +219,73 @@ fn settings_for_what_the_table_does_not_have_are_refused() {
         run(case);
     }
 }
+
+/// A safety or mode row misspelt (red team rt7, finding 7): the program
+/// would be written without it, so it is E046 at the label's cell naming
+/// the label meant, exit 1, nothing written; a note row merely like a
+/// label (`notes`, two letters from `modes`) stays a warning.
+#[test]
+fn a_misspelt_setting_is_refused_at_its_cell() {
+    let mistyped: [(&[&[&str]], &str, &str); 8] = [
+        (
+            &[&["mode", "all"]],
+            "SETTINGS!A1: error[E046]",
+            "did you mean `modes`?",
+        ),
+        (
+            &[&["hold safe", "C1"]],
+            "SETTINGS!A1: error[E046]",
+            "did you mean `hold-safe`?",
+        ),
+        (
+            &[&["safety", "watchdog"], &["on-halt", "y1+ off"]],
+            "SETTINGS!A2: error[E046]",
+            "did you mean `on halt`?",
+        ),
+        (
+            &[&["safety", "watchdog"], &["supervison", "1=5s"]],
+            "SETTINGS!A2: error[E046]",
+            "did you mean `supervision`?",
+        ),
+        (
+            &[&["Safty", "watchdog"]],
+            "SETTINGS!A1: error[E046]",
+            "did you mean `safety`?",
+        ),
+        (
+            &[&["MODES.", "all"]],
+            "SETTINGS!A1: error[E046]",
+            "did you mean `modes`?",
+        ),
+        (
+            &[&["scan-time", "20ms"]],
+            "SETTINGS!A1: error[E046]",
+            "did you mean `scan time`?",
+        ),
+        (
+            &[&["modes: step", ""], &["target", "iec"]],
+            "SETTINGS!A1: error[E046]",
+            "holds the setting modes and its value in one cell",
+        ),
+    ];
+    for (settings, code_at, says) in mistyped {
+        run(&Case {
+            what: "a misspelt setting",
+            table: TWO,
+            settings,
+            args: &[],
+            exit: 1,
+            code_at,
+            says,
+        });
+    }
+    run(&Case {
+        what: "a note row like a label",
+        table: TWO,
+        settings: &[&["notes", "checked by the panel builder"]],
+        args: &[],
+        exit: 0,
+        code_at: "",
+        says: "SETTINGS!A1: warning[W003]",
+    });
+}

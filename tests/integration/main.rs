@@ -39,6 +39,7 @@ mod long_comments;
 mod machine;
 mod machine_limits;
 mod manual;
+mod manual_safety;
 mod messy;
 mod mitigation;
 mod mode_faults;

@@ -264,12 +264,15 @@ fn cases() -> Vec<Case> {
             says: &["passed: cycle time 10.70 s"],
         },
         Case {
-            name: "SETTINGS label steptable does not know",
+            name: "SETTINGS label misspelt",
             file: "t.xlsx",
             bytes: settings_with(&[&["scan-time", "20ms"]]),
             command: check,
-            code: 0,
-            says: &["SETTINGS!A1: warning[W003]: \"scan-time\" is not a setting"],
+            // A known label misspelt: its row would be lost (E046).
+            code: 1,
+            says: &[
+                "SETTINGS!A1: error[E046]: \"scan-time\" is not a setting steptable knows: did you mean `scan time`?",
+            ],
         },
         Case {
             name: "SETTINGS row that names no actuator",

@@ -227,8 +227,8 @@ fn a_drive_s_step_comments_say_it_runs_in_every_language() {
         let text = std::fs::read_to_string(dir.path().join(format!("gantry/gantry{suffix}")))
             .unwrap_or_else(|e| panic!("{suffix}: {e}"));
         for said in [
-            "y1+ on: run forward C1, C1+1 towards x11",
-            "y1- on: run in reverse C1, C1-0 towards x10",
+            "y1+ on: run C1 forward, C1+1 towards x11",
+            "y1- on: run C1 in reverse, C1-0 towards x10",
             "y2+ on: extend C2, C2+1 towards x21",
         ] {
             assert!(text.contains(said), "{suffix}: {said}\n{text}");

@@ -74,6 +74,8 @@ fn with_all_four_checks_only_middle_sensor_overruns_remain_hazards() {
                         c.explanation.contains("without a START press")
                     }
                     Signal::Reset => c.explanation.contains("RESET reads pressed"),
+                    // In single step a shorted STEP_PB is one press.
+                    Signal::StepButton => c.explanation.contains("without a STEP_PB press"),
                     Signal::Sensor { .. } => {
                         c.explanation
                             .contains(&format!("had not reached {symbol})"))

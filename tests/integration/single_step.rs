@@ -293,7 +293,17 @@ fn the_fault_table_classifies_the_step_inputs() {
     };
     assert_eq!(outcome(Signal::StepMode, true), Outcome::SafeStall);
     assert_eq!(outcome(Signal::StepMode, false), Outcome::NoEffect);
-    assert_eq!(outcome(Signal::StepButton, true), Outcome::NoEffect);
+    // A shorted STEP_PB reads as one press in single step: the step the
+    // sequence waits at fires without the operator's press.
+    assert_eq!(outcome(Signal::StepButton, true), Outcome::Hazard);
+    let short = table.cases.iter().find(|c| {
+        c.faults.len() == 1 && c.faults[0].signal == Signal::StepButton && c.faults[0].stuck_at
+    });
+    let explanation = &short.unwrap().explanation;
+    assert!(
+        explanation.contains("step 1 fired in single step without a STEP_PB press"),
+        "{explanation}"
+    );
     assert_eq!(outcome(Signal::StepButton, false), Outcome::NoEffect);
 }
 
@@ -336,4 +346,156 @@ fn the_guides_worked_example_is_what_simulate_prints() {
     let out = String::from_utf8_lossy(&run.get_output().stdout).into_owned();
     let printed: Vec<&str> = out.lines().skip(1).collect();
     assert_eq!(printed, block[command_lines..], "{out}");
+}
+
+/// The last line and every `problem:` line `simulate` prints.
+fn simulated(args: &[&str]) -> (String, Vec<String>) {
+    let paper = crate::helpers::sample("paper_example.csv");
+    let run = steptable().arg("simulate").arg(&paper).args(args).assert();
+    let stdout = String::from_utf8_lossy(&run.get_output().stdout).into_owned();
+    let problems = stdout
+        .lines()
+        .filter(|l| l.contains("problem:"))
+        .map(str::to_string)
+        .collect();
+    (
+        stdout.lines().last().unwrap_or_default().to_string(),
+        problems,
+    )
+}
+
+/// A START that cannot start the cycle now is forgotten (red team rt7,
+/// finding 3): pressed in single step, it does not start the cycle when
+/// the switch goes off a minute later; refused by the precheck, it does
+/// not start it when the sensor is repaired. In single step it still waits
+/// for the first STEP_PB press, and START held through the refusal asks
+/// again.
+#[test]
+fn a_start_that_cannot_start_the_cycle_is_forgotten() {
+    let forgotten: [&[&str]; 3] = [
+        &[
+            "--modes",
+            "all",
+            "--hold",
+            "STEP_MODE@0s",
+            "--press",
+            "START@0.5s",
+            "--release",
+            "STEP_MODE@60s",
+        ],
+        &[
+            "--modes",
+            "stop",
+            "--safety",
+            "precheck",
+            "--stick",
+            "x11=1@0s",
+            "--press",
+            "START@0.5s",
+            "--stick",
+            "x11=0@60s",
+        ],
+        // Single step and a press the precheck refuses: forgotten too.
+        &[
+            "--modes",
+            "step",
+            "--safety",
+            "precheck",
+            "--hold",
+            "STEP_MODE@0s",
+            "--stick",
+            "x11=1@0s",
+            "--press",
+            "START@0.5s",
+            "--press",
+            "STEP@1s",
+            "--stick",
+            "x11=0@30s",
+            "--press",
+            "STEP@31s",
+        ],
+    ];
+    for args in forgotten {
+        let (end, problems) = simulated(args);
+        assert!(
+            end.contains("in step 0") && end.contains("C1 at 0.00") && problems.is_empty(),
+            "{args:?}: {end} {problems:?}"
+        );
+    }
+    let started: [&[&str]; 2] = [
+        &[
+            "--modes",
+            "step",
+            "--hold",
+            "STEP_MODE@0s",
+            "--press",
+            "START@0.5s",
+            "--press",
+            "STEP@20s",
+        ],
+        &[
+            "--modes",
+            "stop",
+            "--safety",
+            "precheck",
+            "--stick",
+            "x11=1@0s",
+            "--hold",
+            "START@0.5s",
+            "--stick",
+            "x11=0@3s",
+            "--release",
+            "START@4s",
+        ],
+    ];
+    for args in started {
+        let (end, problems) = simulated(args);
+        assert!(
+            end.contains("C1 at 1.00") && problems.is_empty(),
+            "{args:?}: {end} {problems:?}"
+        );
+    }
+}
+
+/// A shorted STEP_PB in single step fires one step, no more, and the run
+/// says so as the hazard it is (red team rt7, finding 6): not "no START".
+#[test]
+fn a_shorted_step_button_fires_one_step_and_is_a_problem() {
+    let (end, problems) = simulated(&[
+        "--modes",
+        "step",
+        "--hold",
+        "STEP_MODE@0s",
+        "--press",
+        "START@0.5s",
+        "--press",
+        "STEP@1s",
+        "--press",
+        "STEP@2.5s",
+        "--press",
+        "STEP@4s",
+        "--stick",
+        "STEP_PB=1@6s",
+    ]);
+    assert!(end.contains("in step 4"), "{end}");
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert!(
+        problems[0].contains("step 4 fired in single step without a STEP_PB press"),
+        "{problems:?}"
+    );
+    let (_, problems) = simulated(&[
+        "--modes",
+        "step",
+        "--hold",
+        "STEP_MODE@0s",
+        "--press",
+        "START@0.5s",
+        "--stick",
+        "STEP_PB=1@1s",
+    ]);
+    assert!(
+        problems.len() == 1
+            && problems[0].contains("step 1 fired in single step without a STEP_PB press"),
+        "{problems:?}"
+    );
 }

@@ -7,6 +7,10 @@ use crate::helpers::{Refused, assert_refused, steptable, write_xlsx_sheets};
 /// C1 out (1 s), C1 home (1 s).
 const TWO: &[&[&str]] = &[&["C1+1"], &["C1-0"]];
 
+/// C1 out (1 s) while step 1 waits for I:part, which the proof answers
+/// after `--input-delay` (0.5 s unless given); C1 home.
+const WAITING: &[&[&str]] = &[&["C1+1; I:part"], &["C1-0"]];
+
 const CASES: &[Refused] = &[
     Refused {
         what: "a supervision time without the watchdog",
@@ -49,6 +53,27 @@ const CASES: &[Refused] = &[
         settings: &[],
         args: &["--safety", "criteria", "--supervision", "1=800ms"],
         code_at: "step 1's 800ms is not longer than the 1s",
+    },
+    Refused {
+        what: "a waiting step's time shorter than the proof's wait (rt7 finding 10: was an internal error)",
+        table: WAITING,
+        settings: &[],
+        args: &[
+            "--safety",
+            "watchdog",
+            "--input-delay",
+            "part=3s",
+            "--supervision",
+            "1=2s",
+        ],
+        code_at: "error[E030]: --supervision: step 1's 2s is not longer than the 3s the step takes in the program's proof, which answers its wait for I:part after 3s",
+    },
+    Refused {
+        what: "a waiting step's time shorter than the proof's wait, on SETTINGS",
+        table: WAITING,
+        settings: &[&["safety", "watchdog"], &["supervision", "1=1200ms"]],
+        args: &["--input-delay", "part=2s"],
+        code_at: "SETTINGS!B2: error[E030]: supervision: step 1's",
     },
     Refused {
         what: "a time shorter than the step takes, on SETTINGS",
@@ -191,4 +216,62 @@ fn a_valid_supervision_time_is_the_steps_watchdog_preset() {
     // The command line's word wins over the SETTINGS row, whole.
     assert!(st.contains("wd_pt := T#1500ms;"), "{st}");
     assert!(!st.contains("T#4500ms"), "{st}");
+}
+
+/// `check` and `convert` agree on a waiting step's supervision time (rt7
+/// finding 10, where `check` passed and `convert` stopped with an
+/// internal error): C1 moves in 100 ms while step 1 waits for I:part (0.5
+/// s in the proof), so 300 ms is refused by both with E030, exit 1, and
+/// nothing written; 700 ms is accepted by both — unless `convert` is told
+/// the input comes after 1 s.
+#[test]
+fn check_and_convert_agree_on_a_waiting_steps_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("waits.xlsx");
+    let settings: &[&[&str]] = &[
+        &["safety", "watchdog"],
+        &["actuator", "extend", "retract"],
+        &["C1", "100ms", "100ms"],
+    ];
+    write_xlsx_sheets(&path, &[("TABLE", WAITING), ("SETTINGS", settings)]);
+    let out = dir.path().join("out");
+    for (time, delay, code) in [
+        ("1=300ms", None, 1),
+        ("1=700ms", None, 0),
+        ("1=700ms", Some("part=1s"), 1),
+    ] {
+        let said = "error[E030]: --supervision: step 1's";
+        let check = steptable()
+            .arg("check")
+            .arg(&path)
+            .args(["--supervision", time])
+            .assert();
+        if delay.is_none() {
+            let check = check.code(code);
+            let stderr = String::from_utf8_lossy(&check.get_output().stderr).into_owned();
+            assert_eq!(stderr.contains(said), code == 1, "{time}: {stderr}");
+        }
+        let mut convert = steptable();
+        convert
+            .arg("convert")
+            .arg(&path)
+            .args(["--supervision", time]);
+        if let Some(delay) = delay {
+            convert.args(["--input-delay", delay]);
+        }
+        let run = convert
+            .args(["--formats", "st", "-o"])
+            .arg(&out)
+            .assert()
+            .code(code);
+        let stderr = String::from_utf8_lossy(&run.get_output().stderr).into_owned();
+        assert_eq!(
+            stderr.contains(said),
+            code == 1,
+            "{time} {delay:?}: {stderr}"
+        );
+        assert!(!stderr.contains("internal error"), "{stderr}");
+        assert_eq!(out.exists(), code == 0, "{time} {delay:?}");
+        let _ = std::fs::remove_dir_all(&out);
+    }
 }

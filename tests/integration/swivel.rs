@@ -58,8 +58,8 @@ fn a_swivel_drive_is_named_as_one_in_its_lists_and_programs() {
     assert!(!io.contains("cylinder 2"), "{io}");
     let st = written(dir.path(), ".st");
     for said in [
-        "y2+ on: swivel to 180° C2, C2+1 towards x21",
-        "y2- on: swivel back to 0° C2, C2-0 towards x20",
+        "y2+ on: swivel C2 to 180°, C2+1 towards x21",
+        "y2- on: swivel C2 back to 0°, C2-0 towards x20",
         "C2 swivels to 180°",
         "C2 swivels back to 0°",
     ] {
@@ -246,7 +246,7 @@ fn the_command_line_s_kind_wins_over_the_sheet_s_and_says_so() {
     let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
     assert!(stderr.contains("SETTINGS!B2: warning[W006]"), "{stderr}");
     let st = std::fs::read_to_string(out.join("h/h.st")).unwrap();
-    assert!(st.contains("swivel to 180° C2"), "{st}");
+    assert!(st.contains("swivel C2 to 180°"), "{st}");
     // A load on a swivel drive does nothing, and says what holds it.
     let (_dir, _, assert) = convert_sheets(
         crate::helpers::TWO_ACTUATORS,

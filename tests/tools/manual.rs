@@ -39,6 +39,11 @@ pub const CHECKS: &[Check] = &[
         the_drilling_station_jogs_as_simulated_in_every_engine,
     ),
     Check::new(
+        "manual::stop_a_held_jog_and_reset_in_manual_run_as_simulated_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        stop_a_held_jog_and_reset_in_manual_run_as_simulated_in_every_engine,
+    ),
+    Check::new(
         "manual::drive_and_52mono_jogs_run_as_simulated_in_every_engine",
         &[Tool::Shared, Tool::Awlsim],
         drive_and_52mono_jogs_run_as_simulated_in_every_engine,
@@ -394,4 +399,36 @@ fn a_held_coil_stays_until_jogged_in_every_engine() {
     eprintln!(
         "manual: matiec, awlsim and the FST interpreter keep a hold-safe clamp's coil on into manual until its jog is pressed, then on only while the button is held and off as manual ends, scan for scan as simulated"
     );
+}
+
+/// The red team's manual findings (rt7: 1, 4, 5) in the engines: a jog
+/// held as MAN_MODE turns moves nothing until let go (jog_ok); STOP
+/// pressed during a jog stops C2 (5/3) where it is; RESET in manual homes
+/// nothing; a fresh jog1+ then moves C1 — each scan as simulated.
+fn stop_a_held_jog_and_reset_in_manual_run_as_simulated_in_every_engine() {
+    let input = sample("paper_example.xlsx");
+    let written: Vec<(String, String)> = [
+        ("hold", "jog1+@0.1s"),
+        ("hold", "MAN_MODE@0.3s"),
+        ("release", "jog1+@1s"),
+        ("hold", "jog2+@1.5s"),
+        ("hold", "STOP@1.7s"),
+        ("release", "jog2+@2.5s"),
+        ("release", "STOP@3s"),
+        ("press", "RESET@3.5s"),
+        ("hold", "jog1+@4s"),
+        ("release", "jog1+@5s"),
+    ]
+    .iter()
+    .map(|(o, t)| (o.to_string(), t.to_string()))
+    .collect();
+    replay_in_every_engine(&input, &["--modes", "all"], &written, |label, report, _| {
+        let at = |ms: u64, actuator: usize| report.at(ms).unwrap().positions[actuator - 1];
+        assert!(at(950, 1) < 0.05, "{label}: the held jog moved nothing");
+        let stopped = at(2_000, 2);
+        assert!(stopped > 0.1 && stopped < 1.0, "{label}: C2 at {stopped}");
+        assert_eq!(stopped, at(3_400, 2), "{label}: C2 stopped by STOP");
+        assert_eq!(stopped, at(3_900, 2), "{label}: RESET homed nothing");
+        assert!(at(5_500, 1) > 0.95, "{label}: a fresh press moves C1");
+    });
 }

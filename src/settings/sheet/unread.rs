@@ -43,7 +43,8 @@ pub(super) fn name_the_rest(
             }
             let word = label_of(&cell.value).unwrap_or_default();
             if let Some(label) = setting_in_one_cell(&cell.value) {
-                reader.warn(
+                // The setting would be lost: the program written without it.
+                reader.mistyped(
                     cell.pos,
                     format!(
                         "{} holds the setting {label} and its value in one cell; write the value in the cell right of \"{label}\" (it was not read)",
@@ -66,6 +67,10 @@ pub(super) fn name_the_rest(
                     reader.seen.extend(cells.iter().map(|c| c.pos));
                     reader.error(cell.pos, message, diags);
                 }
+                Unread::Mistyped(message) => {
+                    reader.seen.extend(cells.iter().map(|c| c.pos));
+                    reader.mistyped(cell.pos, message, diags);
+                }
                 Unread::Ignored(message) => reader.warn(cell.pos, message, diags),
             }
         }
@@ -79,6 +84,9 @@ enum Unread {
     Lost(String),
     /// W003 for a whole row: an unknown label with its values.
     Row(String),
+    /// E046: a known label misspelt, with its values: the setting would be
+    /// lost and the program written without it.
+    Mistyped(String),
     /// W003: a value beside a setting's, any other cell.
     Ignored(String),
 }
@@ -110,6 +118,15 @@ fn unread_cell(
             "{describe} is beside the setting {label}, in a column steptable does not read (notes go under a WHAT IT MEANS header); it was not read"
         ));
     }
+    let word = label_of(&cell.value).unwrap_or_default();
+    if first_on_row
+        && row.len() > 1
+        && let Some(known) = mistyped_label(&word)
+    {
+        return Unread::Mistyped(format!(
+            "{describe} is not a setting steptable knows: did you mean `{known}`? Its row was not read, so the program would lack the setting; spell the label as the reference does"
+        ));
+    }
     let closest = label_of(&cell.value)
         .and_then(|label| closest_label(&label))
         .map(|known| format!(" (did you mean {known}?)"))
@@ -135,6 +152,32 @@ pub(super) fn closest_label(label: &str) -> Option<&'static str> {
         .min()
         .filter(|(distance, _)| *distance <= 2)
         .map(|(_, known)| known)
+}
+
+/// `mode`, `hold safe`, `on-halt`, `supervison`: a label steptable knows,
+/// misspelt — the same letters, or one letter off (two in a label of eight
+/// letters or more). Looser likenesses (`notes` and `modes`) are only
+/// named ([`closest_label`]): a note row must not stop a conversion.
+pub(super) fn mistyped_label(label: &str) -> Option<&'static str> {
+    let word = letters(label).to_lowercase();
+    if word.is_empty() {
+        return None;
+    }
+    LABELS
+        .into_iter()
+        .map(|known| {
+            let known_letters = letters(known);
+            let distance = edit_distance(&word, &known_letters);
+            let allowed = if known_letters.chars().count() >= 8 {
+                2
+            } else {
+                1
+            };
+            (distance, allowed, known)
+        })
+        .filter(|(distance, allowed, _)| distance <= allowed)
+        .min()
+        .map(|(_, _, known)| known)
 }
 
 fn letters(text: &str) -> String {

@@ -121,9 +121,20 @@ impl Run<'_> {
         self.machine_on_fire(fired, waited_at, jumped);
         let operator = self.world.operator;
         // In single step, START asks for the cycle and a STEP_PB press
-        // later fires its step 1.
-        let stepped = operator.step_mode && operator.step;
-        if fired == 0
+        // later fires its step 1; a table step fired with no press is the
+        // hazard (a shorted STEP_PB reads as one), whatever START did.
+        let single = operator.step_mode && self.step_mode_before;
+        let stepped = operator.step_mode && (operator.step || self.step_before);
+        if single && !stepped && step.kind == crate::program::StepKind::Table {
+            self.problem(
+                ProblemKind::UnexpectedStep,
+                step.number,
+                format!(
+                    "step {} fired in single step without a STEP_PB press",
+                    step.number
+                ),
+            );
+        } else if fired == 0
             && !(self.world.start_pressed
                 || operator.start
                 || self.start_before

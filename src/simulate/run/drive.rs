@@ -107,6 +107,8 @@ impl<'a> Run<'a> {
             collided: false,
             fired_any: false,
             start_before: false,
+            step_before: false,
+            step_mode_before: false,
             alarm_bits: Vec::new(),
             alarmed: false,
             places: Vec::new(),

@@ -103,6 +103,11 @@ pub(in crate::simulate) struct Run<'a> {
     /// The operator held START in the scan before: a cycle request START
     /// set then (the last scan of its press) fires step 1 in this one.
     start_before: bool,
+    /// The operator held STEP_PB in the scan before (the permit its press
+    /// set then fires a step in this one), and STEP_MODE was on then (the
+    /// scan that computed the permit this one reads).
+    step_before: bool,
+    step_mode_before: bool,
     /// The PLC indices of the alarm outputs, and whether one came on.
     alarm_bits: Vec<usize>,
     alarmed: bool,

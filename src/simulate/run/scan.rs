@@ -139,6 +139,8 @@ impl Run<'_> {
         }
         self.last_scan = Some(result);
         self.start_before = self.world.start_pressed || self.world.operator.start;
+        self.step_before = self.world.operator.step;
+        self.step_mode_before = self.world.operator.step_mode;
     }
 
     /// The SFC step the machine is in (symbols' numbering: 0 at rest, k
