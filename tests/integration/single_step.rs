@@ -320,32 +320,57 @@ fn the_sorting_stations_paths_run_with_the_mode() {
         .success();
 }
 
-/// The guide's worked example of single step is what `simulate` prints,
-/// line for line (the command as the guide writes it, on the sample).
+/// The guide's worked examples of the operating modes (continuous with
+/// the buttons, single step, manual) are what `simulate` prints, line for
+/// line (each command as the guide writes it, on the sample).
 #[test]
-fn the_guides_worked_example_is_what_simulate_prints() {
+fn the_guides_worked_examples_are_what_simulate_prints() {
     let guide = std::fs::read_to_string(crate::helpers::root().join("docs/guide.md")).unwrap();
-    let start = "$ steptable simulate paper_example.xlsx --modes step";
-    let block: Vec<&str> = guide[guide.find(start).expect("the example")..]
-        .lines()
-        .take_while(|l| !l.starts_with("```"))
-        .collect();
-    let command_lines = block.iter().take_while(|l| l.ends_with('\\')).count() + 1;
-    let command: String = block[..command_lines]
-        .iter()
-        .map(|l| l.trim_end_matches('\\'))
-        .collect::<Vec<_>>()
-        .join(" ");
-    let args: Vec<&str> = command.split_whitespace().skip(4).collect();
-    let run = steptable()
-        .arg("simulate")
-        .arg(crate::helpers::sample("paper_example.xlsx"))
-        .args(&args)
-        .assert()
-        .success();
-    let out = String::from_utf8_lossy(&run.get_output().stdout).into_owned();
-    let printed: Vec<&str> = out.lines().skip(1).collect();
-    assert_eq!(printed, block[command_lines..], "{out}");
+    let start = "$ steptable simulate paper_example.xlsx --modes ";
+    let mut examples = 0;
+    for (at, _) in guide.match_indices(start) {
+        let block: Vec<&str> = guide[at..]
+            .lines()
+            .take_while(|l| !l.starts_with("```"))
+            .collect();
+        let command_lines = block.iter().take_while(|l| l.ends_with('\\')).count() + 1;
+        let command: String = block[..command_lines]
+            .iter()
+            .map(|l| l.trim_end_matches('\\'))
+            .collect::<Vec<_>>()
+            .join(" ");
+        let args: Vec<&str> = command.split_whitespace().skip(4).collect();
+        let run = steptable()
+            .arg("simulate")
+            .arg(crate::helpers::sample("paper_example.xlsx"))
+            .args(&args)
+            .assert()
+            .success();
+        let out = String::from_utf8_lossy(&run.get_output().stdout).into_owned();
+        let printed: Vec<&str> = out.lines().skip(1).collect();
+        assert!(
+            elided_match(&block[command_lines..], &printed),
+            "{command}: the guide says\n{}\nsimulate prints\n{out}",
+            block[command_lines..].join("\n")
+        );
+        examples += 1;
+    }
+    assert_eq!(
+        examples, 3,
+        "continuous with the buttons, single step, manual"
+    );
+}
+
+/// Whether `printed` is `written` where a line `…` of the guide stands for
+/// any number of printed lines.
+fn elided_match(written: &[&str], printed: &[&str]) -> bool {
+    match written.split_first() {
+        None => printed.is_empty(),
+        Some((line, rest)) if line.trim() == "…" => {
+            (0..=printed.len()).any(|skip| elided_match(rest, &printed[skip..]))
+        }
+        Some((line, rest)) => printed.first() == Some(line) && elided_match(rest, &printed[1..]),
+    }
 }
 
 /// The last line and every `problem:` line `simulate` prints.
