@@ -297,6 +297,23 @@ fn manual_on_a_table_without_actuators_is_left_out_and_said() {
         let st = std::fs::read_to_string(out.join("lamp/lamp.st")).unwrap();
         assert!(!st.contains("MAN_MODE"), "{args:?}");
     }
+    // A scenario that jogs it says why there is no button (red team rt7
+    // F18.2: it said "turn it on with --modes manual" to one who had).
+    for event in ["MAN_MODE@1s", "jog1+@1s"] {
+        let run = steptable()
+            .arg("simulate")
+            .arg(&path)
+            .args(["--modes", "manual,stop", "--hold", event])
+            .assert()
+            .code(1);
+        let stderr = String::from_utf8_lossy(&run.get_output().stderr).into_owned();
+        assert!(
+            stderr.contains("error[E042]")
+                && stderr.contains("the table moves no actuator, so manual mode is left out")
+                && !stderr.contains("turn it on"),
+            "{event}: {stderr}"
+        );
+    }
 }
 
 /// The jog names are free for a machine signal without the mode.

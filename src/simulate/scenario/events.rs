@@ -222,16 +222,24 @@ fn input(
                     crate::diag::or_list(&crate::actuator::ActuatorKind::one_jog())
                 )
             } else {
-                "manual mode is off (turn it on with --modes manual)".to_string()
+                manual_off(table)
             }
         ));
     }
     if let Some(button) = BUTTONS.iter().copied().find(|s| calls(*s)) {
-        return Err(format!(
-            "the program has no {} button: its mode is off (turn it on with --modes {})",
-            button.symbol(),
-            mode_of(button)
-        ));
+        let mode = mode_of(button);
+        return Err(if mode == "manual" {
+            format!(
+                "the program has no {} button: {}",
+                button.symbol(),
+                manual_off(table)
+            )
+        } else {
+            format!(
+                "the program has no {} button: its mode is off (turn it on with --modes {mode})",
+                button.symbol(),
+            )
+        });
     }
     if let Some(n) = naming
         .actuator_called(name)
@@ -348,4 +356,14 @@ pub(super) fn too_many_jogs(events: &[Event]) -> Option<String> {
         }
     }
     None
+}
+
+/// Why a program has no manual mode: a table that moves no actuator has
+/// nothing to jog, so the mode is left out even when asked for.
+fn manual_off(table: &StepTable) -> String {
+    if table.actuators.is_empty() {
+        "the table moves no actuator, so manual mode is left out of the program (even with --modes manual)".to_string()
+    } else {
+        "manual mode is off (turn it on with --modes manual)".to_string()
+    }
 }
