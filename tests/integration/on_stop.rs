@@ -233,8 +233,27 @@ fn on_stop_rows_are_checked_at_their_cell() {
         .assert()
         .success()
         .stderr(contains(
-            "SETTINGS!B2: warning[W006]: on stop: the program has no STOP button",
+            "SETTINGS!B2: warning[W006]: on stop: the program has no STOP button (--modes stop); nothing named here is ever done",
         ));
+    // With manual mode the row is not idle: what it holds stays on into
+    // manual (red team rt7 F12), and the warning says so.
+    let clamp: &[&[&str]] = &[&["C1+1"], &["C1-0"]];
+    let settings: &[&[&str]] = &[&["modes", "manual"], &["on stop", "C1 hold"]];
+    let held = dir.path().join("held.xlsx");
+    write_xlsx_sheets(
+        &held,
+        &[
+            ("SEQUENTIAL CONTROL DESCRIPTION", clamp),
+            ("SETTINGS", settings),
+        ],
+    );
+    let run = steptable().arg("check").arg(&held).assert().success();
+    let stderr = String::from_utf8_lossy(&run.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("SETTINGS!B2: warning[W006]: on stop: the program has no STOP button (--modes stop); only manual mode reads it")
+            && !stderr.contains("nothing named here"),
+        "{stderr}"
+    );
     for (row, error) in [
         (
             "fan sometimes",
