@@ -507,51 +507,6 @@ pub(super) fn delays_without_their_input(
     }
 }
 
-/// A SETTINGS row about an event the program does not have does nothing:
-/// W006.
-pub(super) fn rows_without_their_event(effective: &Settings, diags: &mut Diagnostics) {
-    let named = &effective.named;
-    let program = &effective.program;
-    let no_estop = (
-        "the program has no emergency stop (--modes estop)",
-        "nothing named here is done",
-    );
-    let no_halt = (
-        "the program never halts without the plausibility or watchdog check, the emergency stop or an interlock (--safety, --modes estop)",
-        "the outputs named stay as the sequence left them",
-    );
-    let no_stop = (
-        "the program has no STOP button (--modes stop)",
-        "nothing named here is ever done",
-    );
-    for (row, has, (missing, so)) in [
-        (Row::HoldOnEstop, program.modes.estop, no_estop),
-        (Row::OnEstop, program.modes.estop, no_estop),
-        (Row::OnStop, program.modes.stop, no_stop),
-        (Row::OffOnHalt, program.halts(), no_halt),
-        (Row::OnHalt, program.halts(), no_halt),
-    ] {
-        if let Some(list) = named.get(&row)
-            && !has
-        {
-            // Manual mode keeps on what a row holds whether or not its
-            // event exists (rt7 F12): "nothing is done" would be false.
-            let manual =
-                program.modes.manual && matches!(row, Row::HoldOnEstop | Row::OnStop | Row::OnHalt);
-            let so = if manual {
-                "only manual mode reads it: what it keeps on stays on into manual until its actuator is jogged"
-            } else {
-                so
-            };
-            diags.warning(
-                Code::W006NoEffect,
-                list.at.clone(),
-                format!("{}: {missing}; {so}", row.label()),
-            );
-        }
-    }
-}
-
 /// Manual mode on a table that moves no actuator has nothing to jog: the
 /// MAN_MODE selector would only end cycles. The mode is left out of the
 /// program (so `--modes all` serves such a table too) and W006 says so, at

@@ -6,11 +6,13 @@ mod beside;
 pub use allocate::{allocate, festo_allocation};
 mod findings;
 mod given;
+mod idle_rows;
+use idle_rows::rows_without_their_event;
 mod kind_times;
 use given::{
     by_name, delays_without_their_input, home_order_by_name, loads_without_effect,
-    names_of_the_whole_table, overridden_by_the_command_line, rows_without_their_event,
-    settings_without_their_actuator, supervision_times,
+    names_of_the_whole_table, overridden_by_the_command_line, settings_without_their_actuator,
+    supervision_times,
 };
 mod physics;
 pub use physics::lucky_middle_stops;
