@@ -225,6 +225,9 @@ fn end_of_automatic(signals: &Signals, timers: &[Signal], options: &ProgramOptio
             .filter(|m| !super::stops::stop_request_of(m, &held))
             .map(|m| Action::Reset(*m)),
     );
+    // No transition is awaited in manual, so no criterion is missing
+    // (the alarm itself waits for RESET).
+    actions.extend(signals.misses().map(Action::Reset));
     // A run-on keeps its own timer: it switches its output off itself.
     actions.extend(
         timers

@@ -178,6 +178,8 @@ pub(super) fn stop_now_rungs(
             .filter(|m| ends_with_the_cycle(m))
             .map(|m| Action::Reset(*m)),
     );
+    // No transition is awaited any more, so no criterion is missing.
+    actions.extend(signals.misses().map(Action::Reset));
     actions.extend(
         timers
             .iter()

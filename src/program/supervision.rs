@@ -4,8 +4,8 @@
 //! criterion says which condition of the awaited transition is not met.
 //!
 //! A criterion is an input literal (a sensor, a waited-for machine input, an
-//! interlock, a precheck's "target sensor still off") of some transition of
-//! the sequence; criterion n has an "awaited" memory `crit{n}`, kept by the
+//! interlock, a precheck's "target sensor still off", single step's
+//! "STEP_MODE off") of some transition of the sequence; criterion n has an "awaited" memory `crit{n}`, kept by the
 //! transitions themselves: each one that fires sets the memories of the
 //! criteria of the transition it makes the sequence wait at and resets the
 //! others', so that exactly the awaited transition's are on (none at rest).
@@ -37,12 +37,21 @@ pub(super) fn criteria(steps: &[ProgramStep], signals: &Signals) -> Vec<Literal>
     found
 }
 
-/// The criteria of one transition: its condition's input literals.
+/// The criteria of one transition: its condition's input literals, and
+/// where it needs single step's permit, "STEP_MODE off": a step whose
+/// time runs out in single step waits for a STEP_PB press (or the switch
+/// turned off), and the HMI says so — also of a selector stuck on, which
+/// leaves the machine standing mid-cycle.
 fn awaited(step: &ProgramStep) -> impl Iterator<Item = Literal> + '_ {
+    let permit = step
+        .condition
+        .contains(&Literal::is(Signal::StepPermit))
+        .then_some(Literal::not(Signal::StepMode));
     step.condition
         .iter()
         .copied()
         .filter(|l| l.signal.is_input())
+        .chain(permit)
 }
 
 /// The number of criterion `literal` (1-based), if it is one.

@@ -218,10 +218,16 @@ fn every_transition_leaves_exactly_the_awaited_criteria_on() {
     let awaited = |program: &StepProgram, index: usize| -> Vec<u16> {
         let mut on: Vec<u16> = match index {
             0 => Vec::new(),
+            // A step single step lets fire only on a press waits for
+            // "STEP_MODE off" too.
             _ => program.steps[index]
                 .condition
                 .iter()
-                .filter_map(|l| program.criteria.iter().position(|c| c == l))
+                .map(|l| match *l == Literal::is(Signal::StepPermit) {
+                    true => Literal::not(Signal::StepMode),
+                    false => *l,
+                })
+                .filter_map(|l| program.criteria.iter().position(|c| *c == l))
                 .map(|n| n as u16 + 1)
                 .collect(),
         };
