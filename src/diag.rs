@@ -114,6 +114,9 @@ pub enum Code {
     /// An output holds less of what the engineer wrote than the table (a
     /// comment cut to the width a symbol table's field holds).
     W008Shortened,
+    /// A safety check leaves part of the table unchecked (the watchdog
+    /// does not time a step that waits on an input, nor its moves).
+    W009Unsupervised,
 }
 
 impl Code {
@@ -148,6 +151,7 @@ impl Code {
             Code::W006NoEffect => "W006",
             Code::W007Assumed => "W007",
             Code::W008Shortened => "W008",
+            Code::W009Unsupervised => "W009",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",

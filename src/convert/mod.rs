@@ -9,6 +9,7 @@ mod given;
 mod idle_rows;
 use idle_rows::rows_without_their_event;
 mod kind_times;
+mod untimed;
 use given::{
     by_name, delays_without_their_input, home_order_by_name, loads_without_effect,
     names_of_the_whole_table, overridden_by_the_command_line, settings_without_their_actuator,
@@ -188,6 +189,7 @@ fn finish_check(
         names_of_the_whole_table(table, &input.table, &effective, &buttons, &mut diags);
         delays_without_their_input(table, &effective, &input.table, &mut diags);
         rows_without_their_event(&effective, &mut diags);
+        untimed::moves_left_unsupervised(table, &effective, &input.table, &mut diags);
     }
     match table {
         Some(table) if !diags.has_errors() => Ok(Checked {

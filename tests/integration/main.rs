@@ -75,6 +75,7 @@ mod stray_cells;
 mod structure;
 mod supervision;
 mod supervision_hostile;
+mod supervision_modes;
 mod swivel;
 mod synth;
 mod synth_bench;
