@@ -108,10 +108,10 @@ pub fn synth_problem(name: &str, identifiers: &[String]) -> Option<String> {
         let upper = lower.to_ascii_uppercase();
         let why = if IL_OPERATORS.contains(&upper.as_str()) {
             "an instruction-list operator (matiec would read it as one)"
-        } else if KEYWORDS.contains(&upper.as_str()) {
-            "a keyword of a PLC language"
         } else if is_standard_library_name(&upper) {
             "a standard function, function block or data type of IEC 61131-3"
+        } else if KEYWORDS.contains(&upper.as_str()) {
+            "a keyword of a PLC language"
         } else if SYNTH_OWN.contains(&lower.as_str())
             || lower
                 .strip_prefix('t')
@@ -158,9 +158,8 @@ pub const KEYWORDS: &[&str] = &[
 /// program's own (sensors `x…`, coils `y…`, memories, timers, steps).
 pub fn reserved_name(name: &str) -> Option<String> {
     let upper = name.to_ascii_uppercase();
-    if KEYWORDS.contains(&upper.as_str()) {
-        return Some("it is a keyword of a PLC language".to_string());
-    }
+    // The library first: `ton`, `abs`, `int` are in both lists, and the
+    // engineer is told what they are (a block, a function, a type).
     // Instruction-list operators (`r`, `s`, `ld`) are refused only for
     // synth's IL output ([`synth_problem`]): the table's programs are ST,
     // where matiec accepts them.
@@ -169,6 +168,9 @@ pub fn reserved_name(name: &str) -> Option<String> {
             "it is a standard function, function block or data type of IEC 61131-3 (matiec, OpenPLC and CODESYS would take it for that)"
                 .to_string(),
         );
+    }
+    if KEYWORDS.contains(&upper.as_str()) {
+        return Some("it is a keyword of a PLC language".to_string());
     }
     // The words of the SETTINGS lists (`hold-safe | none`, `safety | all`,
     // `target | default`): a signal so named could not be told from them.
@@ -441,6 +443,20 @@ fn is_standard_library_name(name: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// rt7 F18.5: `ton` is refused as the timer block it is, not as a
+    /// keyword; `if` stays a keyword.
+    #[test]
+    fn a_reserved_name_is_refused_for_what_it_is() {
+        for block in ["ton", "tof", "tp", "abs", "int"] {
+            let why = reserved_name(block).unwrap();
+            assert!(
+                why.contains("standard function, function block or data type"),
+                "{block}: {why}"
+            );
+        }
+        assert!(reserved_name("if").unwrap().contains("keyword"));
+    }
 
     #[test]
     fn standard_functions_blocks_and_types_are_refused() {

@@ -112,14 +112,37 @@ pub fn render_svg(
             symbols.actuator_parts(*number),
         );
     }
-    // Legend.
     let _ = writeln!(
         svg,
-        r##"<text x="{LEFT}" y="{:.1}" fill="#555" font-size="12">one lane per cylinder, position 0 (home) to its end; rising = extends (+), falling = retracts (-)</text>"##,
-        sheet.bottom - 10.0
+        r##"<text x="{LEFT}" y="{:.1}" fill="#555" font-size="12">{}</text>"##,
+        sheet.bottom - 10.0,
+        legend(report, symbols)
     );
     svg.push_str("</svg>\n");
     svg
+}
+
+/// What a lane shows, in the words of the kinds the table has: a table of
+/// cylinders reads "extends (+)", one with a drive or a gripper names
+/// their moves too (`runs forward`, `grips`).
+fn legend(report: &SimReport, symbols: &SymbolTable) -> String {
+    let mut words: Vec<(&str, &str)> = Vec::new();
+    for (number, _) in &report.actuators {
+        let moves = symbols.move_words(*number);
+        if !words.contains(&moves) {
+            words.push(moves);
+        }
+    }
+    let plain = ("extends", "retracts");
+    if words.iter().all(|w| *w == plain) {
+        return "one lane per cylinder, position 0 (home) to its end; rising = extends (+), falling = retracts (-)".to_string();
+    }
+    let (plus, minus): (Vec<&str>, Vec<&str>) = words.into_iter().unzip();
+    format!(
+        "one lane per actuator, position 0 (home) to its end; rising = + ({}), falling = - ({})",
+        plus.join(", "),
+        minus.join(", ")
+    )
 }
 
 /// The page a diagram is drawn on: its size, its horizontal axis and the

@@ -53,20 +53,21 @@ pub(super) fn comment(
         }
         Signal::StepButton => "STEP_PB push-button (single step: fire the next step)".to_string(),
         Signal::ManualMode => {
-            "MAN_MODE selector (1 = manual: the cycle ends, jog buttons move the actuators; 0 = automatic)".to_string()
+            "MAN_MODE selector (1 = manual: cycle ended, jog buttons move; 0 = automatic)"
+                .to_string()
         }
         Signal::StepPermit => "the sequence may fire a step in this scan".to_string(),
         Signal::StepMemory => "STEP_PB as read in the previous scan".to_string(),
         Signal::ManualMemory => {
-            "MAN_MODE as read in the previous scan (leaving manual switches the jogs' coils off)"
+            "MAN_MODE in the previous scan (leaving manual switches the jogs' coils off)"
                 .to_string()
         }
         Signal::JogsReleased => {
             "every jog button read released in this manual spell: the jogs may act".to_string()
         }
-        Signal::Jogged(n) => format!(
-            "C{n} was jogged in this manual spell: the coils a halt row holds on follow its jog buttons until manual ends"
-        ),
+        Signal::Jogged(n) => {
+            format!("C{n} jogged in this manual spell: its held coils follow its jog buttons")
+        }
         Signal::CycleRequest => "a cycle was asked for".to_string(),
         Signal::Busy => "a cycle is under way".to_string(),
         Signal::AutoRun => "continuous operation runs".to_string(),
@@ -258,6 +259,9 @@ fn program_comment(
         // No "bit k of a word": which bit of which word depends on the
         // target's byte order (the allocation list gives the address).
         Signal::Missing(n) => match criterion(n) {
+            Some(l) if l.signal == Signal::StepMode => {
+                format!("criterion {n} missing: single step, the step waits for STEP_PB")
+            }
             Some(l) => format!(
                 "criterion {n} missing: the step ran out of time and {} is not met",
                 wanted(l)

@@ -328,6 +328,14 @@ impl SymbolTable {
             .single_coil_words()
     }
 
+    /// What actuator `actuator` does on its `+` and `-` moves, in its
+    /// kind's words (`extends`, `runs forward`, `grips`).
+    pub fn move_words(&self, actuator: u32) -> (&'static str, &'static str) {
+        self.kinds
+            .get(&actuator)
+            .map_or(("extends", "retracts"), |k| k.move_words())
+    }
+
     /// What actuator `actuator`'s `+` and `-` coils do.
     fn kind_words(&self, actuator: u32) -> (&'static str, &'static str) {
         self.kinds

@@ -152,3 +152,24 @@ fn a_long_name_is_cut_in_every_printed_line_and_rung_comment() {
     assert!(last.contains(&format!("C1 ({cut}) at")), "{last}");
     assert!(!stdout.contains(&name), "the whole name printed: {stdout}");
 }
+
+/// steptable's own symbol comments fit the 80 characters of `NAME.sdf`:
+/// W008 is for what the engineer wrote, who can shorten it, never for a
+/// generated comment (MAN_MODE's and man_mem's once were cut, rt7
+/// F18.1). Every sample, every mode and safety check, on S7.
+#[test]
+fn generated_comments_fit_the_symbol_table() {
+    let dir = tempfile::tempdir().unwrap();
+    for sample in crate::helpers::samples() {
+        let out = steptable()
+            .args(["convert", "--formats", "sdf", "--target", "siemens"])
+            .args(["--modes", "all", "--safety", "all", "-o"])
+            .arg(dir.path())
+            .arg(&sample)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{sample:?}: {out:?}");
+        let said = String::from_utf8_lossy(&out.stderr);
+        assert!(!said.contains("W008"), "{sample:?}: {said}");
+    }
+}

@@ -256,3 +256,37 @@ fn scenario_messages_name_what_the_command_has() {
         "{said}"
     );
 }
+
+/// rt7 F18.3: a press of a button still down from the press before it
+/// (within its 0.1 s) gives the program no new edge, and the table says
+/// so instead of printing a press that did nothing; a press after the
+/// button was let go is a press. Single step shows why it matters: the
+/// second STEP_PB fires no step.
+#[test]
+fn a_press_of_a_button_still_down_is_said_to_be_no_new_press() {
+    let work = tempfile::tempdir().unwrap();
+    let (code, table) = paper(
+        work.path(),
+        &[
+            "--modes",
+            "step",
+            "--hold",
+            "STEP_MODE@0s",
+            "--press",
+            "STEP_PB@1s",
+            "--press",
+            "STEP_PB@+50ms",
+            "--press",
+            "STEP_PB@+1s",
+        ],
+    );
+    assert_eq!(code, Some(0), "{table}");
+    let said: Vec<&str> = table.lines().filter(|l| l.contains("STEP_PB@")).collect();
+    assert_eq!(said.len(), 3, "{table}");
+    assert!(!said[0].contains("still down"), "{table}");
+    assert!(
+        said[1].contains("STEP_PB pressed while still down: no new press"),
+        "{table}"
+    );
+    assert!(!said[2].contains("still down"), "{table}");
+}

@@ -61,6 +61,10 @@ pub struct ScenarioReport {
     /// the sequence sent back to step 0 by a rung (manual mode, RESET, a
     /// STOP at once), not by its closing transition.
     pub abandoned: Vec<(u64, usize, crate::program::RungKind)>,
+    /// The events (by index) that pressed or held a button already down
+    /// (a press still within its 0.1 s, a hold): no new edge, so the
+    /// program saw no new press.
+    pub still_down: Vec<usize>,
 }
 
 /// The most scans a scenario runs one by one (quiet scans passed at once
@@ -184,6 +188,10 @@ trait Script {
     fn auto_start_ms(&self) -> Option<u64> {
         None
     }
+    /// The events that pressed a button already down.
+    fn still_down(&self) -> Vec<usize> {
+        Vec::new()
+    }
     /// The earliest time the script may change anything with time alone
     /// (a press let go, an event at a time, the run's end): quiet scans
     /// before it may be passed at once. `None`: run every scan.
@@ -230,6 +238,7 @@ struct Events<'a> {
     /// When it was.
     started_ms: Option<u64>,
     tail_ms: u64,
+    still_down: Vec<usize>,
 }
 
 impl<'a> Events<'a> {
@@ -244,6 +253,7 @@ impl<'a> Events<'a> {
             auto_start,
             started_ms: None,
             tail_ms,
+            still_down: Vec::new(),
         }
     }
 
@@ -284,7 +294,11 @@ impl Script for Events<'_> {
             set(&mut world.operator, signal, false);
         }
         while self.next < self.events.len() && self.due(self.next, now) {
-            match self.events[self.next].act {
+            let act = self.events[self.next].act;
+            if matches!(act, Act::Press(s) | Act::Hold(s) if is_down(&world.operator, s)) {
+                self.still_down.push(self.next);
+            }
+            match act {
                 Act::Press(s) => {
                     set(&mut world.operator, s, true);
                     self.releases.retain(|(_, r)| *r != s);
@@ -331,6 +345,10 @@ impl Script for Events<'_> {
     fn auto_start_ms(&self) -> Option<u64> {
         self.started_ms
     }
+
+    fn still_down(&self) -> Vec<usize> {
+        self.still_down.clone()
+    }
 }
 
 /// The input `signal` reads `stuck_at` from this scan on.
@@ -341,6 +359,22 @@ fn stick(world: &mut super::world::World, signal: Signal, stuck_at: bool) {
     // Faults from power-up on: the ones present are the ones stuck so far.
     settings.fault_onset_ms = 0;
     world.faults_active = true;
+}
+
+/// Whether the operator's button `signal` is down (pressed or held).
+fn is_down(operator: &Operator, signal: Signal) -> bool {
+    match signal {
+        Signal::Start => operator.start,
+        Signal::Stop => operator.stop,
+        Signal::EStop => operator.estop,
+        Signal::Reset => operator.reset,
+        Signal::Continuous => operator.continuous,
+        Signal::StepMode => operator.step_mode,
+        Signal::StepButton => operator.step,
+        Signal::ManualMode => operator.manual,
+        Signal::Jog { .. } => operator.jogs.held(signal),
+        _ => false,
+    }
 }
 
 /// Presses or lets go of the operator's button `signal`.
@@ -432,6 +466,7 @@ fn run_script(
         cut_ms,
         spans,
         abandoned,
+        still_down: script.still_down(),
     };
     (report, io)
 }

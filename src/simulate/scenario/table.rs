@@ -27,11 +27,13 @@ fn lines(
     let mut lines = Vec::new();
     for (t, k) in &report.happened {
         let event = &events[*k];
-        lines.push((
-            *t,
-            0,
-            format!("{}: {}", event.written, describe(event, names)),
-        ));
+        let mut said = format!("{}: {}", event.written, describe(event, names));
+        if report.still_down.contains(k) {
+            said.push_str(
+                " while still down: no new press for the program (a press holds its button 0.1 s, two scans at least)",
+            );
+        }
+        lines.push((*t, 0, said));
     }
     if let Some(press) = report.auto_start_ms {
         lines.push((press, 0, "START pressed (as in the proof)".to_string()));
