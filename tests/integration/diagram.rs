@@ -279,3 +279,35 @@ fn the_time_diagrams_step_markers_are_the_simulated_step_times() {
     // Step 4 of the paper's example fires 2.59 s after START, as the table says.
     assert!((expected[3] - 2.59).abs() < 0.005, "{expected:?}");
 }
+
+/// The legend says what a rising lane means in the words of the kinds the
+/// table has: the paper's cylinders extend, the car wash's drive runs
+/// forward (it once read "one lane per cylinder … extends" there too).
+#[test]
+fn the_legend_speaks_of_the_tables_own_kinds() {
+    let dir = tempfile::tempdir().unwrap();
+    let legend = |name: &str| {
+        steptable()
+            .arg("convert")
+            .arg(sample(&format!("{name}.xlsx")))
+            .args(["--formats", "diagram", "-o"])
+            .arg(dir.path())
+            .assert()
+            .success();
+        let svg = dir.path().join(name).join(format!("{name}.diagram.svg"));
+        let svg = std::fs::read_to_string(svg).unwrap();
+        let at = svg.find("one lane per").expect("a legend");
+        svg[at..at + svg[at..].find('<').unwrap()].to_string()
+    };
+    let paper = legend("paper_example");
+    assert!(
+        paper.contains("one lane per cylinder") && paper.contains("extends (+)"),
+        "{paper}"
+    );
+    let carwash = legend("carwash");
+    assert!(carwash.contains("one lane per actuator"), "{carwash}");
+    assert!(
+        carwash.contains("runs forward") && !carwash.contains("extends"),
+        "{carwash}"
+    );
+}
