@@ -96,7 +96,7 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         let (conversion, folder) = (&run.conversion, &run.folder);
         report.diagnostics(&conversion.warnings);
         match &run.written {
-            Ok((_, removed)) => {
+            Ok((_, cleanup)) => {
                 // As the files lie in the folder: `NAME.beremiz/plc.xml`.
                 let names: Vec<String> = conversion.files.iter().map(|f| f.name.clone()).collect();
                 report.say(&format!(
@@ -108,15 +108,24 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
                 for line in &conversion.findings {
                     report.say(&format!("  {line}"));
                 }
-                if !removed.is_empty() {
-                    let names: Vec<String> = removed
-                        .iter()
-                        .filter_map(|p| p.strip_prefix(folder).ok())
-                        .map(|p| p.display().to_string())
-                        .collect();
+                let inside =
+                    |p: &std::path::Path| p.strip_prefix(folder).unwrap_or(p).display().to_string();
+                if !cleanup.removed.is_empty() {
+                    let names: Vec<String> = cleanup.removed.iter().map(|p| inside(p)).collect();
                     report.say(&format!(
                         "  removed what an earlier run wrote there and this one did not: {}",
                         names.join(", ")
+                    ));
+                }
+                if !cleanup.kept.is_empty() {
+                    let names: Vec<String> = cleanup
+                        .kept
+                        .iter()
+                        .map(|(p, why)| format!("{} ({why})", inside(p)))
+                        .collect();
+                    report.say(&format!(
+                        "  kept what an earlier run wrote there and this one did not, for you to remove: {}",
+                        names.join("; ")
                     ));
                 }
             }

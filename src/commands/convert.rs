@@ -19,9 +19,9 @@ pub struct ConvertRun {
     pub conversion: Conversion,
     /// The folder the files go into (`DIR/NAME/`).
     pub folder: PathBuf,
-    /// The paths written and the files of an earlier run removed, or why
-    /// nothing was written.
-    pub written: Result<(Vec<PathBuf>, Vec<PathBuf>), WriteError>,
+    /// The paths written and what became of the files of an earlier run,
+    /// or why nothing was written.
+    pub written: Result<(Vec<PathBuf>, write::Cleanup), WriteError>,
 }
 
 /// Converts the table `input` under `settings` and writes every output

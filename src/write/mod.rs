@@ -19,6 +19,9 @@ use crate::diag::{Code, Diagnostic, Location, Severity};
 use crate::emit::OutputFile;
 use crate::manifest::{self, Found, Manifest, Stamp};
 
+mod cleanup;
+pub use cleanup::{Cleanup, write_conversion};
+
 /// Why outputs could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum WriteError {
@@ -110,6 +113,11 @@ impl Inputs {
     /// No inputs to keep (outputs made from nothing the user named).
     pub fn none() -> Self {
         Self::default()
+    }
+
+    /// Whether `path` is one of the run's inputs (links followed).
+    fn holds(&self, path: &Path) -> bool {
+        std::fs::canonicalize(path).is_ok_and(|real| self.real.contains(&real))
     }
 }
 
@@ -256,74 +264,6 @@ fn write_recorded(
     let mut written = stage_and_rename(folder, &all, durability)?;
     written.remove(0);
     Ok(written)
-}
-
-/// Writes a conversion's whole set of files, as [`write_outputs`] does, and
-/// then removes the files an earlier run recorded writing into the folder
-/// that this run did not write (a rerun with fewer `--formats`, or after
-/// `faults -o` wrote beside it), where they are still as written: a folder
-/// never holds a program beside the lists of another table. A file changed
-/// since is left alone, and so is a scenario's page (`simulate --report`),
-/// which no conversion writes again. Returns the paths written and those removed.
-pub fn write_conversion(
-    folder: &Path,
-    files: &[OutputFile],
-    inputs: &Inputs,
-    durability: Durability,
-    made_by: Option<&str>,
-) -> Result<(Vec<PathBuf>, Vec<PathBuf>), WriteError> {
-    let before = match folder.is_dir().then(|| Manifest::read(folder)) {
-        Some(Found::Manifest(m)) => m,
-        _ => Manifest::default(),
-    };
-    let stale: Vec<String> = before
-        .files
-        .keys()
-        .filter(|name| inside(name))
-        .filter(|name| !files.iter().any(|f| &f.name == *name))
-        .filter(|name| !crate::emit::CommandFile::outlives_conversion(name))
-        .filter(|name| before.vouches_for(folder, name))
-        .cloned()
-        .collect();
-    let written = write_outputs(folder, files, inputs, durability, made_by)?;
-    if stale.is_empty() {
-        return Ok((written, Vec::new()));
-    }
-    let Found::Manifest(mut record) = Manifest::read(folder) else {
-        return Ok((written, Vec::new()));
-    };
-    let mut removed = Vec::new();
-    for name in stale {
-        let path = folder.join(&name);
-        if std::fs::remove_file(&path).is_ok() {
-            record.files.remove(&name);
-            record.made_by.remove(&name);
-            // A project folder (`NAME.beremiz/`) emptied goes too; one that
-            // still holds anything stays.
-            if let Some(parent) = path.parent().filter(|p| *p != folder) {
-                let _ = std::fs::remove_dir(parent);
-            }
-            removed.push(path);
-        }
-    }
-    let bytes = record.to_bytes();
-    stage_and_rename(
-        folder,
-        &[(manifest::FILE_NAME, bytes.as_slice())],
-        durability,
-    )?;
-    Ok((written, removed))
-}
-
-/// Whether a manifest's file name stays inside its folder: plain names
-/// only, no `..`, no root. A manifest is a file anyone can edit; only what
-/// lies in the folder is ever removed on its word.
-fn inside(name: &str) -> bool {
-    let path = Path::new(name);
-    !name.is_empty()
-        && path
-            .components()
-            .all(|c| matches!(c, std::path::Component::Normal(_)))
 }
 
 /// Writes `files` into `folder` (created if missing), replacing what is
