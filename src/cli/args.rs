@@ -4,7 +4,7 @@ use super::*;
 
 #[derive(Args)]
 pub(crate) struct SimArgs {
-    /// Stroke times per actuator, extend/retract: C2=1.5s/0.8s,C3=2s (default 1s/1s).
+    /// Stroke times per actuator, extend/retract: C2=1.5s/0.8s,C3=2s (default 1s/1s; a swivel drive's and a vacuum gripper's own times, see the guide's valves).
     #[arg(long, value_name = "LIST", value_parser = parse_strokes)]
     pub(crate) stroke: Option<StrokeMap>,
     /// Drift of a 5/3 piston with no coil on, stroke per second: C2=0.1, 2A1=0.1 or clamp=0.1
@@ -307,9 +307,16 @@ pub(crate) fn parse_home_order(text: &str) -> Result<HomeOrder, String> {
 /// `--formats` help: every kind the library writes, from its own list.
 pub(crate) fn formats_help() -> String {
     let names: Vec<&str> = OutputKind::ALL.iter().map(|k| k.name()).collect();
+    let defaults = OutputKind::defaults();
+    let asked: Vec<&str> = OutputKind::ALL
+        .iter()
+        .filter(|k| !defaults.contains(k))
+        .map(|k| k.name())
+        .collect();
     format!(
-        "Files to write, comma-separated: {} (default all)",
-        names.join(", ")
+        "Files to write, comma-separated: {}, or all (default: every one but {}, written when named or with all)",
+        names.join(", "),
+        asked.join(", ")
     )
 }
 

@@ -299,3 +299,24 @@ fn every_fuzz_command_names_folders_a_fresh_clone_has() {
     }
     assert!(commands >= 6, "the fuzz commands moved: {commands} found");
 }
+
+/// The help says the defaults there are (rt8 finding 7): `--formats`
+/// leaves the graphical bodies out unless named, and a swivel drive and a
+/// gripper have their own stroke times. It said "default all" and "1s/1s".
+#[test]
+fn the_help_gives_the_real_defaults() {
+    let out = crate::helpers::steptable()
+        .args(["convert", "--help"])
+        .output()
+        .unwrap();
+    let help = String::from_utf8(out.stdout).unwrap();
+    assert!(!help.contains("(default all)"), "{help}");
+    assert!(
+        help.contains("default: every one but sfc, ld, beremiz-sfc"),
+        "{help}"
+    );
+    assert!(
+        help.contains("swivel drive's and a vacuum gripper's own times"),
+        "{help}"
+    );
+}
