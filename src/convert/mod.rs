@@ -15,6 +15,7 @@ use given::{
     supervision_times,
 };
 mod physics;
+mod placeholder_rows;
 pub use physics::lucky_middle_stops;
 mod pins;
 mod report;
