@@ -44,6 +44,9 @@ pub fn parse_duration_ms(text: &str) -> Option<u32> {
 
 /// Parses a scan time (`--scan`, the SETTINGS sheet's `scan time`): 1 ms to 1 s.
 pub fn parse_scan(text: &str) -> Result<u32, String> {
+    if crate::cell::thousands_comma(text) {
+        return Err(crate::cell::thousands_comma_words(text));
+    }
     parse_duration_ms(text)
         .filter(|ms| *ms <= 1000)
         .ok_or_else(|| format!("\"{text}\" is not a scan time from 1ms to 1s, such as 10ms"))
@@ -94,7 +97,10 @@ mod tests {
         assert_eq!(parse_duration_ms("2 S"), Some(2000));
         assert_eq!(parse_duration_ms("0,5s"), Some(500));
         assert_eq!(parse_duration_ms("2"), Some(2000));
-        for bad in ["", "s", "-1s", "0ms", "fast", "nan", "inf s"] {
+        // A comma before three digits may group thousands: no reading.
+        for bad in [
+            "", "s", "-1s", "0ms", "fast", "nan", "inf s", "1,000ms", "1,500s",
+        ] {
             assert_eq!(parse_duration_ms(bad), None, "{bad}");
         }
     }

@@ -323,6 +323,12 @@ pub fn parse_item(text: &str) -> Result<CellItem, ItemError> {
     }
     if let Some(rest) = norm.strip_prefix("T=") {
         let ms = parse_dwell(rest).ok_or_else(|| {
+            if thousands_comma(rest) {
+                return ItemError::BadDwell(format!(
+                    "dwell {}",
+                    thousands_comma_words(text.trim())
+                ));
+            }
             ItemError::BadDwell(format!(
                 "\"{}\" is not a dwell (expected T=2s or T=500ms, from {MIN_DWELL_MS} ms to {} s)",
                 text.trim(),
@@ -474,10 +480,44 @@ pub fn read_as_seconds(text: &str) -> String {
     )
 }
 
+/// Whether a time's comma may group thousands as well as mark decimals:
+/// three digits after it (`1,000ms`, `0,500s`). `1,000ms` is 1000 ms to
+/// one engineer and 1 ms to another, so no time cell reads it; `1,5s`
+/// can only be a decimal comma and is 1.5 s everywhere.
+pub fn thousands_comma(text: &str) -> bool {
+    let t: String = text.chars().filter(|c| !c.is_whitespace()).collect();
+    let t = t.to_ascii_lowercase();
+    let number = t
+        .strip_suffix("ms")
+        .or_else(|| t.strip_suffix('s'))
+        .unwrap_or(&t);
+    number.split_once(',').is_some_and(|(whole, after)| {
+        !whole.is_empty()
+            && whole.chars().all(|c| c.is_ascii_digit())
+            && after.len() == 3
+            && after.chars().all(|c| c.is_ascii_digit())
+    })
+}
+
+/// The words for a time [`thousands_comma`] refuses: both readings, and
+/// how to write either.
+pub fn thousands_comma_words(text: &str) -> String {
+    let text = text.trim();
+    format!(
+        "\"{text}\" has a comma that may separate thousands ({}) or be a decimal comma ({}): write the time without it, with a point for decimals (1.5s, 1000ms)",
+        text.replace(',', ""),
+        text.replace(',', ".")
+    )
+}
+
 /// The one duration parser (dwells, stroke and scan times, input delays):
 /// `2s`, `500ms`, `1.5s`, `1,5s`, a bare number in seconds, at most three
-/// decimals, in exact decimal arithmetic; `None` outside `range` (ms).
+/// decimals, in exact decimal arithmetic; `None` outside `range` (ms), and
+/// for a comma that may separate thousands ([`thousands_comma`]).
 pub fn parse_duration_in(text: &str, range: std::ops::RangeInclusive<u32>) -> Option<u32> {
+    if thousands_comma(text) {
+        return None;
+    }
     let lower = text.to_ascii_lowercase();
     let (number, scale) = if let Some(n) = lower.strip_suffix("ms") {
         (n, 1u64)

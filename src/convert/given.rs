@@ -15,8 +15,8 @@ use crate::table::StepTable;
 /// table does not have does nothing: a typo (C8 for C3) would leave the
 /// real actuator on its default valve without a word. Each is E030 at the
 /// SETTINGS cell that names it, or naming the command-line option; a
-/// SETTINGS row giving only the default stroke (the template's C1 to C8)
-/// loses nothing and passes.
+/// SETTINGS row giving only the default stroke (the old template's C1 to
+/// C8) loses nothing and is W003 ([`super::placeholder_rows`]).
 pub(super) fn settings_without_their_actuator(
     table: &StepTable,
     settings: &Settings,
@@ -63,6 +63,7 @@ pub(super) fn settings_without_their_actuator(
         );
     }
     if let Some((grid, given)) = sheet {
+        super::placeholder_rows::placeholder_rows(table, grid, given, &has, diags);
         let mut named: Vec<u32> = keys(given, false).into_iter().map(|(n, _)| n).collect();
         named.sort_unstable();
         named.dedup();

@@ -16,6 +16,7 @@ use given::{
     supervision_times,
 };
 mod physics;
+mod placeholder_rows;
 pub use physics::lucky_middle_stops;
 mod pins;
 mod report;
@@ -127,7 +128,8 @@ fn finish_check(
             input.table = grid;
         }
     }
-    let table = table::build(&input.table, &mut diags);
+    let valves = &effective.simulation.machine.valves;
+    let table = table::build_for(&input.table, valves, &mut diags);
     if let Some(table) = &table {
         by_name(table, &mut effective, &input.table.file, &mut diags);
         // A home order from the SETTINGS sheet is blamed on its cell; one

@@ -415,6 +415,9 @@ fn apply(
                 said_without_unit(grid, value_cell, value, diags);
                 settings.scan_ms = Some(ms)
             }
+            Err(_) if crate::cell::thousands_comma(value) => {
+                said(crate::cell::thousands_comma_words(value))
+            }
             Err(_) => bad("a scan time from 1ms to 1s, such as 10ms".to_string()),
         },
         // The parsers say which item is wrong (unknown, twice, empty).

@@ -5,6 +5,7 @@
 use super::check;
 use super::frame::find_frame;
 use super::*;
+use crate::actuator::Valves;
 use crate::cell::{
     CellError, ItemError, MAX_ACTUATOR, MAX_POSITION, item_texts, move_attempt, not_a_move_hint,
     parse_items,
@@ -22,6 +23,13 @@ struct RawCell {
 /// Builds the table from a sheet and checks it. Returns `None` when any error
 /// was found (all of them are in `diags`).
 pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
+    build_for(grid, &Valves::default(), diags)
+}
+
+/// [`build`] for the valves the settings give by number: a position a
+/// kind cannot hold (E045) is said with the table's other errors, in one
+/// run, and no E022 then asks to complete that move.
+pub fn build_for(grid: &Grid, valves: &Valves, diags: &mut Diagnostics) -> Option<StepTable> {
     let errors_before = diags.error_count();
     let Some(frame) = find_frame(grid, diags) else {
         if diags.error_count() == errors_before {
@@ -132,7 +140,7 @@ pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
     }
     parsed.truncate(last_with_moves + 1);
 
-    let table = check::check(grid, &frame, parsed, &refused, diags);
+    let table = check::check(grid, &frame, parsed, (&refused, valves), diags);
     if diags.error_count() > errors_before {
         None
     } else {

@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 
 use super::frame::Frame;
 use super::{Actuator, Dwell, Jump, MAX_DWELLS, Move, Step, StepTable, Switch, Wait};
+use crate::actuator::Valves;
 use crate::cell::{CellItem, JumpTarget, Name, Sign};
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 use crate::read::Grid;
@@ -42,7 +43,7 @@ pub(super) fn check(
     grid: &Grid,
     frame: &Frame,
     parsed: Vec<Vec<(CellItem, CellPos, usize)>>,
-    refused: &Refused,
+    (refused, valves): (&Refused, &Valves),
     diags: &mut Diagnostics,
 ) -> Option<StepTable> {
     let mut rules = Rules::new(grid, refused, diags, &parsed);
@@ -50,26 +51,25 @@ pub(super) fn check(
     for (index, row) in parsed.into_iter().enumerate() {
         steps.push(rules.step(frame, index, row));
     }
-    rules.home();
-    let Rules {
-        max_position,
-        names,
-        diags,
-        ..
-    } = rules;
+    let actuators: Vec<Actuator> = (rules.max_position.iter())
+        .map(|(&number, &max_position)| Actuator {
+            number,
+            max_position,
+        })
+        .collect();
+    // A position its kind cannot hold is said with every other error; its
+    // actuator is then not told to come home from there (E022).
+    let cannot_hold =
+        super::machine::check_positions(&actuators, &steps, valves, grid, rules.diags);
+    rules.home(&cannot_hold);
+    let Rules { names, diags, .. } = rules;
     check_jumps(&steps, refused, grid, diags);
     Some(StepTable {
         file: grid.file.clone(),
         sheet: grid.sheet.clone(),
         branches: frame.branch_cols.len(),
         steps,
-        actuators: max_position
-            .into_iter()
-            .map(|(number, max_position)| Actuator {
-                number,
-                max_position,
-            })
-            .collect(),
+        actuators,
         inputs: names.inputs,
         outputs: names.outputs,
     })
@@ -331,10 +331,14 @@ impl<'a> Rules<'a> {
         });
     }
 
-    /// E022: every actuator back at position 0 after the last step.
-    fn home(&mut self) {
+    /// E022: every actuator back at position 0 after the last step, but
+    /// for those whose position no kind of theirs can hold (E045).
+    fn home(&mut self, cannot_hold: &[u32]) {
         for (actuator, (position, last_cell)) in &self.current {
-            if *position != 0 && !self.refused.unknown(*actuator, usize::MAX) {
+            if *position != 0
+                && !self.refused.unknown(*actuator, usize::MAX)
+                && !cannot_hold.contains(actuator)
+            {
                 let loc = match last_cell {
                     Some(pos) => self.grid.location(*pos),
                     None => self.grid.sheet_location(),

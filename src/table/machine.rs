@@ -2,7 +2,7 @@
 //! at middle positions (E031), a home order that fits the table (E030,
 //! W006), and signal names the operating modes take for their buttons.
 
-use super::StepTable;
+use super::{Actuator, Step, StepTable};
 use crate::actuator::Valves;
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 use crate::read::Grid;
@@ -27,7 +27,8 @@ pub struct Machine<'a> {
 /// the home order (checked whether or not the reset mode uses it) and the
 /// names the operating modes take.
 pub fn check_machine(table: &StepTable, machine: &Machine, grid: &Grid, diags: &mut Diagnostics) {
-    check_positions(table, machine.valves, grid, diags);
+    // A valve given by name (`--valve clamp=vacuum`) is known only now.
+    check_positions(&table.actuators, &table.steps, machine.valves, grid, diags);
     check_valves(table, machine.valves, grid, diags);
     check_home_order(table, machine, grid, diags);
     check_button_names(table, machine.buttons, grid, diags);
@@ -119,16 +120,23 @@ fn check_home_order(table: &StepTable, machine: &Machine, grid: &Grid, diags: &m
 
 /// A kind that holds only so many positions (a vacuum gripper: released 0,
 /// held 1) cannot be asked for more: E045 at the first move past them,
-/// whether that move is the highest or one in the middle.
-fn check_positions(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut Diagnostics) {
-    for actuator in &table.actuators {
+/// whether that move is the highest or one in the middle. Returns the
+/// actuators refused.
+pub(super) fn check_positions(
+    actuators: &[Actuator],
+    steps: &[Step],
+    valves: &Valves,
+    grid: &Grid,
+    diags: &mut Diagnostics,
+) -> Vec<u32> {
+    let mut refused = Vec::new();
+    for actuator in actuators {
         let kind = valves.of(actuator.number, actuator.max_position);
         let Some(highest) = kind.highest_position() else {
             continue;
         };
         let asked = |m: &&crate::table::Move| m.actuator == actuator.number;
-        let Some(m) = table
-            .steps
+        let Some(m) = steps
             .iter()
             .flat_map(|s| &s.moves)
             .filter(asked)
@@ -158,7 +166,9 @@ fn check_positions(table: &StepTable, valves: &Valves, grid: &Grid, diags: &mut 
                 kind.positions_said(n),
             ),
         );
+        refused.push(n);
     }
+    refused
 }
 
 /// A middle position needs a valve with a centre: a 5/2 valve cannot stop a

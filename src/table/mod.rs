@@ -10,7 +10,7 @@ mod dialect;
 mod frame;
 mod machine;
 
-pub use build::{build, from_rows};
+pub use build::{build, build_for, from_rows};
 pub use dialect::choose_reading;
 pub use machine::{Machine, check_machine, home_order_place};
 

@@ -184,7 +184,7 @@ fn settings_for_what_the_table_does_not_have_are_refused() {
             says: "its settings would do nothing",
         },
         Case {
-            what: "a SETTINGS row for C9 at the default stroke (as the template writes C1 to C8)",
+            what: "a SETTINGS row for C9 at the default stroke (as the old template wrote C1 to C8)",
             table: TWO,
             settings: &[
                 &["actuator", "extend", "retract", "valve"],
@@ -192,8 +192,8 @@ fn settings_for_what_the_table_does_not_have_are_refused() {
             ],
             args: &[],
             exit: 0,
-            code_at: "",
-            says: "",
+            code_at: "SETTINGS!B2: warning[W003]: the time cells of C9 (B2, C2) hold 1s",
+            says: "they were not read",
         },
         Case {
             what: "the real ones",

@@ -3,6 +3,7 @@
 //! The checks that need a tool outside the crate are in `tests/tools/`.
 
 mod abandoned;
+mod actuator_cells;
 mod batch;
 mod boards;
 mod body_projects;

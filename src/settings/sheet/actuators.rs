@@ -369,25 +369,28 @@ fn read_actuator_row<'g>(
             ),
         }
     }
+    // Only a cell that was read is recorded: one refused (E030) is not
+    // "taken as given" afterwards (W007 of a kind's own time).
     let mut stroke_at = Vec::new();
     let mut time = |col: Option<u32>, what: &'static str| -> Option<u32> {
         let cell = col.and_then(at)?;
-        stroke_at.push((what, grid.location(cell.pos)));
         let text = value_text(grid, cell, diags)?;
-        let ms = parse_duration_ms(&text);
-        if ms.is_some() {
-            said_without_unit(grid, cell, &text, diags);
-        }
-        if ms.is_none() {
+        let Some(ms) = parse_duration_ms(&text) else {
+            let why = if crate::cell::thousands_comma(&text) {
+                crate::cell::thousands_comma_words(&text)
+            } else {
+                format!("\"{text}\" is not a time such as 1.5s or 800ms")
+            };
             diags.error(
                 Code::E030BadSetting,
                 grid.location(cell.pos),
-                format!(
-                    "stroke time of C{actuator}: \"{text}\" is not a time such as 1.5s or 800ms"
-                ),
+                format!("stroke time of C{actuator}: {why}"),
             );
-        }
-        ms
+            return None;
+        };
+        said_without_unit(grid, cell, &text, diags);
+        stroke_at.push((what, grid.location(cell.pos)));
+        Some(ms)
     };
     let (extend, retract) = (
         time(columns.extend, "extend"),
