@@ -117,6 +117,9 @@ pub enum Code {
     /// A safety check leaves part of the table unchecked (the watchdog
     /// does not time a step that waits on an input, nor its moves).
     W009Unsupervised,
+    /// A jump leaves a machine output otherwise than the sequence without
+    /// it (a switch-off it leaves out).
+    W010JumpLeavesOutput,
 }
 
 impl Code {
@@ -152,6 +155,7 @@ impl Code {
             Code::W007Assumed => "W007",
             Code::W008Shortened => "W008",
             Code::W009Unsupervised => "W009",
+            Code::W010JumpLeavesOutput => "W010",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",

@@ -8,6 +8,7 @@ mod findings;
 mod given;
 mod idle_rows;
 use idle_rows::rows_without_their_event;
+mod jump_outputs;
 mod kind_times;
 mod untimed;
 use given::{
@@ -192,6 +193,7 @@ fn finish_check(
         delays_without_their_input(table, &effective, &input.table, &mut diags);
         rows_without_their_event(&effective, &mut diags);
         untimed::moves_left_unsupervised(table, &effective, &input.table, &mut diags);
+        jump_outputs::outputs_a_jump_leaves(table, &input.table, &mut diags);
     }
     match table {
         Some(table) if !diags.has_errors() => Ok(Checked {

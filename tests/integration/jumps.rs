@@ -220,3 +220,59 @@ fn synthesis_refuses_a_table_with_a_jump() {
             "error[E034]: STEP 3 (C2-0; J:6 if I:reject) is not one cylinder move",
         ));
 }
+
+/// A jump that leaves out the step switching a machine output off (or on)
+/// is said at its cell, W010 (red team rt8, finding 8: the machine rested
+/// with its vacuum on after the no-part path, without a word). Where both
+/// paths arrive with the output alike, nothing is said.
+#[test]
+fn a_jump_leaving_an_output_otherwise_is_said_at_its_cell() {
+    let cases: [(&str, &str, Option<&str>); 5] = [
+        (
+            "a jump to the end leaving the vacuum on",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,Y:vacuum+; T=200ms\nSTEP 3,C1-0; J:end if I:no_part\nSTEP 4,C1+1\nSTEP 5,C1-0; Y:vacuum-\n",
+            Some(
+                "t.csv:4:2: warning[W010]: \"J:end if I:no_part\" in STEP 3 leaves Y:vacuum on at the end of the cycle, where the sequence arrives without the jump with it off (switched in STEP 5)",
+            ),
+        ),
+        (
+            "a jump forward leaving a lamp off",
+            ",BRANCH 1\nSTEP 1,C1+1; J:4 if I:skip\nSTEP 2,C1-0; Y:lamp+\nSTEP 3,C1+1\nSTEP 4,C1-0; Y:lamp-\n",
+            Some(
+                "t.csv:2:2: warning[W010]: \"J:4 if I:skip\" in STEP 1 leaves Y:lamp off in STEP 4, where the sequence arrives without the jump with it on (switched in STEP 2)",
+            ),
+        ),
+        (
+            "a jump to the end leaving out the last step's switch-off",
+            ",BRANCH 1\nSTEP 1,C1+1; Y:lamp+\nSTEP 2,C1-0; J:end if I:done\nSTEP 3,C1+1\nSTEP 4,C1-0\nSTEP 5,Y:lamp-\n",
+            Some("t.csv:3:2: warning[W010]: \"J:end if I:done\" in STEP 2 leaves Y:lamp on"),
+        ),
+        (
+            "a jump whose paths switch alike",
+            ",BRANCH 1\nSTEP 1,C1+1; Y:lamp+\nSTEP 2,C1-0; Y:lamp-; J:end if I:done\nSTEP 3,C2+1\nSTEP 4,C2-0\n",
+            None,
+        ),
+        (
+            "a jump back that runs the switching steps again",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,Y:lamp+\nSTEP 3,C1-0; Y:lamp-\nSTEP 4,C1+1; J:2 if I:again\nSTEP 5,C1-0\n",
+            None,
+        ),
+    ];
+    for (what, table, said) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.csv");
+        std::fs::write(&path, table).unwrap();
+        let out = crate::helpers::steptable()
+            .arg("check")
+            .arg(&path)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{what}: {out:?}");
+        let stderr =
+            String::from_utf8_lossy(&out.stderr).replace(&format!("{}/", dir.path().display()), "");
+        match said {
+            Some(line) => assert!(stderr.contains(line), "{what}: {stderr}"),
+            None => assert!(!stderr.contains("W010"), "{what}: {stderr}"),
+        }
+    }
+}
