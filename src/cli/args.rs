@@ -314,7 +314,7 @@ pub(crate) fn formats_help() -> String {
         .map(|k| k.name())
         .collect();
     format!(
-        "Files to write, comma-separated: {}, or all (default: every one but {}, written when named or with all)",
+        "Files to write, comma-separated: {} (default: every one but {}, written when named or with all)",
         names.join(", "),
         asked.join(", ")
     )
