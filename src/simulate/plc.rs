@@ -183,7 +183,14 @@ impl<'a> PlcState<'a> {
                 .fold(0u64, |w, (i, &on)| w | (u64::from(on) << i));
             hasher.write_u64(word);
         }
-        (self.awaited, self.bits.len(), &self.timers).hash(hasher);
+        // The running timers alone, in index order: most of a long
+        // table's timers are off, and this runs at every scan.
+        (self.awaited, self.bits.len()).hash(hasher);
+        for (i, timer) in self.timers.iter().enumerate() {
+            if let Some(timer) = timer {
+                (i, timer).hash(hasher);
+            }
+        }
     }
 
     /// The same by index.
