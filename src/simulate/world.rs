@@ -132,7 +132,9 @@ pub(in crate::simulate) fn read_input(signal: Signal, world: &World) -> bool {
     {
         return f.stuck_at;
     }
-    let operator = world.operator;
+    // By reference: a copy of the buttons at every reading costs more than
+    // the reading.
+    let operator = &world.operator;
     match signal {
         Signal::Start => world.start_pressed || operator.start,
         Signal::Sensor { actuator, position } => world
