@@ -467,6 +467,7 @@ pub fn generate_observed(
     let allocation = allocate(&program, settings, &table.file).map_err(Failure::Input)?;
     let festo = festo_allocation(&program, &allocation);
     let symbols = crate::symbols::SymbolTable::build(&program, &table, &settings.naming);
+    let pictures = emit::Pictures::default();
     let input = EmitInput {
         name,
         table: &table,
@@ -482,6 +483,7 @@ pub fn generate_observed(
         templates: &settings.templates,
         scan_ms: settings.simulation.scan_ms,
         diagram: settings.diagram,
+        pictures: Some(&pictures),
     };
     if settings.formats.contains(&OutputKind::SymbolTable) {
         warnings.extend(findings::shortened_sdf_comments(&input));

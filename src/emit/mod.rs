@@ -76,6 +76,49 @@ pub struct EmitInput<'a> {
     pub scan_ms: u32,
     /// The horizontal axis of the diagram.
     pub diagram: diagram::DiagramKind,
+    /// The pictures drawn so far for this conversion, when the outputs
+    /// share them: the report shows the GRAFCET and the diagrams that
+    /// `NAME.grafcet.svg` and `NAME.diagram.svg` are.
+    pub pictures: Option<&'a Pictures>,
+}
+
+/// The pictures two outputs show, each drawn once per conversion by
+/// whichever output needs it first (the outputs render side by side):
+/// the GRAFCET and the displacement diagram along either axis.
+#[derive(Debug, Default)]
+pub struct Pictures {
+    grafcet: std::sync::OnceLock<String>,
+    step: std::sync::OnceLock<String>,
+    time: std::sync::OnceLock<String>,
+}
+
+impl EmitInput<'_> {
+    /// The GRAFCET as SVG ([`grafcet::render_svg`]).
+    pub fn grafcet_svg(&self) -> std::borrow::Cow<'_, str> {
+        let draw = || grafcet::render_svg(self);
+        match self.pictures {
+            Some(p) => p.grafcet.get_or_init(draw).as_str().into(),
+            None => draw().into(),
+        }
+    }
+
+    /// The displacement diagram of `simulation` along `kind`'s axis as SVG
+    /// ([`diagram::render_svg`]).
+    pub fn diagram_svg(
+        &self,
+        simulation: &SimReport,
+        kind: diagram::DiagramKind,
+    ) -> std::borrow::Cow<'_, str> {
+        let draw = || diagram::render_svg(self.name, simulation, kind, self.symbols);
+        let drawn = self.pictures.map(|p| match kind {
+            diagram::DiagramKind::Step => &p.step,
+            diagram::DiagramKind::Time => &p.time,
+        });
+        match drawn {
+            Some(drawn) => drawn.get_or_init(draw).as_str().into(),
+            None => draw().into(),
+        }
+    }
 }
 
 impl EmitInput<'_> {

@@ -148,7 +148,9 @@ impl<'a> Renderer<'a> {
                 let simulation = input
                     .simulation
                     .ok_or_else(|| internal("diagram", "not simulated"))?;
-                super::diagram::render_svg(name, simulation, input.diagram, self.input.symbols)
+                input
+                    .diagram_svg(simulation, input.diagram)
+                    .into_owned()
                     .into_bytes()
             }
             OutputKind::Faults => {
@@ -178,7 +180,7 @@ impl<'a> Renderer<'a> {
             OutputKind::Beremiz | OutputKind::BeremizSfc | OutputKind::BeremizLd => {
                 return self.beremiz(kind);
             }
-            OutputKind::Grafcet => super::grafcet::render_svg(&input).into_bytes(),
+            OutputKind::Grafcet => input.grafcet_svg().into_owned().into_bytes(),
             OutputKind::Report => super::report::render(&input)
                 .map_err(|e| internal("report", e))?
                 .into_bytes(),

@@ -76,6 +76,7 @@ impl Piston {
 
     /// Whether sensor `position` sees the piston (within `window` of its point).
     /// A kind's own switch (a vacuum switch) reads as its kind says.
+    #[inline]
     pub fn sensor(&self, position: u32, window: f64) -> bool {
         if let Some(on) = self.valve.switch_reads(position, self.spool, self.s) {
             return on;

@@ -5,8 +5,6 @@
 //! For speed the program is compiled once into signal indices, so a scan
 //! touches plain vectors rather than maps.
 
-use std::collections::BTreeMap;
-
 use crate::program::Signal;
 use crate::program::{Action, Literal, RungKind, StepProgram};
 
@@ -47,7 +45,9 @@ struct Jump {
 pub struct PlcProgram {
     /// Every signal the program uses, by index.
     signals: Vec<Signal>,
-    index: BTreeMap<Signal, usize>,
+    /// The index of each: hashed, not a tree of signal comparisons (a
+    /// stalled fault run looks up every output of the machine).
+    index: foldhash::HashMap<Signal, usize>,
     steps: Vec<Rule>,
     /// Per step, its jumps in the order they are tested.
     jumps: Vec<Vec<Jump>>,
@@ -84,7 +84,7 @@ impl PlcProgram {
             .collect();
         signals.sort();
         signals.dedup();
-        let index: BTreeMap<Signal, usize> =
+        let index: foldhash::HashMap<Signal, usize> =
             signals.iter().enumerate().map(|(i, s)| (*s, i)).collect();
         let rules = |rules: &mut dyn Iterator<Item = (&[Literal], &[Action])>| {
             rules
@@ -183,7 +183,14 @@ impl<'a> PlcState<'a> {
                 .fold(0u64, |w, (i, &on)| w | (u64::from(on) << i));
             hasher.write_u64(word);
         }
-        (self.awaited, self.bits.len(), &self.timers).hash(hasher);
+        // The running timers alone, in index order: most of a long
+        // table's timers are off, and this runs at every scan.
+        (self.awaited, self.bits.len()).hash(hasher);
+        for (i, timer) in self.timers.iter().enumerate() {
+            if let Some(timer) = timer {
+                (i, timer).hash(hasher);
+            }
+        }
     }
 
     /// The same by index.
@@ -284,7 +291,11 @@ impl<'a> PlcState<'a> {
     }
 }
 
-fn compile(index: &BTreeMap<Signal, usize>, condition: &[Literal], actions: &[Action]) -> Rule {
+fn compile(
+    index: &foldhash::HashMap<Signal, usize>,
+    condition: &[Literal],
+    actions: &[Action],
+) -> Rule {
     let at = |s: Signal| index.get(&s).copied().unwrap_or(0);
     Rule {
         condition: condition

@@ -24,7 +24,7 @@ pub(in crate::simulate) struct World {
     pub(in crate::simulate) settings: Arc<SimSettings>,
     pub(in crate::simulate) pistons: Vec<Piston>,
     /// Each actuator's piston, by number (shared by the run's copies).
-    pub(in crate::simulate) index_of: Arc<BTreeMap<u32, usize>>,
+    pub(in crate::simulate) index_of: Arc<PistonIndex>,
     pub(in crate::simulate) start_pressed: bool,
     /// Buttons other than START (the standard proof leaves them alone).
     pub(in crate::simulate) operator: Operator,
@@ -32,6 +32,27 @@ pub(in crate::simulate) struct World {
     pub(in crate::simulate) machine: BTreeMap<Name, bool>,
     /// The faults have appeared (the run has reached their onset).
     pub(in crate::simulate) faults_active: bool,
+}
+
+/// Each actuator's piston by its number, looked up at every reading of a
+/// sensor: a table by number (numbers go up to [`crate::cell::MAX_ACTUATOR`])
+/// rather than a map.
+pub(in crate::simulate) struct PistonIndex(Vec<Option<usize>>);
+
+impl PistonIndex {
+    fn new(pistons: &[Piston]) -> PistonIndex {
+        let size = pistons.iter().map(|p| p.number as usize + 1).max();
+        let mut index = vec![None; size.unwrap_or(0)];
+        for (i, p) in pistons.iter().enumerate() {
+            index[p.number as usize] = Some(i);
+        }
+        PistonIndex(index)
+    }
+
+    /// The piston of actuator `number`, if the table has it.
+    pub(in crate::simulate) fn get(&self, number: &u32) -> Option<&usize> {
+        self.0.get(*number as usize)?.as_ref()
+    }
 }
 
 /// What one scan's outputs did to a piston.
@@ -47,11 +68,7 @@ impl World {
     /// The machine at power-up with `pistons`, nothing pressed, no
     /// machine input given; the scan time at least 1 ms.
     pub(in crate::simulate) fn new(settings: &SimSettings, pistons: Vec<Piston>) -> World {
-        let index_of = pistons
-            .iter()
-            .enumerate()
-            .map(|(i, p)| (p.number, i))
-            .collect();
+        let index_of = PistonIndex::new(&pistons);
         World {
             settings: Arc::new(SimSettings {
                 scan_ms: settings.scan_ms.max(1),
@@ -115,7 +132,9 @@ pub(in crate::simulate) fn read_input(signal: Signal, world: &World) -> bool {
     {
         return f.stuck_at;
     }
-    let operator = world.operator;
+    // By reference: a copy of the buttons at every reading costs more than
+    // the reading.
+    let operator = &world.operator;
     match signal {
         Signal::Start => world.start_pressed || operator.start,
         Signal::Sensor { actuator, position } => world

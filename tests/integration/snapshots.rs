@@ -263,6 +263,7 @@ fn step_programs_and_template_contexts() {
             templates: &settings.templates,
             scan_ms: settings.simulation.scan_ms,
             diagram: settings.diagram,
+            pictures: None,
         };
         let iec = emit::st::model(&input, settings.simulation.scan_ms).expect("model");
         let awl = emit::awl::model(&input);

@@ -66,10 +66,7 @@ pub fn render(input: &EmitInput) -> Result<String, String> {
     section(
         &mut page,
         1,
-        &format!(
-            "<div class=\"picture\">{}</div>",
-            super::grafcet::render_svg(input)
-        ),
+        &format!("<div class=\"picture\">{}</div>", input.grafcet_svg()),
     );
     section(&mut page, 2, &diagrams(input, simulation));
     section(&mut page, 3, &io_list(input));
@@ -139,9 +136,8 @@ fn step_table(input: &EmitInput) -> String {
 }
 
 fn diagrams(input: &EmitInput, simulation: &crate::simulate::SimReport) -> String {
-    let symbols = input.symbols;
-    let step = super::diagram::render_svg(input.name, simulation, DiagramKind::Step, symbols);
-    let time = super::diagram::render_svg(input.name, simulation, DiagramKind::Time, symbols);
+    let step = input.diagram_svg(simulation, DiagramKind::Step);
+    let time = input.diagram_svg(simulation, DiagramKind::Time);
     format!("<div class=\"picture\">{step}</div>\n<div class=\"picture\">{time}</div>")
 }
 

@@ -56,17 +56,38 @@ pub struct Lane {
     pub edges: Vec<(u64, u32)>,
 }
 
-/// The changes of `value(scan)` over the scans from `start` on, times
-/// taken from the press.
-fn edges(trace: &IoTrace, start: u64, value: impl Fn(usize) -> u32) -> Vec<(u64, u32)> {
-    let mut out: Vec<(u64, u32)> = Vec::new();
-    for (k, scan) in trace.scans.iter().enumerate() {
-        if scan.time_ms < start {
-            continue;
+/// The scans from `start` on at which anything may change: the first,
+/// and each that reads, writes or stands in a step other than the scan
+/// before it. A recorded run repeats its quiet scans, most of its scans,
+/// and every lane is read at these alone.
+fn changing_scans(trace: &IoTrace, start: u64) -> Vec<usize> {
+    let first = trace.scans.partition_point(|s| s.time_ms < start);
+    let mut out: Vec<usize> = Vec::new();
+    for k in first..trace.scans.len() {
+        let (before, scan) = (k.checked_sub(1).map(|b| &trace.scans[b]), &trace.scans[k]);
+        let same = before.is_some_and(|b| {
+            k > first && b.step == scan.step && b.outputs == scan.outputs && b.inputs == scan.inputs
+        });
+        if !same {
+            out.push(k);
         }
+    }
+    out
+}
+
+/// The changes of `value(scan)` over the scans `changing` (from `start`
+/// on), times taken from the press.
+fn edges(
+    trace: &IoTrace,
+    start: u64,
+    changing: &[usize],
+    value: impl Fn(usize) -> u32,
+) -> Vec<(u64, u32)> {
+    let mut out: Vec<(u64, u32)> = Vec::new();
+    for &k in changing {
         let v = value(k);
         if out.last().is_none_or(|(_, last)| *last != v) {
-            out.push((scan.time_ms - start, v));
+            out.push((trace.scans[k].time_ms - start, v));
         }
     }
     if let Some(first) = out.first_mut() {
@@ -82,23 +103,25 @@ pub fn lanes(
     press_ms: u64,
     name: &dyn Fn(crate::program::Signal) -> String,
 ) -> Vec<Lane> {
+    let changing = changing_scans(trace, press_ms);
+    let edges = |value: &dyn Fn(usize) -> u32| edges(trace, press_ms, &changing, value);
     let mut lanes = vec![Lane {
         label: "active step".to_string(),
         kind: "step",
-        edges: edges(trace, press_ms, |k| trace.scans[k].step as u32),
+        edges: edges(&|k| trace.scans[k].step as u32),
     }];
     for (i, signal) in trace.signals.outputs.iter().enumerate() {
         lanes.push(Lane {
             label: name(*signal),
             kind: "output",
-            edges: edges(trace, press_ms, |k| u32::from(trace.scans[k].outputs[i])),
+            edges: edges(&|k| u32::from(trace.scans[k].outputs[i])),
         });
     }
     for (i, signal) in trace.signals.inputs.iter().enumerate() {
         lanes.push(Lane {
             label: name(*signal),
             kind: "input",
-            edges: edges(trace, press_ms, |k| u32::from(trace.scans[k].inputs[i])),
+            edges: edges(&|k| u32::from(trace.scans[k].inputs[i])),
         });
     }
     lanes

@@ -118,20 +118,20 @@ impl<'a> Drive<'a> {
             run.hazard_seen,
         )
             .hash(&mut h);
+        // Each move in three words, and which pistons have a last move 64
+        // to a word: a long line has a last move per piston, hashed field
+        // by field they were a third of the fingerprint. (A piston's index
+        // and a step number stay far below 2^32.)
         for a in run.active.iter().chain(run.last_move.iter().flatten()) {
-            (
-                a.piston,
-                a.step,
-                a.mv.actuator,
-                a.mv.from,
-                a.mv.to,
-                a.reached,
-                a.ran_through,
-            )
-                .hash(&mut h);
+            h.write_u64(a.piston as u64 | (a.step as u64) << 32);
+            h.write_u64(u64::from(a.mv.actuator) | u64::from(a.mv.from) << 32);
+            h.write_u64(
+                u64::from(a.mv.to) | u64::from(a.reached) << 32 | u64::from(a.ran_through) << 33,
+            );
         }
-        for last in &run.last_move {
-            last.is_some().hash(&mut h);
+        for chunk in run.last_move.chunks(64) {
+            let word = chunk.iter().enumerate();
+            h.write_u64(word.fold(0, |w, (i, last)| w | u64::from(last.is_some()) << i));
         }
         h.finish()
     }

@@ -99,6 +99,7 @@ impl<'a> Run<'a> {
             trace: Vec::new(),
             coils: Vec::new(),
             io: None,
+            io_outputs: Vec::new(),
             input_log: None,
             event_driven: false,
             quiet: false,

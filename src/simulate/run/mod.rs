@@ -81,6 +81,8 @@ pub(in crate::simulate) struct Run<'a> {
     coils: Vec<(Option<usize>, Option<usize>, Option<usize>)>,
     /// The I/O of every scan, when recorded for a replay in another engine.
     io: Option<io::IoTrace>,
+    /// The PLC index of each output recorded, found once for every scan.
+    io_outputs: Vec<Option<usize>>,
     /// The inputs' changes, when logged for the fault analysis.
     input_log: Option<io::InputLog>,
     /// Jump over scans in which nothing can change (see [`Run::pass_quiet_scans`]);
@@ -131,6 +133,10 @@ impl<'a> Run<'a> {
         event_driven: bool,
     ) -> Run<'a> {
         self.io = record.map(|signals| io::IoTrace::new(self.world.settings.scan_ms, signals));
+        self.io_outputs = self.io.as_ref().map_or_else(Vec::new, |io| {
+            let at = |s: &Signal| self.plc.index_of(*s);
+            io.signals.outputs.iter().map(at).collect()
+        });
         self.event_driven = event_driven;
         self
     }

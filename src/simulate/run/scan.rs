@@ -43,12 +43,8 @@ impl Run<'_> {
         });
         let result = scan(&mut self.plc, &read, self.world.settings.scan_ms as u64);
         if let (Some(io), Some(inputs)) = (self.io.as_mut(), recorded_inputs) {
-            let outputs = io
-                .signals
-                .outputs
-                .iter()
-                .map(|s| self.plc.bit(*s))
-                .collect();
+            let on = |at: &Option<usize>| at.is_some_and(|i| self.plc.bit_at(i));
+            let outputs = self.io_outputs.iter().map(on).collect();
             io.push(io::ScanIo {
                 time_ms: now,
                 inputs,
