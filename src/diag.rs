@@ -114,6 +114,9 @@ pub enum Code {
     /// An output holds less of what the engineer wrote than the table (a
     /// comment cut to the width a symbol table's field holds).
     W008Shortened,
+    /// An output written for a tool that will refuse it (an SFC chart with
+    /// timers for OpenPLC v3, whose upload cannot build a global TON).
+    W010RefusedByTool,
 }
 
 impl Code {
@@ -148,6 +151,7 @@ impl Code {
             Code::W006NoEffect => "W006",
             Code::W007Assumed => "W007",
             Code::W008Shortened => "W008",
+            Code::W010RefusedByTool => "W010",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",
