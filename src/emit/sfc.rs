@@ -12,9 +12,10 @@
 //! of its own (never shared: a shared pulse action misses a step in
 //! Beremiz, and an `S` coil action is re-asserted by matiec on every scan
 //! the step is active, which would undo a rung's reset of that coil; `P`,
-//! not `P1`, which CODESYS lacks). Its body tests the step's flag first:
-//! CODESYS and IEC 61131-3 ed. 2 run an action once more after it ends,
-//! which must do nothing once the step is left. The entry action ends `active_step := k`,
+//! not `P1`, which CODESYS lacks). Its body tests the step's flag and that
+//! `active_step` is not yet k: CODESYS and IEC 61131-3 ed. 2 run an action
+//! once more after it ends (after the step is left, or in the next cycle),
+//! which must do nothing. The entry action ends `active_step := k`,
 //! so `active_step` is the step program's step as in the ST; a rung that
 //! sends the sequence back (`active_step := 0`) is followed, on the next
 //! scan, by the transitions every step has at the highest priority: on to

@@ -105,10 +105,9 @@ fn check_step_actions(what: &str, text: &str, root: &Node) -> usize {
                 .map(str::trim)
                 .filter(|l| !l.is_empty() && !l.starts_with('<') && !l.starts_with("(*"))
                 .collect();
-            let opening = format!("IF {flag}.X THEN");
-            assert_eq!(
-                code.first().copied(),
-                Some(opening.as_str()),
+            let opening = format!("IF {flag}.X AND ");
+            assert!(
+                code.first().is_some_and(|l| l.starts_with(&opening)),
                 "{what}: {name} does not start by testing {flag}: {body}"
             );
             assert_eq!(code.last().copied(), Some("END_IF;"), "{what}: {name}");

@@ -4,9 +4,11 @@
 //! steptable's simulation recorded, with the simulation's outputs at every
 //! scan over the whole matrix, and so does every chart with its priorities
 //! renumbered by the branches' places from left to right, the order
-//! CODESYS tests them in (rt8 finding 1). Two deliberately wrong charts (no
-//! transition priorities; the entry actions held by N instead of pulsed by
-//! P) must be caught with their scan and signal.
+//! CODESYS tests them in (rt8 finding 1), and the chart whose entry actions
+//! are held by N (run every scan and once more after, which their guard
+//! makes one run: rt8 finding 12). Two deliberately wrong charts (no
+//! transition priorities; N-held actions without their guard) must be
+//! caught with their scan and signal.
 
 use std::path::Path;
 use std::process::Command;
@@ -160,9 +162,33 @@ fn a_wrong_chart_is_caught_with_its_scan_and_signal() {
         .collect::<Vec<_>>()
         .join("\n");
     assert_ne!(no_priority, right);
+    // Held by N, the entry actions run on every scan of their step and
+    // once more after it (as CODESYS runs an IEC action): their guard
+    // (the step's flag, `active_step` not yet k) keeps them to one run
+    // per entry, so the chart still runs as simulated (rt8 finding 12) …
     let held = right.replace("qualifier=\"P\"", "qualifier=\"N\"");
     assert_ne!(held, right);
-    for (what, text) in [("no priorities", no_priority), ("N-held actions", held)] {
+    let held_xml = dir.path().join("held.sfc.xml");
+    std::fs::write(&held_xml, &held).unwrap();
+    run_chart(&python, &shared, &case, &held_xml)
+        .expect("N-held actions with their guard run as simulated");
+    // … and without the guard they do not.
+    let unguarded: String = held
+        .lines()
+        .map(|l| {
+            if l.starts_with("IF ") && l.contains(".X AND ") {
+                "IF TRUE THEN".to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_ne!(unguarded, held);
+    for (what, text) in [
+        ("no priorities", no_priority),
+        ("N-held actions without their guard", unguarded),
+    ] {
         let wrong = dir
             .path()
             .join(format!("wrong-{}.sfc.xml", what.replace(' ', "-")));
