@@ -120,6 +120,9 @@ pub enum Code {
     /// A jump leaves a machine output otherwise than the sequence without
     /// it (a switch-off it leaves out).
     W010JumpLeavesOutput,
+    /// An output written for a tool that will refuse it (an SFC chart with
+    /// timers for OpenPLC v3, whose upload cannot build a global TON).
+    W011RefusedByTool,
 }
 
 impl Code {
@@ -156,6 +159,7 @@ impl Code {
             Code::W008Shortened => "W008",
             Code::W009Unsupervised => "W009",
             Code::W010JumpLeavesOutput => "W010",
+            Code::W011RefusedByTool => "W011",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",

@@ -110,6 +110,50 @@ pub(super) fn shortened_sdf_comments(
     })
 }
 
+/// W011 when the SFC chart (`NAME.sfc.xml`, `NAME.sfc.beremiz/`) has
+/// timers and the program is for OpenPLC (`--target iec` or `openplc`,
+/// `--board`): the chart's timers are TON blocks among the resource's
+/// globals, which the matiec of OpenPLC Runtime v3 cannot build (its upload
+/// fails: `macro "__SET_VAR" requires 4 arguments`), while the ST program
+/// and the Ladder body keep their timers in the program and pass.
+pub(super) fn openplc_chart(
+    input: &crate::emit::EmitInput,
+    settings: &crate::settings::Settings,
+) -> Option<crate::diag::Diagnostic> {
+    use crate::emit::OutputKind;
+    let charts: Vec<String> = [
+        (OutputKind::Sfc, ".sfc.xml"),
+        (OutputKind::BeremizSfc, ".sfc.beremiz/"),
+    ]
+    .into_iter()
+    .filter(|(kind, _)| settings.formats.contains(kind))
+    .map(|(_, ending)| format!("{}{ending}", input.name))
+    .collect();
+    let timers = input.program.timers.len();
+    if charts.is_empty() || timers == 0 || settings.target != crate::address::Target::Iec {
+        return None;
+    }
+    let for_board = settings
+        .board
+        .map(|b| format!(" ({})", b.label))
+        .unwrap_or_default();
+    Some(crate::diag::Diagnostic {
+        severity: crate::diag::Severity::Warning,
+        code: crate::diag::Code::W011RefusedByTool,
+        location: crate::diag::Location {
+            file: input.table.file.clone(),
+            sheet: None,
+            cell: None,
+        },
+        message: format!(
+            "{}: OpenPLC Runtime v3{for_board} will not take this SFC chart: its upload refuses the chart's {timers} timer(s) (dwell, watchdog, run-on), which a chart declares as global TON blocks (\"macro __SET_VAR requires 4 arguments\"); for OpenPLC, upload the ST program ({}.st) or the Ladder body ({}.ld.beremiz/, --formats beremiz-ld), which it accepts",
+            charts.join(" and "),
+            input.name,
+            input.name,
+        ),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -488,6 +488,7 @@ pub fn generate_observed(
     if settings.formats.contains(&OutputKind::SymbolTable) {
         warnings.extend(findings::shortened_sdf_comments(&input));
     }
+    warnings.extend(findings::openplc_chart(&input, settings));
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them, and
     // beside the other outputs (on a core the analysis leaves idle: its

@@ -4,13 +4,18 @@
 //!
 //! Three programs run in one task, in this order, so that a scan does what
 //! the step program's does: `steptable_pre` calls the timers, the chart
-//! `steptable_main` fires at most one transition (explicit priorities: the
-//! first that holds, as the ST's `IF … ELSIF`), `steptable_post` runs the
-//! rungs. The variables are the resource's globals. Each step's actions run
-//! once, as it is entered, in a `P1` action of its own (never shared: a
-//! shared pulse action misses a step in Beremiz, and an `S` coil action is
-//! re-asserted by matiec on every scan the step is active, which would undo
-//! a rung's reset of that coil). The entry action ends `active_step := k`,
+//! `steptable_main` fires at most one transition (the first that holds, as
+//! the ST's `IF … ELSIF`: explicit priorities for Beremiz and matiec, and
+//! the same order left to right for CODESYS, which has no priorities),
+//! `steptable_post` runs the rungs. The variables are the resource's
+//! globals. Each step's actions run once, as it is entered, in a `P` action
+//! of its own (never shared: a shared pulse action misses a step in
+//! Beremiz, and an `S` coil action is re-asserted by matiec on every scan
+//! the step is active, which would undo a rung's reset of that coil; `P`,
+//! not `P1`, which CODESYS lacks). Its body tests the step's flag and that
+//! `active_step` is not yet k: CODESYS and IEC 61131-3 ed. 2 run an action
+//! once more after it ends (after the step is left, or in the next cycle),
+//! which must do nothing. The entry action ends `active_step := k`,
 //! so `active_step` is the step program's step as in the ST; a rung that
 //! sends the sequence back (`active_step := 0`) is followed, on the next
 //! scan, by the transitions every step has at the highest priority: on to
@@ -63,6 +68,8 @@ enum Element {
         x: i64,
         y: i64,
         width: i64,
+        /// Where the step's wire comes in, from the bar's left end.
+        input_x: i64,
         input: Wire,
         outputs: Vec<i64>,
     },
@@ -89,6 +96,8 @@ enum Element {
 #[derive(Serialize)]
 struct Entry {
     name: String,
+    /// The SFC step's name, whose flag guards the action.
+    flag: String,
     step: usize,
     /// One case per distinct action list; `from` empty: always.
     cases: Vec<EntryCase>,
@@ -179,16 +188,22 @@ impl Layout<'_, '_> {
         all
     }
 
-    /// Draws the step waiting at `k` at height `y` and what leaves it;
-    /// returns the wire into the next step and its height.
-    fn step(&mut self, k: usize, y: i64, input: Option<Wire>, resets: bool) -> (Option<Wire>, i64) {
+    /// Draws the step waiting at `k` at height `y`, its column at `x`, and
+    /// what leaves it; returns the wire into the next step and its height.
+    fn step(
+        &mut self,
+        k: usize,
+        (x, y): (i64, i64),
+        input: Option<Wire>,
+        resets: bool,
+    ) -> (Option<Wire>, i64) {
         let active = self.lowered.steps[k].active;
         let step_id = self.id();
         self.elements.push(Element::Step {
             id: step_id,
             name: self.name(active),
             initial: active == INITIAL_STEP,
-            x: LEFT,
+            x,
             y,
             input,
             comment: comment_text(&self.lowered.steps[k].active_title),
@@ -196,35 +211,36 @@ impl Layout<'_, '_> {
         let actions_id = self.id();
         self.elements.push(Element::Actions {
             id: actions_id,
-            x: LEFT + STEP_W + 40,
+            x: x + STEP_W + 40,
             y,
             input: Wire {
                 from: step_id,
-                points: vec![(LEFT + STEP_W + 40, y + 15), (LEFT + STEP_W, y + 15)],
+                points: vec![(x + STEP_W + 40, y + 15), (x + STEP_W, y + 15)],
             },
             action: entry_name(&self.name(active)),
         });
-        let cx = LEFT + STEP_W / 2;
+        let cx = x + STEP_W / 2;
         let leaving = self.leaving(k, resets);
-        // The step's own transition stays in the main column, the others
-        // branch off to the right in the order they are tested.
+        // Left to right in the order they are tested, as CODESYS tests an
+        // alternative branch (it has no priorities): the step's own
+        // transition, tested last, stays in the main column and the others
+        // branch off to its left.
         let own = leaving.len() - 1;
-        let column = |i: usize| if i == own { 0 } else { i as i64 + 1 };
-        let (ty, source, source_y) = if leaving.len() > 1 {
+        let column = |i: usize| i as i64 - own as i64;
+        let (ty, source, source_y) = if own > 0 {
             let div = self.id();
-            let width = BRANCH_GAP * leaving.len() as i64 - BRANCH_GAP;
+            let width = BRANCH_GAP * own as i64;
             self.elements.push(Element::Divergence {
                 id: div,
-                x: cx,
+                x: cx - width,
                 y: y + STEP_H + 20,
                 width,
+                input_x: width,
                 input: Wire {
                     from: step_id,
                     points: vec![(cx, y + STEP_H + 20), (cx, y + STEP_H)],
                 },
-                outputs: (0..leaving.len())
-                    .map(|i| BRANCH_GAP * if i == own { 0 } else { i as i64 + 1 })
-                    .collect(),
+                outputs: (0..leaving.len()).map(|i| BRANCH_GAP * i as i64).collect(),
             });
             (y + STEP_H + 50, div, y + STEP_H + 21)
         } else {
@@ -312,6 +328,7 @@ fn entries(
         let plain = cases.len() == 1 && !(resets && e == INITIAL_STEP);
         entries.push(Entry {
             name: entry_name(&name(e)),
+            flag: name(e),
             step: e,
             cases: cases
                 .into_iter()
@@ -337,10 +354,17 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
         elements: Vec::new(),
         next_id: 0,
     };
+    // The main column leaves room on its left for the most branches a
+    // step has.
+    let branches = (0..lowered.steps.len())
+        .map(|k| layout.leaving(k, resets).len() as i64 - 1)
+        .max()
+        .unwrap_or(0);
+    let x = LEFT + BRANCH_GAP * branches;
     let mut wire = None;
     let mut y = 20;
     for k in 0..lowered.steps.len() {
-        let (next, next_y) = layout.step(k, y, wire.take(), resets);
+        let (next, next_y) = layout.step(k, (x, y), wire.take(), resets);
         wire = next;
         y = next_y;
     }

@@ -67,6 +67,7 @@ mod safety;
 mod scenario;
 mod scenario_promises;
 mod settings_rows;
+mod sfc_order;
 mod simulate;
 mod single_step;
 mod snapshots;

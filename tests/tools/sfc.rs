@@ -2,8 +2,12 @@
 //! it: valid against the PLCopen XSD, turned into textual SFC by Beremiz's
 //! own generator (`plcopen2st.py`), compiled by matiec and run on the inputs
 //! steptable's simulation recorded, with the simulation's outputs at every
-//! scan over the whole matrix. Two deliberately wrong charts (no transition
-//! priorities; the entry actions held by N instead of pulsed by P1) must be
+//! scan over the whole matrix, and so does every chart with its priorities
+//! renumbered by the branches' places from left to right, the order
+//! CODESYS tests them in (rt8 finding 1), and the chart whose entry actions
+//! are held by N (run every scan and once more after, which their guard
+//! makes one run: rt8 finding 12). Two deliberately wrong charts (no
+//! transition priorities; N-held actions without their guard) must be
 //! caught with their scan and signal.
 
 use std::path::Path;
@@ -98,10 +102,17 @@ fn the_chart_runs_in_matiec_as_simulated() {
         let xml = c.file(".sfc.xml");
         xsd_valid(&xmllint, &shared, &xml).map_err(|e| format!("{}: XSD: {e}", c.label))?;
         run_chart(&python, &shared, c, &xml)?;
+        // CODESYS's rule, left to right: the same chart, the same run.
+        let text = std::fs::read_to_string(&xml).unwrap();
+        let left_to_right = by_position(&text);
+        if left_to_right != text {
+            let lr = xml.with_extension("left-to-right.xml");
+            std::fs::write(&lr, left_to_right).unwrap();
+            run_beremiz(&python, &shared, c, &lr, "the chart tested left to right")?;
+        }
         // OpenPLC v3's older runtime headers cannot build a TON declared
         // as a global (docs/outputs.md says so): a chart without timers
         // must pass its upload.
-        let text = std::fs::read_to_string(&xml).unwrap();
         if !text.contains("<derived name=\"TON\"/>") {
             let st = xml.with_extension("beremiz.st");
             crate::differential::openplc_accepts(&shared, &st)
@@ -151,9 +162,33 @@ fn a_wrong_chart_is_caught_with_its_scan_and_signal() {
         .collect::<Vec<_>>()
         .join("\n");
     assert_ne!(no_priority, right);
-    let held = right.replace("qualifier=\"P1\"", "qualifier=\"N\"");
+    // Held by N, the entry actions run on every scan of their step and
+    // once more after it (as CODESYS runs an IEC action): their guard
+    // (the step's flag, `active_step` not yet k) keeps them to one run
+    // per entry, so the chart still runs as simulated (rt8 finding 12) …
+    let held = right.replace("qualifier=\"P\"", "qualifier=\"N\"");
     assert_ne!(held, right);
-    for (what, text) in [("no priorities", no_priority), ("N-held actions", held)] {
+    let held_xml = dir.path().join("held.sfc.xml");
+    std::fs::write(&held_xml, &held).unwrap();
+    run_chart(&python, &shared, &case, &held_xml)
+        .expect("N-held actions with their guard run as simulated");
+    // … and without the guard they do not.
+    let unguarded: String = held
+        .lines()
+        .map(|l| {
+            if l.starts_with("IF ") && l.contains(".X AND ") {
+                "IF TRUE THEN".to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_ne!(unguarded, held);
+    for (what, text) in [
+        ("no priorities", no_priority),
+        ("N-held actions without their guard", unguarded),
+    ] {
         let wrong = dir
             .path()
             .join(format!("wrong-{}.sfc.xml", what.replace(' ', "-")));
@@ -164,6 +199,52 @@ fn a_wrong_chart_is_caught_with_its_scan_and_signal() {
         assert!(err.contains("scan"), "{what}: {err}");
         eprintln!("sfc: {what} caught: {err}");
     }
+}
+
+/// The chart `text` with the priorities of the transitions leaving one
+/// element renumbered 1, 2, 3 … by their places from left to right, as
+/// CODESYS tests an alternative branch (rt8's `cases/codesys_order.py`).
+/// Reads the file as `sfc.xml.j2` writes it: a transition's position on the
+/// line after its start, its source in its first `refLocalId`.
+pub(crate) fn by_position(text: &str) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    let number = |line: &str, key: &str| -> Option<i64> {
+        let rest = line.split(key).nth(1)?;
+        rest.split('"').next()?.parse().ok()
+    };
+    // (source, x, line of the transition's start)
+    let mut branches: Vec<(i64, i64, usize)> = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        if !line.trim_start().starts_with("<transition ") {
+            continue;
+        }
+        let x = number(lines[i + 1], " x=\"").expect("a transition's position");
+        let source = lines[i..]
+            .iter()
+            .find_map(|l| number(l, "refLocalId=\""))
+            .expect("a transition's source");
+        branches.push((source, x, i));
+    }
+    branches.sort();
+    let mut renumbered: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+    let mut previous = None;
+    let mut priority = 0;
+    for (source, _, i) in branches {
+        priority = if previous == Some(source) {
+            priority + 1
+        } else {
+            1
+        };
+        previous = Some(source);
+        let line = strip_attribute(lines[i], " priority=\"");
+        let line = line.trim_end_matches('>');
+        renumbered[i] = format!("{line} priority=\"{priority}\">");
+    }
+    let mut out = renumbered.join("\n");
+    if text.ends_with('\n') {
+        out.push('\n');
+    }
+    out
 }
 
 /// `text` without every attribute that starts with `attribute` (its quoted value too).
