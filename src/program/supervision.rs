@@ -5,10 +5,11 @@
 //!
 //! A criterion is an input literal (a sensor, a waited-for machine input, an
 //! interlock, a precheck's "target sensor still off", single step's
-//! "STEP_MODE off") of some transition of the sequence; criterion n has an "awaited" memory `crit{n}`, kept by the
-//! transitions themselves: each one that fires sets the memories of the
-//! criteria of the transition it makes the sequence wait at and resets the
-//! others', so that exactly the awaited transition's are on (none at rest).
+//! "STEP_MODE off") of some transition of the sequence; criterion n has an
+//! "awaited" memory `crit{n}`, kept by the transitions themselves: each one
+//! that fires sets the memories of the criteria of the transition it makes
+//! the sequence wait at and resets the others', so that exactly the awaited
+//! transition's are on (none at rest).
 //! The rungs then light `miss{n}` while the timeout alarm is on, criterion n
 //! is awaited and its literal does not hold. Everything is SET/RESET of bits
 //! in rungs and transitions, so every language renders it as it renders the
