@@ -58,6 +58,9 @@ pub struct Outcome {
     pub verdict: Option<String>,
     pub cycle_ms: Option<u64>,
     pub hazards: Option<usize>,
+    /// Files an earlier run wrote into the input's folder that this one
+    /// did not, kept for the engineer, each with why ([`write::Cleanup`]).
+    pub kept: Vec<(PathBuf, &'static str)>,
 }
 
 impl Outcome {
@@ -246,6 +249,7 @@ pub fn run(
                 verdict: None,
                 cycle_ms: None,
                 hazards: None,
+                kept: Vec::new(),
             }
         } else {
             convert_one(input, name, out, settings, &kept)
@@ -284,6 +288,7 @@ fn convert_one(
         verdict: None,
         cycle_ms: None,
         hazards: None,
+        kept: Vec::new(),
     };
     use crate::commands::{CommandError, convert::run};
     match run(input, name, settings, out, all_inputs, &|_, _| {}) {
@@ -305,7 +310,7 @@ fn convert_one(
             });
             outcome.diagnostics = conversion.warnings;
             match run.written {
-                Ok(_) => {}
+                Ok((_, cleanup)) => outcome.kept = cleanup.kept,
                 // Something of the engineer's is in the way: said, kept.
                 Err(write::WriteError::Taken(problems)) => {
                     outcome.status = Status::Failed;

@@ -240,6 +240,24 @@ impl Run<'_> {
             };
             report.say(&format!("  failed: {first}"));
         }
+        // What a rerun kept of an earlier run's files is said, as convert
+        // says it: the engineer's to remove.
+        for o in self.outcomes.iter().filter(|o| !o.kept.is_empty()) {
+            let folder = args.output.join(&o.name);
+            let names: Vec<String> = o
+                .kept
+                .iter()
+                .map(|(p, why)| {
+                    let inside = p.strip_prefix(&folder).unwrap_or(p);
+                    format!("{} ({why})", inside.display())
+                })
+                .collect();
+            report.say(&format!(
+                "  kept in {}/ what an earlier run wrote there and this one did not, for you to remove: {}",
+                folder.display(),
+                names.join("; ")
+            ));
+        }
     }
 }
 

@@ -442,3 +442,43 @@ fn the_summary_has_verdict_cycle_time_and_hazards() {
         );
     }
 }
+
+/// A batch rerun with fewer formats keeps an output the engineer edited
+/// and says so in its summary lines, as `convert` does (it kept it
+/// without a word).
+#[test]
+fn a_batch_rerun_says_what_it_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in");
+    std::fs::create_dir(&input).unwrap();
+    std::fs::copy(sample("paper_example.csv"), input.join("line.csv")).unwrap();
+    let out = dir.path().join("out");
+    let batch = |formats: &str| {
+        let out_ = steptable()
+            .arg("batch")
+            .arg(&input)
+            .arg("-o")
+            .arg(&out)
+            .args(["--formats", formats])
+            .output()
+            .unwrap();
+        assert!(out_.status.success(), "{out_:?}");
+        String::from_utf8(out_.stdout).unwrap()
+    };
+    batch("st,sdf");
+    std::fs::write(out.join("line/line.sdf"), "my notes").unwrap();
+    let said = batch("st");
+    let line = said
+        .lines()
+        .find(|l| l.contains("kept in"))
+        .unwrap_or_else(|| panic!("{said}"));
+    assert!(
+        line.contains("line.sdf (changed since steptable wrote it"),
+        "{line}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("line/line.sdf")).unwrap(),
+        "my notes"
+    );
+    assert!(!batch("st").contains("kept in"), "said once");
+}
