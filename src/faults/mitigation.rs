@@ -1,14 +1,16 @@
 //! The mitigation of each hazard of a fault table, verified rather than
-//! guessed: the same faults are run again, at every moment of the cycle,
-//! on the program with each safety check it does not carry yet (and, when
-//! no single one catches the hazard, with all of them at once), exactly as
-//! `steptable faults --safety …` would run them. A check *catches* the
-//! hazard when the faults then give no hazard at any moment (a safe stall,
-//! with or without an alarm, or no effect); one that only narrows it to
-//! fewer moments is named with the moments left. What no check catches is
-//! said so, with what would (a remedy outside the program, not simulated).
+//! guessed: the same faults are run again on the program with each safety
+//! check it does not carry yet (and, when no single one catches the
+//! hazard, with all of them at once), exactly as `steptable faults
+//! --safety …` would run them. A check *catches* the hazard when the faults
+//! then give no hazard at any moment of the cycle (a safe stall, with or
+//! without an alarm, or no effect: every moment is run); one that does not
+//! is named with the first moment at which the hazard stays (the runs stop
+//! there). What no check catches is said so, with what would (a remedy
+//! outside the program, not simulated).
 
-use super::{FaultCase, FaultRuns, FaultTable, Outcome, analyse_sets};
+use super::search::{Found, first_hazards};
+use super::{FaultCase, FaultTable, Outcome};
 use crate::program::{self, ProgramOptions, Safety, Signal};
 use crate::simulate::SimSettings;
 use crate::table::StepTable;
@@ -24,8 +26,9 @@ pub struct Trial {
     pub safety: Safety,
     /// The checks added, by name.
     pub added: Vec<&'static str>,
-    /// The faults' case under those checks, as `faults --safety` gives it.
-    pub case: FaultCase,
+    /// What the faults do under those checks: the first moment that gives
+    /// a hazard, or, when none does, their case as `faults --safety` gives it.
+    pub found: Found,
     /// The moments of the cycle that program's fault table has.
     pub moments: usize,
 }
@@ -51,12 +54,7 @@ impl Trial {
 
     /// Whether the faults give no hazard at any moment under the checks.
     pub fn catches(&self) -> bool {
-        self.case.outcome != Outcome::Hazard
-    }
-
-    /// How many moments still give a hazard.
-    fn hazard_moments(&self) -> usize {
-        self.case.hazard_moments()
+        matches!(self.found, Found::Clear(_))
     }
 }
 
@@ -69,9 +67,6 @@ pub struct Mitigation {
     /// What would catch what remains, outside the program; empty when a
     /// trial catches it.
     pub remedy: String,
-    /// The moments the hazard appears at without any added check: a trial
-    /// that leaves as many narrows nothing.
-    pub hazard_moments: usize,
 }
 
 impl Mitigation {
@@ -81,42 +76,39 @@ impl Mitigation {
     }
 
     /// One line for the fault table: `caught by --safety watchdog (safe
-    /// stall, alarm)`; `under --safety precheck or --safety plausibility it
-    /// stays a hazard while step 1 moves (2 of 17 moments)` (the moments
-    /// left, as `faults --safety …` says them); `not caught by --safety edge
-    /// or --safety watchdog`; and, when nothing catches it, `no built-in
-    /// check catches it at every moment; what would (not simulated): …`.
+    /// stall, alarm)`; `not caught by --safety precheck or --safety
+    /// plausibility (still a hazard if it appears while step 1 moves)`, the
+    /// first moment at which it stays one, as `faults --safety …` names it;
+    /// and, when nothing catches it, `no built-in check catches it at every
+    /// moment; what would (not simulated): …`.
     pub fn text(&self) -> String {
         let mut parts = Vec::new();
-        // The trials that narrow the hazard, by the moments they leave.
-        let mut narrowed: Vec<(String, Vec<String>)> = Vec::new();
-        let mut useless = Vec::new();
+        // The trials that leave a hazard, by the moment it stays at.
+        let mut stays: Vec<(String, Vec<String>)> = Vec::new();
         for trial in &self.trials {
-            if trial.catches() {
-                let alarm = if trial.case.detected { ", alarm" } else { "" };
-                parts.push(format!(
-                    "caught by {} ({}{alarm})",
-                    trial.option(),
-                    trial.case.outcome.label()
-                ));
-            } else if trial.hazard_moments() < self.hazard_moments {
-                let left = trial.case.appears(trial.moments);
-                match narrowed.iter_mut().find(|(l, _)| *l == left) {
-                    Some((_, options)) => options.push(trial.option()),
-                    None => narrowed.push((left, vec![trial.option()])),
+            match &trial.found {
+                Found::Clear(case) => {
+                    let alarm = if case.detected { ", alarm" } else { "" };
+                    parts.push(format!(
+                        "caught by {} ({}{alarm})",
+                        trial.option(),
+                        case.outcome.label()
+                    ));
                 }
-            } else {
-                useless.push(trial.option());
+                Found::Hazard { phase, .. } => {
+                    let at = phase.label();
+                    match stays.iter_mut().find(|(l, _)| *l == at) {
+                        Some((_, options)) => options.push(trial.option()),
+                        None => stays.push((at, vec![trial.option()])),
+                    }
+                }
             }
         }
-        for (left, options) in narrowed {
+        for (at, options) in stays {
             parts.push(format!(
-                "under {} it stays a hazard {left}",
+                "not caught by {} (still a hazard if it appears {at})",
                 options.join(" or ")
             ));
-        }
-        if !useless.is_empty() {
-            parts.push(format!("not caught by {}", useless.join(" or ")));
         }
         if !self.remedy.is_empty() {
             parts.push(format!(
@@ -198,12 +190,7 @@ pub fn mitigations(
         } else {
             remedy(table, case, &trials).to_string()
         };
-        let hazard_moments = case.hazard_moments();
-        Mitigation {
-            trials,
-            remedy,
-            hazard_moments,
-        }
+        Mitigation { trials, remedy }
     });
     faults
         .cases
@@ -245,34 +232,30 @@ fn run_trials(
         return None;
     }
     let sets = cases.iter().map(|c| c.faults.clone()).collect();
-    let run = analyse_sets(
-        table,
-        &program,
-        settings,
-        sets,
-        FaultRuns::Resumed,
-        &|_, _| {},
-        Some(healthy),
-    );
-    let moments = run.moments.len();
-    let trials = run.cases.into_iter().map(|case| Trial {
+    let (found, moments) = first_hazards(table, &program, settings, sets, Some(healthy));
+    let trials = found.into_iter().map(|found| Trial {
         safety,
         added: added.to_vec(),
-        case,
-        moments,
+        found,
+        moments: moments.len(),
     });
     Some(trials.collect())
 }
 
 /// What would catch the hazard that remains, by what it is: the kinds of
 /// hazard no check on the inputs can catch (docs/simulation-and-faults.md,
-/// "Safety checks"). Read from the trial that leaves the fewest moments a
-/// hazard (its explanation is of the hazard that remains), else the case.
+/// "Safety checks"). Read from the hazard the trial with the most checks
+/// leaves (all of them together, when they were tried: its explanation is
+/// of what remains under every check), else from the case.
 fn remedy(table: &StepTable, case: &FaultCase, trials: &[Trial]) -> &'static str {
     let explanation = trials
         .iter()
-        .min_by_key(|t| t.hazard_moments())
-        .map_or(&case.explanation, |t| &t.case.explanation);
+        .max_by_key(|t| t.added.len())
+        .and_then(|t| match &t.found {
+            Found::Hazard { explanation, .. } => Some(explanation),
+            Found::Clear(_) => None,
+        })
+        .unwrap_or(&case.explanation);
     if explanation.contains("not hold-safe") {
         return "a halt that switches the output off (SETTINGS on halt), with a check that halts";
     }

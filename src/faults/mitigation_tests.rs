@@ -1,8 +1,8 @@
 //! One small table per kind of mitigation, where the answer is known: a
-//! halt that switches a heater off, checks that narrow a short to the
+//! halt that switches a heater off, checks that leave a short only at the
 //! moments its cylinder travels, the edge on START, and a dead middle
-//! sensor nothing in the program catches; and every trial is the fault
-//! table `faults --safety …` gives for the program with those checks.
+//! sensor nothing in the program catches; and every trial agrees with the
+//! fault table `faults --safety …` gives for the program with those checks.
 
 use super::*;
 use crate::faults::{Phase, analyse};
@@ -52,20 +52,39 @@ fn trial<'m>(m: &'m Mitigation, option: &str) -> &'m Trial {
         .unwrap_or_else(|| panic!("{option} tried: {}", m.text()))
 }
 
-/// The phases at which a trial still gives a hazard.
-fn hazard_phases(t: &Trial, table: &StepTable, options: &ProgramOptions) -> Vec<Phase> {
+/// The fault table of the program with a trial's checks.
+fn full_table(t: &Trial, table: &StepTable, options: &ProgramOptions) -> FaultTable {
     let options = ProgramOptions {
         safety: t.safety,
         ..options.clone()
     };
-    let faults = analyse(table, &build(table, &options), &SimSettings::default(), 1);
-    faults
-        .moments
+    analyse(table, &build(table, &options), &SimSettings::default(), 1)
+}
+
+/// The phases at which the faults of `case` give a hazard under a trial's
+/// checks, from the whole fault table of that program.
+fn hazard_phases(
+    t: &Trial,
+    case: &FaultCase,
+    table: &StepTable,
+    options: &ProgramOptions,
+) -> Vec<Phase> {
+    let full = full_table(t, table, options);
+    let same = full.cases.iter().find(|c| c.faults == case.faults).unwrap();
+    full.moments
         .iter()
-        .zip(&t.case.outcomes)
+        .zip(&same.outcomes)
         .filter(|(_, o)| **o == Outcome::Hazard)
         .map(|(m, _)| m.phase)
         .collect()
+}
+
+/// The phase a trial found the hazard staying at.
+fn stays_at(t: &Trial) -> Phase {
+    match &t.found {
+        Found::Hazard { phase, .. } => *phase,
+        Found::Clear(case) => panic!("{} catches it: {case:?}", t.option()),
+    }
 }
 
 /// A dead end sensor stops the machine with its heater on: an energy
@@ -90,8 +109,11 @@ fn the_watchdog_catches_a_dead_sensor_that_leaves_a_heater_on() {
     );
     let watchdog = trial(&m, "--safety watchdog");
     assert!(watchdog.catches());
-    assert_eq!(watchdog.case.outcome, Outcome::SafeStall);
-    assert!(watchdog.case.detected);
+    let Found::Clear(caught) = &watchdog.found else {
+        unreachable!("it catches")
+    };
+    assert_eq!(caught.outcome, Outcome::SafeStall);
+    assert!(caught.detected);
     assert!(!trial(&m, "--safety edge").catches());
     assert!(m.remedy.is_empty(), "caught: no remedy outside the program");
     assert!(
@@ -108,16 +130,17 @@ fn the_watchdog_catches_a_dead_sensor_that_leaves_a_heater_on() {
 /// move waits for its target sensor to be off) and the plausibility check
 /// (two sensors of one cylinder on) catch it when it is there before the
 /// cylinder leaves; a short while the cylinder travels towards the sensor
-/// reads as the arrival, and stays a hazard under every check.
+/// reads as the arrival, and stays a hazard under every check: the moment
+/// each trial names.
 #[test]
-fn precheck_and_plausibility_narrow_a_shorted_end_sensor_to_its_travel() {
+fn a_shorted_end_sensor_stays_a_hazard_while_its_cylinder_travels() {
     let t = table(&[&["C1+1"], &["C1-0"]]);
     let options = ProgramOptions::default();
-    let (_, m) = mitigation_of(&t, &options, "x11", true);
+    let (case, m) = mitigation_of(&t, &options, "x11", true);
     for option in ["--safety precheck", "--safety plausibility"] {
         let narrowed = trial(&m, option);
         assert!(!narrowed.catches());
-        let left = hazard_phases(narrowed, &t, &options);
+        let left = hazard_phases(narrowed, &case, &t, &options);
         assert!(
             !left.is_empty() && left.len() < narrowed.moments,
             "{left:?}"
@@ -127,19 +150,24 @@ fn precheck_and_plausibility_narrow_a_shorted_end_sensor_to_its_travel() {
                 .all(|p| matches!(p, Phase::Moving(1) | Phase::BeforeStep(2))),
             "{option}: {left:?}"
         );
+        assert!(left.contains(&stays_at(narrowed)), "{option}");
     }
-    for option in ["--safety edge", "--safety watchdog"] {
-        assert_eq!(
-            trial(&m, option).hazard_moments(),
-            trial(&m, option).moments
+    for t in &m.trials {
+        let at = stays_at(t);
+        assert!(
+            matches!(at, Phase::Moving(1) | Phase::BeforeStep(2)),
+            "{}: {at:?}",
+            t.option()
         );
+        let left = hazard_phases(t, &case, &table(&[&["C1+1"], &["C1-0"]]), &options);
+        assert!(left.contains(&at), "{}: {at:?} {left:?}", t.option());
     }
     // None catches it alone, so all four are tried together.
     assert!(!trial(&m, "--safety all").catches());
     assert!(m.remedy.contains("minimum travel time"), "{}", m.remedy);
     let text = m.text();
     assert!(
-        text.contains("not caught by --safety edge or --safety watchdog"),
+        text.starts_with("not caught by --safety edge or --safety precheck or --safety plausibility or --safety watchdog (still a hazard if it appears while step 1 moves); "),
         "{text}"
     );
     assert!(
@@ -157,7 +185,16 @@ fn the_edge_narrows_a_shorted_start_to_rest_after_the_cycle() {
     let options = ProgramOptions::default();
     let (_, m) = mitigation_of(&t, &options, "START", true);
     let edge = trial(&m, "--safety edge");
-    assert_eq!(hazard_phases(edge, &t, &options), [Phase::AtRest]);
+    let (case, _) = mitigation_of(&t, &options, "START", true);
+    assert_eq!(hazard_phases(edge, &case, &t, &options), [Phase::AtRest]);
+    // The search finds the one moment left, after every other.
+    assert_eq!(stays_at(edge), Phase::AtRest);
+    assert!(
+        m.text()
+            .contains("not caught by --safety edge or --safety all (still a hazard if it appears at rest after the cycle)"),
+        "{}",
+        m.text()
+    );
     assert!(m.remedy.contains("two-channel"), "{}", m.remedy);
 }
 
@@ -171,16 +208,19 @@ fn no_check_catches_a_dead_middle_sensor() {
     assert!(m.trials.iter().all(|t| !t.catches()));
     assert_eq!(m.trials.len(), 5, "four checks alone, then all four");
     for t in &m.trials {
-        assert_eq!(t.case.outcomes[0], Outcome::Hazard, "{}", t.option());
+        assert!(matches!(t.found, Found::Hazard { .. }), "{}", t.option());
     }
     assert!(m.remedy.starts_with("a mechanical stop"), "{}", m.remedy);
     assert!(case.explanation.contains(" ran through "));
 }
 
-/// Verified, not guessed: each trial is the case of the same faults in the
-/// fault table of the program with those checks, as `faults --safety`
-/// makes it; the checks the program carries are not proposed, and the
-/// option names them with the one added (`--safety` replaces the list).
+/// Verified, not guessed: a trial that catches the hazard is the case of
+/// the same faults in the fault table of the program with those checks, as
+/// `faults --safety` makes it; one that does not names a moment at which
+/// that table gives the hazard, with its step and, at the table's own first
+/// hazard moment, its explanation. The checks the program carries are not
+/// proposed, and the option names them with the one added (`--safety`
+/// replaces the list).
 #[test]
 fn each_trial_is_the_fault_table_of_the_program_with_its_checks() {
     let t = crate::program::tests::paper_table();
@@ -209,7 +249,26 @@ fn each_trial_is_the_fault_table_of_the_program_with_its_checks() {
             };
             let full = analyse(&t, &build(&t, &with), &settings, 1);
             let same = full.cases.iter().find(|c| c.faults == case.faults).unwrap();
-            assert_eq!(&trial.case, same, "{}", trial.option());
+            match &trial.found {
+                Found::Clear(caught) => assert_eq!(caught, same, "{}", trial.option()),
+                Found::Hazard {
+                    moment,
+                    phase,
+                    explanation,
+                    ..
+                } => {
+                    assert_eq!(
+                        same.outcomes[*moment],
+                        Outcome::Hazard,
+                        "{}",
+                        trial.option()
+                    );
+                    assert_eq!(full.moments[*moment].phase, *phase);
+                    if *phase == same.phase {
+                        assert_eq!(*explanation, same.explanation, "{}", trial.option());
+                    }
+                }
+            }
             assert_eq!(trial.moments, full.moments.len());
             checked += 1;
         }

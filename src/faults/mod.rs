@@ -7,6 +7,8 @@ mod cases;
 mod healthy;
 pub mod mitigation;
 mod phases;
+mod plan;
+pub mod search;
 mod single_step;
 #[cfg(test)]
 mod step_tests;
@@ -15,10 +17,11 @@ pub use healthy::{Healthy, healthy_run, healthy_run_recording};
 pub use phases::{Moment, Phase, moments};
 
 use crate::program::{Signal, StepProgram};
-use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings, Simulator};
+use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings};
 use crate::table::StepTable;
-use cases::{Cases, SetRuns, Verdict};
+use cases::{SetRuns, Verdict};
 use healthy::yardstick_settings;
+use plan::{Plan, distinct_onsets};
 
 /// What a fault does to the machine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
@@ -226,21 +229,6 @@ pub fn case_count(program: &StepProgram, at_once: usize) -> usize {
     total
 }
 
-/// Each set's distinct onsets, the earliest first: a later case whose
-/// fault changed nothing until an earlier case's run stood where it stands
-/// ends as that run, found on its trail.
-fn distinct_onsets(onsets: &[Vec<Option<u64>>]) -> Vec<Vec<u64>> {
-    onsets
-        .iter()
-        .map(|at| {
-            let mut distinct: Vec<u64> = at.iter().flatten().copied().collect();
-            distinct.sort_unstable();
-            distinct.dedup();
-            distinct
-        })
-        .collect()
-}
-
 /// Simulates each fault set and classifies it.
 pub fn analyse(
     table: &StepTable,
@@ -314,164 +302,82 @@ pub fn analyse_from(
 }
 
 /// Like [`analyse_from`], for the fault sets given rather than every set of
-/// up to so many faults: the mitigations re-run a table's hazards alone.
+/// up to so many faults.
 pub fn analyse_sets(
     table: &StepTable,
     program: &StepProgram,
     settings: &SimSettings,
-    mut sets: Vec<Vec<Fault>>,
+    sets: Vec<Vec<Fault>>,
     runs: FaultRuns,
     progress: &(dyn Fn(usize, usize) + Sync),
     healthy: Option<Healthy>,
 ) -> FaultTable {
-    use rayon::prelude::*;
-    let simulator = Simulator::new(table, program);
-    // What the healthy cycle does is the yardstick: the combinations of
-    // positions it reaches are the ones a faulty run may reach, its
-    // moments are when faults appear, its inputs tell which of those runs
-    // are one and the same. Its log says when each input changes: a log,
-    // not a copy of every scan (a long table has millions).
-    let healthy_settings = SimSettings {
-        record_trace: false,
-        ..yardstick_settings(settings)
-    };
-    let Healthy {
-        report: healthy,
-        log,
-    } = healthy.unwrap_or_else(|| healthy_run(table, program, &healthy_settings));
-    let mut moments = moments(&healthy, table, settings.scan_ms as u64);
-    let cases_at_every_moment = sets.len() * moments.len();
-    // A jump's cycle is one more cycle each run may go through.
-    let jumps: usize = table.steps.iter().map(|s| s.jumps.len()).sum();
-    let too_long = cases_at_every_moment
-        .saturating_mul(table.steps.len().max(1))
-        .saturating_mul(1 + jumps)
-        > MAX_PHASE_WORK;
-    let mut equivalent = 0;
-    // Faults at every moment but for a cycle too long for them.
-    let inputs = (!too_long).then(|| phases::HealthyInputs::new(log));
-    let onsets: Vec<Vec<Option<u64>>> = match &inputs {
-        None => {
-            moments.truncate(1);
-            sets.iter().map(|_| vec![Some(0)]).collect()
-        }
-        Some(inputs) => {
-            // A fault that never reads other than the healthy input (STOP
-            // stuck at 1: it is normally closed) adds nothing to a set: the set
-            // is the smaller one, already in the table.
-            let inert = |f: &Fault| inputs.divergence(std::slice::from_ref(f), 0).is_none();
-            let before = sets.len();
-            sets.retain(|set| set.len() == 1 || !set.iter().any(inert));
-            equivalent = before - sets.len();
-            // Each set at each moment, as the moment its run leaves the
-            // healthy one.
-            sets.iter()
-                .map(|set| {
-                    let columns = inputs.columns(set);
-                    moments
-                        .iter()
-                        .map(|m| inputs.divergence_of(&columns, m.at_ms))
-                        .collect()
-                })
-                .collect()
-        }
-    };
-    let phases_skipped = too_long.then_some(cases_at_every_moment);
-    let planned = distinct_onsets(&onsets);
+    let plan = Plan::new(table, program, settings, sets, runs, healthy);
+    let planned = distinct_onsets(&plan.onsets);
     let total = planned.iter().map(Vec::len).sum();
-    let resumed = inputs
-        .as_ref()
-        .filter(|_| runs == FaultRuns::Resumed)
-        // A copy of a healthy run that found problems carries them (and the
-        // alarms after them) into every run resumed from it, which a faulty
-        // run judged at its first hazard never reaches: such a table's runs
-        // go from power-up.
-        .filter(|_| healthy.problems.is_empty())
-        .map(|inputs| {
-            let times: Vec<u64> = planned
-                .iter()
-                .flatten()
-                .copied()
-                .chain(inputs.change_times())
-                .collect();
-            (simulator.checkpoints(&healthy_settings, &times), inputs)
-        });
-    let cases = Cases {
-        simulator: &simulator,
-        settings: SimSettings {
-            known_places: Some(std::sync::Arc::new(healthy.places)),
-            ..settings.clone()
-        },
-        resumed: resumed.as_ref().map(|(c, inputs)| (c, *inputs)),
-    };
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let verdicts: Vec<SetRuns> = planned
-        .par_iter()
-        .zip(&sets)
-        .map(|(onsets, set)| {
-            let mut runs = SetRuns::default();
-            for &onset in onsets {
-                cases.verdict(set, onset, onsets, &mut runs);
-                let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                progress(n, total);
-            }
-            runs
-        })
+    let mut runs: Vec<SetRuns> = plan.sets.iter().map(|_| SetRuns::default()).collect();
+    plan.run(true, &planned, &planned, &mut runs, &|_| false, &|| {
+        let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        progress(n, total);
+    });
+    let mut cases: Vec<FaultCase> = (0..plan.sets.len())
+        .map(|i| worst_case(&plan.sets[i], &plan.moments, &plan.onsets[i], &runs[i]))
         .collect();
-    let mut cases = worst_cases(sets, &moments, &onsets, &verdicts);
-    if program.signals.inputs.contains(&Signal::StepButton) {
-        single_step::judge_step_button(&mut cases, table, program, settings);
+    if let Some(case) = cases.iter_mut().find(|c| c.faults == [single_step::SHORT])
+        && let Some((step, explanation)) = single_step::step_button_hazard(table, program, settings)
+    {
+        case.outcome = Outcome::Hazard;
+        case.step = Some(step);
+        case.explanation = explanation;
+        case.outcomes.fill(Outcome::Hazard);
     }
     FaultTable {
         cases,
-        moments,
+        moments: plan.moments,
         runs: total,
-        phases_skipped,
-        equivalent,
+        phases_skipped: plan.phases_skipped,
+        equivalent: plan.equivalent,
     }
 }
 
-/// Each fault set's case: the worst verdict over the moments its faults
-/// appeared at (`onsets[i]`, the scan its run left the healthy one, per
-/// moment; `None`: it never did), with the outcome at every moment.
-fn worst_cases(
-    sets: Vec<Vec<Fault>>,
+/// One fault set's case: the worst verdict over the moments its faults
+/// appeared at (`onsets`, the scan its run left the healthy one, per
+/// moment; `None`: it never did), with the outcome at every moment; each
+/// onset's verdict in `runs`.
+fn worst_case(
+    faults: &[Fault],
     moments: &[Moment],
-    onsets: &[Vec<Option<u64>>],
-    verdicts: &[SetRuns],
-) -> Vec<FaultCase> {
+    onsets: &[Option<u64>],
+    runs: &SetRuns,
+) -> FaultCase {
     let no_effect = Verdict {
         outcome: Outcome::NoEffect,
         step: None,
         explanation: "the input never reads other than without the fault".to_string(),
         detected: false,
     };
-    sets.into_iter()
-        .enumerate()
-        .map(|(i, faults)| {
-            let mut outcomes = Vec::with_capacity(moments.len());
-            let mut worst: Option<(Phase, &Verdict)> = None;
-            for (moment, onset) in moments.iter().zip(&onsets[i]) {
-                let verdict = onset.map_or(&no_effect, |d| {
-                    verdicts[i].at(d).expect("every planned onset is run")
-                });
-                outcomes.push(verdict.outcome);
-                if worst.is_none_or(|(_, w)| verdict.outcome > w.outcome) {
-                    worst = Some((moment.phase, verdict));
-                }
-            }
-            let (phase, verdict) = worst.unwrap_or((Phase::PowerUp, &no_effect));
-            FaultCase {
-                faults,
-                outcome: verdict.outcome,
-                phase,
-                step: verdict.step,
-                explanation: verdict.explanation.clone(),
-                detected: verdict.detected,
-                outcomes,
-            }
-        })
-        .collect()
+    let mut outcomes = Vec::with_capacity(moments.len());
+    let mut worst: Option<(Phase, &Verdict)> = None;
+    for (moment, onset) in moments.iter().zip(onsets) {
+        let verdict = onset.map_or(&no_effect, |d| {
+            runs.at(d).expect("every planned onset is run")
+        });
+        outcomes.push(verdict.outcome);
+        if worst.is_none_or(|(_, w)| verdict.outcome > w.outcome) {
+            worst = Some((moment.phase, verdict));
+        }
+    }
+    let (phase, verdict) = worst.unwrap_or((Phase::PowerUp, &no_effect));
+    FaultCase {
+        faults: faults.to_vec(),
+        outcome: verdict.outcome,
+        phase,
+        step: verdict.step,
+        explanation: verdict.explanation.clone(),
+        detected: verdict.detected,
+        outcomes,
+    }
 }
 
 /// Why a fault has no effect, when its run is the healthy one's.

@@ -5,7 +5,6 @@
 //! run in single step — STEP_MODE on, START pressed, the short coming
 //! before any press — and judged there.
 
-use super::{FaultCase, Outcome};
 use crate::program::{Signal, StepProgram};
 use crate::simulate::scenario::scenario;
 use crate::simulate::{Fault, Operator, ProblemKind, SimSettings};
@@ -17,21 +16,24 @@ const START_MS: u64 = 500;
 const SHORT_MS: u64 = 1_000;
 const UNTIL_MS: u64 = 30_000;
 
-/// Judges the STEP_PB short-circuit case of `cases` in single step, when
-/// the program has the mode: a hazard when a step fires without a press.
-pub(super) fn judge_step_button(
-    cases: &mut [FaultCase],
+/// The short of STEP_PB.
+pub(super) const SHORT: Fault = Fault {
+    signal: Signal::StepButton,
+    stuck_at: true,
+};
+
+/// What a shorted STEP_PB does in single step, when the program has the
+/// mode and a step fires without a press there: the step concerned and
+/// why it is a hazard (at every moment: the short reads as the press
+/// whenever it comes).
+pub(super) fn step_button_hazard(
     table: &StepTable,
     program: &StepProgram,
     settings: &SimSettings,
-) {
-    let short = Fault {
-        signal: Signal::StepButton,
-        stuck_at: true,
-    };
-    let Some(case) = cases.iter_mut().find(|c| c.faults == [short]) else {
-        return;
-    };
+) -> Option<(usize, String)> {
+    if !program.signals.inputs.contains(&Signal::StepButton) {
+        return None;
+    }
     let stepping = Operator {
         step_mode: true,
         ..Operator::default()
@@ -48,24 +50,21 @@ pub(super) fn judge_step_button(
         (START_MS + 100, stepping),
     ];
     let run = SimSettings {
-        faults: vec![short],
+        faults: vec![SHORT],
         fault_onset_ms: SHORT_MS,
         record_trace: false,
         ..settings.clone()
     };
     let report = scenario(table, program, &run, &script, UNTIL_MS);
-    let Some(fired) = report
+    let fired = report
         .problems
         .iter()
-        .find(|p| p.kind == ProblemKind::UnexpectedStep)
-    else {
-        return;
-    };
-    case.outcome = Outcome::Hazard;
-    case.step = Some(fired.step);
-    case.explanation = format!(
-        "in single step (STEP_MODE on) {}: the short reads as one press (one step, no more); in automatic the cycle runs as without it",
-        fired.message
-    );
-    case.outcomes.fill(Outcome::Hazard);
+        .find(|p| p.kind == ProblemKind::UnexpectedStep)?;
+    Some((
+        fired.step,
+        format!(
+            "in single step (STEP_MODE on) {}: the short reads as one press (one step, no more); in automatic the cycle runs as without it",
+            fired.message
+        ),
+    ))
 }
