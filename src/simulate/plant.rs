@@ -22,7 +22,15 @@ pub struct Piston {
     /// Stroke fraction per scan when extending / retracting.
     extend_per_scan: f64,
     retract_per_scan: f64,
+    /// `0.4 / max_position` and the points of the first sensors, computed
+    /// once: a sensor is read at every scan of every run, and the two
+    /// divisions were most of the reading.
+    narrowest: f64,
+    points: [f64; POINTS],
 }
+
+/// The sensors whose points a piston keeps at hand.
+const POINTS: usize = 8;
 
 impl Piston {
     /// A piston with the default valve for its positions.
@@ -50,7 +58,10 @@ impl Piston {
     ) -> Self {
         let per_scan = |ms: u32| scan_ms as f64 / ms.max(1) as f64;
         let drift_per_scan = valve.drift_per_second(drift) * scan_ms as f64 / 1000.0;
+        let point = |position: u32| position as f64 / max_position.max(1) as f64;
         Piston {
+            narrowest: 0.4 / max_position.max(1) as f64,
+            points: std::array::from_fn(|p| point(p as u32)),
             number,
             max_position,
             valve,
@@ -64,14 +75,17 @@ impl Piston {
 
     /// The stroke fraction of sensor `position`.
     pub fn sensor_point(&self, position: u32) -> f64 {
-        position as f64 / self.max_position.max(1) as f64
+        match self.points.get(position as usize) {
+            Some(point) => *point,
+            None => position as f64 / self.max_position.max(1) as f64,
+        }
     }
 
     /// The half-width a sensor of this actuator sees: `window`, narrowed on
     /// an actuator with so many positions that neighbouring sensors would
     /// otherwise overlap (real sensors are placed so that they do not).
     pub fn window(&self, window: f64) -> f64 {
-        window.min(0.4 / self.max_position.max(1) as f64)
+        window.min(self.narrowest)
     }
 
     /// Whether sensor `position` sees the piston (within `window` of its point).

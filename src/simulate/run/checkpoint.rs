@@ -17,7 +17,9 @@ use super::*;
 /// Copies of one run at chosen scans, and a fingerprint of its state at
 /// every scan it ran.
 pub struct Checkpoints<'a> {
-    at: HashMap<u64, Drive<'a>>,
+    /// By time: a run whose onset has no copy of its own starts from the
+    /// latest copy before it (until the onset it is the healthy run).
+    at: std::collections::BTreeMap<u64, Drive<'a>>,
     /// By time, in order: where the cycle stood (checked first, it is
     /// cheap) and the fingerprint.
     fingerprints: Vec<(u64, Progress, u64)>,
@@ -152,7 +154,7 @@ pub(in crate::simulate) fn checkpoints<'a>(
     times.dedup();
     let mut times = times.into_iter().peekable();
     let mut drive = Drive::new(table, program, code, settings, None, Stepping::Events);
-    let mut at = HashMap::default();
+    let mut at = std::collections::BTreeMap::new();
     let mut fingerprints = Vec::new();
     while !drive.finished() {
         let now = drive.run.time_ms;
@@ -228,10 +230,10 @@ pub(in crate::simulate) fn resume<'a>(
 ) -> Resumed {
     let checkpoints = course.checkpoints;
     let from_ms = settings.fault_onset_ms;
-    let mut drive = match checkpoints.at.get(&from_ms) {
-        Some(checkpoint) => {
-            // Standing where an earlier run stood from the start (the
-            // checkpoint's fingerprint is the copy's): no copy.
+    let mut drive = match checkpoints.at.range(..=from_ms).next_back() {
+        Some((_, checkpoint)) => {
+            // Standing where an earlier run stood from the start (until its
+            // onset a run is the healthy one): no copy.
             if checkpoint.run.problems.is_empty()
                 && course.marked(from_ms)
                 && let Some((_, fingerprint)) = checkpoints.state_at(from_ms)
