@@ -193,12 +193,17 @@ fn report_cost(paper: &std::path::Path) {
             .faults
             .as_ref()
             .expect("the report shows the faults");
+        // As a conversion runs them: beside the healthy run it proved the
+        // program with.
+        let program = convert::build_program(&conversion.table, &with);
+        let healthy = faults::healthy_run(&conversion.table, &program, &with.simulation);
         let (t_mitigations, _) = time(11, || {
             faults::mitigation::mitigations(
                 &conversion.table,
                 &with.program,
                 &with.simulation,
                 faults,
+                Some(&healthy),
             )
         });
         println!(

@@ -18,6 +18,12 @@ pub(super) fn render_beside_faults(
     healthy: Option<faults::Healthy>,
 ) -> Result<(Vec<emit::OutputFile>, Option<faults::FaultTable>), Failure> {
     let (table, program) = (input.table, input.program);
+    // The mitigations' trial programs are expected to run healthy as this
+    // one does: a copy of its run is their yardstick.
+    let expected = healthy
+        .as_ref()
+        .filter(|_| late.contains(&OutputKind::Report))
+        .cloned();
     let ((fault_table, late), early) = rayon::join(
         || {
             let fault_table = (!late.is_empty()).then(|| {
@@ -53,6 +59,7 @@ pub(super) fn render_beside_faults(
                                 &settings.program,
                                 &settings.simulation,
                                 f,
+                                expected.as_ref(),
                             )
                         })
                 },

@@ -9,7 +9,7 @@
 use super::{Failure, build_program};
 use crate::actuator::ActuatorKind;
 use crate::diag::{Code, Diagnostic, Location, Severity};
-use crate::program::{Action, Signal, StepProgram};
+use crate::program::StepProgram;
 use crate::settings::Settings;
 use crate::simulate::{self, SimReport, plant::Piston};
 use crate::stroke::Stroke;
@@ -202,16 +202,7 @@ fn in_view_ms(piston: &Piston, window: f64, full_ms: f64) -> f64 {
 /// round to a short one there. Refused at the step's first cell.
 pub fn watchdogs_beyond_timers(table: &StepTable, program: &StepProgram) -> Vec<Diagnostic> {
     let mut refused = Vec::new();
-    for step in &program.steps {
-        let Some(ms) = step.actions.iter().find_map(|a| match a {
-            Action::StartTimer(Signal::Watchdog, ms) => Some(*ms),
-            _ => None,
-        }) else {
-            continue;
-        };
-        if ms <= crate::cell::MAX_DWELL_MS {
-            continue;
-        }
+    for (step, ms) in program.watchdogs_beyond_timers() {
         let cell = table.steps.get(step.number.wrapping_sub(1)).and_then(|s| {
             let moves = s.moves.iter().map(|m| m.cell);
             moves.chain(s.dwells.iter().map(|d| d.cell)).next()

@@ -12,6 +12,7 @@ use crate::table::StepTable;
 /// input changed. A conversion proves its program with this very run
 /// ([`healthy_run`]) and hands it on, so that the cycle is not simulated
 /// again from power-up for the fault table.
+#[derive(Clone)]
 pub struct Healthy {
     pub report: SimReport,
     pub log: InputLog,

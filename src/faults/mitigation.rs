@@ -10,7 +10,7 @@
 //! outside the program, not simulated).
 
 use super::search::{Found, first_hazards};
-use super::{FaultCase, FaultTable, Outcome};
+use super::{FaultCase, FaultTable, Healthy, Outcome};
 use crate::program::{self, ProgramOptions, Safety, Signal};
 use crate::simulate::SimSettings;
 use crate::table::StepTable;
@@ -31,6 +31,9 @@ pub struct Trial {
     pub found: Found,
     /// The moments of the cycle that program's fault table has.
     pub moments: usize,
+    /// The cycle is too long for faults at every moment: that fault table,
+    /// and the trial, make them appear at power-up only.
+    pub power_up_only: bool,
 }
 
 impl Trial {
@@ -89,8 +92,14 @@ impl Mitigation {
             match &trial.found {
                 Found::Clear(case) => {
                     let alarm = if case.detected { ", alarm" } else { "" };
+                    let only = match trial.power_up_only {
+                        true => {
+                            "; faults from power-up only, the cycle being too long for every moment"
+                        }
+                        false => "",
+                    };
                     parts.push(format!(
-                        "caught by {} ({}{alarm})",
+                        "caught by {} ({}{alarm}{only})",
                         trial.option(),
                         case.outcome.label()
                     ));
@@ -145,12 +154,16 @@ fn with(mut safety: Safety, name: &str) -> Safety {
 /// built from `table` under `options`, analysed under `settings`), in the
 /// order of its cases; `None` for a case that is no hazard. The hazards
 /// alone are run again, once per trial program, each resumed from that
-/// program's healthy run as the fault analysis does.
+/// program's healthy run as the fault analysis does. `healthy` is the
+/// healthy run of the program without the checks, when the caller has it
+/// ([`super::healthy_run`] under `settings`): a trial program's own is
+/// expected to be the same, and is checked to be.
 pub fn mitigations(
     table: &StepTable,
     options: &ProgramOptions,
     settings: &SimSettings,
     faults: &FaultTable,
+    healthy: Option<&Healthy>,
 ) -> Vec<Option<Mitigation>> {
     let hazards: Vec<&FaultCase> = faults
         .cases
@@ -161,11 +174,40 @@ pub fn mitigations(
         .into_iter()
         .filter(|n| !has(options.safety, n))
         .collect();
+    if hazards.is_empty() || missing.is_empty() {
+        return faults
+            .cases
+            .iter()
+            .map(|c| {
+                (c.outcome == Outcome::Hazard).then(|| Mitigation {
+                    trials: Vec::new(),
+                    remedy: remedy(table, options, c, &[]).to_string(),
+                })
+            })
+            .collect();
+    }
+    let own;
+    let healthy = match healthy {
+        Some(healthy) => healthy,
+        None => {
+            let machine = &settings.machine;
+            let program = program::build(table, options, &machine.valves, &machine.strokes);
+            own = super::healthy_run(
+                table,
+                &program,
+                &SimSettings {
+                    record_trace: false,
+                    ..super::yardstick_settings(settings)
+                },
+            );
+            &own
+        }
+    };
     // The checks alone, side by side: each is a program of its own.
     use rayon::prelude::*;
     let alone: Vec<Option<Vec<Trial>>> = missing
         .par_iter()
-        .map(|name| run_trials(table, options, settings, &hazards, &[name]))
+        .map(|name| run_trials(table, options, settings, &hazards, &[name], healthy))
         .collect();
     let mut trials: Vec<Vec<Trial>> = vec![Vec::new(); hazards.len()];
     for found in alone.into_iter().flatten() {
@@ -179,7 +221,7 @@ pub fn mitigations(
         .collect();
     if missing.len() > 1 && !uncaught.is_empty() {
         let rest: Vec<&FaultCase> = uncaught.iter().map(|&i| hazards[i]).collect();
-        let together = run_trials(table, options, settings, &rest, &missing);
+        let together = run_trials(table, options, settings, &rest, &missing, healthy);
         for (i, trial) in uncaught.into_iter().zip(together.into_iter().flatten()) {
             trials[i].push(trial);
         }
@@ -188,7 +230,7 @@ pub fn mitigations(
         let remedy = if trials.iter().any(Trial::catches) {
             String::new()
         } else {
-            remedy(table, case, &trials).to_string()
+            remedy(table, options, case, &trials).to_string()
         };
         Mitigation { trials, remedy }
     });
@@ -205,13 +247,15 @@ pub fn mitigations(
 
 /// Runs `cases` on the program with the checks `added`: each one's trial,
 /// in their order. A program that does not pass its own healthy cycle with
-/// them (a check that stops a sound machine) is no mitigation: `None`.
+/// them (a check that stops a sound machine), or that steptable would not
+/// write, is no mitigation: `None`.
 fn run_trials(
     table: &StepTable,
     options: &ProgramOptions,
     settings: &SimSettings,
     cases: &[&FaultCase],
     added: &[&'static str],
+    expected: &Healthy,
 ) -> Option<Vec<Trial>> {
     let safety = added.iter().fold(options.safety, |s, n| with(s, n));
     let options = ProgramOptions {
@@ -220,24 +264,20 @@ fn run_trials(
     };
     let machine = &settings.machine;
     let program = program::build(table, &options, &machine.valves, &machine.strokes);
-    let healthy = super::healthy_run(
-        table,
-        &program,
-        &SimSettings {
-            record_trace: false,
-            ..super::yardstick_settings(settings)
-        },
-    );
-    if !healthy.report.passed {
+    // A program steptable refuses to write (E032: a watchdog no PLC timer
+    // holds) is no mitigation either.
+    if program.watchdogs_beyond_timers().next().is_some() {
         return None;
     }
     let sets = cases.iter().map(|c| c.faults.clone()).collect();
-    let (found, moments) = first_hazards(table, &program, settings, sets, Some(healthy));
-    let trials = found.into_iter().map(|found| Trial {
+    let searched = first_hazards(table, &program, settings, sets, Some(expected))?;
+    let (moments, power_up_only) = (searched.moments.len(), searched.power_up_only);
+    let trials = searched.found.into_iter().map(|found| Trial {
         safety,
         added: added.to_vec(),
         found,
-        moments: moments.len(),
+        moments,
+        power_up_only,
     });
     Some(trials.collect())
 }
@@ -247,7 +287,12 @@ fn run_trials(
 /// "Safety checks"). Read from the hazard the trial with the most checks
 /// leaves (all of them together, when they were tried: its explanation is
 /// of what remains under every check), else from the case.
-fn remedy(table: &StepTable, case: &FaultCase, trials: &[Trial]) -> &'static str {
+fn remedy(
+    table: &StepTable,
+    options: &ProgramOptions,
+    case: &FaultCase,
+    trials: &[Trial],
+) -> &'static str {
     let explanation = trials
         .iter()
         .max_by_key(|t| t.added.len())
@@ -257,20 +302,35 @@ fn remedy(table: &StepTable, case: &FaultCase, trials: &[Trial]) -> &'static str
         })
         .unwrap_or(&case.explanation);
     if explanation.contains("not hold-safe") {
+        let kept: Vec<&str> = kept_on(explanation).collect();
+        let switched_off = |s: &&str| options.halt.off_on_halt.iter().any(|o| o.symbol() == *s);
+        if !kept.is_empty() && kept.iter().all(switched_off) {
+            // The halt would switch them off: what is missing is a check
+            // that halts in the step that waits.
+            return "a supervision time for the step that waits (SETTINGS supervision: the watchdog leaves a step that waits on a machine input untimed), so that a check halts it and the halt switches the output off";
+        }
         return "a halt that switches the output off (SETTINGS on halt), with a check that halts";
     }
     let Some(fault) = case.faults.first().copied() else {
         return "a redundant sensor";
     };
+    let collision = explanation.contains("collision risk");
+    // The sequence's own reason comes first: a step started early because
+    // this very sensor read as the arrival.
+    let read_as_arrival =
+        explanation.contains(&format!("had not reached {})", fault.signal.symbol()));
     match (fault.signal, fault.stuck_at) {
-        (Signal::MachineInput(_), true) => {
-            "the machine input's own monitoring (a second, diverse sensor): shorted, it looks like the real thing"
+        (Signal::MachineInput(_), _) => {
+            "the machine input's own monitoring (a second, diverse sensor): stuck, it reads as the machine's real answer"
         }
-        (Signal::Start | Signal::Continuous, true) => {
+        (Signal::Start | Signal::Continuous | Signal::StepButton | Signal::Jog { .. }, true) => {
             "a two-channel button: a shorted button reads as the operator's press"
         }
         (Signal::Reset, true) => "a RESET that acts only on a stopped machine",
-        (Signal::Sensor { .. }, true) if !explanation.contains("collision risk") => {
+        (Signal::StepMode | Signal::ManualMode, _) => {
+            "a mode selector with two contacts (a key switch): a stuck contact reads as the mode chosen"
+        }
+        (Signal::Sensor { .. }, true) if read_as_arrival || !collision => {
             "a minimum travel time before the sensor counts, or a position transducer: a sensor that shorts as its cylinder travels towards it reads as the arrival"
         }
         (Signal::Sensor { actuator, position }, false)
@@ -281,11 +341,23 @@ fn remedy(table: &StepTable, case: &FaultCase, trials: &[Trial]) -> &'static str
         {
             "a mechanical stop or a second sensor at that middle position: the cylinder runs on past the dead sensor"
         }
-        _ if explanation.contains("collision risk") => {
+        // A stop that cuts the coils lets a piston on a spring-return or
+        // 5/2 valve move on its own.
+        _ if collision || matches!(fault.signal, Signal::Stop | Signal::EStop) => {
             "5/3 closed-centre valves and a halt that switches the coils off, so that the machine stops where it is"
         }
-        _ => "a redundant sensor at that position",
+        (Signal::Sensor { .. }, _) => "a redundant sensor at that position",
+        _ => "a redundant, monitored input",
     }
+}
+
+/// The outputs a stopped machine keeps on, as the explanation names them.
+fn kept_on(explanation: &str) -> impl Iterator<Item = &str> {
+    let listed = explanation
+        .split_once("the stopped machine keeps ")
+        .and_then(|(_, rest)| rest.split_once(" on (not hold-safe)"))
+        .map_or("", |(list, _)| list);
+    listed.split(", ").filter(|s| !s.is_empty())
 }
 
 #[cfg(test)]

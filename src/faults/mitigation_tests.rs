@@ -30,7 +30,7 @@ fn mitigation_of(
 ) -> (FaultCase, Mitigation) {
     let settings = SimSettings::default();
     let faults = analyse(table, &build(table, options), &settings, 1);
-    let verified = mitigations(table, options, &settings, &faults);
+    let verified = mitigations(table, options, &settings, &faults, None);
     assert_eq!(verified.len(), faults.cases.len());
     let i = faults
         .cases
@@ -233,7 +233,7 @@ fn each_trial_is_the_fault_table_of_the_program_with_its_checks() {
     };
     let settings = SimSettings::default();
     let faults = analyse(&t, &build(&t, &options), &settings, 1);
-    let verified = mitigations(&t, &options, &settings, &faults);
+    let verified = mitigations(&t, &options, &settings, &faults, None);
     let mut checked = 0;
     for (case, m) in faults.cases.iter().zip(&verified) {
         let Some(m) = m else {
@@ -302,4 +302,26 @@ fn a_program_with_every_check_gets_only_the_remedy() {
         "{}",
         m.text()
     );
+}
+
+/// The halt already switches the heater off (SETTINGS `on halt`), but the
+/// step waits on a machine input, which the watchdog leaves untimed: no
+/// check halts there, and the remedy is the supervision time that would,
+/// not the SETTINGS row the engineer already has (red team rt9).
+#[test]
+fn a_heater_the_halt_switches_off_wants_a_check_that_halts() {
+    let t = table(&[&["C1+1; Y:heat+; I:part"], &["C1-0; Y:heat-"]]);
+    let heat = Signal::MachineOutput(crate::cell::Name::new("heat").unwrap());
+    let mut options = ProgramOptions::default();
+    options.halt.off_on_halt.insert(heat);
+    let (case, m) = mitigation_of(&t, &options, "x11", false);
+    assert!(
+        case.explanation.contains("not hold-safe"),
+        "{}",
+        case.explanation
+    );
+    assert!(m.remedy.starts_with("a supervision time"), "{}", m.remedy);
+    // Without the row, the row is what is missing.
+    let (_, m) = mitigation_of(&t, &ProgramOptions::default(), "x11", false);
+    assert!(m.remedy.contains("SETTINGS on halt"), "{}", m.remedy);
 }

@@ -312,15 +312,24 @@ pub fn analyse_sets(
     progress: &(dyn Fn(usize, usize) + Sync),
     healthy: Option<Healthy>,
 ) -> FaultTable {
-    let plan = Plan::new(table, program, settings, sets, runs, healthy);
+    let counted = sets.len();
+    let plan = Plan::new(table, program, settings, sets, counted, runs, healthy);
     let planned = distinct_onsets(&plan.onsets);
     let total = planned.iter().map(Vec::len).sum();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let mut runs: Vec<SetRuns> = plan.sets.iter().map(|_| SetRuns::default()).collect();
-    plan.run(true, &planned, &planned, &mut runs, &|_| false, &|| {
-        let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        progress(n, total);
-    });
+    let copies = plan.copies(&planned, true, false);
+    plan.run(
+        copies.as_ref(),
+        &planned,
+        &planned,
+        &mut runs,
+        &|_| false,
+        &|| {
+            let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            progress(n, total);
+        },
+    );
     let mut cases: Vec<FaultCase> = (0..plan.sets.len())
         .map(|i| worst_case(&plan.sets[i], &plan.moments, &plan.onsets[i], &runs[i]))
         .collect();

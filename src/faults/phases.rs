@@ -114,6 +114,11 @@ impl HealthyInputs {
         HealthyInputs { log }
     }
 
+    /// The log itself.
+    pub fn log(&self) -> &InputLog {
+        &self.log
+    }
+
     /// Every time at which an input changes: where a faulty run that is back
     /// in step with the healthy one may next leave it.
     pub fn change_times(&self) -> impl Iterator<Item = u64> + '_ {

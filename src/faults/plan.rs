@@ -10,11 +10,13 @@ use super::healthy::yardstick_settings;
 use super::phases::{self, Moment, moments};
 use super::{FaultRuns, Healthy, MAX_PHASE_WORK, healthy_run};
 use crate::program::StepProgram;
-use crate::simulate::{Fault, SimSettings, Simulator};
+use crate::simulate::io::InputLog;
+use crate::simulate::{Checkpoints, Fault, SimReport, SimSettings, Simulator};
 use crate::table::StepTable;
 
 /// Fault sets on one program, their moments and onsets, before any run.
 pub(super) struct Plan<'t> {
+    table: &'t StepTable,
     simulator: Simulator<'t>,
     /// The healthy run's settings (its checkpoints are made under them).
     healthy_settings: SimSettings,
@@ -32,17 +34,21 @@ pub(super) struct Plan<'t> {
     /// The cases at every moment, when they were beyond the budget.
     pub(super) phases_skipped: Option<usize>,
     /// Runs resume from the healthy run's checkpoints.
-    resumable: bool,
+    pub(super) resumable: bool,
 }
 
 impl<'t> Plan<'t> {
     /// The plan of `sets` on `program`, measured against `healthy`
-    /// ([`healthy_run`] under the same settings) when it is given.
+    /// ([`healthy_run`] under the same settings) when it is given. Whether
+    /// faults appear at every moment or at power-up only is decided on
+    /// `counted` sets: those of the whole table the sets belong to, so that
+    /// a few of its sets run again are run as in the table.
     pub(super) fn new(
         table: &'t StepTable,
         program: &'t StepProgram,
         settings: &SimSettings,
         mut sets: Vec<Vec<Fault>>,
+        counted: usize,
         runs: FaultRuns,
         healthy: Option<Healthy>,
     ) -> Plan<'t> {
@@ -60,7 +66,7 @@ impl<'t> Plan<'t> {
             log,
         } = healthy.unwrap_or_else(|| healthy_run(table, program, &healthy_settings));
         let mut moments = moments(&healthy, table, settings.scan_ms as u64);
-        let cases_at_every_moment = sets.len() * moments.len();
+        let cases_at_every_moment = counted.max(sets.len()) * moments.len();
         // A jump's cycle is one more cycle each run may go through.
         let jumps: usize = table.steps.iter().map(|s| s.jumps.len()).sum();
         let too_long = cases_at_every_moment
@@ -107,6 +113,7 @@ impl<'t> Plan<'t> {
             ..settings.clone()
         };
         Plan {
+            table,
             simulator: Simulator::new(table, program),
             healthy_settings,
             run_settings,
@@ -120,18 +127,40 @@ impl<'t> Plan<'t> {
         }
     }
 
-    /// Runs each set's `wanted` onsets (in their order, the set's planned
-    /// onsets `planned[i]`, earliest first, marking where its runs' states
-    /// are kept) into `runs[i]`, until `enough` says a verdict ends the
-    /// set's search; calls `progress` after each onset. The healthy run is
-    /// copied at the onsets wanted, not at every planned one, and, when
+    /// The healthy run copied at the onsets `wanted` (per set) and, when
     /// `at_changes`, wherever an input changes: a run back in step with it
     /// goes on from where its faulty input next differs, which a run that
     /// goes through every onset does often (elsewhere a run starts from the
-    /// latest copy before its onset).
+    /// latest copy before its onset). When `log_inputs`, the run also logs
+    /// its inputs (it is then a healthy run of its own). `None` when runs go
+    /// from power-up.
+    pub(super) fn copies(
+        &self,
+        wanted: &[Vec<u64>],
+        at_changes: bool,
+        log_inputs: bool,
+    ) -> Option<Checkpoints<'_>> {
+        let inputs = self.inputs.as_ref().filter(|_| self.resumable)?;
+        let times: Vec<u64> = wanted
+            .iter()
+            .flatten()
+            .copied()
+            .chain(inputs.change_times().filter(|_| at_changes))
+            .collect();
+        Some(
+            self.simulator
+                .checkpoints(&self.healthy_settings, &times, log_inputs),
+        )
+    }
+
+    /// Runs each set's `wanted` onsets (in their order, the set's planned
+    /// onsets `planned[i]`, earliest first, marking where its runs' states
+    /// are kept) into `runs[i]`, from `copies` of the healthy run (from
+    /// power-up without), until `enough` says a verdict ends the set's
+    /// search; calls `progress` after each onset.
     pub(super) fn run(
         &self,
-        at_changes: bool,
+        copies: Option<&Checkpoints<'_>>,
         planned: &[Vec<u64>],
         wanted: &[Vec<u64>],
         runs: &mut [SetRuns],
@@ -139,23 +168,10 @@ impl<'t> Plan<'t> {
         progress: &(dyn Fn() + Sync),
     ) {
         use rayon::prelude::*;
-        let checkpoints = self.resumable.then(|| {
-            let inputs = self.inputs.as_ref().expect("resumable runs have inputs");
-            let times: Vec<u64> = wanted
-                .iter()
-                .flatten()
-                .copied()
-                .chain(inputs.change_times().filter(|_| at_changes))
-                .collect();
-            (
-                self.simulator.checkpoints(&self.healthy_settings, &times),
-                inputs,
-            )
-        });
         let cases = Cases {
             simulator: &self.simulator,
             settings: self.run_settings.clone(),
-            resumed: checkpoints.as_ref().map(|(c, inputs)| (c, *inputs)),
+            resumed: copies.zip(self.inputs.as_ref()),
         };
         runs.par_iter_mut()
             .zip(wanted)
@@ -174,6 +190,17 @@ impl<'t> Plan<'t> {
                     }
                 }
             });
+    }
+
+    /// Whether `healthy`, another run of this plan's program, is the run
+    /// the plan was made from: the same inputs at the same times, so the
+    /// same moments and onsets, and the same places reached.
+    pub(super) fn made_from(&self, healthy: &SimReport, log: Option<&InputLog>) -> bool {
+        let scan_ms = self.run_settings.scan_ms as u64;
+        healthy.problems.is_empty()
+            && log == self.inputs.as_ref().map(|i| i.log())
+            && self.run_settings.known_places.as_deref() == Some(&healthy.places)
+            && moments(healthy, self.table, scan_ms) == self.moments
     }
 }
 

@@ -11,10 +11,13 @@
 //! for the sets that gave no hazard there.
 
 use super::cases::{SetRuns, Verdict};
+use super::healthy::yardstick_settings;
 use super::plan::{Plan, distinct_onsets};
-use super::{FaultCase, FaultRuns, Healthy, Moment, Outcome, Phase, single_step, worst_case};
+use super::{
+    FaultCase, FaultRuns, Healthy, Moment, Outcome, Phase, healthy_run, single_step, worst_case,
+};
 use crate::program::{Signal, StepProgram};
-use crate::simulate::{Fault, SimSettings};
+use crate::simulate::{Checkpoints, Fault, SimSettings};
 use crate::table::StepTable;
 
 /// What the runs of one fault set found.
@@ -35,87 +38,221 @@ pub enum Found {
     Clear(FaultCase),
 }
 
-/// Each set's first hazard on `program` (resumed from `healthy` when it is
-/// given, [`super::healthy_run`] under the same settings), in the order of
-/// `sets`, and the moments of that program's cycle.
+/// What a search found, per set, and where it looked.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Searched {
+    pub found: Vec<Found>,
+    /// The moments of the program's cycle the faults appeared at.
+    pub moments: Vec<Moment>,
+    /// The cycle was too long for faults at every moment (as `faults`
+    /// decides it for the whole table): they appeared at power-up only.
+    pub power_up_only: bool,
+}
+
+/// Each set's first hazard on `program`, in the order of `sets`, and the
+/// moments of that program's cycle; `None` when the program does not pass
+/// its own healthy cycle. `expected` is a healthy run the program's own is
+/// expected to be (that of the same table without the checks a trial adds,
+/// which change nothing in a healthy cycle): the runs are planned from it,
+/// and the copy of the program's own healthy run the first runs start from
+/// is checked against it on the way (the same inputs at the same times, the
+/// same places), so that the program is not run healthy once more to plan.
+/// Where the two differ, the plan is made again from the program's own run.
 pub fn first_hazards(
     table: &StepTable,
     program: &StepProgram,
     settings: &SimSettings,
     sets: Vec<Vec<Fault>>,
-    healthy: Option<Healthy>,
-) -> (Vec<Found>, Vec<Moment>) {
-    let plan = Plan::new(table, program, settings, sets, FaultRuns::Resumed, healthy);
-    let planned = distinct_onsets(&plan.onsets);
-    let mut runs: Vec<SetRuns> = plan.sets.iter().map(|_| SetRuns::default()).collect();
+    expected: Option<&Healthy>,
+) -> Option<Searched> {
+    // The budget counts the sets of the table these belong to, as `faults`
+    // with this program would: the moments are then the ones it runs.
+    let counted = super::case_count(program, sets.iter().map(Vec::len).max().unwrap_or(1));
     // A shorted STEP_PB is judged in single step, not by its runs.
-    let stepping = plan
-        .sets
+    let stepping = sets
         .iter()
         .any(|s| *s == [single_step::SHORT])
         .then(|| single_step::step_button_hazard(table, program, settings))
         .flatten();
-    let judged = |i: usize| stepping.is_some() && plan.sets[i] == [single_step::SHORT];
-    let hazard = |v: &Verdict| v.outcome == Outcome::Hazard;
-    let orders: Vec<Vec<usize>> = (0..plan.sets.len())
-        .map(|i| likely_first(table, &plan.sets[i], &plan.moments))
-        .collect();
-    let tries: Vec<Vec<u64>> = (0..plan.sets.len())
-        .map(|i| distinct_in(&orders[i], &plan.onsets[i]))
-        .collect();
-    let first: Vec<Vec<u64>> = (0..plan.sets.len())
-        .map(|i| match judged(i) {
-            true => Vec::new(),
-            false => tries[i].iter().take(1).copied().collect(),
-        })
-        .collect();
-    plan.run(false, &planned, &first, &mut runs, &hazard, &|| {});
-    // Only the first onset's verdict counts here: a run handed on to a later
-    // onset may have found a hazard there, but the moments between are not
-    // run yet.
-    let found_first = |i: usize| {
-        first[i]
-            .first()
-            .and_then(|&onset| runs[i].at(onset))
-            .is_some_and(hazard)
+    let own = match expected {
+        Some(expected) => {
+            let plan = Plan::new(
+                table,
+                program,
+                settings,
+                sets.clone(),
+                counted,
+                FaultRuns::Resumed,
+                Some(expected.clone()),
+            );
+            let search = Search::new(table, &plan, stepping.is_some());
+            match plan.copies(&search.first, false, true) {
+                Some(copies) => {
+                    if copies.report.passed && plan.made_from(&copies.report, copies.log.as_ref()) {
+                        return Some(search.finish(&plan, Some(copies), stepping));
+                    }
+                    let Checkpoints { report, log, .. } = copies;
+                    Healthy {
+                        report,
+                        log: log.unwrap_or_default(),
+                    }
+                }
+                None => healthy_run(table, program, &healthy_settings(settings)),
+            }
+        }
+        None => healthy_run(table, program, &healthy_settings(settings)),
     };
-    let rest: Vec<Vec<u64>> = (0..plan.sets.len())
-        .map(|i| match judged(i) || found_first(i) {
-            true => Vec::new(),
-            false => tries[i].clone(),
-        })
-        .collect();
-    if rest.iter().any(|r| !r.is_empty()) {
-        plan.run(false, &planned, &rest, &mut runs, &hazard, &|| {});
+    if !own.report.passed {
+        return None;
     }
-    let found = (0..plan.sets.len())
-        .map(|i| {
-            if judged(i) {
-                let (step, explanation) = stepping.clone().expect("judged in single step");
-                return Found::Hazard {
-                    moment: 0,
-                    phase: plan.moments[0].phase,
-                    step: Some(step),
-                    explanation,
-                };
-            }
-            match first_hazard(&orders[i], &plan.onsets[i], &runs[i]) {
-                Some((moment, verdict)) => Found::Hazard {
-                    moment,
-                    phase: plan.moments[moment].phase,
-                    step: verdict.step,
-                    explanation: verdict.explanation.clone(),
-                },
-                None => Found::Clear(worst_case(
-                    &plan.sets[i],
-                    &plan.moments,
-                    &plan.onsets[i],
-                    &runs[i],
-                )),
-            }
-        })
-        .collect();
-    (found, plan.moments)
+    let plan = Plan::new(
+        table,
+        program,
+        settings,
+        sets,
+        counted,
+        FaultRuns::Resumed,
+        Some(own),
+    );
+    let search = Search::new(table, &plan, stepping.is_some());
+    let copies = plan.copies(&search.first, false, false);
+    Some(search.finish(&plan, copies, stepping))
+}
+
+/// The settings of the healthy run a search is measured against.
+fn healthy_settings(settings: &SimSettings) -> SimSettings {
+    SimSettings {
+        record_trace: false,
+        ..yardstick_settings(settings)
+    }
+}
+
+/// The order each set's moments are tried in, and what has been found.
+struct Search {
+    orders: Vec<Vec<usize>>,
+    /// Each set's distinct onsets in that order.
+    tries: Vec<Vec<u64>>,
+    /// The first of them, for every set but one judged otherwise.
+    first: Vec<Vec<u64>>,
+    runs: Vec<SetRuns>,
+    /// Sets judged in single step (a shorted STEP_PB, when it is a hazard there).
+    judged: Vec<bool>,
+}
+
+impl Search {
+    fn new(table: &StepTable, plan: &Plan<'_>, stepping: bool) -> Search {
+        let orders: Vec<Vec<usize>> = plan
+            .sets
+            .iter()
+            .map(|set| likely_first(table, set, &plan.moments))
+            .collect();
+        let tries: Vec<Vec<u64>> = orders
+            .iter()
+            .zip(&plan.onsets)
+            .map(|(order, onsets)| distinct_in(order, onsets))
+            .collect();
+        let judged: Vec<bool> = plan
+            .sets
+            .iter()
+            .map(|s| stepping && *s == [single_step::SHORT])
+            .collect();
+        let first = tries
+            .iter()
+            .zip(&judged)
+            .map(|(t, judged)| match judged {
+                true => Vec::new(),
+                false => t.iter().take(1).copied().collect(),
+            })
+            .collect();
+        Search {
+            orders,
+            tries,
+            first,
+            runs: plan.sets.iter().map(|_| SetRuns::default()).collect(),
+            judged,
+        }
+    }
+
+    /// Runs the first onset of every set from `copies` (copied at them), then
+    /// the others of the sets that gave no hazard there, until one does.
+    fn finish(
+        mut self,
+        plan: &Plan<'_>,
+        copies: Option<Checkpoints<'_>>,
+        stepping: Option<(usize, String)>,
+    ) -> Searched {
+        let planned = distinct_onsets(&plan.onsets);
+        let hazard = |v: &Verdict| v.outcome == Outcome::Hazard;
+        plan.run(
+            copies.as_ref(),
+            &planned,
+            &self.first,
+            &mut self.runs,
+            &hazard,
+            &|| {},
+        );
+        drop(copies);
+        // Only the first onset's verdict counts here: a run handed on to a
+        // later onset may have found a hazard there, but the moments
+        // between are not run yet.
+        let rest: Vec<Vec<u64>> = (0..plan.sets.len())
+            .map(|i| {
+                let found = self.first[i]
+                    .first()
+                    .and_then(|&onset| self.runs[i].at(onset))
+                    .is_some_and(hazard);
+                match self.judged[i] || found {
+                    true => Vec::new(),
+                    false => self.tries[i].clone(),
+                }
+            })
+            .collect();
+        if rest.iter().any(|r| !r.is_empty()) {
+            let copies = plan.copies(&rest, false, false);
+            plan.run(
+                copies.as_ref(),
+                &planned,
+                &rest,
+                &mut self.runs,
+                &hazard,
+                &|| {},
+            );
+        }
+        let found = (0..plan.sets.len())
+            .map(|i| self.found(plan, i, stepping.as_ref()))
+            .collect();
+        Searched {
+            found,
+            moments: plan.moments.clone(),
+            power_up_only: plan.phases_skipped.is_some(),
+        }
+    }
+
+    /// What the runs of set `i` found.
+    fn found(&self, plan: &Plan<'_>, i: usize, stepping: Option<&(usize, String)>) -> Found {
+        if let (true, Some((step, explanation))) = (self.judged[i], stepping) {
+            return Found::Hazard {
+                moment: 0,
+                phase: plan.moments[0].phase,
+                step: Some(*step),
+                explanation: explanation.clone(),
+            };
+        }
+        match first_hazard(&self.orders[i], &plan.onsets[i], &self.runs[i]) {
+            Some((moment, verdict)) => Found::Hazard {
+                moment,
+                phase: plan.moments[moment].phase,
+                step: verdict.step,
+                explanation: verdict.explanation.clone(),
+            },
+            None => Found::Clear(worst_case(
+                &plan.sets[i],
+                &plan.moments,
+                &plan.onsets[i],
+                &self.runs[i],
+            )),
+        }
+    }
 }
 
 /// The first moment in `order` whose onset gave a hazard, with that
@@ -167,4 +304,52 @@ fn distinct_in(order: &[usize], onsets: &[Option<u64>]) -> Vec<u64> {
         }
     }
     distinct
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::program::{self, ProgramOptions, Safety};
+
+    /// A yardstick that is not the program's own healthy run (here, the
+    /// same table run with slower strokes) is found out on the way, and the
+    /// search is planned again from the program's own run: the same answer
+    /// as without a yardstick, not one planned from the wrong moments.
+    #[test]
+    fn a_yardstick_that_is_not_the_programs_own_run_is_replaced() {
+        let table = crate::program::tests::paper_table();
+        let options = ProgramOptions {
+            safety: Safety {
+                precheck: true,
+                ..Safety::default()
+            },
+            ..ProgramOptions::default()
+        };
+        let program = program::build(
+            &table,
+            &options,
+            &crate::actuator::Valves::default(),
+            &crate::stroke::Strokes::default(),
+        );
+        let settings = SimSettings::default();
+        let sets: Vec<Vec<Fault>> = super::super::single_faults(&program)
+            .into_iter()
+            .map(|f| vec![f])
+            .collect();
+        let own = first_hazards(&table, &program, &settings, sets.clone(), None).unwrap();
+        let right = healthy_run(&table, &program, &healthy_settings(&settings));
+        let slower = SimSettings {
+            scan_ms: 20,
+            ..settings.clone()
+        };
+        let wrong = healthy_run(&table, &program, &healthy_settings(&slower));
+        assert_ne!(wrong.log, right.log, "the yardstick differs");
+        for yardstick in [&right, &wrong] {
+            let found = first_hazards(&table, &program, &settings, sets.clone(), Some(yardstick));
+            assert_eq!(found.as_ref(), Some(&own));
+        }
+        assert!(own.found.iter().any(|f| matches!(f, Found::Clear(_))));
+        assert!(own.found.iter().any(|f| matches!(f, Found::Hazard { .. })));
+        assert!(!own.power_up_only);
+    }
 }

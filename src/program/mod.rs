@@ -231,6 +231,20 @@ pub struct StepProgram {
 }
 
 impl StepProgram {
+    /// The steps whose watchdog preset no PLC timer of every target holds
+    /// (FST counts 1/100 s in a 16-bit word: 655.35 s at most), with the
+    /// preset in ms: such a program is refused (E032), not written.
+    pub fn watchdogs_beyond_timers(&self) -> impl Iterator<Item = (&ProgramStep, u32)> {
+        self.steps.iter().filter_map(|step| {
+            step.actions.iter().find_map(|a| match a {
+                Action::StartTimer(Signal::Watchdog, ms) if *ms > crate::cell::MAX_DWELL_MS => {
+                    Some((step, *ms))
+                }
+                _ => None,
+            })
+        })
+    }
+
     /// Whether STOP acts at once (an `on stop` row) rather than letting
     /// the cycle finish.
     pub fn stops_now(&self) -> bool {

@@ -230,8 +230,20 @@ fn fault_table(
         .collect();
     order.sort_by_key(|(outcome, _)| std::cmp::Reverse(*outcome as u8));
     let hazards = order.iter().filter(|(o, _)| *o == Outcome::Hazard).count();
+    // A cycle too long for faults at every moment has them at power-up only
+    // (`faults` says so in its summary): the page says so too.
+    let (when, again) = match faults.phases_skipped {
+        Some(_) => (
+            "appearing at power-up only (this cycle is too long for faults at every moment)",
+            "from power-up, as the table's",
+        ),
+        None => (
+            "appearing at every moment of the cycle",
+            "at the moments of the cycle until one gives the hazard (every moment, to say a check catches it)",
+        ),
+    };
     let mut out = format!(
-        "<p>{hazards} hazard(s) among {} fault case(s): every input stuck at 1 and at 0, appearing at every moment of the cycle. The mitigation of each hazard is verified: its faults are run again, at every moment, with each safety check the program does not carry; a check catches the hazard when no moment gives one any more.</p>\n<div class=\"controls\" hidden><label>signal <input type=\"search\" id=\"fault-signal\" placeholder=\"e.g. x11\"></label> <label>outcome <select id=\"fault-outcome\"><option value=\"\">any</option><option>hazard</option><option>safe stall</option><option>no effect</option></select></label> <span id=\"fault-count\"></span></div>\n",
+        "<p>{hazards} hazard(s) among {} fault case(s): every input stuck at 1 and at 0, {when}. The mitigation of each hazard is verified: its faults are run again, {again}, with each safety check the program does not carry; a check catches the hazard when no moment gives one any more.</p>\n<div class=\"controls\" hidden><label>signal <input type=\"search\" id=\"fault-signal\" placeholder=\"e.g. x11\"></label> <label>outcome <select id=\"fault-outcome\"><option value=\"\">any</option><option>hazard</option><option>safe stall</option><option>no effect</option></select></label> <span id=\"fault-count\"></span></div>\n",
         order.len()
     );
     let rows = order.into_iter().map(|(outcome, cells)| {

@@ -25,6 +25,10 @@ pub struct Checkpoints<'a> {
     fingerprints: Vec<(u64, Progress, u64)>,
     /// The run's report.
     pub report: SimReport,
+    /// When each input changed, when it was asked for: the run is then the
+    /// healthy run a fault analysis is measured against, as
+    /// [`crate::simulate::Simulator::run_recorded`] gives it.
+    pub log: Option<io::InputLog>,
 }
 
 /// How a resumed run ended.
@@ -59,7 +63,7 @@ impl<'a> Drive<'a> {
 
     /// A copy to resume from later: without what only the run's own report
     /// needs (the diagram's trace and step positions, the dwell spans, the
-    /// places reached, the recorded I/O).
+    /// places reached, the recorded I/O, the log of its inputs).
     fn snapshot(&mut self) -> Drive<'a> {
         let kept = (
             std::mem::take(&mut self.run.trace),
@@ -67,6 +71,7 @@ impl<'a> Drive<'a> {
             std::mem::take(&mut self.run.spans),
             std::mem::take(&mut self.step_positions),
             self.run.io.take(),
+            self.run.input_log.take(),
         );
         let copy = self.clone();
         (
@@ -75,6 +80,7 @@ impl<'a> Drive<'a> {
             self.run.spans,
             self.step_positions,
             self.run.io,
+            self.run.input_log,
         ) = kept;
         copy
     }
@@ -141,19 +147,22 @@ impl<'a> Drive<'a> {
 
 /// Runs from power-up to the end, copying the run at each of `times` (scan
 /// times; one the run never stops at is left out) and fingerprinting it at
-/// every scan.
+/// every scan; logging when `inputs` change when they are given.
 pub(in crate::simulate) fn checkpoints<'a>(
     table: &'a StepTable,
     program: &'a StepProgram,
     code: &'a plc::PlcProgram,
     settings: &SimSettings,
     times: &[u64],
+    inputs: Option<Vec<crate::program::Signal>>,
 ) -> Checkpoints<'a> {
     let mut times: Vec<u64> = times.to_vec();
     times.sort_unstable();
     times.dedup();
     let mut times = times.into_iter().peekable();
     let mut drive = Drive::new(table, program, code, settings, None, Stepping::Events);
+    drive.run.input_log =
+        inputs.map(|inputs| io::InputLog::new(drive.run.world.settings.scan_ms, inputs));
     let mut at = std::collections::BTreeMap::new();
     let mut fingerprints = Vec::new();
     while !drive.finished() {
@@ -166,10 +175,12 @@ pub(in crate::simulate) fn checkpoints<'a>(
         drive.horizon = times.peek().copied().unwrap_or(u64::MAX);
         drive.advance();
     }
+    let log = drive.take_input_log();
     Checkpoints {
         at,
         fingerprints,
         report: drive.finish().0,
+        log,
     }
 }
 

@@ -543,17 +543,24 @@ pub(in crate::simulate) fn run_logging_inputs(
     drive.run.input_log =
         inputs.map(|inputs| io::InputLog::new(drive.run.world.settings.scan_ms, inputs));
     drive.run_to_end();
-    let last_ms = drive.run.time_ms;
-    let log = drive.run.input_log.take().map(|mut log| {
-        // The last scan: quiet ones after the last the run stepped through
-        // read what it read.
-        log.last_ms = log
-            .last_ms
-            .max(last_ms.saturating_sub(u64::from(log.scan_ms)));
-        log
-    });
+    let log = drive.take_input_log();
     let (report, trace) = drive.finish();
     (report, log, trace)
+}
+
+impl Drive<'_> {
+    /// The log of the inputs of a run that has ended, if it kept one.
+    pub(super) fn take_input_log(&mut self) -> Option<io::InputLog> {
+        let last_ms = self.run.time_ms;
+        self.run.input_log.take().map(|mut log| {
+            // The last scan: quiet ones after the last the run stepped
+            // through read what it read.
+            log.last_ms = log
+                .last_ms
+                .max(last_ms.saturating_sub(u64::from(log.scan_ms)));
+            log
+        })
+    }
 }
 
 /// Simulates from power-up to the end.
