@@ -30,6 +30,15 @@ pub(super) fn yardstick_settings(settings: &SimSettings) -> SimSettings {
     }
 }
 
+/// [`yardstick_settings`] without the trace: the healthy run an analysis
+/// makes for itself, and copies, draws nothing.
+pub(super) fn untraced_yardstick(settings: &SimSettings) -> SimSettings {
+    SimSettings {
+        record_trace: false,
+        ..yardstick_settings(settings)
+    }
+}
+
 /// Runs `program` healthy under `settings`, as the fault analysis needs it
 /// and as the proof of a conversion does: the same report, with the places
 /// it reached and the log of its inputs beside it.

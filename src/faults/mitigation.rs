@@ -174,58 +174,11 @@ pub fn mitigations(
         .into_iter()
         .filter(|n| !has(options.safety, n))
         .collect();
-    if hazards.is_empty() || missing.is_empty() {
-        return faults
-            .cases
-            .iter()
-            .map(|c| {
-                (c.outcome == Outcome::Hazard).then(|| Mitigation {
-                    trials: Vec::new(),
-                    remedy: remedy(table, options, c, &[]).to_string(),
-                })
-            })
-            .collect();
-    }
-    let own;
-    let healthy = match healthy {
-        Some(healthy) => healthy,
-        None => {
-            let machine = &settings.machine;
-            let program = program::build(table, options, &machine.valves, &machine.strokes);
-            own = super::healthy_run(
-                table,
-                &program,
-                &SimSettings {
-                    record_trace: false,
-                    ..super::yardstick_settings(settings)
-                },
-            );
-            &own
-        }
+    // No hazard, or no check to try: nothing to run.
+    let trials = match hazards.is_empty() || missing.is_empty() {
+        true => vec![Vec::new(); hazards.len()],
+        false => verify(table, options, settings, &hazards, &missing, healthy),
     };
-    // The checks alone, side by side: each is a program of its own.
-    use rayon::prelude::*;
-    let alone: Vec<Option<Vec<Trial>>> = missing
-        .par_iter()
-        .map(|name| run_trials(table, options, settings, &hazards, &[name], healthy))
-        .collect();
-    let mut trials: Vec<Vec<Trial>> = vec![Vec::new(); hazards.len()];
-    for found in alone.into_iter().flatten() {
-        for (i, trial) in found.into_iter().enumerate() {
-            trials[i].push(trial);
-        }
-    }
-    // Together, for the hazards no single check catches.
-    let uncaught: Vec<usize> = (0..hazards.len())
-        .filter(|&i| !trials[i].iter().any(Trial::catches))
-        .collect();
-    if missing.len() > 1 && !uncaught.is_empty() {
-        let rest: Vec<&FaultCase> = uncaught.iter().map(|&i| hazards[i]).collect();
-        let together = run_trials(table, options, settings, &rest, &missing, healthy);
-        for (i, trial) in uncaught.into_iter().zip(together.into_iter().flatten()) {
-            trials[i].push(trial);
-        }
-    }
     let mut verified = hazards.iter().zip(trials).map(|(case, trials)| {
         let remedy = if trials.iter().any(Trial::catches) {
             String::new()
@@ -243,6 +196,53 @@ pub fn mitigations(
                 .flatten()
         })
         .collect()
+}
+
+/// The trials of each of `hazards`: each check of `missing` alone, then,
+/// for the hazards none of them catches, all of them together; measured
+/// against `healthy` (made here when the caller has none).
+fn verify(
+    table: &StepTable,
+    options: &ProgramOptions,
+    settings: &SimSettings,
+    hazards: &[&FaultCase],
+    missing: &[&'static str],
+    healthy: Option<&Healthy>,
+) -> Vec<Vec<Trial>> {
+    let own;
+    let healthy = match healthy {
+        Some(healthy) => healthy,
+        None => {
+            let machine = &settings.machine;
+            let program = program::build(table, options, &machine.valves, &machine.strokes);
+            own = super::healthy_run(table, &program, &super::untraced_yardstick(settings));
+            &own
+        }
+    };
+    // The checks alone, side by side: each is a program of its own.
+    use rayon::prelude::*;
+    let alone: Vec<Option<Vec<Trial>>> = missing
+        .par_iter()
+        .map(|name| run_trials(table, options, settings, hazards, &[name], healthy))
+        .collect();
+    let mut trials: Vec<Vec<Trial>> = vec![Vec::new(); hazards.len()];
+    for found in alone.into_iter().flatten() {
+        for (i, trial) in found.into_iter().enumerate() {
+            trials[i].push(trial);
+        }
+    }
+    // Together, for the hazards no single check catches.
+    let uncaught: Vec<usize> = (0..hazards.len())
+        .filter(|&i| !trials[i].iter().any(Trial::catches))
+        .collect();
+    if missing.len() > 1 && !uncaught.is_empty() {
+        let rest: Vec<&FaultCase> = uncaught.iter().map(|&i| hazards[i]).collect();
+        let together = run_trials(table, options, settings, &rest, missing, healthy);
+        for (i, trial) in uncaught.into_iter().zip(together.into_iter().flatten()) {
+            trials[i].push(trial);
+        }
+    }
+    trials
 }
 
 /// Runs `cases` on the program with the checks `added`: each one's trial,

@@ -20,7 +20,7 @@ use crate::program::{Signal, StepProgram};
 use crate::simulate::{Fault, ProblemKind, SimReport, SimSettings};
 use crate::table::StepTable;
 use cases::{SetRuns, Verdict};
-use healthy::yardstick_settings;
+use healthy::untraced_yardstick;
 use plan::{Plan, distinct_onsets};
 
 /// What a fault does to the machine.

@@ -6,7 +6,7 @@
 //! a mitigation's trial only until its first hazard.
 
 use super::cases::{Cases, SetRuns, Verdict};
-use super::healthy::yardstick_settings;
+use super::healthy::untraced_yardstick;
 use super::phases::{self, Moment, moments};
 use super::{FaultRuns, Healthy, MAX_PHASE_WORK, healthy_run};
 use crate::program::StepProgram;
@@ -57,10 +57,7 @@ impl<'t> Plan<'t> {
         // moments are when faults appear, its inputs tell which of those
         // runs are one and the same. Its log says when each input changes:
         // a log, not a copy of every scan (a long table has millions).
-        let healthy_settings = SimSettings {
-            record_trace: false,
-            ..yardstick_settings(settings)
-        };
+        let healthy_settings = untraced_yardstick(settings);
         let Healthy {
             report: healthy,
             log,

@@ -11,7 +11,7 @@
 //! for the sets that gave no hazard there.
 
 use super::cases::{SetRuns, Verdict};
-use super::healthy::yardstick_settings;
+use super::healthy::untraced_yardstick;
 use super::plan::{Plan, distinct_onsets};
 use super::{
     FaultCase, FaultRuns, Healthy, Moment, Outcome, Phase, healthy_run, single_step, worst_case,
@@ -85,11 +85,11 @@ pub fn first_hazards(
                 FaultRuns::Resumed,
                 Some(expected.clone()),
             );
-            let search = Search::new(table, &plan, stepping.is_some());
+            let search = Search::new(table, &plan, stepping.clone());
             match plan.copies(&search.first, false, true) {
                 Some(copies) => {
                     if copies.report.passed && plan.made_from(&copies.report, copies.log.as_ref()) {
-                        return Some(search.finish(&plan, Some(copies), stepping));
+                        return Some(search.finish(&plan, Some(copies)));
                     }
                     let Checkpoints { report, log, .. } = copies;
                     Healthy {
@@ -97,10 +97,10 @@ pub fn first_hazards(
                         log: log.unwrap_or_default(),
                     }
                 }
-                None => healthy_run(table, program, &healthy_settings(settings)),
+                None => healthy_run(table, program, &untraced_yardstick(settings)),
             }
         }
-        None => healthy_run(table, program, &healthy_settings(settings)),
+        None => healthy_run(table, program, &untraced_yardstick(settings)),
     };
     if !own.report.passed {
         return None;
@@ -114,17 +114,9 @@ pub fn first_hazards(
         FaultRuns::Resumed,
         Some(own),
     );
-    let search = Search::new(table, &plan, stepping.is_some());
+    let search = Search::new(table, &plan, stepping);
     let copies = plan.copies(&search.first, false, false);
-    Some(search.finish(&plan, copies, stepping))
-}
-
-/// The settings of the healthy run a search is measured against.
-fn healthy_settings(settings: &SimSettings) -> SimSettings {
-    SimSettings {
-        record_trace: false,
-        ..yardstick_settings(settings)
-    }
+    Some(search.finish(&plan, copies))
 }
 
 /// The order each set's moments are tried in, and what has been found.
@@ -135,12 +127,14 @@ struct Search {
     /// The first of them, for every set but one judged otherwise.
     first: Vec<Vec<u64>>,
     runs: Vec<SetRuns>,
-    /// Sets judged in single step (a shorted STEP_PB, when it is a hazard there).
+    /// Sets judged in single step (a shorted STEP_PB, when it is a hazard
+    /// there), and that judgement: the step and why.
     judged: Vec<bool>,
+    stepping: Option<(usize, String)>,
 }
 
 impl Search {
-    fn new(table: &StepTable, plan: &Plan<'_>, stepping: bool) -> Search {
+    fn new(table: &StepTable, plan: &Plan<'_>, stepping: Option<(usize, String)>) -> Search {
         let orders: Vec<Vec<usize>> = plan
             .sets
             .iter()
@@ -154,7 +148,7 @@ impl Search {
         let judged: Vec<bool> = plan
             .sets
             .iter()
-            .map(|s| stepping && *s == [single_step::SHORT])
+            .map(|s| stepping.is_some() && *s == [single_step::SHORT])
             .collect();
         let first = tries
             .iter()
@@ -170,17 +164,13 @@ impl Search {
             first,
             runs: plan.sets.iter().map(|_| SetRuns::default()).collect(),
             judged,
+            stepping,
         }
     }
 
     /// Runs the first onset of every set from `copies` (copied at them), then
     /// the others of the sets that gave no hazard there, until one does.
-    fn finish(
-        mut self,
-        plan: &Plan<'_>,
-        copies: Option<Checkpoints<'_>>,
-        stepping: Option<(usize, String)>,
-    ) -> Searched {
+    fn finish(mut self, plan: &Plan<'_>, copies: Option<Checkpoints<'_>>) -> Searched {
         let planned = distinct_onsets(&plan.onsets);
         let hazard = |v: &Verdict| v.outcome == Outcome::Hazard;
         plan.run(
@@ -218,9 +208,7 @@ impl Search {
                 &|| {},
             );
         }
-        let found = (0..plan.sets.len())
-            .map(|i| self.found(plan, i, stepping.as_ref()))
-            .collect();
+        let found = (0..plan.sets.len()).map(|i| self.found(plan, i)).collect();
         Searched {
             found,
             moments: plan.moments.clone(),
@@ -229,8 +217,8 @@ impl Search {
     }
 
     /// What the runs of set `i` found.
-    fn found(&self, plan: &Plan<'_>, i: usize, stepping: Option<&(usize, String)>) -> Found {
-        if let (true, Some((step, explanation))) = (self.judged[i], stepping) {
+    fn found(&self, plan: &Plan<'_>, i: usize) -> Found {
+        if let (true, Some((step, explanation))) = (self.judged[i], &self.stepping) {
             return Found::Hazard {
                 moment: 0,
                 phase: plan.moments[0].phase,
@@ -312,7 +300,7 @@ mod tests {
     use crate::program::{self, ProgramOptions, Safety};
 
     /// A yardstick that is not the program's own healthy run (here, the
-    /// same table run with slower strokes) is found out on the way, and the
+    /// same program run at a 20 ms scan) is found out on the way, and the
     /// search is planned again from the program's own run: the same answer
     /// as without a yardstick, not one planned from the wrong moments.
     #[test]
@@ -337,12 +325,12 @@ mod tests {
             .map(|f| vec![f])
             .collect();
         let own = first_hazards(&table, &program, &settings, sets.clone(), None).unwrap();
-        let right = healthy_run(&table, &program, &healthy_settings(&settings));
+        let right = healthy_run(&table, &program, &untraced_yardstick(&settings));
         let slower = SimSettings {
             scan_ms: 20,
             ..settings.clone()
         };
-        let wrong = healthy_run(&table, &program, &healthy_settings(&slower));
+        let wrong = healthy_run(&table, &program, &untraced_yardstick(&slower));
         assert_ne!(wrong.log, right.log, "the yardstick differs");
         for yardstick in [&right, &wrong] {
             let found = first_hazards(&table, &program, &settings, sets.clone(), Some(yardstick));

@@ -161,8 +161,7 @@ pub(in crate::simulate) fn checkpoints<'a>(
     times.dedup();
     let mut times = times.into_iter().peekable();
     let mut drive = Drive::new(table, program, code, settings, None, Stepping::Events);
-    drive.run.input_log =
-        inputs.map(|inputs| io::InputLog::new(drive.run.world.settings.scan_ms, inputs));
+    drive.log_inputs(inputs);
     let mut at = std::collections::BTreeMap::new();
     let mut fingerprints = Vec::new();
     while !drive.finished() {

@@ -540,8 +540,7 @@ pub(in crate::simulate) fn run_logging_inputs(
     record: Option<io::IoSignals>,
 ) -> (SimReport, Option<io::InputLog>, Option<io::IoTrace>) {
     let mut drive = Drive::new(table, program, code, settings, record, Stepping::Events);
-    drive.run.input_log =
-        inputs.map(|inputs| io::InputLog::new(drive.run.world.settings.scan_ms, inputs));
+    drive.log_inputs(inputs);
     drive.run_to_end();
     let log = drive.take_input_log();
     let (report, trace) = drive.finish();
@@ -549,6 +548,12 @@ pub(in crate::simulate) fn run_logging_inputs(
 }
 
 impl Drive<'_> {
+    /// Logs when each of `inputs` changes from now on, when they are given.
+    pub(super) fn log_inputs(&mut self, inputs: Option<Vec<crate::program::Signal>>) {
+        self.run.input_log =
+            inputs.map(|inputs| io::InputLog::new(self.run.world.settings.scan_ms, inputs));
+    }
+
     /// The log of the inputs of a run that has ended, if it kept one.
     pub(super) fn take_input_log(&mut self) -> Option<io::InputLog> {
         let last_ms = self.run.time_ms;
