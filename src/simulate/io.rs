@@ -100,6 +100,9 @@ pub struct InputLog {
     pub first_ms: u64,
     pub last_ms: u64,
     scanned: bool,
+    /// What the last scan read, 64 inputs to a word: a scan is compared
+    /// with it a word at a time (most scans change no input).
+    now: Vec<u64>,
 }
 
 impl InputLog {
@@ -107,20 +110,34 @@ impl InputLog {
         InputLog {
             scan_ms,
             changes: vec![(false, Vec::new()); inputs.len()],
+            now: vec![0; inputs.len().div_ceil(64)],
             inputs,
             ..InputLog::default()
         }
     }
 
-    /// The scan at `time_ms` read `read(input)` for each input.
-    pub(in crate::simulate) fn scan(&mut self, time_ms: u64, read: impl Fn(Signal) -> bool) {
-        for (input, (first, changes)) in self.inputs.iter().zip(&mut self.changes) {
-            let value = read(*input);
-            if !self.scanned {
-                *first = value;
-            } else if changes.last().map_or(*first, |c| c.1) != value {
-                changes.push((time_ms, value));
+    /// The scan at `time_ms` read `read(k)` for the `k`-th input.
+    pub(in crate::simulate) fn scan(&mut self, time_ms: u64, read: impl Fn(usize) -> bool) {
+        for (w, was) in self.now.iter_mut().enumerate() {
+            let end = self.changes.len().min(w * 64 + 64);
+            let inputs = &mut self.changes[w * 64..end];
+            let word =
+                (0..inputs.len()).fold(0u64, |word, b| word | u64::from(read(w * 64 + b)) << b);
+            let changed = match self.scanned {
+                true => word ^ *was,
+                false => u64::MAX,
+            };
+            if changed != 0 {
+                for (b, (first, changes)) in inputs.iter_mut().enumerate() {
+                    let value = word >> b & 1 == 1;
+                    if !self.scanned {
+                        *first = value;
+                    } else if changed >> b & 1 == 1 {
+                        changes.push((time_ms, value));
+                    }
+                }
             }
+            *was = word;
         }
         if !self.scanned {
             self.first_ms = time_ms;
@@ -134,10 +151,7 @@ impl InputLog {
     pub fn of_trace(trace: &IoTrace) -> Self {
         let mut log = InputLog::new(trace.scan_ms, trace.signals.inputs.clone());
         for scan in &trace.scans {
-            log.scan(scan.time_ms, |s| {
-                let c = trace.signals.inputs.iter().position(|i| *i == s);
-                c.is_some_and(|c| scan.inputs[c])
-            });
+            log.scan(scan.time_ms, |k| scan.inputs[k]);
         }
         log
     }

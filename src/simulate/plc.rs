@@ -61,6 +61,11 @@ pub struct PlcProgram {
 }
 
 impl PlcProgram {
+    /// Every signal the program uses, by index.
+    pub fn signals(&self) -> &[Signal] {
+        &self.signals
+    }
+
     pub fn compile(program: &StepProgram) -> Self {
         // Every signal named by a condition or an action, indexed once.
         let jumps = program.steps.iter().flat_map(|s| &s.jumps);
@@ -127,6 +132,35 @@ impl PlcProgram {
     }
 }
 
+/// Bits by index, 64 to a word (and how many): a state is hashed at
+/// every scan of a fault run, a word at a time.
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct Bits(Vec<u64>, usize);
+
+impl Bits {
+    fn new(len: usize) -> Bits {
+        Bits(vec![0; len.div_ceil(64)], len)
+    }
+
+    #[inline]
+    fn get(&self, i: usize) -> bool {
+        self.0[i / 64] >> (i % 64) & 1 == 1
+    }
+
+    /// Sets bit `i` to `on`; whether it changed.
+    #[inline]
+    fn put(&mut self, i: usize, on: bool) -> bool {
+        let (word, mask) = (&mut self.0[i / 64], 1u64 << (i % 64));
+        let was = *word & mask != 0;
+        if on {
+            *word |= mask;
+        } else {
+            *word &= !mask;
+        }
+        was != on
+    }
+}
+
 /// The PLC's memory: the awaited step, outputs, internal bits and timers.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct PlcState<'a> {
@@ -134,7 +168,7 @@ pub struct PlcState<'a> {
     pub awaited: usize,
     code: &'a PlcProgram,
     /// Outputs, memories and running timers currently on.
-    bits: Vec<bool>,
+    bits: Bits,
     /// Running timers: elapsed and preset milliseconds, by signal index.
     timers: Vec<Option<(u64, u64)>>,
     /// The indices of the running timers, so that a scan visits only them.
@@ -148,7 +182,7 @@ impl<'a> PlcState<'a> {
         let mut state = PlcState {
             awaited: 0,
             code,
-            bits: vec![false; code.signals.len()],
+            bits: Bits::new(code.signals.len()),
             timers: vec![None; code.signals.len()],
             running: Vec::new(),
         };
@@ -168,34 +202,32 @@ impl<'a> PlcState<'a> {
 
     /// Whether an output or memory bit (or a running timer) is on.
     pub fn bit(&self, signal: Signal) -> bool {
-        self.index_of(signal).is_some_and(|i| self.bits[i])
+        self.index_of(signal).is_some_and(|i| self.bits.get(i))
     }
 
     /// Feeds what decides the PLC's next scans (the awaited step, every
     /// bit, every timer) to `hasher`.
     pub fn hash_state(&self, hasher: &mut impl std::hash::Hasher) {
         use std::hash::Hash;
-        // 64 bits to a word: a slice of bools hashes bit by bit otherwise.
-        for chunk in self.bits.chunks(64) {
-            let word = chunk
-                .iter()
-                .enumerate()
-                .fold(0u64, |w, (i, &on)| w | (u64::from(on) << i));
-            hasher.write_u64(word);
+        for word in &self.bits.0 {
+            hasher.write_u64(*word);
         }
-        // The running timers alone, in index order: most of a long
-        // table's timers are off, and this runs at every scan.
-        (self.awaited, self.bits.len()).hash(hasher);
-        for (i, timer) in self.timers.iter().enumerate() {
-            if let Some(timer) = timer {
-                (i, timer).hash(hasher);
-            }
-        }
+        // The running timers alone, as a sum of each one's hash: the same
+        // timers hash alike in whatever order they started, and most of a
+        // long table's timers are off.
+        use std::hash::BuildHasher;
+        let each = foldhash::quality::FixedState::with_seed(0x7173);
+        let running = self
+            .running
+            .iter()
+            .filter_map(|&i| Some((i, self.timers[i]?)));
+        let timers = running.fold(0u64, |sum, timer| sum.wrapping_add(each.hash_one(timer)));
+        (self.awaited, self.bits.1, self.running.len(), timers).hash(hasher);
     }
 
     /// The same by index.
     pub fn bit_at(&self, index: usize) -> bool {
-        self.bits[index]
+        self.bits.get(index)
     }
 
     /// Applies `actions`; returns whether any of them changed the state (a
@@ -205,12 +237,10 @@ impl<'a> PlcState<'a> {
         for action in actions {
             match *action {
                 Op::Set(i) => {
-                    changed |= !self.bits[i];
-                    self.bits[i] = true;
+                    changed |= self.bits.put(i, true);
                 }
                 Op::Reset(i) => {
-                    changed |= self.bits[i];
-                    self.bits[i] = false;
+                    changed |= self.bits.put(i, false);
                     if self.timers[i].take().is_some() {
                         changed = true;
                         self.running.retain(|r| *r != i);
@@ -218,7 +248,7 @@ impl<'a> PlcState<'a> {
                 }
                 Op::Start(i, preset) => {
                     changed = true;
-                    self.bits[i] = true;
+                    self.bits.put(i, true);
                     if self.timers[i].replace((0, preset)).is_none() {
                         self.running.push(i);
                     }
@@ -244,7 +274,7 @@ impl<'a> PlcState<'a> {
             *elapsed += scan_ms;
             if *elapsed >= *preset {
                 timers[i] = None;
-                bits[i] = false;
+                bits.put(i, false);
                 expired = true;
                 return false;
             }
@@ -276,15 +306,15 @@ impl<'a> PlcState<'a> {
     }
 
     fn homing(&self) -> bool {
-        self.code.homing.is_some_and(|i| self.bits[i])
+        self.code.homing.is_some_and(|i| self.bits.get(i))
     }
 
-    fn holds(&self, condition: &[Lit], input: &dyn Fn(Signal) -> bool) -> bool {
+    fn holds(&self, condition: &[Lit], input: &dyn Fn(usize) -> bool) -> bool {
         condition.iter().all(|l| {
             let raw = if l.input {
-                input(self.code.signals[l.index])
+                input(l.index)
             } else {
-                self.bits[l.index]
+                self.bits.get(l.index)
             };
             raw != l.negated
         })
@@ -355,6 +385,18 @@ pub struct Abandoned {
 /// Runs one PLC scan of `scan_ms` milliseconds. `input` gives the value of an
 /// input signal as read at the start of the scan.
 pub fn scan(state: &mut PlcState, input: &dyn Fn(Signal) -> bool, scan_ms: u64) -> ScanResult {
+    let code = state.code;
+    scan_indexed(state, &|i| input(code.signals[i]), scan_ms)
+}
+
+/// The same, `input` reading a signal by its index in the program
+/// ([`PlcProgram::signals`]): a reader that resolved each input once
+/// reads it without a lookup.
+pub fn scan_indexed(
+    state: &mut PlcState,
+    input: &dyn Fn(usize) -> bool,
+    scan_ms: u64,
+) -> ScanResult {
     let code = state.code;
     let mut changed = state.advance_timers(scan_ms);
     let mut fired = None;

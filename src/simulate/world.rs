@@ -32,6 +32,9 @@ pub(in crate::simulate) struct World {
     pub(in crate::simulate) machine: BTreeMap<Name, bool>,
     /// The faults have appeared (the run has reached their onset).
     pub(in crate::simulate) faults_active: bool,
+    /// Counts the changes of the faults in `settings`: a reader that
+    /// resolved them once knows when to do it again.
+    pub(in crate::simulate) faults_changed: u32,
 }
 
 /// Each actuator's piston by its number, looked up at every reading of a
@@ -80,6 +83,7 @@ impl World {
             operator: Operator::default(),
             machine: BTreeMap::new(),
             faults_active: settings.fault_onset_ms == 0,
+            faults_changed: 0,
         }
     }
 
@@ -132,6 +136,45 @@ pub(in crate::simulate) fn read_input(signal: Signal, world: &World) -> bool {
     {
         return f.stuck_at;
     }
+    read_unfaulted(signal, world)
+}
+
+/// Where one input is read from, found once rather than at every reading
+/// (a fault run reads a dozen inputs at each of its scans).
+#[derive(Debug, Clone, Copy)]
+pub(in crate::simulate) enum InputSource {
+    /// Sensor `position` of the piston at index `piston`.
+    Sensor { piston: usize, position: u32 },
+    /// Anything else, read as [`read_input`] reads it.
+    Other(Signal),
+}
+
+impl World {
+    /// Where `signal` is read from.
+    pub(in crate::simulate) fn source(&self, signal: Signal) -> InputSource {
+        match signal {
+            Signal::Sensor { actuator, position } => match self.index_of.get(&actuator) {
+                Some(&piston) => InputSource::Sensor { piston, position },
+                None => InputSource::Other(signal),
+            },
+            _ => InputSource::Other(signal),
+        }
+    }
+
+    /// What an input found at `source` reads without its faults.
+    #[inline]
+    pub(in crate::simulate) fn read_source(&self, source: InputSource) -> bool {
+        match source {
+            InputSource::Sensor { piston, position } => {
+                self.pistons[piston].sensor(position, self.settings.window)
+            }
+            InputSource::Other(signal) => read_unfaulted(signal, self),
+        }
+    }
+}
+
+/// What an input reads without its faults.
+fn read_unfaulted(signal: Signal, world: &World) -> bool {
     // By reference: a copy of the buttons at every reading costs more than
     // the reading.
     let operator = &world.operator;

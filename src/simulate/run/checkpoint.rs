@@ -98,16 +98,11 @@ impl<'a> Drive<'a> {
             self.cycle,
             self.press_at,
             self.last_event,
-            &self.fire_times,
+            (self.fired, self.fire_times.len()),
             self.report.press_ms,
+            (self.ended, self.cycles.len()),
         )
             .hash(&mut h);
-        for c in self.cycles.iter() {
-            (c.press_ms, c.cycle_ms).hash(&mut h);
-            for s in &c.steps {
-                (s.start_ms, s.duration_ms).hash(&mut h);
-            }
-        }
         let run = &self.run;
         run.plc.hash_state(&mut h);
         for p in &run.world.pistons {
@@ -143,6 +138,15 @@ impl<'a> Drive<'a> {
         }
         h.finish()
     }
+}
+
+/// `words` hashed onto `hash`: a record's running fingerprint.
+pub(super) fn mix(hash: u64, words: &[u64]) -> u64 {
+    let mut h = foldhash::quality::FixedState::with_seed(hash).build_hasher();
+    for w in words {
+        h.write_u64(*w);
+    }
+    h.finish()
 }
 
 /// Runs from power-up to the end, copying the run at each of `times` (scan
@@ -252,10 +256,7 @@ pub(in crate::simulate) fn resume<'a>(
                 return Resumed::Joined { run };
             }
             let mut drive = checkpoint.clone();
-            drive.run.world.settings = std::sync::Arc::new(SimSettings {
-                scan_ms: drive.run.world.settings.scan_ms,
-                ..settings.clone()
-            });
+            drive.run.set_settings(settings);
             drive.horizon = u64::MAX;
             drive
         }

@@ -42,6 +42,10 @@ pub(super) struct Drive<'a> {
     /// When each step of the cycle under way fired.
     /// Which step fired when (a jump fires a step out of order).
     pub(super) fire_times: Vec<(usize, u64)>,
+    /// `fire_times` and `cycles` hashed as they grow: the fingerprint taken
+    /// at every scan of a fault run reads these rather than every step.
+    pub(super) fired: u64,
+    pub(super) ended: u64,
     pub(super) last_event: u64,
     /// The cycles ended, shared by the copies of the run (the fault
     /// analysis copies it hundreds of times; a cycle's steps are strings).
@@ -85,6 +89,8 @@ impl<'a> Drive<'a> {
                 declined: Vec::new(),
             },
             fire_times: Vec::new(),
+            fired: 0,
+            ended: 0,
             last_event: 0,
             cycles: Default::default(),
             step_positions: vec![positions],
@@ -136,6 +142,7 @@ impl<'a> Drive<'a> {
                     declined: Vec::new(),
                 };
                 self.fire_times.clear();
+                self.fired = 0;
                 self.last_event = self.run.time_ms;
                 self.stage = Stage::Cycle;
                 // After the plain cycles, one per jump takes it.
@@ -197,6 +204,7 @@ impl<'a> Drive<'a> {
                 return;
             }
             self.fire_times.push((index, before));
+            self.fired = super::checkpoint::mix(self.fired, &[index as u64, before]);
             self.last_event = self.run.time_ms;
         }
         // The cycle ends when the machine is at rest: a closing step
@@ -301,6 +309,15 @@ impl<'a> Drive<'a> {
             self.press_at,
             &self.run.spans,
         );
+        let steps = report
+            .steps
+            .iter()
+            .flat_map(|s| [s.start_ms, s.duration_ms]);
+        let words: Vec<u64> = [report.press_ms, report.cycle_ms.map_or(u64::MAX, |c| c)]
+            .into_iter()
+            .chain(steps)
+            .collect();
+        self.ended = super::checkpoint::mix(self.ended, &words);
         std::sync::Arc::make_mut(&mut self.cycles).push(report);
     }
 
@@ -550,8 +567,7 @@ pub(in crate::simulate) fn run_logging_inputs(
 impl Drive<'_> {
     /// Logs when each of `inputs` changes from now on, when they are given.
     pub(super) fn log_inputs(&mut self, inputs: Option<Vec<crate::program::Signal>>) {
-        self.run.input_log =
-            inputs.map(|inputs| io::InputLog::new(self.run.world.settings.scan_ms, inputs));
+        self.run.log_inputs(inputs);
     }
 
     /// The log of the inputs of a run that has ended, if it kept one.

@@ -101,6 +101,9 @@ impl<'a> Run<'a> {
             io: None,
             io_outputs: Vec::new(),
             input_log: None,
+            log_sources: Vec::new(),
+            sources: std::sync::Arc::from([]),
+            stuck: (u32::MAX, Vec::new()),
             event_driven: false,
             quiet: false,
             moving: (0..table.actuators.len()).collect(),
@@ -149,12 +152,54 @@ impl<'a> Run<'a> {
                 )
             })
             .collect();
+        run.sources = code
+            .signals()
+            .iter()
+            .map(|s| run.world.source(*s))
+            .collect();
         run.alarm_bits = program
             .signals
             .alarms()
             .filter_map(|a| run.plc.index_of(a))
             .collect();
         run
+    }
+}
+
+impl Run<'_> {
+    /// Runs on under `settings` (a copy of a run, resumed with its faults),
+    /// its scan time kept.
+    pub(in crate::simulate) fn set_settings(&mut self, settings: &SimSettings) {
+        self.world.settings = std::sync::Arc::new(SimSettings {
+            scan_ms: self.world.settings.scan_ms,
+            ..settings.clone()
+        });
+        self.world.faults_changed += 1;
+    }
+
+    /// The faults by the PLC's index of their input, found again when they
+    /// changed (a scenario sticks inputs as it goes).
+    pub(super) fn stuck_by_index(&mut self) -> &[(usize, bool)] {
+        if self.stuck.0 != self.world.faults_changed {
+            let faults = &self.world.settings.faults;
+            let at = |f: &Fault| Some((self.plc.index_of(f.signal)?, f.stuck_at));
+            self.stuck = (
+                self.world.faults_changed,
+                faults.iter().filter_map(at).collect(),
+            );
+        }
+        &self.stuck.1
+    }
+
+    /// Logs the inputs of every scan from now on, when `inputs` are given.
+    pub(in crate::simulate) fn log_inputs(&mut self, inputs: Option<Vec<Signal>>) {
+        self.log_sources = inputs
+            .iter()
+            .flatten()
+            .map(|s| (*s, self.world.source(*s)))
+            .collect();
+        self.input_log =
+            inputs.map(|inputs| io::InputLog::new(self.world.settings.scan_ms, inputs));
     }
 }
 

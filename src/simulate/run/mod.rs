@@ -19,7 +19,7 @@ pub(super) use cycle::{run, run_logging_inputs};
 
 use super::plant::Piston;
 use super::plc::PlcState;
-use super::world::{World, pistons, read_input};
+use super::world::{InputSource, World, pistons, read_input};
 use super::*;
 use crate::cell::Name;
 use crate::program::{Signal, StepProgram};
@@ -85,6 +85,14 @@ pub(in crate::simulate) struct Run<'a> {
     io_outputs: Vec<Option<usize>>,
     /// The inputs' changes, when logged for the fault analysis.
     input_log: Option<io::InputLog>,
+    /// Where each logged input is read from.
+    log_sources: Vec<(Signal, InputSource)>,
+    /// Where each of the PLC's inputs is read from, by its index there
+    /// (shared by the run's copies).
+    sources: std::sync::Arc<[InputSource]>,
+    /// The faults, by the PLC's index of their input, and the value each
+    /// is stuck at; as of the world's `faults_changed` count.
+    stuck: (u32, Vec<(usize, bool)>),
     /// Jump over scans in which nothing can change (see [`Run::pass_quiet_scans`]);
     /// off, the run steps every scan (the reference it is tested against).
     event_driven: bool,

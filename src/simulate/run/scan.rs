@@ -2,11 +2,10 @@
 //! scans passed at once: how a run moves on in time.
 
 use super::{Run, read_input};
-use crate::program::Signal;
 use crate::simulate::ProblemKind;
 use crate::simulate::io;
 use crate::simulate::plant::Piston;
-use crate::simulate::plc::{ScanResult, scan};
+use crate::simulate::plc::{ScanResult, scan_indexed};
 
 impl Run<'_> {
     /// One PLC scan plus one scan period of the plant. Returns the index of the
@@ -29,19 +28,7 @@ impl Run<'_> {
         });
         let problems = self.problems.len();
         let mut quiet = self.pending.len() == waiting;
-        let world = &self.world;
-        let read = |s: Signal| read_input(s, world);
-        if let Some(log) = self.input_log.as_mut() {
-            log.scan(now, read);
-        }
-        let recorded_inputs = self.io.as_ref().map(|io| {
-            io.signals
-                .inputs
-                .iter()
-                .map(|s| read_input(*s, world))
-                .collect::<Vec<bool>>()
-        });
-        let result = scan(&mut self.plc, &read, self.world.settings.scan_ms as u64);
+        let (result, recorded_inputs) = self.scan_plc(now);
         if let (Some(io), Some(inputs)) = (self.io.as_mut(), recorded_inputs) {
             let on = |at: &Option<usize>| at.is_some_and(|i| self.plc.bit_at(i));
             let outputs = self.io_outputs.iter().map(on).collect();
@@ -120,6 +107,40 @@ impl Run<'_> {
             record_point(&mut self.trace, self.time_ms, positions);
         }
         result.fired
+    }
+
+    /// One PLC scan on the inputs as the world gives them now, logged
+    /// when the run keeps a log; the inputs read, when it records its I/O.
+    fn scan_plc(&mut self, now: u64) -> (ScanResult, Option<Vec<bool>>) {
+        self.stuck_by_index();
+        let world = &self.world;
+        let faulty = world.faults_active && !world.settings.faults.is_empty();
+        if let Some(log) = self.input_log.as_mut() {
+            let sources = &self.log_sources;
+            log.scan(now, |k| {
+                let (signal, source) = sources[k];
+                match faulty {
+                    true => read_input(signal, world),
+                    false => world.read_source(source),
+                }
+            });
+        }
+        let recorded_inputs = self.io.as_ref().map(|io| {
+            io.signals
+                .inputs
+                .iter()
+                .map(|s| read_input(*s, world))
+                .collect::<Vec<bool>>()
+        });
+        let (sources, stuck) = (&self.sources, &self.stuck.1);
+        let read = |i: usize| {
+            if faulty && let Some(&(_, value)) = stuck.iter().find(|(at, _)| *at == i) {
+                return value;
+            }
+            world.read_source(sources[i])
+        };
+        let scan_ms = self.world.settings.scan_ms as u64;
+        (scan_indexed(&mut self.plc, &read, scan_ms), recorded_inputs)
     }
 
     /// What the sequence did in the scan just run: a step fired, or a

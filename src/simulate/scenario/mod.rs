@@ -356,6 +356,7 @@ fn stick(world: &mut super::world::World, signal: Signal, stuck_at: bool) {
     let settings = Arc::make_mut(&mut world.settings);
     settings.faults.retain(|f| f.signal != signal);
     settings.faults.push(super::Fault { signal, stuck_at });
+    world.faults_changed += 1;
     // Faults from power-up on: the ones present are the ones stuck so far.
     settings.fault_onset_ms = 0;
     world.faults_active = true;
