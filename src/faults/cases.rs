@@ -31,6 +31,17 @@ impl Verdict {
     }
 }
 
+/// The verdict of a run that is the healthy one (whose alarms say
+/// `detected`).
+pub(super) fn as_without(detected: bool) -> Verdict {
+    Verdict {
+        outcome: Outcome::NoEffect,
+        step: None,
+        explanation: AS_WITHOUT.to_string(),
+        detected,
+    }
+}
+
 /// What every case of one analysis shares.
 pub(super) struct Cases<'s, 'a> {
     pub(super) simulator: &'s Simulator<'a>,
@@ -103,14 +114,7 @@ impl Cases<'_, '_> {
                 // input next differs: the case of the faults appearing then.
                 Resumed::InStep { at_ms } => match inputs.divergence_of(&columns, at_ms) {
                     Some(next) => at = next,
-                    None => {
-                        break Found::New(Verdict {
-                            outcome: Outcome::NoEffect,
-                            step: None,
-                            explanation: AS_WITHOUT.to_string(),
-                            detected: checkpoints.report.alarmed,
-                        });
-                    }
+                    None => break Found::New(as_without(checkpoints.report.alarmed)),
                 },
             }
         };

@@ -313,7 +313,7 @@ pub fn analyse_sets(
     healthy: Option<Healthy>,
 ) -> FaultTable {
     let counted = sets.len();
-    let plan = Plan::new(table, program, settings, sets, counted, runs, healthy);
+    let plan = Plan::new(table, program, settings, sets, counted, runs, healthy, true);
     let planned = distinct_onsets(&plan.onsets);
     let total = planned.iter().map(Vec::len).sum();
     let done = std::sync::atomic::AtomicUsize::new(0);
@@ -331,7 +331,7 @@ pub fn analyse_sets(
         },
     );
     let mut cases: Vec<FaultCase> = (0..plan.sets.len())
-        .map(|i| worst_case(&plan.sets[i], &plan.moments, &plan.onsets[i], &runs[i]))
+        .map(|i| worst_case(&plan, i, &runs[i]))
         .collect();
     if let Some(case) = cases.iter_mut().find(|c| c.faults == [single_step::SHORT])
         && let Some((step, explanation)) = single_step::step_button_hazard(table, program, settings)
@@ -350,28 +350,28 @@ pub fn analyse_sets(
     }
 }
 
-/// One fault set's case: the worst verdict over the moments its faults
-/// appeared at (`onsets`, the scan its run left the healthy one, per
-/// moment; `None`: it never did), with the outcome at every moment; each
-/// onset's verdict in `runs`.
-fn worst_case(
-    faults: &[Fault],
-    moments: &[Moment],
-    onsets: &[Option<u64>],
-    runs: &SetRuns,
-) -> FaultCase {
+/// Set `i`'s case: the worst verdict over the moments its faults appeared
+/// at (its onsets, the scan its run left the healthy one, per moment;
+/// `None`: it never did), with the outcome at every moment; each onset's
+/// verdict in `runs`.
+fn worst_case(plan: &Plan<'_>, i: usize, runs: &SetRuns) -> FaultCase {
+    let (faults, moments, onsets) = (&plan.sets[i], &plan.moments, &plan.onsets[i]);
     let no_effect = Verdict {
         outcome: Outcome::NoEffect,
         step: None,
         explanation: "the input never reads other than without the fault".to_string(),
         detected: false,
     };
+    // Read nowhere while it differs: the run is the healthy one.
+    let unread = cases::as_without(plan.healthy_alarmed);
     let mut outcomes = Vec::with_capacity(moments.len());
     let mut worst: Option<(Phase, &Verdict)> = None;
     for (moment, onset) in moments.iter().zip(onsets) {
-        let verdict = onset.map_or(&no_effect, |d| {
-            runs.at(d).expect("every planned onset is run")
-        });
+        let verdict = match onset {
+            None => &no_effect,
+            Some(phases::NEVER) => &unread,
+            Some(d) => runs.at(*d).expect("every planned onset is run"),
+        };
         outcomes.push(verdict.outcome);
         if worst.is_none_or(|(_, w)| verdict.outcome > w.outcome) {
             worst = Some((moment.phase, verdict));

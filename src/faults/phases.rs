@@ -107,11 +107,40 @@ pub fn moments(healthy: &SimReport, table: &StepTable, scan_ms: u64) -> Vec<Mome
 /// tell when a fault first makes a difference.
 pub struct HealthyInputs {
     log: InputLog,
+    /// A faulty input leaves the healthy run only where the run reads it
+    /// while it differs ([`InputLog::reads`]), not where it differs.
+    by_reads: bool,
 }
+
+/// The onset of a fault that differs from the healthy input but is never
+/// read while it does: its run is the healthy one, never left.
+pub const NEVER: u64 = u64::MAX;
 
 impl HealthyInputs {
     pub fn new(log: InputLog) -> Self {
-        HealthyInputs { log }
+        HealthyInputs {
+            log,
+            by_reads: false,
+        }
+    }
+
+    /// The same, a faulty run leaving the healthy one where it reads a
+    /// faulty input while it differs: until then it reads what the
+    /// healthy run reads and does what it does.
+    pub fn by_reads(log: InputLog) -> Self {
+        HealthyInputs {
+            log,
+            by_reads: true,
+        }
+    }
+
+    /// Where faults appearing at `from_ms` leave the healthy run, as
+    /// [`HealthyInputs::divergence_of`] says; [`NEVER`] when they differ
+    /// but are never read while they do.
+    pub fn onset_of(&self, columns: &[(usize, bool)], from_ms: u64) -> Option<u64> {
+        let differs = |&(c, stuck_at): &(usize, bool)| self.first_difference(c, stuck_at, from_ms);
+        self.divergence_of(columns, from_ms)
+            .or_else(|| columns.iter().find_map(differs).map(|_| NEVER))
     }
 
     /// The log itself.
@@ -128,11 +157,11 @@ impl HealthyInputs {
             .flat_map(|(_, changes)| changes.iter().map(|(at, _)| *at))
     }
 
-    /// The time of the first scan at or after `from_ms` on which one of
-    /// `faults` reads other than the healthy run did: the moment the
-    /// faulty run leaves the healthy one. `None`: it never does.
-    pub fn divergence(&self, faults: &[Fault], from_ms: u64) -> Option<u64> {
-        self.divergence_of(&self.columns(faults), from_ms)
+    /// Whether one of `faults` ever reads other than the healthy run did,
+    /// at or after `from_ms` (whether it is read then or not).
+    pub fn differs(&self, faults: &[Fault], from_ms: u64) -> bool {
+        let differs = |&(c, stuck_at): &(usize, bool)| self.first_difference(c, stuck_at, from_ms);
+        self.columns(faults).iter().any(|c| differs(c).is_some())
     }
 
     /// The faults as (input column, stuck value), for
@@ -147,12 +176,39 @@ impl HealthyInputs {
             .collect()
     }
 
-    /// [`HealthyInputs::divergence`] of faults given as columns.
+    /// [`HealthyInputs::divergence`] of faults given as columns: where
+    /// one first reads otherwise or, [`HealthyInputs::by_reads`], where one
+    /// is first read while it does.
     pub fn divergence_of(&self, columns: &[(usize, bool)], from_ms: u64) -> Option<u64> {
-        columns
-            .iter()
-            .filter_map(|&(c, stuck_at)| self.first_difference(c, stuck_at, from_ms))
-            .min()
+        let first = |&(c, stuck_at): &(usize, bool)| match self.by_reads {
+            true => self.first_read_difference(c, stuck_at, from_ms),
+            false => self.first_difference(c, stuck_at, from_ms),
+        };
+        columns.iter().filter_map(first).min()
+    }
+
+    /// The first scan at or after `from_ms` at which input `c` is read
+    /// while it reads otherwise than `stuck_at`.
+    fn first_read_difference(&self, c: usize, stuck_at: bool, from_ms: u64) -> Option<u64> {
+        let (changes, reads) = (&self.log.changes[c].1, &self.log.reads[c]);
+        let mut from = from_ms;
+        loop {
+            let differs = self.first_difference(c, stuck_at, from)?;
+            // It differs until its next change (two values: back to the
+            // stuck one), or to the end.
+            let next = changes.partition_point(|(at, _)| *at <= differs);
+            let until = changes.get(next).map_or(NEVER, |(at, _)| *at);
+            let read = reads.partition_point(|(_, to)| *to <= differs);
+            if let Some(&(read_from, _)) = reads.get(read)
+                && read_from < until
+            {
+                return Some(read_from.max(differs));
+            }
+            if until == NEVER {
+                return None;
+            }
+            from = until;
+        }
     }
 
     fn first_difference(&self, c: usize, stuck_at: bool, from_ms: u64) -> Option<u64> {

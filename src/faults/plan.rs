@@ -35,6 +35,8 @@ pub(super) struct Plan<'t> {
     pub(super) phases_skipped: Option<usize>,
     /// Runs resume from the healthy run's checkpoints.
     pub(super) resumable: bool,
+    /// An alarm came on in the healthy run.
+    pub(super) healthy_alarmed: bool,
 }
 
 impl<'t> Plan<'t> {
@@ -42,7 +44,11 @@ impl<'t> Plan<'t> {
     /// ([`healthy_run`] under the same settings) when it is given. Whether
     /// faults appear at every moment or at power-up only is decided on
     /// `counted` sets: those of the whole table the sets belong to, so that
-    /// a few of its sets run again are run as in the table.
+    /// a few of its sets run again are run as in the table. When `by_reads`
+    /// and the runs resume from the healthy run, a fault's onset is where
+    /// the healthy run reads its input while it differs (the healthy log's
+    /// reads are then the program's own).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn new(
         table: &'t StepTable,
         program: &'t StepProgram,
@@ -51,6 +57,7 @@ impl<'t> Plan<'t> {
         counted: usize,
         runs: FaultRuns,
         healthy: Option<Healthy>,
+        by_reads: bool,
     ) -> Plan<'t> {
         // What the healthy cycle does is the yardstick: the combinations of
         // positions it reaches are the ones a faulty run may reach, its
@@ -71,8 +78,16 @@ impl<'t> Plan<'t> {
             .saturating_mul(1 + jumps)
             > MAX_PHASE_WORK;
         let mut equivalent = 0;
+        // A copy of a healthy run that found problems carries them (and the
+        // alarms after them) into every run resumed from it, which a faulty
+        // run judged at its first hazard never reaches: such a table's runs
+        // go from power-up.
+        let resumable = !too_long && runs == FaultRuns::Resumed && healthy.problems.is_empty();
         // Faults at every moment but for a cycle too long for them.
-        let inputs = (!too_long).then(|| phases::HealthyInputs::new(log));
+        let inputs = (!too_long).then(|| match by_reads && resumable {
+            true => phases::HealthyInputs::by_reads(log),
+            false => phases::HealthyInputs::new(log),
+        });
         let onsets: Vec<Vec<Option<u64>>> = match &inputs {
             None => {
                 moments.truncate(1);
@@ -82,29 +97,13 @@ impl<'t> Plan<'t> {
                 // A fault that never reads other than the healthy input
                 // (STOP stuck at 1: it is normally closed) adds nothing to a
                 // set: the set is the smaller one, already in the table.
-                let inert = |f: &Fault| inputs.divergence(std::slice::from_ref(f), 0).is_none();
+                let inert = |f: &Fault| !inputs.differs(std::slice::from_ref(f), 0);
                 let before = sets.len();
                 sets.retain(|set| set.len() == 1 || !set.iter().any(inert));
                 equivalent = before - sets.len();
-                // Each set at each moment, as the moment its run leaves the
-                // healthy one.
-                sets.iter()
-                    .map(|set| {
-                        let columns = inputs.columns(set);
-                        moments
-                            .iter()
-                            .map(|m| inputs.divergence_of(&columns, m.at_ms))
-                            .collect()
-                    })
-                    .collect()
+                onsets_of(inputs, &sets, &moments)
             }
         };
-        // A copy of a healthy run that found problems carries them (and the
-        // alarms after them) into every run resumed from it, which a faulty
-        // run judged at its first hazard never reaches: such a table's runs
-        // go from power-up.
-        let resumable =
-            inputs.is_some() && runs == FaultRuns::Resumed && healthy.problems.is_empty();
         let run_settings = SimSettings {
             known_places: Some(std::sync::Arc::new(healthy.places)),
             ..settings.clone()
@@ -121,6 +120,7 @@ impl<'t> Plan<'t> {
             equivalent,
             phases_skipped: too_long.then_some(cases_at_every_moment),
             resumable,
+            healthy_alarmed: healthy.alarmed,
         }
     }
 
@@ -195,10 +195,27 @@ impl<'t> Plan<'t> {
     pub(super) fn made_from(&self, healthy: &SimReport, log: Option<&InputLog>) -> bool {
         let scan_ms = self.run_settings.scan_ms as u64;
         healthy.problems.is_empty()
-            && log == self.inputs.as_ref().map(|i| i.log())
+            && log
+                .zip(self.inputs.as_ref())
+                .is_some_and(|(log, i)| log.same_inputs(i.log()))
             && self.run_settings.known_places.as_deref() == Some(&healthy.places)
             && moments(healthy, self.table, scan_ms) == self.moments
     }
+}
+
+/// Each set at each moment, as the moment its run leaves the healthy one.
+fn onsets_of(
+    inputs: &phases::HealthyInputs,
+    sets: &[Vec<Fault>],
+    moments: &[Moment],
+) -> Vec<Vec<Option<u64>>> {
+    sets.iter()
+        .map(|set| {
+            let columns = inputs.columns(set);
+            let onset = |m: &Moment| inputs.onset_of(&columns, m.at_ms);
+            moments.iter().map(onset).collect()
+        })
+        .collect()
 }
 
 /// Each set's distinct onsets, the earliest first: a later case whose
@@ -208,7 +225,9 @@ pub(super) fn distinct_onsets(onsets: &[Vec<Option<u64>>]) -> Vec<Vec<u64>> {
     onsets
         .iter()
         .map(|at| {
-            let mut distinct: Vec<u64> = at.iter().flatten().copied().collect();
+            // An onset never read runs nothing.
+            let run = at.iter().flatten().copied().filter(|d| *d != phases::NEVER);
+            let mut distinct: Vec<u64> = run.collect();
             distinct.sort_unstable();
             distinct.dedup();
             distinct

@@ -84,6 +84,7 @@ pub fn first_hazards(
                 counted,
                 FaultRuns::Resumed,
                 Some(expected.clone()),
+                false,
             );
             let search = Search::new(table, &plan, stepping.clone());
             match plan.copies(&search.copied(), false, true) {
@@ -113,6 +114,7 @@ pub fn first_hazards(
         counted,
         FaultRuns::Resumed,
         Some(own),
+        false,
     );
     let search = Search::new(table, &plan, stepping);
     let copies = plan.copies(&search.copied(), false, false);
@@ -242,12 +244,7 @@ impl Search {
                 step: verdict.step,
                 explanation: verdict.explanation.clone(),
             },
-            None => Found::Clear(worst_case(
-                &plan.sets[i],
-                &plan.moments,
-                &plan.onsets[i],
-                &self.runs[i],
-            )),
+            None => Found::Clear(worst_case(plan, i, &self.runs[i])),
         }
     }
 }

@@ -99,6 +99,11 @@ pub struct InputLog {
     /// Times of the first and the last scan (none yet: both 0).
     pub first_ms: u64,
     pub last_ms: u64,
+    /// Per input: the spans of time `[from, to)` in which the run read it
+    /// (the program, or the simulator judging the run): a fault of an
+    /// input changes nothing until it is read while it differs. A scan's
+    /// reads stand for the quiet scans after it, which read the same.
+    pub reads: Vec<Vec<(u64, u64)>>,
     scanned: bool,
     /// What the last scan read, 64 inputs to a word: a scan is compared
     /// with it a word at a time (most scans change no input).
@@ -110,9 +115,49 @@ impl InputLog {
         InputLog {
             scan_ms,
             changes: vec![(false, Vec::new()); inputs.len()],
+            reads: vec![Vec::new(); inputs.len()],
             now: vec![0; inputs.len().div_ceil(64)],
             inputs,
             ..InputLog::default()
+        }
+    }
+
+    /// The same inputs changing at the same times: the logs of two runs
+    /// that read the same machine (whatever each read of it).
+    pub fn same_inputs(&self, other: &InputLog) -> bool {
+        (
+            self.scan_ms,
+            &self.inputs,
+            &self.changes,
+            self.first_ms,
+            self.last_ms,
+        ) == (
+            other.scan_ms,
+            &other.inputs,
+            &other.changes,
+            other.first_ms,
+            other.last_ms,
+        )
+    }
+
+    /// The inputs marked in `marks` (by their place in the log, 64 to a
+    /// word) were read from the last scan logged until `until_ms`.
+    pub(in crate::simulate) fn read_until(
+        &mut self,
+        marks: impl Iterator<Item = u64>,
+        until_ms: u64,
+    ) {
+        let from = self.last_ms;
+        for (w, mut bits) in marks.enumerate() {
+            while bits != 0 {
+                let k = w * 64 + bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let spans = &mut self.reads[k];
+                match spans.last_mut() {
+                    Some(last) if last.1 >= from => last.1 = last.1.max(until_ms),
+                    _ => spans.push((from, until_ms)),
+                }
+            }
         }
     }
 

@@ -201,6 +201,7 @@ impl<'a> Simulator<'a> {
             &settings,
             inputs,
             signals,
+            Stepping::Events,
         );
         Recorded { report, log, trace }
     }

@@ -195,6 +195,11 @@ impl<'a> PlcState<'a> {
         self.code.index.get(&signal).copied()
     }
 
+    /// Every signal the program uses, by index.
+    pub fn signals(&self) -> &'a [Signal] {
+        &self.code.signals
+    }
+
     /// The signal at an index.
     pub fn signal(&self, index: usize) -> Signal {
         self.code.signals[index]

@@ -214,18 +214,30 @@ fn the_recorded_io_is_the_same_both_ways() {
         assert_eq!(events_io, scans_io);
         // The fault analysis's log of the inputs' changes says what the
         // recording of every scan says.
-        let (logged, log, _) = run::run_logging_inputs(
-            &table,
-            &program,
-            &code,
-            &settings,
-            Some(signals.inputs.clone()),
-            None,
-        );
+        let logging = |stepping| {
+            let inputs = Some(signals.inputs.clone());
+            run::run_logging_inputs(&table, &program, &code, &settings, inputs, None, stepping)
+        };
+        let (logged, log, _) = logging(Stepping::Events);
         let log = log.expect("logged");
         assert_eq!(logged, events);
-        assert_eq!(log, io::InputLog::of_trace(&scans_io));
+        assert!(log.same_inputs(&io::InputLog::of_trace(&scans_io)));
         assert!(log.changes.iter().any(|(_, c)| c.len() > 1), "{log:?}");
+        // Every scan an input is read on, stepped one by one, lies in a
+        // span the run passing quiet scans at once logged as read: a fault
+        // of that input is read there (and nowhere else).
+        let every_scan = logging(Stepping::EveryScan).1.expect("logged");
+        assert!(every_scan.same_inputs(&log));
+        for (k, spans) in every_scan.reads.iter().enumerate() {
+            assert!(!spans.is_empty() || log.reads[k].is_empty());
+            for &(from, to) in spans {
+                for at in (from..to).step_by(settings.scan_ms as usize) {
+                    let covered = log.reads[k].iter().any(|&(f, t)| f <= at && at < t);
+                    assert!(covered, "{}: read at {at} ms", signals.inputs[k].symbol());
+                }
+            }
+        }
+        assert!(log.reads.iter().any(|r| !r.is_empty()));
     }
 }
 

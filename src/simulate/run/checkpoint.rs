@@ -165,7 +165,7 @@ pub(in crate::simulate) fn checkpoints<'a>(
     times.dedup();
     let mut times = times.into_iter().peekable();
     let mut drive = Drive::new(table, program, code, settings, None, Stepping::Events);
-    drive.log_inputs(inputs);
+    drive.run.log_inputs(inputs);
     let mut at = std::collections::BTreeMap::new();
     let mut fingerprints = Vec::new();
     while !drive.finished() {
@@ -178,7 +178,7 @@ pub(in crate::simulate) fn checkpoints<'a>(
         drive.horizon = times.peek().copied().unwrap_or(u64::MAX);
         drive.advance();
     }
-    let log = drive.take_input_log();
+    let log = drive.run.take_input_log();
     Checkpoints {
         at,
         fingerprints,

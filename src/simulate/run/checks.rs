@@ -2,7 +2,7 @@
 //! step commanded, the run through a target, the combinations of places
 //! the healthy cycle never has; and the words of each problem.
 
-use super::{ActiveMove, Run, read_input};
+use super::{ActiveMove, Run};
 use crate::cell::Sign;
 use crate::program::{Literal, Signal, StepProgram};
 use crate::simulate::plant::Piston;
@@ -20,7 +20,7 @@ impl Run<'_> {
             .copied()
             .filter(|l| {
                 let raw = if l.signal.is_input() {
-                    read_input(l.signal, &self.world)
+                    self.read(l.signal)
                 } else {
                     self.plc.bit(l.signal)
                 };
@@ -211,7 +211,7 @@ impl Run<'_> {
             }
             let step = self.current_step();
             let homing = self.program.signals.memories.contains(&Signal::Homing)
-                && (self.plc.bit(Signal::Homing) || read_input(Signal::Reset, &self.world));
+                && (self.plc.bit(Signal::Homing) || self.read(Signal::Reset));
             let when = if homing {
                 "RESET reads pressed: the program homes the machine".to_string()
             } else if !self.fired_any {

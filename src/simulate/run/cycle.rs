@@ -546,8 +546,9 @@ fn jumps_to_take(table: &StepTable) -> impl Iterator<Item = (usize, crate::table
         .flat_map(|(index, step)| step.jumps.iter().map(move |j| (index, *j)))
 }
 
-/// Simulates from power-up to the end, logging when `inputs` change when
-/// they are given.
+/// Simulates from power-up to the end, stepping as `stepping` says,
+/// logging when `inputs` change (and when they are read) when they are
+/// given.
 pub(in crate::simulate) fn run_logging_inputs(
     table: &StepTable,
     program: &StepProgram,
@@ -555,33 +556,14 @@ pub(in crate::simulate) fn run_logging_inputs(
     settings: &SimSettings,
     inputs: Option<Vec<crate::program::Signal>>,
     record: Option<io::IoSignals>,
+    stepping: Stepping,
 ) -> (SimReport, Option<io::InputLog>, Option<io::IoTrace>) {
-    let mut drive = Drive::new(table, program, code, settings, record, Stepping::Events);
-    drive.log_inputs(inputs);
+    let mut drive = Drive::new(table, program, code, settings, record, stepping);
+    drive.run.log_inputs(inputs);
     drive.run_to_end();
-    let log = drive.take_input_log();
+    let log = drive.run.take_input_log();
     let (report, trace) = drive.finish();
     (report, log, trace)
-}
-
-impl Drive<'_> {
-    /// Logs when each of `inputs` changes from now on, when they are given.
-    pub(super) fn log_inputs(&mut self, inputs: Option<Vec<crate::program::Signal>>) {
-        self.run.log_inputs(inputs);
-    }
-
-    /// The log of the inputs of a run that has ended, if it kept one.
-    pub(super) fn take_input_log(&mut self) -> Option<io::InputLog> {
-        let last_ms = self.run.time_ms;
-        self.run.input_log.take().map(|mut log| {
-            // The last scan: quiet ones after the last the run stepped
-            // through read what it read.
-            log.last_ms = log
-                .last_ms
-                .max(last_ms.saturating_sub(u64::from(log.scan_ms)));
-            log
-        })
-    }
 }
 
 /// Simulates from power-up to the end.

@@ -5,6 +5,7 @@ use crate::cell::Sign;
 use crate::program::{Action, Signal, StepKind, StepProgram};
 use crate::simulate::plc::{PlcProgram, PlcState};
 use crate::table::StepTable;
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// The longest a step may take before the run counts as stalled: well past
 /// the slowest stroke, and past the program's own watchdog so that its alarm
@@ -102,6 +103,8 @@ impl<'a> Run<'a> {
             io_outputs: Vec::new(),
             input_log: None,
             log_sources: Vec::new(),
+            log_slot: Vec::new(),
+            read_marks: ReadMarks::new(0),
             sources: std::sync::Arc::from([]),
             stuck: (u32::MAX, Vec::new()),
             event_driven: false,
@@ -191,15 +194,89 @@ impl Run<'_> {
         &self.stuck.1
     }
 
-    /// Logs the inputs of every scan from now on, when `inputs` are given.
+    /// Logs the inputs of every scan from now on, and when they are read,
+    /// when `inputs` are given.
     pub(in crate::simulate) fn log_inputs(&mut self, inputs: Option<Vec<Signal>>) {
-        self.log_sources = inputs
-            .iter()
-            .flatten()
-            .map(|s| (*s, self.world.source(*s)))
-            .collect();
+        let logged = inputs.as_deref().unwrap_or_default();
+        self.log_sources = logged.iter().map(|s| (*s, self.world.source(*s))).collect();
+        self.log_slot = match inputs {
+            Some(_) => self
+                .plc
+                .signals()
+                .iter()
+                .map(|s| logged.iter().position(|l| l == s))
+                .collect(),
+            None => Vec::new(),
+        };
+        self.read_marks = ReadMarks::new(logged.len());
         self.input_log =
             inputs.map(|inputs| io::InputLog::new(self.world.settings.scan_ms, inputs));
+    }
+
+    /// The log of the inputs of a run that has ended, if it kept one.
+    pub(in crate::simulate) fn take_input_log(&mut self) -> Option<io::InputLog> {
+        let last_ms = self.time_ms;
+        let marks = &self.read_marks;
+        self.input_log.take().map(|mut log| {
+            // What the last scans read, until the run ended.
+            log.read_until(marks.take(), last_ms + u64::from(log.scan_ms));
+            // The last scan: quiet ones after the last the run stepped
+            // through read what it read.
+            log.last_ms = log
+                .last_ms
+                .max(last_ms.saturating_sub(u64::from(log.scan_ms)));
+            log
+        })
+    }
+
+    /// An input read by the simulator judging the run (not the program):
+    /// marked as read, when the inputs are logged.
+    pub(in crate::simulate) fn read(&self, signal: Signal) -> bool {
+        if self.input_log.is_some()
+            && let Some(k) = self.log_sources.iter().position(|(s, _)| *s == signal)
+        {
+            self.read_marks.mark(k);
+        }
+        read_input(signal, &self.world)
+    }
+}
+
+/// The logged inputs read since the last scan logged, 64 to a word,
+/// marked through a shared borrow (the readers hold one). Atomic only to
+/// be shared by the copies of a run the fault analysis reads on every
+/// core: one thread marks, with plain loads and stores.
+#[derive(Debug, Default)]
+pub(in crate::simulate) struct ReadMarks(Vec<AtomicU64>);
+
+impl ReadMarks {
+    fn new(inputs: usize) -> ReadMarks {
+        ReadMarks(
+            (0..inputs.div_ceil(64))
+                .map(|_| AtomicU64::new(0))
+                .collect(),
+        )
+    }
+
+    /// Marks the `k`-th logged input as read.
+    pub(in crate::simulate) fn mark(&self, k: usize) {
+        let word = &self.0[k / 64];
+        word.store(word.load(Relaxed) | 1 << (k % 64), Relaxed);
+    }
+
+    /// The words marked, each cleared.
+    pub(in crate::simulate) fn take(&self) -> impl Iterator<Item = u64> + '_ {
+        self.0.iter().map(|w| w.swap(0, Relaxed))
+    }
+}
+
+impl Clone for ReadMarks {
+    fn clone(&self) -> ReadMarks {
+        ReadMarks(
+            self.0
+                .iter()
+                .map(|w| AtomicU64::new(w.load(Relaxed)))
+                .collect(),
+        )
     }
 }
 

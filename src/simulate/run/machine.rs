@@ -262,7 +262,7 @@ impl Run<'_> {
     /// button stays unintended.
     pub(in crate::simulate) fn jogged(&self, piston: usize, direction: crate::cell::Sign) -> bool {
         let p = &self.world.pistons[piston];
-        let read = |s| super::read_input(s, &self.world);
+        let read = |s| self.read(s);
         if !self
             .program
             .signals

@@ -87,6 +87,11 @@ pub(in crate::simulate) struct Run<'a> {
     input_log: Option<io::InputLog>,
     /// Where each logged input is read from.
     log_sources: Vec<(Signal, InputSource)>,
+    /// Each PLC input's place in the log, and the logged inputs read since
+    /// the last scan logged (marked through a shared borrow: the readers
+    /// hold one).
+    log_slot: Vec<Option<usize>>,
+    read_marks: drive::ReadMarks,
     /// Where each of the PLC's inputs is read from, by its index there
     /// (shared by the run's copies).
     sources: std::sync::Arc<[InputSource]>,

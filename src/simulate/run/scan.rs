@@ -116,6 +116,7 @@ impl Run<'_> {
         let world = &self.world;
         let faulty = world.faults_active && !world.settings.faults.is_empty();
         if let Some(log) = self.input_log.as_mut() {
+            log.read_until(self.read_marks.take(), now);
             let sources = &self.log_sources;
             log.scan(now, |k| {
                 let (signal, source) = sources[k];
@@ -133,7 +134,11 @@ impl Run<'_> {
                 .collect::<Vec<bool>>()
         });
         let (sources, stuck) = (&self.sources, &self.stuck.1);
+        let (slots, marks) = (&self.log_slot, &self.read_marks);
         let read = |i: usize| {
+            if let Some(&Some(k)) = slots.get(i) {
+                marks.mark(k);
+            }
             if faulty && let Some(&(_, value)) = stuck.iter().find(|(at, _)| *at == i) {
                 return value;
             }
