@@ -84,7 +84,7 @@ impl<'t> Plan<'t> {
         // go from power-up.
         let resumable = !too_long && runs == FaultRuns::Resumed && healthy.problems.is_empty();
         // Faults at every moment but for a cycle too long for them.
-        let inputs = (!too_long).then(|| match by_reads && resumable {
+        let inputs = (!too_long).then(|| match by_reads && resumable && log.reads_logged {
             true => phases::HealthyInputs::by_reads(log),
             false => phases::HealthyInputs::new(log),
         });

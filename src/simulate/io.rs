@@ -104,6 +104,8 @@ pub struct InputLog {
     /// input changes nothing until it is read while it differs. A scan's
     /// reads stand for the quiet scans after it, which read the same.
     pub reads: Vec<Vec<(u64, u64)>>,
+    /// The reads were logged (else `reads` says nothing).
+    pub reads_logged: bool,
     scanned: bool,
     /// What the last scan read, 64 inputs to a word: a scan is compared
     /// with it a word at a time (most scans change no input).

@@ -115,6 +115,32 @@ fn assert_cut_alike(seed: u64) -> Result<(), proptest::test_runner::TestCaseErro
     Ok(())
 }
 
+/// A healthy run handed in without the log of what it read (a copy's
+/// log keeps only the inputs' changes) is planned where the inputs differ:
+/// read as "never read", every fault would be no effect.
+#[test]
+fn a_healthy_run_without_its_reads_is_planned_where_inputs_differ() {
+    for path in samples() {
+        let settings = Settings::default();
+        let checked = check_path(&path, &settings).expect("a sample converts");
+        let program = build_program(&checked.table, &checked.settings);
+        let (table, sim) = (&checked.table, &checked.settings.simulation);
+        let mut unread = faults::healthy_run(table, &program, sim);
+        assert!(unread.log.reads_logged, "{}", path.display());
+        unread.log.reads_logged = false;
+        unread.log.reads.iter_mut().for_each(Vec::clear);
+        let run = |runs, healthy| {
+            faults::analyse_from(table, &program, sim, 1, runs, &|_, _| {}, healthy)
+        };
+        let (planned, reference) = (
+            run(FaultRuns::Resumed, Some(unread)),
+            run(FaultRuns::FromPowerUp, None),
+        );
+        assert_eq!(planned.cases, reference.cases, "{}", path.display());
+        assert_eq!(planned.runs, reference.runs, "{}", path.display());
+    }
+}
+
 #[test]
 fn every_verdict_is_what_the_fault_alone_gives_when_it_appears_then() {
     let mut replayed = 0;

@@ -559,7 +559,7 @@ pub(in crate::simulate) fn run_logging_inputs(
     stepping: Stepping,
 ) -> (SimReport, Option<io::InputLog>, Option<io::IoTrace>) {
     let mut drive = Drive::new(table, program, code, settings, record, stepping);
-    drive.run.log_inputs(inputs);
+    drive.run.log_inputs(inputs, true);
     drive.run_to_end();
     let log = drive.run.take_input_log();
     let (report, trace) = drive.finish();

@@ -194,23 +194,26 @@ impl Run<'_> {
         &self.stuck.1
     }
 
-    /// Logs the inputs of every scan from now on, and when they are read,
-    /// when `inputs` are given.
-    pub(in crate::simulate) fn log_inputs(&mut self, inputs: Option<Vec<Signal>>) {
+    /// Logs the inputs of every scan from now on, when `inputs` are given,
+    /// and when `reads`, when each is read.
+    pub(in crate::simulate) fn log_inputs(&mut self, inputs: Option<Vec<Signal>>, reads: bool) {
         let logged = inputs.as_deref().unwrap_or_default();
         self.log_sources = logged.iter().map(|s| (*s, self.world.source(*s))).collect();
         self.log_slot = match inputs {
-            Some(_) => self
+            Some(_) if reads => self
                 .plc
                 .signals()
                 .iter()
                 .map(|s| logged.iter().position(|l| l == s))
                 .collect(),
-            None => Vec::new(),
+            _ => Vec::new(),
         };
-        self.read_marks = ReadMarks::new(logged.len());
-        self.input_log =
-            inputs.map(|inputs| io::InputLog::new(self.world.settings.scan_ms, inputs));
+        self.read_marks = ReadMarks::new(if reads { logged.len() } else { 0 });
+        self.input_log = inputs.map(|inputs| {
+            let mut log = io::InputLog::new(self.world.settings.scan_ms, inputs);
+            log.reads_logged = reads;
+            log
+        });
     }
 
     /// The log of the inputs of a run that has ended, if it kept one.
@@ -232,7 +235,7 @@ impl Run<'_> {
     /// An input read by the simulator judging the run (not the program):
     /// marked as read, when the inputs are logged.
     pub(in crate::simulate) fn read(&self, signal: Signal) -> bool {
-        if self.input_log.is_some()
+        if self.read_marks.on()
             && let Some(k) = self.log_sources.iter().position(|(s, _)| *s == signal)
         {
             self.read_marks.mark(k);
@@ -255,6 +258,11 @@ impl ReadMarks {
                 .map(|_| AtomicU64::new(0))
                 .collect(),
         )
+    }
+
+    /// Whether reads are marked.
+    fn on(&self) -> bool {
+        !self.0.is_empty()
     }
 
     /// Marks the `k`-th logged input as read.
