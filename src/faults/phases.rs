@@ -148,13 +148,23 @@ impl HealthyInputs {
         &self.log
     }
 
-    /// Every time at which an input changes: where a faulty run that is back
-    /// in step with the healthy one may next leave it.
-    pub fn change_times(&self) -> impl Iterator<Item = u64> + '_ {
-        self.log
-            .changes
-            .iter()
-            .flat_map(|(_, changes)| changes.iter().map(|(at, _)| *at))
+    /// Every time at which a faulty run that is back in step with the
+    /// healthy one may next leave it: where an input changes or, when runs
+    /// leave it [`HealthyInputs::by_reads`], where an input changes while
+    /// it is read or starts being read.
+    pub fn change_times(&self) -> Box<dyn Iterator<Item = u64> + '_> {
+        let changes = self.log.changes.iter().map(|(_, changes)| changes);
+        if !self.by_reads {
+            return Box::new(changes.flat_map(|c| c.iter().map(|(at, _)| *at)));
+        }
+        Box::new(changes.zip(&self.log.reads).flat_map(|(changes, reads)| {
+            let read = |at: &u64| {
+                let span = reads.partition_point(|(_, to)| to <= at);
+                reads.get(span).is_some_and(|(from, _)| from <= at)
+            };
+            let changed = changes.iter().map(|(at, _)| *at).filter(read);
+            changed.chain(reads.iter().map(|(from, _)| *from))
+        }))
     }
 
     /// Whether one of `faults` ever reads other than the healthy run did,
