@@ -245,3 +245,53 @@ impl HealthyInputs {
             .map(|(at, _)| *at)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One input, scanned every 10 ms from 0 to 100: off until 30, on
+    /// until 60, off again; read in [0, 20), [40, 50) and [70, 80).
+    fn log() -> InputLog {
+        let mut log = InputLog::new(10, vec![crate::program::Signal::Start]);
+        log.changes = vec![(false, vec![(30, true), (60, false)])];
+        log.reads = vec![vec![(0, 20), (40, 50), (70, 80)]];
+        log.reads_logged = true;
+        (log.first_ms, log.last_ms) = (0, 100);
+        log
+    }
+
+    #[test]
+    fn a_fault_leaves_the_healthy_run_where_it_is_read_while_it_differs() {
+        let (plain, read) = (HealthyInputs::new(log()), HealthyInputs::by_reads(log()));
+        let (open, short) = ([(0, false)], [(0, true)]);
+        // Stuck at 0: it differs in [30, 60), read there in [40, 50).
+        assert_eq!(plain.onset_of(&open, 0), Some(30));
+        assert_eq!(read.onset_of(&open, 0), Some(40));
+        assert_eq!(read.onset_of(&open, 31), Some(40));
+        // From the span's end on it differs unread, then no longer differs.
+        assert_eq!(read.onset_of(&open, 50), Some(NEVER));
+        // A moment off the scans counts from the next scan (50).
+        assert_eq!(read.onset_of(&open, 41), Some(NEVER));
+        assert_eq!(read.onset_of(&open, 39), Some(40));
+        assert_eq!(read.onset_of(&open, 60), None);
+        assert_eq!(plain.onset_of(&open, 60), None);
+        // Stuck at 1: it differs in [0, 30) and from 60, read in [0, 20)
+        // and [70, 80).
+        assert_eq!(read.onset_of(&short, 0), Some(0));
+        assert_eq!(read.onset_of(&short, 20), Some(70));
+        assert_eq!(plain.onset_of(&short, 20), Some(20));
+        assert_eq!(read.onset_of(&short, 65), Some(70));
+        assert_eq!(read.onset_of(&short, 71), Some(NEVER));
+        assert_eq!(read.onset_of(&short, 80), Some(NEVER));
+        // A set leaves where its first fault is read while it differs.
+        let both = [(0, true), (0, false)];
+        assert_eq!(read.onset_of(&both, 20), Some(40));
+        // Where a run back in step may leave again: changes while read
+        // (none here) and the spans' beginnings.
+        let times: Vec<u64> = read.change_times().collect();
+        assert_eq!(times, [0, 40, 70]);
+        let plain_times: Vec<u64> = plain.change_times().collect();
+        assert_eq!(plain_times, [30, 60]);
+    }
+}

@@ -87,6 +87,19 @@ impl World {
         }
     }
 
+    /// The input `signal` reads `stuck_at` from this scan on (a scenario
+    /// sticks inputs as it goes). Every change of the faults goes through
+    /// here or a new `settings`, and counts in `faults_changed`.
+    pub(in crate::simulate) fn stick(&mut self, signal: Signal, stuck_at: bool) {
+        let settings = Arc::make_mut(&mut self.settings);
+        settings.faults.retain(|f| f.signal != signal);
+        settings.faults.push(super::Fault { signal, stuck_at });
+        // Faults from power-up on: the ones present are the ones stuck so far.
+        settings.fault_onset_ms = 0;
+        self.faults_active = true;
+        self.faults_changed += 1;
+    }
+
     /// The outputs of one scan to piston `i`'s valve (`plus` and `minus`
     /// as its coils or a drive's contactors read), then the plant moves
     /// it for one scan period.

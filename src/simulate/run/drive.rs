@@ -178,6 +178,7 @@ impl Run<'_> {
             ..settings.clone()
         });
         self.world.faults_changed += 1;
+        self.world.faults_active = self.time_ms >= settings.fault_onset_ms;
     }
 
     /// The faults by the PLC's index of their input, found again when they

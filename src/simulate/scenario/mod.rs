@@ -11,8 +11,6 @@ pub mod check;
 pub mod events;
 pub mod table;
 
-use std::sync::Arc;
-
 pub use events::{Act, Event, When};
 
 use super::plc::PlcProgram;
@@ -309,7 +307,7 @@ impl Script for Events<'_> {
                     self.releases.retain(|(_, r)| *r != s);
                 }
                 Act::Release(s) => set(&mut world.operator, s, false),
-                Act::Stick(signal, stuck_at) => stick(world, signal, stuck_at),
+                Act::Stick(signal, stuck_at) => world.stick(signal, stuck_at),
             }
             happened.push((now, self.next));
             self.last_ms = now;
@@ -349,17 +347,6 @@ impl Script for Events<'_> {
     fn still_down(&self) -> Vec<usize> {
         self.still_down.clone()
     }
-}
-
-/// The input `signal` reads `stuck_at` from this scan on.
-fn stick(world: &mut super::world::World, signal: Signal, stuck_at: bool) {
-    let settings = Arc::make_mut(&mut world.settings);
-    settings.faults.retain(|f| f.signal != signal);
-    settings.faults.push(super::Fault { signal, stuck_at });
-    world.faults_changed += 1;
-    // Faults from power-up on: the ones present are the ones stuck so far.
-    settings.fault_onset_ms = 0;
-    world.faults_active = true;
 }
 
 /// Whether the operator's button `signal` is down (pressed or held).
