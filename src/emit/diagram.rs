@@ -40,17 +40,41 @@ impl std::fmt::Display for Tenths {
         if scaled.is_nan() || scaled >= 1e12 || (fraction - 0.5).abs() < 1e-6 {
             return write!(f, "{:.1}", self.0);
         }
+        // Digits by hand: a picture writes thousands of these, and the
+        // formatting machinery cost more than the rest of the picture.
         let tenths = scaled.round() as u64;
-        let sign = if self.0.is_sign_negative() { "-" } else { "" };
-        write!(f, "{sign}{}.{}", tenths / 10, tenths % 10)
+        let mut text = [0u8; 24];
+        let mut at = text.len() - 2;
+        text[at..].copy_from_slice(&[b'.', b'0' + (tenths % 10) as u8]);
+        let mut whole = tenths / 10;
+        loop {
+            at -= 1;
+            text[at] = b'0' + (whole % 10) as u8;
+            whole /= 10;
+            if whole == 0 {
+                break;
+            }
+        }
+        if self.0.is_sign_negative() {
+            at -= 1;
+            text[at] = b'-';
+        }
+        f.write_str(std::str::from_utf8(&text[at..]).map_err(|_| std::fmt::Error)?)
     }
 }
 
 pub(crate) fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
+    let mut escaped = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => escaped.push_str("&amp;"),
+            '<' => escaped.push_str("&lt;"),
+            '>' => escaped.push_str("&gt;"),
+            '"' => escaped.push_str("&quot;"),
+            c => escaped.push(c),
+        }
+    }
+    escaped
 }
 
 /// Lane geometry: top y and height of each actuator's lane.
