@@ -144,9 +144,14 @@ impl<'t> Plan<'t> {
             .copied()
             .chain(inputs.change_times().filter(|_| at_changes))
             .collect();
+        // Copied only at the onsets, it is looked at where a run comes back
+        // in step: where an input changes back to its faulty value.
+        let mut marks: Vec<u64> = inputs.change_times().collect();
+        marks.sort_unstable();
+        let marks = (!at_changes).then_some(&marks[..]);
         Some(
             self.simulator
-                .checkpoints(&self.healthy_settings, &times, log_inputs),
+                .checkpoints(&self.healthy_settings, &times, marks, log_inputs),
         )
     }
 

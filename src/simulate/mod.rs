@@ -131,22 +131,23 @@ impl<'a> Simulator<'a> {
 
     /// Runs under `settings` from power-up to the end, copying the run at
     /// each of `times` (scan times) for [`Simulator::resume`], and
-    /// fingerprinting it at every scan; when `log_inputs`, also logging
-    /// when each input changes (the run is then a healthy run as
+    /// fingerprinting it at every scan, or only at `times` and `marks`
+    /// (sorted) when they are given; when `log_inputs`, also logging when
+    /// each input changes (the run is then a healthy run as
     /// [`Simulator::run_recorded`] makes it, its log in `log`).
     pub fn checkpoints(
         &self,
         settings: &SimSettings,
         times: &[u64],
+        marks: Option<&[u64]>,
         log_inputs: bool,
     ) -> Checkpoints<'_> {
         let inputs = log_inputs.then(|| self.program.signals.inputs.clone());
         run::checkpoints(
-            self.table,
-            self.program,
-            &self.code,
+            (self.table, self.program, &self.code),
             settings,
             times,
+            marks,
             inputs,
         )
     }

@@ -321,7 +321,7 @@ fn a_resumed_run_hands_on_only_the_states_before_its_first_finding() {
     let every_scan: Vec<u64> = (0..2_000).map(|k| k * 10).collect();
     // From the checkpoint at the onset, and from power-up (no checkpoint).
     for times in [vec![onset], vec![]] {
-        let checkpoints = simulator.checkpoints(&healthy_settings, &times, false);
+        let checkpoints = simulator.checkpoints(&healthy_settings, &times, None, false);
         let course = Course {
             checkpoints: &checkpoints,
             in_step: &never_in_step,

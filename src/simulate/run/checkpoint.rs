@@ -151,19 +151,24 @@ pub(super) fn mix(hash: u64, words: &[u64]) -> u64 {
 
 /// Runs from power-up to the end, copying the run at each of `times` (scan
 /// times; one the run never stops at is left out) and fingerprinting it at
-/// every scan; logging when `inputs` change when they are given.
+/// every scan (or, given `marks`, at those and `times`); logging when
+/// `inputs` change when they are given.
 pub(in crate::simulate) fn checkpoints<'a>(
-    table: &'a StepTable,
-    program: &'a StepProgram,
-    code: &'a plc::PlcProgram,
+    (table, program, code): (&'a StepTable, &'a StepProgram, &'a plc::PlcProgram),
     settings: &SimSettings,
     times: &[u64],
+    marks: Option<&[u64]>,
     inputs: Option<Vec<crate::program::Signal>>,
 ) -> Checkpoints<'a> {
     let mut times: Vec<u64> = times.to_vec();
     times.sort_unstable();
     times.dedup();
-    let mut times = times.into_iter().peekable();
+    // Fingerprinted at every scan, or where a run resumed from it looks.
+    let looked_at = |now: u64| {
+        let at = |m: &[u64]| m.binary_search(&now).is_ok();
+        marks.is_none_or(|m| at(m) || at(&times))
+    };
+    let mut copies = times.iter().copied().peekable();
     let mut drive = Drive::new(table, program, code, settings, None, Stepping::Events);
     // Its reads are not logged: runs planned on its log go where inputs differ.
     drive.run.log_inputs(inputs, false);
@@ -171,12 +176,14 @@ pub(in crate::simulate) fn checkpoints<'a>(
     let mut fingerprints = Vec::new();
     while !drive.finished() {
         let now = drive.run.time_ms;
-        while times.next_if(|t| *t < now).is_some() {}
-        if times.next_if_eq(&now).is_some() {
+        while copies.next_if(|t| *t < now).is_some() {}
+        if copies.next_if_eq(&now).is_some() {
             at.insert(now, drive.snapshot());
         }
-        fingerprints.push((now, drive.progress(), drive.fingerprint()));
-        drive.horizon = times.peek().copied().unwrap_or(u64::MAX);
+        if looked_at(now) {
+            fingerprints.push((now, drive.progress(), drive.fingerprint()));
+        }
+        drive.horizon = copies.peek().copied().unwrap_or(u64::MAX);
         drive.advance();
     }
     let log = drive.run.take_input_log();
