@@ -146,13 +146,17 @@ impl<'t> Plan<'t> {
             .collect();
         // Copied only at the onsets, it is looked at where a run comes back
         // in step: where an input changes back to its faulty value.
-        let mut marks: Vec<u64> = inputs.change_times().collect();
-        marks.sort_unstable();
-        let marks = (!at_changes).then_some(&marks[..]);
-        Some(
-            self.simulator
-                .checkpoints(&self.healthy_settings, &times, marks, log_inputs),
-        )
+        let marks = (!at_changes).then(|| {
+            let mut marks: Vec<u64> = inputs.change_times().collect();
+            marks.sort_unstable();
+            marks
+        });
+        Some(self.simulator.checkpoints(
+            &self.healthy_settings,
+            &times,
+            marks.as_deref(),
+            log_inputs,
+        ))
     }
 
     /// Runs each set's `wanted` onsets (in their order, the set's planned
