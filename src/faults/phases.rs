@@ -138,9 +138,8 @@ impl HealthyInputs {
     /// [`HealthyInputs::divergence_of`] says; [`NEVER`] when they differ
     /// but are never read while they do.
     pub fn onset_of(&self, columns: &[(usize, bool)], from_ms: u64) -> Option<u64> {
-        let differs = |&(c, stuck_at): &(usize, bool)| self.first_difference(c, stuck_at, from_ms);
         self.divergence_of(columns, from_ms)
-            .or_else(|| columns.iter().find_map(differs).map(|_| NEVER))
+            .or_else(|| self.plain_divergence(columns, from_ms).map(|_| NEVER))
     }
 
     /// The log itself.
@@ -170,8 +169,8 @@ impl HealthyInputs {
     /// Whether one of `faults` ever reads other than the healthy run did,
     /// at or after `from_ms` (whether it is read then or not).
     pub fn differs(&self, faults: &[Fault], from_ms: u64) -> bool {
-        let differs = |&(c, stuck_at): &(usize, bool)| self.first_difference(c, stuck_at, from_ms);
-        self.columns(faults).iter().any(|c| differs(c).is_some())
+        self.plain_divergence(&self.columns(faults), from_ms)
+            .is_some()
     }
 
     /// The faults as (input column, stuck value), for
@@ -186,14 +185,22 @@ impl HealthyInputs {
             .collect()
     }
 
-    /// [`HealthyInputs::divergence`] of faults given as columns: where
-    /// one first reads otherwise or, [`HealthyInputs::by_reads`], where one
-    /// is first read while it does.
+    /// Where faults given as columns, appearing at `from_ms`, leave the
+    /// healthy run: the first scan at which one reads otherwise or,
+    /// [`HealthyInputs::by_reads`], at which one is read while it does.
     pub fn divergence_of(&self, columns: &[(usize, bool)], from_ms: u64) -> Option<u64> {
-        let first = |&(c, stuck_at): &(usize, bool)| match self.by_reads {
-            true => self.first_read_difference(c, stuck_at, from_ms),
-            false => self.first_difference(c, stuck_at, from_ms),
-        };
+        if !self.by_reads {
+            return self.plain_divergence(columns, from_ms);
+        }
+        let first =
+            |&(c, stuck_at): &(usize, bool)| self.first_read_difference(c, stuck_at, from_ms);
+        columns.iter().filter_map(first).min()
+    }
+
+    /// The first scan at or after `from_ms` at which one of the faults
+    /// given as columns reads otherwise than the healthy run did.
+    fn plain_divergence(&self, columns: &[(usize, bool)], from_ms: u64) -> Option<u64> {
+        let first = |&(c, stuck_at): &(usize, bool)| self.first_difference(c, stuck_at, from_ms);
         columns.iter().filter_map(first).min()
     }
 

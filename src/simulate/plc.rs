@@ -61,11 +61,6 @@ pub struct PlcProgram {
 }
 
 impl PlcProgram {
-    /// Every signal the program uses, by index.
-    pub fn signals(&self) -> &[Signal] {
-        &self.signals
-    }
-
     pub fn compile(program: &StepProgram) -> Self {
         // Every signal named by a condition or an action, indexed once.
         let jumps = program.steps.iter().flat_map(|s| &s.jumps);
@@ -395,7 +390,7 @@ pub fn scan(state: &mut PlcState, input: &dyn Fn(Signal) -> bool, scan_ms: u64) 
 }
 
 /// The same, `input` reading a signal by its index in the program
-/// ([`PlcProgram::signals`]): a reader that resolved each input once
+/// ([`PlcState::signals`]): a reader that resolved each input once
 /// reads it without a lookup.
 pub fn scan_indexed(
     state: &mut PlcState,

@@ -155,7 +155,8 @@ impl<'a> Run<'a> {
                 )
             })
             .collect();
-        run.sources = code
+        run.sources = run
+            .plc
             .signals()
             .iter()
             .map(|s| run.world.source(*s))
@@ -236,7 +237,7 @@ impl Run<'_> {
     /// An input read by the simulator judging the run (not the program):
     /// marked as read, when the inputs are logged.
     pub(in crate::simulate) fn read(&self, signal: Signal) -> bool {
-        if self.read_marks.on()
+        if self.input_log.as_ref().is_some_and(|l| l.reads_logged)
             && let Some(k) = self.log_sources.iter().position(|(s, _)| *s == signal)
         {
             self.read_marks.mark(k);
@@ -259,11 +260,6 @@ impl ReadMarks {
                 .map(|_| AtomicU64::new(0))
                 .collect(),
         )
-    }
-
-    /// Whether reads are marked.
-    fn on(&self) -> bool {
-        !self.0.is_empty()
     }
 
     /// Marks the `k`-th logged input as read.
