@@ -1,6 +1,7 @@
 //! The outputs rendered beside the fault analysis: those that need no
-//! fault table at once, the others as soon as it is done, and the report
-//! once the mitigations of its hazards are verified.
+//! fault table at once (with the report's page up to its fault table), the
+//! others as soon as it is done, and the report's fault table once the
+//! mitigations of its hazards are verified.
 
 use super::{Failure, Settings};
 use crate::emit::{self, EmitInput, OutputKind};
@@ -20,10 +21,8 @@ pub(super) fn render_beside_faults(
     let (table, program) = (input.table, input.program);
     // The mitigations' trial programs are expected to run healthy as this
     // one does: a copy of its run is their yardstick.
-    let expected = healthy
-        .as_ref()
-        .filter(|_| late.contains(&OutputKind::Report))
-        .cloned();
+    let wants_report = late.contains(&OutputKind::Report);
+    let expected = healthy.as_ref().filter(|_| wants_report).cloned();
     let ((fault_table, late), early) = rayon::join(
         || {
             let fault_table = (!late.is_empty()).then(|| {
@@ -78,7 +77,15 @@ pub(super) fn render_beside_faults(
             });
             (fault_table, late)
         },
-        || emit::render_each(early, input),
+        || {
+            // The report's page up to its fault table needs no fault
+            // analysis: drawn here, the report then waits for the
+            // mitigations alone.
+            if wants_report {
+                let _ = input.report_head();
+            }
+            emit::render_each(early, input)
+        },
     );
     let emitted = |e| match e {
         emit::EmitError::Template(e) => Failure::Template(e),

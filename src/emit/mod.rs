@@ -84,12 +84,15 @@ pub struct EmitInput<'a> {
 
 /// The pictures two outputs show, each drawn once per conversion by
 /// whichever output needs it first (the outputs render side by side):
-/// the GRAFCET and the displacement diagram along either axis.
+/// the GRAFCET and the displacement diagram along either axis; and the
+/// report's page up to its fault table, drawn beside the fault analysis
+/// so that the report waits for the hazards' mitigations alone.
 #[derive(Debug, Default)]
 pub struct Pictures {
     grafcet: std::sync::OnceLock<String>,
     step: std::sync::OnceLock<String>,
     time: std::sync::OnceLock<String>,
+    report_head: std::sync::OnceLock<Result<String, String>>,
 }
 
 impl EmitInput<'_> {
@@ -99,6 +102,18 @@ impl EmitInput<'_> {
         match self.pictures {
             Some(p) => p.grafcet.get_or_init(draw).as_str().into(),
             None => draw().into(),
+        }
+    }
+
+    /// The report's page up to its fault table ([`report::head`]).
+    pub fn report_head(&self) -> Result<std::borrow::Cow<'_, str>, String> {
+        let draw = || report::head(self);
+        match self.pictures {
+            Some(p) => match p.report_head.get_or_init(draw) {
+                Ok(head) => Ok(head.as_str().into()),
+                Err(why) => Err(why.clone()),
+            },
+            None => draw().map(Into::into),
         }
     }
 

@@ -47,9 +47,18 @@ pub const SECTIONS: [(&str, &str); 8] = [
 /// The page, or why it cannot be made (a conversion that did not simulate
 /// or analyse faults: a bug of the caller).
 pub fn render(input: &EmitInput) -> Result<String, String> {
-    let simulation = input.simulation.ok_or("not simulated")?;
     let faults = input.faults.ok_or("no fault analysis")?;
     let mitigations = input.mitigations.ok_or("no mitigations of the hazards")?;
+    let mut page = input.report_head()?.into_owned();
+    section(&mut page, 7, &fault_table(input, faults, mitigations));
+    let _ = write!(page, "<script>\n{SCRIPT}</script>\n</body>\n</html>\n");
+    Ok(page)
+}
+
+/// The page up to its fault table: what needs no fault analysis, drawn
+/// while it runs (see [`EmitInput::report_head`]).
+pub(super) fn head(input: &EmitInput) -> Result<String, String> {
+    let simulation = input.simulation.ok_or("not simulated")?;
     let name = escape(&super::one_line(input.name));
     let mut page = String::with_capacity(256 * 1024);
     let _ = write!(
@@ -85,8 +94,6 @@ pub fn render(input: &EmitInput) -> Result<String, String> {
         ),
     };
     section(&mut page, 6, &timeline);
-    section(&mut page, 7, &fault_table(input, faults, mitigations));
-    let _ = write!(page, "<script>\n{SCRIPT}</script>\n</body>\n</html>\n");
     Ok(page)
 }
 
