@@ -10,19 +10,23 @@ use super::{StepTable, build};
 
 /// The grid of the reading that is the table; `diags` gets that reading's
 /// problems, and W005 when another reading is also a valid but different
-/// table (the choice is then said, not silent).
+/// table that leaves no cell unread (the choice is then said, not silent).
 pub fn choose_reading(readings: Vec<CsvReading>, diags: &mut Diagnostics) -> Option<Grid> {
     let mut scored: Vec<(Score, CsvReading, Diagnostics, Option<StepTable>)> = readings
         .into_iter()
         .map(|reading| {
             let mut local = reading.diags.clone();
             let table = build(&reading.grid, &mut local);
+            let errors = local.error_count();
+            let lost_moves = lost_moves(&reading.grid, &local);
             let score = Score {
                 no_table: super::frame::find_frame(&reading.grid, &mut Diagnostics::new())
                     .is_none(),
-                errors: local.error_count(),
-                spaced_fields: reading.spaced_fields,
+                lost_moves,
                 warnings: local.warning_count(),
+                errors,
+                valid: errors == 0,
+                spaced_fields: reading.spaced_fields,
                 fewer_branches: usize::MAX - table.as_ref().map_or(0, |t| t.branches),
             };
             (score, reading, local, table)
@@ -34,7 +38,7 @@ pub fn choose_reading(readings: Vec<CsvReading>, diags: &mut Diagnostics) -> Opt
     if let Some(table) = &chosen_table
         && let Some((_, other, _, Some(other_table))) =
             scored.iter().find(|(score, _, diags, table)| {
-                score.errors == 0 && diags.is_empty() && table.is_some()
+                score.valid && !diags.iter().any(|d| d.code == Code::W003Ignored) && table.is_some()
             })
         && layout(other_table) != layout(table)
     {
@@ -58,17 +62,47 @@ pub fn choose_reading(readings: Vec<CsvReading>, diags: &mut Diagnostics) -> Opt
 }
 
 /// A table found at all first (a wrong delimiter usually lumps each line
-/// into one cell), then the fewest cells left unread (warnings), fewest
+/// into one cell), then the fewest moves left in unread cells (a reading
+/// that leaves an engineer's `STEP 20,C2+1` behind loses to one that reads
+/// it, whatever else that one warns of: labels numbered 10, 20, …, a
+/// remarks column), then the fewest cells left unread (warnings), fewest
 /// errors, fewest fields that start with a space (Excel never writes one
 /// after its delimiter), most branches (a real delimiter gives the table
 /// its columns).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 struct Score {
     no_table: bool,
+    lost_moves: usize,
     warnings: usize,
     errors: usize,
+    /// Only for W005 (`errors` orders the readings).
+    valid: bool,
     spaced_fields: usize,
     fewer_branches: usize,
+}
+
+/// How many of the moves in `grid` sit in cells `diags` reports unread
+/// (W003): `STEP 20,C2+1` lumped into one cell by the wrong delimiter
+/// holds one.
+fn lost_moves(grid: &Grid, diags: &Diagnostics) -> usize {
+    let unread: std::collections::BTreeSet<_> = diags
+        .iter()
+        .filter(|d| d.code == Code::W003Ignored)
+        .filter_map(|d| d.location.cell)
+        .collect();
+    grid.cells
+        .iter()
+        .filter(|c| unread.contains(&c.pos))
+        .filter_map(|c| match &c.value {
+            crate::read::CellValue::Text(text) => Some(text),
+            _ => None,
+        })
+        .map(|text| {
+            text.split([',', ';', '\t'])
+                .filter(|item| crate::cell::looks_like_move(item.trim()))
+                .count()
+        })
+        .sum()
 }
 
 /// What the table means, branch by branch.
