@@ -96,6 +96,10 @@ pub enum Code {
     /// safe`, `supervison`), or a setting and its value in one cell: the
     /// program would be written without the setting.
     E046MistypedSetting,
+    /// Two sheets are each the sheet asked for when names are compared
+    /// without case and the spaces around them (`Line A` and `Line A `),
+    /// and none is named exactly: reading one would be a silent choice.
+    E047SheetAmbiguous,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -175,6 +179,7 @@ impl Code {
             Code::E042BadScenarioEvent => "E042",
             Code::E045KindCannotHold => "E045",
             Code::E046MistypedSetting => "E046",
+            Code::E047SheetAmbiguous => "E047",
         }
     }
 }

@@ -4,6 +4,7 @@
 
 mod csv;
 mod grid;
+mod sheet_choice;
 mod workbook;
 use workbook::read_workbook;
 // Guards in front of calamine's readers, against files that would make it

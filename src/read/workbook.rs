@@ -5,8 +5,8 @@ use std::io::Cursor;
 
 use calamine::{Data, Ods, Range, Reader, Xls, Xlsx, open_workbook_from_rs};
 
+use super::sheet_choice::{SheetError, SheetSource, SideSheets, misnamed_side_sheets, pick_table};
 use super::*;
-use crate::cell::{header_kind, looks_like_move};
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 
 pub(super) fn read_workbook(
@@ -27,10 +27,14 @@ pub(super) fn read_workbook(
     }
     let mut workbook = open(format, bytes, &whole_file, diags)?;
     let names = workbook.names();
+    let read = |workbook: &mut Box<dyn SheetSource>, name: &str, diags: &mut Diagnostics| {
+        read_sheet(file, workbook, name, diags)
+    };
     let mut side = SideSheets {
         file,
         names: &names,
         workbook: &mut workbook,
+        read: &read,
     };
     let settings = side.read(SETTINGS_SHEET, "its settings", Code::E030BadSetting, diags);
     let addresses = side.read(
@@ -39,9 +43,7 @@ pub(super) fn read_workbook(
         Code::E035BadPinnedAddress,
         diags,
     );
-    let read = |workbook: &mut Box<dyn SheetSource>, name: &str, diags: &mut Diagnostics| {
-        read_sheet(file, workbook, name, diags)
-    };
+    misnamed_side_sheets(file, &names, diags);
     let table = pick_table(&mut workbook, &names, wanted, &whole_file, diags, &read)?;
     Some(Input {
         table,
@@ -135,7 +137,7 @@ fn open(
 }
 
 /// One sheet's grid, or the error that says why it cannot be read.
-fn read_sheet(
+pub(super) fn read_sheet(
     file: &str,
     workbook: &mut Box<dyn SheetSource>,
     name: &str,
@@ -167,286 +169,12 @@ fn read_sheet(
     }
 }
 
-/// The side sheets (SETTINGS, ADDRESSES) of one workbook.
-struct SideSheets<'a> {
-    file: &'a str,
-    names: &'a [String],
-    workbook: &'a mut Box<dyn SheetSource>,
-}
-
-impl SideSheets<'_> {
-    /// A side sheet is found by its name in any case and without the
-    /// spaces around it; one that is hidden is used all the same, and said
-    /// so. Two sheets that both match (`SETTINGS` and `Settings `) are an
-    /// error naming both: reading one would drop the other's rows without a
-    /// word. `code` is the code of that sheet's rows.
-    fn read(
-        &mut self,
-        wanted: &str,
-        used: &str,
-        code: Code,
-        diags: &mut Diagnostics,
-    ) -> Option<Grid> {
-        let names = self.names;
-        let matching: Vec<&String> = names.iter().filter(|n| is_side(n, wanted)).collect();
-        let name = (*matching.first()?).clone();
-        if matching.len() > 1 {
-            let quoted: Vec<String> = matching.iter().map(|n| format!("\"{n}\"")).collect();
-            let whole_file = Location {
-                file: self.file.to_string(),
-                sheet: None,
-                cell: None,
-            };
-            diags.error(
-                code,
-                whole_file,
-                format!(
-                    "{} sheets are each the {wanted} sheet ({}: names are compared without case and the spaces around them); keep one, or merge their rows into one",
-                    matching.len(),
-                    quoted.join(", ")
-                ),
-            );
-            return None;
-        }
-        let grid = read_sheet(self.file, self.workbook, &name, diags)?;
-        if self.workbook.hidden().contains(&name) {
-            diags.warning(
-                Code::W004SheetChoice,
-                grid.sheet_location(),
-                format!("the {wanted} sheet is hidden but {used} are used"),
-            );
-        }
-        Some(grid)
-    }
-}
-
-/// Whether the sheet `name` is the side sheet `wanted` (SETTINGS,
-/// ADDRESSES): the one comparison the reader makes of a side sheet's name.
-fn is_side(name: &str, wanted: &str) -> bool {
-    name.trim().eq_ignore_ascii_case(wanted)
-}
-
-/// The side sheet `name` is, if any: read for its settings or pins, never
-/// as the table.
-fn side_sheet_of(name: &str) -> Option<&'static str> {
-    [SETTINGS_SHEET, ADDRESSES_SHEET]
-        .into_iter()
-        .find(|side| is_side(name, side))
-}
-
-type SheetReader<'a> =
-    dyn Fn(&mut Box<dyn SheetSource>, &str, &mut Diagnostics) -> Option<Grid> + 'a;
-
-/// The sheet holding the step table: the one asked for (not the SETTINGS or
-/// ADDRESSES sheet: E004); else the one named
-/// SEQUENTIAL CONTROL DESCRIPTION unless it is hidden; else the visible sheet
-/// that best holds a table (BRANCH/STEP headers first, then the most moves;
-/// the side sheets are not candidates),
-/// and a hidden one only when no visible sheet holds a table. Any choice
-/// among several, or of a hidden sheet, is said (W004).
-fn pick_table(
-    workbook: &mut Box<dyn SheetSource>,
-    names: &[String],
-    wanted: Option<&str>,
-    whole_file: &Location,
-    diags: &mut Diagnostics,
-    read_sheet: &SheetReader,
-) -> Option<Grid> {
-    let whole_file = whole_file.clone();
-    let find = |wanted: &str| {
-        names
-            .iter()
-            .find(|n| n.trim().eq_ignore_ascii_case(wanted.trim()))
-    };
-    if let Some(wanted) = wanted {
-        let name = asked_sheet(names, wanted, &whole_file, diags)?;
-        return read_sheet(workbook, name, diags);
-    }
-    let hidden = workbook.hidden();
-    let is_hidden = |name: &str| hidden.iter().any(|h| h == name);
-    if let Some(name) = find(TABLE_SHEET)
-        && !is_hidden(name)
-    {
-        return read_sheet(workbook, name, diags);
-    }
-    // A sheet that could not be read may be the one with the table: say why.
-    let mut unread = Diagnostics::new();
-    let mut candidates: Vec<(TableScore, Grid)> = Vec::new();
-    // The side sheets are read as such, never as the table.
-    for name in names.iter().filter(|n| side_sheet_of(n).is_none()) {
-        let mut local = Diagnostics::new();
-        match read_sheet(workbook, name, &mut local) {
-            Some(grid) => {
-                if let Some(score) = table_score(&grid, is_hidden(name)) {
-                    candidates.push((score, grid));
-                }
-            }
-            None => unread.extend(local),
-        }
-    }
-    // The best score wins; the first sheet on a tie.
-    let best = candidates
-        .iter()
-        .enumerate()
-        .max_by(|(i, (a, _)), (j, (b, _))| a.cmp(b).then(j.cmp(i)))
-        .map(|(i, _)| i);
-    let Some(best) = best else {
-        diags.extend(unread);
-        diags.error(
-            Code::E003NoTable,
-            whole_file,
-            format!(
-                "no step table found: no sheet named \"{TABLE_SHEET}\" and no sheet holding moves such as C1+1"
-            ),
-        );
-        return None;
-    };
-    let (score, grid) = candidates.swap_remove(best);
-    say_choice(&grid, score, &candidates, find(TABLE_SHEET), diags);
-    Some(grid)
-}
-
-/// The sheet `--sheet` names (E004 when there is none, or when it is a
-/// side sheet).
-fn asked_sheet<'n>(
-    names: &'n [String],
-    wanted: &str,
-    whole_file: &Location,
-    diags: &mut Diagnostics,
-) -> Option<&'n String> {
-    let whole_file = whole_file.clone();
-    let Some(name) = names
-        .iter()
-        .find(|n| n.trim().eq_ignore_ascii_case(wanted.trim()))
-    else {
-        diags.error(
-            Code::E004NoSuchSheet,
-            whole_file,
-            format!(
-                "no sheet named \"{wanted}\" (the workbook has: {})",
-                names.join(", ")
-            ),
-        );
-        return None;
-    };
-    // The SETTINGS or ADDRESSES sheet is read as such already: read as
-    // the table too, its cells would be both settings and moves, and
-    // one reading would call the other's cells unread.
-    if let Some(side) = side_sheet_of(name) {
-        let tables: Vec<&str> = names
-            .iter()
-            .filter(|n| side_sheet_of(n).is_none())
-            .map(String::as_str)
-            .collect();
-        diags.error(
-            Code::E004NoSuchSheet,
-            whole_file,
-            format!(
-                "\"{name}\" is the {side} sheet, read for the table's {}, not a step table; name the sheet that holds the table with --sheet (the other sheets: {})",
-                if side == SETTINGS_SHEET { "settings" } else { "pinned addresses" },
-                if tables.is_empty() { "none".to_string() } else { tables.join(", ") }
-            ),
-        );
-        return None;
-    }
-    Some(name)
-}
-
-/// W004 when the table's sheet was chosen among several, or is hidden.
-fn say_choice(
-    grid: &Grid,
-    score: TableScore,
-    candidates: &[(TableScore, Grid)],
-    table_sheet: Option<&String>,
-    diags: &mut Diagnostics,
-) {
-    let others: Vec<String> = candidates
-        .iter()
-        .map(|(s, g)| {
-            let name = g.sheet.clone().unwrap_or_default();
-            if s.visible {
-                name
-            } else {
-                format!("{name} (hidden)")
-            }
-        })
-        .collect();
-    let chosen = grid.sheet.clone().unwrap_or_default();
-    let mut why = Vec::new();
-    if let Some(name) = table_sheet {
-        why.push(format!("the sheet \"{name}\" is hidden"));
-    }
-    if !score.visible {
-        why.push(format!(
-            "\"{chosen}\" is hidden but no visible sheet holds a table"
-        ));
-    }
-    if !others.is_empty() {
-        why.push(format!(
-            "other sheets also hold moves: {}",
-            others.join(", ")
-        ));
-    }
-    if !why.is_empty() {
-        diags.warning(
-            Code::W004SheetChoice,
-            grid.sheet_location(),
-            format!(
-                "the table was read from sheet \"{chosen}\": {}; choose another with --sheet",
-                why.join("; ")
-            ),
-        );
-    }
-}
-
-/// How well a sheet holds a step table; `None` when it holds none.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-struct TableScore {
-    visible: bool,
-    /// BRANCH n / STEP n headers: a legend of example moves has none.
-    headers: bool,
-    moves: usize,
-}
-
-fn table_score(grid: &Grid, hidden: bool) -> Option<TableScore> {
-    let mut headers = false;
-    let mut moves = 0;
-    for cell in &grid.cells {
-        if let CellValue::Text(t) = &cell.value {
-            headers |= header_kind(t).is_some();
-            moves += usize::from(looks_like_move(t));
-        }
-    }
-    (headers || moves > 0).then_some(TableScore {
-        visible: !hidden,
-        headers,
-        moves,
-    })
-}
-
-/// The two things we need from any calamine reader, object-safe.
-trait SheetSource {
-    fn names(&self) -> Vec<String>;
-    /// The names of hidden sheets (also "very hidden" ones).
-    fn hidden(&self) -> Vec<String>;
-    /// The filled cells of one sheet.
-    fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError>;
-}
-
 fn hidden_sheets(sheets: &[calamine::Sheet]) -> Vec<String> {
     sheets
         .iter()
         .filter(|s| s.visible != calamine::SheetVisible::Visible)
         .map(|s| s.name.clone())
         .collect()
-}
-
-/// Why a sheet could not be read.
-enum SheetError {
-    /// calamine could not decode it.
-    Unreadable(String),
-    /// More than [`MAX_FILLED_CELLS`] filled cells.
-    TooManyCells,
 }
 
 /// `.xlsx` is read cell by cell as the sheet's XML streams past: memory

@@ -46,6 +46,26 @@ pub(super) fn actuator_columns(
             "load" => &mut columns.load,
             "name" => &mut columns.name,
             _ => {
+                // `vlave`, `extnd` over values: the column meant, misspelt.
+                // Read as a note, the program would be written with the
+                // default valve or stroke: an error, as a misspelt setting.
+                let below = reader
+                    .grid
+                    .cells
+                    .iter()
+                    .any(|c| c.pos.col == cell.pos.col && c.pos.row > header.row);
+                if let Some(meant) = misspelt_column(&label).filter(|_| below) {
+                    reader.mistyped(
+                        cell.pos,
+                        format!(
+                            "{} heads no column steptable reads: did you mean `{meant}`? (expected {}); nothing is written, since the actuators would lose what the column holds",
+                            cell.value.describe(),
+                            COLUMNS.join(", ")
+                        ),
+                        diags,
+                    );
+                    continue;
+                }
                 reader.warn(
                     cell.pos,
                     format!(
@@ -410,4 +430,17 @@ fn read_actuator_row<'g>(
             retract_ms: retract.unwrap_or(default.retract_ms),
         },
     );
+}
+
+/// The actuator table's column `label` misspells: one letter off, or the
+/// same letters in another order (`vlave`).
+fn misspelt_column(label: &str) -> Option<&'static str> {
+    let sorted = |t: &str| {
+        let mut letters: Vec<char> = t.chars().collect();
+        letters.sort_unstable();
+        letters
+    };
+    COLUMNS.iter().copied().find(|known| {
+        crate::cell::edit_distance(label, known) == 1 || sorted(label) == sorted(known)
+    })
 }
