@@ -22,6 +22,9 @@ pub enum ProblemKind {
     NotHome,
     /// The second cycle differs from the first.
     CycleDiffers,
+    /// A cycle that was to take a jump ran the other path (a dead reject
+    /// sensor: the bad part goes on as a good one).
+    PathLost,
     /// The actuators stand (or move) in a combination of positions the
     /// healthy cycle never has: on a real machine, a possible collision.
     /// Only checked against a recorded healthy run (the fault analysis).

@@ -159,8 +159,10 @@ fn a_stuck_jump_input_is_judged() {
         stuck_on.contains("the sequence took J:6 if I:reject after step 3 although the machine did not give I:reject=1"),
         "{stuck_on}"
     );
+    // The bad part goes down the good chute: the path the jump is for is
+    // lost, a hazard.
     let stuck_off = row("reject open circuit");
-    assert!(stuck_off.contains("no effect"), "{stuck_off}");
+    assert!(stuck_off.contains("hazard"), "{stuck_off}");
     assert!(
         stuck_off.contains("was to take J:6 if I:reject"),
         "{stuck_off}"

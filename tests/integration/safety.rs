@@ -103,7 +103,8 @@ fn with_all_four_checks_only_middle_sensor_overruns_remain_hazards() {
         assert_eq!(table.cases.len(), 2 * (1 + table_inputs(&path)));
         // An input a step waits for stalls the machine when it is lost; one
         // the sequence only jumps on loses the jump's path, and the machine
-        // runs on without it (the explanation says which jump).
+        // runs on without it (the explanation says which jump): a hazard no
+        // check on the inputs can catch (a bad part goes on as a good one).
         let only_jumps = |signal: Signal| {
             let steps = &checked.table.steps;
             let named = |n| Signal::MachineInput(n) == signal;
@@ -120,7 +121,7 @@ fn with_all_four_checks_only_middle_sensor_overruns_remain_hazards() {
                         "{}",
                         case.explanation
                     );
-                    Outcome::NoEffect
+                    Outcome::Hazard
                 }
             };
             assert_eq!(case.outcome, expected, "{}", case.fault_text());

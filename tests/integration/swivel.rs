@@ -112,12 +112,14 @@ fn the_fault_table_has_both_end_stop_sensors_of_the_swivel_drive() {
         .assert()
         .success();
     let csv = written(dir.path(), ".faults.csv");
-    // A dead end-stop sensor holds the cycle where it waits for it; a
-    // shorted one is passed over here because the ejector's stroke beside
-    // the swing (step 3) and the cycle's end (step 5) outlast it.
+    // A dead end-stop sensor holds the cycle where it waits for it. A
+    // shorted one is passed over at the swing out (step 3), which the
+    // ejector's stroke beside it outlasts; shorted at home, it ends the
+    // cycle while the drive still swings back (step 5): the program is
+    // ready for START with the drive not home.
     for row in [
         "x20 open circuit (stuck at 0),x20,0,safe stall,at every moment,,0,step 1 never fires: waiting for x20",
-        "x20 short circuit (stuck at 1),x20,1,no effect,",
+        "x20 short circuit (stuck at 1),x20,1,hazard,at every moment,,5,\"the cycle ended before step 5 finished (C2 had not reached x20)",
         "x21 open circuit (stuck at 0),x21,0,safe stall,at every moment,,3,step 4 never fires: waiting for x21",
         "x21 short circuit (stuck at 1),x21,1,no effect,",
     ] {

@@ -160,8 +160,23 @@ impl Run<'_> {
             .collect();
         // The closing transition starts nothing: the last step's moves are
         // still watched, and a step that then starts before they finish is
-        // the hazard (judge the machine, not the sequence).
+        // the hazard (judge the machine, not the sequence). But a closing
+        // transition that fires before they have reached their targets
+        // (a home sensor shorted, a drive stopped short by it) makes the
+        // program ready for START while the machine is not home: the next
+        // press starts step 1 early, whenever the operator gives it.
         if step.kind == crate::program::StepKind::EndOfCycle {
+            if let (false, Some(last)) = (unfinished.is_empty(), self.active.first()) {
+                let last = last.step;
+                self.problem(
+                    ProblemKind::Premature,
+                    last,
+                    format!(
+                        "the cycle ended before step {last} finished ({}): the program is ready for START with the machine not home, and the next press starts step 1 early",
+                        unfinished.join(", ")
+                    ),
+                );
+            }
             return;
         }
         if !unfinished.is_empty() {

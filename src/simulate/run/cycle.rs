@@ -282,7 +282,7 @@ impl<'a> Drive<'a> {
             },
         );
         let step = self.run.current_step();
-        self.run.problem(ProblemKind::CycleDiffers, step, message);
+        self.run.problem(ProblemKind::PathLost, step, message);
     }
 
     /// The cycle under way, timed, among the cycles.
@@ -349,6 +349,10 @@ impl<'a> Drive<'a> {
         self.close_report();
         if complete && self.cycle + 1 < self.cycles_wanted {
             self.cycle += 1;
+            // One press, one cycle: a cycle over before its press (steps
+            // that only switch outputs take a scan each) must not start
+            // the next from the same press while the machine idles.
+            self.run.world.start_pressed = false;
             self.press_at = self.run.time_ms + IDLE_MS as u64;
             self.stage = Stage::Idle;
         } else {
@@ -377,27 +381,39 @@ impl<'a> Drive<'a> {
         if missing_literals.len() > 1 {
             missing_literals.retain(|l| l.signal != Signal::Start);
         }
-        let missing: Vec<String> = missing_literals.iter().map(literal_text).collect();
+        let mut missing: Vec<String> = Vec::new();
+        for text in missing_literals.iter().map(literal_text) {
+            // A literal two checks both add is said once.
+            if !missing.contains(&text) {
+                missing.push(text);
+            }
+        }
         let alarms: Vec<String> = [Alarm::Sensor, Alarm::Timeout, Alarm::Interlock]
             .into_iter()
             .map(Signal::Alarm)
             .filter(|a| run.plc.bit(*a))
             .map(|a| a.symbol())
             .collect();
+        // The closing transition is no table step: the table's last step
+        // is the one whose moves or wait do not end.
+        let last_table_step = program
+            .steps
+            .iter()
+            .rev()
+            .find(|s| s.kind == StepKind::Table)
+            .map_or(step_count, |s| s.number);
+        let waited_for = match missing.is_empty() {
+            true => "its condition".to_string(),
+            false => missing.join(" AND "),
+        };
         let mut message = if ended {
-            format!(
-                "the cycle never ends: the moves of step {} do not finish",
-                program.steps[step_count - 1].number
-            )
+            format!("the cycle never ends: the moves of step {last_table_step} do not finish")
+        } else if waiting.kind == StepKind::EndOfCycle {
+            format!("the cycle never ends after step {last_table_step}: waiting for {waited_for}")
         } else {
             format!(
-                "step {} never fires: waiting for {}",
-                waiting.number,
-                if missing.is_empty() {
-                    "its condition".to_string()
-                } else {
-                    missing.join(" AND ")
-                }
+                "step {} never fires: waiting for {waited_for}",
+                waiting.number
             )
         };
         // The criteria analysis's outputs that are on: what the HMI shows.

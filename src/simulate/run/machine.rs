@@ -118,12 +118,16 @@ impl Run<'_> {
                 .map(wait_text)
                 .collect();
             if !skipped.is_empty() {
-                let number = step.number;
+                // The closing transition is no table step: the cycle ended.
+                let started = match step.kind {
+                    crate::program::StepKind::EndOfCycle => "the cycle ended".to_string(),
+                    _ => format!("step {} started", step.number),
+                };
                 self.problem(
                     ProblemKind::Premature,
                     self.program.step_entered(fired),
                     format!(
-                        "step {number} started before the machine gave {}",
+                        "{started} before the machine gave {}",
                         skipped.join(" and ")
                     ),
                 );
