@@ -204,6 +204,7 @@ fn report_cost(paper: &std::path::Path) {
                 &with.simulation,
                 faults,
                 Some(&healthy),
+                &|_| true,
             )
         });
         println!(

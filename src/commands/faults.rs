@@ -94,6 +94,9 @@ fn analyse(
     let convert::Proven {
         program, healthy, ..
     } = convert::proven_program(table, settings, &settings.simulation, Some(at_once), false)?;
+    // The program `convert` would refuse to write (a board too small, a
+    // wrong pin) has no fault table either: the same errors.
+    convert::allocate(&program, settings, &table.file).map_err(CommandError::Input)?;
     let cases = faults::case_count(&program, at_once);
     if cases > faults::MAX_CASES {
         let asked = if options.pairs {

@@ -59,6 +59,7 @@ pub(super) fn render_beside_faults(
                                 &settings.simulation,
                                 f,
                                 expected.as_ref(),
+                                &|p| super::allocate(p, settings, &table.file).is_ok(),
                             )
                         })
                 },

@@ -15,6 +15,11 @@ use crate::program::{self, ProgramOptions, Safety, Signal};
 use crate::simulate::SimSettings;
 use crate::table::StepTable;
 
+/// Whether steptable would write a program at the addresses asked for (a
+/// check's alarm output may need one more than an OpenPLC board wires:
+/// E036). The caller's, who knows the target and the board.
+pub type Fits<'a> = dyn Fn(&crate::program::StepProgram) -> bool + Sync + 'a;
+
 /// The checks a mitigation may add, in the order `--safety` names them
 /// (the criteria analysis only reports, so it is not one).
 const CHECKS: [&str; 4] = ["edge", "precheck", "plausibility", "watchdog"];
@@ -164,6 +169,7 @@ pub fn mitigations(
     settings: &SimSettings,
     faults: &FaultTable,
     healthy: Option<&Healthy>,
+    fits: &Fits<'_>,
 ) -> Vec<Option<Mitigation>> {
     let hazards: Vec<&FaultCase> = faults
         .cases
@@ -177,7 +183,7 @@ pub fn mitigations(
     // No hazard, or no check to try: nothing to run.
     let trials = match hazards.is_empty() || missing.is_empty() {
         true => vec![Vec::new(); hazards.len()],
-        false => verify(table, options, settings, &hazards, &missing, healthy),
+        false => verify(table, options, settings, &hazards, &missing, healthy, fits),
     };
     let mut verified = hazards.iter().zip(trials).map(|(case, trials)| {
         let remedy = if trials.iter().any(Trial::catches) {
@@ -208,6 +214,7 @@ fn verify(
     hazards: &[&FaultCase],
     missing: &[&'static str],
     healthy: Option<&Healthy>,
+    fits: &Fits<'_>,
 ) -> Vec<Vec<Trial>> {
     let own;
     let healthy = match healthy {
@@ -223,7 +230,7 @@ fn verify(
     use rayon::prelude::*;
     let alone: Vec<Option<Vec<Trial>>> = missing
         .par_iter()
-        .map(|name| run_trials(table, options, settings, hazards, &[name], healthy))
+        .map(|name| run_trials(table, options, settings, hazards, &[name], healthy, fits))
         .collect();
     let mut trials: Vec<Vec<Trial>> = vec![Vec::new(); hazards.len()];
     for found in alone.into_iter().flatten() {
@@ -237,7 +244,7 @@ fn verify(
         .collect();
     if missing.len() > 1 && !uncaught.is_empty() {
         let rest: Vec<&FaultCase> = uncaught.iter().map(|&i| hazards[i]).collect();
-        let together = run_trials(table, options, settings, &rest, missing, healthy);
+        let together = run_trials(table, options, settings, &rest, missing, healthy, fits);
         for (i, trial) in uncaught.into_iter().zip(together.into_iter().flatten()) {
             trials[i].push(trial);
         }
@@ -256,6 +263,7 @@ fn run_trials(
     cases: &[&FaultCase],
     added: &[&'static str],
     expected: &Healthy,
+    fits: &Fits<'_>,
 ) -> Option<Vec<Trial>> {
     let safety = added.iter().fold(options.safety, |s, n| with(s, n));
     let options = ProgramOptions {
@@ -265,8 +273,9 @@ fn run_trials(
     let machine = &settings.machine;
     let program = program::build(table, &options, &machine.valves, &machine.strokes);
     // A program steptable refuses to write (E032: a watchdog no PLC timer
-    // holds) is no mitigation either.
-    if program.watchdogs_beyond_timers().next().is_some() {
+    // holds; E036: an alarm output beyond what the board wires) is no
+    // mitigation either.
+    if program.watchdogs_beyond_timers().next().is_some() || !fits(&program) {
         return None;
     }
     let sets = cases.iter().map(|c| c.faults.clone()).collect();
@@ -310,6 +319,16 @@ fn remedy(
             return "a supervision time for the step that waits (SETTINGS supervision: the watchdog leaves a step that waits on a machine input untimed), so that a check halts it and the halt switches the output off";
         }
         return "a halt that switches the output off (SETTINGS on halt), with a check that halts";
+    }
+    // Motion no step commands, under the checks: a halt that cut a coil
+    // let the valve's spring (or a drifting centre) move the piston. A
+    // better sensor leaves it moving on every halt.
+    let stop = case
+        .faults
+        .iter()
+        .any(|f| matches!(f.signal, Signal::Stop | Signal::EStop));
+    if explanation.contains("unintended motion") && !stop {
+        return "a valve that holds the piston where it is without its coil (a 5/3 closed centre, or a 5/2 bistable), or a halt that leaves that coil on (SETTINGS on halt): the halt cut a coil and the valve moved the piston";
     }
     let Some(fault) = case.faults.first().copied() else {
         return "a redundant sensor";

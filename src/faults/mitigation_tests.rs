@@ -30,7 +30,7 @@ fn mitigation_of(
 ) -> (FaultCase, Mitigation) {
     let settings = SimSettings::default();
     let faults = analyse(table, &build(table, options), &settings, 1);
-    let verified = mitigations(table, options, &settings, &faults, None);
+    let verified = mitigations(table, options, &settings, &faults, None, &|_| true);
     assert_eq!(verified.len(), faults.cases.len());
     let i = faults
         .cases
@@ -233,7 +233,7 @@ fn each_trial_is_the_fault_table_of_the_program_with_its_checks() {
     };
     let settings = SimSettings::default();
     let faults = analyse(&t, &build(&t, &options), &settings, 1);
-    let verified = mitigations(&t, &options, &settings, &faults, None);
+    let verified = mitigations(&t, &options, &settings, &faults, None, &|_| true);
     let mut checked = 0;
     for (case, m) in faults.cases.iter().zip(&verified) {
         let Some(m) = m else {
