@@ -205,7 +205,8 @@ impl Names<'_> {
             let mut writes = Vec::new();
             self.writes(&r.actions, &mut writes)?;
             plans.push(Plan {
-                comment: r.comment.clone(),
+                // In the engineer's designations, as in every other body.
+                comment: self.input.symbols.explain(&r.comment),
                 contacts: r.condition.iter().map(|l| self.contact(l)).collect(),
                 writes,
             });
