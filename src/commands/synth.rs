@@ -274,6 +274,19 @@ fn sheet_settings_synth_drops(
             ),
         });
     }
+    // The equations name signals by the paper's symbols (c1_home, yc1_p):
+    // the engineer's names of the actuators are in none of them.
+    for (n, name) in &settings.naming.actuators {
+        unused.push(Diagnostic {
+            severity: Severity::Warning,
+            code: Code::W006NoEffect,
+            location: name.at.clone(),
+            message: format!(
+                "C{n} ({}): synth does not use the actuators' names (its equations name signals by the paper's symbols); it was not read",
+                name.text
+            ),
+        });
+    }
     for pin in &settings.pins {
         unused.push(Diagnostic {
             severity: Severity::Warning,

@@ -233,7 +233,13 @@ fn verify(
         .map(|name| run_trials(table, options, settings, hazards, &[name], healthy, fits))
         .collect();
     let mut trials: Vec<Vec<Trial>> = vec![Vec::new(); hazards.len()];
-    for found in alone.into_iter().flatten() {
+    // The checks steptable would build: together they are tried too (one
+    // it refuses, such as a watchdog longer than a PLC timer holds, leaves
+    // the others).
+    let mut built: Vec<&'static str> = Vec::new();
+    for (name, found) in missing.iter().zip(alone) {
+        let Some(found) = found else { continue };
+        built.push(*name);
         for (i, trial) in found.into_iter().enumerate() {
             trials[i].push(trial);
         }
@@ -242,9 +248,9 @@ fn verify(
     let uncaught: Vec<usize> = (0..hazards.len())
         .filter(|&i| !trials[i].iter().any(Trial::catches))
         .collect();
-    if missing.len() > 1 && !uncaught.is_empty() {
+    if built.len() > 1 && !uncaught.is_empty() {
         let rest: Vec<&FaultCase> = uncaught.iter().map(|&i| hazards[i]).collect();
-        let together = run_trials(table, options, settings, &rest, missing, healthy, fits);
+        let together = run_trials(table, options, settings, &rest, &built, healthy, fits);
         for (i, trial) in uncaught.into_iter().zip(together.into_iter().flatten()) {
             trials[i].push(trial);
         }

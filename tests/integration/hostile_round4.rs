@@ -487,3 +487,67 @@ fn a_misspelt_actuator_column_is_an_error_at_its_header() {
         assert!(err.contains(says), "{says}: {err}");
     }
 }
+
+/// `synth` names its signals by the paper's symbols: the actuators' names
+/// on the SETTINGS sheet are W006 at their cells, not dropped in silence.
+#[test]
+fn synth_says_it_leaves_the_actuators_names_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("h.xlsx");
+    write_xlsx_sheets(
+        &path,
+        &[
+            (
+                "SEQUENTIAL CONTROL DESCRIPTION",
+                &[
+                    &["", "BRANCH 1"],
+                    &["STEP 1", "C1+1"],
+                    &["STEP 2", "C2+1"],
+                    &["STEP 3", "C2-0"],
+                    &["STEP 4", "C1-0"],
+                ],
+            ),
+            (
+                "SETTINGS",
+                &[&["actuator", "name"], &["C1", "clamp"], &["C2", "punch"]],
+            ),
+        ],
+    );
+    let assert = steptable()
+        .arg("synth")
+        .arg(&path)
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .assert()
+        .code(0);
+    let err = stderr(&assert);
+    for cell in ["SETTINGS!B2: warning[W006]", "SETTINGS!B3: warning[W006]"] {
+        assert!(err.contains(cell), "{cell}: {err}");
+    }
+}
+
+/// A check steptable refuses to build (a watchdog longer than a PLC timer
+/// holds: a 400 s stroke) leaves the others: they are still tried
+/// together, and named so, where none alone catches the hazard.
+#[test]
+fn the_checks_that_can_be_built_are_tried_together() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    steptable()
+        .arg("convert")
+        .arg(crate::helpers::sample("paper_example.xlsx"))
+        .args(["--stroke", "C1=400s", "--formats", "report", "-o"])
+        .arg(&out)
+        .assert()
+        .code(0);
+    let report =
+        std::fs::read_to_string(out.join("paper_example/paper_example.report.html")).unwrap();
+    assert!(
+        !report.contains("--safety watchdog"),
+        "a watchdog it refuses"
+    );
+    assert!(
+        report.contains("--safety edge,precheck,plausibility"),
+        "the three built checks together are named"
+    );
+}
