@@ -376,12 +376,17 @@ pub fn convert_sheets(
         sheets.push(("SETTINGS", settings));
     }
     let args: Vec<&str> = args.iter().copied().chain(["--formats", "st"]).collect();
-    convert_written(
-        "h.xlsx",
-        |path| write_xlsx_sheets(path, &sheets),
-        &args,
-        exit,
-    )
+    convert_workbook(&sheets, &args, exit)
+}
+
+/// A workbook of `sheets` written as `h.xlsx` and converted with `args`,
+/// as [`convert_sheets`] converts one.
+pub fn convert_workbook(
+    sheets: &[(&str, &[&[&str]])],
+    args: &[&str],
+    exit: i32,
+) -> (tempfile::TempDir, PathBuf, assert_cmd::assert::Assert) {
+    convert_written("h.xlsx", |path| write_xlsx_sheets(path, sheets), args, exit)
 }
 
 /// A table written as `t.csv` (messages name its cells `t.csv:3:2`) and

@@ -6,7 +6,33 @@
 //! cycle that ends before its last moves do. Each row goes through the
 //! binary: its exit code, each code at its cell, and what was read.
 
-use crate::helpers::{convert_csv, files_below, steptable, write_xlsx_sheets};
+use crate::helpers::{convert_csv, convert_workbook, files_below, steptable, write_xlsx_sheets};
+
+/// C1 out, C2 out and back, C1 back: the smallest table with two
+/// actuators and a last step that returns one home.
+const FOUR: &[&[&str]] = &[
+    &["", "BRANCH 1"],
+    &["STEP 1", "C1+1"],
+    &["STEP 2", "C2+1"],
+    &["STEP 3", "C2-0"],
+    &["STEP 4", "C1-0"],
+];
+
+/// `faults` on `table` written as `t.csv`: what it prints.
+fn faults_of(table: &str, args: &[&str]) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.csv");
+    std::fs::write(&path, table).unwrap();
+    let assert = steptable()
+        .arg("faults")
+        .arg(&path)
+        .args(args)
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .assert()
+        .code(0);
+    stdout(&assert)
+}
 
 fn stderr(assert: &assert_cmd::assert::Assert) -> String {
     String::from_utf8_lossy(&assert.get_output().stderr).into_owned()
@@ -109,18 +135,7 @@ fn sheets_alike_but_for_case_or_spaces_are_never_a_silent_choice() {
         ),
     ];
     for (what, sheets, args, exit, says) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("h.xlsx");
-        write_xlsx_sheets(&path, sheets);
-        let out = dir.path().join("out");
-        let assert = steptable()
-            .arg("convert")
-            .arg(&path)
-            .args(args)
-            .arg("-o")
-            .arg(&out)
-            .assert()
-            .code(exit);
+        let (_dir, out, assert) = convert_workbook(sheets, args, exit);
         let all = format!("{}{}", stderr(&assert), stdout(&assert));
         assert!(all.contains(says), "{what}: no {says} in {all}");
         assert_eq!(files_below(&out).is_empty(), exit != 0, "{what}");
@@ -146,20 +161,8 @@ fn a_misnamed_settings_sheet_is_an_error_at_that_sheet() {
         (("ADRESSES", pins), "h.xlsx: ADRESSES: error[E046]"),
     ];
     for ((name, rows), says) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("h.xlsx");
-        write_xlsx_sheets(
-            &path,
-            &[("SEQUENTIAL CONTROL DESCRIPTION", table), (name, rows)],
-        );
-        let out = dir.path().join("out");
-        let assert = steptable()
-            .arg("convert")
-            .arg(&path)
-            .arg("-o")
-            .arg(&out)
-            .assert()
-            .code(1);
+        let sheets = [("SEQUENTIAL CONTROL DESCRIPTION", table), (name, rows)];
+        let (_dir, out, assert) = convert_workbook(&sheets, &[], 1);
         let err = stderr(&assert);
         assert!(err.contains(says), "{name}: no {says} in {err}");
         assert!(files_below(&out).is_empty(), "{name}: refused but wrote");
@@ -237,18 +240,7 @@ fn a_cycle_that_ends_before_its_last_moves_is_a_hazard() {
         ),
     ];
     for (what, table, args, fault) in cases {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("t.csv");
-        std::fs::write(&path, table).unwrap();
-        let assert = steptable()
-            .arg("faults")
-            .arg(&path)
-            .args(args)
-            .arg("-o")
-            .arg(dir.path().join("out"))
-            .assert()
-            .code(0);
-        let said = stdout(&assert);
+        let said = faults_of(table, args);
         let row = said
             .lines()
             .find(|l| l.contains(fault))
@@ -315,39 +307,16 @@ fn the_board_bounds_the_mitigations_and_the_fault_table() {
 /// from the hazard that remains, not from the fault's kind.
 #[test]
 fn the_remedy_answers_the_motion_a_halt_leaves() {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("h.xlsx");
-    write_xlsx_sheets(
-        &path,
-        &[
-            (
-                "SEQUENTIAL CONTROL DESCRIPTION",
-                &[
-                    &["", "BRANCH 1"],
-                    &["STEP 1", "C1+1"],
-                    &["STEP 2", "C2+1"],
-                    &["STEP 3", "C2-0"],
-                    &["STEP 4", "C1-0"],
-                ],
-            ),
-            (
-                "SETTINGS",
-                &[
-                    &["on halt", "y1 off"],
-                    &["actuator", "extend", "retract", "valve"],
-                    &["C1", "", "", "52mono"],
-                ],
-            ),
-        ],
-    );
-    let out = dir.path().join("out");
-    steptable()
-        .arg("convert")
-        .arg(&path)
-        .args(["--safety", "all", "-o"])
-        .arg(&out)
-        .assert()
-        .code(0);
+    let settings: &[&[&str]] = &[
+        &["on halt", "y1 off"],
+        &["actuator", "extend", "retract", "valve"],
+        &["C1", "", "", "52mono"],
+    ];
+    let sheets = [
+        ("SEQUENTIAL CONTROL DESCRIPTION", FOUR),
+        ("SETTINGS", settings),
+    ];
+    let (_dir, out, _) = convert_workbook(&sheets, &["--safety", "all"], 0);
     let report = std::fs::read_to_string(out.join("h/h.report.html")).unwrap();
     let rows: Vec<&str> = report
         .split("<tr")
@@ -365,21 +334,10 @@ fn the_remedy_answers_the_motion_a_halt_leaves() {
 /// exists for: a hazard naming the cycle and the jump, never "no effect".
 #[test]
 fn a_lost_jump_path_is_a_hazard() {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("t.csv");
-    std::fs::write(
-        &path,
+    let said = faults_of(
         ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0;J:end if I:reject\nSTEP 3,C2+1\nSTEP 4,C2-0\n",
-    )
-    .unwrap();
-    let assert = steptable()
-        .arg("faults")
-        .arg(&path)
-        .arg("-o")
-        .arg(dir.path().join("out"))
-        .assert()
-        .code(0);
-    let said = stdout(&assert);
+        &[],
+    );
     let row = said
         .lines()
         .find(|l| l.contains("reject open circuit"))
@@ -392,40 +350,18 @@ fn a_lost_jump_path_is_a_hazard() {
 /// the designations chosen and name the actuators, as every other body.
 #[test]
 fn ladder_comments_speak_the_chosen_designations() {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("h.xlsx");
-    write_xlsx_sheets(
-        &path,
-        &[
-            (
-                "SEQUENTIAL CONTROL DESCRIPTION",
-                &[
-                    &["", "BRANCH 1"],
-                    &["STEP 1", "C1+1"],
-                    &["STEP 2", "C2+1"],
-                    &["STEP 3", "C2-0"],
-                    &["STEP 4", "C1-0"],
-                ],
-            ),
-            (
-                "SETTINGS",
-                &[
-                    &["designations", "names"],
-                    &["actuator", "name"],
-                    &["C1", "Clamp"],
-                    &["C2", "punch"],
-                ],
-            ),
-        ],
-    );
-    let out = dir.path().join("out");
-    steptable()
-        .arg("convert")
-        .arg(&path)
-        .args(["--modes", "all", "--safety", "all", "--formats", "ld", "-o"])
-        .arg(&out)
-        .assert()
-        .code(0);
+    let settings: &[&[&str]] = &[
+        &["designations", "names"],
+        &["actuator", "name"],
+        &["C1", "Clamp"],
+        &["C2", "punch"],
+    ];
+    let sheets = [
+        ("SEQUENTIAL CONTROL DESCRIPTION", FOUR),
+        ("SETTINGS", settings),
+    ];
+    let args = ["--modes", "all", "--safety", "all", "--formats", "ld"];
+    let (_dir, out, _) = convert_workbook(&sheets, &args, 0);
     let ld = std::fs::read_to_string(out.join("h/h.ld.xml")).unwrap();
     let comments: Vec<&str> = ld
         .split("<xhtml:p>")
@@ -497,16 +433,7 @@ fn synth_says_it_leaves_the_actuators_names_out() {
     write_xlsx_sheets(
         &path,
         &[
-            (
-                "SEQUENTIAL CONTROL DESCRIPTION",
-                &[
-                    &["", "BRANCH 1"],
-                    &["STEP 1", "C1+1"],
-                    &["STEP 2", "C2+1"],
-                    &["STEP 3", "C2-0"],
-                    &["STEP 4", "C1-0"],
-                ],
-            ),
+            ("SEQUENTIAL CONTROL DESCRIPTION", FOUR),
             (
                 "SETTINGS",
                 &[&["actuator", "name"], &["C1", "clamp"], &["C2", "punch"]],
