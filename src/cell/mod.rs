@@ -332,7 +332,7 @@ pub fn parse_item(text: &str) -> Result<CellItem, ItemError> {
             ItemError::BadDwell(format!(
                 "\"{}\" is not a dwell (expected T=2s or T=500ms, from {MIN_DWELL_MS} ms to {} s)",
                 text.trim(),
-                MAX_DWELL_MS / 1000
+                f64::from(MAX_DWELL_MS) / 1000.0
             ))
         })?;
         return Ok(CellItem::Dwell { ms });

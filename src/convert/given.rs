@@ -139,8 +139,8 @@ pub(super) fn overridden_by_the_command_line(
                 Code::W006NoEffect,
                 at.clone(),
                 format!(
-                    "{label}: --{} on the command line wins over this cell; it was not used",
-                    label.replace(' ', "-")
+                    "{label}: {} on the command line wins over this cell; it was not used",
+                    crate::settings::option_for(label)
                 ),
             );
         }

@@ -198,13 +198,22 @@ pub struct Settings {
     pub invocation: Option<String>,
 }
 
+/// The command-line option that gives the SETTINGS row `label`: `scan
+/// time` is `--scan`, the others their label with dashes (`--home-order`).
+pub fn option_for(label: &str) -> String {
+    match label {
+        "scan time" => "--scan".to_string(),
+        other => format!("--{}", other.replace(' ', "-")),
+    }
+}
+
 impl Settings {
     /// Where the setting of `label` in force comes from, for a message:
     /// its SETTINGS cell (`SETTINGS!B5`), or the command line's option.
     pub fn origin(&self, label: &str) -> String {
         match self.cells.get(label) {
             Some(at) => halt::place(at),
-            None if self.given.gives(label) => format!("--{}", label.replace(' ', "-")),
+            None if self.given.gives(label) => option_for(label),
             None => "the default".to_string(),
         }
     }

@@ -478,3 +478,30 @@ fn the_checks_that_can_be_built_are_tried_together() {
         "the three built checks together are named"
     );
 }
+
+/// The messages name the options as the command line spells them (`--scan`,
+/// not `--scan-time`), and a dwell's range as it is (655.35 s, the most a
+/// PLC timer holds: accepted, 655.36 s refused).
+#[test]
+fn messages_name_the_option_and_the_range_as_they_are() {
+    let table: &[&[&str]] = &[&["", "BRANCH 1"], &["STEP 1", "C1+1"], &["STEP 2", "C1-0"]];
+    let settings: &[&[&str]] = &[&["scan time", "20ms"]];
+    let sheets = [
+        ("SEQUENTIAL CONTROL DESCRIPTION", table),
+        ("SETTINGS", settings),
+    ];
+    let (_dir, _, assert) = convert_workbook(&sheets, &["--scan", "10ms"], 0);
+    let err = stderr(&assert);
+    assert!(
+        err.contains("SETTINGS!B1: warning[W006]: scan time: --scan on the command line wins"),
+        "{err}"
+    );
+    convert_csv(",BRANCH 1\nSTEP 1,C1+1; T=655.35s\nSTEP 2,C1-0\n", &[], 0);
+    let (_dir, _, refused) =
+        convert_csv(",BRANCH 1\nSTEP 1,C1+1; T=655.36s\nSTEP 2,C1-0\n", &[], 1);
+    assert!(
+        stderr(&refused).contains("from 10 ms to 655.35 s"),
+        "{}",
+        stderr(&refused)
+    );
+}
