@@ -88,7 +88,7 @@ pub(super) fn misnamed_side_sheets(file: &str, names: &[String], diags: &mut Dia
         .to_ascii_uppercase();
         let Some(side) = [SETTINGS_SHEET, ADDRESSES_SHEET]
             .into_iter()
-            .find(|side| stem == *side || crate::cell::edit_distance(&stem, side) == 1)
+            .find(|side| crate::cell::edit_distance(&stem, side) <= 1)
         else {
             continue;
         };
@@ -135,11 +135,6 @@ pub(super) fn pick_table(
     read_sheet: &SheetReader,
 ) -> Option<Grid> {
     let whole_file = whole_file.clone();
-    let find = |wanted: &str| {
-        names
-            .iter()
-            .find(|n| n.trim().eq_ignore_ascii_case(wanted.trim()))
-    };
     if let Some(wanted) = wanted {
         let name = asked_sheet(names, wanted, &whole_file, diags)?;
         return read_sheet(workbook, name, diags);
@@ -190,7 +185,8 @@ pub(super) fn pick_table(
         return None;
     };
     let (score, grid) = candidates.swap_remove(best);
-    say_choice(&grid, score, &candidates, find(TABLE_SHEET), diags);
+    let table_sheet = names.iter().find(|n| is_side(n, TABLE_SHEET));
+    say_choice(&grid, score, &candidates, table_sheet, diags);
     Some(grid)
 }
 

@@ -17,15 +17,13 @@ pub fn choose_reading(readings: Vec<CsvReading>, diags: &mut Diagnostics) -> Opt
         .map(|reading| {
             let mut local = reading.diags.clone();
             let table = build(&reading.grid, &mut local);
-            let errors = local.error_count();
             let lost_moves = lost_moves(&reading.grid, &local);
             let score = Score {
                 no_table: super::frame::find_frame(&reading.grid, &mut Diagnostics::new())
                     .is_none(),
                 lost_moves,
                 warnings: local.warning_count(),
-                errors,
-                valid: errors == 0,
+                errors: local.error_count(),
                 spaced_fields: reading.spaced_fields,
                 fewer_branches: usize::MAX - table.as_ref().map_or(0, |t| t.branches),
             };
@@ -38,7 +36,9 @@ pub fn choose_reading(readings: Vec<CsvReading>, diags: &mut Diagnostics) -> Opt
     if let Some(table) = &chosen_table
         && let Some((_, other, _, Some(other_table))) =
             scored.iter().find(|(score, _, diags, table)| {
-                score.valid && !diags.iter().any(|d| d.code == Code::W003Ignored) && table.is_some()
+                score.errors == 0
+                    && !diags.iter().any(|d| d.code == Code::W003Ignored)
+                    && table.is_some()
             })
         && layout(other_table) != layout(table)
     {
@@ -75,8 +75,6 @@ struct Score {
     lost_moves: usize,
     warnings: usize,
     errors: usize,
-    /// Only for W005 (`errors` orders the readings).
-    valid: bool,
     spaced_fields: usize,
     fewer_branches: usize,
 }
