@@ -402,9 +402,8 @@ impl Networks<'_> {
     fn transitions(&mut self) {
         let lowered = self.lowered;
         for step in &lowered.steps {
-            let in_step = format!("STEP {}: {}", step.active, one_line(&step.active_title));
             for t in step.transitions() {
-                let title = format!("{in_step}; {}", one_line(t.comment));
+                let title = one_line(&step.heading(&t));
                 self.transition(step.index, t.condition, t.actions, t.moves, t.next, title);
             }
         }

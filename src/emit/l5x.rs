@@ -165,22 +165,23 @@ fn rungs(names: &Names) -> Vec<Rung> {
     }
     let count = program.steps.len();
     for (k, step) in program.steps.iter().enumerate() {
+        let active = program.step_in(k);
         let in_step = format!(
-            "STEP {}: {}",
-            program.step_in(k),
+            "STEP {active}: {}",
             symbols
                 .step(k)
                 .map_or_else(|| program.title_in(k), |n| n.active_title.clone())
         );
+        // A jump's rung: the step's title names its jumps already.
         let transitions = step
             .jumps
             .iter()
             .map(|j| {
-                let comment = super::jump_comment(program, k, j);
+                let comment = format!("STEP {active}: {}", super::jump_comment(program, k, j));
                 (comment, &j.condition, &j.actions, j.next)
             })
             .chain([(
-                super::entry_comment(program, symbols, k),
+                format!("{in_step}; {}", super::entry_comment(program, symbols, k)),
                 &step.condition,
                 &step.actions,
                 (k + 1) % count,
@@ -197,7 +198,7 @@ fn rungs(names: &Names) -> Vec<Rung> {
                 names.fired,
                 names.condition(condition)
             );
-            rungs.push(rung(format!("{in_step}; {comment}"), condition, &outputs));
+            rungs.push(rung(comment, condition, &outputs));
         }
     }
     for r in &program.rungs {

@@ -85,6 +85,17 @@ impl<'p> Step<'p> {
         all
     }
 
+    /// The heading of a transition's rung or network (raw text): the step
+    /// with what it does, then the step entered (`STEP 3: C2-0; J:6 if
+    /// I:reject; on to STEP 4: C3+1`); a jump's, the step and the jump
+    /// alone, since the step's cell names its jumps already.
+    pub fn heading(&self, t: &Transition) -> String {
+        match t.jump {
+            true => format!("STEP {}: {}", self.active, t.comment),
+            false => format!("STEP {}: {}; {}", self.active, self.active_title, t.comment),
+        }
+    }
+
     /// The jumps alone, in the order they are tested.
     pub fn jumps(&self) -> Vec<Transition<'_>> {
         let mut all = self.transitions();

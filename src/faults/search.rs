@@ -287,15 +287,16 @@ fn likely_first(table: &StepTable, set: &[Fault], moments: &[Moment]) -> Vec<usi
             _ => false,
         })
     };
-    let group = |m: usize| match towards(m) {
+    let towards: Vec<bool> = (0..moments.len()).map(towards).collect();
+    let group = |m: usize| match towards[m] {
         true => 0,
-        false if m > 0 && towards(m - 1) => 1,
+        false if m > 0 && towards[m - 1] => 1,
         false => 2,
     };
-    let mut order: Vec<usize> = (0..moments.len()).collect();
-    // A stable sort: the cycle's order within each group.
-    order.sort_by_key(|&m| group(m));
-    order
+    // The cycle's order within each group.
+    (0..3)
+        .flat_map(|g| (0..moments.len()).filter(move |&m| group(m) == g))
+        .collect()
 }
 
 /// The distinct onsets of the moments in `order`, in that order.

@@ -29,6 +29,7 @@ mod hostile;
 mod hostile_messages;
 mod hostile_round3;
 mod hostile_round4;
+mod hostile_round5;
 mod hostile_settings;
 mod identifiers;
 mod invisible_chars;

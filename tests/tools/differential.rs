@@ -119,6 +119,14 @@ pub(crate) fn matrix(dir: &Path, extra: &[&str]) -> Vec<Case> {
             cases.push(engines::prepare(&named, &args, &out));
         }
     }
+    // A retry into its own step with a dwell: the dwell starts again.
+    let retry = crate::helpers::root().join("tests/fixtures/retry_dwell.csv");
+    for target in TARGETS {
+        let mut args = vec!["--target", target, "--modes", "all"];
+        args.extend_from_slice(extra);
+        let out = dir.join(format!("retry-{target}"));
+        cases.push(engines::prepare(&retry, &args, &out));
+    }
     cases
 }
 

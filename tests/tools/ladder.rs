@@ -5,7 +5,8 @@
 //! simulation recorded, with the simulation's outputs at every scan: every
 //! sample × festo/iec/siemens × the option sets, timers drawn as TON blocks
 //! (the dwells, the watchdog of `--safety all`, the oven's run-on), and
-//! random tables with their dwells and watchdogs; the ST Beremiz writes
+//! random tables with their dwells and watchdogs, and a retry jump into a
+//! step with a dwell (`tests/fixtures/retry_dwell.csv`); the ST Beremiz writes
 //! from each passes OpenPLC v3's upload. Three deliberately wrong ladders
 //! (a plain coil for `fired`, valve coils held by plain coils rather than
 //! set and reset, a timer's PT wired to another timer's preset) must be
@@ -64,6 +65,15 @@ fn the_ladder_runs_in_matiec_as_simulated() {
                 cases.push(engines::prepare(sample, &args, &out));
             }
         }
+    }
+    // A retry into its own step with a dwell: the timer's restart needs a
+    // rung of its own (rt10b F8).
+    let retry = crate::helpers::root().join("tests/fixtures/retry_dwell.csv");
+    for (o, options) in OPTIONS.iter().enumerate() {
+        let mut args = options.to_vec();
+        args.extend(["--formats", "ld"]);
+        let out = dir.path().join(format!("retry-{o}"));
+        cases.push(engines::prepare(&retry, &args, &out));
     }
     let timed = cases
         .iter()

@@ -181,24 +181,24 @@ impl Names<'_> {
                 self.writes(t.actions, &mut writes)?;
                 writes.push(Write::coil(&next, true));
                 let same = next == flag;
+                let comment = step.heading(&t);
                 if same {
-                    writes.push(Write::coil(&fired, true));
+                    plans.extend(self.retry(comment, contacts, writes));
+                    continue;
                 }
                 plans.push(Plan {
-                    comment: format!("{title}; {}", t.comment),
+                    comment,
                     contacts,
                     writes,
                 });
-                if !same {
-                    plans.push(Plan {
-                        comment: format!(
-                            "{title}: left for STEP {} (both flags on only after the rung above fired)",
-                            t.enters
-                        ),
-                        contacts: vec![(flag.clone(), false), (next, false)],
-                        writes: vec![Write::coil(&fired, true), Write::coil(&flag, false)],
-                    });
-                }
+                plans.push(Plan {
+                    comment: format!(
+                        "{title}: left for STEP {} (both flags on only after the rung above fired)",
+                        t.enters
+                    ),
+                    contacts: vec![(flag.clone(), false), (next, false)],
+                    writes: vec![Write::coil(&fired, true), Write::coil(&flag, false)],
+                });
             }
         }
         for r in &self.input.program.rungs {
@@ -212,6 +212,48 @@ impl Names<'_> {
             });
         }
         plans.into_iter().map(Plan::ordered).collect()
+    }
+
+    /// A jump back into its own step (a retry): there is no second flag
+    /// to clear, so one rung sets `fired`, which switches its own `NOT
+    /// fired` contact off. A restart of the timer the step waits on (its
+    /// dwell) switches another one off, and Beremiz runs one such coil per
+    /// rung: the restarts go to a second rung that sees the step's flag
+    /// and `fired` on under the same condition. Only the first rung leaves
+    /// them so: an entry from another step restarts that very timer in the
+    /// scan it fires, which holds the condition off, and any other
+    /// transition clears this step's flag.
+    fn retry(
+        &self,
+        comment: String,
+        contacts: Vec<(String, bool)>,
+        writes: Vec<Write>,
+    ) -> Vec<Plan> {
+        let fired = &self.lowered.fired;
+        let mut first = Plan {
+            comment,
+            contacts,
+            writes: Vec::new(),
+        };
+        let (restarts, mut kept): (Vec<Write>, Vec<Write>) =
+            writes.into_iter().partition(|w| first.cuts(w));
+        kept.push(Write::coil(fired, true));
+        first.writes = kept;
+        if restarts.is_empty() {
+            return vec![first];
+        }
+        // The same contacts with `fired` on in place of off (the second).
+        let mut contacts = first.contacts.clone();
+        contacts[1] = (fired.clone(), false);
+        let second = Plan {
+            comment: format!(
+                "{}: restarts its timer (the rung above fired)",
+                first.comment
+            ),
+            contacts,
+            writes: restarts,
+        };
+        vec![first, second]
     }
 
     /// The timers' rungs, first in the scan as the ST program calls them:

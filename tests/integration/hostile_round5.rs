@@ -1,0 +1,72 @@
+//! The fifth round of hostile input: what the fourth round's red teams
+//! left open. A retry jump into its own step with a dwell (every Ladder
+//! body), and a jump's item said twice in the titles of the bodies that
+//! head a transition with its step's cell. Each row goes through the
+//! binary: its exit code, each code at its cell, and what was written.
+
+use crate::helpers::{convert_csv, files_below, root};
+
+/// A retry into step 2, which only waits: the jump restarts its dwell.
+const RETRY: &str = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=1s; J:2 if I:r\nSTEP 3,C1-0\n";
+
+/// Every Ladder body draws the retry (it was an internal error, exit 2):
+/// the timer's restart on a rung of its own, after the one that sets
+/// `fired`, with the same contacts but `fired` on (the engines prove it
+/// runs as simulated: `tests/tools/ladder.rs`). The same table with the
+/// jump's condition negated, and under `--modes all --safety all`.
+#[test]
+fn a_retry_into_a_step_with_a_dwell_is_drawn_in_ladder() {
+    let tables = [RETRY.to_string(), RETRY.replace("I:r", "I:r=0")];
+    let option_sets: [&[&str]; 2] = [&[], &["--modes", "all", "--safety", "all"]];
+    for table in &tables {
+        for options in option_sets {
+            let mut args = options.to_vec();
+            args.extend(["--formats", "ld,codesys-ld,beremiz-ld"]);
+            let (_dir, out, _) = convert_csv(table, &args, 0);
+            let written = files_below(&out);
+            assert_eq!(written.len(), 4, "{table} {options:?}: {written:?}");
+            let ld = std::fs::read_to_string(out.join("t/t.ld.xml")).unwrap();
+            assert!(
+                ld.contains("STEP 2: J:2 if I:r")
+                    && ld.contains("in place of STEP 3: restarts its timer (the rung above fired)"),
+                "{table} {options:?}: no restart rung"
+            );
+        }
+    }
+}
+
+/// A jump's rung, network or comment is headed `STEP 3: J:6 if I:reject:
+/// on to STEP 6 …`, not with the step's cell, which names the jump already
+/// (`STEP 3: C2-0; J:6 if I:reject; J:6 if I:reject: on to …`): in AWL,
+/// L5X and every Ladder body of the sorting station.
+#[test]
+fn a_jump_is_named_once_in_its_title() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    crate::helpers::steptable()
+        .arg("convert")
+        .arg(root().join("samples/sorting_station.xlsx"))
+        .args(["--formats", "awl,l5x,ld,codesys-ld,beremiz-ld", "-o"])
+        .arg(&out)
+        .assert()
+        .code(0);
+    // The Beremiz project's `beremiz.xml` holds no program.
+    let files: Vec<_> = files_below(&out)
+        .into_iter()
+        .filter(|f| !f.ends_with("beremiz.xml"))
+        .collect();
+    assert_eq!(files.len(), 5, "{files:?}");
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        assert!(
+            text.contains("STEP 3: J:6 if I:reject: on to STEP 6 in place of STEP 4"),
+            "{}: no jump title",
+            file.display()
+        );
+        assert!(
+            !text.contains("J:6 if I:reject; J:6 if I:reject"),
+            "{}: the jump said twice",
+            file.display()
+        );
+    }
+}
