@@ -40,8 +40,11 @@ pub fn edit_distance(a: &str, b: &str) -> usize {
 pub fn not_a_move_hint(item: &str) -> String {
     let text = item.trim();
     let norm = normalize(text);
-    if let Some(items) = split_by_comma(text) {
+    if let Some(items) = split_by(text, &[',', '\u{FF0C}']) {
         return format!("separate items with `;`, not `,`: {}", items.join("; "));
+    }
+    if let Some(items) = split_by(text, &[' ', '\t', '\u{3000}']) {
+        return format!("separate items with `;`, not spaces: {}", items.join("; "));
     }
     if let Some(fixed) = digit_for_letter(&norm) {
         return format!("did you mean {fixed}? A letter stands where a digit belongs");
@@ -68,27 +71,54 @@ pub fn not_a_move_hint(item: &str) -> String {
     "expected C<number>+<position>, e.g. C2+1".to_string()
 }
 
-/// What a refused item did to an actuator: `None` when it is no move at
-/// all (a dwell typo), `Some(Some(n))` when it was a move of Cn (`C2+l`,
-/// `C2+99`), `Some(None)` when it was a move of an actuator nobody can
-/// tell (`Cx+1`).
-pub fn move_attempt(item: &str) -> Option<Option<u32>> {
+/// The actuators a refused item was about: one `Some(n)` for each Cn it
+/// names (`C2+l`, `C2+99`, `C2+1,C3+1`, `C1~0`, `T=1s C1-0`), one `None`
+/// for a move of an actuator nobody can tell (`Cx+1`), none when it is no
+/// move at all (a dwell typo). A move checked against the position such an
+/// item would have given is no error of its own.
+pub fn move_attempts(item: &str) -> Vec<Option<u32>> {
     let norm = normalize(item);
     if let Some(fixed) = digit_for_letter(&norm) {
-        return Some(parse_move(&fixed).ok().map(|m| m.actuator));
+        return vec![parse_move(&fixed).ok().map(|m| m.actuator)];
     }
-    let rest = norm.strip_prefix('C')?;
-    if !rest.contains(['+', '-']) {
-        return None;
+    let named = actuators_named(item);
+    if !named.is_empty() {
+        return named.into_iter().map(Some).collect();
     }
-    let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
-    Some(digits.parse().ok())
+    match norm.strip_prefix('C') {
+        Some(rest) if rest.contains(['+', '-']) => vec![None],
+        _ => Vec::new(),
+    }
 }
 
-/// `C1+1, T=1s`: items that each parse, split by a comma.
-fn split_by_comma(text: &str) -> Option<Vec<String>> {
+/// Each `C<number>` in `text` that starts a word (`C2` in `T=1s C2-0`, not
+/// in `PC2`).
+fn actuators_named(text: &str) -> Vec<u32> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut named = Vec::new();
+    for (i, c) in chars.iter().enumerate() {
+        let starts_word = i == 0 || !chars[i - 1].is_alphanumeric() && chars[i - 1] != '_';
+        if !starts_word || !matches!(c, 'C' | 'c') {
+            continue;
+        }
+        let digits: String = chars[i + 1..]
+            .iter()
+            .take_while(|d| d.is_ascii_digit())
+            .collect();
+        if let Ok(n) = digits.parse::<u32>()
+            && !named.contains(&n)
+        {
+            named.push(n);
+        }
+    }
+    named
+}
+
+/// `C1+1, T=1s` or `C1+1 T=1s`: items that each parse, split by one of
+/// `separators`.
+fn split_by(text: &str, separators: &[char]) -> Option<Vec<String>> {
     let parts: Vec<String> = text
-        .split([',', '\u{FF0C}'])
+        .split(separators)
         .map(|p| p.trim().to_string())
         .filter(|p| !p.is_empty())
         .collect();
@@ -167,12 +197,18 @@ mod tests {
     }
 
     #[test]
-    fn a_refused_move_names_its_actuator() {
-        assert_eq!(move_attempt("C2+l"), Some(Some(2)));
-        assert_eq!(move_attempt("CI+1"), Some(Some(1)));
-        assert_eq!(move_attempt("C2+99"), Some(Some(2)));
-        assert_eq!(move_attempt("Cx+1"), Some(None));
-        assert_eq!(move_attempt("T 1s"), None);
-        assert_eq!(move_attempt("I part"), None);
+    fn a_refused_move_names_its_actuators() {
+        assert_eq!(move_attempts("C2+l"), [Some(2)]);
+        assert_eq!(move_attempts("CI+1"), [Some(1)]);
+        assert_eq!(move_attempts("C2+99"), [Some(2)]);
+        assert_eq!(move_attempts("Cx+1"), [None]);
+        assert_eq!(move_attempts("C2+1,C3+1"), [Some(2), Some(3)]);
+        assert_eq!(move_attempts("C2+1 C3+1"), [Some(2), Some(3)]);
+        assert_eq!(move_attempts("C1~0"), [Some(1)]);
+        assert_eq!(move_attempts("T=1s C1-0"), [Some(1)]);
+        assert_eq!(move_attempts("C1â€“0"), [Some(1)]);
+        assert!(move_attempts("T 1s").is_empty());
+        assert!(move_attempts("I part").is_empty());
+        assert!(move_attempts("I:PC2").is_empty());
     }
 }

@@ -6,7 +6,7 @@ use std::fmt;
 
 mod hint;
 mod label;
-pub use hint::{edit_distance, move_attempt, not_a_move_hint};
+pub use hint::{edit_distance, move_attempts, not_a_move_hint};
 pub use label::{
     Header, actuator_comment, actuator_name, header_kind, looks_like_item, looks_like_move,
     parse_actuator, step_comment, visible_text,

@@ -3,11 +3,11 @@
 //! and the result checked against the rules ([`super::check`]).
 
 use super::check;
-use super::frame::find_frame;
+use super::frame::{Frame, find_frame};
 use super::*;
 use crate::actuator::Valves;
 use crate::cell::{
-    CellError, ItemError, MAX_ACTUATOR, MAX_POSITION, item_texts, move_attempt, not_a_move_hint,
+    CellError, ItemError, MAX_ACTUATOR, MAX_POSITION, item_texts, move_attempts, not_a_move_hint,
     parse_items,
 };
 use crate::diag::{Code, Diagnostics, Location};
@@ -54,37 +54,19 @@ pub fn build_for(grid: &Grid, valves: &Valves, diags: &mut Diagnostics) -> Optio
         return None;
     }
 
-    // Collect the raw cells of every step row, by row.
-    let row_index: BTreeMap<u32, usize> = frame
-        .step_rows
-        .iter()
-        .enumerate()
-        .map(|(i, r)| (*r, i))
-        .collect();
-    let col_index: BTreeMap<u32, usize> = frame
-        .branch_cols
-        .iter()
-        .enumerate()
-        .map(|(i, c)| (*c, i))
-        .collect();
-    let mut rows: Vec<Vec<RawCell>> = (0..frame.step_rows.len()).map(|_| Vec::new()).collect();
-    for cell in &grid.cells {
-        let Some(&r) = row_index.get(&cell.pos.row) else {
-            continue;
-        };
-        if let Some(&branch) = col_index.get(&cell.pos.col) {
-            rows[r].push(RawCell {
-                pos: cell.pos,
-                value: cell.value.clone(),
-                branch,
-            });
+    let rows = step_cells(grid, &frame);
+    // A move in a cell outside the table is refused too: the actuator's
+    // position is unknown from the step it would have followed.
+    let mut refused = check::Refused::default();
+    let mut lost = |text: &str, step: usize| {
+        for actuator in item_texts(text).into_iter().flat_map(move_attempts) {
+            refused.add(actuator, step);
         }
-    }
-    frame::report_unused(grid, &frame, diags);
+    };
+    frame::report_unused(grid, &frame, &mut lost, diags);
 
     // Parse every cell.
     let mut parsed: Vec<Vec<(CellItem, CellPos, usize)>> = Vec::with_capacity(rows.len());
-    let mut refused = check::Refused::default();
     for (step, row) in rows.iter().enumerate() {
         let mut items = Vec::new();
         for raw in row {
@@ -146,6 +128,36 @@ pub fn build_for(grid: &Grid, valves: &Valves, diags: &mut Diagnostics) -> Optio
     } else {
         table
     }
+}
+
+/// The raw cells of every step row, by row, in their branches.
+fn step_cells(grid: &Grid, frame: &Frame) -> Vec<Vec<RawCell>> {
+    let row_index: BTreeMap<u32, usize> = frame
+        .step_rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| (*r, i))
+        .collect();
+    let col_index: BTreeMap<u32, usize> = frame
+        .branch_cols
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (*c, i))
+        .collect();
+    let mut rows: Vec<Vec<RawCell>> = (0..frame.step_rows.len()).map(|_| Vec::new()).collect();
+    for cell in &grid.cells {
+        let Some(&r) = row_index.get(&cell.pos.row) else {
+            continue;
+        };
+        if let Some(&branch) = col_index.get(&cell.pos.col) {
+            rows[r].push(RawCell {
+                pos: cell.pos,
+                value: cell.value.clone(),
+                branch,
+            });
+        }
+    }
+    rows
 }
 
 /// The items of a cell; each refused move-like item is told to `refuse`
@@ -259,7 +271,7 @@ fn parse_cell(
                 items.push(item)
             }
             Err(error) => {
-                if let Some(actuator) = move_attempt(part) {
+                for actuator in move_attempts(part) {
                     refuse(actuator);
                 }
                 report_item_error(error, text, part, &location, diags)

@@ -271,8 +271,14 @@ fn warn_on_numbers(
 /// an error when it looks like table content that would be lost (a move in a
 /// row without a STEP label or a column without a BRANCH header), else a
 /// warning naming it. Cells far from the table (titles, notes) are left alone
-/// unless they read as moves.
-pub(super) fn report_unused(grid: &Grid, frame: &Frame, diags: &mut Diagnostics) {
+/// unless they read as moves. `lost` hears each move-like cell refused, with the index of the step
+/// its moves would have come in.
+pub(super) fn report_unused(
+    grid: &Grid,
+    frame: &Frame,
+    lost: &mut dyn FnMut(&str, usize),
+    diags: &mut Diagnostics,
+) {
     let (Some(&first_row), Some(&last_row)) = (frame.step_rows.first(), frame.step_rows.last())
     else {
         return;
@@ -314,7 +320,7 @@ pub(super) fn report_unused(grid: &Grid, frame: &Frame, diags: &mut Diagnostics)
         let in_cols = (first_branch..=last_branch).contains(&col);
         let below_header = frame.header_row.is_none_or(|h| row > h);
         let in_header_row = frame.header_row == Some(row);
-        let lost = if in_header_row {
+        let why_lost = if in_header_row {
             Some("it is in the row of BRANCH headers but is not a BRANCH n header".to_string())
         } else if in_step_row && col < first_branch {
             Some("its column, left of the first BRANCH, has no BRANCH header".to_string())
@@ -350,15 +356,19 @@ pub(super) fn report_unused(grid: &Grid, frame: &Frame, diags: &mut Diagnostics)
         } else {
             None
         };
-        match lost {
-            Some(why) if item_like => diags.error(
-                Code::E010NotAMove,
-                grid.location(cell.pos),
-                format!(
-                    "\"{}\" lies outside the table and would be lost: {why}",
-                    text.unwrap_or_default().trim()
-                ),
-            ),
+        match why_lost {
+            Some(why) if item_like => {
+                let text = text.unwrap_or_default();
+                lost(text, frame.step_rows.iter().filter(|r| **r < row).count());
+                diags.error(
+                    Code::E010NotAMove,
+                    grid.location(cell.pos),
+                    format!(
+                        "\"{}\" lies outside the table and would be lost: {why}",
+                        text.trim()
+                    ),
+                )
+            }
             Some(why)
                 if near_rows.contains(&row) && near_cols.contains(&col)
                     || in_step_row

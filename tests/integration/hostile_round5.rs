@@ -70,3 +70,68 @@ fn a_jump_is_named_once_in_its_title() {
         );
     }
 }
+
+/// A refused cell makes no second error in the cells that are only wrong
+/// because of it (docs/reference.md, E010): every actuator the refused
+/// item names is left unknown from its step, not only the first (`C2+1,
+/// C3+1`), whatever the spelling of the mistake (`C1~0`, `T=1s C1-0`, an
+/// en dash read as Windows-1252), and so is a move in a cell outside the
+/// table. Each row: its one error at its cell, and the advice it gives.
+#[test]
+fn a_refused_cell_makes_no_second_error() {
+    let cases: [(&str, &str, &str, &str); 7] = [
+        (
+            "two moves split by a comma",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,\"C2+1,C3+1\"\nSTEP 3,C2-0;C3-0\nSTEP 4,C1-0\n",
+            "t.csv:3:2: error[E010]",
+            "separate items with `;`, not `,`: C2+1; C3+1",
+        ),
+        (
+            "two moves split by a space",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C2+1 C3+1\nSTEP 3,C2-0;C3-0\nSTEP 4,C1-0\n",
+            "t.csv:3:2: error[E010]",
+            "separate items with `;`, not spaces: C2+1; C3+1",
+        ),
+        (
+            "a tilde for the sign",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1~0\n",
+            "t.csv:3:2: error[E010]",
+            "\"C1~0\" is not a move",
+        ),
+        (
+            "an equals sign for the sign",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1=0\n",
+            "t.csv:3:2: error[E010]",
+            "\"C1=0\" is not a move",
+        ),
+        (
+            "a dwell and a move without a separator",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,T=1s C1-0\n",
+            "t.csv:3:2: error[E014]",
+            "\"T=1s C1-0\" is not a dwell",
+        ),
+        (
+            "an en dash read as Windows-1252",
+            ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1\u{e2}\u{20ac}\u{201c}0\n",
+            "t.csv:3:2: error[E010]",
+            "is not a move",
+        ),
+        (
+            "a move below the last step, unlabelled",
+            ",BRANCH 1,BRANCH 2\nSTEP 1,C1+1,\nSTEP 2,C1-0,C2+1\n,,C2-0\n",
+            "t.csv:4:3: error[E010]",
+            "lies outside the table and would be lost",
+        ),
+    ];
+    for (what, table, code_at, advice) in cases {
+        let (_dir, out, assert) = convert_csv(table, &[], 1);
+        let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+        let errors: Vec<&str> = stderr.lines().filter(|l| l.contains(": error[")).collect();
+        assert_eq!(errors.len(), 1, "{what}: {stderr}");
+        assert!(
+            errors[0].contains(code_at) && errors[0].contains(advice),
+            "{what}: {stderr}"
+        );
+        assert!(!out.exists(), "{what}: refused but wrote files");
+    }
+}
