@@ -358,16 +358,10 @@ pub(super) fn report_unused(
         };
         match why_lost {
             Some(why) if item_like => {
-                let text = text.unwrap_or_default();
+                let text = text.unwrap_or_default().trim();
                 lost(text, frame.step_rows.iter().filter(|r| **r < row).count());
-                diags.error(
-                    Code::E010NotAMove,
-                    grid.location(cell.pos),
-                    format!(
-                        "\"{}\" lies outside the table and would be lost: {why}",
-                        text.trim()
-                    ),
-                )
+                let message = format!("\"{text}\" lies outside the table and would be lost: {why}");
+                diags.error(Code::E010NotAMove, grid.location(cell.pos), message)
             }
             Some(why)
                 if near_rows.contains(&row) && near_cols.contains(&col)
