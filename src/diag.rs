@@ -100,6 +100,12 @@ pub enum Code {
     /// without case and the spaces around them (`Line A` and `Line A `),
     /// and none is named exactly: reading one would be a silent choice.
     E047SheetAmbiguous,
+    /// The SFC chart was asked for (`--formats sfc`, `beremiz-sfc`,
+    /// `codesys-sfc`, `all`) of a table with a jump back into its own step
+    /// that restarts something (a dwell, the watchdog): an SFC step that
+    /// stays active does not run its entry again, so the chart would not
+    /// do what the program does.
+    E048RetryInChart,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -180,6 +186,7 @@ impl Code {
             Code::E045KindCannotHold => "E045",
             Code::E046MistypedSetting => "E046",
             Code::E047SheetAmbiguous => "E047",
+            Code::E048RetryInChart => "E048",
         }
     }
 }

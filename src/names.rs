@@ -200,6 +200,7 @@ pub fn reserved_name(name: &str) -> Option<String> {
         "auto_run",
         "step_ok",
         "step_mem",
+        "reset_mem",
         "man_mem",
         "jog_ok",
         "homing",

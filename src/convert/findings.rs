@@ -110,6 +110,57 @@ pub(super) fn shortened_sdf_comments(
     })
 }
 
+/// E048 at each jump back into its own step whose re-entry does something
+/// (restarts a dwell or the watchdog, sets a coil again), when an SFC
+/// chart is asked for: the chart's step stays active through such a jump
+/// and does not run its entry again, so its program would not run as the
+/// simulation (the ST, AWL, Ladder and the others do).
+pub(super) fn retry_in_chart(
+    input: &crate::emit::EmitInput,
+    settings: &crate::settings::Settings,
+) -> Vec<crate::diag::Diagnostic> {
+    use crate::emit::OutputKind;
+    let charts: Vec<&str> = [
+        OutputKind::Sfc,
+        OutputKind::BeremizSfc,
+        OutputKind::CodesysSfc,
+    ]
+    .into_iter()
+    .filter(|k| settings.formats.contains(k))
+    .map(|k| k.name())
+    .collect();
+    if charts.is_empty() {
+        return Vec::new();
+    }
+    let program = input.program;
+    let retries = program.steps.iter().enumerate().flat_map(|(i, step)| {
+        step.jumps
+            .iter()
+            .filter(move |j| j.next == i && !j.actions.is_empty())
+    });
+    let table = input.table;
+    let jumps = table.steps.iter().flat_map(|s| &s.jumps);
+    retries
+        .map(|retry| {
+            let cell = jumps.clone().find(|j| j.notation() == retry.title).map(|j| j.cell);
+            crate::diag::Diagnostic {
+                severity: crate::diag::Severity::Error,
+                code: crate::diag::Code::E048RetryInChart,
+                location: crate::diag::Location {
+                    file: table.file.clone(),
+                    sheet: table.sheet.clone(),
+                    cell,
+                },
+                message: format!(
+                    "\"{}\" jumps back into its own step, whose entry restarts its dwell or sets its coils again: an SFC step that stays active does not run its entry again, so the chart ({}) cannot run this table as the program does; leave out the chart (the ST program, AWL and the Ladder body run the retry), or jump to a step of its own",
+                    retry.title,
+                    charts.join(", ")
+                ),
+            }
+        })
+        .collect()
+}
+
 /// W011 when the SFC chart (`NAME.sfc.xml`, `NAME.sfc.beremiz/`) has
 /// timers and the program is for OpenPLC (`--target iec` or `openplc`,
 /// `--board`): the chart's timers are TON blocks among the resource's

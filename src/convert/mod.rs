@@ -489,6 +489,10 @@ pub fn generate_observed(
         warnings.extend(findings::shortened_sdf_comments(&input));
     }
     warnings.extend(findings::openplc_chart(&input, settings));
+    let refused = findings::retry_in_chart(&input, settings);
+    if !refused.is_empty() {
+        return Err(Failure::Input(refused));
+    }
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them, and
     // beside the other outputs (on a core the analysis leaves idle: its

@@ -231,6 +231,9 @@ pub fn build(
         let manual = super::manual::rungs(&signals, &timers, options);
         rungs.splice(at..at, manual);
     }
+    if modes.reset {
+        super::modes::reset_edge(&mut init, &mut rungs);
+    }
     StepProgram {
         criteria,
         init,

@@ -257,7 +257,7 @@ fn reset_rung(signals: &Signals, options: &ProgramOptions) -> Option<Rung> {
         return None;
     }
     let mut condition = super::modes::reset_pressed(options);
-    condition.insert(1, Literal::is(Signal::ManualMode));
+    condition.insert(2, Literal::is(Signal::ManualMode));
     let mut actions: Vec<Action> = signals
         .memories
         .iter()

@@ -64,6 +64,23 @@ pub(super) fn mode_rungs(
             condition: vec![Literal::not(Signal::Continuous)],
             actions: vec![Action::Reset(Signal::AutoRun)],
         });
+        // A start permissive (air, a closed guard: the machine inputs among
+        // `homes`) that goes off ends continuous operation, as a START it
+        // refuses is forgotten: its return must not start a cycle.
+        for permissive in homes
+            .iter()
+            .filter(|l| matches!(l.signal, Signal::MachineInput(_)))
+        {
+            rungs.push(Rung {
+                kind: RungKind::Mode,
+                comment: format!(
+                    "{} off: no further cycles (START again once it is back)",
+                    permissive.signal.symbol()
+                ),
+                condition: vec![Literal::not(permissive.signal)],
+                actions: vec![Action::Reset(Signal::AutoRun)],
+            });
+        }
     }
     if modes.stop && !stops_now {
         let mut actions = vec![Action::Reset(Signal::CycleRequest)];
@@ -161,6 +178,39 @@ fn step_rungs() -> [Rung; 5] {
     ]
 }
 
+/// RESET is remembered for the next scan, so that it acts only on its
+/// rising edge: after every rung that reads it, before the emergency
+/// stop's. RESET already pressed at power-up is no press.
+pub(super) fn reset_edge(init: &mut Vec<Action>, rungs: &mut Vec<Rung>) {
+    init.push(Action::Set(Signal::ResetMemory));
+    let at = rungs
+        .iter()
+        .position(|r| r.kind == RungKind::EmergencyStop)
+        .unwrap_or(rungs.len());
+    rungs.splice(at..at, reset_edge_rungs());
+}
+
+fn reset_edge_rungs() -> [Rung; 2] {
+    let rung = |comment: &str, condition: Literal, action: Action| Rung {
+        kind: RungKind::Edge,
+        comment: comment.to_string(),
+        condition: vec![condition],
+        actions: vec![action],
+    };
+    [
+        rung(
+            "edge: remember RESET_PB for the next scan",
+            Literal::is(Signal::Reset),
+            Action::Set(Signal::ResetMemory),
+        ),
+        rung(
+            "edge: RESET_PB released",
+            Literal::not(Signal::Reset),
+            Action::Reset(Signal::ResetMemory),
+        ),
+    ]
+}
+
 /// RESET, the homing stages and the emergency stop, which comes last so
 /// that nothing after it can switch a coil back on in the same scan.
 pub(super) fn homing_rungs(
@@ -183,10 +233,15 @@ pub(super) fn homing_rungs(
     }
 }
 
-/// RESET pressed where it may act: not under the EMERGENCY STOP, and
-/// (homing moves every actuator) not behind an open guard.
+/// RESET pressed where it may act: on its rising edge (a RESET held, or
+/// jammed, as the EMERGENCY STOP is released starts nothing: EN 60204-1
+/// wants a deliberate reset), not under the EMERGENCY STOP, and (homing
+/// moves every actuator) not behind an open guard.
 pub(super) fn reset_pressed(options: &super::ProgramOptions) -> Vec<Literal> {
-    let mut condition = vec![Literal::is(Signal::Reset)];
+    let mut condition = vec![
+        Literal::is(Signal::Reset),
+        Literal::not(Signal::ResetMemory),
+    ];
     if options.modes.estop {
         condition.push(Literal::is(Signal::EStop));
     }

@@ -110,6 +110,8 @@ pub enum Signal {
     StepPermit,
     /// Memory: STEP_PB as read in the previous scan (its rising edge).
     StepMemory,
+    /// RESET_PB as read in the previous scan: RESET acts on its press.
+    ResetMemory,
     /// Memory: a cycle was asked for (START, or CONTINUOUS at a cycle's end).
     CycleRequest,
     /// Memory: a cycle is under way (from STEP 1 to the end of the cycle).
@@ -164,6 +166,7 @@ impl Signal {
             | Signal::HomeStage(_)
             | Signal::StepPermit
             | Signal::StepMemory
+            | Signal::ResetMemory
             | Signal::ManualMemory
             | Signal::JogsReleased
             | Signal::Jogged(_)
@@ -211,6 +214,7 @@ impl Signal {
             Signal::Jog { actuator, sign } => format!("jog{actuator}{}", sign.symbol()),
             Signal::StepPermit => "step_ok".to_string(),
             Signal::StepMemory => "step_mem".to_string(),
+            Signal::ResetMemory => "reset_mem".to_string(),
             Signal::ManualMemory => "man_mem".to_string(),
             Signal::JogsReleased => "jog_ok".to_string(),
             Signal::Jogged(n) => format!("jogged{n}"),

@@ -258,6 +258,7 @@ pub(super) fn declare(table: &StepTable, options: &ProgramOptions, valves: &Valv
     }
     if modes.reset {
         memories.push(Signal::Homing);
+        memories.push(Signal::ResetMemory);
         let stages = modes.home_stages(table).map(|s| s.len()).unwrap_or(0);
         memories.extend((1..=stages).map(|n| Signal::HomeStage(n as u16)));
     }

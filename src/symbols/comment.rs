@@ -58,6 +58,7 @@ pub(super) fn comment(
         }
         Signal::StepPermit => "the sequence may fire a step in this scan".to_string(),
         Signal::StepMemory => "STEP_PB as read in the previous scan".to_string(),
+        Signal::ResetMemory => "RESET_PB as read in the previous scan".to_string(),
         Signal::ManualMemory => {
             "MAN_MODE in the previous scan (leaving manual switches the jogs' coils off)"
                 .to_string()

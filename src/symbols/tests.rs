@@ -105,6 +105,7 @@ fn every_generated_identifier_is_legal_in_every_target_language() {
         Signal::StepButton,
         Signal::StepPermit,
         Signal::StepMemory,
+        Signal::ResetMemory,
         Signal::CycleRequest,
         Signal::Busy,
         Signal::AutoRun,

@@ -1,7 +1,10 @@
 //! The fifth round of hostile input: what the fourth round's red teams
-//! left open. A retry jump into its own step with a dwell (every Ladder
-//! body), and a jump's item said twice in the titles of the bodies that
-//! head a transition with its step's cell. Each row goes through the
+//! left open and the fifth found. A retry jump into its own step with a
+//! dwell (every Ladder body draws it, the SFC chart refuses it: E048), a
+//! jump's item said twice in the titles of the bodies that head a
+//! transition with its step's cell, follow-up errors of a refused cell,
+//! a RESET held as the EMERGENCY STOP is released, and a start permissive
+//! whose return restarted continuous operation. Each row goes through the
 //! binary: its exit code, each code at its cell, and what was written.
 
 use crate::helpers::{convert_csv, files_below, root};
@@ -134,4 +137,104 @@ fn a_refused_cell_makes_no_second_error() {
         );
         assert!(!out.exists(), "{what}: refused but wrote files");
     }
+}
+
+/// RESET acts on its press, not while held (EN 60204-1: releasing the
+/// EMERGENCY STOP must not start motion by itself). A RESET held through
+/// the release homes nothing; released and pressed again, it homes.
+#[test]
+fn releasing_the_emergency_stop_with_reset_held_starts_nothing() {
+    let paper = root().join("samples/paper_example.xlsx");
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "--modes",
+            "estop,reset",
+            "--press",
+            "START@0.5s",
+            "--hold",
+            "ESTOP@step3",
+            "--hold",
+            "RESET@+1s",
+            "--release",
+            "ESTOP@+5s",
+        ];
+        args.extend_from_slice(extra);
+        let assert = crate::helpers::steptable()
+            .arg("simulate")
+            .arg(&paper)
+            .args(&args)
+            .assert()
+            .code(0);
+        crate::helpers::squeezed_stdout(&assert)
+    };
+    let held = run(&[]);
+    assert!(!held.contains("homing starts"), "{held}");
+    assert!(held.contains("ended at 16.96 s in step 3"), "{held}");
+    let again = run(&["--release", "RESET@+1s", "--press", "RESET@+1s"]);
+    assert!(again.contains("10.48 s homing starts"), "{again}");
+    assert!(again.contains("in step 0 (at rest)"), "{again}");
+}
+
+/// A start permissive that goes off ends continuous operation: the air
+/// coming back a minute later starts no cycle by itself; START does.
+#[test]
+fn a_start_permissive_coming_back_starts_no_cycle_by_itself() {
+    let table: &[&[&str]] = &[
+        &["", "BRANCH 1"],
+        &["STEP 1", "C1+1"],
+        &["STEP 2", "C2+1"],
+        &["STEP 3", "C2-0"],
+        &["STEP 4", "C1-0"],
+    ];
+    let settings: &[&[&str]] = &[
+        &["modes", "continuous, stop"],
+        &["start permissive", "air_ok"],
+    ];
+    let base = [
+        "--hold",
+        "CONT@0s",
+        "--press",
+        "START@0.5s",
+        "--stick",
+        "air_ok=0@step2",
+        "--stick",
+        "air_ok=1@+60s",
+    ];
+    let (quiet, stderr, code) = crate::helpers::simulate_sheets(table, settings, &base);
+    assert_eq!(code, Some(0), "{stderr}");
+    let after: Vec<&str> = quiet
+        .lines()
+        .skip_while(|l| !l.contains("air_ok stuck at 1"))
+        .collect();
+    assert!(
+        after.len() > 1 && !after.iter().any(|l| l.contains("step 1")),
+        "{quiet}"
+    );
+    let mut pressed = base.to_vec();
+    pressed.extend(["--press", "START@+1s"]);
+    let (started, _, _) = crate::helpers::simulate_sheets(table, settings, &pressed);
+    assert!(started.contains("62.51 s step 1"), "{started}");
+}
+
+/// The SFC chart of a retry into a step with a dwell would not restart
+/// the dwell (its step stays active through the jump: the engine proof
+/// found it), so any chart asked for is E048 at the jump's cell, and
+/// nothing is written; a retry whose re-entry does nothing (the step only
+/// waits) is drawn.
+#[test]
+fn a_chart_refuses_a_retry_that_restarts_its_step() {
+    for formats in ["sfc", "beremiz-sfc", "codesys-sfc", "st,sfc", "all"] {
+        let (_dir, out, assert) = convert_csv(RETRY, &["--formats", formats], 1);
+        let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+        assert!(
+            stderr.contains("t.csv:3:2: error[E048]: \"J:2 if I:r\" jumps back into its own step"),
+            "{formats}: {stderr}"
+        );
+        assert!(!out.exists(), "{formats}: refused but wrote files");
+    }
+    // Without a chart, the same table converts.
+    convert_csv(RETRY, &["--formats", "st,ld"], 0);
+    let waits = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,I:x; J:2 if I:r\nSTEP 3,C1-0\n";
+    let (_dir, out, _) = convert_csv(waits, &["--formats", "sfc"], 0);
+    assert!(out.join("t/t.sfc.xml").exists());
 }
