@@ -225,7 +225,7 @@ pub(super) fn homing_rungs(
     let outputs: Vec<Signal> = signals.driven().collect();
     if modes.reset {
         let stages = modes.home_stages(table).unwrap_or_default();
-        rungs.push(reset_rung(signals, timers, options, &outputs, stages.len()));
+        rungs.push(reset_rung(signals, timers, options, &outputs, &stages));
         home_stage_rungs(signals, options, &stages, rungs);
     }
     if modes.estop {
@@ -256,21 +256,31 @@ pub(super) fn reset_pressed(options: &super::ProgramOptions) -> Vec<Literal> {
 }
 
 /// RESET abandons the cycle: every output and the cycle's memories off,
-/// the first of `stages` homing stages on.
+/// the first of `stages` homing stages on. The one coil of a spring-return
+/// valve homed in a later stage stays as it is until its stage: cutting it
+/// is that actuator's move home, out of the order (a clamp would open
+/// while the tool is still down).
 fn reset_rung(
     signals: &Signals,
     timers: &[Signal],
     options: &super::ProgramOptions,
     outputs: &[Signal],
-    stages: usize,
+    stages: &[Vec<u32>],
 ) -> Rung {
+    let later: Vec<u32> = stages.iter().skip(1).flatten().copied().collect();
+    let waits_for_its_stage =
+        |s: &Signal| matches!(s, Signal::SingleCoil { actuator } if later.contains(actuator));
     let memories = &signals.memories;
     let mut condition = reset_pressed(options);
     // In manual RESET homes nothing (its own rung: `manual::reset_rung`).
     if options.modes.manual {
         condition.push(Literal::not(Signal::ManualMode));
     }
-    let mut actions: Vec<Action> = outputs.iter().map(|s| Action::Reset(*s)).collect();
+    let mut actions: Vec<Action> = outputs
+        .iter()
+        .filter(|s| !waits_for_its_stage(s))
+        .map(|s| Action::Reset(*s))
+        .collect();
     // Forget the interrupted cycle: requests, stops, dwells, alarms.
     actions.extend(
         memories
@@ -295,7 +305,7 @@ fn reset_rung(
     actions.extend(signals.alarms().map(Action::Reset));
     actions.extend(timers.iter().map(|t| Action::Reset(*t)));
     actions.push(Action::Set(Signal::Homing));
-    for n in 1..=stages {
+    for n in 1..=stages.len() {
         let stage = Signal::HomeStage(n as u16);
         actions.push(if n == 1 {
             Action::Set(stage)

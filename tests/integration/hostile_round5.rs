@@ -238,3 +238,34 @@ fn a_chart_refuses_a_retry_that_restarts_its_step() {
     let (_dir, out, _) = convert_csv(waits, &["--formats", "sfc"], 0);
     assert!(out.join("t/t.sfc.xml").exists());
 }
+
+/// RESET homes in its order whatever the valve: a clamp on a
+/// spring-return valve (`52mono`) homed after the drill keeps its coil on
+/// until its stage, so the part is not released under the tool (its coil
+/// cut by RESET itself was its move home, out of the order). The drilling
+/// station homes C2, then C1, then C3 in the same time with either valve.
+#[test]
+fn reset_keeps_a_spring_return_clamp_closed_until_its_stage() {
+    let drilling = root().join("samples/drilling_station.xlsx");
+    let run = |extra: &[&str]| {
+        let assert = crate::helpers::steptable()
+            .arg("simulate")
+            .arg(&drilling)
+            .args(["--modes", "estop,reset", "--press", "START@0.5s"])
+            .args(["--press", "RESET@2.3s"])
+            .args(extra)
+            .assert()
+            .code(0);
+        crate::helpers::squeezed_stdout(&assert)
+    };
+    let done = |said: &str| {
+        said.lines()
+            .find(|l| l.contains("homing done"))
+            .map(str::to_string)
+            .unwrap_or_else(|| panic!("{said}"))
+    };
+    let bistable = run(&[]);
+    let spring = run(&["--valve", "C1=52mono"]);
+    assert_eq!(done(&spring), done(&bistable), "{spring}");
+    assert_eq!(done(&spring).trim(), "4.08 s homing done");
+}
