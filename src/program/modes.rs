@@ -378,6 +378,7 @@ fn home_stage_rungs(
             condition,
             actions: drive,
         });
+        rungs.extend(halted_stage(signals, options, memory, stage, &names));
         let mut done = vec![Action::Reset(memory)];
         // A drive runs as long as its output is on: cut it at home.
         done.extend(
@@ -411,6 +412,43 @@ fn home_stage_rungs(
             actions: done,
         });
     }
+}
+
+/// A halt while a stage homes (an interlock opening, a plausibility
+/// fault) stops its drives: the `-` coils the stage switched on go off (a
+/// closed-centre valve then holds the piston, a drive stops), but for a
+/// coil the halt policy names (`hold-safe`, `on halt`: its own rungs act).
+/// A one-coil valve homes with its coil off already. Without
+/// it the coil stayed latched and the piston drove home behind an open
+/// guard. RESET, pressed again once the halt is cleared, homes anew.
+fn halted_stage(
+    signals: &Signals,
+    options: &super::ProgramOptions,
+    memory: Signal,
+    stage: &[u32],
+    names: &[String],
+) -> Option<Rung> {
+    if !options.halts() {
+        return None;
+    }
+    let halt = &options.halt;
+    let held = |s: &Signal| halt.hold_safe.contains(s) || halt.on_halt.contains_key(s);
+    let actions: Vec<Action> = stage
+        .iter()
+        .filter(|&&actuator| !signals.valves.contains(&Coils::Single { actuator }))
+        .map(|&actuator| Signal::Coil {
+            actuator,
+            sign: Sign::Minus,
+        })
+        .filter(|coil| !held(coil))
+        .map(Action::Reset)
+        .collect();
+    (!actions.is_empty()).then(|| Rung {
+        kind: RungKind::Homing,
+        comment: format!("homing halted: the drives of {} stop", names.join(", ")),
+        condition: vec![Literal::is(memory), Literal::is(Signal::Halt)],
+        actions,
+    })
 }
 
 /// The EMERGENCY STOP (normally closed): every output off but those held

@@ -269,3 +269,48 @@ fn reset_keeps_a_spring_return_clamp_closed_until_its_stage() {
     assert_eq!(done(&spring), done(&bistable), "{spring}");
     assert_eq!(done(&spring).trim(), "4.08 s homing done");
 }
+
+/// A guard that opens while RESET homes stops the homing drives, as the
+/// guide says: the stage's `-` coil goes off and the closed-centre piston
+/// stays where it was, rather than driving home behind the open guard.
+#[test]
+fn a_guard_opening_during_homing_stops_the_homing_drives() {
+    let table: &[&[&str]] = &[
+        &["", "BRANCH 1"],
+        &["STEP 1", "C1+1"],
+        &["STEP 2", "C2+1"],
+        &["STEP 3", "C2-0"],
+        &["STEP 4", "C1-0"],
+    ];
+    let settings: &[&[&str]] = &[
+        &["modes", "estop, reset"],
+        &["interlock", "guard"],
+        &["actuator", "valve"],
+        &["C1", "53closed"],
+        &["C2", "53closed"],
+    ];
+    let args = [
+        "--press",
+        "START@0.5s",
+        "--press",
+        "ESTOP@step3",
+        "--press",
+        "RESET@+0.5s",
+        "--stick",
+        "guard=0@+0.2s",
+    ];
+    let (said, stderr, code) = crate::helpers::simulate_sheets(table, settings, &args);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(
+        said.contains("homing starts") && !said.contains("homing done"),
+        "{said}"
+    );
+    let end = crate::helpers::line_with(&said, "ended at");
+    let c2: f64 = end
+        .split("C2 at ")
+        .nth(1)
+        .and_then(|r| r.split([',', ';']).next())
+        .and_then(|v| v.trim().parse().ok())
+        .unwrap_or_else(|| panic!("{end}"));
+    assert!(c2 > 0.5, "C2 drove home behind the open guard: {end}");
+}
