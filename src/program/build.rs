@@ -2,7 +2,7 @@
 //! the sequence, the end of the cycle, and the rungs every scan runs.
 
 use super::jumps::add_jumps;
-use super::modes::{homing_rungs, mode_rungs};
+use super::modes::{edge_rungs, homing_rungs, mode_rungs};
 use super::signals::{self, Coils, Signals};
 use super::stops::{
     end_run_ons, halt_off_rung, interlock_rung, mark_zones, run_on_rungs, stop_now_rungs,
@@ -181,7 +181,11 @@ pub fn build(
     if safety.edge {
         // START already pressed at power-up is no rising edge.
         init.push(Action::Set(Signal::StartMemory));
-        rungs.extend(edge_rungs());
+        rungs.extend(edge_rungs(
+            RungKind::Edge,
+            Signal::Start,
+            Signal::StartMemory,
+        ));
     }
     if safety.plausibility {
         rungs.extend(plausibility_rungs(table, &signals));
@@ -432,25 +436,6 @@ fn dwell_rungs(table: &StepTable, signals: &Signals) -> Vec<Rung> {
         }
     }
     rungs
-}
-
-/// START is remembered for the next scan, so that a cycle starts only on
-/// its rising edge.
-fn edge_rungs() -> [Rung; 2] {
-    [
-        Rung {
-            kind: RungKind::Edge,
-            comment: "edge: remember START for the next scan".to_string(),
-            condition: vec![Literal::is(Signal::Start)],
-            actions: vec![Action::Set(Signal::StartMemory)],
-        },
-        Rung {
-            kind: RungKind::Edge,
-            comment: "edge: START released".to_string(),
-            condition: vec![Literal::not(Signal::Start)],
-            actions: vec![Action::Reset(Signal::StartMemory)],
-        },
-    ]
 }
 
 /// Two sensors of one actuator on at once halt the sequence (of the

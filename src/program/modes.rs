@@ -138,7 +138,7 @@ fn forget_request(modes: &Modes) -> Vec<Rung> {
 /// one step and only one whose conditions hold at that scan (S7-GRAPH's
 /// transition with T_PUSH). The rungs run after the sequence: the permit
 /// they set is read by the next scan's sequence.
-fn step_rungs() -> [Rung; 5] {
+fn step_rungs() -> Vec<Rung> {
     let rung = |comment: &str, condition: Vec<Literal>, action: Action| Rung {
         kind: RungKind::Mode,
         comment: comment.to_string(),
@@ -165,17 +165,14 @@ fn step_rungs() -> [Rung; 5] {
             ],
             Action::Set(Signal::StepPermit),
         ),
-        rung(
-            "edge: remember STEP_PB for the next scan",
-            vec![Literal::is(Signal::StepButton)],
-            Action::Set(Signal::StepMemory),
-        ),
-        rung(
-            "edge: STEP_PB released",
-            vec![Literal::not(Signal::StepButton)],
-            Action::Reset(Signal::StepMemory),
-        ),
     ]
+    .into_iter()
+    .chain(edge_rungs(
+        RungKind::Mode,
+        Signal::StepButton,
+        Signal::StepMemory,
+    ))
+    .collect()
 }
 
 /// RESET is remembered for the next scan, so that it acts only on its
@@ -187,27 +184,28 @@ pub(super) fn reset_edge(init: &mut Vec<Action>, rungs: &mut Vec<Rung>) {
         .iter()
         .position(|r| r.kind == RungKind::EmergencyStop)
         .unwrap_or(rungs.len());
-    rungs.splice(at..at, reset_edge_rungs());
+    let edge = edge_rungs(RungKind::Edge, Signal::Reset, Signal::ResetMemory);
+    rungs.splice(at..at, edge);
 }
 
-fn reset_edge_rungs() -> [Rung; 2] {
-    let rung = |comment: &str, condition: Literal, action: Action| Rung {
-        kind: RungKind::Edge,
-        comment: comment.to_string(),
-        condition: vec![condition],
-        actions: vec![action],
-    };
+/// `button` remembered for the next scan in `memory`, so that a rung that
+/// also asks `NOT memory` sees only its rising edge (START under `--safety
+/// edge`, STEP_PB, RESET_PB).
+pub(super) fn edge_rungs(kind: RungKind, button: Signal, memory: Signal) -> [Rung; 2] {
+    let name = button.symbol();
     [
-        rung(
-            "edge: remember RESET_PB for the next scan",
-            Literal::is(Signal::Reset),
-            Action::Set(Signal::ResetMemory),
-        ),
-        rung(
-            "edge: RESET_PB released",
-            Literal::not(Signal::Reset),
-            Action::Reset(Signal::ResetMemory),
-        ),
+        Rung {
+            kind,
+            comment: format!("edge: remember {name} for the next scan"),
+            condition: vec![Literal::is(button)],
+            actions: vec![Action::Set(memory)],
+        },
+        Rung {
+            kind,
+            comment: format!("edge: {name} released"),
+            condition: vec![Literal::not(button)],
+            actions: vec![Action::Reset(memory)],
+        },
     ]
 }
 
