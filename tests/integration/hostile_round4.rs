@@ -10,7 +10,7 @@ use crate::helpers::{convert_csv, convert_workbook, files_below, steptable, writ
 
 /// C1 out, C2 out and back, C1 back: the smallest table with two
 /// actuators and a last step that returns one home.
-const FOUR: &[&[&str]] = &[
+pub(crate) const FOUR: &[&[&str]] = &[
     &["", "BRANCH 1"],
     &["STEP 1", "C1+1"],
     &["STEP 2", "C2+1"],

@@ -179,13 +179,7 @@ fn releasing_the_emergency_stop_with_reset_held_starts_nothing() {
 /// coming back a minute later starts no cycle by itself; START does.
 #[test]
 fn a_start_permissive_coming_back_starts_no_cycle_by_itself() {
-    let table: &[&[&str]] = &[
-        &["", "BRANCH 1"],
-        &["STEP 1", "C1+1"],
-        &["STEP 2", "C2+1"],
-        &["STEP 3", "C2-0"],
-        &["STEP 4", "C1-0"],
-    ];
+    let table = crate::hostile_round4::FOUR;
     let settings: &[&[&str]] = &[
         &["modes", "continuous, stop"],
         &["start permissive", "air_ok"],
@@ -275,13 +269,7 @@ fn reset_keeps_a_spring_return_clamp_closed_until_its_stage() {
 /// stays where it was, rather than driving home behind the open guard.
 #[test]
 fn a_guard_opening_during_homing_stops_the_homing_drives() {
-    let table: &[&[&str]] = &[
-        &["", "BRANCH 1"],
-        &["STEP 1", "C1+1"],
-        &["STEP 2", "C2+1"],
-        &["STEP 3", "C2-0"],
-        &["STEP 4", "C1-0"],
-    ];
+    let table = crate::hostile_round4::FOUR;
     let settings: &[&[&str]] = &[
         &["modes", "estop, reset"],
         &["interlock", "guard"],
