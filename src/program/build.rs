@@ -224,17 +224,14 @@ pub fn build(
     // moves the awaited criteria from where it leaves to where it leads.
     supervision::track(&mut steps, &criteria);
     if modes.any() {
-        homing_rungs(table, &signals, &timers, options, &run_ons, &mut rungs);
+        homing_rungs(
+            table, &signals, &timers, options, &run_ons, strokes, &mut rungs,
+        );
     }
     if modes.manual {
-        // Before the emergency stop's rung, which stays the last word.
-        let at = rungs
-            .iter()
-            .position(|r| r.kind == RungKind::EmergencyStop)
-            .unwrap_or(rungs.len());
-        let manual = super::manual::rungs(&signals, &timers, options);
-        rungs.splice(at..at, manual);
+        manual_before_estop(&signals, &timers, options, &mut rungs);
     }
+    pressurised_centres_held_home(table, &signals, &mut rungs);
     if modes.reset {
         super::modes::reset_edge(&mut init, &mut rungs);
     }
@@ -466,7 +463,58 @@ fn plausibility_rungs(table: &StepTable, signals: &Signals) -> Vec<Rung> {
     rungs
 }
 
-/// A step that does not finish in time raises the alarm and halts.
+/// A 5/3 pressurised-centre valve with both coils off pushes on both
+/// sides of the piston, which creeps out (the larger area wins): at home
+/// with its `+` coil off, its `-` coil holds it there (at power-up, after
+/// manual's jogs, wherever the sequence leaves it home). Before the
+/// emergency stop's rung, which stays the last word; a middle stop, away
+/// from home, is left as its rung left it.
+fn pressurised_centres_held_home(table: &StepTable, signals: &Signals, rungs: &mut Vec<Rung>) {
+    let held = table.actuators.iter().filter(|a| {
+        signals.kinds.get(&a.number) == Some(&crate::actuator::ActuatorKind::Pressure53)
+    });
+    let coil = |actuator, sign| Signal::Coil { actuator, sign };
+    let hold: Vec<Rung> = held
+        .map(|a| Rung {
+            kind: RungKind::HoldHome,
+            comment: format!(
+                "C{}: a pressurised centre creeps out with both coils off; its - coil holds it home",
+                a.number
+            ),
+            condition: vec![
+                Literal::not(coil(a.number, Sign::Plus)),
+                signals.at(a.number, 0),
+            ],
+            actions: vec![Action::Set(coil(a.number, Sign::Minus))],
+        })
+        .collect();
+    let at = rungs
+        .iter()
+        .position(|r| r.kind == RungKind::EmergencyStop)
+        .unwrap_or(rungs.len());
+    rungs.splice(at..at, hold);
+}
+
+/// Manual mode's rungs, before the emergency stop's rung, which stays
+/// the last word.
+fn manual_before_estop(
+    signals: &Signals,
+    timers: &[Signal],
+    options: &ProgramOptions,
+    rungs: &mut Vec<Rung>,
+) {
+    let at = rungs
+        .iter()
+        .position(|r| r.kind == RungKind::EmergencyStop)
+        .unwrap_or(rungs.len());
+    let manual = super::manual::rungs(signals, timers, options);
+    rungs.splice(at..at, manual);
+}
+
+/// A step (or homing stage) that does not finish in time raises the
+/// alarm and halts. Not in a machine halted already (an EMERGENCY STOP,
+/// an interlock): a stopped step is not one that ran out of time, and
+/// the criteria analysis would blame a sensor for it.
 fn watchdog_rung() -> Rung {
     Rung {
         kind: RungKind::Watchdog,
@@ -474,11 +522,14 @@ fn watchdog_rung() -> Rung {
         condition: vec![
             Literal::is(Signal::WatchdogArmed),
             Literal::not(Signal::Watchdog),
+            Literal::not(Signal::Halt),
         ],
+        // Once: the halt it sets holds the rung off until RESET, which
+        // disarms the watchdog (one coil of its own contacts per rung, so
+        // that Ladder draws it).
         actions: vec![
             Action::Set(Signal::Halt),
             Action::Set(Signal::Alarm(Alarm::Timeout)),
-            Action::Reset(Signal::WatchdogArmed),
         ],
     }
 }

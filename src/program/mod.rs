@@ -173,6 +173,8 @@ pub enum RungKind {
     RunOn,
     /// Manual mode: the automatic cycle's end and the jogs.
     Manual,
+    /// A pressurised-centre valve's `-` coil holding its piston home.
+    HoldHome,
 }
 
 impl RungKind {
@@ -192,6 +194,7 @@ impl RungKind {
             RungKind::StopNow => "STOP",
             RungKind::RunOn => "RUN-ON",
             RungKind::Manual => "MANUAL",
+            RungKind::HoldHome => "HOLD HOME",
         }
     }
 }

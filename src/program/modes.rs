@@ -217,14 +217,28 @@ pub(super) fn homing_rungs(
     timers: &[Signal],
     options: &super::ProgramOptions,
     run_ons: &[super::RunOn],
+    strokes: &crate::stroke::Strokes,
     rungs: &mut Vec<Rung>,
 ) {
     let modes = &options.modes;
     let outputs: Vec<Signal> = signals.driven().collect();
     if modes.reset {
         let stages = modes.home_stages(table).unwrap_or_default();
-        rungs.push(reset_rung(signals, timers, options, &outputs, &stages));
-        home_stage_rungs(signals, options, &stages, rungs);
+        // With the watchdog each stage is supervised as a step is.
+        let presets: Vec<u32> = if options.safety.watchdog {
+            stages
+                .iter()
+                .map(|stage| super::supervision::homing_preset_ms(stage, strokes))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let homing = Homing {
+            stages: &stages,
+            presets: &presets,
+        };
+        rungs.push(reset_rung(signals, timers, options, &outputs, &homing));
+        home_stage_rungs(signals, options, &homing, rungs);
     }
     if modes.estop {
         rungs.push(estop_rung(signals, options, run_ons, &outputs));
@@ -234,7 +248,8 @@ pub(super) fn homing_rungs(
 /// RESET pressed where it may act: on its rising edge (a RESET held, or
 /// jammed, as the EMERGENCY STOP is released starts nothing: EN 60204-1
 /// wants a deliberate reset), not under the EMERGENCY STOP, and (homing
-/// moves every actuator) not behind an open guard.
+/// moves every actuator) not behind an open guard, one guarding a range
+/// of steps too: homing has no step to exempt.
 pub(super) fn reset_pressed(options: &super::ProgramOptions) -> Vec<Literal> {
     let mut condition = vec![
         Literal::is(Signal::Reset),
@@ -247,10 +262,29 @@ pub(super) fn reset_pressed(options: &super::ProgramOptions) -> Vec<Literal> {
         options
             .interlocks
             .iter()
-            .filter(|i| i.steps.is_none())
             .map(|i| Literal::is(Signal::MachineInput(i.input))),
     );
     condition
+}
+
+/// The homing stages (actuator numbers), and with the watchdog each
+/// stage's supervision time (else none).
+struct Homing<'a> {
+    stages: &'a [Vec<u32>],
+    presets: &'a [u32],
+}
+
+impl Homing<'_> {
+    /// Stage `i` (0-based) supervised: the watchdog restarted with its
+    /// preset and armed.
+    fn supervise(&self, i: usize) -> Vec<Action> {
+        self.presets.get(i).map_or_else(Vec::new, |ms| {
+            vec![
+                Action::StartTimer(Signal::Watchdog, *ms),
+                Action::Set(Signal::WatchdogArmed),
+            ]
+        })
+    }
 }
 
 /// RESET abandons the cycle: every output and the cycle's memories off,
@@ -263,8 +297,9 @@ fn reset_rung(
     timers: &[Signal],
     options: &super::ProgramOptions,
     outputs: &[Signal],
-    stages: &[Vec<u32>],
+    homing: &Homing,
 ) -> Rung {
+    let stages = homing.stages;
     let later: Vec<u32> = stages.iter().skip(1).flatten().copied().collect();
     let waits_for_its_stage =
         |s: &Signal| matches!(s, Signal::SingleCoil { actuator } if later.contains(actuator));
@@ -301,7 +336,14 @@ fn reset_rung(
             .map(|m| Action::Reset(*m)),
     );
     actions.extend(signals.alarms().map(Action::Reset));
-    actions.extend(timers.iter().map(|t| Action::Reset(*t)));
+    let supervised = homing.supervise(0);
+    actions.extend(
+        timers
+            .iter()
+            .filter(|t| supervised.is_empty() || **t != Signal::Watchdog)
+            .map(|t| Action::Reset(*t)),
+    );
+    actions.extend(supervised);
     actions.push(Action::Set(Signal::Homing));
     for n in 1..=stages.len() {
         let stage = Signal::HomeStage(n as u16);
@@ -325,9 +367,10 @@ fn reset_rung(
 fn home_stage_rungs(
     signals: &Signals,
     options: &super::ProgramOptions,
-    stages: &[Vec<u32>],
+    homing: &Homing,
     rungs: &mut Vec<Rung>,
 ) {
+    let stages = homing.stages;
     // A machine without actuators (an oven) has nothing to home: the
     // homing RESET started ends the next scan, or START would wait forever.
     if stages.is_empty() {
@@ -390,11 +433,18 @@ fn home_stage_rungs(
                     })
                 }),
         );
-        done.push(if i + 1 < stages.len() {
-            Action::Set(Signal::HomeStage(i as u16 + 2))
+        if i + 1 < stages.len() {
+            done.push(Action::Set(Signal::HomeStage(i as u16 + 2)));
+            done.extend(homing.supervise(i + 1));
         } else {
-            Action::Reset(Signal::Homing)
-        });
+            done.push(Action::Reset(Signal::Homing));
+            if !homing.presets.is_empty() {
+                done.extend([
+                    Action::Reset(Signal::Watchdog),
+                    Action::Reset(Signal::WatchdogArmed),
+                ]);
+            }
+        }
         rungs.push(Rung {
             kind: RungKind::Homing,
             comment: format!(

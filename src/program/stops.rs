@@ -60,33 +60,46 @@ pub(super) fn end_run_ons(run_ons: &[super::RunOn], steps: &mut [ProgramStep]) {
 }
 
 /// An interlock input that goes off halts the machine where it is and
-/// raises `alarm_il`; RESET (or a restart) clears the halt.
+/// raises `alarm_il`; RESET (or a restart) clears the halt. One guarding
+/// a range of steps guards the homing too: homing moves every actuator
+/// and has no step to exempt, as manual's jogs have none.
 pub(super) fn interlock_rung(options: &ProgramOptions) -> Vec<Rung> {
     let zones: Vec<(Signal, super::Interlock)> = options.zones().collect();
-    options
-        .interlocks
-        .iter()
-        .map(|interlock| {
-            let name = interlock.input;
-            let mut condition = vec![Literal::not(Signal::MachineInput(name))];
-            let mut comment = format!("INTERLOCK: {name} off halts the machine");
-            if let Some((zone, i)) = zones.iter().find(|(_, i)| i == interlock)
-                && let Some((first, last)) = i.steps
-            {
-                condition.push(Literal::is(*zone));
-                comment.push_str(&format!(" in steps {first} to {last}"));
-            }
-            Rung {
+    let halt = || {
+        vec![
+            Action::Set(Signal::Halt),
+            Action::Set(Signal::Alarm(Alarm::Interlock)),
+        ]
+    };
+    let mut rungs = Vec::new();
+    for interlock in &options.interlocks {
+        let name = interlock.input;
+        let off = Literal::not(Signal::MachineInput(name));
+        let mut condition = vec![off];
+        let mut comment = format!("INTERLOCK: {name} off halts the machine");
+        let ranged = zones.iter().find(|(_, i)| i == interlock);
+        if let Some((zone, i)) = ranged
+            && let Some((first, last)) = i.steps
+        {
+            condition.push(Literal::is(*zone));
+            comment.push_str(&format!(" in steps {first} to {last}"));
+        }
+        rungs.push(Rung {
+            kind: RungKind::Interlock,
+            comment,
+            condition,
+            actions: halt(),
+        });
+        if ranged.is_some() && options.modes.reset {
+            rungs.push(Rung {
                 kind: RungKind::Interlock,
-                comment,
-                condition,
-                actions: vec![
-                    Action::Set(Signal::Halt),
-                    Action::Set(Signal::Alarm(Alarm::Interlock)),
-                ],
-            }
-        })
-        .collect()
+                comment: format!("INTERLOCK: {name} off halts the homing"),
+                condition: vec![off, Literal::is(Signal::Homing)],
+                actions: halt(),
+            });
+        }
+    }
+    rungs
 }
 
 /// A zone memory is set when the range's first step fires and reset when

@@ -202,8 +202,25 @@ pub(super) fn preset_ms(
         return *ms;
     }
     let (longest, dwell) = expected_ms(table, step, strokes);
-    let preset = 2 * longest + dwell + 1000;
-    // Rounding up never pushes a preset a timer holds past what it holds.
+    rounded_preset(2 * longest + dwell + 1000)
+}
+
+/// The watchdog's preset for a homing stage (`--safety watchdog` with
+/// RESET): twice the slowest full retract of its actuators plus one
+/// second, as for a step, so that a dead home switch halts the homing
+/// and cuts its drives instead of leaving them on for good.
+pub(super) fn homing_preset_ms(stage: &[u32], strokes: &Strokes) -> u32 {
+    let longest = stage
+        .iter()
+        .map(|a| u64::from(strokes.of(*a).retract_ms))
+        .max()
+        .unwrap_or(0);
+    rounded_preset(2 * longest + 1000)
+}
+
+/// Up to 100 ms; rounding up never pushes a preset a timer holds past
+/// what it holds.
+fn rounded_preset(preset: u64) -> u32 {
     let most = crate::cell::MAX_DWELL_MS as u64;
     let rounded = preset.div_ceil(100) * 100;
     let rounded = if preset <= most {

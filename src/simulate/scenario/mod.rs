@@ -135,10 +135,12 @@ pub fn tail_after_events(table: &StepTable, program: &StepProgram, settings: &Si
         .and_then(|c| c.cycle_ms)
         .unwrap_or(10_000);
     let run_on = program.run_ons.iter().map(|r| u64::from(r.ms)).max();
+    // A homing stage's supervision too: its alarm comes after the RESET.
     let supervision = program
         .steps
         .iter()
         .flat_map(|s| &s.actions)
+        .chain(program.rungs.iter().flat_map(|r| &r.actions))
         .filter_map(|a| match a {
             crate::program::Action::StartTimer(Signal::Watchdog, ms) => Some(u64::from(*ms)),
             _ => None,
