@@ -293,6 +293,7 @@ pub fn resolve(
     for row in [Row::HoldSafe, Row::OffOnHalt, Row::OnHalt] {
         if let Some((list, actions)) = actions_of(row, diags) {
             halt.say(row, list, &actions, diags);
+            refuse_drives_through_halt(table, valves, row, list, &actions, diags);
             if row == Row::OnHalt {
                 on_halt = actions;
             }
@@ -439,6 +440,41 @@ fn refuse_motion_through_estop(
             Code::E030BadSetting,
             list.at.clone(),
             format!("{}: {why}", row.label()),
+        );
+    }
+}
+
+/// A halt stops every drive: a watchdog halts because a limit switch is
+/// dead, and a contactor a halt row kept on (or let run on) would drive
+/// into the end stop for good. E030 at the row's cell, once per drive.
+fn refuse_drives_through_halt(
+    table: &StepTable,
+    valves: &Valves,
+    row: Row,
+    list: &NamedList,
+    actions: &BTreeMap<Signal, StopAction>,
+    diags: &mut Diagnostics,
+) {
+    let mut named = BTreeSet::new();
+    for (signal, action) in actions {
+        let Signal::Coil { actuator, .. } = *signal else {
+            continue;
+        };
+        let pmax = table.actuator(actuator).map_or(1, |a| a.max_position);
+        if *action == StopAction::Off
+            || !valves.of(actuator, pmax).is_drive()
+            || !named.insert(actuator)
+        {
+            continue;
+        }
+        diags.error(
+            Code::E030BadSetting,
+            list.at.clone(),
+            format!(
+                "{}: {} is a contactor of drive C{actuator} (valve type motor): kept on at a halt, it keeps the drive running, into its end stop when the halt came from its dead limit switch; a halt stops every drive",
+                row.label(),
+                signal.symbol()
+            ),
         );
     }
 }

@@ -171,52 +171,11 @@ fn parse_cell(
     let location = grid.location(raw.pos);
     let text = match &raw.value {
         CellValue::Text(t) => t,
-        CellValue::Number(n) => {
-            diags.error(
-                Code::E010NotAMove,
-                location,
-                format!("the number {n} is not a move (expected text such as C2+1)"),
-            );
-            return Vec::new();
-        }
-        CellValue::Bool(b) => {
-            diags.error(
-                Code::E010NotAMove,
-                location,
-                format!(
-                    "the value {} is not a move (expected text such as C2+1)",
-                    if *b { "TRUE" } else { "FALSE" }
-                ),
-            );
-            return Vec::new();
-        }
-        CellValue::Date(_) => {
-            diags.error(
-                Code::E010NotAMove,
-                location,
-                format!(
-                    "{} is not a move: the spreadsheet took what was typed for a date or time; format the cell as text and type the move, e.g. C2+1",
-                    raw.value.describe()
-                ),
-            );
-            return Vec::new();
-        }
-        CellValue::Error(e) => {
-            diags.error(
-                Code::E010NotAMove,
-                location,
-                format!("the cell shows the error {e}, not a move"),
-            );
-            return Vec::new();
-        }
-        CellValue::Uncomputed(formula) => {
-            diags.error(
-                Code::E016FormulaNotComputed,
-                location,
-                format!(
-                    "the formula {formula} has no computed value (the file was saved by a program that does not calculate); open and save it in Excel or LibreOffice, or type the move"
-                ),
-            );
+        other => {
+            let (code, message) = not_a_move(other);
+            diags.error(code, location, message);
+            // Refused whole: it may have moved any actuator.
+            refuse(None);
             return Vec::new();
         }
     };
@@ -227,6 +186,9 @@ fn parse_cell(
             location,
             format!("the cell holds {chars} characters; a move has at most {MAX_CELL_CHARS}"),
         );
+        for actuator in item_texts(text).into_iter().flat_map(move_attempts) {
+            refuse(actuator);
+        }
         return Vec::new();
     }
     let results = parse_items(text);
@@ -279,6 +241,44 @@ fn parse_cell(
         }
     }
     items
+}
+
+/// Why a cell that holds no text is no move, with its code.
+fn not_a_move(value: &CellValue) -> (Code, String) {
+    match value {
+        CellValue::Bool(b) => (
+            Code::E010NotAMove,
+            format!(
+                "the value {} is not a move (expected text such as C2+1)",
+                if *b { "TRUE" } else { "FALSE" }
+            ),
+        ),
+        CellValue::Date(_) => (
+            Code::E010NotAMove,
+            format!(
+                "{} is not a move: the spreadsheet took what was typed for a date or time; format the cell as text and type the move, e.g. C2+1",
+                value.describe()
+            ),
+        ),
+        CellValue::Error(e) => (
+            Code::E010NotAMove,
+            format!("the cell shows the error {e}, not a move"),
+        ),
+        CellValue::Uncomputed(formula) => (
+            Code::E016FormulaNotComputed,
+            format!(
+                "the formula {formula} has no computed value (the file was saved by a program that does not calculate); open and save it in Excel or LibreOffice, or type the move"
+            ),
+        ),
+        CellValue::Number(n) => (
+            Code::E010NotAMove,
+            format!("the number {n} is not a move (expected text such as C2+1)"),
+        ),
+        CellValue::Text(t) => (
+            Code::E010NotAMove,
+            format!("\"{}\" is not a move", t.trim()),
+        ),
+    }
 }
 
 /// Reports a refused item of the cell `text`: E010 quotes the item

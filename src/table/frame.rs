@@ -31,6 +31,23 @@ impl Frame {
         let row = *self.step_rows.get(index)?;
         grid.cells.iter().find(|c| c.pos == CellPos::new(row, col))
     }
+
+    /// The number each step row's `STEP n` label says, with the label's
+    /// cell (none for a row without one).
+    pub(super) fn step_labels(&self, grid: &Grid) -> Vec<Option<(u32, CellPos)>> {
+        let Some(col) = self.label_col else {
+            return vec![None; self.step_rows.len()];
+        };
+        let cells: Vec<CellPos> = (self.step_rows.iter())
+            .map(|row| CellPos::new(*row, col))
+            .collect();
+        let numbers = header_numbers(grid, &cells);
+        numbers
+            .into_iter()
+            .zip(cells)
+            .map(|(n, pos)| n.map(|n| (n, pos)))
+            .collect()
+    }
 }
 
 /// Finds step rows and branch columns: by headers, or as a bare grid of moves.
@@ -226,18 +243,7 @@ fn warn_on_numbers(
     (says, one, many): (&str, &str, &str),
     diags: &mut Diagnostics,
 ) {
-    let numbers: Vec<Option<u32>> = cells
-        .iter()
-        .map(
-            |pos| match grid.cells.iter().find(|c| c.pos == *pos).map(|c| &c.value) {
-                Some(CellValue::Text(t)) => match header_kind(t) {
-                    Some(Header::Step(n) | Header::Branch(n)) => Some(n),
-                    _ => None,
-                },
-                _ => None,
-            },
-        )
-        .collect();
+    let numbers = header_numbers(grid, cells);
     let mut said_shift = 0i64;
     for (k, (pos, number)) in cells.iter().zip(&numbers).enumerate() {
         let Some(n) = *number else { continue };
@@ -265,6 +271,22 @@ fn warn_on_numbers(
             ),
         );
     }
+}
+
+/// The number each `STEP n` / `BRANCH n` cell says.
+fn header_numbers(grid: &Grid, cells: &[CellPos]) -> Vec<Option<u32>> {
+    cells
+        .iter()
+        .map(
+            |pos| match grid.cells.iter().find(|c| c.pos == *pos).map(|c| &c.value) {
+                Some(CellValue::Text(t)) => match header_kind(t) {
+                    Some(Header::Step(n) | Header::Branch(n)) => Some(n),
+                    _ => None,
+                },
+                _ => None,
+            },
+        )
+        .collect()
 }
 
 /// Reports every filled cell in or beside the table that is not part of it:

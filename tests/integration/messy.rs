@@ -60,7 +60,7 @@ const OLD: &[&[&str]] = &[&["", "BRANCH 1"], &["STEP 1", "C5+1"], &["STEP 2", "C
 
 /// An `.xlsx` whose B2 holds a formula saved without its value, as programs
 /// that write formulas without calculating them do.
-fn uncomputed_formula() -> Vec<u8> {
+pub(crate) fn uncomputed_formula() -> Vec<u8> {
     let mut bytes = workbook(&[("SEQUENTIAL CONTROL DESCRIPTION", false, FIG7)]);
     let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes.clone())).unwrap();
     let mut out = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
