@@ -92,6 +92,9 @@ pub struct Expanded {
     /// Tables in the folders walked that a run wrote (its manifest says so,
     /// and they are unchanged since): left out, and counted to be said.
     pub outputs_skipped: Vec<PathBuf>,
+    /// Folders that hold no table at all: a CI job pointed at the wrong
+    /// folder must not hear that all is well.
+    pub empty_folders: Vec<PathBuf>,
 }
 
 /// The files and patterns to convert, expanded. Folders are walked
@@ -117,6 +120,9 @@ pub fn expand_inputs(paths: &[PathBuf]) -> Expanded {
         if path.is_dir() {
             let mut files = Vec::new();
             walk(path, &mut files);
+            if files.is_empty() {
+                expanded.empty_folders.push(path.clone());
+            }
             files.sort();
             keep(files, &mut expanded);
         } else if path.is_file() {

@@ -133,6 +133,10 @@ pub enum Code {
     /// An output written for a tool that will refuse it (an SFC chart with
     /// timers for OpenPLC v3, whose upload cannot build a global TON).
     W011RefusedByTool,
+    /// The program halts (a safety check, an interlock, a STOP that acts
+    /// at once) but has no RESET: nothing acknowledges the halt, and the
+    /// machine stands away from home until the PLC restarts.
+    W012HaltForGood,
 }
 
 impl Code {
@@ -170,6 +174,7 @@ impl Code {
             Code::W009Unsupervised => "W009",
             Code::W010JumpLeavesOutput => "W010",
             Code::W011RefusedByTool => "W011",
+            Code::W012HaltForGood => "W012",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",

@@ -56,7 +56,8 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
     }
     let started = std::time::Instant::now();
     let expanded = batch::expand_inputs(&args.paths);
-    report.diagnostics(&unmatched(&expanded.missing));
+    report.diagnostics(&unmatched(&expanded.missing, NO_SUCH_PATH));
+    report.diagnostics(&unmatched(&expanded.empty_folders, NO_TABLE_IN_FOLDER));
     if !expanded.outputs_skipped.is_empty() {
         report.say(&format!(
             "note: {} table(s) in the folders are outputs of an earlier run (listed in their folder's {}) and are not converted again, e.g. {}",
@@ -65,7 +66,8 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
             display_name(&expanded.outputs_skipped[0])
         ));
     }
-    let (inputs, missing) = (&expanded.found, &expanded.missing);
+    let inputs = &expanded.found;
+    let missing: &Vec<PathBuf> = &[&expanded.missing[..], &expanded.empty_folders[..]].concat();
     let jobs = job_count(args, &report);
     let bar = progress_bar(args, inputs.len());
     let on_done = |outcome: &batch::Outcome| {
@@ -100,9 +102,13 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
     code
 }
 
-/// A path that names nothing is a file that cannot be read: E001, as
-/// convert says it, so a script reading the JSON sees it too.
-fn unmatched(missing: &[PathBuf]) -> Vec<Diagnostic> {
+const NO_SUCH_PATH: &str = "no such file or folder, and no file matches it as a pattern";
+const NO_TABLE_IN_FOLDER: &str = "the folder holds no table (searched with its subfolders for .xlsx, .xlsm, .xls, .ods and .csv files)";
+
+/// A path that names nothing, or a folder with nothing to convert, is an
+/// input that cannot be read: E001, as convert says it, so a script
+/// reading the JSON sees it too.
+fn unmatched(missing: &[PathBuf], why: &str) -> Vec<Diagnostic> {
     missing
         .iter()
         .map(|path| Diagnostic {
@@ -113,7 +119,7 @@ fn unmatched(missing: &[PathBuf]) -> Vec<Diagnostic> {
                 sheet: None,
                 cell: None,
             },
-            message: "no such file or folder, and no file matches it as a pattern".to_string(),
+            message: why.to_string(),
         })
         .collect()
 }

@@ -66,6 +66,10 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
             "--diagram draws the proof's cycle, which a scenario (--press, --hold, --release, --stick) replaces: draw the scenario's run with --report DIR (its timeline, with the positions), or leave out the events",
         );
         let _ = err.print();
+        // A script reading JSON hears it as every refused command line.
+        if reporter.json {
+            out(&super::command_line_json(&err.render().to_string()));
+        }
         return EXIT_BAD_INPUT;
     }
     if !events.is_empty() {

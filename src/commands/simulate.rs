@@ -164,9 +164,11 @@ pub fn scenario(
     let symbols = SymbolTable::build(&program, &table, naming);
     let designation = |s| symbols.designation(s);
     let actuator = |n| symbols.actuator_in_finding(n);
+    let explain = |text: &str| symbols.explain(text);
     let names = printed::Names {
         signal: &designation,
         actuator: &actuator,
+        explain: &explain,
     };
     let numbers: Vec<u32> = table.actuators.iter().map(|a| a.number).collect();
     let printed = printed::render(&run, &events, &program, &numbers, &names);

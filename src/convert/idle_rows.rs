@@ -1,5 +1,6 @@
 //! SETTINGS rows about an event the program does not have (an `on stop`
-//! row without the STOP button): W006, and what manual mode still reads.
+//! row without the STOP button): W006, and what manual mode still reads;
+//! a halt nothing can acknowledge: W012.
 
 use crate::diag::{Code, Diagnostics};
 use crate::settings::Settings;
@@ -47,5 +48,72 @@ pub(super) fn rows_without_their_event(effective: &Settings, diags: &mut Diagnos
                 format!("{}: {missing}; {so}", row.label()),
             );
         }
+    }
+}
+
+/// A halt without RESET is for good: the safety checks, an interlock and
+/// an `on stop` row each stop the machine mid-cycle, and without the
+/// `reset` mode no rung ever clears the halt or brings the machine home
+/// (START needs every actuator home). The emergency stop brings `reset`
+/// with it; these do not, so W012 at what asked for each (its SETTINGS
+/// cell, or the file for a command-line option).
+pub(super) fn halts_for_good(
+    table: &crate::table::StepTable,
+    effective: &Settings,
+    diags: &mut Diagnostics,
+) {
+    let program = &effective.program;
+    if program.modes.reset {
+        return;
+    }
+    let whole_file = crate::diag::Location {
+        file: table.file.clone(),
+        sheet: None,
+        cell: None,
+    };
+    let safety = program.safety;
+    let checks: Vec<&str> = [
+        (safety.watchdog, "the step watchdog"),
+        (safety.plausibility, "the plausibility check"),
+    ]
+    .into_iter()
+    .filter_map(|(on, name)| on.then_some(name))
+    .collect();
+    let mut found = Vec::new();
+    if !checks.is_empty() {
+        let at = effective.cells.get("safety").cloned();
+        found.push((
+            at.unwrap_or_else(|| whole_file.clone()),
+            format!(
+                "{} {} the machine on an alarm",
+                checks.join(" and "),
+                if checks.len() > 1 { "halt" } else { "halts" }
+            ),
+        ));
+    }
+    if !program.interlocks.is_empty()
+        && let Some(list) = effective.named.get(&Row::Interlock)
+    {
+        found.push((
+            list.at.clone(),
+            "interlock: an input going off halts the machine".to_string(),
+        ));
+    }
+    if program.stops_now()
+        && let Some(list) = effective.named.get(&Row::OnStop)
+    {
+        found.push((
+            list.at.clone(),
+            "on stop: STOP abandons the cycle where the machine stands".to_string(),
+        ));
+    }
+    for (at, what) in found {
+        diags.warning(
+            Code::W012HaltForGood,
+            at,
+            format!(
+                "{what}, and the program has no RESET to acknowledge it: after the first one the machine stands, away from home, until the PLC restarts, and START needs every actuator home; add the reset mode (--modes reset, or `reset` in the SETTINGS modes row)"
+            ),
+        );
     }
 }

@@ -7,7 +7,7 @@ pub use allocate::{allocate, festo_allocation};
 mod findings;
 mod given;
 mod idle_rows;
-use idle_rows::rows_without_their_event;
+use idle_rows::{halts_for_good, rows_without_their_event};
 mod jump_outputs;
 mod kind_times;
 mod untimed;
@@ -192,6 +192,7 @@ fn finish_check(
         names_of_the_whole_table(table, &input.table, &effective, &buttons, &mut diags);
         delays_without_their_input(table, &effective, &input.table, &mut diags);
         rows_without_their_event(&effective, &mut diags);
+        halts_for_good(table, &effective, &mut diags);
         untimed::moves_left_unsupervised(table, &effective, &input.table, &mut diags);
         jump_outputs::outputs_a_jump_leaves(table, &input.table, &mut diags);
     }

@@ -14,6 +14,8 @@ use crate::simulate::ProblemKind;
 pub struct Names<'a> {
     pub signal: &'a dyn Fn(Signal) -> String,
     pub actuator: &'a dyn Fn(u32) -> String,
+    /// A finding's text (in the method's symbols) in the chosen scheme.
+    pub explain: &'a dyn Fn(&str) -> String,
 }
 
 /// One line of the table, at its time; events sort before a step that
@@ -72,7 +74,11 @@ fn lines(
         .iter()
         .filter(|p| !(is_motion(p.kind) && homing(p.time_ms)))
     {
-        lines.push((p.time_ms, 3, format!("problem: {}", p.message)));
+        lines.push((
+            p.time_ms,
+            3,
+            format!("problem: {}", (names.explain)(&p.message)),
+        ));
     }
     lines.sort_by_key(|(t, order, _)| (*t, *order));
     lines
@@ -161,7 +167,11 @@ pub fn render(
         let _ = writeln!(out, "  {:>6.2} s  {line}", t as f64 / 1000.0);
     }
     if let Some(last) = report.samples.last() {
-        let _ = writeln!(out, "{}", where_it_stands(last, actuators, names));
+        let _ = writeln!(
+            out,
+            "{}",
+            where_it_stands(last, actuators, &program.signals, names)
+        );
     }
     if let Some(cut) = report.cut_ms {
         let _ = writeln!(
@@ -200,14 +210,21 @@ fn no_start(report: &ScenarioReport, events: &[Event]) -> Option<String> {
 
 /// `ended at T s in step K; C1 at 1.00, …; on: y1+, spray`: the step, every
 /// position and every output still on (but a retract coil holding its
-/// cylinder home). "At rest" only when it is: step 0, every cylinder home
-/// and no other output on.
-fn where_it_stands(last: &super::Sample, actuators: &[u32], names: &Names) -> String {
+/// cylinder home: a drive's reverse output at home is a motor running
+/// into its end stop, and is listed). "At rest" only when it is: step 0,
+/// every cylinder home, no homing unfinished and no other output on.
+fn where_it_stands(
+    last: &super::Sample,
+    actuators: &[u32],
+    signals: &crate::program::Signals,
+    names: &Names,
+) -> String {
     let home = last.positions.iter().all(|p| *p == 0.0);
     // A retract coil holding its cylinder home is how a machine rests.
     let holds_home = |s: &&Signal| {
         matches!(s, Signal::Coil { sign: crate::cell::Sign::Minus, actuator }
-            if actuators.iter().zip(&last.positions).any(|(n, p)| n == actuator && *p == 0.0))
+            if !signals.drives(*actuator)
+                && actuators.iter().zip(&last.positions).any(|(n, p)| n == actuator && *p == 0.0))
     };
     let on: Vec<String> = last
         .outputs_on
@@ -215,7 +232,9 @@ fn where_it_stands(last: &super::Sample, actuators: &[u32], names: &Names) -> St
         .filter(|s| !holds_home(s))
         .map(|s| (names.signal)(*s))
         .collect();
-    let step = if last.step == 0 && home && on.is_empty() {
+    let step = if last.homing {
+        format!("step {}, homing not done", last.step)
+    } else if last.step == 0 && home && on.is_empty() {
         "step 0 (at rest)".to_string()
     } else {
         format!("step {}", last.step)
