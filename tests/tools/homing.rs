@@ -3,17 +3,27 @@
 //! EMERGENCY STOP while the punch is down, then RESET: the written program
 //! lifts the punch before it opens the clamp, in matiec (iec), awlsim
 //! (siemens) and the FST interpreter (festo), scan for scan as simulated.
+//! And homing under the watchdog: a dead home switch halts the homing and
+//! cuts the drive, a guard on a range of steps halts it, and a
+//! pressurised-centre valve rests home on its `-` coil.
 
 use steptable::simulate::Operator;
 
 use crate::engines::{self, awlsim};
 use crate::{Check, Tool, tool};
 
-pub const CHECKS: &[Check] = &[Check::new(
-    "homing::reset_lifts_the_punch_before_it_opens_the_clamp_in_every_engine",
-    &[Tool::Shared, Tool::Awlsim],
-    reset_lifts_the_punch_before_it_opens_the_clamp_in_every_engine,
-)];
+pub const CHECKS: &[Check] = &[
+    Check::new(
+        "homing::reset_lifts_the_punch_before_it_opens_the_clamp_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        reset_lifts_the_punch_before_it_opens_the_clamp_in_every_engine,
+    ),
+    Check::new(
+        "homing::a_dead_home_switch_halts_the_homing_in_every_engine",
+        &[Tool::Shared, Tool::Awlsim],
+        a_dead_home_switch_halts_the_homing_in_every_engine,
+    ),
+];
 
 const STAMPING: &str = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C2+1\nSTEP 3,T=2s\nSTEP 4,C2-0\nSTEP 5,C1-0\nSTEP 6,C3+1\nSTEP 7,C3-0\nSTEP 8,C4+1\nSTEP 9,C4-0\n";
 
@@ -125,5 +135,112 @@ fn reset_lifts_the_punch_before_it_opens_the_clamp_in_every_engine() {
     }
     eprintln!(
         "homing: after an emergency stop with the punch down, matiec, awlsim and the FST interpreter lift the punch before the clamp opens on RESET, as simulated"
+    );
+}
+
+/// An input, its name, the options beyond the modes, and its events.
+type Run<'a> = (
+    &'a std::path::Path,
+    &'a str,
+    &'a [&'a str],
+    &'a [(&'a str, &'a str)],
+);
+
+/// The car wash's gantry (a drive) stopped by the EMERGENCY STOP, its home
+/// switch dead, RESET: with the watchdog the homing stage runs out of
+/// time, `alarm_wd` comes on and the reverse contactor goes off, in every
+/// engine as simulated. The four-step table with a guard on steps 2-3 and
+/// a 53pressure C1: the guard opening as RESET homes halts the homing, and
+/// C1's `-` coil holds it home from power-up.
+fn a_dead_home_switch_halts_the_homing_in_every_engine() {
+    let dir = tempfile::tempdir().unwrap();
+    let python = awlsim::python(&tool(Tool::Awlsim));
+    let carwash = crate::helpers::sample("carwash.xlsx");
+    let dead: [(&str, &str); 4] = [
+        ("press", "START@0.5s"),
+        ("press", "ESTOP@step2"),
+        ("stick", "x10=0@+1s"),
+        ("press", "RESET@+1s"),
+    ];
+    let guarded = dir.path().join("guarded.xlsx");
+    crate::helpers::write_xlsx_sheets(
+        &guarded,
+        &[
+            (
+                "TABLE",
+                &[
+                    &["", "BRANCH 1"],
+                    &["STEP 1", "C1+1"],
+                    &["STEP 2", "C2+1"],
+                    &["STEP 3", "C2-0"],
+                    &["STEP 4", "C1-0"],
+                ],
+            ),
+            (
+                "SETTINGS",
+                &[
+                    &["interlock", "guard in steps 2-3"],
+                    &["actuator", "valve"],
+                    &["C1", "53pressure"],
+                    &["C2", "53closed"],
+                ],
+            ),
+        ],
+    );
+    let opening: [(&str, &str); 4] = [
+        ("press", "START@0.5s"),
+        ("press", "ESTOP@step2"),
+        ("press", "RESET@+1s"),
+        ("stick", "guard=0@+0.3s"),
+    ];
+    let mut compared = 0;
+    for (target, format) in [("iec", "st"), ("siemens", "awl"), ("festo", "fst")] {
+        let runs: [Run; 2] = [
+            (&carwash, "carwash", &["--safety", "watchdog"], &dead),
+            (&guarded, "guarded", &["--safety", "watchdog"], &opening),
+        ];
+        for (input, stem, extra, events) in runs {
+            let mut args = vec!["--target", target, "--modes", "estop,reset"];
+            args.extend_from_slice(extra);
+            let out = dir.path().join(format!("{stem}-{format}"));
+            let (case, report) =
+                engines::convert_and_record(input, &out, stem, &args, format, events);
+            let outputs = engines::run_written(&case, format, &python);
+            case.check(format, outputs).unwrap();
+            let last = report.samples.last().unwrap();
+            assert!(last.homing, "{}: the homing never ends", case.label);
+            let on: Vec<String> = last.outputs_on.iter().map(|s| s.symbol()).collect();
+            let alarm = if stem == "carwash" {
+                "alarm_wd"
+            } else {
+                "alarm_il"
+            };
+            assert!(on.iter().any(|s| s == alarm), "{}: {on:?}", case.label);
+            if stem == "carwash" {
+                assert!(
+                    !on.iter().any(|s| s == "y1-"),
+                    "{}: the drive runs: {on:?}",
+                    case.label
+                );
+            } else {
+                // C1 rests home from power-up on its - coil.
+                let first = &case.trace.scans[0];
+                let y1m = case
+                    .trace
+                    .signals
+                    .outputs
+                    .iter()
+                    .position(|s| s.symbol() == "y1-");
+                assert!(
+                    first.outputs[y1m.unwrap()],
+                    "{}: y1- off at power-up",
+                    case.label
+                );
+            }
+            compared += 1;
+        }
+    }
+    eprintln!(
+        "homing: {compared} runs (a dead home switch under the watchdog, a range guard opening while RESET homes; matiec, awlsim, FST interpreter) halt the homing as simulated"
     );
 }
