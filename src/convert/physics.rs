@@ -222,6 +222,28 @@ pub fn watchdogs_beyond_timers(table: &StepTable, program: &StepProgram) -> Vec<
             ),
         });
     }
+    // Each stage is started twice over (by RESET, by the stage before):
+    // said once per preset.
+    let mut said = Vec::new();
+    for (_, ms) in program.homing_watchdogs_beyond_timers() {
+        if said.contains(&ms) {
+            continue;
+        }
+        said.push(ms);
+        refused.push(Diagnostic {
+            severity: Severity::Error,
+            code: Code::E032MachineCannotRun,
+            location: Location {
+                file: table.file.clone(),
+                sheet: None,
+                cell: None,
+            },
+            message: format!(
+                "a homing stage's watchdog would need {:.1} s (twice its slowest full retract, plus 1 s), more than the 655.35 s a PLC timer holds on every target (FST counts 1/100 s in a 16-bit word): shorten the stroke, or leave the watchdog out of --safety",
+                ms as f64 / 1000.0
+            ),
+        });
+    }
     refused
 }
 

@@ -281,7 +281,10 @@ fn run_trials(
     // A program steptable refuses to write (E032: a watchdog no PLC timer
     // holds; E036: an alarm output beyond what the board wires) is no
     // mitigation either.
-    if program.watchdogs_beyond_timers().next().is_some() || !fits(&program) {
+    if program.watchdogs_beyond_timers().next().is_some()
+        || program.homing_watchdogs_beyond_timers().next().is_some()
+        || !fits(&program)
+    {
         return None;
     }
     let sets = cases.iter().map(|c| c.faults.clone()).collect();

@@ -248,6 +248,20 @@ impl StepProgram {
         })
     }
 
+    /// The homing stages whose watchdog preset no PLC timer of every
+    /// target holds (a stroke so slow that twice it passes 655.35 s), each
+    /// rung that starts one with the preset: refused (E032) as a step's.
+    pub fn homing_watchdogs_beyond_timers(&self) -> impl Iterator<Item = (&Rung, u32)> {
+        self.rungs.iter().filter_map(|rung| {
+            rung.actions.iter().find_map(|a| match a {
+                Action::StartTimer(Signal::Watchdog, ms) if *ms > crate::cell::MAX_DWELL_MS => {
+                    Some((rung, *ms))
+                }
+                _ => None,
+            })
+        })
+    }
+
     /// Whether STOP acts at once (an `on stop` row) rather than letting
     /// the cycle finish.
     pub fn stops_now(&self) -> bool {

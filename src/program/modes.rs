@@ -237,7 +237,10 @@ pub(super) fn homing_rungs(
             stages: &stages,
             presets: &presets,
         };
-        rungs.push(reset_rung(signals, timers, options, &outputs, &homing));
+        let reset = reset_rung(signals, timers, options, &outputs, &homing);
+        let kept = super::stops::run_ons_through_reset(run_ons, &reset.condition);
+        rungs.push(reset);
+        rungs.extend(kept);
         home_stage_rungs(signals, options, &homing, rungs);
     }
     if modes.estop {
@@ -327,7 +330,6 @@ fn reset_rung(
                         | Signal::AutoRun
                         | Signal::StopAt { .. }
                         | Signal::DwellArmed(_)
-                        | Signal::RunOnArmed(_)
                         | Signal::InterlockZone(_)
                         | Signal::WatchdogArmed
                         | Signal::Awaited(_)
@@ -337,10 +339,13 @@ fn reset_rung(
     );
     actions.extend(signals.alarms().map(Action::Reset));
     let supervised = homing.supervise(0);
+    // A run-on keeps its timer: the fan cooling a heater runs its time
+    // out through RESET (`stops::run_ons_through_reset`).
     actions.extend(
         timers
             .iter()
             .filter(|t| supervised.is_empty() || **t != Signal::Watchdog)
+            .filter(|t| !matches!(t, Signal::RunOn(_)))
             .map(|t| Action::Reset(*t)),
     );
     actions.extend(supervised);
@@ -419,6 +424,24 @@ fn home_stage_rungs(
             condition,
             actions: drive,
         });
+        // A drive runs as long as its output is on: one at home is cut
+        // there, not when the whole stage is (its end stop is no brake).
+        if stage.len() > 1 {
+            rungs.extend(
+                stage
+                    .iter()
+                    .filter(|&&a| signals.drives(a))
+                    .map(|&actuator| Rung {
+                        kind: RungKind::Homing,
+                        comment: format!("homing stage {}: C{actuator} home, its drive cut", i + 1),
+                        condition: vec![Literal::is(memory), signals.at(actuator, 0)],
+                        actions: vec![Action::Reset(Signal::Coil {
+                            actuator,
+                            sign: Sign::Minus,
+                        })],
+                    }),
+            );
+        }
         rungs.extend(halted_stage(signals, options, memory, stage, &names));
         let mut done = vec![Action::Reset(memory)];
         // A drive runs as long as its output is on: cut it at home.

@@ -43,6 +43,31 @@ pub(super) fn run_on_rungs(run_ons: &[super::RunOn]) -> Vec<Rung> {
     rungs
 }
 
+/// RESET switches every output off, but a run-on under way runs its time
+/// out (a fan cooling a heater after STOP or the emergency stop): in the
+/// RESET rung's scan (`reset`, its condition) and after it, an armed
+/// run-on's output is on again, so the output never drops, and its own
+/// rung ends it on time. Only then: a step of a later cycle may switch it
+/// off before its time is up.
+pub(super) fn run_ons_through_reset(run_ons: &[super::RunOn], reset: &[Literal]) -> Vec<Rung> {
+    (1..=run_ons.len() as u16)
+        .zip(run_ons)
+        .map(|(n, run_on)| {
+            let mut condition = reset.to_vec();
+            condition.push(Literal::is(Signal::RunOnArmed(n)));
+            Rung {
+                kind: RungKind::RunOn,
+                comment: format!(
+                    "run-on {n}: RESET leaves {} on until its time is up",
+                    run_on.output.symbol()
+                ),
+                condition,
+                actions: vec![Action::Set(run_on.output)],
+            }
+        })
+        .collect()
+}
+
 /// A step that switches a running-on output on again ends its run-on.
 pub(super) fn end_run_ons(run_ons: &[super::RunOn], steps: &mut [ProgramStep]) {
     for step in steps {

@@ -5,7 +5,8 @@
 //! (siemens) and the FST interpreter (festo), scan for scan as simulated.
 //! And homing under the watchdog: a dead home switch halts the homing and
 //! cuts the drive, a guard on a range of steps halts it, and a
-//! pressurised-centre valve rests home on its `-` coil.
+//! pressurised-centre valve rests home on its `-` coil; a run-on runs its
+//! time out through RESET.
 
 use steptable::simulate::Operator;
 
@@ -240,7 +241,104 @@ fn a_dead_home_switch_halts_the_homing_in_every_engine() {
             compared += 1;
         }
     }
+    // A drive homed in one stage with a slower cylinder is cut at its own
+    // home switch, long before the stage is done.
+    let shared = dir.path().join("shared.xlsx");
+    crate::helpers::write_xlsx_sheets(
+        &shared,
+        &[
+            (
+                "TABLE",
+                &[
+                    &["", "BRANCH 1"],
+                    &["STEP 1", "C1+1"],
+                    &["STEP 2", "C2+1"],
+                    &["STEP 3", "C2-0"],
+                    &["STEP 4", "C1-0"],
+                ],
+            ),
+            (
+                "SETTINGS",
+                &[
+                    &["home order", "C1 C2"],
+                    &["actuator", "valve", "extend", "retract"],
+                    &["C1", "motor", "1s", "1s"],
+                    &["C2", "53closed", "1s", "4s"],
+                ],
+            ),
+        ],
+    );
+    let events: [(&str, &str); 3] = [
+        ("press", "START@0.5s"),
+        ("press", "ESTOP@step3"),
+        ("press", "RESET@+1s"),
+    ];
+    for (target, format) in [("iec", "st"), ("siemens", "awl"), ("festo", "fst")] {
+        let args = ["--target", target, "--modes", "estop,reset"];
+        let out = dir.path().join(format!("shared-{format}"));
+        let (case, _) =
+            engines::convert_and_record(&shared, &out, "shared", &args, format, &events);
+        let outputs = engines::run_written(&case, format, &python);
+        case.check(format, outputs).unwrap();
+        let signals = &case.trace.signals;
+        let x10 = signals
+            .inputs
+            .iter()
+            .position(|s| s.symbol() == "x10")
+            .unwrap();
+        let x20 = signals
+            .inputs
+            .iter()
+            .position(|s| s.symbol() == "x20")
+            .unwrap();
+        let y1m = signals
+            .outputs
+            .iter()
+            .position(|s| s.symbol() == "y1-")
+            .unwrap();
+        let driving_home = case
+            .trace
+            .scans
+            .iter()
+            .filter(|s| s.inputs[x10] && !s.inputs[x20] && s.outputs[y1m])
+            .count();
+        assert!(
+            driving_home <= 1,
+            "{}: C1 driven into its end stop for {driving_home} scans",
+            case.label
+        );
+        compared += 1;
+    }
+    // The oven's fan runs its 20 s out through a RESET pressed 2 s after
+    // STOP (its ADDRESSES sheet pins S7 addresses: awlsim alone).
+    let oven = crate::helpers::sample("oven.xlsx");
+    let events: [(&str, &str); 3] = [
+        ("press", "START@0.5s"),
+        ("press", "STOP@+12s"),
+        ("press", "RESET@+2s"),
+    ];
+    let args = ["--target", "siemens", "--modes", "stop,reset"];
+    let out = dir.path().join("oven-awl");
+    let (case, _) = engines::convert_and_record(&oven, &out, "oven", &args, "awl", &events);
+    let outputs = engines::run_written(&case, "awl", &python);
+    case.check("awl", outputs).unwrap();
+    let fan = case
+        .trace
+        .signals
+        .outputs
+        .iter()
+        .position(|s| s.symbol() == "fan");
+    let fan = fan.expect("the oven has a fan");
+    let on_at = |ms: u64| {
+        let scan = case.trace.scans.iter().find(|s| s.time_ms >= ms).unwrap();
+        scan.outputs[fan]
+    };
+    assert!(
+        on_at(20_000) && !on_at(33_000),
+        "{}: the fan's run-on",
+        case.label
+    );
     eprintln!(
-        "homing: {compared} runs (a dead home switch under the watchdog, a range guard opening while RESET homes; matiec, awlsim, FST interpreter) halt the homing as simulated"
+        "homing: {compared} runs (a dead home switch under the watchdog, a range guard opening while RESET homes; matiec, awlsim, FST interpreter) halt the homing as simulated; the oven's fan runs on through RESET in awlsim"
     );
 }

@@ -59,8 +59,13 @@ fn lines(
         let what = if on { "on" } else { "off" };
         lines.push((t, 2, format!("{} {what}", (names.signal)(signal))));
     }
-    for (t, on) in homing_changes(report) {
-        let what = if on { "homing starts" } else { "homing done" };
+    for (t, on, home) in homing_changes(report) {
+        // Ended by the EMERGENCY STOP, STOP or manual mode, not home.
+        let what = match (on, home) {
+            (true, _) => "homing starts",
+            (false, true) => "homing done",
+            (false, false) => "homing abandoned, the machine not home",
+        };
         lines.push((t, 2, what.to_string()));
     }
     // Motion while the program homes the machine is what RESET asked for.
@@ -123,13 +128,16 @@ fn is_motion(kind: ProblemKind) -> bool {
     matches!(kind, ProblemKind::OutsideStep | ProblemKind::RanThrough)
 }
 
-/// When the program started and ended homing the machine.
-fn homing_changes(report: &ScenarioReport) -> Vec<(u64, bool)> {
+/// When the program started and ended homing the machine, and whether
+/// every cylinder was home then.
+fn homing_changes(report: &ScenarioReport) -> Vec<(u64, bool, bool)> {
     let mut was = false;
     let mut changes = Vec::new();
     for (scan, sample) in scans(report) {
         if sample.homing != was {
-            changes.push((scan, sample.homing));
+            // Within a home sensor's window (a drive coasts onto it).
+            let home = sample.positions.iter().all(|p| p.abs() < 0.05);
+            changes.push((scan, sample.homing, home));
             was = sample.homing;
         }
     }
