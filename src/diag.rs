@@ -137,6 +137,10 @@ pub enum Code {
     /// at once) but has no RESET: nothing acknowledges the halt, and the
     /// machine stands away from home until the PLC restarts.
     W012HaltForGood,
+    /// An interlock's halt leaves the coils of closed-, exhausted- or
+    /// pressurised-centre valves on: a piston under way when the guard
+    /// opens drives on to its end, which the centre would have stopped.
+    W013GuardLeavesMotion,
 }
 
 impl Code {
@@ -175,6 +179,7 @@ impl Code {
             Code::W010JumpLeavesOutput => "W010",
             Code::W011RefusedByTool => "W011",
             Code::W012HaltForGood => "W012",
+            Code::W013GuardLeavesMotion => "W013",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",

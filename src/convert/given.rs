@@ -449,6 +449,10 @@ pub(super) fn supervision_times(
             ));
             continue;
         };
+        if let Some(why) = crate::table::two_rows_answer(&table.steps, number) {
+            refuse(format!("step {number}: {why}"));
+            continue;
+        }
         let (longest, dwell) = crate::program::expected_step_ms(table, step, strokes);
         let text = |ms: u64| crate::cell::duration_text(ms.min(u64::from(u32::MAX)) as u32);
         let takes = longest + dwell;

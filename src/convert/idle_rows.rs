@@ -1,6 +1,7 @@
 //! SETTINGS rows about an event the program does not have (an `on stop`
 //! row without the STOP button): W006, and what manual mode still reads;
-//! a halt nothing can acknowledge: W012.
+//! a halt nothing can acknowledge: W012; an interlock whose halt leaves
+//! pistons driving that their valve could stop: W013.
 
 use crate::diag::{Code, Diagnostics};
 use crate::settings::Settings;
@@ -99,7 +100,9 @@ pub(super) fn halts_for_good(
             "interlock: an input going off halts the machine".to_string(),
         ));
     }
+    // A machine with no actuator is home wherever STOP leaves it.
     if program.stops_now()
+        && !table.actuators.is_empty()
         && let Some(list) = effective.named.get(&Row::OnStop)
     {
         found.push((
@@ -112,8 +115,61 @@ pub(super) fn halts_for_good(
             Code::W012HaltForGood,
             at,
             format!(
-                "{what}, and the program has no RESET to acknowledge it: after the first one the machine stands, away from home, until the PLC restarts, and START needs every actuator home; add the reset mode (--modes reset, or `reset` in the SETTINGS modes row)"
+                "{what}, and the program has no RESET to acknowledge it or bring the machine home: after the first one the machine stands where it stopped, since START needs every actuator home (a PLC restart clears a halt, not a machine away from home); add the reset mode (--modes reset, or `reset` in the SETTINGS modes row)"
             ),
         );
     }
+}
+
+/// An interlock "halts the machine where it is", but a halt leaves every
+/// coil as the sequence left it unless a halt row says otherwise: a piston
+/// under way when the guard opens drives on to its end. A valve with a
+/// centre would stop it with its coils off, so W013 at the `interlock`
+/// cell names those actuators and the row that stops them. (A 5/2 valve
+/// keeps its position without its coils: nothing the program does stops
+/// it; a drive's halt cuts it already.)
+pub(super) fn guard_leaves_motion(
+    table: &crate::table::StepTable,
+    effective: &Settings,
+    diags: &mut Diagnostics,
+) {
+    let program = &effective.program;
+    let Some(list) = effective.named.get(&Row::Interlock) else {
+        return;
+    };
+    if program.interlocks.is_empty() {
+        return;
+    }
+    let valves = &effective.simulation.machine.valves;
+    let halt = &program.halt;
+    let stopped = |s: &crate::program::Signal| {
+        halt.off_on_halt.contains(s)
+            || halt.on_halt.get(s) == Some(&crate::program::StopAction::Off)
+    };
+    let driving: Vec<String> = table
+        .actuators
+        .iter()
+        .filter(|a| {
+            let kind = valves.of(a.number, a.max_position);
+            kind.has_centre() && !kind.is_drive()
+        })
+        .filter(|a| {
+            crate::program::Coils::of(valves.of(a.number, a.max_position), a.number)
+                .signals()
+                .iter()
+                .any(|coil| !stopped(coil))
+        })
+        .map(|a| format!("C{}", a.number))
+        .collect();
+    if driving.is_empty() {
+        return;
+    }
+    diags.warning(
+        Code::W013GuardLeavesMotion,
+        list.at.clone(),
+        format!(
+            "interlock: its halt leaves the coils of {} as the sequence left them, so a piston under way when the input goes off drives on to its end; their valves' centre would stop them where they are: name them in `de-energise on halt` (or `on halt | … off`)",
+            crate::diag::or_list(&driving).replace(" or ", " and ")
+        ),
+    );
 }

@@ -7,7 +7,7 @@ pub use allocate::{allocate, festo_allocation};
 mod findings;
 mod given;
 mod idle_rows;
-use idle_rows::{halts_for_good, rows_without_their_event};
+use idle_rows::{guard_leaves_motion, halts_for_good, rows_without_their_event};
 mod jump_outputs;
 mod kind_times;
 mod untimed;
@@ -193,6 +193,7 @@ fn finish_check(
         delays_without_their_input(table, &effective, &input.table, &mut diags);
         rows_without_their_event(&effective, &mut diags);
         halts_for_good(table, &effective, &mut diags);
+        guard_leaves_motion(table, &effective, &mut diags);
         untimed::moves_left_unsupervised(table, &effective, &input.table, &mut diags);
         jump_outputs::outputs_a_jump_leaves(table, &input.table, &mut diags);
     }

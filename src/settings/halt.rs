@@ -314,7 +314,10 @@ pub fn resolve(
     }
     refuse_motion_through_estop(table, valves, rows, &held_at_estop, &on_estop, diags);
     let on_stop = actions_of(Row::OnStop, diags)
-        .map(|(_, actions)| actions)
+        .map(|(list, actions)| {
+            refuse_drives_through_halt(table, valves, Row::OnStop, list, &actions, diags);
+            actions
+        })
         .unwrap_or_default();
     // The emergency stop halts: what it keeps on (or lets run on), a halt
     // may not switch off or time out.
@@ -446,7 +449,9 @@ fn refuse_motion_through_estop(
 
 /// A halt stops every drive: a watchdog halts because a limit switch is
 /// dead, and a contactor a halt row kept on (or let run on) would drive
-/// into the end stop for good. E030 at the row's cell, once per drive.
+/// into the end stop for good. So does a STOP that acts at once: it ends
+/// the watchdog and the homing that would cut the drive. E030 at the
+/// row's cell, once per drive.
 fn refuse_drives_through_halt(
     table: &StepTable,
     valves: &Valves,
@@ -471,9 +476,11 @@ fn refuse_drives_through_halt(
             Code::E030BadSetting,
             list.at.clone(),
             format!(
-                "{}: {} is a contactor of drive C{actuator} (valve type motor): kept on at a halt, it keeps the drive running, into its end stop when the halt came from its dead limit switch; a halt stops every drive",
+                "{}: {} is a contactor of drive C{actuator} (valve type motor): kept on at {}, it keeps the drive running, into its end stop when its limit switch is dead (the watchdog and the homing that would cut it are over); {} stops every drive",
                 row.label(),
-                signal.symbol()
+                signal.symbol(),
+                if row == Row::OnStop { "STOP" } else { "a halt" },
+                if row == Row::OnStop { "STOP" } else { "a halt" },
             ),
         );
     }

@@ -200,6 +200,24 @@ impl<'g> Reader<'g> {
         diags.error(Code::E046MistypedSetting, self.grid.location(pos), message);
     }
 
+    /// E016 for a formula never computed where a label or a header was
+    /// looked for: what it holds cannot be told (a setting's label, an
+    /// actuator table's column), and the program would lack it.
+    fn uncomputed(&mut self, cell: &GridCell, diags: &mut Diagnostics) -> bool {
+        let CellValue::Uncomputed(formula) = &cell.value else {
+            return false;
+        };
+        self.seen.insert(cell.pos);
+        diags.error(
+            Code::E016FormulaNotComputed,
+            self.grid.location(cell.pos),
+            format!(
+                "the formula {formula} has no computed value, so steptable cannot tell which setting, column or value it holds (the program would be written without it); open and save the workbook in Excel or LibreOffice, or type it"
+            ),
+        );
+        true
+    }
+
     fn error(&mut self, pos: CellPos, message: String, diags: &mut Diagnostics) {
         self.seen.insert(pos);
         diags.error(Code::E030BadSetting, self.grid.location(pos), message);

@@ -63,8 +63,10 @@ pub(super) fn check(
         super::machine::check_positions(&actuators, &steps, valves, grid, rules.diags);
     rules.home(&cannot_hold);
     let Rules { names, diags, .. } = rules;
-    let labels = frame.step_labels(grid);
-    check_jumps(&steps, refused, (grid, &labels), diags);
+    for (step, label) in steps.iter_mut().zip(frame.step_labels(grid)) {
+        step.label = label.map(|(n, pos)| (n, grid.cell_name(pos)));
+    }
+    check_jumps(&steps, refused, grid, diags);
     Some(StepTable {
         file: grid.file.clone(),
         sheet: grid.sheet.clone(),
@@ -141,6 +143,7 @@ impl<'a> Rules<'a> {
             waits: Vec::new(),
             switches: Vec::new(),
             jumps: Vec::new(),
+            label: None,
         };
         let mut seen: BTreeMap<u32, CellPos> = BTreeMap::new();
         for (item, pos, branch) in row {
@@ -356,40 +359,9 @@ impl<'a> Rules<'a> {
     }
 }
 
-/// A jump goes to a step by its place, but where the `STEP n` labels are
-/// off (W002) the engineer may have meant the row labelled n: reading
-/// either way would be a silent choice between two rows.
-fn label_says_otherwise(
-    target: Option<usize>,
-    labels: &[Option<(u32, CellPos)>],
-    grid: &Grid,
-) -> Option<String> {
-    let n = target?;
-    let (label, at) = (*labels.get(n - 1)?)?;
-    if label as usize == n {
-        return None;
-    }
-    // Labels numbered otherwise throughout (10, 20, …) leave one reading.
-    let (place, cell) = labels
-        .iter()
-        .enumerate()
-        .find_map(|(place, l)| l.filter(|(m, _)| *m as usize == n).map(|(_, c)| (place, c)))?;
-    Some(format!(
-        "step {n} of the table is the row labelled STEP {label} ({}), and the row labelled STEP {n} ({}) is step {}; a jump goes to a step by its place, and the labels say otherwise: number the STEP labels 1, 2, 3, … in order so that the jump names one row",
-        grid.cell_name(at),
-        grid.cell_name(cell),
-        place + 1
-    ))
-}
-
 /// Every jump goes to a step the table has, not to where the sequence goes
 /// anyway, and finds every actuator where its target step starts from.
-fn check_jumps(
-    steps: &[Step],
-    refused: &Refused,
-    (grid, labels): (&Grid, &[Option<(u32, CellPos)>]),
-    diags: &mut Diagnostics,
-) {
+fn check_jumps(steps: &[Step], refused: &Refused, grid: &Grid, diags: &mut Diagnostics) {
     if steps.iter().all(|s| s.jumps.is_empty()) {
         return;
     }
@@ -416,7 +388,7 @@ fn check_jumps(
             };
             let why = why
                 .or_else(|| waited_jump(step, jump))
-                .or_else(|| label_says_otherwise(jump.target, labels, grid));
+                .or_else(|| jump.target.and_then(|n| super::two_rows_answer(steps, n)));
             if let Some(why) = why {
                 diags.error(
                     Code::E028JumpTarget,

@@ -156,6 +156,29 @@ pub struct Step {
     pub switches: Vec<Switch>,
     /// Where the sequence may go instead of the next step, tested in order.
     pub jumps: Vec<Jump>,
+    /// The number its `STEP n` label says and the label's cell (`A7`,
+    /// `7:1`), where the row has one: it may differ from `number` (W002).
+    pub label: Option<(u32, String)>,
+}
+
+/// Where the `STEP n` labels are off (W002), a step number written in a
+/// jump or a SETTINGS row may mean step `n` by its place or the row
+/// labelled `n`: when those are two rows, what says so (naming both);
+/// none when one row answers to `n` (labels in order, or numbered
+/// otherwise throughout: 10, 20, …).
+pub fn two_rows_answer(steps: &[Step], n: usize) -> Option<String> {
+    let (label, at) = steps.get(n.checked_sub(1)?)?.label.as_ref()?;
+    if *label as usize == n {
+        return None;
+    }
+    let other = steps
+        .iter()
+        .find(|s| s.label.as_ref().is_some_and(|(m, _)| *m as usize == n))?;
+    let (_, cell) = other.label.as_ref()?;
+    Some(format!(
+        "step {n} of the table is the row labelled STEP {label} ({at}), and the row labelled STEP {n} ({cell}) is step {}; steps are numbered by their place, and the labels say otherwise: number the STEP labels 1, 2, 3, … in order so that the number names one row",
+        other.number
+    ))
 }
 
 impl Step {

@@ -26,7 +26,7 @@ fn csv(text: &str) -> Vec<u8> {
 }
 
 /// An `.xlsx` of sheets (name, hidden, rows from A1).
-fn workbook(sheets: &[(&str, bool, &[&[&str]])]) -> Vec<u8> {
+pub(crate) fn workbook(sheets: &[(&str, bool, &[&[&str]])]) -> Vec<u8> {
     let mut workbook = Workbook::new();
     // Excel cannot hide the sheet it opens on: open on the first visible one.
     let first_visible = sheets.iter().position(|s| !s.1);

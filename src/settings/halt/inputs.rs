@@ -40,7 +40,20 @@ pub fn resolve_interlocks(
                     [Some(a), Some(b)] => Some((*a, *b)),
                     _ => None,
                 };
+                // A step two rows answer to (the labels off) is no range.
+                let ambiguous = steps.and_then(|(a, b)| {
+                    let answer = |n| crate::table::two_rows_answer(&table.steps, n);
+                    answer(a).or_else(|| answer(b))
+                });
                 match steps {
+                    Some(_) if ambiguous.is_some() => {
+                        diags.error(
+                            Code::E030BadSetting,
+                            row.at.clone(),
+                            format!("interlock: \"{text}\": {}", ambiguous.unwrap_or_default()),
+                        );
+                        None
+                    }
                     Some((a, b)) if (1..=b).contains(&a) && b <= last => {
                         Some((name.trim().to_string(), Some((a, b))))
                     }

@@ -45,6 +45,7 @@ pub(super) fn actuator_columns(
             "valve" => &mut columns.valve,
             "load" => &mut columns.load,
             "name" => &mut columns.name,
+            _ if reader.uncomputed(cell, diags) => continue,
             _ => {
                 // `vlave`, `extnd` over values: the column meant, misspelt.
                 // Read as a note, the program would be written with the
@@ -144,6 +145,11 @@ pub(super) fn read_actuator_rows(
             break;
         }
         if cells.is_empty() {
+            continue;
+        }
+        // Which actuator a formula never computed names cannot be told.
+        if name_cell.is_some_and(|c| reader.uncomputed(c, diags)) {
+            reader.seen.extend(cells.iter().map(|c| c.pos));
             continue;
         }
         rows_read += 1;

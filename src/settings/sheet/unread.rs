@@ -38,7 +38,7 @@ pub(super) fn name_the_rest(
         let note = lone_text
             && (captions.contains(&row) || first_row.is_some_and(|first| row + 1 < first));
         for cell in &cells {
-            if reader.seen.contains(&cell.pos) {
+            if reader.seen.contains(&cell.pos) || reader.uncomputed(cell, diags) {
                 continue;
             }
             let word = label_of(&cell.value).unwrap_or_default();
