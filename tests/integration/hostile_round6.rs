@@ -343,3 +343,288 @@ fn a_diagram_refused_for_a_scenario_is_said_in_json() {
     let v: serde_json::Value = serde_json::from_str(stdout.trim()).expect(&stdout);
     assert_eq!(v["code"], "E041", "{stdout}");
 }
+
+/// An interlock's halt leaves every coil as the sequence left it: a
+/// piston on a closed-centre valve under way when the guard opens drives
+/// on to its end, which its centre would have stopped. W013 at the
+/// `interlock` cell names those actuators; not once `de-energise on halt`
+/// names them, nor for 5/2 valves (nothing the program does stops them).
+#[test]
+fn a_guard_that_leaves_pistons_driving_is_said() {
+    let table = crate::hostile_round4::FOUR;
+    let closed: &[&[&str]] = &[
+        &["modes", "estop"],
+        &["interlock", "guard"],
+        &["actuator", "valve"],
+        &["C1", "53closed"],
+        &["C2", "53closed"],
+    ];
+    let (_dir, _out, assert) = convert_sheets(table, closed, &[], 0);
+    let said = stderr(&assert);
+    assert!(
+        said.contains("SETTINGS!B2: warning[W013]: interlock: its halt leaves the coils of C1 and C2 as the sequence left them"),
+        "{said}"
+    );
+    let mut stopped = closed.to_vec();
+    stopped.push(&["de-energise on halt", "C1, C2"]);
+    let (_dir, _out, assert) = convert_sheets(table, &stopped, &[], 0);
+    assert!(!stderr(&assert).contains("W013"), "{}", stderr(&assert));
+    let bistable: &[&[&str]] = &[&["modes", "estop"], &["interlock", "guard"]];
+    let (_dir, _out, assert) = convert_sheets(table, bistable, &[], 0);
+    assert!(!stderr(&assert).contains("W013"), "{}", stderr(&assert));
+}
+
+/// RESET switches every output off but a run-on under way: the oven's fan,
+/// which STOP leaves on 20 s to cool the coil, runs its time out through
+/// the RESET pressed 2 s later (it went off with RESET at 14.50 s).
+#[test]
+fn reset_leaves_a_run_on_to_finish() {
+    let oven = root().join("samples/oven.xlsx");
+    let dir = tempfile::tempdir().unwrap();
+    let report = dir.path().join("r");
+    let assert = steptable()
+        .arg("simulate")
+        .arg(&oven)
+        .args(["--target", "siemens", "--modes", "stop,reset"])
+        .args(["--press", "START@0.5s", "--press", "STOP@+12s"])
+        .args(["--press", "RESET@+2s", "--report"])
+        .arg(&report)
+        .assert()
+        .code(0);
+    let said = crate::helpers::squeezed_stdout(&assert);
+    assert!(said.contains("14.50 s --press RESET@+2s"), "{said}");
+    let page = crate::helpers::files_below(&report)
+        .into_iter()
+        .find(|f| f.extension().is_some_and(|e| e == "html"))
+        .unwrap();
+    let html = std::fs::read_to_string(page).unwrap();
+    assert!(
+        html.contains(r#"data-signal="fan" data-edges="0:0 10510:1 32500:0""#),
+        "the fan's edges: {}",
+        html.split("data-signal=\"fan\"")
+            .nth(1)
+            .unwrap_or("")
+            .chars()
+            .take(80)
+            .collect::<String>()
+    );
+}
+
+/// `bytes` (an `.xlsx`) with the cell `cell` of `sheet` (`sheet2.xml`)
+/// made a formula saved without its value.
+fn uncomputed(bytes: Vec<u8>, sheet: &str, cell: &str, formula: &str) -> Vec<u8> {
+    use std::io::{Read, Write};
+    let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes)).unwrap();
+    let mut out = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let pattern = regex::Regex::new(&format!(r#"<c r="{cell}"[^>]*>.*?</c>"#)).unwrap();
+    for i in 0..archive.len() {
+        let mut entry = archive.by_index(i).unwrap();
+        let name = entry.name().unwrap().to_string();
+        let mut text = Vec::new();
+        entry.read_to_end(&mut text).unwrap();
+        if name == format!("xl/worksheets/{sheet}") {
+            let xml = String::from_utf8(text).unwrap();
+            assert!(pattern.is_match(&xml), "{cell} in {sheet}");
+            let replaced = format!(r#"<c r="{cell}" t="str"><f>{formula}</f></c>"#);
+            text = pattern
+                .replace(&xml, replaced.as_str())
+                .into_owned()
+                .into_bytes();
+        }
+        out.start_file(name, zip::write::SimpleFileOptions::default())
+            .unwrap();
+        out.write_all(&text).unwrap();
+    }
+    out.finish().unwrap().into_inner()
+}
+
+/// A SETTINGS label or an actuator table's header saved as a formula
+/// without its value cannot be read: which setting or column it is cannot
+/// be told, and the program would lack it (a guard's interlock, a drive's
+/// valve type). E016 at the cell, nothing written, where it was a W003.
+#[test]
+fn a_settings_label_without_its_value_is_e016() {
+    let table = crate::hostile_round4::FOUR;
+    let cases: [(&[&[&str]], &str, &str); 2] = [
+        (
+            &[&["modes", "estop, reset"], &["interlock", "guard"]],
+            "A2",
+            "\"inter\"&amp;\"lock\"",
+        ),
+        (
+            &[&["actuator", "valve"], &["C1", "motor"]],
+            "B1",
+            "\"val\"&amp;\"ve\"",
+        ),
+    ];
+    for (settings, cell, formula) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("h.xlsx");
+        let bytes =
+            crate::messy::workbook(&[("TABLE", false, table), ("SETTINGS", false, settings)]);
+        std::fs::write(&path, uncomputed(bytes, "sheet2.xml", cell, formula)).unwrap();
+        let out = dir.path().join("out");
+        let assert = steptable()
+            .arg("convert")
+            .arg(&path)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .code(1);
+        let said = stderr(&assert);
+        assert!(
+            said.contains(&format!("SETTINGS!{cell}: error[E016]: the formula")),
+            "{cell}: {said}"
+        );
+        assert!(!out.exists(), "{cell}: refused but wrote files");
+    }
+}
+
+/// A STOP that acts at once ends the watchdog and the homing that would
+/// cut a drive: `on stop` keeping a drive's contactor on is E030, as the
+/// halt rows are.
+#[test]
+fn no_stop_row_keeps_a_drive_running() {
+    let table = crate::hostile_round4::FOUR;
+    let settings: &[&[&str]] = &[
+        &["modes", "stop, estop, reset"],
+        &["on stop", "C1 hold"],
+        &["actuator", "valve"],
+        &["C1", "motor"],
+    ];
+    let (_dir, out, assert) = convert_sheets(table, settings, &[], 1);
+    let said = stderr(&assert);
+    assert!(
+        said.contains("SETTINGS!B2: error[E030]: on stop: y1+ is a contactor of drive C1 (valve type motor): kept on at STOP"),
+        "{said}"
+    );
+    assert!(!out.exists());
+}
+
+/// Where two rows answer to a step number (the labels off), an interlock's
+/// range and a supervision time naming it are E030, as a jump is E028.
+#[test]
+fn a_step_two_rows_answer_to_is_refused_in_settings() {
+    let table: &[&[&str]] = &[
+        &["", "BRANCH 1"],
+        &["STEP 1", "C1+1"],
+        &["STEP 2", "C2+1"],
+        &["STEP 3", "C2-0"],
+        &["STEP 6", "C3+1"],
+        &["STEP 5", "C3-0"],
+        &["STEP 4", "C1-0"],
+    ];
+    let cases: [(&[&[&str]], &str); 2] = [
+        (
+            &[
+                &["modes", "estop, reset"],
+                &["interlock", "guard in step 4"],
+            ],
+            "SETTINGS!B2: error[E030]: interlock: \"guard in step 4\": step 4 of the table is the row labelled STEP 6 (A5), and the row labelled STEP 4 (A7) is step 6",
+        ),
+        (
+            &[&["safety", "watchdog"], &["supervision", "6=10s"]],
+            "SETTINGS!B2: error[E030]: supervision: step 6: step 6 of the table is the row labelled STEP 4 (A7)",
+        ),
+    ];
+    for (settings, says) in cases {
+        let (_dir, out, assert) = convert_sheets(table, settings, &[], 1);
+        let said = stderr(&assert);
+        assert!(said.contains(says), "{settings:?}: {said}");
+        assert!(!out.exists());
+    }
+}
+
+/// A homing stage's watchdog past what a PLC timer holds on every target
+/// (655.35 s: FST's 16-bit preset) is E032, as a step's is; it was written
+/// as `LOAD V66100`.
+#[test]
+fn a_homing_watchdog_past_the_timers_is_e032() {
+    let table = ",BRANCH 1\nSTEP 1,C1+2\nSTEP 2,C1-1\nSTEP 3,C1-0\n";
+    let args = [
+        "--modes",
+        "estop,reset",
+        "--safety",
+        "watchdog",
+        "--stroke",
+        "C1=1s/330s",
+    ];
+    let (_dir, out, assert) = convert_csv(table, &args, 1);
+    let said = stderr(&assert);
+    assert!(
+        said.contains("error[E032]: a homing stage's watchdog would need 661.0 s"),
+        "{said}"
+    );
+    assert!(!out.exists());
+}
+
+/// A drive that shares a homing stage with a slower cylinder is cut at
+/// its own home switch, not when the stage is done; and a homing the
+/// EMERGENCY STOP ends is "abandoned", never "done".
+#[test]
+fn a_drive_is_cut_at_home_within_its_stage_and_an_abandoned_homing_is_said() {
+    let table = crate::hostile_round4::FOUR;
+    let settings: &[&[&str]] = &[
+        &["modes", "estop, reset"],
+        &["home order", "C1 C2"],
+        &["actuator", "valve", "extend", "retract"],
+        &["C1", "motor", "1s", "1s"],
+        &["C2", "53closed", "1s", "4s"],
+    ];
+    let dead = [
+        "--press",
+        "START@0.5s",
+        "--press",
+        "ESTOP@step3",
+        "--stick",
+        "x20=0@+0.1s",
+        "--press",
+        "RESET@+1s",
+    ];
+    let (said, stderr, code) = simulate_sheets(table, settings, &dead);
+    assert_eq!(code, Some(0), "{stderr}");
+    let end = crate::helpers::line_with(&said, "ended at");
+    assert!(
+        end.contains("homing not done") && !end.contains("y1-"),
+        "{said}"
+    );
+    let abandoned = [
+        "--press",
+        "START@0.5s",
+        "--press",
+        "ESTOP@step3",
+        "--press",
+        "RESET@+1s",
+        "--press",
+        "ESTOP@+0.5s",
+    ];
+    let (said, stderr, code) = simulate_sheets(table, settings, &abandoned);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(
+        said.contains("homing abandoned, the machine not home") && !said.contains("homing done"),
+        "{said}"
+    );
+}
+
+/// A machine with no actuator is home wherever STOP leaves it: the oven's
+/// `on stop` row without RESET is no halt for good (no W012).
+#[test]
+fn an_oven_stopped_at_once_needs_no_reset() {
+    let dir = tempfile::tempdir().unwrap();
+    let assert = steptable()
+        .arg("convert")
+        .arg(root().join("samples/oven.xlsx"))
+        .args([
+            "--target",
+            "siemens",
+            "--modes",
+            "stop",
+            "--formats",
+            "awl",
+            "-o",
+        ])
+        .arg(dir.path().join("out"))
+        .assert()
+        .code(0);
+    assert!(!stderr(&assert).contains("W012"), "{}", stderr(&assert));
+}
