@@ -261,6 +261,11 @@ pub(super) fn reset_pressed(options: &super::ProgramOptions) -> Vec<Literal> {
     if options.modes.estop {
         condition.push(Literal::is(Signal::EStop));
     }
+    // A STOP that acts at once, held: its rung comes first in the scan, and
+    // homing would drive the coils for the scan RESET is read in.
+    if options.stops_now() {
+        condition.push(Literal::is(Signal::Stop));
+    }
     condition.extend(
         options
             .interlocks

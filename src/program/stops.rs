@@ -16,6 +16,18 @@ pub(super) fn run_on_rungs(run_ons: &[super::RunOn]) -> Vec<Rung> {
         let output = run_on.output;
         let time = crate::cell::duration_text(run_on.ms);
         let event = run_on.event.text();
+        // Switched off by something else (the emergency stop, manual mode,
+        // a halt row, a step), the run-on is over: RESET must not find it
+        // armed and switch the output on again.
+        rungs.push(Rung {
+            kind: RungKind::RunOn,
+            comment: format!(
+                "run-on {n}: {} switched off otherwise, the run-on is over",
+                output.symbol()
+            ),
+            condition: vec![Literal::is(armed), Literal::not(output)],
+            actions: vec![Action::Reset(armed), Action::Reset(timer)],
+        });
         rungs.push(Rung {
             kind: RungKind::RunOn,
             comment: format!(
