@@ -133,7 +133,7 @@ pub fn expand_inputs(paths: &[PathBuf]) -> Expanded {
                 .map(|paths| {
                     paths
                         .filter_map(Result::ok)
-                        .filter(|p| p.is_file())
+                        .filter(|p| p.is_file() && !hidden_or_lock(p))
                         .collect()
                 })
                 .unwrap_or_default();
@@ -204,8 +204,7 @@ fn walk_once(dir: &Path, files: &mut Vec<PathBuf>, seen: &mut std::collections::
     };
     for entry in entries.flatten() {
         let path = entry.path();
-        let name = entry.file_name().to_string_lossy().to_string();
-        if name.starts_with('.') || name.starts_with("~$") {
+        if hidden_or_lock(&path) {
             continue;
         }
         if path.is_dir() {
@@ -216,6 +215,14 @@ fn walk_once(dir: &Path, files: &mut Vec<PathBuf>, seen: &mut std::collections::
             files.push(path);
         }
     }
+}
+
+/// A hidden file or folder, or the lock file Excel keeps beside an open
+/// workbook (`~$line.xlsx`, which `*.xlsx` matches): never a table.
+fn hidden_or_lock(path: &Path) -> bool {
+    path.file_name()
+        .map(|n| n.to_string_lossy())
+        .is_some_and(|n| n.starts_with('.') || n.starts_with("~$"))
 }
 
 /// Folders hold many `.txt` files that are not tables: only `.csv` counts there.

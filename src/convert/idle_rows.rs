@@ -123,11 +123,11 @@ pub(super) fn halts_for_good(
 
 /// An interlock "halts the machine where it is", but a halt leaves every
 /// coil as the sequence left it unless a halt row says otherwise: a piston
-/// under way when the guard opens drives on to its end. A valve with a
-/// centre would stop it with its coils off, so W013 at the `interlock`
+/// under way when the guard opens drives on to its end. A closed-centre
+/// valve would stop it with its coils off, so W013 at the `interlock`
 /// cell names those actuators and the row that stops them. (A 5/2 valve
-/// keeps its position without its coils: nothing the program does stops
-/// it; a drive's halt cuts it already.)
+/// keeps its position without its coils and a drive's halt cuts it
+/// already; an exhausted or pressurised centre lets it drift.)
 pub(super) fn guard_leaves_motion(
     table: &crate::table::StepTable,
     effective: &Settings,
@@ -149,10 +149,9 @@ pub(super) fn guard_leaves_motion(
     let driving: Vec<String> = table
         .actuators
         .iter()
-        .filter(|a| {
-            let kind = valves.of(a.number, a.max_position);
-            kind.has_centre() && !kind.is_drive()
-        })
+        // Only a closed centre holds the piston with its coils off: an
+        // exhausted one lets it drift, a pressurised one pushes it out.
+        .filter(|a| valves.of(a.number, a.max_position) == crate::actuator::ActuatorKind::Closed53)
         .filter(|a| {
             crate::program::Coils::of(valves.of(a.number, a.max_position), a.number)
                 .signals()
@@ -168,7 +167,7 @@ pub(super) fn guard_leaves_motion(
         Code::W013GuardLeavesMotion,
         list.at.clone(),
         format!(
-            "interlock: its halt leaves the coils of {} as the sequence left them, so a piston under way when the input goes off drives on to its end; their valves' centre would stop them where they are: name them in `de-energise on halt` (or `on halt | … off`)",
+            "interlock: its halt leaves the coils of {} as the sequence left them, so a piston under way when the input goes off drives on to its end; their closed centres would stop them where they are: name them in `de-energise on halt` (or `on halt | … off`)",
             crate::diag::or_list(&driving).replace(" or ", " and ")
         ),
     );

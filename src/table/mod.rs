@@ -162,21 +162,23 @@ pub struct Step {
 }
 
 /// Where the `STEP n` labels are off (W002), a step number written in a
-/// jump or a SETTINGS row may mean step `n` by its place or the row
-/// labelled `n`: when those are two rows, what says so (naming both);
-/// none when one row answers to `n` (labels in order, or numbered
-/// otherwise throughout: 10, 20, …).
+/// jump or a SETTINGS row may mean step `n` by its place or a row
+/// labelled `n` elsewhere (a shifted label, or one two rows carry): when
+/// those are two rows, what says so (naming both); none when one row
+/// answers to `n` (labels in order, or numbered otherwise throughout: 10,
+/// 20, …).
 pub fn two_rows_answer(steps: &[Step], n: usize) -> Option<String> {
-    let (label, at) = steps.get(n.checked_sub(1)?)?.label.as_ref()?;
-    if *label as usize == n {
-        return None;
-    }
+    let at_place = steps.get(n.checked_sub(1)?)?;
     let other = steps
         .iter()
-        .find(|s| s.label.as_ref().is_some_and(|(m, _)| *m as usize == n))?;
+        .find(|s| s.number != n && s.label.as_ref().is_some_and(|(m, _)| *m as usize == n))?;
     let (_, cell) = other.label.as_ref()?;
+    let place = match &at_place.label {
+        Some((label, at)) => format!("the row labelled STEP {label} ({at})"),
+        None => "a row without a label".to_string(),
+    };
     Some(format!(
-        "step {n} of the table is the row labelled STEP {label} ({at}), and the row labelled STEP {n} ({cell}) is step {}; steps are numbered by their place, and the labels say otherwise: number the STEP labels 1, 2, 3, … in order so that the number names one row",
+        "step {n} of the table is {place}, and the row labelled STEP {n} ({cell}) is step {}; steps are numbered by their place, and the labels say otherwise: number the STEP labels 1, 2, 3, … in order so that the number names one row",
         other.number
     ))
 }

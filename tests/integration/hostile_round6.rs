@@ -628,3 +628,129 @@ fn an_oven_stopped_at_once_needs_no_reset() {
         .code(0);
     assert!(!stderr(&assert).contains("W012"), "{}", stderr(&assert));
 }
+
+/// The four-step table with a heater on through steps 2 and 3.
+const HEATED: &[&[&str]] = &[
+    &["", "BRANCH 1"],
+    &["STEP 1", "C1+1"],
+    &["STEP 2", "C2+1; Y:heater+"],
+    &["STEP 3", "C2-0"],
+    &["STEP 4", "C1-0; Y:heater-"],
+];
+
+/// The edges of `signal` on the page `simulate --report` wrote for
+/// `settings` (over the heated table) and `args`.
+fn edges(settings: &[&[&str]], args: &[&str], signal: &str) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("h.xlsx");
+    crate::helpers::write_xlsx_sheets(&path, &[("TABLE", HEATED), ("SETTINGS", settings)]);
+    let report = dir.path().join("r");
+    steptable()
+        .arg("simulate")
+        .arg(&path)
+        .args(args)
+        .arg("--report")
+        .arg(&report)
+        .assert()
+        .code(0);
+    let page = crate::helpers::files_below(&report)
+        .into_iter()
+        .find(|f| f.extension().is_some_and(|e| e == "html"))
+        .unwrap();
+    let html = std::fs::read_to_string(page).unwrap();
+    let key = format!("data-signal=\"{signal}\" data-edges=\"");
+    let rest = html
+        .split(key.as_str())
+        .nth(1)
+        .unwrap_or_else(|| panic!("{signal}"));
+    rest.split('"').next().unwrap().to_string()
+}
+
+/// A run-on something else switched off is over (rt13): the emergency
+/// stop, or an interlock's halt with `de-energise on halt`, cuts the
+/// heater STOP left running on, and the RESET that follows leaves it off
+/// (it switched it on again for the rest of the 20 s).
+#[test]
+fn reset_leaves_off_a_run_on_something_else_ended() {
+    let heated: &[&[&str]] = &[
+        &["modes", "stop, estop, reset"],
+        &["on stop", "heater off after 20s"],
+    ];
+    let estop = [
+        "--press",
+        "START@0s",
+        "--press",
+        "STOP@step3",
+        "--press",
+        "ESTOP@+1s",
+        "--press",
+        "RESET@+2s",
+    ];
+    assert_eq!(edges(heated, &estop, "heater"), "0:0 990:1 2980:0");
+    let guarded: &[&[&str]] = &[
+        &["modes", "stop, estop, reset"],
+        &["on stop", "heater off after 20s"],
+        &["de-energise on halt", "heater"],
+        &["interlock", "guard"],
+    ];
+    let halt = [
+        "--press",
+        "START@0s",
+        "--press",
+        "STOP@step3",
+        "--stick",
+        "guard=0@+1s",
+        "--stick",
+        "guard=1@+1s",
+        "--press",
+        "RESET@+1s",
+    ];
+    assert_eq!(edges(guarded, &halt, "heater"), "0:0 990:1 2980:0");
+}
+
+/// A STOP that acts at once, held: RESET homes nothing (rt13: the homing
+/// coils came on for the scan RESET was read in, and a 5/2 piston made
+/// its full stroke with STOP pressed).
+#[test]
+fn reset_homes_nothing_while_an_at_once_stop_is_held() {
+    let settings: &[&[&str]] = &[&["modes", "stop, estop, reset"], &["on stop", "heater off"]];
+    let args = [
+        "--press",
+        "START@0s",
+        "--hold",
+        "STOP@step3",
+        "--press",
+        "RESET@+1s",
+    ];
+    let (said, stderr, code) = simulate_sheets(HEATED, settings, &args);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(
+        !said.contains("homing starts") && !said.contains("problem"),
+        "{said}"
+    );
+}
+
+/// A label two rows carry answers to its number twice (rt13): `J:5`
+/// with labels 1 2 3 5 5 6 is E028 naming both rows; W013 names no
+/// pressurised centre (its coils off, it creeps out).
+#[test]
+fn a_label_two_rows_carry_and_a_pressurised_guard() {
+    let table = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C2+1\nSTEP 3,C2-0; J:5 if I:r\nSTEP 5,T=1s\nSTEP 5,C3+1\nSTEP 6,C3-0; C1-0\n";
+    let (_dir, out, assert) = convert_csv(table, &[], 1);
+    let said = stderr(&assert);
+    assert!(
+        said.contains("t.csv:4:2: error[E028]: \"J:5 if I:r\" in STEP 3: step 5 of the table is the row labelled STEP 5 (6:1), and the row labelled STEP 5 (5:1) is step 4"),
+        "{said}"
+    );
+    assert!(!out.exists());
+    let pressurised: &[&[&str]] = &[
+        &["modes", "estop"],
+        &["interlock", "guard"],
+        &["actuator", "valve"],
+        &["C1", "53pressure"],
+        &["C2", "53closed"],
+    ];
+    let (_dir, _out, assert) = convert_sheets(crate::hostile_round4::FOUR, pressurised, &[], 0);
+    let said = stderr(&assert);
+    assert!(said.contains("leaves the coils of C2 as"), "{said}");
+}

@@ -343,7 +343,7 @@ fn a_sensor_dying_mid_cycle_prints_the_watchdog_alarm() {
     assert!(alarm > stuck, "{table}");
     assert!(!table.contains("step 3 "), "{table}");
     let end = table.lines().find(|l| l.starts_with("ended at")).unwrap();
-    assert!(end.contains("in step 2;"), "{end}");
+    assert!(end.contains("in step 2, halted;"), "{end}");
 }
 
 /// `--report DIR`: the scenario's page holds the table as printed, a red

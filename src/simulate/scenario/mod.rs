@@ -31,6 +31,9 @@ pub struct Sample {
     /// Homing runs (the `homing` memory is set), or ran within this scan
     /// (RESET with every actuator home, or nearly: set and done at once).
     pub homing: bool,
+    /// A halt (the EMERGENCY STOP's, a check's) waits for RESET: START
+    /// is refused.
+    pub halted: bool,
 }
 
 /// What a scripted run did.
@@ -510,5 +513,6 @@ fn sample(run: &Run, outputs: &[(usize, Signal)]) -> Sample {
             .collect(),
         step: run.current_step(),
         homing: run.plc().bit(Signal::Homing),
+        halted: run.plc().bit(Signal::Halt),
     }
 }

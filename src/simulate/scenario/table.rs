@@ -242,6 +242,10 @@ fn where_it_stands(
         .collect();
     let step = if last.homing {
         format!("step {}, homing not done", last.step)
+    } else if last.halted {
+        let reset = signals.inputs.contains(&Signal::Reset);
+        let why = if reset { ": RESET before START" } else { "" };
+        format!("step {}, halted{why}", last.step)
     } else if last.step == 0 && home && on.is_empty() {
         "step 0 (at rest)".to_string()
     } else {
