@@ -28,6 +28,15 @@ pub const CHECKS: &[Check] = &[
 
 const STAMPING: &str = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C2+1\nSTEP 3,T=2s\nSTEP 4,C2-0\nSTEP 5,C1-0\nSTEP 6,C3+1\nSTEP 7,C3-0\nSTEP 8,C4+1\nSTEP 9,C4-0\n";
 
+/// C1 out, C2 out and back, C1 back.
+const FOUR: &[&[&str]] = &[
+    &["", "BRANCH 1"],
+    &["STEP 1", "C1+1"],
+    &["STEP 2", "C2+1"],
+    &["STEP 3", "C2-0"],
+    &["STEP 4", "C1-0"],
+];
+
 const IDLE: Operator = Operator {
     start: false,
     continuous: false,
@@ -167,16 +176,7 @@ fn a_dead_home_switch_halts_the_homing_in_every_engine() {
     crate::helpers::write_xlsx_sheets(
         &guarded,
         &[
-            (
-                "TABLE",
-                &[
-                    &["", "BRANCH 1"],
-                    &["STEP 1", "C1+1"],
-                    &["STEP 2", "C2+1"],
-                    &["STEP 3", "C2-0"],
-                    &["STEP 4", "C1-0"],
-                ],
-            ),
+            ("TABLE", FOUR),
             (
                 "SETTINGS",
                 &[
@@ -247,16 +247,7 @@ fn a_dead_home_switch_halts_the_homing_in_every_engine() {
     crate::helpers::write_xlsx_sheets(
         &shared,
         &[
-            (
-                "TABLE",
-                &[
-                    &["", "BRANCH 1"],
-                    &["STEP 1", "C1+1"],
-                    &["STEP 2", "C2+1"],
-                    &["STEP 3", "C2-0"],
-                    &["STEP 4", "C1-0"],
-                ],
-            ),
+            ("TABLE", FOUR),
             (
                 "SETTINGS",
                 &[
