@@ -149,14 +149,13 @@ pub(super) fn guard_leaves_motion(
     let driving: Vec<String> = table
         .actuators
         .iter()
-        // Only a closed centre holds the piston with its coils off: an
-        // exhausted one lets it drift, a pressurised one pushes it out.
-        .filter(|a| valves.of(a.number, a.max_position) == crate::actuator::ActuatorKind::Closed53)
         .filter(|a| {
-            crate::program::Coils::of(valves.of(a.number, a.max_position), a.number)
-                .signals()
-                .iter()
-                .any(|coil| !stopped(coil))
+            // Only a closed centre holds the piston with its coils off: an
+            // exhausted one lets it drift, a pressurised one pushes it out.
+            let kind = valves.of(a.number, a.max_position);
+            kind == crate::actuator::ActuatorKind::Closed53
+                && (crate::program::Coils::of(kind, a.number).signals().iter())
+                    .any(|coil| !stopped(coil))
         })
         .map(|a| format!("C{}", a.number))
         .collect();

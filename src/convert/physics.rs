@@ -201,48 +201,51 @@ fn in_view_ms(piston: &Piston, window: f64, full_ms: f64) -> f64 {
 /// in a 16-bit word (655.35 s at most), and a larger preset would wrap
 /// round to a short one there. Refused at the step's first cell.
 pub fn watchdogs_beyond_timers(table: &StepTable, program: &StepProgram) -> Vec<Diagnostic> {
+    let past_timers = |sheet, cell, need: String, remedy: &str| Diagnostic {
+        severity: Severity::Error,
+        code: Code::E032MachineCannotRun,
+        location: Location {
+            file: table.file.clone(),
+            sheet,
+            cell,
+        },
+        message: format!(
+            "{need}, more than the 655.35 s a PLC timer holds on every target (FST counts 1/100 s in a 16-bit word): {remedy}"
+        ),
+    };
     let mut refused = Vec::new();
     for (step, ms) in program.watchdogs_beyond_timers() {
         let cell = table.steps.get(step.number.wrapping_sub(1)).and_then(|s| {
             let moves = s.moves.iter().map(|m| m.cell);
             moves.chain(s.dwells.iter().map(|d| d.cell)).next()
         });
-        refused.push(Diagnostic {
-            severity: Severity::Error,
-            code: Code::E032MachineCannotRun,
-            location: Location {
-                file: table.file.clone(),
-                sheet: table.sheet.clone(),
-                cell,
-            },
-            message: format!(
-                "step {}'s watchdog would need {:.1} s (twice its longest move, plus its dwell, plus 1 s), more than the 655.35 s a PLC timer holds on every target (FST counts 1/100 s in a 16-bit word): shorten the step's stroke or dwell, or leave the watchdog out of --safety",
+        refused.push(past_timers(
+            table.sheet.clone(),
+            cell,
+            format!(
+                "step {}'s watchdog would need {:.1} s (twice its longest move, plus its dwell, plus 1 s)",
                 step.number,
                 ms as f64 / 1000.0
             ),
-        });
+            "shorten the step's stroke or dwell, or leave the watchdog out of --safety",
+        ));
     }
-    // Each stage is started twice over (by RESET, by the stage before):
-    // said once per preset.
+    // Stages that need the same time are said once.
     let mut said = Vec::new();
     for (_, ms) in program.homing_watchdogs_beyond_timers() {
         if said.contains(&ms) {
             continue;
         }
         said.push(ms);
-        refused.push(Diagnostic {
-            severity: Severity::Error,
-            code: Code::E032MachineCannotRun,
-            location: Location {
-                file: table.file.clone(),
-                sheet: None,
-                cell: None,
-            },
-            message: format!(
-                "a homing stage's watchdog would need {:.1} s (twice its slowest full retract, plus 1 s), more than the 655.35 s a PLC timer holds on every target (FST counts 1/100 s in a 16-bit word): shorten the stroke, or leave the watchdog out of --safety",
+        refused.push(past_timers(
+            None,
+            None,
+            format!(
+                "a homing stage's watchdog would need {:.1} s (twice its slowest full retract, plus 1 s)",
                 ms as f64 / 1000.0
             ),
-        });
+            "shorten the stroke, or leave the watchdog out of --safety",
+        ));
     }
     refused
 }

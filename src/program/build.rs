@@ -2,7 +2,7 @@
 //! the sequence, the end of the cycle, and the rungs every scan runs.
 
 use super::jumps::add_jumps;
-use super::modes::{edge_rungs, homing_rungs, mode_rungs};
+use super::modes::{before_estop, edge_rungs, homing_rungs, mode_rungs};
 use super::signals::{self, Coils, Signals};
 use super::stops::{
     end_run_ons, halt_off_rung, interlock_rung, mark_zones, run_on_rungs, stop_now_rungs,
@@ -229,7 +229,7 @@ pub fn build(
         );
     }
     if modes.manual {
-        manual_before_estop(&signals, &timers, options, &mut rungs);
+        before_estop(&mut rungs, super::manual::rungs(&signals, &timers, options));
     }
     pressurised_centres_held_home(table, &signals, &mut rungs);
     if modes.reset {
@@ -488,27 +488,7 @@ fn pressurised_centres_held_home(table: &StepTable, signals: &Signals, rungs: &m
             actions: vec![Action::Set(coil(a.number, Sign::Minus))],
         })
         .collect();
-    let at = rungs
-        .iter()
-        .position(|r| r.kind == RungKind::EmergencyStop)
-        .unwrap_or(rungs.len());
-    rungs.splice(at..at, hold);
-}
-
-/// Manual mode's rungs, before the emergency stop's rung, which stays
-/// the last word.
-fn manual_before_estop(
-    signals: &Signals,
-    timers: &[Signal],
-    options: &ProgramOptions,
-    rungs: &mut Vec<Rung>,
-) {
-    let at = rungs
-        .iter()
-        .position(|r| r.kind == RungKind::EmergencyStop)
-        .unwrap_or(rungs.len());
-    let manual = super::manual::rungs(signals, timers, options);
-    rungs.splice(at..at, manual);
+    before_estop(rungs, hold);
 }
 
 /// A step (or homing stage) that does not finish in time raises the

@@ -233,33 +233,28 @@ pub struct StepProgram {
     pub criteria: Vec<Literal>,
 }
 
+/// The watchdog preset `actions` start, where no PLC timer of every
+/// target holds it.
+fn watchdog_past_timers(actions: &[Action]) -> Option<u32> {
+    actions.iter().find_map(|a| match a {
+        Action::StartTimer(Signal::Watchdog, ms) if *ms > crate::cell::MAX_DWELL_MS => Some(*ms),
+        _ => None,
+    })
+}
+
 impl StepProgram {
     /// The steps whose watchdog preset no PLC timer of every target holds
     /// (FST counts 1/100 s in a 16-bit word: 655.35 s at most), with the
     /// preset in ms: such a program is refused (E032), not written.
     pub fn watchdogs_beyond_timers(&self) -> impl Iterator<Item = (&ProgramStep, u32)> {
-        self.steps.iter().filter_map(|step| {
-            step.actions.iter().find_map(|a| match a {
-                Action::StartTimer(Signal::Watchdog, ms) if *ms > crate::cell::MAX_DWELL_MS => {
-                    Some((step, *ms))
-                }
-                _ => None,
-            })
-        })
+        (self.steps.iter()).filter_map(|step| Some((step, watchdog_past_timers(&step.actions)?)))
     }
 
     /// The homing stages whose watchdog preset no PLC timer of every
     /// target holds (a stroke so slow that twice it passes 655.35 s), each
     /// rung that starts one with the preset: refused (E032) as a step's.
     pub fn homing_watchdogs_beyond_timers(&self) -> impl Iterator<Item = (&Rung, u32)> {
-        self.rungs.iter().filter_map(|rung| {
-            rung.actions.iter().find_map(|a| match a {
-                Action::StartTimer(Signal::Watchdog, ms) if *ms > crate::cell::MAX_DWELL_MS => {
-                    Some((rung, *ms))
-                }
-                _ => None,
-            })
-        })
+        (self.rungs.iter()).filter_map(|rung| Some((rung, watchdog_past_timers(&rung.actions)?)))
     }
 
     /// Whether STOP acts at once (an `on stop` row) rather than letting

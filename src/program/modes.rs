@@ -180,12 +180,18 @@ fn step_rungs() -> Vec<Rung> {
 /// stop's. RESET already pressed at power-up is no press.
 pub(super) fn reset_edge(init: &mut Vec<Action>, rungs: &mut Vec<Rung>) {
     init.push(Action::Set(Signal::ResetMemory));
+    let edge = edge_rungs(RungKind::Edge, Signal::Reset, Signal::ResetMemory);
+    before_estop(rungs, edge);
+}
+
+/// `new` rungs placed before the emergency stop's rung (at the end without
+/// one), which stays the last word on every coil.
+pub(super) fn before_estop(rungs: &mut Vec<Rung>, new: impl IntoIterator<Item = Rung>) {
     let at = rungs
         .iter()
         .position(|r| r.kind == RungKind::EmergencyStop)
         .unwrap_or(rungs.len());
-    let edge = edge_rungs(RungKind::Edge, Signal::Reset, Signal::ResetMemory);
-    rungs.splice(at..at, edge);
+    rungs.splice(at..at, new);
 }
 
 /// `button` remembered for the next scan in `memory`, so that a rung that

@@ -472,15 +472,14 @@ fn refuse_drives_through_halt(
         {
             continue;
         }
+        let event = if row == Row::OnStop { "STOP" } else { "a halt" };
         diags.error(
             Code::E030BadSetting,
             list.at.clone(),
             format!(
-                "{}: {} is a contactor of drive C{actuator} (valve type motor): kept on at {}, it keeps the drive running, into its end stop when its limit switch is dead (the watchdog and the homing that would cut it are over); {} stops every drive",
+                "{}: {} is a contactor of drive C{actuator} (valve type motor): kept on at {event}, it keeps the drive running, into its end stop when its limit switch is dead (the watchdog and the homing that would cut it are over); {event} stops every drive",
                 row.label(),
                 signal.symbol(),
-                if row == Row::OnStop { "STOP" } else { "a halt" },
-                if row == Row::OnStop { "STOP" } else { "a halt" },
             ),
         );
     }
