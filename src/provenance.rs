@@ -265,7 +265,10 @@ pub fn stamp(file: OutputFile, made: &MadeBy) -> Result<OutputFile, String> {
 
 /// Every file of `files`, stamped.
 pub fn stamp_all(files: Vec<OutputFile>, made: &MadeBy) -> Result<Vec<OutputFile>, String> {
-    files.into_iter().map(|f| stamp(f, made)).collect()
+    // Each file is copied whole behind its new first lines (the workbook
+    // zipped again): on both cores.
+    use rayon::prelude::*;
+    files.into_par_iter().map(|f| stamp(f, made)).collect()
 }
 
 /// The byte offset after the leading lines that `leading` accepts.

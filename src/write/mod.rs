@@ -201,23 +201,33 @@ fn write_recorded(
     } else {
         "an output goes here, and no steptable run recorded writing this file"
     };
-    for file in files {
-        let target = folder.join(&file.name);
-        let shown = crate::read::display_name(&target);
-        let Ok(meta) = std::fs::symlink_metadata(&target) else {
-            continue;
-        };
-        if problems.iter().any(|d| d.location.file == shown) {
-            continue; // said already (an input)
-        }
-        if meta.file_type().is_symlink() {
-            problems.push(taken(&target, LINKED_FILE));
-        } else if meta.is_dir() {
-            problems.push(taken(
-                &target,
-                "an output file goes here, and this is a folder; nothing written: move or rename the folder, or choose another output folder with -o",
-            ));
-        } else if !recorded.vouches_for(folder, &file.name) && !same_bytes(&meta, &target, file) {
+    // Each file already in place is read and hashed: on both cores, in
+    // the order of the files.
+    use rayon::prelude::*;
+    let said = |target: &Path| {
+        let shown = crate::read::display_name(target);
+        problems.iter().any(|d| d.location.file == shown) // an input
+    };
+    let in_place: Vec<Diagnostic> = files
+        .par_iter()
+        .filter_map(|file| {
+            let target = folder.join(&file.name);
+            let meta = std::fs::symlink_metadata(&target).ok()?;
+            if said(&target) {
+                return None;
+            }
+            if meta.file_type().is_symlink() {
+                return Some(taken(&target, LINKED_FILE));
+            }
+            if meta.is_dir() {
+                return Some(taken(
+                    &target,
+                    "an output file goes here, and this is a folder; nothing written: move or rename the folder, or choose another output folder with -o",
+                ));
+            }
+            if recorded.vouches_for(folder, &file.name) || same_bytes(&meta, &target, file) {
+                return None;
+            }
             let why = if recorded.files.contains_key(&file.name) {
                 "an output goes here, and this file changed since steptable wrote it (it may hold your edits)"
             } else {
@@ -229,14 +239,15 @@ fn write_recorded(
             } else {
                 format!(" (see {})", manifest::FILE_NAME)
             };
-            problems.push(taken(
+            Some(taken(
                 &target,
                 format!(
                     "{why}; nothing written: move it, or choose another output folder with -o{see}"
                 ),
-            ));
-        }
-    }
+            ))
+        })
+        .collect();
+    problems.extend(in_place);
     if !problems.is_empty() {
         return Err(WriteError::Taken(inputs.advise(problems)));
     }
@@ -246,10 +257,9 @@ fn write_recorded(
         .retain(|name, _| std::fs::symlink_metadata(folder.join(name)).is_ok());
     let kept = recorded.files.clone();
     recorded.made_by.retain(|name, _| kept.contains_key(name));
-    for file in files {
-        recorded
-            .files
-            .insert(file.name.clone(), Stamp::of(&file.bytes));
+    let stamps: Vec<Stamp> = files.par_iter().map(|f| Stamp::of(&f.bytes)).collect();
+    for (file, stamp) in files.iter().zip(stamps) {
+        recorded.files.insert(file.name.clone(), stamp);
         match made_by {
             Some(line) => recorded.made_by.insert(file.name.clone(), line.to_string()),
             None => recorded.made_by.remove(&file.name),
@@ -367,33 +377,24 @@ fn stage_and_rename(
     durability: Durability,
 ) -> Result<Vec<PathBuf>, WriteError> {
     std::fs::create_dir_all(folder).map_err(|e| io_error(folder, e))?;
-
-    let mut staged = Vec::with_capacity(files.len());
-    for (name, bytes) in files {
-        let target = folder.join(name);
-        // A project folder's files (`NAME.beremiz/plc.xml`) go below it.
-        let parent = target.parent().unwrap_or(folder);
-        std::fs::create_dir_all(parent).map_err(|e| io_error(parent, e))?;
-        let mut builder = tempfile::Builder::new();
-        builder.prefix(".steptable-").suffix(".tmp");
-        // Temporary files are private (0600); outputs are ordinary files,
-        // readable as the umask allows.
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            builder.permissions(std::fs::Permissions::from_mode(0o666));
-        }
-        let mut temp = builder
-            .tempfile_in(parent)
-            .map_err(|e| io_error(&target, e))?;
-        temp.write_all(bytes)
-            .and_then(|_| match durability {
-                Durability::Sync => temp.as_file().sync_all(),
-                Durability::Rename => Ok(()),
-            })
-            .map_err(|e| io_error(&target, e))?;
-        staged.push((temp, target));
+    // A project folder's files (`NAME.beremiz/plc.xml`) go below it.
+    let mut parents: Vec<&Path> = files
+        .iter()
+        .filter_map(|(name, _)| Path::new(name).parent())
+        .collect();
+    parents.sort();
+    parents.dedup();
+    for parent in parents {
+        let parent = folder.join(parent);
+        std::fs::create_dir_all(&parent).map_err(|e| io_error(&parent, e))?;
     }
+    // Staged on both cores; a file that fails drops (and so removes) the
+    // temporary files staged beside it.
+    use rayon::prelude::*;
+    let staged: Vec<(tempfile::NamedTempFile, PathBuf)> = files
+        .par_iter()
+        .map(|(name, bytes)| stage(folder, name, bytes, durability))
+        .collect::<Result<_, _>>()?;
     let mut written: Vec<PathBuf> = Vec::with_capacity(staged.len());
     for (temp, target) in staged {
         if let Err(e) = temp.persist(&target) {
@@ -409,6 +410,37 @@ fn stage_and_rename(
         sync_folders(folder, &written)?;
     }
     Ok(written)
+}
+
+/// `bytes` in a temporary file beside `name`'s place in `folder`, flushed
+/// to the disk when `durability` asks; with that place.
+fn stage(
+    folder: &Path,
+    name: &str,
+    bytes: &[u8],
+    durability: Durability,
+) -> Result<(tempfile::NamedTempFile, PathBuf), WriteError> {
+    let target = folder.join(name);
+    let parent = target.parent().unwrap_or(folder);
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".steptable-").suffix(".tmp");
+    // Temporary files are private (0600); outputs are ordinary files,
+    // readable as the umask allows.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut temp = builder
+        .tempfile_in(parent)
+        .map_err(|e| io_error(&target, e))?;
+    temp.write_all(bytes)
+        .and_then(|_| match durability {
+            Durability::Sync => temp.as_file().sync_all(),
+            Durability::Rename => Ok(()),
+        })
+        .map_err(|e| io_error(&target, e))?;
+    Ok((temp, target))
 }
 
 /// Flushes the folders that received files, so that the renames survive a
