@@ -69,6 +69,10 @@ pub struct CheckRun {
 pub fn check(input: &Path, settings: &Settings) -> Result<CheckRun, Vec<Diagnostic>> {
     let checked = convert::check_path(input, settings)?;
     let program = convert::build_program(&checked.table, &checked.settings);
+    let refused = convert::refused_without_a_run(&checked.table, &checked.settings, &program);
+    if !refused.is_empty() {
+        return Err(refused.into_iter().chain(checked.warnings).collect());
+    }
     let allocation = convert::allocate(&program, &checked.settings, &checked.table.file)?;
     Ok(CheckRun {
         table: checked.table,

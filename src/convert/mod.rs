@@ -355,14 +355,10 @@ pub fn proven_program(
     faults_at_once: Option<usize>,
     record: bool,
 ) -> Result<Proven, Failure> {
-    let lucky = physics::lucky_middle_stops(table, settings);
-    if !lucky.is_empty() {
-        return Err(Failure::Input(lucky));
-    }
     let program = build_program(table, settings);
-    let beyond = physics::watchdogs_beyond_timers(table, &program);
-    if !beyond.is_empty() {
-        return Err(Failure::Input(beyond));
+    let refused = refused_without_a_run(table, settings, &program);
+    if !refused.is_empty() {
+        return Err(Failure::Input(refused));
     }
     if let Some(why) = simulate::over_budget(table, &program, sim) {
         return Err(Failure::Input(vec![budget_error(table, why)]));
@@ -399,6 +395,21 @@ pub fn proven_program(
     } else {
         Err(physics::explain(table, settings, &simulation))
     }
+}
+
+/// What convert refuses in `program` (built from `table` under `settings`)
+/// by arithmetic alone, before any run: a middle stop only luck would
+/// reach, a watchdog no PLC timer holds (E032). `check` says them too.
+pub fn refused_without_a_run(
+    table: &StepTable,
+    settings: &Settings,
+    program: &StepProgram,
+) -> Vec<Diagnostic> {
+    let lucky = physics::lucky_middle_stops(table, settings);
+    if !lucky.is_empty() {
+        return lucky;
+    }
+    physics::watchdogs_beyond_timers(table, program)
 }
 
 /// Error E033 for `table`: the work it asks for is beyond the budget.

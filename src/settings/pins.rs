@@ -56,6 +56,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Vec<PinRow> {
     let header_row = header.map(|h| h.pos.row);
     let mut rows: std::collections::BTreeMap<u32, [Option<(String, Location)>; 2]> =
         std::collections::BTreeMap::new();
+    let mut uncomputed = std::collections::BTreeSet::new();
     for cell in &cells {
         let at = grid.location(cell.pos);
         let column = cell.pos.col.checked_sub(first_col);
@@ -74,6 +75,20 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Vec<PinRow> {
                 cell.value.describe()
             ),
             _ => match column {
+                // What a formula nobody computed pins cannot be told: the
+                // program would be written without the pin (E016, and the
+                // row is read no further).
+                Some(0 | 1) if let CellValue::Uncomputed(formula) = &cell.value => {
+                    uncomputed.insert(cell.pos.row);
+                    diags.error(
+                        Code::E016FormulaNotComputed,
+                        at,
+                        format!(
+                            "the formula {formula} has no computed value, so steptable cannot tell which signal or address it pins (the program would be written without the pin); open and save the workbook in Excel or LibreOffice, or type it"
+                        ),
+                    );
+                    continue;
+                }
                 Some(column @ (0 | 1)) => {
                     rows.entry(cell.pos.row).or_default()[column as usize] =
                         Some((text(&cell.value), at));
@@ -88,6 +103,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Vec<PinRow> {
         diags.warning(Code::W003Ignored, at, why);
     }
     let mut pins = Vec::new();
+    rows.retain(|row, _| !uncomputed.contains(row));
     for row in rows.into_values() {
         match row {
             [Some((signal, signal_at)), Some((address, address_at))] => pins.push(PinRow {

@@ -317,13 +317,6 @@ pub(super) fn report_unused(
     // The region and a margin of one cell around it.
     let near_rows = top.saturating_sub(1)..=last_row.saturating_add(1);
     let near_cols = left.saturating_sub(1)..=last_branch.saturating_add(1);
-    let last_label = |row: u32| {
-        frame
-            .step_rows
-            .iter()
-            .rposition(|r| *r < row)
-            .map(|k| k + 1)
-    };
 
     for cell in &grid.cells {
         let CellPos { row, col } = cell.pos;
@@ -338,47 +331,8 @@ pub(super) fn report_unused(
             _ => None,
         };
         let item_like = text.is_some_and(looks_like_item);
-        let in_rows = (first_row..=last_row).contains(&row);
-        let in_cols = (first_branch..=last_branch).contains(&col);
-        let below_header = frame.header_row.is_none_or(|h| row > h);
         let in_header_row = frame.header_row == Some(row);
-        let why_lost = if in_header_row {
-            Some("it is in the row of BRANCH headers but is not a BRANCH n header".to_string())
-        } else if in_step_row && col < first_branch {
-            Some("its column, left of the first BRANCH, has no BRANCH header".to_string())
-        } else if in_step_row {
-            Some("its column has no BRANCH header".to_string())
-        } else if in_rows && (in_cols || near_cols.contains(&col)) {
-            Some(match last_label(row) {
-                Some(k) if frame.labelled => {
-                    format!(
-                        "its row (between STEP {k} and STEP {}) has no STEP label; give it one, or move the cell into a step's row",
-                        k + 1
-                    )
-                }
-                _ => "its row is not a step of the table".to_string(),
-            })
-        } else if in_cols && below_header && row > last_row {
-            // Its own row is named, not the last step's: that one is fine.
-            Some(match frame.label_col.filter(|_| frame.labelled) {
-                Some(col) => format!(
-                    "its row {} has no STEP label, and it lies below the table's last step, STEP {} (row {}); add the label STEP {} in {} to make it a step",
-                    row + 1,
-                    frame.step_rows.len(),
-                    last_row + 1,
-                    frame.step_rows.len() + 1,
-                    grid.cell_name(CellPos::new(row, col))
-                ),
-                None => format!(
-                    "its row {} lies below the table's last step (row {})",
-                    row + 1,
-                    last_row + 1
-                ),
-            })
-        } else {
-            None
-        };
-        match why_lost {
+        match why_lost(grid, frame, cell.pos, in_step_row) {
             Some(why) if item_like => {
                 let text = text.unwrap_or_default().trim();
                 lost(text, frame.step_rows.iter().filter(|r| **r < row).count());
@@ -411,13 +365,106 @@ pub(super) fn report_unused(
     }
 }
 
+/// Why the cell at `pos` (not part of the table) would be lost: in the row
+/// of BRANCH headers, in a step's row outside the BRANCH columns, in a row
+/// without a STEP label among, above or below the steps. `None` for a cell
+/// beside or away from the table.
+fn why_lost(grid: &Grid, frame: &Frame, pos: CellPos, in_step_row: bool) -> Option<String> {
+    let CellPos { row, col } = pos;
+    let (&first_row, &last_row) = (frame.step_rows.first()?, frame.step_rows.last()?);
+    let (&first_branch, &last_branch) = (frame.branch_cols.first()?, frame.branch_cols.last()?);
+    let left = frame.label_col.unwrap_or(first_branch);
+    let near_cols = left.saturating_sub(1)..=last_branch.saturating_add(1);
+    let last_label = |row: u32| {
+        frame
+            .step_rows
+            .iter()
+            .rposition(|r| *r < row)
+            .map(|k| k + 1)
+    };
+    let in_rows = (first_row..=last_row).contains(&row);
+    let in_cols = (first_branch..=last_branch).contains(&col);
+    let below_header = frame.header_row.is_none_or(|h| row > h);
+    let in_header_row = frame.header_row == Some(row);
+    if in_header_row {
+        Some("it is in the row of BRANCH headers but is not a BRANCH n header".to_string())
+    } else if in_step_row && col < first_branch {
+        Some("its column, left of the first BRANCH, has no BRANCH header".to_string())
+    } else if in_step_row {
+        Some("its column has no BRANCH header".to_string())
+    } else if in_rows && (in_cols || near_cols.contains(&col)) {
+        let label = frame.label_col.map(|c| CellPos::new(row, c));
+        let unread = label.filter(|l| {
+            let value = grid.cells.iter().find(|c| c.pos == *l).map(|c| &c.value);
+            matches!(value, Some(CellValue::Uncomputed(_)))
+        });
+        Some(match last_label(row) {
+            // Its label is there, as a formula nobody computed (E016 there).
+            _ if let Some(label) = unread => format!(
+                "its row's STEP label in {} is a formula without a computed value, so the row is no step steptable can read",
+                grid.cell_name(label)
+            ),
+            Some(k) if frame.labelled => {
+                format!(
+                    "its row (between STEP {k} and STEP {}) has no STEP label; give it one, or move the cell into a step's row",
+                    k + 1
+                )
+            }
+            _ => "its row is not a step of the table".to_string(),
+        })
+    } else if in_cols
+        && row < first_row
+        && (frame.header_row.is_some_and(|h| row > h) || row + 1 == first_row)
+    {
+        // Between the BRANCH headers and the first step, or right above
+        // the first step: a move there would come before STEP 1.
+        Some(format!(
+            "its row {} has no STEP label, and it lies above the table's first step (row {})",
+            row + 1,
+            first_row + 1
+        ))
+    } else if in_cols && below_header && row > last_row {
+        // Its own row is named, not the last step's: that one is fine.
+        Some(match frame.label_col.filter(|_| frame.labelled) {
+            Some(col) => format!(
+                "its row {} has no STEP label, and it lies below the table's last step, STEP {} (row {}); add the label STEP {} in {} to make it a step",
+                row + 1,
+                frame.step_rows.len(),
+                last_row + 1,
+                frame.step_rows.len() + 1,
+                grid.cell_name(CellPos::new(row, col))
+            ),
+            None => format!(
+                "its row {} lies below the table's last step (row {})",
+                row + 1,
+                last_row + 1
+            ),
+        })
+    } else {
+        None
+    }
+}
+
 /// Text that parses wholly as cell items, as a note never does.
 fn reads_as_items(text: &str) -> bool {
     let items = parse_items(text);
     !items.is_empty() && items.iter().all(Result::is_ok)
 }
 
+/// W003 for a cell in or beside the table that is not part of it; E016 for
+/// a formula there that was never computed: what it holds cannot be told
+/// (a STEP label, a BRANCH header, a move), and the table would lose it.
 fn warn_ignored(grid: &Grid, pos: CellPos, value: &CellValue, why: &str, diags: &mut Diagnostics) {
+    if let CellValue::Uncomputed(formula) = value {
+        diags.error(
+            Code::E016FormulaNotComputed,
+            grid.location(pos),
+            format!(
+                "the formula {formula} has no computed value, so steptable cannot tell whether it is a STEP label, a BRANCH header or a move (the table would be read without it); open and save the workbook in Excel or LibreOffice, or type it"
+            ),
+        );
+        return;
+    }
     diags.warning(
         Code::W003Ignored,
         grid.location(pos),

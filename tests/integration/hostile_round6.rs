@@ -412,7 +412,7 @@ fn reset_leaves_a_run_on_to_finish() {
 
 /// `bytes` (an `.xlsx`) with the cell `cell` of `sheet` (`sheet2.xml`)
 /// made a formula saved without its value.
-fn uncomputed(bytes: Vec<u8>, sheet: &str, cell: &str, formula: &str) -> Vec<u8> {
+pub(crate) fn uncomputed(bytes: Vec<u8>, sheet: &str, cell: &str, formula: &str) -> Vec<u8> {
     use std::io::{Read, Write};
     let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes)).unwrap();
     let mut out = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));

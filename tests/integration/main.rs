@@ -31,6 +31,7 @@ mod hostile_round3;
 mod hostile_round4;
 mod hostile_round5;
 mod hostile_round6;
+mod hostile_round7;
 mod hostile_settings;
 mod identifiers;
 mod invisible_chars;

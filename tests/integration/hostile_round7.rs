@@ -1,0 +1,248 @@
+//! The seventh round of hostile input: what the red teams rt12 and rt13
+//! left open. A formula saved without its value where a STEP label, a
+//! BRANCH header or a pin goes (the table or the pin read without it, with
+//! warnings only), a move between the BRANCH headers and the first step,
+//! and a watchdog no PLC timer holds that `check` called ok. Each row goes
+//! through the binary: its exit code, each code at its cell, and that
+//! nothing was written.
+
+use crate::helpers::steptable;
+use crate::hostile_round6::uncomputed;
+
+fn stderr(assert: &assert_cmd::assert::Assert) -> String {
+    String::from_utf8_lossy(&assert.get_output().stderr).into_owned()
+}
+
+/// One workbook refused: `sheets` written, the cell `cell` of the sheet
+/// part `part` made a formula without its value (when given).
+struct Refused {
+    name: &'static str,
+    sheets: &'static [(&'static str, &'static [&'static [&'static str]])],
+    formula: Option<(&'static str, &'static str, &'static str)>,
+    says: &'static [&'static str],
+    not: &'static [&'static str],
+}
+
+const TABLE: &str = "SEQUENTIAL CONTROL DESCRIPTION";
+
+fn refused_cases() -> Vec<Refused> {
+    vec![
+        Refused {
+            name: "the first STEP label a formula",
+            sheets: &[(
+                TABLE,
+                &[
+                    &["", "BRANCH 1"],
+                    &["STEP 1", "I:part"],
+                    &["STEP 2", "C1+1"],
+                    &["STEP 3", "C1-0"],
+                ],
+            )],
+            formula: Some(("sheet1.xml", "A2", "\"STEP \"&amp;\"1\"")),
+            says: &[
+                "!A2: error[E016]: the formula =\"STEP \"&\"1\" has no computed value",
+                "!B2: error[E010]: \"I:part\" lies outside the table and would be lost: its row 2 has no STEP label, and it lies above the table's first step (row 3)",
+            ],
+            not: &["W003"],
+        },
+        Refused {
+            name: "a middle STEP label a formula",
+            sheets: &[(
+                TABLE,
+                &[
+                    &["", "BRANCH 1"],
+                    &["STEP 1", "C1+1"],
+                    &["STEP 2", "C2+1"],
+                    &["STEP 3", "C1-0"],
+                    &["STEP 4", "C2-0"],
+                ],
+            )],
+            formula: Some(("sheet1.xml", "A3", "\"STEP \"&amp;\"2\"")),
+            says: &[
+                "!A3: error[E016]: the formula",
+                "!B3: error[E010]: \"C2+1\" lies outside the table and would be lost: its row's STEP label in A3 is a formula without a computed value",
+            ],
+            not: &["add the label"],
+        },
+        Refused {
+            name: "a BRANCH header a formula",
+            sheets: &[(
+                TABLE,
+                &[
+                    &["", "BRANCH 1", "BRANCH 2"],
+                    &["STEP 1", "C1+1", "C2+1"],
+                    &["STEP 2", "C1-0", "C2-0"],
+                ],
+            )],
+            formula: Some(("sheet1.xml", "C1", "\"BRANCH \"&amp;\"2\"")),
+            says: &["!C1: error[E016]: the formula"],
+            not: &["W003"],
+        },
+        Refused {
+            name: "a move between the BRANCH headers and the first step",
+            sheets: &[(
+                TABLE,
+                &[
+                    &["", "BRANCH 1"],
+                    &["", "C2+1"],
+                    &["STEP 1", "C1+1"],
+                    &["STEP 2", "C1-0"],
+                ],
+            )],
+            formula: None,
+            says: &["!B2: error[E010]: \"C2+1\" lies outside the table and would be lost"],
+            not: &["W003"],
+        },
+        Refused {
+            name: "a pinned signal a formula",
+            sheets: &[
+                (
+                    TABLE,
+                    &[&["", "BRANCH 1"], &["STEP 1", "C1+1"], &["STEP 2", "C1-0"]],
+                ),
+                ("ADDRESSES", &[&["SIGNAL", "ADDRESS"], &["START", "%IX0.5"]]),
+            ],
+            formula: Some(("sheet2.xml", "A2", "\"ST\"&amp;\"ART\"")),
+            says: &["ADDRESSES!A2: error[E016]: the formula =\"ST\"&\"ART\" has no computed value"],
+            not: &["E035"],
+        },
+        Refused {
+            name: "a pinned address a formula",
+            sheets: &[
+                (
+                    TABLE,
+                    &[&["", "BRANCH 1"], &["STEP 1", "C1+1"], &["STEP 2", "C1-0"]],
+                ),
+                ("ADDRESSES", &[&["SIGNAL", "ADDRESS"], &["START", "%IX0.5"]]),
+            ],
+            formula: Some(("sheet2.xml", "B2", "\"%IX0.\"&amp;\"5\"")),
+            says: &["ADDRESSES!B2: error[E016]: the formula"],
+            not: &["E035"],
+        },
+    ]
+}
+
+/// A formula saved without its value where a STEP label, a BRANCH header
+/// or a pin goes cannot be read: the table (or the pin) would be read
+/// without it. E016 at the cell, nothing written, where it was a W003 and
+/// a table of fewer steps (rt12 F2, F10; rt13 F5). A move between the
+/// headers and the first step would be lost: E010, where it was a W003.
+#[test]
+fn what_cannot_be_read_where_the_table_goes_is_refused_at_its_cell() {
+    // Every row is run, and every broken one named.
+    let mut broken = Vec::new();
+    for case in refused_cases() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("h.xlsx");
+        let sheets: Vec<(&str, bool, &[&[&str]])> = case
+            .sheets
+            .iter()
+            .map(|(n, rows)| (*n, false, *rows))
+            .collect();
+        let mut bytes = crate::messy::workbook(&sheets);
+        if let Some((part, cell, formula)) = case.formula {
+            bytes = uncomputed(bytes, part, cell, formula);
+        }
+        std::fs::write(&path, bytes).unwrap();
+        for command in ["check", "convert"] {
+            let out = dir.path().join("out");
+            let mut run = steptable();
+            run.arg(command).arg(&path);
+            if command == "convert" {
+                run.arg("-o").arg(&out);
+            }
+            let output = run.output().unwrap();
+            let said = String::from_utf8_lossy(&output.stderr);
+            let mut wrong = Vec::new();
+            if output.status.code() != Some(1) {
+                wrong.push(format!("exit {:?}", output.status.code()));
+            }
+            wrong.extend(
+                case.says
+                    .iter()
+                    .filter(|l| !said.contains(*l))
+                    .map(|l| format!("no {l}")),
+            );
+            wrong.extend(
+                case.not
+                    .iter()
+                    .filter(|w| said.contains(*w))
+                    .map(|w| format!("says {w}")),
+            );
+            if out.exists() {
+                wrong.push("wrote files".to_string());
+            }
+            if !wrong.is_empty() {
+                broken.push(format!(
+                    "{}, {command}: {}\n{said}",
+                    case.name,
+                    wrong.join("; ")
+                ));
+            }
+        }
+    }
+    assert!(broken.is_empty(), "{}", broken.join("\n\n"));
+}
+
+/// A watchdog longer than a PLC timer holds is refused by `convert` (E032,
+/// arithmetic on the strokes, no run needed); `check` said ok (rt13 F4).
+/// Now both say it, at the step's cell and for the homing stage.
+#[test]
+fn check_refuses_a_watchdog_no_timer_holds_as_convert_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("w.xlsx");
+    let table: &[&[&str]] = &[
+        &["", "BRANCH 1"],
+        &["STEP 1", "C1+1"],
+        &["STEP 2", "C2+1"],
+        &["STEP 3", "C2-0"],
+        &["STEP 4", "C1-0"],
+    ];
+    let settings: &[&[&str]] = &[
+        &["modes", "estop, reset"],
+        &["safety", "watchdog"],
+        &["actuator", "valve", "extend", "retract"],
+        &["C1", "motor", "1s", "1s"],
+        &["C2", "52bi", "3s", "327.5s"],
+        &["home order", "C1, C2"],
+    ];
+    std::fs::write(
+        &path,
+        crate::messy::workbook(&[(TABLE, false, table), ("SETTINGS", false, settings)]),
+    )
+    .unwrap();
+    for command in ["check", "convert"] {
+        let out = dir.path().join("out");
+        let mut run = steptable();
+        run.arg(command).arg(&path);
+        if command == "convert" {
+            run.arg("-o").arg(&out);
+        }
+        let assert = run.assert().code(1);
+        let said = stderr(&assert);
+        assert!(
+            said.contains("!B4: error[E032]: step 3's watchdog would need"),
+            "{command}: {said}"
+        );
+        assert!(
+            said.contains("error[E032]: a homing stage's watchdog would need"),
+            "{command}: {said}"
+        );
+        assert!(!out.exists());
+    }
+    // 327 s is within the timers: check passes.
+    let settings: &[&[&str]] = &[
+        &["modes", "estop, reset"],
+        &["safety", "watchdog"],
+        &["actuator", "valve", "extend", "retract"],
+        &["C1", "motor", "1s", "1s"],
+        &["C2", "52bi", "3s", "327s"],
+        &["home order", "C1, C2"],
+    ];
+    std::fs::write(
+        &path,
+        crate::messy::workbook(&[(TABLE, false, table), ("SETTINGS", false, settings)]),
+    )
+    .unwrap();
+    steptable().arg("check").arg(&path).assert().code(0);
+}
