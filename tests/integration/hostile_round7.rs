@@ -246,3 +246,63 @@ fn check_refuses_a_watchdog_no_timer_holds_as_convert_does() {
     .unwrap();
     steptable().arg("check").arg(&path).assert().code(0);
 }
+
+/// A guard opening while RESET homes halts the homing; the RESET that
+/// acknowledges the halt homes on. The scenario said the first homing
+/// start and the end, but neither the halt nor the second start (rt12 F8):
+/// the `homing` memory stays set through the halt.
+#[test]
+fn a_halted_homing_and_the_reset_that_homes_on_are_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ic.xlsx");
+    let table: &[&[&str]] = &[
+        &["", "BRANCH 1"],
+        &["STEP 1", "C1+1"],
+        &["STEP 2", "C2+1; Y:heater+"],
+        &["STEP 3", "C2-0"],
+        &["STEP 4", "C1-0; Y:heater-"],
+    ];
+    let settings: &[&[&str]] = &[
+        &["modes", "estop, reset"],
+        &["interlock", "guard in steps 2-3"],
+        &["actuator", "valve", "extend", "retract"],
+        &["C1", "53closed", "1s", "3s"],
+    ];
+    std::fs::write(
+        &path,
+        crate::messy::workbook(&[(TABLE, false, table), ("SETTINGS", false, settings)]),
+    )
+    .unwrap();
+    let said = crate::helpers::squeezed_stdout(
+        &steptable()
+            .arg("simulate")
+            .arg(&path)
+            .args(["--safety", "watchdog", "--press", "START@0.5s", "--press"])
+            .args([
+                "ESTOP@step3",
+                "--press",
+                "RESET@+1s",
+                "--stick",
+                "guard=0@+0.5s",
+            ])
+            .args(["--stick", "guard=1@+1s", "--press", "RESET@+1s", "--press"])
+            .arg("START@step0")
+            .assert()
+            .code(0),
+    );
+    let lines: Vec<&str> = said.lines().collect();
+    let at = |text: &str| {
+        lines
+            .iter()
+            .position(|l| l.contains(text))
+            .unwrap_or_else(|| panic!("no {text}:\n{said}"))
+    };
+    let halted = at("homing halted: RESET homes on");
+    assert!(at("guard stuck at 0") < halted, "{said}");
+    let starts: Vec<usize> = (0..lines.len())
+        .filter(|&i| lines[i].ends_with("homing starts"))
+        .collect();
+    assert_eq!(starts.len(), 2, "{said}");
+    assert!(starts[0] < halted && halted < starts[1], "{said}");
+    assert!(starts[1] < at("homing done"), "{said}");
+}

@@ -59,12 +59,12 @@ fn lines(
         let what = if on { "on" } else { "off" };
         lines.push((t, 2, format!("{} {what}", (names.signal)(signal))));
     }
-    for (t, on, home) in homing_changes(report) {
-        // Ended by the EMERGENCY STOP, STOP or manual mode, not home.
-        let what = match (on, home) {
-            (true, _) => "homing starts",
-            (false, true) => "homing done",
-            (false, false) => "homing abandoned, the machine not home",
+    for (t, change) in homing_changes(report) {
+        let what = match change {
+            Homing::Starts => "homing starts",
+            Homing::Done => "homing done",
+            Homing::Abandoned => "homing abandoned, the machine not home",
+            Homing::Halted => "homing halted: RESET homes on",
         };
         lines.push((t, 2, what.to_string()));
     }
@@ -130,18 +130,37 @@ fn is_motion(kind: ProblemKind) -> bool {
 
 /// When the program started and ended homing the machine, and whether
 /// every cylinder was home then.
-fn homing_changes(report: &ScenarioReport) -> Vec<(u64, bool, bool)> {
+fn homing_changes(report: &ScenarioReport) -> Vec<(u64, Homing)> {
     let mut was = false;
     let mut changes = Vec::new();
     for (scan, sample) in scans(report) {
-        if sample.homing != was {
+        // A halt stops the homing where it is; the RESET that acknowledges
+        // it starts the homing again.
+        let runs = sample.homing && !sample.halted;
+        if runs != was {
             // Within a home sensor's window (a drive coasts onto it).
             let home = sample.positions.iter().all(|p| p.abs() < 0.05);
-            changes.push((scan, sample.homing, home));
-            was = sample.homing;
+            let change = match (runs, home) {
+                (true, _) => Homing::Starts,
+                (false, _) if sample.homing => Homing::Halted,
+                (false, true) => Homing::Done,
+                (false, false) => Homing::Abandoned,
+            };
+            changes.push((scan, change));
+            was = runs;
         }
     }
     changes
+}
+
+/// What the homing did at a scan.
+enum Homing {
+    Starts,
+    Done,
+    /// Ended by the EMERGENCY STOP, STOP or manual mode, not home.
+    Abandoned,
+    /// A halt stopped it: the next RESET starts it again.
+    Halted,
 }
 
 /// When each alarm output came on and went off.
