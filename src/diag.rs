@@ -141,6 +141,10 @@ pub enum Code {
     /// pressurised-centre valves on: a piston under way when the guard
     /// opens drives on to its end, which the centre would have stopped.
     W013GuardLeavesMotion,
+    /// A scenario's run found a problem (motion no step commands, a
+    /// collision risk, both coils on): said as JSON, where the printed
+    /// table goes to stderr.
+    W014ScenarioProblem,
 }
 
 impl Code {
@@ -180,6 +184,7 @@ impl Code {
             Code::W011RefusedByTool => "W011",
             Code::W012HaltForGood => "W012",
             Code::W013GuardLeavesMotion => "W013",
+            Code::W014ScenarioProblem => "W014",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",

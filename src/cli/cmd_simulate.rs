@@ -193,6 +193,10 @@ fn run_scenarios(
         };
         reporter.say(&format!("{}: scenario", display_name(input)));
         reporter.say(&run.table);
+        // The table goes to stderr under JSON: its problems go to stdout.
+        if reporter.json {
+            reporter.diagnostics(&run.problems);
+        }
         for path in written {
             reporter.say(&format!("  report: {}", path.display()));
         }

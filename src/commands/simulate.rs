@@ -105,6 +105,9 @@ pub fn run(
 #[derive(Debug)]
 pub struct ScenarioRun {
     pub warnings: Vec<Diagnostic>,
+    /// The problems the run found, as the table prints them (W014): what a
+    /// script reading JSON sees of them.
+    pub problems: Vec<Diagnostic>,
     /// The scenario's run, printed as a step table.
     pub table: String,
     /// With a report asked for: the paths written, or why not.
@@ -187,8 +190,26 @@ pub fn scenario(
         }
         _ => None,
     };
+    let problems = printed::problems(&run)
+        .map(|p| Diagnostic {
+            severity: Severity::Warning,
+            code: Code::W014ScenarioProblem,
+            location: Location {
+                file: table.file.clone(),
+                sheet: None,
+                cell: None,
+            },
+            message: format!(
+                "at {:.2} s in step {}: {}",
+                p.time_ms as f64 / 1000.0,
+                p.step,
+                explain(&p.message)
+            ),
+        })
+        .collect();
     Ok(ScenarioRun {
         warnings,
+        problems,
         table: printed,
         report,
     })

@@ -306,3 +306,48 @@ fn a_halted_homing_and_the_reset_that_homes_on_are_said() {
     assert!(starts[0] < halted && halted < starts[1], "{said}");
     assert!(starts[1] < at("homing done"), "{said}");
 }
+
+/// With `--message-format json` a scenario printed its table on stderr and
+/// nothing on stdout, even when the run found a problem (rt13 F7): a script
+/// could not see it. Each problem is a W014 object now, with its time and
+/// step; the human output lists them in the table only.
+#[test]
+fn a_scenarios_problems_are_said_in_json() {
+    let paper = crate::helpers::sample("paper_example.xlsx");
+    let run = |format: &str| {
+        steptable()
+            .arg("simulate")
+            .arg(&paper)
+            .args(["--press", "START@0s", "--stick", "x21=1@1.2s"])
+            .args(["--message-format", format])
+            .output()
+            .unwrap()
+    };
+    let json = run("json");
+    assert_eq!(json.status.code(), Some(0));
+    let objects: Vec<serde_json::Value> = String::from_utf8_lossy(&json.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("one JSON object per line"))
+        .collect();
+    let messages: Vec<&str> = objects
+        .iter()
+        .inspect(|o| assert_eq!(o["code"], "W014", "{o}"))
+        .map(|o| o["message"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        messages,
+        [
+            "at 1.97 s in step 4: step 4 started before step 3 finished (C2 had not reached x21)",
+            "at 1.97 s in step 4: C2 ran through x22 in step 4"
+        ]
+    );
+    let table = String::from_utf8_lossy(&json.stderr);
+    assert!(
+        table.contains("problem: C2 ran through x22 in step 4"),
+        "{table}"
+    );
+    let human = run("human");
+    let said = String::from_utf8_lossy(&human.stdout);
+    assert!(said.contains("problem: C2 ran through x22"), "{said}");
+    assert!(!said.contains("W014") && !String::from_utf8_lossy(&human.stderr).contains("W014"));
+}

@@ -68,17 +68,7 @@ fn lines(
         };
         lines.push((t, 2, what.to_string()));
     }
-    // Motion while the program homes the machine is what RESET asked for.
-    // A problem is timed at its scan's start: that scan homes the machine
-    // when homing was on before it (the scan that ends homing still moves
-    // the last cylinder home) or after it (the scan that reads RESET).
-    let homed = |t: u64| report.at(t).is_some_and(|s| s.homing);
-    let homing = |t: u64| homed(t) || homed(t + 1);
-    for p in report
-        .problems
-        .iter()
-        .filter(|p| !(is_motion(p.kind) && homing(p.time_ms)))
-    {
+    for p in problems(report) {
         lines.push((
             p.time_ms,
             3,
@@ -87,6 +77,20 @@ fn lines(
     }
     lines.sort_by_key(|(t, order, _)| (*t, *order));
     lines
+}
+
+/// The problems the run found but motion while the program homes the
+/// machine, which is what RESET asked for. A problem is timed at its
+/// scan's start: that scan homes the machine when homing was on before it
+/// (the scan that ends homing still moves the last cylinder home) or after
+/// it (the scan that reads RESET).
+pub fn problems(report: &ScenarioReport) -> impl Iterator<Item = &crate::simulate::Problem> {
+    let homed = |t: u64| report.at(t).is_some_and(|s| s.homing);
+    let homing = move |t: u64| homed(t) || homed(t + 1);
+    report
+        .problems
+        .iter()
+        .filter(move |p| !(is_motion(p.kind) && homing(p.time_ms)))
 }
 
 /// `step 0   cycle abandoned in step 2: manual mode (MAN_MODE)`: the
