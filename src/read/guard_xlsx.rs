@@ -133,6 +133,40 @@ fn unique_count(xml: &[u8]) -> Option<u64> {
     }
 }
 
+/// Whether the workbook asks to be calculated again when opened
+/// (`<calcPr fullCalcOnLoad="1"/>`): a program that does not calculate
+/// saves a placeholder (0) as a formula's value and says so; Excel and
+/// LibreOffice show the computed value, never the placeholder. (A writer
+/// that gives a formula its result, and asks all the same, is believed.)
+pub fn values_to_recalculate(bytes: &[u8]) -> bool {
+    let Some(mut archive) = zip::ZipArchive::new(Cursor::new(bytes)).ok() else {
+        return false;
+    };
+    let Ok(part) = archive.by_name("xl/workbook.xml") else {
+        return false;
+    };
+    // The calculation settings are small and near the end of a small part.
+    let mut text = Vec::new();
+    if part.take(4 << 20).read_to_end(&mut text).is_err() {
+        return false;
+    }
+    let mut reader = Reader::from_reader(text.as_slice());
+    let mut buf = Vec::new();
+    loop {
+        match reader.read_event_into(&mut buf) {
+            Ok(Event::Empty(e) | Event::Start(e)) if e.local_name().into_inner() == "calcPr" => {
+                return e.attributes().flatten().any(|a| {
+                    a.key.local_name().into_inner() == "fullCalcOnLoad"
+                        && matches!(&*a.value, "1" | "true")
+                });
+            }
+            Ok(Event::Eof) | Err(_) => return false,
+            _ => {}
+        }
+        buf.clear();
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -155,17 +155,37 @@ pub(super) fn pick_table(
     // A sheet that could not be read may be the one with the table: say why.
     let mut unread = Diagnostics::new();
     let mut candidates: Vec<(TableScore, Grid)> = Vec::new();
+    // Sheets of formulas nobody computed, whose first such cell: any may
+    // hold the table, and which does cannot be told.
+    let mut formulas = Vec::new();
     // The side sheets are read as such, never as the table.
     for name in names.iter().filter(|n| side_sheet_of(n).is_none()) {
         let mut local = Diagnostics::new();
         match read_sheet(workbook, name, &mut local) {
             Some(grid) => {
-                if let Some(score) = table_score(&grid, is_hidden(name)) {
-                    candidates.push((score, grid));
+                let formula = grid.cells.iter().find_map(|c| match &c.value {
+                    CellValue::Uncomputed(f) => Some((grid.location(c.pos), f.clone())),
+                    _ => None,
+                });
+                match table_score(&grid, is_hidden(name)) {
+                    Some(score) => candidates.push((score, grid)),
+                    None => formulas.extend(formula),
                 }
             }
             None => unread.extend(local),
         }
+    }
+    if !formulas.is_empty() {
+        for (at, formula) in formulas {
+            diags.error(
+                Code::E016FormulaNotComputed,
+                at,
+                format!(
+                    "the formula {formula} has no computed value, and its sheet holds no move or header steptable can read: the step table may be there, which cannot be told; open and save the workbook in Excel or LibreOffice, or choose the table's sheet with --sheet"
+                ),
+            );
+        }
+        return None;
     }
     // The best score wins; the first sheet on a tie.
     let best = candidates

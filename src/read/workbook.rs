@@ -110,10 +110,11 @@ fn open(
     whole_file: &Location,
     diags: &mut Diagnostics,
 ) -> Option<Box<dyn SheetSource>> {
+    let recalculate = format == Format::Xlsx && guard_xlsx::values_to_recalculate(&bytes);
     let cursor = Cursor::new(bytes);
     let opened: Result<Box<dyn SheetSource>, String> = match format {
         Format::Xlsx => open_workbook_from_rs::<Xlsx<_>, _>(cursor)
-            .map(|w| Box::new(w) as Box<dyn SheetSource>)
+            .map(|xlsx| Box::new(XlsxSource { xlsx, recalculate }) as Box<dyn SheetSource>)
             .map_err(|e| e.to_string()),
         Format::Xls => open_workbook_from_rs::<Xls<_>, _>(cursor)
             .map(|w| Box::new(w) as Box<dyn SheetSource>)
@@ -180,18 +181,26 @@ fn hidden_sheets(sheets: &[calamine::Sheet]) -> Vec<String> {
 /// `.xlsx` is read cell by cell as the sheet's XML streams past: memory
 /// follows the filled cells, not the rectangle around them (a sheet with
 /// cells at A1 and XFD1048576 would otherwise need 17 billion empty cells).
-impl SheetSource for Xlsx<Cursor<Vec<u8>>> {
+/// An `.xlsx` workbook, and whether it asks to be calculated again when
+/// opened: its formulas' saved values are then placeholders.
+struct XlsxSource {
+    xlsx: Xlsx<Cursor<Vec<u8>>>,
+    recalculate: bool,
+}
+
+impl SheetSource for XlsxSource {
     fn names(&self) -> Vec<String> {
-        self.sheet_names()
+        self.xlsx.sheet_names()
     }
 
     fn hidden(&self) -> Vec<String> {
-        hidden_sheets(self.sheets_metadata())
+        hidden_sheets(self.xlsx.sheets_metadata())
     }
 
     fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError> {
         let unreadable = |e: calamine::XlsxError| SheetError::Unreadable(e.to_string());
-        let mut reader = self.worksheet_cells_reader(name).map_err(unreadable)?;
+        let recalculate = self.recalculate;
+        let mut reader = self.xlsx.worksheet_cells_reader(name).map_err(unreadable)?;
         let mut cells = Vec::new();
         while let Some(cell) = reader
             .next_cell_with_formula_metadata()
@@ -201,8 +210,15 @@ impl SheetSource for Xlsx<Cursor<Vec<u8>>> {
             let data: Data = cell.value.into();
             // A formula saved by a program that never computed it has no
             // value; read as empty, what the engineer wrote would vanish.
+            // One saved with the placeholder 0 for a value (XlsxWriter's),
+            // in a workbook that asks to be calculated when opened, is no
+            // better: Excel shows what the formula computes, never the 0.
+            let placeholder = matches!(data, Data::Int(0)) || data == Data::Float(0.0);
             let value = match (&data, cell.formula) {
                 (Data::Empty, Some(formula)) => Some(CellValue::Uncomputed(formula_text(formula))),
+                (_, Some(formula)) if recalculate && placeholder => {
+                    Some(CellValue::Uncomputed(formula_text(formula)))
+                }
                 _ => cell_value(&data),
             };
             if let Some(value) = value {
@@ -249,7 +265,13 @@ macro_rules! whole_sheet_source {
                 let range = self
                     .worksheet_range(name)
                     .map_err(|e| SheetError::Unreadable(e.to_string()))?;
-                Ok(grid_from_range(file, name, &range))
+                let mut grid = grid_from_range(file, name, &range);
+                // A formula saved without its value reads as an empty cell
+                // in the values: found among the formulas.
+                if let Ok(formulas) = self.worksheet_formula(name) {
+                    add_uncomputed(&mut grid, &formulas);
+                }
+                Ok(grid)
             }
         }
     };
@@ -303,6 +325,29 @@ fn date_text(dt: &calamine::ExcelDateTime) -> String {
     } else {
         format!("{year:04}-{month:02}-{day:02} {time}")
     }
+}
+
+/// Each formula of `formulas` at a cell `grid` holds no value of, as
+/// [`CellValue::Uncomputed`]: a program that does not calculate saved it.
+fn add_uncomputed(grid: &mut Grid, formulas: &Range<String>) {
+    let (row0, col0) = formulas.start().unwrap_or((0, 0));
+    let valued: std::collections::HashSet<CellPos> = grid.cells.iter().map(|c| c.pos).collect();
+    for (r, c, formula) in formulas.used_cells() {
+        let pos = CellPos::new(row0 + r as u32, col0 + c as u32);
+        if formula.trim().is_empty() || valued.contains(&pos) {
+            continue;
+        }
+        let text = formula.strip_prefix("of:").unwrap_or(formula);
+        let text = match text.starts_with('=') {
+            true => text.to_string(),
+            false => format!("={text}"),
+        };
+        grid.cells.push(GridCell {
+            pos,
+            value: CellValue::Uncomputed(text),
+        });
+    }
+    grid.cells.sort_by_key(|c| (c.pos.row, c.pos.col));
 }
 
 fn grid_from_range(file: &str, sheet: &str, range: &Range<Data>) -> Grid {

@@ -68,8 +68,22 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Vec<PinRow> {
                 cell.value.describe()
             ),
             // Title and notes above the header, but in the address column
-            // or just above the header.
-            Some(h) if cell.pos.row + 1 < h && column != Some(1) => continue,
+            // or just above the header; a formula nobody computed there
+            // may be a pin as well as a title (E016 below).
+            Some(h)
+                if cell.pos.row + 1 < h
+                    && column != Some(1)
+                    && !matches!(cell.value, CellValue::Uncomputed(_)) =>
+            {
+                continue;
+            }
+            Some(h)
+                if let CellValue::Uncomputed(formula) = &cell.value
+                    && cell.pos.row < h =>
+            {
+                diags.error(Code::E016FormulaNotComputed, at, uncomputed_pin(formula));
+                continue;
+            }
             Some(h) if cell.pos.row < h => format!(
                 "{} is above the SIGNAL | ADDRESS header, where nothing is read (a pin goes in a row below it)",
                 cell.value.describe()
@@ -80,13 +94,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Vec<PinRow> {
                 // row is read no further).
                 Some(0 | 1) if let CellValue::Uncomputed(formula) = &cell.value => {
                     uncomputed.insert(cell.pos.row);
-                    diags.error(
-                        Code::E016FormulaNotComputed,
-                        at,
-                        format!(
-                            "the formula {formula} has no computed value, so steptable cannot tell which signal or address it pins (the program would be written without the pin); open and save the workbook in Excel or LibreOffice, or type it"
-                        ),
-                    );
+                    diags.error(Code::E016FormulaNotComputed, at, uncomputed_pin(formula));
                     continue;
                 }
                 Some(column @ (0 | 1)) => {
@@ -128,6 +136,13 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Vec<PinRow> {
         }
     }
     pins
+}
+
+/// E016's message on the ADDRESSES sheet.
+fn uncomputed_pin(formula: &str) -> String {
+    format!(
+        "the formula {formula} has no computed value, so steptable cannot tell which signal or address it pins (the program would be written without the pin); open and save the workbook in Excel or LibreOffice, or type it"
+    )
 }
 
 #[cfg(test)]

@@ -360,6 +360,11 @@ pub(super) fn report_unused(
                 "it reads as a move but lies away from the table",
                 diags,
             ),
+            // What a formula nobody computed shows cannot be told: it may be
+            // a move or a step below the table, as well as a title (E016).
+            _ if matches!(cell.value, CellValue::Uncomputed(_)) => {
+                warn_ignored(grid, cell.pos, &cell.value, "", diags)
+            }
             _ => {}
         }
     }

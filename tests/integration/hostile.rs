@@ -111,7 +111,7 @@ fn raw_xlsx(rows: usize, row: &str, shared_strings: Option<&str>) -> Vec<u8> {
 }
 
 /// A minimal `.ods` whose one sheet is `table` (rows of ODF XML).
-fn ods_of(table: &str) -> Vec<u8> {
+pub(crate) fn ods_of(table: &str) -> Vec<u8> {
     let mut buffer = std::io::Cursor::new(Vec::new());
     let mut zip = zip::ZipWriter::new(&mut buffer);
     let stored =
@@ -119,6 +119,12 @@ fn ods_of(table: &str) -> Vec<u8> {
     zip.start_file("mimetype", stored).unwrap();
     zip.write_all(b"application/vnd.oasis.opendocument.spreadsheet")
         .unwrap();
+    zip.start_file(
+        "META-INF/manifest.xml",
+        zip::write::SimpleFileOptions::default(),
+    )
+    .unwrap();
+    zip.write_all(br#"<?xml version="1.0" encoding="UTF-8"?><manifest:manifest xmlns:manifest="urn:oasis:names:tc:opendocument:xmlns:manifest:1.0" manifest:version="1.2"><manifest:file-entry manifest:full-path="/" manifest:media-type="application/vnd.oasis.opendocument.spreadsheet"/><manifest:file-entry manifest:full-path="content.xml" manifest:media-type="text/xml"/></manifest:manifest>"#).unwrap();
     zip.start_file("content.xml", zip::write::SimpleFileOptions::default())
         .unwrap();
     write!(

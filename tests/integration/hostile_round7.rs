@@ -119,6 +119,56 @@ fn refused_cases() -> Vec<Refused> {
             says: &["ADDRESSES!B2: error[E016]: the formula"],
             not: &["E035"],
         },
+        Refused {
+            name: "a formula far below the table",
+            sheets: &[(
+                TABLE,
+                &[
+                    &["", "BRANCH 1"],
+                    &["STEP 1", "C1+1"],
+                    &["STEP 2", "C1-0"],
+                    &[""],
+                    &[""],
+                    &[""],
+                    &[""],
+                    &["", "", "", "", "", "x"],
+                ],
+            )],
+            formula: Some(("sheet1.xml", "F8", "\"C3\"&amp;\"+1\"")),
+            says: &["!F8: error[E016]: the formula =\"C3\"&\"+1\" has no computed value"],
+            not: &["W003"],
+        },
+        Refused {
+            name: "a sheet of formulas only before a sheet with a table",
+            sheets: &[
+                ("Data", &[&[""], &["", "x"]]),
+                (
+                    "Old",
+                    &[&["", "BRANCH 1"], &["STEP 1", "C5+1"], &["STEP 2", "C5-0"]],
+                ),
+            ],
+            formula: Some(("sheet1.xml", "B2", "\"C1\"&amp;\"+1\"")),
+            says: &[
+                "Data!B2: error[E016]: the formula =\"C1\"&\"+1\" has no computed value, and its sheet holds no move or header steptable can read",
+            ],
+            not: &["W003"],
+        },
+        Refused {
+            name: "a formula above the ADDRESSES header",
+            sheets: &[
+                (
+                    TABLE,
+                    &[&["", "BRANCH 1"], &["STEP 1", "C1+1"], &["STEP 2", "C1-0"]],
+                ),
+                (
+                    "ADDRESSES",
+                    &[&["x"], &[""], &["SIGNAL", "ADDRESS"], &["C1+", "%QX0.0"]],
+                ),
+            ],
+            formula: Some(("sheet2.xml", "A1", "\"ST\"&amp;\"ART\"")),
+            says: &["ADDRESSES!A1: error[E016]: the formula =\"ST\"&\"ART\" has no computed value"],
+            not: &["W003"],
+        },
     ]
 }
 
@@ -350,4 +400,73 @@ fn a_scenarios_problems_are_said_in_json() {
     let said = String::from_utf8_lossy(&human.stdout);
     assert!(said.contains("problem: C2 ran through x22"), "{said}");
     assert!(!said.contains("W014") && !String::from_utf8_lossy(&human.stderr).contains("W014"));
+}
+
+/// One `.ods` workbook or `.xlsx` workbook refused: E016 at `cell`.
+fn refused_bytes(name: &str, bytes: Vec<u8>, cell: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, bytes).unwrap();
+    for command in ["check", "convert"] {
+        let out = dir.path().join("out");
+        let mut run = steptable();
+        run.arg(command).arg(&path);
+        if command == "convert" {
+            run.arg("-o").arg(&out);
+        }
+        let said = stderr(&run.assert().code(1));
+        assert!(
+            said.contains(&format!("!{cell}: error[E016]: the formula")),
+            "{name}, {command}: {said}"
+        );
+        assert!(!out.exists(), "{name}, {command}");
+    }
+}
+
+/// A formula an `.ods` saved without its value read as an empty cell
+/// (calamine's values hold nothing there), so a step's move vanished with
+/// exit 0 (rt14 F13). It is E016 at its cell, as in an `.xlsx`.
+#[test]
+fn an_ods_formula_without_its_value_is_e016() {
+    let cell = |text: &str| {
+        format!(
+            "<table:table-cell office:value-type=\"string\"><text:p>{text}</text:p></table:table-cell>"
+        )
+    };
+    let row = |cells: &[String]| format!("<table:table-row>{}</table:table-row>", cells.concat());
+    let formula =
+        "<table:table-cell table:formula=\"of:=&quot;C1&quot;&amp;&quot;-0&quot;\"/>".to_string();
+    let table = [
+        row(&[cell(""), cell("BRANCH 1")]),
+        row(&[cell("STEP 1"), cell("C1+1")]),
+        row(&[cell("STEP 2"), cell("C2+1")]),
+        row(&[cell("STEP 3"), formula]),
+        row(&[cell("STEP 4"), cell("C2-0")]),
+    ]
+    .concat();
+    refused_bytes("f.ods", crate::hostile::ods_of(&table), "B4");
+}
+
+/// A program that does not calculate (XlsxWriter, rust_xlsxwriter) saves
+/// 0 as a formula's value and asks Excel to calculate on opening
+/// (`fullCalcOnLoad`): Excel shows the move, steptable read the 0 and
+/// refused or dropped it elsewhere (rt14 F14). The placeholder is no value.
+#[test]
+fn a_placeholder_zero_in_a_workbook_to_be_calculated_is_e016() {
+    let mut workbook = rust_xlsxwriter::Workbook::new();
+    let sheet = workbook.add_worksheet();
+    let rows: &[&[&str]] = &[
+        &["", "BRANCH 1"],
+        &["STEP 1", "C1+1"],
+        &["STEP 2", "C2+1"],
+        &["STEP 3", ""],
+        &["STEP 4", "C2-0"],
+    ];
+    for (r, row) in rows.iter().enumerate() {
+        for (c, text) in row.iter().enumerate().filter(|(_, t)| !t.is_empty()) {
+            sheet.write_string(r as u32, c as u16, *text).unwrap();
+        }
+    }
+    sheet.write_formula(3, 1, "=\"C1\"&\"-0\"").unwrap();
+    refused_bytes("x.xlsx", workbook.save_to_buffer().unwrap(), "B4");
 }
