@@ -106,6 +106,9 @@ pub enum Code {
     /// stays active does not run its entry again, so the chart would not
     /// do what the program does.
     E048RetryInChart,
+    /// A value lies under a merged cell, where the spreadsheet shows only
+    /// the merge's first cell: steptable would read what nobody sees.
+    E049HiddenUnderMerge,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -202,6 +205,7 @@ impl Code {
             Code::E046MistypedSetting => "E046",
             Code::E047SheetAmbiguous => "E047",
             Code::E048RetryInChart => "E048",
+            Code::E049HiddenUnderMerge => "E049",
         }
     }
 }

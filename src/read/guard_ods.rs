@@ -4,17 +4,39 @@
 //! million cells: a 1 KB file with a cell at A1 and one a million rows and
 //! 99 columns away took 6.2 GB and 4.4 s. Here the rectangle around each
 //! sheet's filled cells is measured from `content.xml` as it streams past,
-//! before calamine sees the file.
+//! before calamine sees the file. The same pass notes each sheet's merged
+//! cells (a cell's `table:number-columns-spanned`), which calamine does not
+//! give: what lies under them is hidden in the spreadsheet.
 
+use std::collections::HashMap;
 use std::io::{BufReader, Cursor};
 
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
 
-/// Why the `.ods` file is not decoded, if it is not: the sheet whose filled
-/// cells spread over more than `max_cells` cells. Anything this pass cannot
-/// read (not a zip, no `content.xml`, bad XML) is left to calamine to report.
-pub fn oversized_sheet(bytes: &[u8], max_cells: u64) -> Option<String> {
+/// What one pass over `content.xml` found.
+#[derive(Default)]
+pub struct Survey {
+    /// Why the `.ods` file is not decoded, if it is not: the sheet whose
+    /// filled cells spread over more than `max_cells` cells.
+    pub oversized: Option<String>,
+    /// Each sheet's merged cells: first and last (row, column), inclusive.
+    pub merged: HashMap<String, Vec<super::sheet_choice::Region>>,
+}
+
+/// The survey of an `.ods` file. Anything this pass cannot read (not a zip,
+/// no `content.xml`, bad XML) is left to calamine to report.
+pub fn survey(bytes: &[u8], max_cells: u64) -> Survey {
+    let mut found = Survey::default();
+    found.oversized = walk(bytes, max_cells, &mut found.merged);
+    found
+}
+
+fn walk(
+    bytes: &[u8],
+    max_cells: u64,
+    merged: &mut HashMap<String, Vec<super::sheet_choice::Region>>,
+) -> Option<String> {
     let mut archive = zip::ZipArchive::new(Cursor::new(bytes)).ok()?;
     let content = archive.by_name("content.xml").ok()?;
     // Streamed: the sheet XML is never held whole beside calamine's copy.
@@ -31,6 +53,23 @@ pub fn oversized_sheet(bytes: &[u8], max_cells: u64) -> Option<String> {
                     "table:table-row" => sheet.start_row(repeat(e, "table:number-rows-repeated")),
                     "table:table-cell" | "table:covered-table-cell" => {
                         let filled = filled_element || has_attribute(e, "office:value-type");
+                        let spans = (
+                            repeat(e, "table:number-rows-spanned"),
+                            repeat(e, "table:number-columns-spanned"),
+                        );
+                        if spans != (1, 1)
+                            && let Some(name) = &sheet.name
+                        {
+                            let at = |n: u64| u32::try_from(n).unwrap_or(u32::MAX);
+                            let (row, col) = (sheet.row, sheet.col);
+                            merged.entry(name.clone()).or_default().push((
+                                (at(row), at(col)),
+                                (
+                                    at(row.saturating_add(spans.0 - 1)),
+                                    at(col.saturating_add(spans.1 - 1)),
+                                ),
+                            ));
+                        }
                         sheet.cell(repeat(e, "table:number-columns-repeated"), filled);
                     }
                     _ => {}
@@ -40,7 +79,7 @@ pub fn oversized_sheet(bytes: &[u8], max_cells: u64) -> Option<String> {
             Event::End(e) if e.name().as_ref() == "table:table" => {
                 let span = sheet.span();
                 if span > max_cells {
-                    let name = sheet.name.take().unwrap_or_default();
+                    let name = sheet.name.clone().unwrap_or_default();
                     return Some(format!(
                         "sheet {name}: its cells spread over a rectangle of {span} cells; at most {max_cells} are read"
                     ));
@@ -150,7 +189,7 @@ mod tests {
             r#"<table:table-row table:number-rows-repeated="999998"><table:table-cell table:number-columns-repeated="99"/></table:table-row>"#,
             r#"<table:table-row><table:table-cell table:number-columns-repeated="98"/><table:table-cell office:value-type="string"><text:p>C1-0</text:p></table:table-cell></table:table-row>"#,
         ));
-        let why = oversized_sheet(&corners, 3_000_000).expect("refused");
+        let why = survey(&corners, 3_000_000).oversized.expect("refused");
         assert!(
             why.contains("sheet S") && why.contains("99000000 cells"),
             "{why}"
@@ -160,6 +199,16 @@ mod tests {
             r#"<table:table-row table:number-rows-repeated="1000"><table:table-cell table:number-columns-repeated="1000"/></table:table-row>"#,
             r#"<table:table-row><table:table-cell/><table:table-cell><text:p>C1+1</text:p></table:table-cell></table:table-row>"#,
         ));
-        assert_eq!(oversized_sheet(&small, 3_000_000), None);
+        assert_eq!(survey(&small, 3_000_000).oversized, None);
+    }
+
+    #[test]
+    fn notes_each_sheets_merged_cells() {
+        let book = ods(concat!(
+            r#"<table:table-row><table:table-cell/><table:table-cell table:number-columns-spanned="2" table:number-rows-spanned="3" office:value-type="string"><text:p>x</text:p></table:table-cell><table:covered-table-cell/></table:table-row>"#,
+        ));
+        assert_eq!(survey(&book, 1000).merged["S"], vec![((0, 1), (2, 2))]);
+        let plain = ods(r#"<table:table-row><table:table-cell/></table:table-row>"#);
+        assert!(survey(&plain, 1000).merged.is_empty());
     }
 }

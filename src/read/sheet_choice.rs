@@ -360,7 +360,14 @@ pub(super) trait SheetSource {
     fn hidden(&self) -> Vec<String>;
     /// The filled cells of one sheet.
     fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError>;
+    /// The sheet's merged cells.
+    fn merged(&mut self, _name: &str) -> Vec<Region> {
+        Vec::new()
+    }
 }
+
+/// A rectangle of cells: first and last (row, column), inclusive.
+pub(super) type Region = ((u32, u32), (u32, u32));
 
 /// Why a sheet could not be read.
 pub(super) enum SheetError {

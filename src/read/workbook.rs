@@ -5,7 +5,9 @@ use std::io::Cursor;
 
 use calamine::{Data, Ods, Range, Reader, Xls, Xlsx, open_workbook_from_rs};
 
-use super::sheet_choice::{SheetError, SheetSource, SideSheets, misnamed_side_sheets, pick_table};
+use super::sheet_choice::{
+    Region, SheetError, SheetSource, SideSheets, misnamed_side_sheets, pick_table,
+};
 use super::*;
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 
@@ -21,7 +23,10 @@ pub(super) fn read_workbook(
         sheet: None,
         cell: None,
     };
-    if let Some((code, message)) = refusal_before_decoding(format, &bytes) {
+    // calamine gives no .ods merges: the guard's pass notes them.
+    let ods = (format == Format::Ods).then(|| guard_ods::survey(&bytes, MAX_FILLED_CELLS as u64));
+    let ods_oversized = ods.as_ref().and_then(|s| s.oversized.clone());
+    if let Some((code, message)) = refusal_before_decoding(format, &bytes, ods_oversized) {
         diags.error(code, whole_file, message);
         return None;
     }
@@ -44,7 +49,20 @@ pub(super) fn read_workbook(
         diags,
     );
     misnamed_side_sheets(file, &names, diags);
-    let table = pick_table(&mut workbook, &names, wanted, &whole_file, diags, &read)?;
+    let mut table = pick_table(&mut workbook, &names, wanted, &whole_file, diags, &read);
+    let mut merged = |name: &str| match &ods {
+        Some(survey) => survey.merged.get(name).cloned().unwrap_or_default(),
+        None => workbook.merged(name),
+    };
+    let (mut settings, mut addresses) = (settings, addresses);
+    for grid in [&mut table, &mut settings, &mut addresses]
+        .into_iter()
+        .flatten()
+    {
+        let regions = grid.sheet.as_deref().map(&mut merged).unwrap_or_default();
+        refuse_hidden_under_merges(grid, &regions, diags);
+    }
+    let table = table?;
     Some(Input {
         table,
         settings,
@@ -56,7 +74,11 @@ pub(super) fn read_workbook(
 /// What refuses a workbook before calamine decodes it: one that unpacks
 /// too large, or whose structure would make the decoder loop or allocate
 /// without bound.
-fn refusal_before_decoding(format: Format, bytes: &[u8]) -> Option<(Code, String)> {
+fn refusal_before_decoding(
+    format: Format,
+    bytes: &[u8],
+    ods_oversized: Option<String>,
+) -> Option<(Code, String)> {
     if matches!(format, Format::Xlsx | Format::Ods)
         && let Some(unpacked) = unpacked_size(bytes)
         && unpacked > MAX_UNPACKED_BYTES
@@ -83,9 +105,7 @@ fn refusal_before_decoding(format: Format, bytes: &[u8]) -> Option<(Code, String
     {
         return Some((Code::E005TooLarge, why));
     }
-    if format == Format::Ods
-        && let Some(why) = guard_ods::oversized_sheet(bytes, MAX_FILLED_CELLS as u64)
-    {
+    if let Some(why) = ods_oversized {
         return Some((Code::E024TableTooLarge, why));
     }
     if format == Format::Xls
@@ -197,6 +217,14 @@ impl SheetSource for XlsxSource {
         hidden_sheets(self.xlsx.sheets_metadata())
     }
 
+    fn merged(&mut self, name: &str) -> Vec<Region> {
+        let merges = self
+            .xlsx
+            .merge_cells_by_sheet_name(name)
+            .unwrap_or_default();
+        merges.iter().map(|d| (d.start, d.end)).collect()
+    }
+
     fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError> {
         let unreadable = |e: calamine::XlsxError| SheetError::Unreadable(e.to_string());
         let recalculate = self.recalculate;
@@ -248,11 +276,52 @@ fn formula_text(formula: calamine::XlsxFormulaMetadata) -> String {
     }
 }
 
+/// A value under a merged cell but its first is hidden in Excel and
+/// LibreOffice: read, the program would do what nobody sees in the table;
+/// dropped, what the engineer wrote would be lost. E049 at each, and the
+/// cell leaves the grid (no second error about it).
+fn refuse_hidden_under_merges(grid: &mut Grid, regions: &[Region], diags: &mut Diagnostics) {
+    if regions.is_empty() {
+        return;
+    }
+    let under = |pos: CellPos| {
+        regions.iter().find(|((r0, c0), (r1, c1))| {
+            (*r0..=*r1).contains(&pos.row)
+                && (*c0..=*c1).contains(&pos.col)
+                && (pos.row, pos.col) != (*r0, *c0)
+        })
+    };
+    let location = |grid: &Grid, pos| grid.location(pos);
+    let mut hidden = Vec::new();
+    grid.cells.retain(|cell| match under(cell.pos) {
+        Some(&((r0, c0), (r1, c1))) => {
+            hidden.push((cell.pos, cell.value.describe(), (r0, c0), (r1, c1)));
+            false
+        }
+        None => true,
+    });
+    for (pos, value, first, last) in hidden {
+        let first = CellPos::new(first.0, first.1).a1();
+        let last = CellPos::new(last.0, last.1).a1();
+        diags.error(
+            Code::E049HiddenUnderMerge,
+            location(grid, pos),
+            format!(
+                "{value} lies under the merged cell {first}:{last}, where the spreadsheet shows only {first}'s value: the program would do what nobody sees in the table; unmerge the cells, then keep or clear it"
+            ),
+        );
+    }
+}
+
 /// `.xls` and `.ods`: calamine decodes these whole; their grids are small
 /// (65,536 × 256 for `.xls`).
 macro_rules! whole_sheet_source {
-    ($reader:ty) => {
+    ($reader:ty, $merged:expr) => {
         impl SheetSource for $reader {
+            fn merged(&mut self, name: &str) -> Vec<Region> {
+                $merged(self, name)
+            }
+
             fn names(&self) -> Vec<String> {
                 self.sheet_names()
             }
@@ -276,8 +345,11 @@ macro_rules! whole_sheet_source {
         }
     };
 }
-whole_sheet_source!(Xls<Cursor<Vec<u8>>>);
-whole_sheet_source!(Ods<Cursor<Vec<u8>>>);
+whole_sheet_source!(Xls<Cursor<Vec<u8>>>, |xls: &mut Xls<_>, name: &str| {
+    let merges = xls.merge_cells_by_sheet_name(name).unwrap_or_default();
+    merges.iter().map(|d| (d.start, d.end)).collect()
+});
+whole_sheet_source!(Ods<Cursor<Vec<u8>>>, |_: &mut Ods<_>, _: &str| Vec::new());
 
 /// Most filled cells read from one sheet: a full table (10,000 steps × 256
 /// branches) with its labels fits; a sheet of millions of cells is refused.

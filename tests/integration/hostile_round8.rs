@@ -1,0 +1,162 @@
+//! The eighth round of hostile input: what the red team rt14 found in the
+//! spreadsheet's own structure. A value under a merged cell, which Excel
+//! and LibreOffice hide behind the merge's first cell, was read as if it
+//! were seen (or, on SETTINGS, dropped). Each row goes through the binary:
+//! its exit code, the code at its cell, and that nothing was written.
+
+use crate::helpers::steptable;
+use rust_xlsxwriter::{Format, Workbook, Worksheet};
+
+/// `check` and `convert` of `bytes` (saved as `name`) both exit 1, say
+/// each of `says`, and write nothing.
+fn refused(name: &str, bytes: Vec<u8>, says: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, bytes).unwrap();
+    for command in ["check", "convert"] {
+        let out = dir.path().join("out");
+        let mut run = steptable();
+        run.arg(command).arg(&path);
+        if command == "convert" {
+            run.arg("-o").arg(&out);
+        }
+        let output = run.output().unwrap();
+        let said = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{name}, {command}: {said}");
+        for line in says {
+            assert!(said.contains(line), "{name}, {command}: no {line}\n{said}");
+        }
+        assert!(!out.exists(), "{name}, {command} wrote files");
+    }
+}
+
+fn write_rows(sheet: &mut Worksheet, rows: &[&[&str]]) {
+    for (r, row) in rows.iter().enumerate() {
+        for (c, text) in row.iter().enumerate().filter(|(_, t)| !t.is_empty()) {
+            sheet.write_string(r as u32, c as u16, *text).unwrap();
+        }
+    }
+}
+
+const FOUR: &[&[&str]] = &[
+    &["", "BRANCH 1"],
+    &["STEP 1", "C1+1"],
+    &["STEP 2", "C2+1"],
+    &["STEP 3", "C2-0"],
+    &["STEP 4", "C1-0"],
+];
+
+/// An `.xlsx` of the four-step table whose `merge` cells are merged, then
+/// `under` written beneath the merge's first cell, where Excel hides it.
+fn merged_xlsx(
+    settings: Option<&[&[&str]]>,
+    merge: (u32, u16, u32, u16),
+    under: (u32, u16, &str),
+) -> Vec<u8> {
+    let mut workbook = Workbook::new();
+    let table = workbook.add_worksheet();
+    table.set_name("SEQUENTIAL CONTROL DESCRIPTION").unwrap();
+    write_rows(table, FOUR);
+    let sheet = match settings {
+        Some(rows) => {
+            let sheet = workbook.add_worksheet();
+            sheet.set_name("SETTINGS").unwrap();
+            write_rows(sheet, rows);
+            sheet
+        }
+        None => workbook.worksheet_from_index(0).unwrap(),
+    };
+    let (r0, c0, r1, c1) = merge;
+    let first = sheet_text(settings.unwrap_or(FOUR), r0, c0);
+    sheet
+        .merge_range(r0, c0, r1, c1, &first, &Format::new())
+        .unwrap();
+    sheet.write_string(under.0, under.1, under.2).unwrap();
+    workbook.save_to_buffer().unwrap()
+}
+
+fn sheet_text(rows: &[&[&str]], row: u32, col: u16) -> String {
+    let row = rows.get(row as usize).copied().unwrap_or_default();
+    row.get(col as usize)
+        .copied()
+        .unwrap_or_default()
+        .to_string()
+}
+
+/// A move, a setting's value, a step beneath a merged cell is E049 at its
+/// cell, naming the merge; it was read (a move nobody sees in the table)
+/// or dropped (a setting) with exit 0 (rt14 F1).
+#[test]
+fn a_value_hidden_under_a_merged_cell_is_refused_at_its_cell() {
+    refused(
+        "move.xlsx",
+        merged_xlsx(None, (2, 1, 2, 2), (2, 2, "C3+1")),
+        &[
+            "!C3: error[E049]: \"C3+1\" lies under the merged cell B3:C3, where the spreadsheet shows only B3's value",
+        ],
+    );
+    refused(
+        "label.xlsx",
+        merged_xlsx(None, (3, 0, 4, 0), (4, 0, "STEP 4")),
+        &["!A5: error[E049]: \"STEP 4\" lies under the merged cell A4:A5"],
+    );
+    let settings: &[&[&str]] = &[&["modes", "estop, reset"], &["interlock", ""]];
+    refused(
+        "setting.xlsx",
+        merged_xlsx(Some(settings), (1, 0, 1, 1), (1, 1, "guard")),
+        &["SETTINGS!B2: error[E049]: \"guard\" lies under the merged cell A2:B2"],
+    );
+}
+
+/// A merge with nothing beneath its first cell (a title over the table, a
+/// header over two columns) hides nothing: the table converts.
+#[test]
+fn a_merge_that_hides_nothing_is_read() {
+    let mut workbook = Workbook::new();
+    let sheet = workbook.add_worksheet();
+    let rows: Vec<&[&str]> = std::iter::once(&["Clamp and drill"][..])
+        .chain(std::iter::once(&[""][..]))
+        .chain(FOUR.iter().copied())
+        .collect();
+    write_rows(sheet, &rows);
+    sheet
+        .merge_range(0, 0, 0, 3, "Clamp and drill", &Format::new())
+        .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("title.xlsx");
+    std::fs::write(&path, workbook.save_to_buffer().unwrap()).unwrap();
+    let output = steptable().arg("check").arg(&path).output().unwrap();
+    let said = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "{said}");
+    assert!(!said.contains("E049"), "{said}");
+}
+
+/// An `.ods` merge is a cell spanning columns or rows; the cells it covers
+/// keep their content in the file (LibreOffice asks whether to keep it when
+/// merging). calamine reads that content as any other cell.
+#[test]
+fn a_value_under_an_ods_merge_is_refused_at_its_cell() {
+    let cell = |text: &str| {
+        format!(
+            "<table:table-cell office:value-type=\"string\"><text:p>{text}</text:p></table:table-cell>"
+        )
+    };
+    let row = |cells: &[String]| format!("<table:table-row>{}</table:table-row>", cells.concat());
+    let table = [
+        row(&[cell(""), cell("BRANCH 1")]),
+        row(&[cell("STEP 1"), cell("C1+1")]),
+        row(&[
+            cell("STEP 2"),
+            "<table:table-cell table:number-columns-spanned=\"2\" office:value-type=\"string\"><text:p>C2+1</text:p></table:table-cell>".to_string(),
+            "<table:covered-table-cell office:value-type=\"string\"><text:p>C3+1</text:p></table:covered-table-cell>".to_string(),
+        ]),
+        row(&[cell("STEP 3"), cell("C2-0")]),
+        row(&[cell("STEP 4"), cell("C1-0")]),
+    ]
+    .concat();
+    refused(
+        "merge.ods",
+        crate::hostile::ods_of(&table),
+        &["!C3: error[E049]: \"C3+1\" lies under the merged cell B3:C3"],
+    );
+}
