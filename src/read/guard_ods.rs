@@ -204,9 +204,9 @@ mod tests {
 
     #[test]
     fn notes_each_sheets_merged_cells() {
-        let book = ods(concat!(
+        let book = ods(
             r#"<table:table-row><table:table-cell/><table:table-cell table:number-columns-spanned="2" table:number-rows-spanned="3" office:value-type="string"><text:p>x</text:p></table:table-cell><table:covered-table-cell/></table:table-row>"#,
-        ));
+        );
         assert_eq!(survey(&book, 1000).merged["S"], vec![((0, 1), (2, 2))]);
         let plain = ods(r#"<table:table-row><table:table-cell/></table:table-row>"#);
         assert!(survey(&plain, 1000).merged.is_empty());
