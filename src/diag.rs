@@ -109,6 +109,10 @@ pub enum Code {
     /// A value lies under a merged cell, where the spreadsheet shows only
     /// the merge's first cell: steptable would read what nobody sees.
     E049HiddenUnderMerge,
+    /// A CSV field starts with a space after a filled one, in a file whose
+    /// other fields start right after their delimiter: one cell's items
+    /// split in two (`C1-0; T=2s` unquoted in a semicolon file).
+    E050CellSplit,
     /// The file was read in an encoding other than UTF-8.
     W001Encoding,
     /// A `STEP n` label does not match the row's place in the table.
@@ -206,6 +210,7 @@ impl Code {
             Code::E047SheetAmbiguous => "E047",
             Code::E048RetryInChart => "E048",
             Code::E049HiddenUnderMerge => "E049",
+            Code::E050CellSplit => "E050",
         }
     }
 }

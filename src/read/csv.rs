@@ -22,11 +22,12 @@ pub struct CsvReading {
 
 impl CsvReading {
     /// The delimiter as messages name it.
-    pub fn delimiter_name(&self) -> &'static str {
+    pub fn delimiter_name(&self) -> String {
         match self.delimiter {
-            b',' => "comma",
-            b';' => "semicolon",
-            _ => "tab",
+            b',' => "comma".to_string(),
+            b';' => "semicolon".to_string(),
+            b'\t' => "tab".to_string(),
+            other => format!("'{}'", char::from(other)),
         }
     }
 }
@@ -59,9 +60,43 @@ pub(super) fn read_csv(
             return None;
         }
     };
+    // Excel's `sep=;` first line names the delimiter: the file is read with
+    // it alone. The line is blanked, not removed, so rows stay file lines.
+    let (text, candidates) = match declared_delimiter(&text) {
+        Some((delimiter, line_end)) => {
+            let rest = &text[line_end..];
+            // A delimiter declared and never used, where another one is.
+            let used = |d: u8| count_outside_quotes(rest, d);
+            let instead = [b',', b';', b'\t'].into_iter().max_by_key(|d| used(*d));
+            if used(delimiter) == 0
+                && let Some(instead) = instead.filter(|d| used(*d) > 0)
+            {
+                let location = Location {
+                    cell: Some(CellPos::new(0, 0)),
+                    ..whole_file.clone()
+                };
+                diags.warning(
+                    Code::W005Delimiter,
+                    location,
+                    format!(
+                        "the first line sep={} declares the delimiter, but the file holds none outside quotes, and {} '{}': read with '{}' as declared, as Excel does; correct or remove the sep= line",
+                        char::from(delimiter),
+                        used(instead),
+                        char::from(instead).escape_default(),
+                        char::from(delimiter).escape_default(),
+                    ),
+                );
+            }
+            (rest.to_string(), vec![delimiter])
+        }
+        None => {
+            let candidates = candidate_delimiters(&text);
+            (text, candidates)
+        }
+    };
     let mut readings = Vec::new();
     let mut first_failure = None;
-    for delimiter in candidate_delimiters(&text) {
+    for delimiter in candidates {
         let mut local = Diagnostics::new();
         match read_with(file, &text, delimiter, &mut local) {
             Some(reading) => readings.push(reading),
@@ -74,6 +109,34 @@ pub(super) fn read_csv(
         return None;
     }
     Some(readings)
+}
+
+/// The delimiter a first line `sep=X` declares (Excel writes and reads it),
+/// and where that line's text ends (its line break is kept).
+fn declared_delimiter(text: &str) -> Option<(u8, usize)> {
+    let end = text.find(['\r', '\n']).unwrap_or(text.len());
+    let line = text[..end].trim_end_matches(' ');
+    let declared = line
+        .get(..4)?
+        .eq_ignore_ascii_case("sep=")
+        .then(|| &line[4..])?;
+    match declared.as_bytes() {
+        [d] if !matches!(d, b'"' | b'\r' | b'\n') && d.is_ascii() => Some((*d, end)),
+        _ => None,
+    }
+}
+
+/// How often `delimiter` occurs outside quotes.
+fn count_outside_quotes(text: &str, delimiter: u8) -> usize {
+    let mut in_quotes = false;
+    text.bytes()
+        .filter(|&b| {
+            if b == b'"' {
+                in_quotes = !in_quotes;
+            }
+            !in_quotes && b == delimiter
+        })
+        .count()
 }
 
 /// The delimiters that occur outside quotes, the most frequent first, and
@@ -113,6 +176,11 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
         .from_reader(text.as_bytes());
     let mut cells = Vec::new();
     let mut spaced_fields = 0;
+    // Fields after a delimiter written without a space, and those with one
+    // right after a filled field: in a file of the first kind, the second
+    // is one cell's second item split off (`C1-0; T=2s` unquoted).
+    let (mut unspaced_fields, mut unspaced_rows) = (0usize, std::collections::HashSet::new());
+    let mut split_off = Vec::new();
     let mut local = Diagnostics::new();
     // Lines are counted from byte offsets: the reader's own line numbers lag
     // behind with CRLF endings, and a quoted field may span lines.
@@ -170,20 +238,24 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
             }
             if col > 0 && field.starts_with(char::is_whitespace) {
                 spaced_fields += 1;
+                // A STEP label and a move are never one cell.
+                if let Some(previous) = previous
+                    && col > 1
+                    && !previous.trim().to_ascii_lowercase().starts_with("step")
+                {
+                    split_off.push((
+                        row,
+                        col,
+                        previous.trim().to_string(),
+                        field.trim().to_string(),
+                    ));
+                }
+            } else if col > 0 {
+                unspaced_fields += 1;
+                unspaced_rows.insert(row);
             }
-            if delimiter == b','
-                && previous.is_some_and(ends_in_dwell_number)
-                && is_number_tail(field)
-            {
-                local.error(
-                    Code::E014BadDwell,
-                    location(row, col),
-                    format!(
-                        "\"{},{}\" was split in two by the comma that separates the CSV's cells: write the dwell with a decimal point (T=1.5s), or quote the cell",
-                        previous.unwrap_or_default().trim(),
-                        field.trim()
-                    ),
-                );
+            if delimiter == b',' {
+                report_decimal_comma(previous, field, || location(row, col), &mut local);
             }
             previous = Some(field);
             cells.push(GridCell {
@@ -191,6 +263,13 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
                 value: CellValue::Text(field.to_string()),
             });
         }
+    }
+    if matches!(delimiter, b',' | b';') {
+        let file_unspaced = unspaced_fields > spaced_fields;
+        let suspects = split_off
+            .into_iter()
+            .filter(|(row, ..)| file_unspaced || unspaced_rows.contains(row));
+        report_split_cells(suspects, delimiter, &location, &mut local);
     }
     Some(CsvReading {
         delimiter,
@@ -202,6 +281,50 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
         spaced_fields,
         diags: local,
     })
+}
+
+/// E050 at each field that is one cell's second item split off: spaced
+/// after a filled field, in a row whose other fields start right after
+/// their delimiter, or in a file whose fields mostly do.
+fn report_split_cells(
+    suspects: impl Iterator<Item = (u32, u32, String, String)>,
+    delimiter: u8,
+    location: &dyn Fn(u32, u32) -> Location,
+    diags: &mut Diagnostics,
+) {
+    let name = char::from(delimiter);
+    for (row, col, previous, field) in suspects {
+        diags.error(
+            Code::E050CellSplit,
+            location(row, col),
+            format!(
+                "\"{field}\" follows \"{previous}\" after a space and a '{name}': the file's other cells start right after their '{name}', as a spreadsheet writes them, so this reads as one cell \"{previous}{name} {field}\" split in two (\"{field}\" would be a move of the next branch); quote the cell to keep it whole, or remove the space if \"{field}\" belongs to the next branch"
+            ),
+        );
+    }
+}
+
+/// E014 where a comma delimiter split a dwell's decimal comma (`T=1,5s`).
+fn report_decimal_comma(
+    previous: Option<&str>,
+    field: &str,
+    at: impl FnOnce() -> Location,
+    diags: &mut Diagnostics,
+) {
+    if let Some(previous) = previous
+        && ends_in_dwell_number(previous)
+        && is_number_tail(field)
+    {
+        diags.error(
+            Code::E014BadDwell,
+            at(),
+            format!(
+                "\"{},{}\" was split in two by the comma that separates the CSV's cells: write the dwell with a decimal point (T=1.5s), or quote the cell",
+                previous.trim(),
+                field.trim()
+            ),
+        );
+    }
 }
 
 /// `T=1` or `C1+1; T=1` — a dwell whose decimal comma may have split the cell.
@@ -332,5 +455,15 @@ mod tests {
         );
         assert!(ends_in_dwell_number("T = 12") && !ends_in_dwell_number("T=1.5s"));
         assert!(is_number_tail("5s") && is_number_tail(" 25 ms") && !is_number_tail("C1+1"));
+    }
+
+    #[test]
+    fn a_sep_line_declares_one_ascii_delimiter() {
+        assert_eq!(declared_delimiter("sep=;\nA;B"), Some((b';', 5)));
+        assert_eq!(declared_delimiter("Sep=\t \r\nA"), Some((b'\t', 6)));
+        assert_eq!(declared_delimiter("SEP=|"), Some((b'|', 5)));
+        for not in ["sep=", "sep=ab\n", "sep=\"\n", ";BRANCH 1", "se", "sep=\u{2016}"] {
+            assert_eq!(declared_delimiter(not), None, "{not:?}");
+        }
     }
 }

@@ -160,3 +160,82 @@ fn a_value_under_an_ods_merge_is_refused_at_its_cell() {
         &["!C3: error[E049]: \"C3+1\" lies under the merged cell B3:C3"],
     );
 }
+
+/// `check` of the CSV `text`: its exit code and what it said (stdout,
+/// then stderr).
+fn check_csv(text: &str) -> (Option<i32>, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.csv");
+    std::fs::write(&path, text).unwrap();
+    let output = steptable().arg("check").arg(&path).output().unwrap();
+    let said = [&output.stdout, &output.stderr].map(|b| String::from_utf8_lossy(b).into_owned());
+    (output.status.code(), said.concat())
+}
+
+/// `STEP 2;C1-0; T=2s` unquoted: the semicolon inside the cell split it,
+/// and the dwell became branch 2's move of that step, exit 0 (rt14 F7).
+/// The space after the delimiter gives the split away: E050 at it.
+#[test]
+fn a_cell_split_by_an_unquoted_delimiter_is_refused() {
+    let cases: &[(&str, &str, &str)] = &[
+        (
+            "semicolon file",
+            ";BRANCH 1;BRANCH 2\nSTEP 1;C1+1;C2+1\nSTEP 2;C1-0; T=2s\nSTEP 3;;C2-0\n",
+            "t.csv:3:3: error[E050]: \"T=2s\" follows \"C1-0\" after a space and a ';'",
+        ),
+        (
+            "comma file",
+            ",BRANCH 1,BRANCH 2\nSTEP 1,C1+1,C2+1\nSTEP 2,C1-0, C2-0\n",
+            "t.csv:3:3: error[E050]: \"C2-0\" follows \"C1-0\" after a space and a ','",
+        ),
+        (
+            "a whole row spaced in an unspaced file",
+            ";BRANCH 1;BRANCH 2\nSTEP 1;C1+1;C2+1\nSTEP 2; C1-0; T=2s\nSTEP 3;;C2-0\nSTEP 4;;T=1s\n",
+            "t.csv:3:3: error[E050]: \"T=2s\" follows \"C1-0\"",
+        ),
+    ];
+    for (name, text, says) in cases {
+        let (code, said) = check_csv(text);
+        assert_eq!(code, Some(1), "{name}: {said}");
+        assert!(said.contains(says), "{name}: {said}");
+        // The STEP label and the first move are never one cell.
+        assert_eq!(said.matches("E050").count(), 1, "{name}: {said}");
+    }
+    // Written with a space after every delimiter: read as written.
+    let spaced = ";BRANCH 1;BRANCH 2\nSTEP 1; C1+1; C2+1\nSTEP 2; C1-0; T=2s\nSTEP 3; ; C2-0\n";
+    let (code, said) = check_csv(spaced);
+    assert_eq!(code, Some(0), "{said}");
+    // Quoted, the cell is whole.
+    let quoted = ";BRANCH 1;BRANCH 2\nSTEP 1;C1+1;C2+1\nSTEP 2;\"C1-0; T=2s\";\nSTEP 3;;C2-0\n";
+    let (code, said) = check_csv(quoted);
+    assert_eq!(code, Some(0), "{said}");
+}
+
+/// Excel's `sep=,` first line names the delimiter. It was a W003 cell and
+/// the delimiter was guessed from the content, overruling it (rt14 F28).
+#[test]
+fn a_sep_line_names_the_delimiter() {
+    // Declared and used: read with it, the line used (no W003).
+    let (code, said) = check_csv("sep=;\n;BRANCH 1;BRANCH 2\nSTEP 1;C1+1;C2+1\nSTEP 2;C1-0;C2-0\n");
+    assert_eq!(code, Some(0), "{said}");
+    assert!(
+        said.contains("2 branch(es)") && !said.contains("W003"),
+        "{said}"
+    );
+    // A delimiter no other reading knows.
+    let (code, said) = check_csv("SEP=|\r\n|BRANCH 1\r\nSTEP 1|C1+1; T=1s\r\nSTEP 2|C1-0\r\n");
+    assert_eq!(code, Some(0), "{said}");
+    assert!(said.contains("2 steps, 1 branch(es)"), "{said}");
+    // Declared and never used, where another is: read as declared (no
+    // table), and said.
+    let (code, said) = check_csv("sep=,\n;BRANCH 1\nSTEP 1;C1+1\nSTEP 2;C1-0\n");
+    assert_eq!(code, Some(1), "{said}");
+    assert!(
+        said.contains("t.csv:1:1: warning[W005]: the first line sep=, declares the delimiter, but the file holds none outside quotes, and 3 ';'"),
+        "{said}"
+    );
+    // Rows stay file lines: the move on line 4 is named there.
+    let (code, said) = check_csv("sep=;\n;BRANCH 1\nSTEP 1;C1+1\nSTEP 2;C1-0;C9+1\n");
+    assert_eq!(code, Some(1), "{said}");
+    assert!(said.contains("t.csv:4:3: error[E010]"), "{said}");
+}
