@@ -1,6 +1,8 @@
 //! The sheet names steptable's workbooks share: the reader looks for them,
 //! the template workbook and the output workbook write them. A leaf module,
-//! so that the output side names a sheet without knowing the reader.
+//! so that the output side names a sheet without knowing the reader. The
+//! labels of the SETTINGS rows are here too: the table stage names one
+//! written beside a table.
 
 /// The sheet name of the published method's table.
 pub const TABLE_SHEET: &str = "SEQUENTIAL CONTROL DESCRIPTION";
@@ -8,3 +10,24 @@ pub const TABLE_SHEET: &str = "SEQUENTIAL CONTROL DESCRIPTION";
 pub const SETTINGS_SHEET: &str = "SETTINGS";
 /// The sheet name of the signals pinned to the wiring's addresses.
 pub const ADDRESSES_SHEET: &str = "ADDRESSES";
+
+/// The labels of the SETTINGS sheet's rows, as written there.
+pub const SETTING_LABELS: [&str; 17] = [
+    "target",
+    "board",
+    "on stop",
+    "on estop",
+    "on halt",
+    "hold-safe",
+    "de-energise on halt",
+    "start permissive",
+    "interlock",
+    "hold on estop",
+    "mnemonic",
+    "scan time",
+    "safety",
+    "modes",
+    "home order",
+    "designations",
+    "supervision",
+];

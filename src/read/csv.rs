@@ -462,7 +462,14 @@ mod tests {
         assert_eq!(declared_delimiter("sep=;\nA;B"), Some((b';', 5)));
         assert_eq!(declared_delimiter("Sep=\t \r\nA"), Some((b'\t', 6)));
         assert_eq!(declared_delimiter("SEP=|"), Some((b'|', 5)));
-        for not in ["sep=", "sep=ab\n", "sep=\"\n", ";BRANCH 1", "se", "sep=\u{2016}"] {
+        for not in [
+            "sep=",
+            "sep=ab\n",
+            "sep=\"\n",
+            ";BRANCH 1",
+            "se",
+            "sep=\u{2016}",
+        ] {
             assert_eq!(declared_delimiter(not), None, "{not:?}");
         }
     }

@@ -45,26 +45,9 @@ struct ActuatorColumns {
     last_col: u32,
 }
 
-/// The labels of the settings, as written on the sheet.
-pub const LABELS: [&str; 17] = [
-    "target",
-    "board",
-    "on stop",
-    "on estop",
-    "on halt",
-    "hold-safe",
-    "de-energise on halt",
-    "start permissive",
-    "interlock",
-    "hold on estop",
-    "mnemonic",
-    "scan time",
-    "safety",
-    "modes",
-    "home order",
-    "designations",
-    "supervision",
-];
+/// The labels of the settings, as written on the sheet (with the reader:
+/// the table stage knows them too, to say a setting written beside a table).
+pub use crate::sheets::SETTING_LABELS as LABELS;
 
 /// The columns an actuator table may have, after `actuator`.
 const COLUMNS: [&str; 5] = ["extend", "retract", "valve", "load", "name"];

@@ -332,6 +332,22 @@ pub(super) fn report_unused(
         };
         let item_like = text.is_some_and(looks_like_item);
         let in_header_row = frame.header_row == Some(row);
+        if let Some(label) = text.and_then(|t| setting_with_value(grid, cell.pos, t)) {
+            let instead = match grid.sheet {
+                Some(_) => "move them to the SETTINGS sheet",
+                None => {
+                    "a CSV file holds the step table only: write them on a workbook's SETTINGS sheet (`steptable template` writes one), or give them on the command line where an option does"
+                }
+            };
+            diags.error(
+                Code::E030BadSetting,
+                grid.location(cell.pos),
+                format!(
+                    "\"{label}\" and its value name a setting, but they lie with the step table, where settings are not read (the program would be made without it); {instead}"
+                ),
+            );
+            continue;
+        }
         match why_lost(grid, frame, cell.pos, in_step_row) {
             Some(why) if item_like => {
                 let text = text.unwrap_or_default().trim();
@@ -368,6 +384,23 @@ pub(super) fn report_unused(
             _ => {}
         }
     }
+}
+
+/// The settings label `text` is (`Interlock:` is `interlock`; an actuator
+/// table's `actuator` header too), when a value follows it on its row: an
+/// engineer's setting written beside or below the table.
+fn setting_with_value(grid: &Grid, pos: CellPos, text: &str) -> Option<String> {
+    let label = text
+        .trim()
+        .trim_end_matches(':')
+        .trim()
+        .to_ascii_lowercase();
+    let known = crate::sheets::SETTING_LABELS.contains(&label.as_str()) || label == "actuator";
+    let valued = grid
+        .cells
+        .iter()
+        .any(|c| c.pos.row == pos.row && c.pos.col > pos.col && c.pos.col <= pos.col + 2);
+    (known && valued).then(|| text.trim().to_string())
 }
 
 /// Why the cell at `pos` (not part of the table) would be lost: in the row

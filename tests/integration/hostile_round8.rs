@@ -239,3 +239,54 @@ fn a_sep_line_names_the_delimiter() {
     assert_eq!(code, Some(1), "{said}");
     assert!(said.contains("t.csv:4:3: error[E010]"), "{said}");
 }
+
+/// Settings written below or beside the table on its sheet were read as
+/// notes and left alone, exit 0: an interlock the engineer wrote was not
+/// in the program (rt14 F23). Settings are read from SETTINGS only: E030 at
+/// the label, naming where they go.
+#[test]
+fn a_setting_written_with_the_table_is_refused() {
+    let below: Vec<&[&str]> = FOUR
+        .iter()
+        .copied()
+        .chain([&[""][..], &[""], &["interlock", "guard in steps 2-3"]])
+        .collect();
+    let mut workbook = Workbook::new();
+    write_rows(workbook.add_worksheet(), &below);
+    refused(
+        "below.xlsx",
+        workbook.save_to_buffer().unwrap(),
+        &[
+            "!A8: error[E030]: \"interlock\" and its value name a setting, but they lie with the step table, where settings are not read (the program would be made without it); move them to the SETTINGS sheet",
+        ],
+    );
+    let beside: Vec<Vec<&str>> = FOUR
+        .iter()
+        .enumerate()
+        .map(|(i, row)| {
+            let mut row = row.to_vec();
+            if i == 1 {
+                row.extend(["", "Modes:", "estop, reset"]);
+            }
+            row
+        })
+        .collect();
+    let beside: Vec<&[&str]> = beside.iter().map(Vec::as_slice).collect();
+    let mut workbook = Workbook::new();
+    write_rows(workbook.add_worksheet(), &beside);
+    refused(
+        "beside.xlsx",
+        workbook.save_to_buffer().unwrap(),
+        &["!D2: error[E030]: \"Modes:\" and its value name a setting"],
+    );
+    let (code, said) = check_csv(",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n\n\nhome order,C1\n");
+    assert_eq!(code, Some(1), "{said}");
+    assert!(
+        said.contains("t.csv:6:1: error[E030]: \"home order\" and its value name a setting")
+            && said.contains("a CSV file holds the step table only"),
+        "{said}"
+    );
+    // A title word alone is a note.
+    let (code, said) = check_csv(",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n\n\nSafety\n");
+    assert_eq!(code, Some(0), "{said}");
+}
