@@ -329,13 +329,24 @@ fn read_labels(
                 && known_label(&v.value).is_none()
                 && label_of(&v.value).as_deref() != Some("actuator")
         }) else {
-            reader.warn(
-                cell.pos,
-                format!(
-                    "{label} has no value in the cell right of it; nothing was read for it (write the value there)"
+            match value_in_notes(reader, layout, cell.pos, label) {
+                Some(note) => reader.error(
+                    note.pos,
+                    format!(
+                        "{} reads as the value of {label}, but lies in the column of notes, where nothing is read, while the value's cell {} is empty (the program would be made without it); move it there",
+                        note.value.describe(),
+                        grid.cell_name(CellPos::new(cell.pos.row, cell.pos.col + 1)),
+                    ),
+                    diags,
                 ),
-                diags,
-            );
+                None => reader.warn(
+                    cell.pos,
+                    format!(
+                        "{label} has no value in the cell right of it; nothing was read for it (write the value there)"
+                    ),
+                    diags,
+                ),
+            }
             continue;
         };
         reader.seen.insert(value_cell.pos);
@@ -359,6 +370,34 @@ fn read_labels(
         apply(&mut reader.settings, label, &value, value_cell, grid, diags);
     }
     label_rows
+}
+
+/// The note beside `label` (at `at`) that is a valid value of it: the
+/// value typed one column too far right, into the notes.
+fn value_in_notes<'g>(
+    reader: &Reader<'g>,
+    layout: &Layout,
+    at: CellPos,
+    label: &'static str,
+) -> Option<&'g GridCell> {
+    let note = reader
+        .row(at.row)
+        .find(|c| c.pos.col > at.col && layout.notes.contains(&c.pos.col))?;
+    let text = match &note.value {
+        CellValue::Text(t) => t.trim().to_string(),
+        CellValue::Number(n) => format!("{n}"),
+        _ => return None,
+    };
+    let mut scratch = Diagnostics::new();
+    apply(
+        &mut Given::default(),
+        label,
+        &text,
+        note,
+        reader.grid,
+        &mut scratch,
+    );
+    (!text.is_empty() && !scratch.has_errors()).then_some(note)
 }
 
 /// The value of one labelled setting, into `settings`; E030 when it is

@@ -290,3 +290,72 @@ fn a_setting_written_with_the_table_is_refused() {
     let (code, said) = check_csv(",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n\n\nSafety\n");
     assert_eq!(code, Some(0), "{said}");
 }
+
+/// An actuator table headed `extend time | retract time | valve type`: its
+/// columns were notes (W003), and the program was written with the default
+/// strokes and valves, exit 0 (rt14 F21). A header's first word names its
+/// column when no other word names another.
+#[test]
+fn an_actuator_header_with_a_unit_or_a_word_after_it_is_read() {
+    let settings: &[&[&str]] = &[
+        &["actuator", "Extend time [s]", "retract time", "valve type"],
+        &["C1", "2s", "3s", "53closed"],
+        &["C2", "1s", "1s", "52bi"],
+    ];
+    let mut workbook = Workbook::new();
+    write_rows(workbook.add_worksheet(), FOUR);
+    let sheet = workbook.add_worksheet();
+    sheet.set_name("SETTINGS").unwrap();
+    write_rows(sheet, settings);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("a.xlsx");
+    std::fs::write(&path, workbook.save_to_buffer().unwrap()).unwrap();
+    let output = steptable().arg("simulate").arg(&path).output().unwrap();
+    let said = [&output.stdout, &output.stderr].map(|b| String::from_utf8_lossy(b).into_owned());
+    let said = said.concat();
+    assert_eq!(output.status.code(), Some(0), "{said}");
+    assert!(!said.contains("W003"), "{said}");
+    // C1 extends in 2 s (less a scan to the sensor), C2 in 1 s: the
+    // table's times, not the default strokes.
+    assert!(said.contains("1.96 s  C1+1"), "{said}");
+    assert!(said.contains("0.98 s  C2+1"), "{said}");
+    // Two known words: which column is meant cannot be told.
+    let settings: &[&[&str]] = &[&["actuator", "extend/retract"], &["C1", "2s"]];
+    let mut workbook = Workbook::new();
+    write_rows(workbook.add_worksheet(), FOUR);
+    let sheet = workbook.add_worksheet();
+    sheet.set_name("SETTINGS").unwrap();
+    write_rows(sheet, settings);
+    std::fs::write(&path, workbook.save_to_buffer().unwrap()).unwrap();
+    let output = steptable().arg("check").arg(&path).output().unwrap();
+    let said = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        said.contains("SETTINGS!B1: warning[W003]: \"extend/retract\" heads no column"),
+        "{said}"
+    );
+}
+
+/// The template's `SETTING | VALUE | WHAT IT MEANS`: a value typed into
+/// the notes column, its own cell empty, was a note, with a W003 at the
+/// label and exit 0; the interlock was not in the program (rt14 F15). A
+/// note that is a valid value of its row's setting is E030 at it.
+#[test]
+fn a_value_typed_into_the_notes_column_is_refused() {
+    let settings: &[&[&str]] = &[
+        &["SETTING", "VALUE", "WHAT IT MEANS"],
+        &["modes", "estop, reset", "the modes the program has"],
+        &["interlock", "", "guard in steps 2-3"],
+    ];
+    let mut workbook = Workbook::new();
+    write_rows(workbook.add_worksheet(), FOUR);
+    let sheet = workbook.add_worksheet();
+    sheet.set_name("SETTINGS").unwrap();
+    write_rows(sheet, settings);
+    refused(
+        "notes.xlsx",
+        workbook.save_to_buffer().unwrap(),
+        &[
+            "SETTINGS!C3: error[E030]: \"guard in steps 2-3\" reads as the value of interlock, but lies in the column of notes, where nothing is read, while the value's cell B3 is empty",
+        ],
+    );
+}

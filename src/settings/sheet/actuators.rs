@@ -39,7 +39,7 @@ pub(super) fn actuator_columns(
         }
         columns.last_col = cell.pos.col;
         let label = label_of(&cell.value).unwrap_or_default();
-        let slot = match label.as_str() {
+        let slot = match column_word(&label) {
             "extend" => &mut columns.extend,
             "retract" => &mut columns.retract,
             "valve" => &mut columns.valve,
@@ -436,6 +436,19 @@ fn read_actuator_row<'g>(
             retract_ms: retract.unwrap_or(default.retract_ms),
         },
     );
+}
+
+/// The column a header names: its label, or its first word when that is a
+/// column's and no other word is (`extend time`, `Valve type`, `load (kg)`:
+/// an engineer's header says what the column holds).
+fn column_word(label: &str) -> &str {
+    let mut words = label
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty());
+    match words.next() {
+        Some(first) if COLUMNS.contains(&first) && !words.any(|w| COLUMNS.contains(&w)) => first,
+        _ => label,
+    }
 }
 
 /// The actuator table's column `label` misspells: one letter off, or the
