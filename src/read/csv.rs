@@ -4,6 +4,7 @@
 //! (`table::choose_reading`), not by counting characters: `;` also joins
 //! items inside a cell (`C1+1; T=2s`).
 
+use crate::cell::looks_like_item;
 use crate::diag::{CellPos, Code, Diagnostics, Location};
 
 use super::{CellValue, Grid, GridCell, MAX_FILLED_CELLS};
@@ -238,10 +239,11 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
             }
             if col > 0 && field.starts_with(char::is_whitespace) {
                 spaced_fields += 1;
-                // A STEP label and a move are never one cell.
+                // Items split from items: a STEP label and a move are never
+                // one cell, nor are headers or the words of a note.
                 if let Some(previous) = previous
-                    && col > 1
-                    && !previous.trim().to_ascii_lowercase().starts_with("step")
+                    && looks_like_item(field)
+                    && looks_like_item(previous.rsplit([';', ',']).next().unwrap_or(previous))
                 {
                     split_off.push((
                         row,
@@ -264,7 +266,7 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
             });
         }
     }
-    if matches!(delimiter, b',' | b';') {
+    {
         let file_unspaced = unspaced_fields > spaced_fields;
         let suspects = split_off
             .into_iter()
@@ -292,13 +294,20 @@ fn report_split_cells(
     location: &dyn Fn(u32, u32) -> Location,
     diags: &mut Diagnostics,
 ) {
-    let name = char::from(delimiter);
+    let name = match delimiter {
+        b'\t' => "tab".to_string(),
+        other => format!("'{}'", char::from(other)),
+    };
+    let joint = match delimiter {
+        b'\t' => ";".to_string(),
+        other => char::from(other).to_string(),
+    };
     for (row, col, previous, field) in suspects {
         diags.error(
             Code::E050CellSplit,
             location(row, col),
             format!(
-                "\"{field}\" follows \"{previous}\" after a space and a '{name}': the file's other cells start right after their '{name}', as a spreadsheet writes them, so this reads as one cell \"{previous}{name} {field}\" split in two (\"{field}\" would be a move of the next branch); quote the cell to keep it whole, or remove the space if \"{field}\" belongs to the next branch"
+                "\"{field}\" follows \"{previous}\" after a space and a {name}: the file's other cells start right after their {name}, as a spreadsheet writes them, so this reads as one cell \"{previous}{joint} {field}\" split in two (\"{field}\" would be a move of the next branch); quote the cell to keep it whole, or remove the space if \"{field}\" belongs to the next branch"
             ),
         );
     }

@@ -22,21 +22,20 @@ pub struct Survey {
     pub oversized: Option<String>,
     /// Each sheet's merged cells: first and last (row, column), inclusive.
     pub merged: HashMap<String, Vec<super::sheet_choice::Region>>,
+    /// Each sheet's formula cells saved with a value (`office:value-type`),
+    /// as (row, column): one that computes `""` is computed, not missing.
+    pub computed: HashMap<String, std::collections::HashSet<(u32, u32)>>,
 }
 
 /// The survey of an `.ods` file. Anything this pass cannot read (not a zip,
 /// no `content.xml`, bad XML) is left to calamine to report.
 pub fn survey(bytes: &[u8], max_cells: u64) -> Survey {
     let mut found = Survey::default();
-    found.oversized = walk(bytes, max_cells, &mut found.merged);
+    found.oversized = walk(bytes, max_cells, &mut found);
     found
 }
 
-fn walk(
-    bytes: &[u8],
-    max_cells: u64,
-    merged: &mut HashMap<String, Vec<super::sheet_choice::Region>>,
-) -> Option<String> {
+fn walk(bytes: &[u8], max_cells: u64, found: &mut Survey) -> Option<String> {
     let mut archive = zip::ZipArchive::new(Cursor::new(bytes)).ok()?;
     let content = archive.by_name("content.xml").ok()?;
     // Streamed: the sheet XML is never held whole beside calamine's copy.
@@ -57,12 +56,31 @@ fn walk(
                             repeat(e, "table:number-rows-spanned"),
                             repeat(e, "table:number-columns-spanned"),
                         );
+                        let at = |n: u64| u32::try_from(n).unwrap_or(u32::MAX);
+                        let (row, col) = (sheet.row, sheet.col);
+                        if has_attribute(e, "table:formula")
+                            && has_attribute(e, "office:value-type")
+                            && let Some(name) = &sheet.name
+                        {
+                            // Repeated across columns or rows, each cell it
+                            // stands for (a bounded few: a rectangle of
+                            // formulas saved with values is rare).
+                            let cells = found.computed.entry(name.clone()).or_default();
+                            let rows = sheet.repeats.min(256);
+                            let cols = repeat(e, "table:number-columns-repeated").min(256);
+                            for r in 0..rows {
+                                for c in 0..cols {
+                                    cells.insert((
+                                        at(row.saturating_add(r)),
+                                        at(col.saturating_add(c)),
+                                    ));
+                                }
+                            }
+                        }
                         if spans != (1, 1)
                             && let Some(name) = &sheet.name
                         {
-                            let at = |n: u64| u32::try_from(n).unwrap_or(u32::MAX);
-                            let (row, col) = (sheet.row, sheet.col);
-                            merged.entry(name.clone()).or_default().push((
+                            found.merged.entry(name.clone()).or_default().push((
                                 (at(row), at(col)),
                                 (
                                     at(row.saturating_add(spans.0 - 1)),

@@ -30,7 +30,7 @@ pub(super) fn read_workbook(
         diags.error(code, whole_file, message);
         return None;
     }
-    let mut workbook = open(format, bytes, &whole_file, diags)?;
+    let mut workbook = open(format, bytes, ods, &whole_file, diags)?;
     let names = workbook.names();
     let read = |workbook: &mut Box<dyn SheetSource>, name: &str, diags: &mut Diagnostics| {
         read_sheet(file, workbook, name, diags)
@@ -50,16 +50,12 @@ pub(super) fn read_workbook(
     );
     misnamed_side_sheets(file, &names, diags);
     let mut table = pick_table(&mut workbook, &names, wanted, &whole_file, diags, &read);
-    let mut merged = |name: &str| match &ods {
-        Some(survey) => survey.merged.get(name).cloned().unwrap_or_default(),
-        None => workbook.merged(name),
-    };
     let (mut settings, mut addresses) = (settings, addresses);
     for grid in [&mut table, &mut settings, &mut addresses]
         .into_iter()
         .flatten()
     {
-        let regions = grid.sheet.as_deref().map(&mut merged).unwrap_or_default();
+        let regions = (grid.sheet.as_deref()).map_or_else(Vec::new, |n| workbook.merged(n));
         refuse_hidden_under_merges(grid, &regions, diags);
     }
     let table = table?;
@@ -127,6 +123,7 @@ fn refusal_before_decoding(
 fn open(
     format: Format,
     bytes: Vec<u8>,
+    ods: Option<guard_ods::Survey>,
     whole_file: &Location,
     diags: &mut Diagnostics,
 ) -> Option<Box<dyn SheetSource>> {
@@ -140,7 +137,13 @@ fn open(
             .map(|w| Box::new(w) as Box<dyn SheetSource>)
             .map_err(|e| e.to_string()),
         Format::Ods => open_workbook_from_rs::<Ods<_>, _>(cursor)
-            .map(|w| Box::new(w) as Box<dyn SheetSource>)
+            .map(|ods_reader| {
+                let survey = ods.unwrap_or_default();
+                Box::new(OdsSource {
+                    ods: ods_reader,
+                    survey,
+                }) as Box<dyn SheetSource>
+            })
             .map_err(|e| e.to_string()),
         Format::Csv => Err("internal: CSV is not a workbook".to_string()),
     };
@@ -272,7 +275,7 @@ fn formula_text(formula: calamine::XlsxFormulaMetadata) -> String {
     match formula {
         calamine::XlsxFormulaMetadata::Normal { formula }
         | calamine::XlsxFormulaMetadata::Shared { formula, .. } => format!("={formula}"),
-        _ => "a shared formula".to_string(),
+        _ => "=… (a formula shared with another cell)".to_string(),
     }
 }
 
@@ -307,7 +310,7 @@ fn refuse_hidden_under_merges(grid: &mut Grid, regions: &[Region], diags: &mut D
             Code::E049HiddenUnderMerge,
             location(grid, pos),
             format!(
-                "{value} lies under the merged cell {first}:{last}, where the spreadsheet shows only {first}'s value: the program would do what nobody sees in the table; unmerge the cells, then keep or clear it"
+                "{value} lies under the merged cell {first}:{last}, where the spreadsheet shows only {first}'s value: steptable would read what nobody sees on the sheet; unmerge the cells, then keep or clear it"
             ),
         );
     }
@@ -350,6 +353,39 @@ whole_sheet_source!(Xls<Cursor<Vec<u8>>>, |xls: &mut Xls<_>, name: &str| {
     merges.iter().map(|d| (d.start, d.end)).collect()
 });
 whole_sheet_source!(Ods<Cursor<Vec<u8>>>, |_: &mut Ods<_>, _: &str| Vec::new());
+
+/// An `.ods` workbook and what the guard's pass over it found, which
+/// calamine does not give: its merges, and which formulas were saved with a
+/// value (one that computes `""` reads as empty, yet was computed).
+struct OdsSource {
+    ods: Ods<Cursor<Vec<u8>>>,
+    survey: guard_ods::Survey,
+}
+
+impl SheetSource for OdsSource {
+    fn names(&self) -> Vec<String> {
+        SheetSource::names(&self.ods)
+    }
+
+    fn hidden(&self) -> Vec<String> {
+        SheetSource::hidden(&self.ods)
+    }
+
+    fn grid(&mut self, file: &str, name: &str) -> Result<Grid, SheetError> {
+        let mut grid = SheetSource::grid(&mut self.ods, file, name)?;
+        if let Some(computed) = self.survey.computed.get(name) {
+            grid.cells.retain(|c| {
+                !matches!(c.value, CellValue::Uncomputed(_))
+                    || !computed.contains(&(c.pos.row, c.pos.col))
+            });
+        }
+        Ok(grid)
+    }
+
+    fn merged(&mut self, name: &str) -> Vec<Region> {
+        self.survey.merged.get(name).cloned().unwrap_or_default()
+    }
+}
 
 /// Most filled cells read from one sheet: a full table (10,000 steps × 256
 /// branches) with its labels fits; a sheet of millions of cells is refused.

@@ -94,18 +94,10 @@ fn known_label(value: &CellValue) -> Option<&'static str> {
 /// A cell that holds a label and its value together (`target: iec`,
 /// `scan time = 20ms`): the label it starts with.
 fn setting_in_one_cell(value: &CellValue) -> Option<&'static str> {
-    let CellValue::Text(text) = value else {
-        return None;
-    };
-    let lower = text.trim().to_ascii_lowercase();
-    LABELS.into_iter().find(|label| {
-        lower.strip_prefix(label).is_some_and(|rest| {
-            rest.starts_with([':', '=', ' ', '\t'])
-                && !rest
-                    .trim_matches(|c: char| c == ':' || c == '=' || c.is_whitespace())
-                    .is_empty()
-        })
-    })
+    match value {
+        CellValue::Text(text) => crate::sheets::setting_in_one_cell(text),
+        _ => None,
+    }
 }
 
 /// The value of a cell as text, or `None` (reported) for a formula that was

@@ -359,3 +359,88 @@ fn a_value_typed_into_the_notes_column_is_refused() {
         ],
     );
 }
+
+/// The red team rt15 on the rules above: a setting's value far right of
+/// its label, a misspelt label, a label and value in one cell (on the
+/// table's sheet and in a CSV); a tab-split cell; a note or a header row
+/// with spaces (no E050); an .ods formula that computes "" (no E016); a
+/// note's row below the table (no advice to label a filled cell).
+#[test]
+fn the_red_teams_second_look_at_the_reading_rules() {
+    let table = ",BRANCH 1,BRANCH 2\nSTEP 1,C1+1,C2+1\nSTEP 2,C1-0,C2-0\n\n";
+    let rows: &[(&str, Option<i32>, &str)] = &[
+        (
+            "modes,,,all\n",
+            Some(1),
+            "t.csv:5:1: error[E030]: \"modes\" and its value name a setting",
+        ),
+        (
+            "mode,all\n",
+            Some(1),
+            "t.csv:5:1: error[E046]: \"mode\" and its value read as the setting `modes` misspelt",
+        ),
+        (
+            "safety=all\n",
+            Some(0),
+            "t.csv:5:1: warning[W003]: \"safety=all\" reads as the setting safety and its value in one cell",
+        ),
+        (
+            "Note,see drawing, page 3\n",
+            Some(0),
+            "ok: 2 steps, 2 branch(es)",
+        ),
+        (
+            "Note,C2 stops midway\n",
+            Some(1),
+            "t.csv:5:2: error[E010]: \"C2 stops midway\" lies outside the table and would be lost: its row 5 lies below the table's last step, STEP 2 (row 3), and is no step: its label cell 5:1 holds \"Note\"",
+        ),
+    ];
+    let mut broken = Vec::new();
+    for (line, code, says) in rows {
+        let (got, said) = check_csv(&format!("{table}{line}"));
+        if got != *code || !said.contains(says) {
+            broken.push(format!("{line}: exit {got:?}\n{said}"));
+        }
+    }
+    let (got, said) = check_csv(
+        "\tBRANCH 1\tBRANCH 2\nSTEP 1\tC1+1\tC2+1\nSTEP 2\tC1-0\t T=2s\nSTEP 3\t\tC2-0\n",
+    );
+    if got != Some(1)
+        || !said
+            .contains("t.csv:3:3: error[E050]: \"T=2s\" follows \"C1-0\" after a space and a tab")
+    {
+        broken.push(format!("tab: exit {got:?}\n{said}"));
+    }
+    let (got, said) = check_csv(";BRANCH 1; BRANCH 2\nSTEP 1;C1+1;C2+1\nSTEP 2;C1-0;C2-0\n");
+    if got != Some(0) {
+        broken.push(format!("spaced header: exit {got:?}\n{said}"));
+    }
+    assert!(broken.is_empty(), "{}", broken.join("\n\n"));
+}
+
+/// A formula that computes "" (`=IF(...;"";...)`, common in templates) is
+/// saved in an .ods with its value type: computed, an empty cell, not E016.
+#[test]
+fn an_ods_formula_that_computes_nothing_is_an_empty_cell() {
+    let cell = |text: &str| {
+        format!(
+            "<table:table-cell office:value-type=\"string\"><text:p>{text}</text:p></table:table-cell>"
+        )
+    };
+    let row = |cells: &[String]| format!("<table:table-row>{}</table:table-row>", cells.concat());
+    let empty = "<table:table-cell table:formula=\"of:=IF(1=1;&quot;&quot;;&quot;C3+1&quot;)\" office:value-type=\"string\" office:string-value=\"\" calcext:value-type=\"string\"/>".to_string();
+    let table = [
+        row(&[cell(""), cell("BRANCH 1")]),
+        row(&[cell("STEP 1"), cell("C1+1")]),
+        row(&[cell("STEP 2"), cell("C1-0")]),
+        row(&[cell(""), empty]),
+    ]
+    .concat();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("e.ods");
+    std::fs::write(&path, crate::hostile::ods_of(&table)).unwrap();
+    let output = steptable().arg("check").arg(&path).output().unwrap();
+    let said = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "{said}");
+    assert!(!said.contains("E016"), "{said}");
+}

@@ -121,7 +121,7 @@ fn unread_cell(
     let word = label_of(&cell.value).unwrap_or_default();
     if first_on_row
         && row.len() > 1
-        && let Some(known) = mistyped_label(&word)
+        && let Some(known) = crate::sheets::mistyped_setting_label(&word)
     {
         return Unread::Mistyped(format!(
             "{describe} is not a setting steptable knows: did you mean `{known}`? Its row was not read, so the program would lack the setting; spell the label as the reference does"
@@ -152,32 +152,6 @@ pub(super) fn closest_label(label: &str) -> Option<&'static str> {
         .min()
         .filter(|(distance, _)| *distance <= 2)
         .map(|(_, known)| known)
-}
-
-/// `mode`, `hold safe`, `on-halt`, `supervison`: a label steptable knows,
-/// misspelt — the same letters, or one letter off (two in a label of eight
-/// letters or more). Looser likenesses (`notes` and `modes`) are only
-/// named ([`closest_label`]): a note row must not stop a conversion.
-pub(super) fn mistyped_label(label: &str) -> Option<&'static str> {
-    let word = letters(label).to_lowercase();
-    if word.is_empty() {
-        return None;
-    }
-    LABELS
-        .into_iter()
-        .map(|known| {
-            let known_letters = letters(known);
-            let distance = edit_distance(&word, &known_letters);
-            let allowed = if known_letters.chars().count() >= 8 {
-                2
-            } else {
-                1
-            };
-            (distance, allowed, known)
-        })
-        .filter(|(distance, allowed, _)| distance <= allowed)
-        .min()
-        .map(|(_, _, known)| known)
 }
 
 fn letters(text: &str) -> String {
