@@ -9,7 +9,7 @@ use rust_xlsxwriter::{Format, Workbook, Worksheet};
 
 /// `check` and `convert` of `bytes` (saved as `name`) both exit 1, say
 /// each of `says`, and write nothing.
-fn refused(name: &str, bytes: Vec<u8>, says: &[&str]) {
+pub(crate) fn refused(name: &str, bytes: Vec<u8>, says: &[&str]) {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join(name);
     std::fs::write(&path, bytes).unwrap();
