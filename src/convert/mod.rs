@@ -129,6 +129,7 @@ fn finish_check(
             input.table = grid;
         }
     }
+    crate::settings::written_with_table(&input.table, &mut diags);
     let valves = &effective.simulation.machine.valves;
     let table = table::build_for(&input.table, valves, &mut diags);
     if let Some(table) = &table {

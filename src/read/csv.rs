@@ -177,10 +177,10 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
         .from_reader(text.as_bytes());
     let mut cells = Vec::new();
     let mut spaced_fields = 0;
-    // Fields after a delimiter written without a space, and those with one
-    // right after a filled field: in a file of the first kind, the second
-    // is one cell's second item split off (`C1-0; T=2s` unquoted).
-    let (mut unspaced_fields, mut unspaced_rows) = (0usize, std::collections::HashSet::new());
+    // Rows with a field written right after its delimiter, and fields with
+    // a space after it following a filled one: in such a row, the second is
+    // one cell's second item split off (`C1-0; T=2s` unquoted).
+    let mut unspaced_rows = std::collections::HashSet::new();
     let mut split_off = Vec::new();
     let mut local = Diagnostics::new();
     // Lines are counted from byte offsets: the reader's own line numbers lag
@@ -253,7 +253,6 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
                     ));
                 }
             } else if col > 0 {
-                unspaced_fields += 1;
                 unspaced_rows.insert(row);
             }
             if delimiter == b',' {
@@ -266,11 +265,12 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
             });
         }
     }
-    {
-        let file_unspaced = unspaced_fields > spaced_fields;
+    // A tab never splits a cell of `;`-joined items; a row spaced throughout
+    // is written so, whatever the others.
+    if matches!(delimiter, b',' | b';') {
         let suspects = split_off
             .into_iter()
-            .filter(|(row, ..)| file_unspaced || unspaced_rows.contains(row));
+            .filter(|(row, ..)| unspaced_rows.contains(row));
         report_split_cells(suspects, delimiter, &location, &mut local);
     }
     Some(CsvReading {
@@ -294,20 +294,21 @@ fn report_split_cells(
     location: &dyn Fn(u32, u32) -> Location,
     diags: &mut Diagnostics,
 ) {
-    let name = match delimiter {
-        b'\t' => "tab".to_string(),
-        other => format!("'{}'", char::from(other)),
-    };
-    let joint = match delimiter {
-        b'\t' => ";".to_string(),
-        other => char::from(other).to_string(),
-    };
+    let name = char::from(delimiter);
     for (row, col, previous, field) in suspects {
+        let advice = match delimiter {
+            b',' => format!(
+                "write them as one cell \"{previous}; {field}\" (items in a cell are joined by ';'), quoted if it holds a comma, or remove the space if \"{field}\" belongs to the next branch"
+            ),
+            _ => format!(
+                "quote the cell (\"{previous}; {field}\") to keep it whole, or remove the space if \"{field}\" belongs to the next branch"
+            ),
+        };
         diags.error(
             Code::E050CellSplit,
             location(row, col),
             format!(
-                "\"{field}\" follows \"{previous}\" after a space and a {name}: the file's other cells start right after their {name}, as a spreadsheet writes them, so this reads as one cell \"{previous}{joint} {field}\" split in two (\"{field}\" would be a move of the next branch); quote the cell to keep it whole, or remove the space if \"{field}\" belongs to the next branch"
+                "\"{field}\" follows \"{previous}\" after a space and a '{name}': the row's other cells start right after their '{name}', as a spreadsheet writes them, so this reads as one cell's items split in two (\"{field}\" would be a move of the next branch); {advice}"
             ),
         );
     }

@@ -205,6 +205,33 @@ pub(super) fn pick_table(
         return None;
     };
     let (score, grid) = candidates.swap_remove(best);
+    // A sheet passed over whose moves may be formulas nobody computed: it
+    // may be the table, with more moves than it shows (rt15 F9).
+    let passed_over: Vec<_> = candidates
+        .iter()
+        .filter_map(|(_, other)| {
+            other.cells.iter().find_map(|c| match &c.value {
+                CellValue::Uncomputed(f) => {
+                    Some((other.location(c.pos), f.clone(), other.sheet.clone()))
+                }
+                _ => None,
+            })
+        })
+        .collect();
+    if !passed_over.is_empty() {
+        for (at, formula, sheet) in passed_over {
+            diags.error(
+                Code::E016FormulaNotComputed,
+                at,
+                format!(
+                    "the formula {formula} has no computed value, and the sheet {} it is on was passed over for {} as the step table: with its formulas' values it may be the table, which cannot be told; open and save the workbook in Excel or LibreOffice, or choose the table's sheet with --sheet",
+                    sheet.unwrap_or_default(),
+                    grid.sheet.clone().unwrap_or_default()
+                ),
+            );
+        }
+        return None;
+    }
     let table_sheet = names.iter().find(|n| is_side(n, TABLE_SHEET));
     say_choice(&grid, score, &candidates, table_sheet, diags);
     Some(grid)

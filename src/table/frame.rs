@@ -332,10 +332,6 @@ pub(super) fn report_unused(
         };
         let item_like = text.is_some_and(looks_like_item);
         let in_header_row = frame.header_row == Some(row);
-        if let Some(setting) = text.and_then(|t| setting_written(grid, cell.pos, t)) {
-            report_setting(grid, cell.pos, setting, diags);
-            continue;
-        }
         match why_lost(grid, frame, cell.pos, in_step_row) {
             Some(why) if item_like => {
                 let text = text.unwrap_or_default().trim();
@@ -371,66 +367,6 @@ pub(super) fn report_unused(
             }
             _ => {}
         }
-    }
-}
-
-/// A setting written with the step table, where settings are not read.
-enum SettingWritten {
-    /// Its label (`Interlock:`; an actuator table's `actuator` header too)
-    /// with a value right of it on its row: E030.
-    Label(String),
-    /// A known label misspelt (`mode`, `safty`), with a value: E046.
-    Misspelt(String, &'static str),
-    /// A label and its value in one cell (`modes: estop`): W003, since a
-    /// title may read so (`Target: line 3`).
-    OneCell(String, &'static str),
-}
-
-fn setting_written(grid: &Grid, pos: CellPos, text: &str) -> Option<SettingWritten> {
-    let label = text
-        .trim()
-        .trim_end_matches(':')
-        .trim()
-        .to_ascii_lowercase();
-    let valued = grid
-        .cells
-        .iter()
-        .any(|c| c.pos.row == pos.row && c.pos.col > pos.col);
-    let written = text.trim().to_string();
-    if crate::sheets::SETTING_LABELS.contains(&label.as_str()) || label == "actuator" {
-        return valued.then_some(SettingWritten::Label(written));
-    }
-    if let Some(meant) = crate::sheets::mistyped_setting_label(&label) {
-        return valued.then_some(SettingWritten::Misspelt(written, meant));
-    }
-    crate::sheets::setting_in_one_cell(text).map(|meant| SettingWritten::OneCell(written, meant))
-}
-
-fn report_setting(grid: &Grid, pos: CellPos, setting: SettingWritten, diags: &mut Diagnostics) {
-    let instead = match grid.sheet {
-        Some(_) => "move them to the SETTINGS sheet",
-        None => {
-            "a CSV file holds the step table only: write them on a workbook's SETTINGS sheet (`steptable template` writes one), or give them on the command line where an option does"
-        }
-    };
-    let lost = "where settings are not read (the program would be made without it)";
-    let at = grid.location(pos);
-    match setting {
-        SettingWritten::Label(label) => diags.error(
-            Code::E030BadSetting,
-            at,
-            format!("\"{label}\" and its value name a setting, but they lie with the step table, {lost}; {instead}"),
-        ),
-        SettingWritten::Misspelt(label, meant) => diags.error(
-            Code::E046MistypedSetting,
-            at,
-            format!("\"{label}\" and its value read as the setting `{meant}` misspelt, lying with the step table, {lost}; spell it `{meant}`; {instead}"),
-        ),
-        SettingWritten::OneCell(text, meant) => diags.warning(
-            Code::W003Ignored,
-            at,
-            format!("\"{text}\" reads as the setting {meant} and its value in one cell, lying with the step table, where settings are not read; it was not read: if it is one, write it as a label and its value on the SETTINGS sheet"),
-        ),
     }
 }
 

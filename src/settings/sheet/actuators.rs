@@ -55,7 +55,14 @@ pub(super) fn actuator_columns(
                     .cells
                     .iter()
                     .any(|c| c.pos.col == cell.pos.col && c.pos.row > header.row);
-                if let Some(meant) = misspelt_column(&label).filter(|_| below) {
+                // `Extnd time [s]`: the first word misspelt, more after it.
+                let first = label
+                    .split(|c: char| !c.is_alphanumeric())
+                    .next()
+                    .unwrap_or("");
+                let meant = misspelt_column(&label)
+                    .or_else(|| misspelt_column(first).filter(|_| !COLUMNS.contains(&first)));
+                if let Some(meant) = meant.filter(|_| below) {
                     reader.mistyped(
                         cell.pos,
                         format!(
