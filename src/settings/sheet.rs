@@ -219,7 +219,7 @@ pub fn parse(grid: &Grid, diags: &mut Diagnostics) -> Given {
     let headers: Vec<CellPos> = reader
         .cells
         .iter()
-        .filter(|c| label_of(&c.value).as_deref() == Some("actuator"))
+        .filter(|c| actuator_header(&reader, c))
         .map(|c| c.pos)
         .collect();
     for header in headers {
@@ -286,6 +286,24 @@ fn settings_headers(reader: &mut Reader, diags: &mut Diagnostics) -> Layout {
     }
     layout.header_rows = rows;
     layout
+}
+
+/// Whether `cell` heads an actuator table: `actuator`, or a longer header
+/// that starts with it (`Actuator (cylinder)`, `Actuators`) beside a
+/// column's header (`extend`) on its row — a note alone is no table.
+fn actuator_header(reader: &Reader, cell: &GridCell) -> bool {
+    let Some(label) = label_of(&cell.value) else {
+        return false;
+    };
+    if label == "actuator" {
+        return true;
+    }
+    let first = label.split(|c: char| !c.is_alphanumeric()).next().unwrap_or("");
+    matches!(first, "actuator" | "actuators")
+        && reader.row(cell.pos.row).any(|c| {
+            c.pos.col > cell.pos.col
+                && label_of(&c.value).is_some_and(|l| COLUMNS.contains(&actuators::column_word(&l)))
+        })
 }
 
 /// Reads every labelled setting; returns the rows that hold a label, each

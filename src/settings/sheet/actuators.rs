@@ -448,12 +448,18 @@ fn read_actuator_row<'g>(
 /// The column a header names: its label, or its first word when that is a
 /// column's and no other word is (`extend time`, `Valve type`, `load (kg)`:
 /// an engineer's header says what the column holds).
-fn column_word(label: &str) -> &str {
+pub(super) fn column_word(label: &str) -> &str {
     let mut words = label
         .split(|c: char| !c.is_alphanumeric())
         .filter(|w| !w.is_empty());
-    match words.next() {
-        Some(first) if COLUMNS.contains(&first) && !words.any(|w| COLUMNS.contains(&w)) => first,
+    // A plural names the column too (`valves`, `names`).
+    let column = |w: &str| {
+        COLUMNS
+            .into_iter()
+            .find(|c| w == *c || w.strip_suffix('s') == Some(c))
+    };
+    match words.next().and_then(&column) {
+        Some(known) if !words.any(|w| column(w).is_some()) => known,
         _ => label,
     }
 }
