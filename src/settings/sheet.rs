@@ -298,7 +298,10 @@ fn actuator_header(reader: &Reader, cell: &GridCell) -> bool {
     if label == "actuator" {
         return true;
     }
-    let first = label.split(|c: char| !c.is_alphanumeric()).next().unwrap_or("");
+    let first = label
+        .split(|c: char| !c.is_alphanumeric())
+        .next()
+        .unwrap_or("");
     matches!(first, "actuator" | "actuators")
         && reader.row(cell.pos.row).any(|c| {
             c.pos.col > cell.pos.col

@@ -298,7 +298,12 @@ fn a_setting_written_with_the_table_is_refused() {
 #[test]
 fn an_actuator_header_with_a_unit_or_a_word_after_it_is_read() {
     let settings: &[&[&str]] = &[
-        &["Actuator (cylinder)", "Extend time [s]", "retract time", "Valves"],
+        &[
+            "Actuator (cylinder)",
+            "Extend time [s]",
+            "retract time",
+            "Valves",
+        ],
         &["C1", "2s", "3s", "53closed"],
         &["C2", "1s", "1s", "52bi"],
     ];
