@@ -162,16 +162,10 @@ pub(super) fn pick_table(
     for name in names.iter().filter(|n| side_sheet_of(n).is_none()) {
         let mut local = Diagnostics::new();
         match read_sheet(workbook, name, &mut local) {
-            Some(grid) => {
-                let formula = grid.cells.iter().find_map(|c| match &c.value {
-                    CellValue::Uncomputed(f) => Some((grid.location(c.pos), f.clone())),
-                    _ => None,
-                });
-                match table_score(&grid, is_hidden(name)) {
-                    Some(score) => candidates.push((score, grid)),
-                    None => formulas.extend(formula),
-                }
-            }
+            Some(grid) => match table_score(&grid, is_hidden(name)) {
+                Some(score) => candidates.push((score, grid)),
+                None => formulas.extend(first_uncomputed(&grid)),
+            },
             None => unread.extend(local),
         }
     }
@@ -210,12 +204,7 @@ pub(super) fn pick_table(
     let passed_over: Vec<_> = candidates
         .iter()
         .filter_map(|(_, other)| {
-            other.cells.iter().find_map(|c| match &c.value {
-                CellValue::Uncomputed(f) => {
-                    Some((other.location(c.pos), f.clone(), other.sheet.clone()))
-                }
-                _ => None,
-            })
+            first_uncomputed(other).map(|(at, formula)| (at, formula, other.sheet.clone()))
         })
         .collect();
     if !passed_over.is_empty() {
@@ -235,6 +224,14 @@ pub(super) fn pick_table(
     let table_sheet = names.iter().find(|n| is_side(n, TABLE_SHEET));
     say_choice(&grid, score, &candidates, table_sheet, diags);
     Some(grid)
+}
+
+/// Where `grid`'s first formula without a computed value is, and its text.
+fn first_uncomputed(grid: &Grid) -> Option<(Location, String)> {
+    grid.cells.iter().find_map(|c| match &c.value {
+        CellValue::Uncomputed(f) => Some((grid.location(c.pos), f.clone())),
+        _ => None,
+    })
 }
 
 /// The sheet `--sheet` names (E004 when there is none, or when it is a

@@ -294,7 +294,6 @@ fn refuse_hidden_under_merges(grid: &mut Grid, regions: &[Region], diags: &mut D
                 && (pos.row, pos.col) != (*r0, *c0)
         })
     };
-    let location = |grid: &Grid, pos| grid.location(pos);
     let mut hidden = Vec::new();
     grid.cells.retain(|cell| match under(cell.pos) {
         Some(&((r0, c0), (r1, c1))) => {
@@ -308,7 +307,7 @@ fn refuse_hidden_under_merges(grid: &mut Grid, regions: &[Region], diags: &mut D
         let last = CellPos::new(last.0, last.1).a1();
         diags.error(
             Code::E049HiddenUnderMerge,
-            location(grid, pos),
+            grid.location(pos),
             format!(
                 "{value} lies under the merged cell {first}:{last}, where the spreadsheet shows only {first}'s value: steptable would read what nobody sees on the sheet; unmerge the cells, then keep or clear it"
             ),

@@ -95,7 +95,7 @@ fn known_label(value: &CellValue) -> Option<&'static str> {
 /// `scan time = 20ms`): the label it starts with.
 fn setting_in_one_cell(value: &CellValue) -> Option<&'static str> {
     match value {
-        CellValue::Text(text) => crate::sheets::setting_in_one_cell(text),
+        CellValue::Text(text) => unread::setting_in_text(text),
         _ => None,
     }
 }
@@ -454,7 +454,7 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
         };
         let at = table.location(cell.pos);
         let written = text.trim();
-        if let Some(meant) = crate::sheets::setting_in_one_cell(text) {
+        if let Some(meant) = unread::setting_in_text(text) {
             let value = written[meant.len()..]
                 .trim_start_matches(|c: char| c == ':' || c == '=' || c.is_whitespace());
             if valid_value(meant, value, cell, table) {
@@ -483,7 +483,7 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
                     format!("\"{written}\" and its value name a setting, but they lie with the step table, {lost}; {instead}"),
                 );
             }
-        } else if let Some(meant) = crate::sheets::mistyped_setting_label(&label)
+        } else if let Some(meant) = unread::mistyped_label(&label)
             && valid_value(meant, &value, value_cell, table)
         {
             diags.error(

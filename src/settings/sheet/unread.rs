@@ -121,7 +121,7 @@ fn unread_cell(
     let word = label_of(&cell.value).unwrap_or_default();
     if first_on_row
         && row.len() > 1
-        && let Some(known) = crate::sheets::mistyped_setting_label(&word)
+        && let Some(known) = mistyped_label(&word)
     {
         return Unread::Mistyped(format!(
             "{describe} is not a setting steptable knows: did you mean `{known}`? Its row was not read, so the program would lack the setting; spell the label as the reference does"
@@ -156,4 +156,44 @@ pub(super) fn closest_label(label: &str) -> Option<&'static str> {
 
 fn letters(text: &str) -> String {
     text.chars().filter(|c| c.is_alphabetic()).collect()
+}
+
+/// `mode`, `hold safe`, `on-halt`, `supervison`: a label steptable knows,
+/// misspelt — the same letters, or one letter off (two in a label of eight
+/// letters or more). Looser likenesses (`notes` and `modes`) are only
+/// named ([`closest_label`]): a note row must not stop a conversion.
+pub(super) fn mistyped_label(label: &str) -> Option<&'static str> {
+    let word = letters(label).to_lowercase();
+    if word.is_empty() {
+        return None;
+    }
+    LABELS
+        .into_iter()
+        .map(|known| {
+            let known_letters = letters(known);
+            let distance = edit_distance(&word, &known_letters);
+            let allowed = if known_letters.chars().count() >= 8 {
+                2
+            } else {
+                1
+            };
+            (distance, allowed, known)
+        })
+        .filter(|(distance, allowed, _)| distance <= allowed)
+        .min()
+        .map(|(_, _, known)| known)
+}
+
+/// A text that holds a setting's label and its value together (`target:
+/// iec`, `scan time = 20ms`): the label it starts with.
+pub(super) fn setting_in_text(text: &str) -> Option<&'static str> {
+    let lower = text.trim().to_ascii_lowercase();
+    LABELS.into_iter().find(|label| {
+        lower.strip_prefix(label).is_some_and(|rest| {
+            rest.starts_with([':', '=', ' ', '\t'])
+                && !rest
+                    .trim_matches(|c: char| c == ':' || c == '=' || c.is_whitespace())
+                    .is_empty()
+        })
+    })
 }
