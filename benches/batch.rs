@@ -5,7 +5,8 @@
 //! (read, check, generate, write).
 //!
 //! Run with `cargo bench --bench batch` (set STEPTABLE_BENCH_WORKBOOKS to
-//! change the count).
+//! change the count; STEPTABLE_BENCH_CORPUS=DIR only writes the workbooks
+//! there, for a profiler to run `steptable batch` on).
 
 #[path = "support/floor.rs"]
 mod floor;
@@ -137,6 +138,12 @@ fn main() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(1000);
+    // For a profiler: only write the workbooks, to run `steptable batch` on.
+    if let Ok(corpus) = std::env::var("STEPTABLE_BENCH_CORPUS") {
+        std::fs::create_dir_all(&corpus).unwrap();
+        generate(Path::new(&corpus), count);
+        return;
+    }
     let dir = tempfile::tempdir().unwrap();
     let settings = Settings::new();
     // The paper's example as one `convert`, process start included: first,

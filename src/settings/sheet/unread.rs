@@ -167,19 +167,21 @@ pub(super) fn mistyped_label(label: &str) -> Option<&'static str> {
     if word.is_empty() {
         return None;
     }
+    let length = word.chars().count();
     LABELS
         .into_iter()
-        .map(|known| {
+        .filter_map(|known| {
             let known_letters = letters(known);
+            let known_length = known_letters.chars().count();
+            let allowed = if known_length >= 8 { 2 } else { 1 };
+            // Lengths further apart than that are never close enough: every
+            // move cell of a table is asked, so skip the distance there.
+            if known_length.abs_diff(length) > allowed {
+                return None;
+            }
             let distance = edit_distance(&word, &known_letters);
-            let allowed = if known_letters.chars().count() >= 8 {
-                2
-            } else {
-                1
-            };
-            (distance, allowed, known)
+            (distance <= allowed).then_some((distance, allowed, known))
         })
-        .filter(|(distance, allowed, _)| distance <= allowed)
         .min()
         .map(|(_, _, known)| known)
 }
