@@ -152,6 +152,9 @@ pub enum Code {
     /// collision risk, both coils on): said as JSON, where the printed
     /// table goes to stderr.
     W014ScenarioProblem,
+    /// Settings written on a workbook's sheet of another name (`Config`,
+    /// `PARAMETERS`): only the sheet named SETTINGS is read for them.
+    W015SettingsElsewhere,
 }
 
 impl Code {
@@ -192,6 +195,7 @@ impl Code {
             Code::W012HaltForGood => "W012",
             Code::W013GuardLeavesMotion => "W013",
             Code::W014ScenarioProblem => "W014",
+            Code::W015SettingsElsewhere => "W015",
             Code::E027TwoTables => "E027",
             Code::E016FormulaNotComputed => "E016",
             Code::E032MachineCannotRun => "E032",

@@ -130,6 +130,7 @@ fn finish_check(
         }
     }
     crate::settings::written_with_table(&input.table, &mut diags);
+    crate::settings::written_elsewhere(&input.others, &mut diags);
     let valves = &effective.simulation.machine.valves;
     let table = table::build_for(&input.table, valves, &mut diags);
     if let Some(table) = &table {

@@ -38,6 +38,9 @@ pub struct Input {
     /// A CSV file's readings, one per delimiter that could be meant, when
     /// there is more than one: the table decides which is the table.
     pub csv_readings: Vec<CsvReading>,
+    /// A workbook's other sheets (neither the table's nor a side sheet):
+    /// settings written there are not read, and are said so.
+    pub others: Vec<Grid>,
 }
 
 /// Which reader a file needs, decided by its extension.
@@ -162,6 +165,7 @@ pub fn read_bytes(
                     settings: None,
                     addresses: None,
                     csv_readings: Vec::new(),
+                    others: Vec::new(),
                 });
             }
             Some(Input {
@@ -169,6 +173,7 @@ pub fn read_bytes(
                 settings: None,
                 addresses: None,
                 csv_readings: readings,
+                others: Vec::new(),
             })
         }
         _ => {

@@ -73,23 +73,8 @@ fn is_side(name: &str, wanted: &str) -> bool {
 /// sheet of that very name is read for settings or pins, so the program
 /// would be written without the EMERGENCY STOP, checks or pins it holds.
 pub(super) fn misnamed_side_sheets(file: &str, names: &[String], diags: &mut Diagnostics) {
-    for name in names.iter().filter(|n| side_sheet_of(n).is_none()) {
-        let bare = name.trim();
-        // Excel names a copied sheet `SETTINGS (2)`.
-        let stem = match bare.rsplit_once(" (") {
-            Some((stem, n))
-                if n.strip_suffix(')')
-                    .is_some_and(|n| n.parse::<u32>().is_ok()) =>
-            {
-                stem.trim()
-            }
-            _ => bare,
-        }
-        .to_ascii_uppercase();
-        let Some(side) = [SETTINGS_SHEET, ADDRESSES_SHEET]
-            .into_iter()
-            .find(|side| crate::cell::edit_distance(&stem, side) <= 1)
-        else {
+    for name in names.iter() {
+        let Some(side) = misnamed_side(name) else {
             continue;
         };
         let sheet = Location {
@@ -106,6 +91,34 @@ pub(super) fn misnamed_side_sheets(file: &str, names: &[String], diags: &mut Dia
             ),
         );
     }
+}
+
+/// The side sheet `name` misspells (`Setting`, `ADRESSES`) or copies
+/// (`SETTINGS (2)`), when it is not that sheet itself.
+fn misnamed_side(name: &str) -> Option<&'static str> {
+    if side_sheet_of(name).is_some() {
+        return None;
+    }
+    let bare = name.trim();
+    // Excel names a copied sheet `SETTINGS (2)`.
+    let stem = match bare.rsplit_once(" (") {
+        Some((stem, n))
+            if n.strip_suffix(')')
+                .is_some_and(|n| n.parse::<u32>().is_ok()) =>
+        {
+            stem.trim()
+        }
+        _ => bare,
+    }
+    .to_ascii_uppercase();
+    [SETTINGS_SHEET, ADDRESSES_SHEET]
+        .into_iter()
+        .find(|side| crate::cell::edit_distance(&stem, side) <= 1)
+}
+
+/// Whether `name` is a side sheet's, or one named like it.
+pub(super) fn names_a_side_sheet(name: &str) -> bool {
+    side_sheet_of(name).is_some() || misnamed_side(name).is_some()
 }
 
 /// The side sheet `name` is, if any: read for its settings or pins, never

@@ -6,7 +6,8 @@ use std::io::Cursor;
 use calamine::{Data, Ods, Range, Reader, Xls, Xlsx, open_workbook_from_rs};
 
 use super::sheet_choice::{
-    Region, SheetError, SheetSource, SideSheets, misnamed_side_sheets, pick_table,
+    Region, SheetError, SheetReader, SheetSource, SideSheets, misnamed_side_sheets,
+    names_a_side_sheet, pick_table,
 };
 use super::*;
 use crate::diag::{CellPos, Code, Diagnostics, Location};
@@ -59,12 +60,30 @@ pub(super) fn read_workbook(
         refuse_hidden_under_merges(grid, &regions, diags);
     }
     let table = table?;
+    let others = other_sheets(&mut workbook, &names, &table, &read);
     Some(Input {
         table,
         settings,
         addresses,
         csv_readings: Vec::new(),
+        others,
     })
+}
+
+/// The sheets read as neither the table nor a side sheet (nor one named
+/// like a side sheet, E046 already): only looked over for settings written
+/// there, so one that cannot be read is left out.
+fn other_sheets(
+    workbook: &mut Box<dyn SheetSource>,
+    names: &[String],
+    table: &Grid,
+    read: &SheetReader,
+) -> Vec<Grid> {
+    names
+        .iter()
+        .filter(|n| Some(n.as_str()) != table.sheet.as_deref() && !names_a_side_sheet(n))
+        .filter_map(|name| read(workbook, name, &mut Diagnostics::new()))
+        .collect()
 }
 
 /// What refuses a workbook before calamine decodes it: one that unpacks

@@ -21,7 +21,7 @@ use crate::program::{Modes, ProgramOptions, Safety};
 use crate::simulate::SimSettings;
 use crate::stroke::Stroke;
 
-pub use sheet::{LABELS, parse, written_with_table};
+pub use sheet::{LABELS, parse, written_elsewhere, written_with_table};
 
 /// What one source of settings says (the command line or a SETTINGS
 /// sheet); `None` and missing entries leave the choice to the next source.

@@ -17,6 +17,7 @@
 //! left alone.
 
 mod actuators;
+mod elsewhere;
 mod unread;
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -28,6 +29,7 @@ use crate::program::{Modes, Safety};
 use crate::read::{CellValue, Grid, GridCell};
 use crate::stroke::parse_scan;
 use actuators::{actuator_columns, read_actuator_rows, said_without_unit};
+pub use elsewhere::{written_elsewhere, written_with_table};
 use unread::name_the_rest;
 
 /// Where the actuator table's columns are: its header cell and the columns
@@ -433,66 +435,6 @@ fn valid_value(label: &'static str, value: &str, cell: &GridCell, grid: &Grid) -
         &mut scratch,
     );
     !value.trim().is_empty() && !scratch.has_errors()
-}
-
-/// Settings written with the step table (on its sheet, or in a CSV), where
-/// settings are not read: a label with a valid value right of it on its
-/// row is E030, a misspelt label with one E046, a label and a valid value
-/// in one cell E046 (as on SETTINGS). A label whose neighbour is no value
-/// of it (`Target | 30 parts/min`, `Model | DSNU-16`) is a note.
-pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
-    let instead = match table.sheet {
-        Some(_) => "move them to the SETTINGS sheet",
-        None => {
-            "a CSV file holds the step table only: write them on a workbook's SETTINGS sheet (`steptable template` writes one), or give them on the command line where an option does"
-        }
-    };
-    let lost = "where settings are not read (the program would be made without it)";
-    for cell in &table.cells {
-        let CellValue::Text(text) = &cell.value else {
-            continue;
-        };
-        let at = table.location(cell.pos);
-        let written = text.trim();
-        if let Some(meant) = unread::setting_in_text(text) {
-            let value = written[meant.len()..]
-                .trim_start_matches(|c: char| c == ':' || c == '=' || c.is_whitespace());
-            if valid_value(meant, value, cell, table) {
-                diags.error(
-                    Code::E046MistypedSetting,
-                    at,
-                    format!("\"{written}\" holds the setting {meant} and its value in one cell, lying with the step table, {lost}; write the value in the cell right of \"{meant}\" and {instead}"),
-                );
-            }
-            continue;
-        }
-        let Some(value_cell) = table
-            .cells
-            .iter()
-            .find(|c| c.pos.row == cell.pos.row && c.pos.col > cell.pos.col)
-        else {
-            continue;
-        };
-        let value = text_of(&value_cell.value);
-        let label = label_of(&cell.value).unwrap_or_default();
-        if let Some(known) = known_label(&cell.value) {
-            if valid_value(known, &value, value_cell, table) {
-                diags.error(
-                    Code::E030BadSetting,
-                    at,
-                    format!("\"{written}\" and its value name a setting, but they lie with the step table, {lost}; {instead}"),
-                );
-            }
-        } else if let Some(meant) = unread::mistyped_label(&label)
-            && valid_value(meant, &value, value_cell, table)
-        {
-            diags.error(
-                Code::E046MistypedSetting,
-                at,
-                format!("\"{written}\" and its value read as the setting `{meant}` misspelt, lying with the step table, {lost}; spell it `{meant}`; {instead}"),
-            );
-        }
-    }
 }
 
 /// The value of one labelled setting, into `settings`; E030 when it is

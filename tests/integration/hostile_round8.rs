@@ -324,7 +324,8 @@ fn an_actuator_header_with_a_unit_or_a_word_after_it_is_read() {
     // table's times, not the default strokes.
     assert!(said.contains("1.96 s  C1+1"), "{said}");
     assert!(said.contains("0.98 s  C2+1"), "{said}");
-    // Two known words: which column is meant cannot be told.
+    // Two known words: which column is meant cannot be told, and read as
+    // a note the column's values would be lost (rt16 F8).
     let settings: &[&[&str]] = &[&["actuator", "extend/retract"], &["C1", "2s"]];
     let mut workbook = Workbook::new();
     write_rows(workbook.add_worksheet(), FOUR);
@@ -334,8 +335,9 @@ fn an_actuator_header_with_a_unit_or_a_word_after_it_is_read() {
     std::fs::write(&path, workbook.save_to_buffer().unwrap()).unwrap();
     let output = steptable().arg("check").arg(&path).output().unwrap();
     let said = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{said}");
     assert!(
-        said.contains("SETTINGS!B1: warning[W003]: \"extend/retract\" heads no column"),
+        said.contains("SETTINGS!B1: error[E046]: \"extend/retract\" heads no column"),
         "{said}"
     );
 }

@@ -74,6 +74,36 @@ pub(super) fn actuator_columns(
                     );
                     continue;
                 }
+                // `stroke time extend`, `solenoid valve`, `Load on extend`:
+                // a column named in another word than the first, or two
+                // columns named. Which column is meant is the engineer's to
+                // say; read as a note, its values would be lost.
+                let named = columns_named(&label);
+                if below && !named.is_empty() {
+                    let which = match named.as_slice() {
+                        [one] => format!(
+                            "it names the column `{one}` in another word than the first: head it `{one}`"
+                        ),
+                        _ => format!(
+                            "it names the columns {}: head it with the one it holds",
+                            named
+                                .iter()
+                                .map(|c| format!("`{c}`"))
+                                .collect::<Vec<_>>()
+                                .join(" and ")
+                        ),
+                    };
+                    reader.mistyped(
+                        cell.pos,
+                        format!(
+                            "{} heads no column steptable reads: {which} (expected {}), or with a word naming none for a column of notes; nothing is written, since the actuators would lose what the column holds",
+                            cell.value.describe(),
+                            COLUMNS.join(", ")
+                        ),
+                        diags,
+                    );
+                    continue;
+                }
                 reader.warn(
                     cell.pos,
                     format!(
@@ -462,6 +492,27 @@ pub(super) fn column_word(label: &str) -> &str {
         Some(known) if !words.any(|w| column(w).is_some()) => known,
         _ => label,
     }
+}
+
+/// The columns a header's words name, in the order of [`COLUMNS`]: a
+/// column's word, its plural, `extension`/`retraction`, or one misspelt
+/// (`extnd`) in a word of four letters or more.
+fn columns_named(label: &str) -> Vec<&'static str> {
+    let words: Vec<&str> = label
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .collect();
+    COLUMNS
+        .into_iter()
+        .filter(|column| {
+            words.iter().any(|w| {
+                *w == *column
+                    || w.strip_suffix('s') == Some(column)
+                    || (column.len() > 4 && w.starts_with(&column[..column.len() - 1]))
+                    || (w.chars().count() >= 4 && misspelt_column(w) == Some(column))
+            })
+        })
+        .collect()
 }
 
 /// The actuator table's column `label` misspells: one letter off, or the

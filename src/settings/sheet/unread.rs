@@ -4,7 +4,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::{LABELS, Layout, Reader, label_of, setting_in_one_cell, text_of};
+use super::{LABELS, Layout, Reader, label_of, setting_in_one_cell, text_of, valid_value};
 use crate::cell::edit_distance;
 use crate::diag::Diagnostics;
 use crate::read::{CellValue, GridCell};
@@ -48,6 +48,23 @@ pub(super) fn name_the_rest(
                     cell.pos,
                     format!(
                         "{} holds the setting {label} and its value in one cell; write the value in the cell right of \"{label}\" (it was not read)",
+                        cell.value.describe()
+                    ),
+                    diags,
+                );
+                continue;
+            }
+            let misspelt = match &cell.value {
+                CellValue::Text(text) => misspelt_setting_in_text(text)
+                    .into_iter()
+                    .find(|(meant, value)| valid_value(meant, value, cell, reader.grid)),
+                _ => None,
+            };
+            if let Some((meant, _)) = misspelt {
+                reader.mistyped(
+                    cell.pos,
+                    format!(
+                        "{} reads as the setting `{meant}` misspelt, with its value in one cell; spell it `{meant}` and write the value in the cell right of it (it was not read, so the program would lack the setting)",
                         cell.value.describe()
                     ),
                     diags,
@@ -184,6 +201,33 @@ pub(super) fn mistyped_label(label: &str) -> Option<&'static str> {
         })
         .min()
         .map(|(_, _, known)| known)
+}
+
+/// A text that may hold a misspelt label and its value together (`mode:
+/// all`, `scantime 20ms`): each reading of its first one to three words as
+/// a label misspelt ([`mistyped_label`]), with the rest as the value. The
+/// caller keeps a reading only with a valid value, so that a note (`Model:
+/// DSNU-16`) stays one.
+pub(super) fn misspelt_setting_in_text(text: &str) -> Vec<(&'static str, &str)> {
+    let text = text.trim();
+    let separator = |c: char| c == ':' || c == '=' || c.is_whitespace();
+    let mut readings = Vec::new();
+    let mut words = 0;
+    for (at, c) in text.char_indices() {
+        let starts_word = !separator(c) && text[..at].ends_with(separator);
+        if !starts_word || at == 0 {
+            continue;
+        }
+        words += 1;
+        if words > 3 {
+            break;
+        }
+        let (label, value) = text.split_at(at);
+        if let Some(meant) = mistyped_label(label.trim_end_matches(separator)) {
+            readings.push((meant, value.trim()));
+        }
+    }
+    readings
 }
 
 /// A text that holds a setting's label and its value together (`target:

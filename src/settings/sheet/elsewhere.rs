@@ -1,0 +1,104 @@
+//! Settings written where they are not read: with the step table (on its
+//! sheet, or in a CSV file), or on a workbook's sheet of another name.
+
+use super::{known_label, label_of, text_of, unread, valid_value};
+use crate::diag::{CellPos, Code, Diagnostics};
+use crate::read::{CellValue, Grid};
+
+/// Settings written with the step table (on its sheet, or in a CSV), where
+/// settings are not read: a label with a valid value right of it on its
+/// row is E030, a misspelt label with one E046, a label and a valid value
+/// in one cell E046 (as on SETTINGS). A label whose neighbour is no value
+/// of it (`Target | 30 parts/min`, `Model | DSNU-16`) is a note.
+pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
+    let instead = match table.sheet {
+        Some(_) => "move them to the SETTINGS sheet",
+        None => {
+            "a CSV file holds the step table only: write them on a workbook's SETTINGS sheet (`steptable template` writes one), or give them on the command line where an option does"
+        }
+    };
+    let lost = "where settings are not read (the program would be made without it)";
+    for cell in &table.cells {
+        let CellValue::Text(text) = &cell.value else {
+            continue;
+        };
+        let at = table.location(cell.pos);
+        let written = text.trim();
+        if let Some(meant) = unread::setting_in_text(text) {
+            let value = written[meant.len()..]
+                .trim_start_matches(|c: char| c == ':' || c == '=' || c.is_whitespace());
+            if valid_value(meant, value, cell, table) {
+                diags.error(
+                    Code::E046MistypedSetting,
+                    at,
+                    format!("\"{written}\" holds the setting {meant} and its value in one cell, lying with the step table, {lost}; write the value in the cell right of \"{meant}\" and {instead}"),
+                );
+            }
+            continue;
+        }
+        let misspelt = unread::misspelt_setting_in_text(text)
+            .into_iter()
+            .find(|(meant, value)| valid_value(meant, value, cell, table));
+        if let Some((meant, _)) = misspelt {
+            diags.error(
+                Code::E046MistypedSetting,
+                at,
+                format!("\"{written}\" reads as the setting `{meant}` misspelt, with its value in one cell, lying with the step table, {lost}; spell it `{meant}`, write the value in the cell right of it and {instead}"),
+            );
+            continue;
+        }
+        let Some(value_cell) = table
+            .cells
+            .iter()
+            .find(|c| c.pos.row == cell.pos.row && c.pos.col > cell.pos.col)
+        else {
+            continue;
+        };
+        let value = text_of(&value_cell.value);
+        let label = label_of(&cell.value).unwrap_or_default();
+        if let Some(known) = known_label(&cell.value) {
+            if valid_value(known, &value, value_cell, table) {
+                diags.error(
+                    Code::E030BadSetting,
+                    at,
+                    format!("\"{written}\" and its value name a setting, but they lie with the step table, {lost}; {instead}"),
+                );
+            }
+        } else if let Some(meant) = unread::mistyped_label(&label)
+            && valid_value(meant, &value, value_cell, table)
+        {
+            diags.error(
+                Code::E046MistypedSetting,
+                at,
+                format!("\"{written}\" and its value read as the setting `{meant}` misspelt, lying with the step table, {lost}; spell it `{meant}`; {instead}"),
+            );
+        }
+    }
+}
+
+/// Settings written on a workbook's sheet of another name (`Config`,
+/// `PARAMETERS`), found as [`written_with_table`] finds them: one W015 per
+/// sheet, at the first, since only the sheet named SETTINGS is read for
+/// them. A warning, not an error: such a sheet may be a legend of example
+/// rows, and the table is read as written.
+pub fn written_elsewhere(others: &[Grid], diags: &mut Diagnostics) {
+    for grid in others {
+        let mut found = Diagnostics::new();
+        written_with_table(grid, &mut found);
+        let Some(first) = found.iter().next() else {
+            continue;
+        };
+        let sheet = grid.sheet.clone().unwrap_or_default();
+        let cell = first.location.cell.map(CellPos::a1).unwrap_or_default();
+        let count = found.iter().count();
+        let which = match count {
+            1 => format!("a setting with its value at {cell}"),
+            n => format!("{n} settings with their values, the first at {cell}"),
+        };
+        diags.warning(
+            Code::W015SettingsElsewhere,
+            first.location.clone(),
+            format!("the sheet \"{sheet}\" holds what reads as {which}, but settings are read from the sheet named SETTINGS only: not read, the program is made without them; rename the sheet SETTINGS, or move the rows there, if they are meant"),
+        );
+    }
+}

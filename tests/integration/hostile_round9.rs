@@ -1,0 +1,202 @@
+//! The ninth round of hostile input: what the red teams rt15 and rt16
+//! left. A misspelt label with its value in one cell (`mode: all`) was
+//! dropped without a word on the table's sheet and only W003 on SETTINGS;
+//! an actuator-table header naming its column in another word than the
+//! first (`stroke time extend`, `solenoid valve`) lost the column's values
+//! with a W003; settings on a sheet of another name (`PARAMETERS`) were
+//! ignored in silence. Each row goes through the binary: exit code, the
+//! code at its cell, and that a refused input writes nothing.
+
+use crate::helpers::steptable;
+use crate::hostile_round8::refused;
+use rust_xlsxwriter::{Workbook, Worksheet};
+
+const TABLE: &[&[&str]] = &[
+    &["", "BRANCH 1", "BRANCH 2"],
+    &["STEP 1", "C1+1"],
+    &["STEP 2", "C2+1"],
+    &["STEP 3", "C2-0", "C1-0"],
+];
+
+fn write_rows(sheet: &mut Worksheet, rows: &[&[&str]]) {
+    for (r, row) in rows.iter().enumerate() {
+        for (c, text) in row.iter().enumerate().filter(|(_, t)| !t.is_empty()) {
+            sheet.write_string(r as u32, c as u16, *text).unwrap();
+        }
+    }
+}
+
+/// A workbook of the table, with `below` written two rows under it on its
+/// sheet, and each `(name, rows)` sheet after it.
+fn workbook(below: &[&str], sheets: &[(&str, &[&[&str]])]) -> Vec<u8> {
+    let mut workbook = Workbook::new();
+    let table = workbook.add_worksheet();
+    table.set_name("SEQUENTIAL CONTROL DESCRIPTION").unwrap();
+    write_rows(table, TABLE);
+    for (c, text) in below.iter().enumerate() {
+        table.write_string(6, c as u16, *text).unwrap();
+    }
+    for (name, rows) in sheets {
+        let sheet = workbook.add_worksheet();
+        sheet.set_name(*name).unwrap();
+        write_rows(sheet, rows);
+    }
+    workbook.save_to_buffer().unwrap()
+}
+
+/// `check` of `bytes`: exit code and what was said.
+fn check(bytes: Vec<u8>) -> (Option<i32>, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.xlsx");
+    std::fs::write(&path, bytes).unwrap();
+    let output = steptable().arg("check").arg(&path).output().unwrap();
+    let said = [&output.stdout, &output.stderr].map(|b| String::from_utf8_lossy(b).into_owned());
+    (output.status.code(), said.concat())
+}
+
+/// A misspelt label and a valid value of the label meant, in one cell:
+/// E046 on the table's sheet, in a CSV and on SETTINGS (rt16 F6), as the
+/// same label spelt right is. A note that only looks like one (`Model:
+/// DSNU-16`, `Note: mode all`) is read as a note.
+#[test]
+fn a_misspelt_setting_with_its_value_in_one_cell_is_refused() {
+    let table_sheet = "SEQUENTIAL CONTROL DESCRIPTION!A7: error[E046]";
+    for text in [
+        "mode: all",
+        "mode all",
+        "mode = all",
+        "saftey=all",
+        "scantime 20ms",
+    ] {
+        refused(
+            "table.xlsx",
+            workbook(&[text], &[]),
+            &[table_sheet, "misspelt, with its value in one cell"],
+        );
+        let settings: &[&[&str]] = &[&["target", "iec"], &[], &[text]];
+        refused(
+            "settings.xlsx",
+            workbook(&[], &[("SETTINGS", settings)]),
+            &[
+                "SETTINGS!A3: error[E046]",
+                "misspelt, with its value in one cell",
+            ],
+        );
+    }
+    refused(
+        "table.csv",
+        b",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n\nmode: estop\n".to_vec(),
+        &["table.csv:5:1: error[E046]", "`modes` misspelt"],
+    );
+    for note in ["Model: DSNU-16", "Note: mode all", "mode: see drawing"] {
+        let (code, said) = check(workbook(&[note], &[]));
+        assert_eq!(code, Some(0), "{note}: {said}");
+        assert!(!said.contains("E046"), "{note}: {said}");
+        let settings: &[&[&str]] = &[&["target", "iec"], &[], &[note]];
+        let (code, said) = check(workbook(&[], &[("SETTINGS", settings)]));
+        assert_eq!(code, Some(0), "{note}: {said}");
+        assert!(
+            said.contains("SETTINGS!A3: warning[W003]"),
+            "{note}: {said}"
+        );
+    }
+}
+
+/// An actuator-table header that names a column in another word than its
+/// first, or names two, over values: E046 at the header, nothing written
+/// (rt16 F8); the values had been dropped with a W003. A header that names
+/// none (`designation`) is a column of notes, W003 as before.
+#[test]
+fn an_actuator_header_naming_its_column_elsewhere_is_refused() {
+    let rows = [
+        (
+            "stroke time extend",
+            "2s",
+            "the column `extend` in another word",
+        ),
+        (
+            "Time to extend",
+            "2s",
+            "the column `extend` in another word",
+        ),
+        (
+            "Extension time",
+            "2s",
+            "the column `extend` in another word",
+        ),
+        (
+            "solenoid valve",
+            "52bi",
+            "the column `valve` in another word",
+        ),
+        (
+            "Actuator name",
+            "clamp",
+            "the column `name` in another word",
+        ),
+        ("Load on extend", "0.2", "the columns `extend` and `load`"),
+        ("name of valve", "clamp", "the columns `valve` and `name`"),
+    ];
+    for (header, value, says) in rows {
+        let settings: &[&[&str]] = &[&["actuator", "retract", header], &["C1", "1s", value]];
+        refused(
+            "header.xlsx",
+            workbook(&[], &[("SETTINGS", settings)]),
+            &["SETTINGS!C1: error[E046]", says],
+        );
+    }
+    // No value under it: nothing is lost, a W003 names the header.
+    let settings: &[&[&str]] = &[&["actuator", "retract", "solenoid valve"], &["C1", "1s"]];
+    let (code, said) = check(workbook(&[], &[("SETTINGS", settings)]));
+    assert_eq!(code, Some(0), "{said}");
+    assert!(said.contains("SETTINGS!C1: warning[W003]"), "{said}");
+    let settings: &[&[&str]] = &[
+        &["actuator", "retract", "designation"],
+        &["C1", "1s", "1A1"],
+    ];
+    let (code, said) = check(workbook(&[], &[("SETTINGS", settings)]));
+    assert_eq!(code, Some(0), "{said}");
+    assert!(said.contains("SETTINGS!C1: warning[W003]"), "{said}");
+}
+
+/// Settings on a sheet of another name (`PARAMETERS`, `Config`): only the
+/// sheet named SETTINGS is read, and those were ignored without a word
+/// (rt15 F10). Now W015 at the first, counting them, once per sheet; the
+/// table is converted as written. A sheet of notes says nothing.
+#[test]
+fn settings_on_a_sheet_of_another_name_are_said() {
+    let params: &[&[&str]] = &[
+        &["SETTING", "VALUE"],
+        &["modes", "estop, reset"],
+        &["safety", "all"],
+    ];
+    let (code, said) = check(workbook(&[], &[("PARAMETERS", params)]));
+    assert_eq!(code, Some(0), "{said}");
+    assert!(
+        said.contains(
+            "PARAMETERS!A2: warning[W015]: the sheet \"PARAMETERS\" holds what reads as 2 settings"
+        ),
+        "{said}"
+    );
+    assert_eq!(said.matches("W015").count(), 1, "{said}");
+    let config: &[&[&str]] = &[&["mode: estop"]];
+    let (code, said) = check(workbook(&[], &[("Config", config)]));
+    assert_eq!(code, Some(0), "{said}");
+    assert!(said.contains("Config!A1: warning[W015]"), "{said}");
+    // Beside a SETTINGS sheet, too: what the other one holds is lost.
+    let settings: &[&[&str]] = &[&["target", "iec"]];
+    let (code, said) = check(workbook(
+        &[],
+        &[("SETTINGS", settings), ("Config", &[&["modes", "all"]])],
+    ));
+    assert_eq!(code, Some(0), "{said}");
+    assert!(said.contains("Config!A1: warning[W015]"), "{said}");
+    let legend: &[&[&str]] = &[&["Target", "30 parts/min"], &["Model", "DSNU-16"]];
+    let labels_only: &[&[&str]] = &[&["SETTING", "VALUE"], &["modes"]];
+    let title: &[&[&str]] = &[&["Drawing 4711, rev. B"]];
+    for notes in [legend, labels_only, title] {
+        let (code, said) = check(workbook(&[], &[("Notes", notes)]));
+        assert_eq!(code, Some(0), "{said}");
+        assert!(!said.contains("W015"), "{said}");
+    }
+}
