@@ -330,7 +330,20 @@ pub(super) fn report_unused(
             CellValue::Text(t) => Some(t.as_str()),
             _ => None,
         };
-        let item_like = text.is_some_and(looks_like_item);
+        // Below the table, a row whose label cell holds a note (`Note, C1
+        // first`) is a note: only what reads wholly as moves would be lost.
+        let note_row = row > last_row
+            && frame
+                .label_col
+                .and_then(|c| grid.cells.iter().find(|g| g.pos == CellPos::new(row, c)))
+                .is_some_and(|label| match &label.value {
+                    CellValue::Text(t) => header_kind(t).is_none(),
+                    _ => false,
+                });
+        let item_like = text.is_some_and(|t| match note_row {
+            true => reads_as_items(t),
+            false => looks_like_item(t),
+        });
         let in_header_row = frame.header_row == Some(row);
         match why_lost(grid, frame, cell.pos, in_step_row) {
             Some(why) if item_like => {

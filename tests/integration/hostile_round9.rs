@@ -200,3 +200,31 @@ fn settings_on_a_sheet_of_another_name_are_said() {
         assert!(!said.contains("W015"), "{said}");
     }
 }
+
+/// A CSV note row below the table whose comma splits the note (`Note: C2
+/// is the clamp, C1 the slide`): the part in a branch column was E010 "would
+/// be lost" for looking like a move (rt16 F14). In a row whose label cell
+/// holds a note, only what reads wholly as moves would be lost.
+#[test]
+fn a_csv_note_split_by_its_comma_is_a_note() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.csv");
+    let table = ",BRANCH 1,BRANCH 2\nSTEP 1,C1+1,\nSTEP 2,C2+1,\nSTEP 3,C2-0,C1-0\n";
+    std::fs::write(
+        &path,
+        format!("{table}Note: C2 is the clamp, C1 the slide\n"),
+    )
+    .unwrap();
+    let output = steptable().arg("check").arg(&path).output().unwrap();
+    let said = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "{said}");
+    assert!(
+        said.contains("t.csv:5:2: warning[W003]: \"C1 the slide\""),
+        "{said}"
+    );
+    refused(
+        "t.csv",
+        format!("{table}Note: then,C1+1\n").into_bytes(),
+        &["t.csv:5:2: error[E010]: \"C1+1\" lies outside the table"],
+    );
+}
