@@ -279,6 +279,7 @@ fn read_with(file: &str, text: &str, delimiter: u8, diags: &mut Diagnostics) -> 
             file: file.to_string(),
             sheet: None,
             cells,
+            hidden: Vec::new(),
         },
         spaced_fields,
         diags: local,

@@ -56,6 +56,11 @@ pub struct Grid {
     pub sheet: Option<String>,
     /// Non-empty cells in row-major order.
     pub cells: Vec<GridCell>,
+    /// Cells under a merge, which the spreadsheet hides (E049 at each): not
+    /// read, but known, so that what follows only from their absence (a
+    /// step without its move, a move from the wrong position) is not said
+    /// a second time.
+    pub hidden: Vec<GridCell>,
 }
 
 impl Grid {
@@ -83,6 +88,7 @@ impl Grid {
             file: file.to_string(),
             sheet: sheet.map(str::to_string),
             cells,
+            hidden: Vec::new(),
         }
     }
 

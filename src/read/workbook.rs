@@ -285,6 +285,7 @@ impl SheetSource for XlsxSource {
             file: file.to_string(),
             sheet: Some(name.to_string()),
             cells,
+            hidden: Vec::new(),
         })
     }
 }
@@ -314,13 +315,17 @@ fn refuse_hidden_under_merges(grid: &mut Grid, regions: &[Region], diags: &mut D
         })
     };
     let mut hidden = Vec::new();
-    grid.cells.retain(|cell| match under(cell.pos) {
-        Some(&((r0, c0), (r1, c1))) => {
-            hidden.push((cell.pos, cell.value.describe(), (r0, c0), (r1, c1)));
-            false
+    let mut kept = Vec::with_capacity(grid.cells.len());
+    for cell in std::mem::take(&mut grid.cells) {
+        match under(cell.pos) {
+            Some(&((r0, c0), (r1, c1))) => {
+                hidden.push((cell.pos, cell.value.describe(), (r0, c0), (r1, c1)));
+                grid.hidden.push(cell);
+            }
+            None => kept.push(cell),
         }
-        None => true,
-    });
+    }
+    grid.cells = kept;
     for (pos, value, first, last) in hidden {
         let first = CellPos::new(first.0, first.1).a1();
         let last = CellPos::new(last.0, last.1).a1();
@@ -493,5 +498,6 @@ fn grid_from_range(file: &str, sheet: &str, range: &Range<Data>) -> Grid {
         file: file.to_string(),
         sheet: Some(sheet.to_string()),
         cells,
+        hidden: Vec::new(),
     }
 }

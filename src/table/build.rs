@@ -64,6 +64,18 @@ pub fn build_for(grid: &Grid, valves: &Valves, diags: &mut Diagnostics) -> Optio
         }
     };
     frame::report_unused(grid, &frame, &mut lost, diags);
+    // A move hidden under a merge (E049) is refused as well, at its step.
+    for cell in &grid.hidden {
+        if let CellValue::Text(text) = &cell.value {
+            // In a step's row, its index; between rows, the next step's.
+            let step = frame
+                .step_rows
+                .iter()
+                .filter(|r| **r < cell.pos.row)
+                .count();
+            lost(text, step);
+        }
+    }
 
     // Parse every cell.
     let mut parsed: Vec<Vec<(CellItem, CellPos, usize)>> = Vec::with_capacity(rows.len());
@@ -89,8 +101,11 @@ pub fn build_for(grid: &Grid, valves: &Valves, diags: &mut Diagnostics) -> Optio
         );
         return None;
     };
+    // A step whose row holds a cell hidden under a merge lacks it for that
+    // reason alone (E049 there).
+    let hides = |i: usize| grid.hidden.iter().any(|c| c.pos.row == frame.step_rows[i]);
     for (i, row) in rows.iter().enumerate().take(last_with_moves) {
-        if row.is_empty() {
+        if row.is_empty() && !hides(i) {
             let first_col = frame.branch_cols.first().copied().unwrap_or(0);
             let pos = CellPos::new(frame.step_rows[i], first_col);
             let what = if frame.labelled {

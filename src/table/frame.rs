@@ -355,7 +355,8 @@ pub(super) fn report_unused(
             Some(why)
                 if near_rows.contains(&row) && near_cols.contains(&col)
                     || in_step_row
-                    || in_header_row =>
+                    || in_header_row
+                    || note_row =>
             {
                 warn_ignored(grid, cell.pos, &cell.value, &why, diags)
             }

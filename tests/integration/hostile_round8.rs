@@ -48,7 +48,7 @@ const FOUR: &[&[&str]] = &[
 
 /// An `.xlsx` of the four-step table whose `merge` cells are merged, then
 /// `under` written beneath the merge's first cell, where Excel hides it.
-fn merged_xlsx(
+pub(crate) fn merged_xlsx(
     settings: Option<&[&[&str]]>,
     merge: (u32, u16, u32, u16),
     under: (u32, u16, &str),
@@ -404,10 +404,17 @@ fn the_red_teams_second_look_at_the_reading_rules() {
             Some(0),
             "ok: 2 steps, 2 branch(es)",
         ),
+        // A note row's part under a BRANCH header is a note, named (rt16
+        // F14); only one that reads wholly as moves would be lost.
         (
             "Note,C2 stops midway\n",
+            Some(0),
+            "t.csv:5:2: warning[W003]: \"C2 stops midway\" is not part of the step table and was not read: its row 5 lies below the table's last step, STEP 2 (row 3), and is no step: its label cell 5:1 holds \"Note\"",
+        ),
+        (
+            "Note,C2+1\n",
             Some(1),
-            "t.csv:5:2: error[E010]: \"C2 stops midway\" lies outside the table and would be lost: its row 5 lies below the table's last step, STEP 2 (row 3), and is no step: its label cell 5:1 holds \"Note\"",
+            "t.csv:5:2: error[E010]: \"C2+1\" lies outside the table and would be lost",
         ),
     ];
     let mut broken = Vec::new();

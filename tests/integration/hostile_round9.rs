@@ -228,3 +228,21 @@ fn a_csv_note_split_by_its_comma_is_a_note() {
         &["t.csv:5:2: error[E010]: \"C1+1\" lies outside the table"],
     );
 }
+
+/// A move hidden under a merge is E049 at its cell, and nothing else: the
+/// step it was in was also E023 "has no move", and the actuator's next move
+/// E020 for starting from the wrong position, cells only wrong because the
+/// hidden one was not read (rt15 F11).
+#[test]
+fn a_move_hidden_under_a_merge_is_said_once() {
+    // STEP 2's C2+1 (B3) under a merge of A3:B3, its STEP label's cell.
+    let bytes = crate::hostile_round8::merged_xlsx(None, (2, 0, 2, 1), (2, 1, "C2+1"));
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("m.xlsx");
+    std::fs::write(&path, bytes).unwrap();
+    let output = steptable().arg("check").arg(&path).output().unwrap();
+    let said = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{said}");
+    assert!(said.contains("!B3: error[E049]"), "{said}");
+    assert_eq!(said.matches("error[").count(), 1, "{said}");
+}
