@@ -112,27 +112,27 @@ fn an_actuator_header_naming_its_column_elsewhere_is_refused() {
         (
             "stroke time extend",
             "2s",
-            "the column `extend` in another word",
+            "the column `extend`, but not as its first word",
         ),
         (
             "Time to extend",
             "2s",
-            "the column `extend` in another word",
+            "the column `extend`, but not as its first word",
         ),
         (
-            "Extension time",
+            "ExtendTime",
             "2s",
-            "the column `extend` in another word",
+            "the column `extend`, but not as its first word",
         ),
         (
             "solenoid valve",
             "52bi",
-            "the column `valve` in another word",
+            "the column `valve`, but not as its first word",
         ),
         (
             "Actuator name",
             "clamp",
-            "the column `name` in another word",
+            "the column `name`, but not as its first word",
         ),
         ("Load on extend", "0.2", "the columns `extend` and `load`"),
         ("name of valve", "clamp", "the columns `valve` and `name`"),
@@ -143,6 +143,16 @@ fn an_actuator_header_naming_its_column_elsewhere_is_refused() {
             "header.xlsx",
             workbook(&[], &[("SETTINGS", settings)]),
             &["SETTINGS!C1: error[E046]", says],
+        );
+    }
+    // Another form of the column's word, first: that column (rt17 F8).
+    for header in ["Extended", "Extending", "Extension time"] {
+        let settings: &[&[&str]] = &[&["actuator", header], &["C1", "2s"]];
+        let (code, said) = check(workbook(&[], &[("SETTINGS", settings)]));
+        assert_eq!(code, Some(0), "{header}: {said}");
+        assert!(
+            !said.contains("W003") && !said.contains("E046"),
+            "{header}: {said}"
         );
     }
     // No value under it: nothing is lost, a W003 names the header.
@@ -245,4 +255,40 @@ fn a_move_hidden_under_a_merge_is_said_once() {
     assert_eq!(output.status.code(), Some(1), "{said}");
     assert!(said.contains("!B3: error[E049]"), "{said}");
     assert_eq!(said.matches("error[").count(), 1, "{said}");
+}
+
+/// A unit in a time column's header is the unit of its bare numbers:
+/// `Extend time [ms]` over 500 was read as 500 s, a cycle of 882 s, exit 0
+/// (rt17 F1). A unit written in the cell wins; a header without one leaves
+/// a bare text time to W007, as before.
+#[test]
+fn a_unit_in_a_time_columns_header_is_the_unit_of_its_numbers() {
+    let simulate = |settings: &[&[&str]]| {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.xlsx");
+        std::fs::write(&path, workbook(&[], &[("SETTINGS", settings)])).unwrap();
+        let output = steptable().arg("simulate").arg(&path).output().unwrap();
+        let said =
+            [&output.stdout, &output.stderr].map(|b| String::from_utf8_lossy(b).into_owned());
+        (output.status.code(), said.concat())
+    };
+    // C1 extends in 500 ms (less a scan to its sensor).
+    for header in ["Extend time [ms]", "extend (ms)", "extend in milliseconds"] {
+        let (code, said) = simulate(&[&["actuator", header], &["C1", "500"]]);
+        assert_eq!(code, Some(0), "{header}: {said}");
+        assert!(said.contains("0.49 s  C1+1"), "{header}: {said}");
+        assert!(!said.contains("W007"), "{header}: {said}");
+    }
+    let (_, said) = simulate(&[&["actuator", "Extend time [ms]"], &["C1", "2s"]]);
+    assert!(said.contains("1.96 s  C1+1"), "{said}");
+    let (_, said) = simulate(&[&["actuator", "Extend time [s]"], &["C1", "2"]]);
+    assert!(
+        said.contains("1.96 s  C1+1") && !said.contains("W007"),
+        "{said}"
+    );
+    let (_, said) = simulate(&[&["actuator", "extend"], &["C1", "2"]]);
+    assert!(
+        said.contains("1.96 s  C1+1") && said.contains("W007"),
+        "{said}"
+    );
 }

@@ -82,7 +82,7 @@ pub(super) fn actuator_columns(
                 if below && !named.is_empty() {
                     let which = match named.as_slice() {
                         [one] => format!(
-                            "it names the column `{one}` in another word than the first: head it `{one}`"
+                            "it names the column `{one}`, but not as its first word: head it `{one}`"
                         ),
                         _ => format!(
                             "it names the columns {}: head it with the one it holds",
@@ -438,7 +438,15 @@ fn read_actuator_row<'g>(
     let mut time = |col: Option<u32>, what: &'static str| -> Option<u32> {
         let cell = col.and_then(at)?;
         let text = value_text(grid, cell, diags)?;
-        let Some(ms) = parse_duration_ms(&text) else {
+        // A unit in the column's header (`Extend time [ms]`) is the unit
+        // of its bare numbers; a unit in the cell itself wins.
+        let header_unit = header_unit(grid, CellPos::new(columns.header.row, col?));
+        let bare = crate::cell::without_unit(&text);
+        let read = match header_unit {
+            Some(unit) if bare => format!("{}{unit}", text.trim()),
+            _ => text.clone(),
+        };
+        let Some(ms) = parse_duration_ms(&read) else {
             let why = if crate::cell::thousands_comma(&text) {
                 crate::cell::thousands_comma_words(&text)
             } else {
@@ -451,7 +459,9 @@ fn read_actuator_row<'g>(
             );
             return None;
         };
-        said_without_unit(grid, cell, &text, diags);
+        if header_unit.is_none() {
+            said_without_unit(grid, cell, &text, diags);
+        }
         stroke_at.push((what, grid.location(cell.pos)));
         Some(ms)
     };
@@ -483,15 +493,25 @@ pub(super) fn column_word(label: &str) -> &str {
         .split(|c: char| !c.is_alphanumeric())
         .filter(|w| !w.is_empty());
     // A plural names the column too (`valves`, `names`).
-    let column = |w: &str| {
-        COLUMNS
-            .into_iter()
-            .find(|c| w == *c || w.strip_suffix('s') == Some(c))
-    };
+    let column = |w: &str| COLUMNS.into_iter().find(|c| names_column(w, c));
     match words.next().and_then(&column) {
         Some(known) if !words.any(|w| column(w).is_some()) => known,
         _ => label,
     }
+}
+
+/// The unit a time column's header states (`Extend time [ms]`, `retract
+/// (s)`, `extend in milliseconds`): `ms` or `s`.
+fn header_unit(grid: &Grid, header: CellPos) -> Option<&'static str> {
+    let cell = grid.cells.iter().find(|c| c.pos == header)?;
+    let label = label_of(&cell.value)?;
+    label
+        .split(|c: char| !c.is_alphanumeric())
+        .find_map(|word| match word {
+            "ms" | "msec" | "millisecond" | "milliseconds" => Some("ms"),
+            "s" | "sec" | "secs" | "second" | "seconds" => Some("s"),
+            _ => None,
+        })
 }
 
 /// The columns a header's words name, in the order of [`COLUMNS`]: a
@@ -506,13 +526,23 @@ fn columns_named(label: &str) -> Vec<&'static str> {
         .into_iter()
         .filter(|column| {
             words.iter().any(|w| {
-                *w == *column
-                    || w.strip_suffix('s') == Some(column)
+                names_column(w, column)
                     || (column.len() > 4 && w.starts_with(&column[..column.len() - 1]))
                     || (w.chars().count() >= 4 && misspelt_column(w) == Some(column))
             })
         })
         .collect()
+}
+
+/// Whether `word` is the column's word, its plural or another form of it
+/// (`extended`, `extending`, `extension`, `retraction`).
+fn names_column(word: &str, column: &str) -> bool {
+    let forms: &[&str] = match column {
+        "extend" => &["extended", "extending", "extension"],
+        "retract" => &["retracted", "retracting", "retraction"],
+        _ => &[],
+    };
+    word == column || word.strip_suffix('s') == Some(column) || forms.contains(&word)
 }
 
 /// The actuator table's column `label` misspells: one letter off, or the
