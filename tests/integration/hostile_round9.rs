@@ -292,3 +292,45 @@ fn a_unit_in_a_time_columns_header_is_the_unit_of_its_numbers() {
         "{said}"
     );
 }
+
+/// An actuator table written with the step table (below it, or in a CSV)
+/// or on a sheet of another name was dropped without a word: the program
+/// ran with the default valves and strokes, exit 0 (rt17 F2, F3). With
+/// the table it is E030 at its header; on another sheet W015.
+#[test]
+fn an_actuator_table_where_it_is_not_read_is_said() {
+    refused(
+        "t.csv",
+        b",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n\nactuator,extend,retract,valve\nC1,3s,2s,52mono\n"
+            .to_vec(),
+        &["t.csv:5:1: error[E030]: an actuator table (headed here, its first row at 6:1)"],
+    );
+    let mut book = Workbook::new();
+    let table = book.add_worksheet();
+    table.set_name("SEQUENTIAL CONTROL DESCRIPTION").unwrap();
+    write_rows(table, TABLE);
+    for (r, row) in [["actuator", "valve"], ["C1 (clamp)", "52mono"]]
+        .iter()
+        .enumerate()
+    {
+        for (c, text) in row.iter().enumerate() {
+            table
+                .write_string(8 + r as u32, 3 + c as u16, *text)
+                .unwrap();
+        }
+    }
+    refused(
+        "t.xlsx",
+        book.save_to_buffer().unwrap(),
+        &["SEQUENTIAL CONTROL DESCRIPTION!D9: error[E030]: an actuator table"],
+    );
+    let cylinders: &[&[&str]] = &[&["Actuators", "extend", "retract"], &["C1", "3s", "2s"]];
+    let (code, said) = check(workbook(&[], &[("Cylinders", cylinders)]));
+    assert_eq!(code, Some(0), "{said}");
+    assert!(said.contains("Cylinders!A1: warning[W015]"), "{said}");
+    // A legend of actuators without values is no table.
+    let legend: &[&[&str]] = &[&["Actuator", "name"], &["C1"], &["C2"]];
+    let (code, said) = check(workbook(&[], &[("Legend", legend)]));
+    assert_eq!(code, Some(0), "{said}");
+    assert!(!said.contains("W015"), "{said}");
+}

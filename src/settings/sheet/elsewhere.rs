@@ -1,7 +1,8 @@
 //! Settings written where they are not read: with the step table (on its
 //! sheet, or in a CSV file), or on a workbook's sheet of another name.
 
-use super::{known_label, label_of, text_of, unread, valid_value};
+use super::actuators::column_word;
+use super::{COLUMNS, known_label, label_of, text_of, unread, valid_value};
 use crate::diag::{CellPos, Code, Diagnostics};
 use crate::read::{CellValue, Grid};
 
@@ -18,6 +19,13 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
         }
     };
     let lost = "where settings are not read (the program would be made without it)";
+    if let Some((header, row)) = actuator_table(table) {
+        diags.error(
+            Code::E030BadSetting,
+            table.location(header),
+            format!("an actuator table (headed here, its first row at {}) lies with the step table, {lost}: the valves, stroke times, loads or names it gives would be lost; {instead}", table.cell_name(row)),
+        );
+    }
     for cell in &table.cells {
         let CellValue::Text(text) = &cell.value else {
             continue;
@@ -83,6 +91,7 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
 /// rows, and the table is read as written.
 pub fn written_elsewhere(others: &[Grid], diags: &mut Diagnostics) {
     for grid in others {
+        // An actuator table there is found as with the step table.
         let mut found = Diagnostics::new();
         written_with_table(grid, &mut found);
         let Some(first) = found.iter().next() else {
@@ -101,4 +110,46 @@ pub fn written_elsewhere(others: &[Grid], diags: &mut Diagnostics) {
             format!("the sheet \"{sheet}\" holds what reads as {which}, but settings are read from the sheet named SETTINGS only: not read, the program is made without them; rename the sheet SETTINGS, or move the rows there, if they are meant"),
         );
     }
+}
+
+/// An actuator table on a sheet where it is not read: a header whose
+/// first word is `actuator` with a column's header right of it, over a row
+/// naming an actuator with a value in one of those columns. The header's
+/// cell and that row's first cell.
+fn actuator_table(grid: &Grid) -> Option<(CellPos, CellPos)> {
+    let text_at = |pos: CellPos| {
+        grid.cells
+            .iter()
+            .find(|c| c.pos == pos)
+            .map(|c| text_of(&c.value))
+    };
+    grid.cells.iter().find_map(|cell| {
+        let label = label_of(&cell.value)?;
+        let first = label.split(|c: char| !c.is_alphanumeric()).next()?;
+        if first != "actuator" && first != "actuators" {
+            return None;
+        }
+        let header = cell.pos;
+        let columns: Vec<u32> = grid
+            .cells
+            .iter()
+            .filter(|c| c.pos.row == header.row && c.pos.col > header.col)
+            .filter(|c| label_of(&c.value).is_some_and(|l| COLUMNS.contains(&column_word(&l))))
+            .map(|c| c.pos.col)
+            .collect();
+        if columns.is_empty() {
+            return None;
+        }
+        // The rows under it, up to a blank one.
+        (header.row + 1..header.row + 200)
+            .map(|row| CellPos::new(row, header.col))
+            .take_while(|pos| text_at(*pos).is_some())
+            .find(|pos| {
+                text_at(*pos).is_some_and(|t| crate::cell::actuator_name(&t).is_some())
+                    && columns.iter().any(|col| {
+                        text_at(CellPos::new(pos.row, *col)).is_some_and(|t| !t.trim().is_empty())
+                    })
+            })
+            .map(|row| (header, row))
+    })
 }
