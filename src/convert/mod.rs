@@ -130,7 +130,8 @@ fn finish_check(
         }
     }
     crate::settings::written_with_table(&input.table, &mut diags);
-    crate::settings::written_elsewhere(&input.others, &mut diags);
+    let has_settings = input.settings.is_some();
+    crate::settings::written_elsewhere(&input.others, has_settings, &mut diags);
     let valves = &effective.simulation.machine.valves;
     let table = table::build_for(&input.table, valves, &mut diags);
     if let Some(table) = &table {

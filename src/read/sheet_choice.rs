@@ -86,8 +86,13 @@ pub(super) fn misnamed_side_sheets(file: &str, names: &[String], diags: &mut Dia
             Code::E046MistypedSetting,
             sheet,
             format!(
-                "the sheet \"{name}\" is not read: only a sheet named {side} is read for {}; rename it {side} (nothing is written, the program would lack what it holds)",
-                if side == SETTINGS_SHEET { "settings" } else { "pinned addresses" }
+                "the sheet \"{name}\" is not read: only a sheet named {side} is read for {}; {} (nothing is written, the program would lack what it holds)",
+                if side == SETTINGS_SHEET { "settings" } else { "pinned addresses" },
+                // Beside the sheet of that name, renaming makes two.
+                match names.iter().any(|n| is_side(n, side)) {
+                    true => format!("move what it holds to the sheet {side} and delete it"),
+                    false => format!("rename it {side}"),
+                }
             ),
         );
     }

@@ -423,18 +423,41 @@ const CLOSED_VALUES: [&str; 7] = [
     "scan time",
 ];
 
-/// Whether `value` is a valid value of the setting `label`.
+/// Whether `value` is a valid value of the setting `label`, as written or
+/// in the dress a note gives it (`(all)`, `"all"`, `all.`, `20ms (PLC)`,
+/// `watchdog; edge`): where settings are not read, a value so dressed
+/// would be lost all the same.
 fn valid_value(label: &'static str, value: &str, cell: &GridCell, grid: &Grid) -> bool {
-    let mut scratch = Diagnostics::new();
-    apply(
-        &mut Given::default(),
-        label,
-        value,
-        cell,
-        grid,
-        &mut scratch,
-    );
-    !value.trim().is_empty() && !scratch.has_errors()
+    let valid = |value: &str| {
+        let mut scratch = Diagnostics::new();
+        apply(
+            &mut Given::default(),
+            label,
+            value,
+            cell,
+            grid,
+            &mut scratch,
+        );
+        !value.trim().is_empty() && !scratch.has_errors()
+    };
+    valid(value) || undressed(value).is_some_and(|v| valid(&v))
+}
+
+/// `value` without the dress of a note: trailing `.`, `;` or `,`, a
+/// wrapping pair of brackets or quotes, a trailing remark in brackets, and
+/// `;` between items for `,`. `None` when there is none.
+fn undressed(value: &str) -> Option<String> {
+    let mut v = value.trim().trim_end_matches(['.', ';', ',']).trim();
+    for (open, close) in [('(', ')'), ('[', ']'), ('"', '"'), ('\'', '\''), ('“', '”')] {
+        if let Some(inner) = v.strip_prefix(open).and_then(|v| v.strip_suffix(close)) {
+            v = inner.trim();
+        }
+    }
+    if let Some((before, _)) = v.split_once(" (").filter(|(_, rest)| rest.ends_with(')')) {
+        v = before.trim();
+    }
+    let v = v.replace(';', ",");
+    (v != value.trim()).then_some(v)
 }
 
 /// The value of one labelled setting, into `settings`; E030 when it is

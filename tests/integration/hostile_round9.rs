@@ -334,3 +334,68 @@ fn an_actuator_table_where_it_is_not_read_is_said() {
     assert_eq!(code, Some(0), "{said}");
     assert!(!said.contains("W015"), "{said}");
 }
+
+/// What the red team rt17 found around the one-cell rule: a value dressed
+/// as a note writes it (`mode (all)`, `mode: all.`, `mode=all;`,
+/// `scantime: 20ms (PLC)`) passed in silence on the table's sheet; `scan`,
+/// the command line's name, was two W003s; a label with words after it
+/// (`safety checks | all`) was told to put its value right of it, where it
+/// was; a copy `SETTINGS (2)` beside SETTINGS was told to be renamed
+/// SETTINGS, which makes two.
+#[test]
+fn the_red_teams_look_at_the_one_cell_rule() {
+    for text in [
+        "mode (all)",
+        "mode: all.",
+        "mode \"all\"",
+        "mode=all;",
+        "scantime: 20ms (PLC)",
+        "saftey: watchdog; edge",
+        "scan: 20ms",
+    ] {
+        refused(
+            "dressed.xlsx",
+            workbook(&[text], &[]),
+            &["SEQUENTIAL CONTROL DESCRIPTION!A7: error[E046]"],
+        );
+    }
+    let scan: &[&[&str]] = &[&["scan", "10ms"]];
+    refused(
+        "scan.xlsx",
+        workbook(&[], &[("SETTINGS", scan)]),
+        &[
+            "SETTINGS!A1: error[E046]: \"scan\" is not a setting steptable knows: did you mean `scan time`?",
+        ],
+    );
+    let extra: &[&[&str]] = &[&["safety checks", "all"]];
+    refused(
+        "extra.xlsx",
+        workbook(&[], &[("SETTINGS", extra)]),
+        &[
+            "SETTINGS!A1: error[E046]: \"safety checks\" starts with the setting safety but has more words after it: write the label `safety` alone",
+        ],
+    );
+    let settings: &[&[&str]] = &[&["target", "iec"]];
+    refused(
+        "copy.xlsx",
+        workbook(
+            &[],
+            &[
+                ("SETTINGS", settings),
+                ("SETTINGS (2)", &[&["modes", "all"]]),
+            ],
+        ),
+        &["move what it holds to the sheet SETTINGS and delete it"],
+    );
+    let (_, said) = check(workbook(
+        &[],
+        &[
+            ("SETTINGS", settings),
+            ("SETTINGS old", &[&["modes", "all"]]),
+        ],
+    ));
+    assert!(
+        said.contains("W015") && said.contains("move the rows to the SETTINGS sheet"),
+        "{said}"
+    );
+}

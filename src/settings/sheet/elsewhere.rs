@@ -89,7 +89,11 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
 /// sheet, at the first, since only the sheet named SETTINGS is read for
 /// them. A warning, not an error: such a sheet may be a legend of example
 /// rows, and the table is read as written.
-pub fn written_elsewhere(others: &[Grid], diags: &mut Diagnostics) {
+pub fn written_elsewhere(others: &[Grid], has_settings: bool, diags: &mut Diagnostics) {
+    let advice = match has_settings {
+        true => "move the rows to the SETTINGS sheet",
+        false => "rename the sheet SETTINGS, or move the rows there,",
+    };
     for grid in others {
         // An actuator table there is found as with the step table.
         let mut found = Diagnostics::new();
@@ -107,7 +111,7 @@ pub fn written_elsewhere(others: &[Grid], diags: &mut Diagnostics) {
         diags.warning(
             Code::W015SettingsElsewhere,
             first.location.clone(),
-            format!("the sheet \"{sheet}\" holds what reads as {which}, but settings are read from the sheet named SETTINGS only: not read, the program is made without them; rename the sheet SETTINGS, or move the rows there, if they are meant"),
+            format!("the sheet \"{sheet}\" holds what reads as {which}, but settings are read from the sheet named SETTINGS only: not read, the program is made without them; {advice} if they are meant"),
         );
     }
 }

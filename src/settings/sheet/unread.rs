@@ -44,14 +44,22 @@ pub(super) fn name_the_rest(
             let word = label_of(&cell.value).unwrap_or_default();
             if let Some(label) = setting_in_one_cell(&cell.value) {
                 // The setting would be lost: the program written without it.
-                reader.mistyped(
-                    cell.pos,
-                    format!(
+                let beside = cells.iter().any(|c| c.pos.col > cell.pos.col);
+                let message = match beside {
+                    // `safety checks | all`: a label with words after it.
+                    true => format!(
+                        "{} starts with the setting {label} but has more words after it: write the label `{label}` alone, its value right of it (the row was not read)",
+                        cell.value.describe()
+                    ),
+                    false => format!(
                         "{} holds the setting {label} and its value in one cell; write the value in the cell right of \"{label}\" (it was not read)",
                         cell.value.describe()
                     ),
-                    diags,
-                );
+                };
+                reader.mistyped(cell.pos, message, diags);
+                if beside {
+                    reader.seen.extend(cells.iter().map(|c| c.pos));
+                }
                 continue;
             }
             let misspelt = match &cell.value {
@@ -183,6 +191,10 @@ pub(super) fn mistyped_label(label: &str) -> Option<&'static str> {
     let word = letters(label).to_lowercase();
     if word.is_empty() {
         return None;
+    }
+    // The command line's name of a setting (`--scan`).
+    if word == "scan" {
+        return Some("scan time");
     }
     let length = word.chars().count();
     LABELS
