@@ -18,6 +18,7 @@
 
 mod actuators;
 mod elsewhere;
+mod headers;
 mod unread;
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -307,7 +308,7 @@ fn actuator_header(reader: &Reader, cell: &GridCell) -> bool {
     matches!(first, "actuator" | "actuators")
         && reader.row(cell.pos.row).any(|c| {
             c.pos.col > cell.pos.col
-                && label_of(&c.value).is_some_and(|l| COLUMNS.contains(&actuators::column_word(&l)))
+                && label_of(&c.value).is_some_and(|l| COLUMNS.contains(&headers::column_word(&l)))
         })
 }
 

@@ -399,3 +399,63 @@ fn the_red_teams_look_at_the_one_cell_rule() {
         "{said}"
     );
 }
+
+/// A header naming no column over values only a read column holds (`Type`
+/// over valve types, `out` over times): those were lost with a W003 that
+/// said the column had no header (rt17 F7). Now E046 at the header, naming
+/// the column meant; a column of other notes stays W003.
+#[test]
+fn a_column_of_valves_or_times_under_an_unknown_header_is_refused() {
+    for (header, value, says) in [
+        (
+            "Type",
+            "52mono",
+            "every value under it is a valve type: head it `valve`",
+        ),
+        (
+            "out",
+            "3s",
+            "every value under it is a time: head it `extend` or `retract`",
+        ),
+        ("Zeit ausfahren", "1500ms", "every value under it is a time"),
+    ] {
+        let settings: &[&[&str]] = &[&["actuator", "retract", header], &["C1", "1s", value]];
+        refused(
+            "column.xlsx",
+            workbook(&[], &[("SETTINGS", settings)]),
+            &["SETTINGS!C1: error[E046]", says],
+        );
+    }
+    let settings: &[&[&str]] = &[
+        &["actuator", "retract", "remark"],
+        &["C1", "1s", "check seals"],
+    ];
+    let (code, said) = check(workbook(&[], &[("SETTINGS", settings)]));
+    assert_eq!(code, Some(0), "{said}");
+    assert!(
+        said.contains("is in a column whose header names none steptable reads"),
+        "{said}"
+    );
+}
+
+/// Another sheet of many cells (a data log, or rows of actuator tables) is
+/// looked over in time that grows with its cells: each cell's right-hand
+/// neighbour was found by a scan of the whole sheet.
+#[test]
+fn a_large_other_sheet_is_looked_over_in_linear_time() {
+    let mut book = Workbook::new();
+    let table = book.add_worksheet();
+    table.set_name("SEQUENTIAL CONTROL DESCRIPTION").unwrap();
+    write_rows(table, TABLE);
+    let log = book.add_worksheet();
+    log.set_name("Log").unwrap();
+    for row in 0..60_000u32 {
+        log.write_string(row, 0, "actuator").unwrap();
+        log.write_string(row, 1, "extend").unwrap();
+        log.write_string(row, 2, format!("sample {row}")).unwrap();
+    }
+    let start = std::time::Instant::now();
+    let (code, said) = check(book.save_to_buffer().unwrap());
+    assert_eq!(code, Some(0), "{said}");
+    assert!(start.elapsed().as_secs() < 12, "{:?}", start.elapsed());
+}

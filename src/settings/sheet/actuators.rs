@@ -4,6 +4,7 @@
 
 use std::collections::BTreeMap;
 
+use super::headers::{column_word, header_unit, unread_header};
 use super::{ActuatorColumns, COLUMNS, Layout, Reader, known_label, label_of, text_of, value_text};
 use crate::actuator::ActuatorKind;
 use crate::diag::{CellPos, Code, Diagnostics};
@@ -47,72 +48,7 @@ pub(super) fn actuator_columns(
             "name" => &mut columns.name,
             _ if reader.uncomputed(cell, diags) => continue,
             _ => {
-                // `vlave`, `extnd` over values: the column meant, misspelt.
-                // Read as a note, the program would be written with the
-                // default valve or stroke: an error, as a misspelt setting.
-                let below = reader
-                    .grid
-                    .cells
-                    .iter()
-                    .any(|c| c.pos.col == cell.pos.col && c.pos.row > header.row);
-                // `Extnd time [s]`: the first word misspelt, more after it.
-                let first = label
-                    .split(|c: char| !c.is_alphanumeric())
-                    .next()
-                    .unwrap_or("");
-                let meant = misspelt_column(&label)
-                    .or_else(|| misspelt_column(first).filter(|_| !COLUMNS.contains(&first)));
-                if let Some(meant) = meant.filter(|_| below) {
-                    reader.mistyped(
-                        cell.pos,
-                        format!(
-                            "{} heads no column steptable reads: did you mean `{meant}`? (expected {}); nothing is written, since the actuators would lose what the column holds",
-                            cell.value.describe(),
-                            COLUMNS.join(", ")
-                        ),
-                        diags,
-                    );
-                    continue;
-                }
-                // `stroke time extend`, `solenoid valve`, `Load on extend`:
-                // a column named in another word than the first, or two
-                // columns named. Which column is meant is the engineer's to
-                // say; read as a note, its values would be lost.
-                let named = columns_named(&label);
-                if below && !named.is_empty() {
-                    let which = match named.as_slice() {
-                        [one] => format!(
-                            "it names the column `{one}`, but not as its first word: head it `{one}`"
-                        ),
-                        _ => format!(
-                            "it names the columns {}: head it with the one it holds",
-                            named
-                                .iter()
-                                .map(|c| format!("`{c}`"))
-                                .collect::<Vec<_>>()
-                                .join(" and ")
-                        ),
-                    };
-                    reader.mistyped(
-                        cell.pos,
-                        format!(
-                            "{} heads no column steptable reads: {which} (expected {}), or with a word naming none for a column of notes; nothing is written, since the actuators would lose what the column holds",
-                            cell.value.describe(),
-                            COLUMNS.join(", ")
-                        ),
-                        diags,
-                    );
-                    continue;
-                }
-                reader.warn(
-                    cell.pos,
-                    format!(
-                        "{} heads no column steptable reads (expected {}); its column was not read",
-                        cell.value.describe(),
-                        COLUMNS.join(", ")
-                    ),
-                    diags,
-                );
+                unread_header(reader, cell, &label, header, diags);
                 continue;
             }
         };
@@ -227,10 +163,18 @@ pub(super) fn read_actuator_rows(
         };
         for cell in &values {
             if !value_cols.contains(&cell.pos.col) {
+                let headed = grid
+                    .cells
+                    .iter()
+                    .any(|c| c.pos == CellPos::new(columns.header.row, cell.pos.col));
+                let column = match headed {
+                    true => "in a column whose header names none steptable reads",
+                    false => "in a column without a header",
+                };
                 reader.warn(
                     cell.pos,
                     format!(
-                        "{} of C{actuator} is in a column without a header (expected {}); it was not read",
+                        "{} of C{actuator} is {column} (expected {}); it was not read",
                         cell.value.describe(),
                         COLUMNS.join(", ")
                     ),
@@ -483,77 +427,4 @@ fn read_actuator_row<'g>(
             retract_ms: retract.unwrap_or(default.retract_ms),
         },
     );
-}
-
-/// The column a header names: its label, or its first word when that is a
-/// column's and no other word is (`extend time`, `Valve type`, `load (kg)`:
-/// an engineer's header says what the column holds).
-pub(super) fn column_word(label: &str) -> &str {
-    let mut words = label
-        .split(|c: char| !c.is_alphanumeric())
-        .filter(|w| !w.is_empty());
-    // A plural names the column too (`valves`, `names`).
-    let column = |w: &str| COLUMNS.into_iter().find(|c| names_column(w, c));
-    match words.next().and_then(&column) {
-        Some(known) if !words.any(|w| column(w).is_some()) => known,
-        _ => label,
-    }
-}
-
-/// The unit a time column's header states (`Extend time [ms]`, `retract
-/// (s)`, `extend in milliseconds`): `ms` or `s`.
-fn header_unit(grid: &Grid, header: CellPos) -> Option<&'static str> {
-    let cell = grid.cells.iter().find(|c| c.pos == header)?;
-    let label = label_of(&cell.value)?;
-    label
-        .split(|c: char| !c.is_alphanumeric())
-        .find_map(|word| match word {
-            "ms" | "msec" | "millisecond" | "milliseconds" => Some("ms"),
-            "s" | "sec" | "secs" | "second" | "seconds" => Some("s"),
-            _ => None,
-        })
-}
-
-/// The columns a header's words name, in the order of [`COLUMNS`]: a
-/// column's word, its plural, `extension`/`retraction`, or one misspelt
-/// (`extnd`) in a word of four letters or more.
-fn columns_named(label: &str) -> Vec<&'static str> {
-    let words: Vec<&str> = label
-        .split(|c: char| !c.is_alphanumeric())
-        .filter(|w| !w.is_empty())
-        .collect();
-    COLUMNS
-        .into_iter()
-        .filter(|column| {
-            words.iter().any(|w| {
-                names_column(w, column)
-                    || (column.len() > 4 && w.starts_with(&column[..column.len() - 1]))
-                    || (w.chars().count() >= 4 && misspelt_column(w) == Some(column))
-            })
-        })
-        .collect()
-}
-
-/// Whether `word` is the column's word, its plural or another form of it
-/// (`extended`, `extending`, `extension`, `retraction`).
-fn names_column(word: &str, column: &str) -> bool {
-    let forms: &[&str] = match column {
-        "extend" => &["extended", "extending", "extension"],
-        "retract" => &["retracted", "retracting", "retraction"],
-        _ => &[],
-    };
-    word == column || word.strip_suffix('s') == Some(column) || forms.contains(&word)
-}
-
-/// The actuator table's column `label` misspells: one letter off, or the
-/// same letters in another order (`vlave`).
-fn misspelt_column(label: &str) -> Option<&'static str> {
-    let sorted = |t: &str| {
-        let mut letters: Vec<char> = t.chars().collect();
-        letters.sort_unstable();
-        letters
-    };
-    COLUMNS.iter().copied().find(|known| {
-        crate::cell::edit_distance(label, known) == 1 || sorted(label) == sorted(known)
-    })
 }

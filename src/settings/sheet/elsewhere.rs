@@ -1,7 +1,7 @@
 //! Settings written where they are not read: with the step table (on its
 //! sheet, or in a CSV file), or on a workbook's sheet of another name.
 
-use super::actuators::column_word;
+use super::headers::column_word;
 use super::{COLUMNS, known_label, label_of, text_of, unread, valid_value};
 use crate::diag::{CellPos, Code, Diagnostics};
 use crate::read::{CellValue, Grid};
@@ -26,7 +26,7 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
             format!("an actuator table (headed here, its first row at {}) lies with the step table, {lost}: the valves, stroke times, loads or names it gives would be lost; {instead}", table.cell_name(row)),
         );
     }
-    for cell in &table.cells {
+    for (i, cell) in table.cells.iter().enumerate() {
         let CellValue::Text(text) = &cell.value else {
             continue;
         };
@@ -55,11 +55,9 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
             );
             continue;
         }
-        let Some(value_cell) = table
-            .cells
-            .iter()
-            .find(|c| c.pos.row == cell.pos.row && c.pos.col > cell.pos.col)
-        else {
+        // The cells are in row-major order: the next one right of it is
+        // the next filled cell, when that is on its row.
+        let Some(value_cell) = table.cells.get(i + 1).filter(|c| c.pos.row == cell.pos.row) else {
             continue;
         };
         let value = text_of(&value_cell.value);
@@ -121,12 +119,18 @@ pub fn written_elsewhere(others: &[Grid], has_settings: bool, diags: &mut Diagno
 /// naming an actuator with a value in one of those columns. The header's
 /// cell and that row's first cell.
 fn actuator_table(grid: &Grid) -> Option<(CellPos, CellPos)> {
-    let text_at = |pos: CellPos| {
-        grid.cells
-            .iter()
-            .find(|c| c.pos == pos)
-            .map(|c| text_of(&c.value))
-    };
+    // Look-ups by place, so that a sheet of many cells is looked over in
+    // time that grows with them.
+    let texts: std::collections::HashMap<CellPos, String> = grid
+        .cells
+        .iter()
+        .filter(|c| matches!(c.value, CellValue::Text(_)))
+        .map(|c| (c.pos, text_of(&c.value)))
+        .collect();
+    let mut rows: std::collections::BTreeMap<u32, Vec<u32>> = std::collections::BTreeMap::new();
+    for pos in texts.keys() {
+        rows.entry(pos.row).or_default().push(pos.col);
+    }
     grid.cells.iter().find_map(|cell| {
         let label = label_of(&cell.value)?;
         let first = label.split(|c: char| !c.is_alphanumeric()).next()?;
@@ -134,24 +138,30 @@ fn actuator_table(grid: &Grid) -> Option<(CellPos, CellPos)> {
             return None;
         }
         let header = cell.pos;
-        let columns: Vec<u32> = grid
-            .cells
+        let columns: Vec<u32> = rows[&header.row]
             .iter()
-            .filter(|c| c.pos.row == header.row && c.pos.col > header.col)
-            .filter(|c| label_of(&c.value).is_some_and(|l| COLUMNS.contains(&column_word(&l))))
-            .map(|c| c.pos.col)
+            .copied()
+            .filter(|col| *col > header.col)
+            .filter(|col| {
+                let text = &texts[&CellPos::new(header.row, *col)];
+                label_of(&CellValue::Text(text.clone()))
+                    .is_some_and(|l| COLUMNS.contains(&column_word(&l)))
+            })
             .collect();
         if columns.is_empty() {
             return None;
         }
-        // The rows under it, up to a blank one.
-        (header.row + 1..header.row + 200)
+        // The next rows, up to a blank one: the first naming an actuator
+        // with a value in one of those columns.
+        (header.row + 1..header.row.saturating_add(50))
             .map(|row| CellPos::new(row, header.col))
-            .take_while(|pos| text_at(*pos).is_some())
+            .take_while(|pos| texts.contains_key(pos))
             .find(|pos| {
-                text_at(*pos).is_some_and(|t| crate::cell::actuator_name(&t).is_some())
+                crate::cell::actuator_name(&texts[pos]).is_some()
                     && columns.iter().any(|col| {
-                        text_at(CellPos::new(pos.row, *col)).is_some_and(|t| !t.trim().is_empty())
+                        texts
+                            .get(&CellPos::new(pos.row, *col))
+                            .is_some_and(|t| !t.trim().is_empty())
                     })
             })
             .map(|row| (header, row))

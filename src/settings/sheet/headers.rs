@@ -1,0 +1,200 @@
+//! The headers of an actuator table's columns: which column a header
+//! names (`Extend time [ms]`, `valves`, `Extended`), its unit, and what is
+//! said of one steptable does not read.
+
+use super::{COLUMNS, Reader, label_of, text_of};
+use crate::actuator::ActuatorKind;
+use crate::diag::{CellPos, Diagnostics};
+use crate::read::{Grid, GridCell};
+use crate::stroke::parse_duration_ms;
+
+/// A header of no column steptable reads: E046 where the values under it
+/// would be lost (a column misspelt, named in another word or two named,
+/// or values only a read column holds), else W003.
+pub(super) fn unread_header(
+    reader: &mut Reader,
+    cell: &GridCell,
+    label: &str,
+    header: CellPos,
+    diags: &mut Diagnostics,
+) {
+    // `vlave`, `extnd` over values: the column meant, misspelt.
+    // Read as a note, the program would be written with the
+    // default valve or stroke: an error, as a misspelt setting.
+    let below = reader
+        .grid
+        .cells
+        .iter()
+        .any(|c| c.pos.col == cell.pos.col && c.pos.row > header.row);
+    // `Extnd time [s]`: the first word misspelt, more after it.
+    let first = label
+        .split(|c: char| !c.is_alphanumeric())
+        .next()
+        .unwrap_or("");
+    let meant = misspelt_column(label)
+        .or_else(|| misspelt_column(first).filter(|_| !COLUMNS.contains(&first)));
+    if let Some(meant) = meant.filter(|_| below) {
+        reader.mistyped(
+                cell.pos,
+                format!(
+                    "{} heads no column steptable reads: did you mean `{meant}`? (expected {}); nothing is written, since the actuators would lose what the column holds",
+                    cell.value.describe(),
+                    COLUMNS.join(", ")
+                ),
+                diags,
+            );
+        return;
+    }
+    // `stroke time extend`, `solenoid valve`, `Load on extend`:
+    // a column named in another word than the first, or two
+    // columns named. Which column is meant is the engineer's to
+    // say; read as a note, its values would be lost.
+    let named = columns_named(label);
+    if below && !named.is_empty() {
+        let which = match named.as_slice() {
+            [one] => {
+                format!("it names the column `{one}`, but not as its first word: head it `{one}`")
+            }
+            _ => format!(
+                "it names the columns {}: head it with the one it holds",
+                named
+                    .iter()
+                    .map(|c| format!("`{c}`"))
+                    .collect::<Vec<_>>()
+                    .join(" and ")
+            ),
+        };
+        reader.mistyped(
+                cell.pos,
+                format!(
+                    "{} heads no column steptable reads: {which} (expected {}), or with a word naming none for a column of notes; nothing is written, since the actuators would lose what the column holds",
+                    cell.value.describe(),
+                    COLUMNS.join(", ")
+                ),
+                diags,
+            );
+        return;
+    }
+    // `Type` over `52mono`, `out` over `3s`: values only a
+    // column steptable reads holds, under a header naming none.
+    if let Some(meant) = column_of_values(reader, cell.pos) {
+        reader.mistyped(
+                cell.pos,
+                format!(
+                    "{} heads no column steptable reads, but every value under it is {meant}; nothing is written, since the actuators would lose them",
+                    cell.value.describe()
+                ),
+                diags,
+            );
+        return;
+    }
+    reader.warn(
+        cell.pos,
+        format!(
+            "{} heads no column steptable reads (expected {}); its column was not read",
+            cell.value.describe(),
+            COLUMNS.join(", ")
+        ),
+        diags,
+    );
+}
+
+/// The column a header names: its label, or its first word when that is a
+/// column's and no other word is (`extend time`, `Valve type`, `load (kg)`:
+/// an engineer's header says what the column holds).
+pub(super) fn column_word(label: &str) -> &str {
+    let mut words = label
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty());
+    // A plural names the column too (`valves`, `names`).
+    let column = |w: &str| COLUMNS.into_iter().find(|c| names_column(w, c));
+    match words.next().and_then(&column) {
+        Some(known) if !words.any(|w| column(w).is_some()) => known,
+        _ => label,
+    }
+}
+
+/// Whether `word` is the column's word, its plural or another form of it
+/// (`extended`, `extending`, `extension`, `retraction`).
+fn names_column(word: &str, column: &str) -> bool {
+    let forms: &[&str] = match column {
+        "extend" => &["extended", "extending", "extension"],
+        "retract" => &["retracted", "retracting", "retraction"],
+        _ => &[],
+    };
+    word == column || word.strip_suffix('s') == Some(column) || forms.contains(&word)
+}
+
+/// What the values under an unread header all are, when that is what a
+/// column steptable reads holds: valve types, or times with a unit. The
+/// cells right below it, to the first gap; the first that fits neither
+/// ends the look (a sheet of many headers is read in linear time).
+fn column_of_values(reader: &Reader, header: CellPos) -> Option<&'static str> {
+    let below = |row: u32| {
+        reader
+            .row(row)
+            .find(|c| c.pos.col == header.col)
+            .map(|c| text_of(&c.value))
+    };
+    let (mut valves, mut times, mut any) = (true, true, false);
+    for value in (header.row + 1..).map_while(below).take(1000) {
+        any = true;
+        valves &= value.parse::<ActuatorKind>().is_ok();
+        times &= parse_duration_ms(&value).is_some() && !crate::cell::without_unit(&value);
+        if !valves && !times {
+            return None;
+        }
+    }
+    match (any, valves, times) {
+        (false, _, _) => None,
+        (_, true, _) => Some("a valve type: head it `valve`"),
+        _ => Some("a time: head it `extend` or `retract`"),
+    }
+}
+
+/// The unit a time column's header states (`Extend time [ms]`, `retract
+/// (s)`, `extend in milliseconds`): `ms` or `s`.
+pub(super) fn header_unit(grid: &Grid, header: CellPos) -> Option<&'static str> {
+    let cell = grid.cells.iter().find(|c| c.pos == header)?;
+    let label = label_of(&cell.value)?;
+    label
+        .split(|c: char| !c.is_alphanumeric())
+        .find_map(|word| match word {
+            "ms" | "msec" | "millisecond" | "milliseconds" => Some("ms"),
+            "s" | "sec" | "secs" | "second" | "seconds" => Some("s"),
+            _ => None,
+        })
+}
+
+/// The columns a header's words name, in the order of [`COLUMNS`]: a
+/// column's word, its plural, `extension`/`retraction`, or one misspelt
+/// (`extnd`) in a word of four letters or more.
+fn columns_named(label: &str) -> Vec<&'static str> {
+    let words: Vec<&str> = label
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .collect();
+    COLUMNS
+        .into_iter()
+        .filter(|column| {
+            words.iter().any(|w| {
+                names_column(w, column)
+                    || (column.len() > 4 && w.starts_with(&column[..column.len() - 1]))
+                    || (w.chars().count() >= 4 && misspelt_column(w) == Some(column))
+            })
+        })
+        .collect()
+}
+
+/// The actuator table's column `label` misspells: one letter off, or the
+/// same letters in another order (`vlave`).
+fn misspelt_column(label: &str) -> Option<&'static str> {
+    let sorted = |t: &str| {
+        let mut letters: Vec<char> = t.chars().collect();
+        letters.sort_unstable();
+        letters
+    };
+    COLUMNS.iter().copied().find(|known| {
+        crate::cell::edit_distance(label, known) == 1 || sorted(label) == sorted(known)
+    })
+}
