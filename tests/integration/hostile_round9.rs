@@ -459,3 +459,58 @@ fn a_large_other_sheet_is_looked_over_in_linear_time() {
     assert_eq!(code, Some(0), "{said}");
     assert!(start.elapsed().as_secs() < 12, "{:?}", start.elapsed());
 }
+
+/// What the red team rt18 found in the header rules: a header unit
+/// steptable does not read stroke times in (`[min]`, `[us]`, `(s or ms)`)
+/// read its bare numbers as seconds, a minute as a second, exit 0; an
+/// actuator table of number cells was not found with the step table or on
+/// another sheet.
+#[test]
+fn a_header_unit_not_read_and_an_actuator_table_of_numbers_are_said() {
+    for header in [
+        "Extend time [min]",
+        "extend (minutes)",
+        "extend [us]",
+        "extend (s or ms)",
+    ] {
+        let settings: &[&[&str]] = &[&["actuator", header], &["C1", "1"]];
+        refused(
+            "unit.xlsx",
+            workbook(&[], &[("SETTINGS", settings)]),
+            &["SETTINGS!B2: error[E030]: stroke time of C1: \"1\" stands under a header"],
+        );
+    }
+    // A unit in the cell is read whatever the header says.
+    let settings: &[&[&str]] = &[&["actuator", "Extend time [min]"], &["C1", "2s"]];
+    let (code, said) = check(workbook(&[], &[("SETTINGS", settings)]));
+    assert_eq!(code, Some(0), "{said}");
+    let numbers = || {
+        let mut book = Workbook::new();
+        let table = book.add_worksheet();
+        table.set_name("SEQUENTIAL CONTROL DESCRIPTION").unwrap();
+        write_rows(table, TABLE);
+        table.write_string(8, 0, "actuator").unwrap();
+        table.write_string(8, 1, "Extend time [ms]").unwrap();
+        table.write_string(9, 0, "C1").unwrap();
+        table.write_number(9, 1, 500).unwrap();
+        book
+    };
+    refused(
+        "numbers.xlsx",
+        numbers().save_to_buffer().unwrap(),
+        &["SEQUENTIAL CONTROL DESCRIPTION!A9: error[E030]: an actuator table"],
+    );
+    let mut book = Workbook::new();
+    let table = book.add_worksheet();
+    table.set_name("SEQUENTIAL CONTROL DESCRIPTION").unwrap();
+    write_rows(table, TABLE);
+    let other = book.add_worksheet();
+    other.set_name("Cylinders").unwrap();
+    other.write_string(0, 0, "actuator").unwrap();
+    other.write_string(0, 1, "extend [ms]").unwrap();
+    other.write_string(1, 0, "C1").unwrap();
+    other.write_number(1, 1, 500).unwrap();
+    let (code, said) = check(book.save_to_buffer().unwrap());
+    assert_eq!(code, Some(0), "{said}");
+    assert!(said.contains("Cylinders!A1: warning[W015]"), "{said}");
+}

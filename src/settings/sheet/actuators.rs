@@ -386,8 +386,17 @@ fn read_actuator_row<'g>(
         // of its bare numbers; a unit in the cell itself wins.
         let header_unit = header_unit(grid, CellPos::new(columns.header.row, col?));
         let bare = crate::cell::without_unit(&text);
-        let read = match header_unit {
-            Some(unit) if bare => format!("{}{unit}", text.trim()),
+        let read = match &header_unit {
+            Some(Ok(unit)) if bare => format!("{}{unit}", text.trim()),
+            // `[min]` over 1: neither 1 s nor a unit steptable reads.
+            Some(Err(unit)) if bare => {
+                diags.error(
+                    Code::E030BadSetting,
+                    grid.location(cell.pos),
+                    format!("stroke time of C{actuator}: \"{text}\" stands under a header {unit}; write the unit in the cell, such as 1.5s or 800ms"),
+                );
+                return None;
+            }
             _ => text.clone(),
         };
         let Some(ms) = parse_duration_ms(&read) else {

@@ -121,12 +121,10 @@ pub fn written_elsewhere(others: &[Grid], has_settings: bool, diags: &mut Diagno
 fn actuator_table(grid: &Grid) -> Option<(CellPos, CellPos)> {
     // Look-ups by place, so that a sheet of many cells is looked over in
     // time that grows with them.
-    let texts: std::collections::HashMap<CellPos, String> = grid
-        .cells
-        .iter()
-        .filter(|c| matches!(c.value, CellValue::Text(_)))
-        .map(|c| (c.pos, text_of(&c.value)))
-        .collect();
+    let values: std::collections::HashMap<CellPos, &CellValue> =
+        grid.cells.iter().map(|c| (c.pos, &c.value)).collect();
+    let texts: std::collections::HashMap<CellPos, String> =
+        values.iter().map(|(pos, v)| (*pos, text_of(v))).collect();
     let mut rows: std::collections::BTreeMap<u32, Vec<u32>> = std::collections::BTreeMap::new();
     for pos in texts.keys() {
         rows.entry(pos.row).or_default().push(pos.col);
@@ -143,8 +141,9 @@ fn actuator_table(grid: &Grid) -> Option<(CellPos, CellPos)> {
             .copied()
             .filter(|col| *col > header.col)
             .filter(|col| {
-                let text = &texts[&CellPos::new(header.row, *col)];
-                label_of(&CellValue::Text(text.clone()))
+                values
+                    .get(&CellPos::new(header.row, *col))
+                    .and_then(|v| label_of(v))
                     .is_some_and(|l| COLUMNS.contains(&column_word(&l)))
             })
             .collect();

@@ -153,17 +153,32 @@ fn column_of_values(reader: &Reader, header: CellPos) -> Option<&'static str> {
 }
 
 /// The unit a time column's header states (`Extend time [ms]`, `retract
-/// (s)`, `extend in milliseconds`): `ms` or `s`.
-pub(super) fn header_unit(grid: &Grid, header: CellPos) -> Option<&'static str> {
+/// (s)`, `extend in milliseconds`): `Ok("ms")` or `Ok("s")`; `Err` with
+/// the words for a unit steptable does not read stroke times in (`[min]`,
+/// `[us]`) or for two units (`(s or ms)`), whose bare numbers cannot be
+/// read as either; `None` for a header that states none.
+pub(super) fn header_unit(grid: &Grid, header: CellPos) -> Option<Result<&'static str, String>> {
     let cell = grid.cells.iter().find(|c| c.pos == header)?;
     let label = label_of(&cell.value)?;
-    label
-        .split(|c: char| !c.is_alphanumeric())
-        .find_map(|word| match word {
-            "ms" | "msec" | "millisecond" | "milliseconds" => Some("ms"),
-            "s" | "sec" | "secs" | "second" | "seconds" => Some("s"),
-            _ => None,
-        })
+    let (mut units, mut other) = (Vec::new(), Vec::new());
+    for word in label.split(|c: char| !c.is_alphanumeric()) {
+        match word {
+            "ms" | "msec" | "millisecond" | "milliseconds" => units.push("ms"),
+            "s" | "sec" | "secs" | "second" | "seconds" => units.push("s"),
+            "min" | "mins" | "minute" | "minutes" | "h" | "hr" | "hrs" | "hour" | "hours"
+            | "us" | "µs" | "microsecond" | "microseconds" | "ns" => other.push(word.to_string()),
+            _ => {}
+        }
+    }
+    units.dedup();
+    match (units.as_slice(), other.first()) {
+        (_, Some(word)) => Some(Err(format!(
+            "in `{word}`, a unit steptable does not read a stroke time in"
+        ))),
+        ([], None) => None,
+        ([unit], None) => Some(Ok(*unit)),
+        _ => Some(Err("that names both s and ms".to_string())),
+    }
 }
 
 /// The columns a header's words name, in the order of [`COLUMNS`]: a
