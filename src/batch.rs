@@ -64,6 +64,24 @@ pub struct Outcome {
 }
 
 impl Outcome {
+    /// An outcome of `status` with nothing else known yet.
+    pub fn new(input: &Path, name: &str, status: Status) -> Outcome {
+        Outcome {
+            input: input.to_path_buf(),
+            name: name.to_string(),
+            status,
+            diagnostics: Vec::new(),
+            message: None,
+            steps: None,
+            actuators: None,
+            millis: 0,
+            verdict: None,
+            cycle_ms: None,
+            hazards: None,
+            kept: Vec::new(),
+        }
+    }
+
     pub fn error_count(&self) -> usize {
         let cells = self
             .diagnostics
@@ -144,13 +162,28 @@ pub fn expand_inputs(paths: &[PathBuf]) -> Expanded {
         }
     }
     // The same file named twice (a folder and a pattern) is converted once.
-    let mut seen = std::collections::BTreeSet::new();
-    expanded
-        .found
-        .retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
+    expanded.found = once_each(&expanded.found).0;
     expanded.outputs_skipped.sort();
     expanded.outputs_skipped.dedup();
     expanded
+}
+
+/// `paths` with each file once (`x.xlsx` and `./x.xlsx` are one), and each
+/// path left out with the one it repeats.
+pub fn once_each(paths: &[PathBuf]) -> (Vec<PathBuf>, Vec<(PathBuf, PathBuf)>) {
+    let mut first = std::collections::BTreeMap::new();
+    let (mut once, mut repeated) = (Vec::new(), Vec::new());
+    for path in paths {
+        let real = std::fs::canonicalize(path).unwrap_or_else(|_| path.clone());
+        match first.get(&real) {
+            Some(earlier) => repeated.push((path.clone(), PathBuf::clone(earlier))),
+            None => {
+                first.insert(real, path.clone());
+                once.push(path.clone());
+            }
+        }
+    }
+    (once, repeated)
 }
 
 /// The file name for the batch summary in `out`: `summary.csv`, unless a
@@ -250,20 +283,7 @@ pub fn run(
     let kept = write::Inputs::new(inputs);
     let convert_one = |(input, name): (&PathBuf, &String)| {
         let outcome = if stop.load(Ordering::SeqCst) {
-            Outcome {
-                input: input.clone(),
-                name: name.clone(),
-                status: Status::Skipped,
-                diagnostics: Vec::new(),
-                message: None,
-                steps: None,
-                actuators: None,
-                millis: 0,
-                verdict: None,
-                cycle_ms: None,
-                hazards: None,
-                kept: Vec::new(),
-            }
+            Outcome::new(input, name, Status::Skipped)
         } else {
             convert_one(input, name, out, settings, &kept)
         };
@@ -289,20 +309,7 @@ fn convert_one(
     all_inputs: &write::Inputs,
 ) -> Outcome {
     let start = Instant::now();
-    let mut outcome = Outcome {
-        input: input.to_path_buf(),
-        name: name.to_string(),
-        status: Status::Converted,
-        diagnostics: Vec::new(),
-        message: None,
-        steps: None,
-        actuators: None,
-        millis: 0,
-        verdict: None,
-        cycle_ms: None,
-        hazards: None,
-        kept: Vec::new(),
-    };
+    let mut outcome = Outcome::new(input, name, Status::Converted);
     use crate::commands::{CommandError, convert::run};
     match run(input, name, settings, out, all_inputs, &|_, _| {}) {
         Ok(run) => {
@@ -327,7 +334,15 @@ fn convert_one(
                 // Something of the engineer's is in the way: said, kept.
                 Err(write::WriteError::Taken(problems)) => {
                     outcome.status = Status::Failed;
-                    outcome.diagnostics.extend(problems);
+                    // Nothing was written: no verdict to file. Each problem
+                    // is at an output's path, so it names its input too.
+                    (outcome.verdict, outcome.cycle_ms, outcome.hazards) = (None, None, None);
+                    outcome
+                        .diagnostics
+                        .extend(problems.into_iter().map(|mut d| {
+                            d.message = format!("(converting {}) {}", input.display(), d.message);
+                            d
+                        }));
                 }
                 Err(err) => {
                     outcome.status = Status::Internal;

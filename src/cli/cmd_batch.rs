@@ -86,9 +86,12 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
         bar.finish_and_clear();
     }
     let mut code = outcome_code(args, &outcomes, missing, &report);
+    // A path that named nothing is a failed input too, in the closing
+    // lines and in summary.csv (said above, when it was found).
+    let mut outcomes = outcomes;
+    outcomes.extend(unmatched_outcomes(&expanded));
     let run = Run {
         outcomes: &outcomes,
-        missing: missing.len(),
         interrupted,
         seconds: started.elapsed().as_secs_f64(),
         jobs,
@@ -120,6 +123,27 @@ fn unmatched(missing: &[PathBuf], why: &str) -> Vec<Diagnostic> {
                 cell: None,
             },
             message: why.to_string(),
+        })
+        .collect()
+}
+
+/// The failed outcomes of the paths that named nothing to convert.
+fn unmatched_outcomes(expanded: &crate::batch::Expanded) -> Vec<crate::batch::Outcome> {
+    let said = [
+        (&expanded.missing, NO_SUCH_PATH),
+        (&expanded.empty_folders, NO_TABLE_IN_FOLDER),
+    ];
+    said.into_iter()
+        .flat_map(|(paths, why)| {
+            paths
+                .iter()
+                .zip(unmatched(paths, why))
+                .map(|(path, diagnostic)| {
+                    let mut outcome =
+                        crate::batch::Outcome::new(path, "", crate::batch::Status::Failed);
+                    outcome.diagnostics.push(diagnostic);
+                    outcome
+                })
         })
         .collect()
 }
@@ -195,7 +219,6 @@ fn outcome_code(
 /// What a batch run did, for its closing lines.
 struct Run<'a> {
     outcomes: &'a [crate::batch::Outcome],
-    missing: usize,
     interrupted: bool,
     seconds: f64,
     jobs: usize,
@@ -225,7 +248,7 @@ impl Run<'_> {
         report.say(&format!(
             "{} converted, {} failed, in {:.2} s ({:.1} workbooks/s, {} job{}) -> {}",
             self.outcomes.len() - failed.len() - skipped,
-            failed.len() + self.missing,
+            failed.len(),
             seconds,
             self.outcomes.len() as f64 / seconds.max(1e-9),
             jobs,

@@ -68,9 +68,18 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         return EXIT_BAD_INPUT;
     }
     let mut code = EXIT_OK;
-    let names = convert::output_names(&args.inputs);
-    let kept = write::Inputs::new(&args.inputs);
-    for (input, name) in args.inputs.iter().zip(&names) {
+    // One file named twice is one table: converted once, and said.
+    let (inputs, repeated) = crate::batch::once_each(&args.inputs);
+    for (again, first) in &repeated {
+        report.say(&format!(
+            "note: {} names the file {} again; converted once",
+            again.display(),
+            first.display()
+        ));
+    }
+    let names = convert::output_names(&inputs);
+    let kept = write::Inputs::new(&inputs);
+    for (input, name) in inputs.iter().zip(&names) {
         let shown = display_name(input);
         let progress = super::progress::Progress::new("fault cases", false);
         let run = crate::commands::convert::run(

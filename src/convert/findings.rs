@@ -110,6 +110,56 @@ pub(super) fn shortened_sdf_comments(
     })
 }
 
+/// W008 when a name or comment of the engineer's holds characters the
+/// Windows-1252 code page lacks, and a file written in it is asked for
+/// (`.sdf`, FST, CoDeSys V2.3): there they are `?`.
+pub(super) fn code_page_losses(
+    input: &crate::emit::EmitInput,
+    settings: &crate::settings::Settings,
+) -> Option<crate::diag::Diagnostic> {
+    let files: Vec<String> = settings
+        .formats
+        .iter()
+        .filter(|k| k.windows_ansi())
+        .map(|k| k.file_name(input.name))
+        .collect();
+    if files.is_empty() {
+        return None;
+    }
+    let symbols = input.symbols;
+    let steps = (0..input.program.steps.len()).filter_map(|i| symbols.step(i));
+    let texts = symbols
+        .symbols()
+        .flat_map(|(_, s)| [&s.ident, &s.designation, &s.comment])
+        .chain(steps.flat_map(|s| [&s.title, &s.active_title]));
+    let mut lacked: Vec<char> = crate::emit::code_page_lacks(input.name);
+    for text in texts {
+        for c in crate::emit::code_page_lacks(text) {
+            if !lacked.contains(&c) {
+                lacked.push(c);
+            }
+        }
+    }
+    if lacked.is_empty() {
+        return None;
+    }
+    let chars: String = lacked.iter().map(|c| format!("\"{c}\" ")).collect();
+    Some(crate::diag::Diagnostic {
+        severity: crate::diag::Severity::Warning,
+        code: crate::diag::Code::W008Shortened,
+        location: crate::diag::Location {
+            file: input.table.file.clone(),
+            sheet: None,
+            cell: None,
+        },
+        message: format!(
+            "{}: these files are written in the Windows-1252 code page the Windows tools read them in, which lacks {}(from a name or comment of yours): there each is written as ?; the other outputs keep them",
+            files.join(", "),
+            chars
+        ),
+    })
+}
+
 /// E048 at each jump back into its own step whose re-entry does something
 /// (restarts a dwell or the watchdog, sets a coil again), when an SFC
 /// chart is asked for: the chart's step stays active through such a jump

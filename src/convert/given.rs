@@ -397,7 +397,12 @@ pub(super) fn names_of_the_whole_table(
     ));
     later.sort_by_key(|e| check::sheet_order(&e.at));
     entries.extend(later);
-    check::check_entries(&entries, diags);
+    use crate::emit::OutputKind;
+    let fst = settings
+        .formats
+        .iter()
+        .any(|k| matches!(k, OutputKind::Fst | OutputKind::FstAllocation));
+    check::check_entries(&entries, fst, diags);
 }
 
 /// Supervision times (`--supervision`, SETTINGS `supervision`) checked

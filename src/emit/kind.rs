@@ -174,6 +174,20 @@ impl OutputKind {
         )
     }
 
+    /// Whether the kind's file is read by a Windows tool in its ANSI code
+    /// page (SIMATIC Manager's symbol import, Festo FST, CoDeSys V2.3):
+    /// written in Windows-1252, not UTF-8, which would show `Ä` as `Ã„`
+    /// there and widen a fixed-width row by a byte.
+    pub fn windows_ansi(self) -> bool {
+        matches!(
+            self,
+            OutputKind::SymbolTable
+                | OutputKind::Fst
+                | OutputKind::FstAllocation
+                | OutputKind::CodesysV2
+        )
+    }
+
     /// The file's name for outputs named `name` (`paper` → `paper.st`);
     /// a Beremiz project's is its folder.
     pub fn file_name(self, name: &str) -> String {

@@ -214,6 +214,40 @@ pub fn one_line(text: &str) -> String {
         .collect()
 }
 
+/// `text` in the Windows-1252 code page the Windows tools of
+/// [`OutputKind::windows_ansi`] read their files in, one byte a character
+/// (so fixed-width rows stay fixed); a character the code page lacks is
+/// `?` (said before, by [`code_page_lacks`]).
+pub fn windows_1252(text: &str) -> Vec<u8> {
+    let mut out = Vec::with_capacity(text.len());
+    let mut buffer = [0u8; 4];
+    for c in text.chars() {
+        if c.is_ascii() {
+            out.push(c as u8);
+            continue;
+        }
+        let (bytes, _, lacked) = encoding_rs::WINDOWS_1252.encode(c.encode_utf8(&mut buffer));
+        match (lacked, bytes.as_ref()) {
+            (false, [byte]) => out.push(*byte),
+            _ => out.push(b'?'),
+        }
+    }
+    out
+}
+
+/// The characters of `text` the Windows-1252 code page lacks, each once.
+pub fn code_page_lacks(text: &str) -> Vec<char> {
+    let mut lacked: Vec<char> = Vec::new();
+    let mut buffer = [0u8; 4];
+    for c in text.chars().filter(|c| !c.is_ascii()) {
+        let (_, _, missing) = encoding_rs::WINDOWS_1252.encode(c.encode_utf8(&mut buffer));
+        if missing && !lacked.contains(&c) {
+            lacked.push(c);
+        }
+    }
+    lacked
+}
+
 /// Text with Windows line ends, for the lists Windows tools import (STEP 7
 /// symbol tables, Studio 5000 and FST lists, CoDeSys V2.3 exports).
 pub fn crlf(text: &str) -> String {

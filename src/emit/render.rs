@@ -256,9 +256,12 @@ impl<'a> Renderer<'a> {
 /// A rendered text as bytes, with CRLF line ends where the kind wants them.
 fn text(kind: OutputKind, result: Result<String, TemplateError>) -> Result<Vec<u8>, EmitError> {
     let text = result.map_err(EmitError::Template)?;
-    Ok(if kind.windows_lines() {
-        super::crlf(&text).into_bytes()
-    } else {
-        text.into_bytes()
+    let text = match kind.windows_lines() {
+        true => super::crlf(&text),
+        false => text,
+    };
+    Ok(match kind.windows_ansi() {
+        true => super::windows_1252(&text),
+        false => text.into_bytes(),
     })
 }

@@ -95,8 +95,8 @@ fn known_label(value: &CellValue) -> Option<&'static str> {
 }
 
 /// A cell that holds a label and its value together (`target: iec`,
-/// `scan time = 20ms`): the label it starts with.
-fn setting_in_one_cell(value: &CellValue) -> Option<&'static str> {
+/// `scan time = 20ms`): the label it starts with, and the rest.
+fn setting_in_one_cell(value: &CellValue) -> Option<(&'static str, &str)> {
     match value {
         CellValue::Text(text) => unread::setting_in_text(text),
         _ => None,
@@ -444,6 +444,30 @@ fn valid_value(label: &'static str, value: &str, cell: &GridCell, grid: &Grid) -
     valid(value) || undressed(value).is_some_and(|v| valid(&v))
 }
 
+/// Why `value` is not a valid value of the setting `label`: E030's
+/// message, without the label.
+fn value_problem(label: &'static str, value: &str, cell: &GridCell, grid: &Grid) -> String {
+    let mut scratch = Diagnostics::new();
+    apply(
+        &mut Given::default(),
+        label,
+        value,
+        cell,
+        grid,
+        &mut scratch,
+    );
+    scratch
+        .iter()
+        .next()
+        .map(|d| {
+            d.message
+                .trim_start_matches(label)
+                .trim_start_matches(": ")
+                .to_string()
+        })
+        .unwrap_or_default()
+}
+
 /// `value` without the dress of a note: trailing `.`, `;` or `,`, a
 /// wrapping pair of brackets or quotes, a trailing remark in brackets, and
 /// `;` between items for `,`. `None` when there is none.
@@ -457,7 +481,11 @@ fn undressed(value: &str) -> Option<String> {
     if let Some((before, _)) = v.split_once(" (").filter(|(_, rest)| rest.ends_with(')')) {
         v = before.trim();
     }
-    let v = v.replace(';', ",");
+    // `step and manual`, `step & manual`: a list written as words.
+    let v = v
+        .replace(';', ",")
+        .replace(" and ", ", ")
+        .replace(" & ", ", ");
     (v != value.trim()).then_some(v)
 }
 

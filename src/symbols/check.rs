@@ -282,8 +282,10 @@ fn iso_designation(folded: &str) -> Option<u32> {
 
 /// Every entry against every earlier one: the same name after case folding
 /// (two actuators with one name, an input named like an actuator), or the
-/// same first 9 characters in Festo FST. An error at the later entry.
-pub fn check_entries(entries: &[Entry], diags: &mut Diagnostics) {
+/// same first 9 characters in Festo FST when an FST file is written
+/// (`fst`: a STEP 7 or IEC program tells them apart). An error at the
+/// later entry.
+pub fn check_entries(entries: &[Entry], fst: bool, diags: &mut Diagnostics) {
     let mut said: Vec<(Location, String)> = Vec::new();
     for (i, entry) in entries.iter().enumerate() {
         let lower = entry.name.to_ascii_lowercase();
@@ -307,7 +309,8 @@ pub fn check_entries(entries: &[Entry], diags: &mut Diagnostics) {
                     "{}{} is named {} too; give them different names",
                     entry.label, entry.name, earlier.origin
                 )
-            } else if entry.symbol && earlier.symbol && fst_stem(&lower) == fst_stem(&other) {
+            } else if fst && entry.symbol && earlier.symbol && fst_stem(&lower) == fst_stem(&other)
+            {
                 format!(
                     "{}{} and {} begin with the same {FST_SYMBOL_CHARS} characters, which is all Festo FST keeps of a symbol ({} is named {}){}",
                     entry.label,

@@ -93,7 +93,7 @@ fn the_cycle_after_an_abandoned_one_is_no_problem() {
             "{args:?}: {table}"
         );
         assert_eq!(
-            lines_with(&table, "end of cycle: at rest").len(),
+            lines_with(&table, "end of cycle").len(),
             1,
             "{args:?}: {table}"
         );
@@ -163,11 +163,7 @@ fn step0_is_a_cycles_end_or_homing_done_never_an_abandonment() {
     let start = time_of(&table, "--press START@step0: START pressed");
     assert_eq!(start, homed + 10, "the scan after homing is done: {table}");
     assert_eq!(lines_with(&table, "step 1   ").len(), 2, "{table}");
-    assert_eq!(
-        lines_with(&table, "end of cycle: at rest").len(),
-        1,
-        "{table}"
-    );
+    assert_eq!(lines_with(&table, "end of cycle").len(), 1, "{table}");
     let (code, table) = paper(
         work.path(),
         &["--press", "MANUAL@step2", "--press", "RESET@step0"],
@@ -180,7 +176,7 @@ fn step0_is_a_cycles_end_or_homing_done_never_an_abandonment() {
     );
     // The end of a cycle is still step 0.
     let (_, table) = paper(work.path(), &["--press", "STOP@step0"]);
-    let end = time_of(&table, "end of cycle: at rest");
+    let end = time_of(&table, "end of cycle");
     assert_eq!(time_of(&table, "--press STOP@step0"), end + 10, "{table}");
 }
 

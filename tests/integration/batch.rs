@@ -363,7 +363,7 @@ fn a_batch_never_overwrites_an_input() {
     assert!(!output.status.success(), "{stdout}");
     assert!(stdout.contains("1 converted, 1 failed"), "{stdout}");
     assert!(
-        stdout.contains("error[E040]: is an input of this run"),
+        stdout.contains("error[E040]: (converting cell.xlsx) is an input of this run"),
         "{stdout}"
     );
     assert_eq!(std::fs::read(&kept).unwrap(), before);

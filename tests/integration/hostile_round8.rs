@@ -30,7 +30,7 @@ pub(crate) fn refused(name: &str, bytes: Vec<u8>, says: &[&str]) {
     }
 }
 
-fn write_rows(sheet: &mut Worksheet, rows: &[&[&str]]) {
+pub(crate) fn write_rows(sheet: &mut Worksheet, rows: &[&[&str]]) {
     for (r, row) in rows.iter().enumerate() {
         for (c, text) in row.iter().enumerate().filter(|(_, t)| !t.is_empty()) {
             sheet.write_string(r as u32, c as u16, *text).unwrap();

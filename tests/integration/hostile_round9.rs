@@ -8,8 +8,8 @@
 //! code at its cell, and that a refused input writes nothing.
 
 use crate::helpers::steptable;
-use crate::hostile_round8::refused;
-use rust_xlsxwriter::{Workbook, Worksheet};
+use crate::hostile_round8::{refused, write_rows};
+use rust_xlsxwriter::Workbook;
 
 const TABLE: &[&[&str]] = &[
     &["", "BRANCH 1", "BRANCH 2"],
@@ -18,17 +18,9 @@ const TABLE: &[&[&str]] = &[
     &["STEP 3", "C2-0", "C1-0"],
 ];
 
-fn write_rows(sheet: &mut Worksheet, rows: &[&[&str]]) {
-    for (r, row) in rows.iter().enumerate() {
-        for (c, text) in row.iter().enumerate().filter(|(_, t)| !t.is_empty()) {
-            sheet.write_string(r as u32, c as u16, *text).unwrap();
-        }
-    }
-}
-
 /// A workbook of the table, with `below` written two rows under it on its
 /// sheet, and each `(name, rows)` sheet after it.
-fn workbook(below: &[&str], sheets: &[(&str, &[&[&str]])]) -> Vec<u8> {
+pub(crate) fn workbook(below: &[&str], sheets: &[(&str, &[&[&str]])]) -> Vec<u8> {
     let mut workbook = Workbook::new();
     let table = workbook.add_worksheet();
     table.set_name("SEQUENTIAL CONTROL DESCRIPTION").unwrap();
@@ -45,7 +37,7 @@ fn workbook(below: &[&str], sheets: &[(&str, &[&[&str]])]) -> Vec<u8> {
 }
 
 /// `check` of `bytes`: exit code and what was said.
-fn check(bytes: Vec<u8>) -> (Option<i32>, String) {
+pub(crate) fn check(bytes: Vec<u8>) -> (Option<i32>, String) {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("t.xlsx");
     std::fs::write(&path, bytes).unwrap();

@@ -76,7 +76,7 @@ fn long_comments_are_cut_where_a_target_limits_them() {
             "--designations",
             "names",
             "--formats",
-            "awl,grafcet",
+            "awl,grafcet,fst",
             "-o",
         ])
         .arg(dir.path().join("named"))

@@ -27,6 +27,7 @@ mod helpers;
 mod homing;
 mod hostile;
 mod hostile_messages;
+mod hostile_round10;
 mod hostile_round3;
 mod hostile_round4;
 mod hostile_round5;

@@ -271,7 +271,7 @@ fn every_entry_point_refuses_every_kind_of_name_collision() {
     for (what, settings, message) in settings_rows {
         let input = dir.path().join(format!("{}.xlsx", what.replace(' ', "_")));
         write_xlsx_sheets(&input, &[("TABLE", table), ("SETTINGS", settings)]);
-        let (got, stderr, wrote) = convert(&input, &["--formats", "st"]);
+        let (got, stderr, wrote) = convert(&input, &["--formats", "st,fst"]);
         assert_eq!(got, 1, "{what}: {stderr}");
         assert!(stderr.contains(message), "{what}: {stderr}");
         assert!(!wrote, "{what}: written although refused");

@@ -84,7 +84,7 @@ fn the_printed_step_numbers_are_the_ones_at_step_takes() {
     );
     assert_eq!(code, Some(0), "{table}");
     assert!(!table.contains("step 9"), "{table}");
-    let ends = times_of(&table, "step 0   end of cycle: at rest");
+    let ends = times_of(&table, "step 0   end of cycle");
     assert_eq!(ends.len(), 2, "two cycles: {table}");
     let press = times_of(&table, "--press START@step0: START pressed");
     assert_eq!(press.len(), 1, "{table}");

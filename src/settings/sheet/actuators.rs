@@ -133,15 +133,12 @@ pub(super) fn read_actuator_rows(
             .filter(|c| c.pos.col > columns.last_col && !reader.seen.contains(&c.pos))
             .collect();
         for cell in beyond {
-            reader.warn(
-                cell.pos,
-                format!(
-                    "{} is right of the actuator table, in a column without a header (expected {}); it was not read",
-                    cell.value.describe(),
-                    COLUMNS.join(", ")
-                ),
-                diags,
+            let message = format!(
+                "{} is right of the actuator table, in a column without a header (expected {})",
+                cell.value.describe(),
+                COLUMNS.join(", ")
             );
+            headerless(reader, cell, message, diags);
         }
         let values: Vec<&GridCell> = cells
             .iter()
@@ -161,26 +158,8 @@ pub(super) fn read_actuator_rows(
             }
             RowStart::Actuator(actuator) => actuator,
         };
-        for cell in &values {
-            if !value_cols.contains(&cell.pos.col) {
-                let headed = grid
-                    .cells
-                    .iter()
-                    .any(|c| c.pos == CellPos::new(columns.header.row, cell.pos.col));
-                let column = match headed {
-                    true => "in a column whose header names none steptable reads",
-                    false => "in a column without a header",
-                };
-                reader.warn(
-                    cell.pos,
-                    format!(
-                        "{} of C{actuator} is {column} (expected {}); it was not read",
-                        cell.value.describe(),
-                        COLUMNS.join(", ")
-                    ),
-                    diags,
-                );
-            }
+        for cell in values.iter().filter(|c| !value_cols.contains(&c.pos.col)) {
+            unread_value(reader, cell, columns.header.row, actuator, diags);
         }
         let at = |col: u32| cells.iter().copied().find(|c| c.pos.col == col);
         read_actuator_row(grid, actuator, columns, &at, &mut reader.settings, diags);
@@ -402,6 +381,16 @@ fn read_actuator_row<'g>(
         let Some(ms) = parse_duration_ms(&read) else {
             let why = if crate::cell::thousands_comma(&text) {
                 crate::cell::thousands_comma_words(&text)
+            } else if let Some(ms) = time_in_ms(&read) {
+                // `0.5ms`, `1,5` under `[ms]`: a time, but not one a
+                // stroke can take.
+                let unit = match read != text {
+                    true => " (in the header's unit)",
+                    false => "",
+                };
+                format!(
+                    "\"{text}\"{unit} is {ms} ms, and a stroke time is whole milliseconds from 1ms to 3600s"
+                )
             } else {
                 format!("\"{text}\" is not a time such as 1.5s or 800ms")
             };
@@ -436,4 +425,65 @@ fn read_actuator_row<'g>(
             retract_ms: retract.unwrap_or(default.retract_ms),
         },
     );
+}
+
+/// A value of the actuator table in a column without a header: W003, or
+/// E046 when it is what only a read column holds (`52mono`, `3s`): that
+/// value would be lost, and the header it asks for is the engineer's to
+/// write.
+fn headerless(reader: &mut Reader, cell: &GridCell, message: String, diags: &mut Diagnostics) {
+    match super::headers::value_kind(&text_of(&cell.value)) {
+        Some(kind) => reader.mistyped(
+            cell.pos,
+            format!(
+                "{message}, and it is {kind}; nothing is written, since the actuator would lose it"
+            ),
+            diags,
+        ),
+        None => reader.warn(cell.pos, format!("{message}; it was not read"), diags),
+    }
+}
+
+/// The milliseconds a time written in s or ms (a decimal comma or point)
+/// stands for, whatever its range: `0.5ms` is 0.5.
+fn time_in_ms(text: &str) -> Option<f64> {
+    let lower: String = text
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .to_ascii_lowercase()
+        .replace(',', ".");
+    let (number, scale) = match lower.strip_suffix("ms") {
+        Some(n) => (n, 1.0),
+        None => (lower.strip_suffix('s').unwrap_or(&lower), 1000.0),
+    };
+    let value: f64 = number.parse().ok()?;
+    (value.is_finite() && number.chars().all(|c| c.is_ascii_digit() || c == '.'))
+        .then_some(value * scale)
+}
+
+/// A value of C`actuator`'s row in a column nothing reads: under a header
+/// naming none (W003), or under none at all ([`headerless`]).
+fn unread_value(
+    reader: &mut Reader,
+    cell: &GridCell,
+    header_row: u32,
+    actuator: u32,
+    diags: &mut Diagnostics,
+) {
+    let headed = reader.row(header_row).any(|c| c.pos.col == cell.pos.col);
+    let message = |column: &str| {
+        format!(
+            "{} of C{actuator} is {column} (expected {})",
+            cell.value.describe(),
+            COLUMNS.join(", ")
+        )
+    };
+    match headed {
+        true => {
+            let column = message("in a column whose header names none steptable reads");
+            reader.warn(cell.pos, format!("{column}; it was not read"), diags)
+        }
+        false => headerless(reader, cell, message("in a column without a header"), diags),
+    }
 }

@@ -32,9 +32,7 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
         };
         let at = table.location(cell.pos);
         let written = text.trim();
-        if let Some(meant) = unread::setting_in_text(text) {
-            let value = written[meant.len()..]
-                .trim_start_matches(|c: char| c == ':' || c == '=' || c.is_whitespace());
+        if let Some((meant, value)) = unread::setting_in_text(text) {
             if valid_value(meant, value, cell, table) {
                 diags.error(
                     Code::E046MistypedSetting,

@@ -136,20 +136,54 @@ fn column_of_values(reader: &Reader, header: CellPos) -> Option<&'static str> {
             .find(|c| c.pos.col == header.col)
             .map(|c| text_of(&c.value))
     };
-    let (mut valves, mut times, mut any) = (true, true, false);
+    let (mut valves, mut times, mut any, mut placeholders) = (true, true, false, 0);
     for value in (header.row + 1..).map_while(below).take(1000) {
+        // `-`, `n/a`: an actuator without one, not a note. A column of
+        // only those is no column of values (and, many headers stacked,
+        // would be looked down again from each).
+        if placeholder(&value) {
+            placeholders += 1;
+            if placeholders > 16 {
+                return None;
+            }
+            continue;
+        }
         any = true;
-        valves &= value.parse::<ActuatorKind>().is_ok();
-        times &= parse_duration_ms(&value).is_some() && !crate::cell::without_unit(&value);
+        let kind = value_kind(&value);
+        valves &= kind == Some(VALVE);
+        times &= kind == Some(TIME);
         if !valves && !times {
             return None;
         }
     }
-    match (any, valves, times) {
-        (false, _, _) => None,
-        (_, true, _) => Some("a valve type: head it `valve`"),
-        _ => Some("a time: head it `extend` or `retract`"),
+    match (any, valves) {
+        (false, _) => None,
+        (_, true) => Some(VALVE),
+        _ => Some(TIME),
     }
+}
+
+const VALVE: &str = "a valve type: head it `valve`";
+const TIME: &str = "a time: head it `extend` or `retract`";
+
+/// What a value only a column steptable reads holds is (a valve type, a
+/// time with a unit), with the header it asks for.
+pub(super) fn value_kind(value: &str) -> Option<&'static str> {
+    if value.parse::<ActuatorKind>().is_ok() {
+        Some(VALVE)
+    } else if parse_duration_ms(value).is_some() && !crate::cell::without_unit(value) {
+        Some(TIME)
+    } else {
+        None
+    }
+}
+
+/// A cell written for "none" (`-`, `n/a`, `—`).
+fn placeholder(value: &str) -> bool {
+    matches!(
+        value.trim().to_ascii_lowercase().as_str(),
+        "-" | "--" | "—" | "–" | "n/a" | "na" | "none" | "?"
+    )
 }
 
 /// The unit a time column's header states (`Extend time [ms]`, `retract

@@ -42,23 +42,23 @@ pub(super) fn name_the_rest(
                 continue;
             }
             let word = label_of(&cell.value).unwrap_or_default();
-            if let Some(label) = setting_in_one_cell(&cell.value) {
-                // The setting would be lost: the program written without it.
-                let beside = cells.iter().any(|c| c.pos.col > cell.pos.col);
-                let message = match beside {
-                    // `safety checks | all`: a label with words after it.
-                    true => format!(
-                        "{} starts with the setting {label} but has more words after it: write the label `{label}` alone, its value right of it (the row was not read)",
-                        cell.value.describe()
+            if let Some((label, rest)) = setting_in_one_cell(&cell.value) {
+                let right = cells.iter().find(|c| c.pos.col > cell.pos.col);
+                match one_cell_setting(label, rest, cell, right.copied(), reader.grid) {
+                    Some(message) => {
+                        reader.mistyped(cell.pos, message, diags);
+                        if right.is_some() {
+                            reader.seen.extend(cells.iter().map(|c| c.pos));
+                        }
+                    }
+                    None => reader.warn(
+                        cell.pos,
+                        format!(
+                            "{} reads as a note: it starts with the setting {label}, but \"{rest}\" is no value of it; it was not read (to give the setting, write the label `{label}` alone and its value right of it)",
+                            cell.value.describe()
+                        ),
+                        diags,
                     ),
-                    false => format!(
-                        "{} holds the setting {label} and its value in one cell; write the value in the cell right of \"{label}\" (it was not read)",
-                        cell.value.describe()
-                    ),
-                };
-                reader.mistyped(cell.pos, message, diags);
-                if beside {
-                    reader.seen.extend(cells.iter().map(|c| c.pos));
                 }
                 continue;
             }
@@ -167,6 +167,41 @@ fn unread_cell(
     ))
 }
 
+/// E046's message for a SETTINGS cell that starts with the setting `label`
+/// followed by `rest` (`modes: step`), with `right` the next cell on its
+/// row; `None` for a note (`Target: 30 parts/min`, `Safety: wear
+/// goggles`). A valid value is a setting written in one cell; so is a
+/// value of one word (`target: codesys3`), an attempt at one. A label
+/// with more words (`safety checks | all`) is one when the value right of
+/// it is valid.
+fn one_cell_setting(
+    label: &'static str,
+    rest: &str,
+    cell: &GridCell,
+    right: Option<&GridCell>,
+    grid: &crate::read::Grid,
+) -> Option<String> {
+    let describe = cell.value.describe();
+    if let Some(value_cell) = right {
+        let value = text_of(&value_cell.value);
+        return valid_value(label, &value, value_cell, grid).then(|| format!(
+            "{describe} starts with the setting {label} but has more words after it: write the label `{label}` alone, its value right of it (the row was not read)"
+        ));
+    }
+    let valid = valid_value(label, rest, cell, grid);
+    let one_word = !rest.trim().contains(char::is_whitespace);
+    let invalid = match valid {
+        true => String::new(),
+        false => format!(
+            ", and \"{rest}\" is not a valid value of it ({})",
+            super::value_problem(label, rest, cell, grid)
+        ),
+    };
+    (valid || one_word).then(|| format!(
+        "{describe} holds the setting {label} and its value in one cell{invalid}; write the value in the cell right of \"{label}\" (it was not read)"
+    ))
+}
+
 /// `scan-time`, `Safty`, `homeorder`: the label steptable knows within two
 /// letters of `label`, the closest.
 pub(super) fn closest_label(label: &str) -> Option<&'static str> {
@@ -222,7 +257,7 @@ pub(super) fn mistyped_label(label: &str) -> Option<&'static str> {
 /// DSNU-16`) stays one.
 pub(super) fn misspelt_setting_in_text(text: &str) -> Vec<(&'static str, &str)> {
     let text = text.trim();
-    let separator = |c: char| c == ':' || c == '=' || c.is_whitespace();
+    let separator = separates_value;
     let mut readings = Vec::new();
     let mut words = 0;
     for (at, c) in text.char_indices() {
@@ -242,16 +277,22 @@ pub(super) fn misspelt_setting_in_text(text: &str) -> Vec<(&'static str, &str)> 
     readings
 }
 
+/// What people write between a label and its value in one cell: `:`,
+/// `=`, a dash (`mode - all`, `safety — watchdog`) or space.
+pub(super) fn separates_value(c: char) -> bool {
+    matches!(c, ':' | '=' | '-' | '–' | '—') || c.is_whitespace()
+}
+
 /// A text that holds a setting's label and its value together (`target:
-/// iec`, `scan time = 20ms`): the label it starts with.
-pub(super) fn setting_in_text(text: &str) -> Option<&'static str> {
-    let lower = text.trim().to_ascii_lowercase();
-    LABELS.into_iter().find(|label| {
-        lower.strip_prefix(label).is_some_and(|rest| {
-            rest.starts_with([':', '=', ' ', '\t'])
-                && !rest
-                    .trim_matches(|c: char| c == ':' || c == '=' || c.is_whitespace())
-                    .is_empty()
-        })
+/// iec`, `scan time = 20ms`, `safety — watchdog`): the label it starts
+/// with, and the rest.
+pub(super) fn setting_in_text(text: &str) -> Option<(&'static str, &str)> {
+    let text = text.trim();
+    let lower = text.to_ascii_lowercase();
+    LABELS.into_iter().find_map(|label| {
+        let rest = lower.strip_prefix(label)?;
+        let value = text[label.len()..].trim_start_matches(separates_value);
+        (rest.starts_with(separates_value) && !value.trim().is_empty())
+            .then_some((label, value.trim()))
     })
 }

@@ -156,6 +156,10 @@ fn parse_when(text: &str, program: &StepProgram) -> Result<When, String> {
             time.replace(',', ".")
         ));
     }
+    if time.contains(char::is_whitespace) {
+        let joined: String = time.split_whitespace().collect();
+        return Err(format!("\"{time}\" has a space in it: write {joined}"));
+    }
     let ms = parse_duration_in(time, 0..=LATEST_MS).ok_or_else(|| {
         let finer = crate::cell::plain_time(time)
             && parse_duration_in(time, 0..=u32::MAX).is_none()
@@ -178,7 +182,7 @@ fn parse_when(text: &str, program: &StepProgram) -> Result<When, String> {
 
 /// `stepK` (the text after `step`): an SFC step of the program, 0 at rest
 /// to its last table step. The closing transition enters step 0, as the
-/// printed table says (`step 0   end of cycle: at rest`).
+/// printed table says (`step 0   end of cycle`).
 fn parse_step(step: &str, program: &StepProgram) -> Result<When, String> {
     let table_step = |s: &&crate::program::ProgramStep| s.kind == crate::program::StepKind::Table;
     let steps = program.steps.iter().filter(table_step);

@@ -47,7 +47,7 @@ fn lines(
         let step = index.map_or(*number, |i| program.step_entered(i));
         let title = match index.map(|i| &program.steps[i]) {
             Some(s) if s.kind == StepKind::Table => s.title.clone(),
-            Some(_) => "end of cycle: at rest".to_string(),
+            Some(_) => "end of cycle".to_string(),
             None => String::new(),
         };
         lines.push((*t, 1, format!("step {step:<3} {title}")));

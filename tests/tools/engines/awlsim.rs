@@ -63,7 +63,9 @@ type Bit = (u32, u32);
 /// them: `step_3` at `M 1.3` is `(3, (1, 3))`.
 fn step_flags(awl: &Path) -> Result<Vec<(usize, Bit)>, String> {
     let sdf = awl.with_extension("sdf");
-    let text = std::fs::read_to_string(&sdf).map_err(|e| format!("{}: {e}", sdf.display()))?;
+    // Windows-1252, as SIMATIC Manager reads it.
+    let bytes = std::fs::read(&sdf).map_err(|e| format!("{}: {e}", sdf.display()))?;
+    let (text, _, _) = encoding_rs::WINDOWS_1252.decode(&bytes);
     let mut flags = Vec::new();
     for line in text.lines() {
         let fields: Vec<&str> = line.split('"').collect();

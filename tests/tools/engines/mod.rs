@@ -387,7 +387,9 @@ pub fn run_written(case: &Case, format: &str, python: &Path) -> Result<Vec<Vec<b
             &case.allocation,
         ),
         _ => {
-            let text = std::fs::read_to_string(case.file(".fst.txt")).map_err(|e| e.to_string())?;
+            // Windows-1252, as Festo FST reads it.
+            let bytes = std::fs::read(case.file(".fst.txt")).map_err(|e| e.to_string())?;
+            let (text, _, _) = encoding_rs::WINDOWS_1252.decode(&bytes);
             fst::run(&text, &case.trace, &case.festo)
         }
     }

@@ -1,0 +1,329 @@
+//! The tenth round of hostile input: what the red teams rt18 and rt19
+//! found. A setting with its value after a dash (`safety — watchdog`)
+//! passed in silence with the table; a note on SETTINGS (`Target: 30
+//! parts/min`) was refused; valve types under no header, or with a `-`
+//! among them, were lost with a W003; a Siemens engineer could not name an
+//! actuator `conveyor` for FST's sake with no FST file asked for; `batch`
+//! left a mistyped path out of summary.csv and named the wrong input for
+//! an E040; `Ä` went as UTF-8 into the files Windows tools read as ANSI.
+//! Each row goes through the binary.
+
+use crate::helpers::{sample, steptable};
+use crate::hostile_round8::refused;
+use crate::hostile_round9::{check, workbook};
+
+/// A setting and its value after a dash, or a list written with `and`, in
+/// one cell with the step table: E046 as with `:` (rt18 F4).
+#[test]
+fn a_setting_after_a_dash_with_the_table_is_refused() {
+    for text in [
+        "safety — watchdog",
+        "safety – watchdog",
+        "safety - watchdog",
+        "Modes: step and manual",
+    ] {
+        refused(
+            "dash.xlsx",
+            workbook(&[text], &[]),
+            &[
+                "SEQUENTIAL CONTROL DESCRIPTION!A7: error[E046]",
+                "in one cell",
+            ],
+        );
+        let csv = format!(",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n\n{text}\n");
+        refused("dash.csv", csv.into_bytes(), &["dash.csv:5:1: error[E046]"]);
+    }
+}
+
+/// On SETTINGS a known label with a note after it in one cell is a note
+/// (W003, exit 0), as the guide says; with a value of one word it is a
+/// setting written in one cell, E046, and a wrong value is named (rt18
+/// F5).
+#[test]
+fn a_note_after_a_settings_label_is_a_note() {
+    for note in ["Target: 30 parts/min", "Safety: wear goggles"] {
+        let rows: &[&[&str]] = &[&["target", "iec"], &[], &[note]];
+        let (code, said) = check(workbook(&[], &[("SETTINGS", rows)]));
+        assert_eq!(code, Some(0), "{note}: {said}");
+        assert!(
+            said.contains("SETTINGS!A3: warning[W003]") && said.contains("reads as a note"),
+            "{note}: {said}"
+        );
+    }
+    let rows: &[&[&str]] = &[&["target: codesys3"]];
+    refused(
+        "value.xlsx",
+        workbook(&[], &[("SETTINGS", rows)]),
+        &[
+            "SETTINGS!A1: error[E046]",
+            "\"codesys3\" is not a valid value of it",
+        ],
+    );
+    let rows: &[&[&str]] = &[&["modes: step and manual"]];
+    refused(
+        "list.xlsx",
+        workbook(&[], &[("SETTINGS", rows)]),
+        &[
+            "SETTINGS!A1: error[E046]: \"modes: step and manual\" holds the setting modes and its value in one cell;",
+        ],
+    );
+}
+
+/// Valve types in a column without a header, or under `Type` with a
+/// placeholder among them: E046, not W003 (rt18 F6, F7).
+#[test]
+fn valve_types_under_no_header_or_with_a_placeholder_are_refused() {
+    let headerless: &[&[&str]] = &[
+        &["actuator", "extend", ""],
+        &["C1", "2s", "52mono"],
+        &["C2", "2s", "52bi"],
+    ];
+    refused(
+        "headerless.xlsx",
+        workbook(&[], &[("SETTINGS", headerless)]),
+        &[
+            "SETTINGS!C2: error[E046]",
+            "in a column without a header",
+            "a valve type: head it `valve`",
+        ],
+    );
+    for placeholder in ["-", "n/a", "—"] {
+        let typed: &[&[&str]] = &[
+            &["actuator", "extend", "Type"],
+            &["C1", "2s", "52mono"],
+            &["C2", "2s", placeholder],
+        ];
+        refused(
+            "placeholder.xlsx",
+            workbook(&[], &[("SETTINGS", typed)]),
+            &[
+                "SETTINGS!C1: error[E046]",
+                "every value under it is a valve type",
+            ],
+        );
+    }
+    // A column of notes stays one.
+    let notes: &[&[&str]] = &[
+        &["actuator", "extend", "Type"],
+        &["C1", "2s", "clamp"],
+        &["C2", "2s", "-"],
+    ];
+    let (code, said) = check(workbook(&[], &[("SETTINGS", notes)]));
+    assert_eq!(code, Some(0), "{said}");
+}
+
+/// A stroke time that is a time, but too short, says so (rt18 F8).
+#[test]
+fn a_stroke_time_too_short_is_called_too_short() {
+    for (header, value, says) in [
+        (
+            "extend",
+            "0.5ms",
+            "\"0.5ms\" is 0.5 ms, and a stroke time is whole milliseconds from 1ms",
+        ),
+        (
+            "extend [ms]",
+            "1,5",
+            "\"1,5\" (in the header's unit) is 1.5 ms",
+        ),
+    ] {
+        let rows: &[&[&str]] = &[&["actuator", header], &["C1", value]];
+        refused(
+            "short.xlsx",
+            workbook(&[], &[("SETTINGS", rows)]),
+            &["SETTINGS!B2: error[E030]", says],
+        );
+    }
+}
+
+/// `--designations names` with a name of 8 characters or more: refused
+/// for FST's 9 characters only where an FST file is written (rt19 F4).
+#[test]
+fn fsts_name_length_binds_only_where_fst_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let rows: &[&[&str]] = &[
+        &["actuator", "extend"],
+        &["C1 (conveyor)", "1s"],
+        &["C2 (lift)", "1s"],
+    ];
+    let path = dir.path().join("long.xlsx");
+    std::fs::write(&path, workbook(&[], &[("SETTINGS", rows)])).unwrap();
+    let convert = |formats: &str| {
+        steptable()
+            .args(["convert", "--designations", "names", "--target", "siemens"])
+            .args(["--formats", formats, "-o"])
+            .arg(dir.path().join(formats))
+            .arg(&path)
+            .output()
+            .unwrap()
+    };
+    let siemens = convert("st,scl,awl,sdf");
+    assert!(
+        siemens.status.success(),
+        "{}",
+        String::from_utf8_lossy(&siemens.stderr)
+    );
+    let awl = std::fs::read_to_string(dir.path().join("st,scl,awl,sdf/long/long.awl")).unwrap();
+    assert!(awl.contains("conveyor_end"), "{awl}");
+    let fst = convert("st,fst");
+    assert_eq!(fst.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&fst.stderr).contains("all Festo FST keeps of a symbol"));
+}
+
+/// `batch`: a path that names nothing has its row in summary.csv and its
+/// `failed:` line (rt19 F5); an E040 names the input that failed, which
+/// has no verdict, since nothing was written (rt19 F6).
+#[test]
+fn batch_says_every_failed_input_under_its_own_name() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(sample("oven.xlsx"), dir.path().join("oven.xlsx")).unwrap();
+    let run = steptable()
+        .current_dir(dir.path())
+        .args(["batch", "oven.xlsx", "typo.xlsx", "-o", "out", "-q"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(stdout.contains("1 converted, 1 failed"), "{stdout}");
+    assert!(
+        stdout.contains("failed: typo.xlsx: error[E001]"),
+        "{stdout}"
+    );
+    let summary = std::fs::read_to_string(dir.path().join("out/summary.csv")).unwrap();
+    assert!(summary.contains("\ntypo.xlsx,failed,1,"), "{summary}");
+
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(sample("paper_example.xlsx"), dir.path().join("p.xlsx")).unwrap();
+    std::fs::create_dir(dir.path().join("p")).unwrap();
+    std::fs::write(
+        dir.path().join("p/p.io.csv"),
+        std::fs::read(sample("paper_example.csv")).unwrap(),
+    )
+    .unwrap();
+    let run = steptable()
+        .current_dir(dir.path())
+        .args(["batch", ".", "-o", ".", "-q", "-j", "1"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        stdout.contains("error[E040]: (converting ./p.xlsx) is an input of this run"),
+        "{stdout}"
+    );
+    let summary = std::fs::read_to_string(dir.path().join("summary.csv")).unwrap();
+    let row = summary
+        .lines()
+        .find(|l| l.starts_with("./p.xlsx,"))
+        .unwrap();
+    assert!(
+        row.starts_with("./p.xlsx,failed,") && !row.contains("passed"),
+        "{row}"
+    );
+}
+
+/// One file named twice is converted once, and said (rt19 F7).
+#[test]
+fn one_file_named_twice_is_converted_once() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(sample("paper_example.xlsx"), dir.path().join("p.xlsx")).unwrap();
+    let run = steptable()
+        .current_dir(dir.path())
+        .args(["convert", "p.xlsx", "./p.xlsx", "-o", "out"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{stdout}");
+    assert!(
+        stdout.contains("note: ./p.xlsx names the file p.xlsx again; converted once"),
+        "{stdout}"
+    );
+    let folders: Vec<_> = std::fs::read_dir(dir.path().join("out")).unwrap().collect();
+    assert_eq!(folders.len(), 1);
+}
+
+/// The files Windows tools read in their ANSI code page are Windows-1252:
+/// `Ä` one byte, the `.sdf`'s rows of one width; a character the code
+/// page lacks is W008 (rt19 F8).
+#[test]
+fn the_files_windows_tools_read_are_in_their_code_page() {
+    let dir = tempfile::tempdir().unwrap();
+    let rows: &[&[&str]] = &[
+        &["actuator", "extend"],
+        &["C1 (Zylinder Ä)", "1s"],
+        &["C2 (Hubzylinder)", "1s"],
+    ];
+    let path = dir.path().join("u.xlsx");
+    std::fs::write(&path, workbook(&[], &[("SETTINGS", rows)])).unwrap();
+    let run = steptable()
+        .args(["convert", "-o"])
+        .arg(dir.path().join("out"))
+        .arg(&path)
+        .output()
+        .unwrap();
+    assert!(run.status.success());
+    let sdf = std::fs::read(dir.path().join("out/u/u.sdf")).unwrap();
+    assert!(sdf.contains(&0xC4), "Ä is 0xC4 in Windows-1252");
+    let widths: std::collections::BTreeSet<usize> = sdf
+        .split(|b| *b == b'\n')
+        .filter(|l| !l.is_empty())
+        .map(<[u8]>::len)
+        .collect();
+    assert_eq!(widths.len(), 1, "{widths:?}");
+    for file in ["u.exp", "u.fst-alloc.csv"] {
+        let bytes = std::fs::read(dir.path().join("out/u").join(file)).unwrap();
+        assert!(
+            bytes.contains(&0xC4) && std::str::from_utf8(&bytes).is_err(),
+            "{file}"
+        );
+    }
+    let st = std::fs::read_to_string(dir.path().join("out/u/u.st")).unwrap();
+    assert!(st.contains("Zylinder Ä"), "the other outputs stay UTF-8");
+
+    let rows: &[&[&str]] = &[&["actuator", "extend"], &["C1 (Ωmega)", "1s"]];
+    std::fs::write(&path, workbook(&[], &[("SETTINGS", rows)])).unwrap();
+    let run = steptable()
+        .args(["convert", "--formats", "st,sdf", "-o"])
+        .arg(dir.path().join("greek"))
+        .arg(&path)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{said}");
+    assert!(
+        said.contains(
+            "warning[W008]: u.sdf: these files are written in the Windows-1252 code page"
+        ) && said.contains("\"Ω\""),
+        "{said}"
+    );
+}
+
+/// A scenario time with a space before its unit is told so, not "finer
+/// than a millisecond" (rt19 F2); the end of a cycle with outputs on is
+/// not called "at rest" (rt19 F3).
+#[test]
+fn scenario_lines_say_what_happened() {
+    let run = steptable()
+        .args(["simulate"])
+        .arg(sample("paper_example.xlsx"))
+        .args(["--press", "START@1.5 s"])
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(
+        said.contains("\"1.5 s\" has a space in it: write 1.5s"),
+        "{said}"
+    );
+    let run = steptable()
+        .args(["simulate"])
+        .arg(sample("oven.xlsx"))
+        .args(["--press", "START@1s"])
+        .output()
+        .unwrap();
+    let table = String::from_utf8_lossy(&run.stdout);
+    assert!(table.contains("step 0   end of cycle"), "{table}");
+    assert!(
+        !table.contains("at rest"),
+        "the oven's fan and coil stay on: {table}"
+    );
+}
