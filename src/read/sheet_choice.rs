@@ -143,7 +143,8 @@ pub(super) type SheetReader<'a> =
 /// that best holds a table (BRANCH/STEP headers first, then the most moves;
 /// the side sheets are not candidates),
 /// and a hidden one only when no visible sheet holds a table. Any choice
-/// among several, or of a hidden sheet, is said (W004).
+/// among several, or of a hidden sheet, is said (W004). The other sheets
+/// read on the way go to `others_read`, so that they are not read twice.
 pub(super) fn pick_table(
     workbook: &mut Box<dyn SheetSource>,
     names: &[String],
@@ -151,6 +152,7 @@ pub(super) fn pick_table(
     whole_file: &Location,
     diags: &mut Diagnostics,
     read_sheet: &SheetReader,
+    others_read: &mut Option<Vec<Grid>>,
 ) -> Option<Grid> {
     let whole_file = whole_file.clone();
     if let Some(wanted) = wanted {
@@ -176,13 +178,18 @@ pub(super) fn pick_table(
     // Sheets of formulas nobody computed, whose first such cell: any may
     // hold the table, and which does cannot be told.
     let mut formulas = Vec::new();
+    // The sheets without a table, kept for the caller's look at them.
+    let mut no_table = Vec::new();
     // The side sheets are read as such, never as the table.
     for name in names.iter().filter(|n| side_sheet_of(n).is_none()) {
         let mut local = Diagnostics::new();
         match read_sheet(workbook, name, &mut local) {
             Some(grid) => match table_score(&grid, is_hidden(name)) {
                 Some(score) => candidates.push((score, grid)),
-                None => formulas.extend(first_uncomputed(&grid)),
+                None => {
+                    formulas.extend(first_uncomputed(&grid));
+                    no_table.push(grid);
+                }
             },
             None => unread.extend(local),
         }
@@ -241,6 +248,11 @@ pub(super) fn pick_table(
     }
     let table_sheet = names.iter().find(|n| is_side(n, TABLE_SHEET));
     say_choice(&grid, score, &candidates, table_sheet, diags);
+    // Read already: the caller need not read them again.
+    let mut others: Vec<Grid> = candidates.into_iter().map(|(_, g)| g).collect();
+    others.extend(no_table);
+    others.sort_by_key(|g| names.iter().position(|n| g.sheet.as_ref() == Some(n)));
+    *others_read = Some(others);
     Some(grid)
 }
 

@@ -50,7 +50,16 @@ pub(super) fn read_workbook(
         diags,
     );
     misnamed_side_sheets(file, &names, diags);
-    let mut table = pick_table(&mut workbook, &names, wanted, &whole_file, diags, &read);
+    let mut passed_over = None;
+    let mut table = pick_table(
+        &mut workbook,
+        &names,
+        wanted,
+        &whole_file,
+        diags,
+        &read,
+        &mut passed_over,
+    );
     let (mut settings, mut addresses) = (settings, addresses);
     for grid in [&mut table, &mut settings, &mut addresses]
         .into_iter()
@@ -60,7 +69,14 @@ pub(super) fn read_workbook(
         refuse_hidden_under_merges(grid, &regions, diags);
     }
     let table = table?;
-    let others = other_sheets(&mut workbook, &names, &table, &read);
+    // The sheets picking the table read, else each read now.
+    let others = match passed_over {
+        Some(grids) => grids
+            .into_iter()
+            .filter(|g| !g.sheet.as_deref().is_some_and(names_a_side_sheet))
+            .collect(),
+        None => other_sheets(&mut workbook, &names, &table, &read),
+    };
     Some(Input {
         table,
         settings,

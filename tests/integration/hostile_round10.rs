@@ -327,3 +327,23 @@ fn scenario_lines_say_what_happened() {
         "the oven's fan and coil stay on: {table}"
     );
 }
+
+/// Settings on a sheet of another name are W015 also where the table's
+/// sheet was picked among others (its sheets are read once, while
+/// picking): a regression guard for that path.
+#[test]
+fn settings_elsewhere_are_said_where_the_table_sheet_was_picked() {
+    let mut book = rust_xlsxwriter::Workbook::new();
+    let table = book.add_worksheet();
+    table.set_name("Table").unwrap();
+    crate::hostile_round8::write_rows(
+        table,
+        &[&["", "BRANCH 1"], &["STEP 1", "C1+1"], &["STEP 2", "C1-0"]],
+    );
+    let config = book.add_worksheet();
+    config.set_name("Config").unwrap();
+    crate::hostile_round8::write_rows(config, &[&["modes", "all"], &["safety", "watchdog"]]);
+    let (code, said) = check(book.save_to_buffer().unwrap());
+    assert_eq!(code, Some(0), "{said}");
+    assert!(said.contains("Config!A1: warning[W015]"), "{said}");
+}

@@ -117,6 +117,16 @@ pub fn written_elsewhere(others: &[Grid], has_settings: bool, diags: &mut Diagno
 /// naming an actuator with a value in one of those columns. The header's
 /// cell and that row's first cell.
 fn actuator_table(grid: &Grid) -> Option<(CellPos, CellPos)> {
+    let heads_a_table = |value: &CellValue| {
+        label_of(value).is_some_and(|label| {
+            let first = label.split(|c: char| !c.is_alphanumeric()).next();
+            matches!(first, Some("actuator" | "actuators"))
+        })
+    };
+    // Nearly every step table has no such header: no index built for it.
+    if !grid.cells.iter().any(|c| heads_a_table(&c.value)) {
+        return None;
+    }
     // Look-ups by place, so that a sheet of many cells is looked over in
     // time that grows with them.
     let values: std::collections::HashMap<CellPos, &CellValue> =
@@ -128,9 +138,7 @@ fn actuator_table(grid: &Grid) -> Option<(CellPos, CellPos)> {
         rows.entry(pos.row).or_default().push(pos.col);
     }
     grid.cells.iter().find_map(|cell| {
-        let label = label_of(&cell.value)?;
-        let first = label.split(|c: char| !c.is_alphanumeric()).next()?;
-        if first != "actuator" && first != "actuators" {
+        if !heads_a_table(&cell.value) {
             return None;
         }
         let header = cell.pos;
