@@ -94,7 +94,19 @@ pub(super) fn shortened_sdf_comments(
         1 => String::new(),
         n => format!(" and {} more ({})", n - 1, cut[1..].join(", ")),
     };
-    Some(crate::diag::Diagnostic {
+    Some(shortened(
+        input,
+        format!(
+            "{}.sdf: the comment of {first}{more} is longer than the {} characters a STEP 7 symbol table holds; it is cut there and ends in \"...\" (the .awl keeps it whole); shorten the step comment or actuator name to keep it",
+            input.name,
+            crate::emit::sdf::SDF_COMMENT
+        ),
+    ))
+}
+
+/// W008 at the input as a whole: an output holds less than it says.
+fn shortened(input: &crate::emit::EmitInput, message: String) -> crate::diag::Diagnostic {
+    crate::diag::Diagnostic {
         severity: crate::diag::Severity::Warning,
         code: crate::diag::Code::W008Shortened,
         location: crate::diag::Location {
@@ -102,12 +114,8 @@ pub(super) fn shortened_sdf_comments(
             sheet: None,
             cell: None,
         },
-        message: format!(
-            "{}.sdf: the comment of {first}{more} is longer than the {} characters a STEP 7 symbol table holds; it is cut there and ends in \"...\" (the .awl keeps it whole); shorten the step comment or actuator name to keep it",
-            input.name,
-            crate::emit::sdf::SDF_COMMENT
-        ),
-    })
+        message,
+    }
 }
 
 /// W008 when a name or comment of the engineer's holds characters the
@@ -144,20 +152,14 @@ pub(super) fn code_page_losses(
         return None;
     }
     let chars: String = lacked.iter().map(|c| format!("\"{c}\" ")).collect();
-    Some(crate::diag::Diagnostic {
-        severity: crate::diag::Severity::Warning,
-        code: crate::diag::Code::W008Shortened,
-        location: crate::diag::Location {
-            file: input.table.file.clone(),
-            sheet: None,
-            cell: None,
-        },
-        message: format!(
+    Some(shortened(
+        input,
+        format!(
             "{}: these files are written in the Windows-1252 code page the Windows tools read them in, which lacks {}(from a name or comment of yours): there each is written as ?; the other outputs keep them",
             files.join(", "),
             chars
         ),
-    })
+    ))
 }
 
 /// E048 at each jump back into its own step whose re-entry does something

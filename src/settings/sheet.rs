@@ -429,24 +429,14 @@ const CLOSED_VALUES: [&str; 7] = [
 /// `watchdog; edge`): where settings are not read, a value so dressed
 /// would be lost all the same.
 fn valid_value(label: &'static str, value: &str, cell: &GridCell, grid: &Grid) -> bool {
-    let valid = |value: &str| {
-        let mut scratch = Diagnostics::new();
-        apply(
-            &mut Given::default(),
-            label,
-            value,
-            cell,
-            grid,
-            &mut scratch,
-        );
-        !value.trim().is_empty() && !scratch.has_errors()
-    };
+    let valid =
+        |value: &str| !value.trim().is_empty() && value_problem(label, value, cell, grid).is_none();
     valid(value) || undressed(value).is_some_and(|v| valid(&v))
 }
 
-/// Why `value` is not a valid value of the setting `label`: E030's
-/// message, without the label.
-fn value_problem(label: &'static str, value: &str, cell: &GridCell, grid: &Grid) -> String {
+/// Why `value` is not a valid value of the setting `label` (E030's
+/// message, without the label), or `None` when it is one.
+fn value_problem(label: &'static str, value: &str, cell: &GridCell, grid: &Grid) -> Option<String> {
     let mut scratch = Diagnostics::new();
     apply(
         &mut Given::default(),
@@ -458,14 +448,13 @@ fn value_problem(label: &'static str, value: &str, cell: &GridCell, grid: &Grid)
     );
     scratch
         .iter()
-        .next()
+        .find(|d| d.severity == crate::diag::Severity::Error)
         .map(|d| {
             d.message
                 .trim_start_matches(label)
                 .trim_start_matches(": ")
                 .to_string()
         })
-        .unwrap_or_default()
 }
 
 /// `value` without the dress of a note: trailing `.`, `;` or `,`, a

@@ -194,7 +194,7 @@ fn one_cell_setting(
         true => String::new(),
         false => format!(
             ", and \"{rest}\" is not a valid value of it ({})",
-            super::value_problem(label, rest, cell, grid)
+            super::value_problem(label, rest, cell, grid).unwrap_or_default()
         ),
     };
     (valid || one_word).then(|| format!(
