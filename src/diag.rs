@@ -306,12 +306,17 @@ impl fmt::Display for Diagnostic {
             Severity::Error => "error",
             Severity::Warning => "warning",
         };
+        // One line per problem: a line break quoted from a cell (Alt+Enter)
+        // is shown as `\n`, so that grep and CI logs keep it whole.
+        let message = self
+            .message
+            .replace("\r\n", "\\n")
+            .replace(['\n', '\r'], "\\n");
         write!(
             f,
-            "{}: {kind}[{}]: {}",
+            "{}: {kind}[{}]: {message}",
             self.location,
             self.code.as_str(),
-            self.message
         )
     }
 }

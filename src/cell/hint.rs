@@ -43,8 +43,19 @@ pub fn not_a_move_hint(item: &str) -> String {
     if let Some(items) = split_by(text, &[',', '\u{FF0C}']) {
         return format!("separate items with `;`, not `,`: {}", items.join("; "));
     }
+    if let Some(items) = split_by(text, &['\n', '\r']) {
+        return format!(
+            "separate items with `;`, not line breaks: {}",
+            items.join("; ")
+        );
+    }
     if let Some(items) = split_by(text, &[' ', '\t', '\u{3000}']) {
         return format!("separate items with `;`, not spaces: {}", items.join("; "));
+    }
+    if let Some(joined) = digits_split(text) {
+        return format!(
+            "a space splits a number: write {joined} if that is meant, or separate two items with `;`"
+        );
     }
     if let Some(fixed) = digit_for_letter(&norm) {
         return format!("did you mean {fixed}? A letter stands where a digit belongs");
@@ -123,6 +134,30 @@ fn split_by(text: &str, separators: &[char]) -> Option<Vec<String>> {
         .filter(|p| !p.is_empty())
         .collect();
     (parts.len() > 1 && parts.iter().all(|p| parse_item(p).is_ok())).then_some(parts)
+}
+
+/// `C4+1 0`, `C1 2+1`: a move whose number a space splits, with the
+/// space dropped.
+fn digits_split(text: &str) -> Option<String> {
+    let joined: String = text.split_whitespace().collect();
+    (split_number(text) && parse_item(&joined).is_ok()).then_some(joined)
+}
+
+/// Whether white space stands between two digits of `text`.
+pub(super) fn split_number(text: &str) -> bool {
+    let chars: Vec<char> = text.trim().chars().collect();
+    chars.iter().enumerate().any(|(i, c)| {
+        c.is_whitespace()
+            && chars[..i]
+                .iter()
+                .rev()
+                .find(|c| !c.is_whitespace())
+                .is_some_and(char::is_ascii_digit)
+            && chars[i..]
+                .iter()
+                .find(|c| !c.is_whitespace())
+                .is_some_and(char::is_ascii_digit)
+    })
 }
 
 /// `C2+l`, `CI+1`, `C1+O` read with 1 and 0 for the look-alike letters,

@@ -52,7 +52,21 @@ pub fn step_comment(text: &str) -> Option<String> {
         .skip_while(|(_, c)| c.is_alphabetic() || c.is_whitespace())
         .find(|(_, c)| !c.is_ascii_digit())
         .map(|(i, _)| &trimmed[i..])?;
+    // `STEP 2.5`: a number's decimals, not a comment `5` (W002 names the
+    // label as written).
+    let after = match decimals(after) {
+        Some(rest) => rest,
+        None => after,
+    };
     label_comment(after)
+}
+
+/// What follows the decimals of a label's number (`.5 (lift)` after `STEP
+/// 2`), when they are there.
+pub fn decimals(after: &str) -> Option<&str> {
+    let rest = after.strip_prefix(['.', ','])?;
+    let digits = rest.chars().take_while(char::is_ascii_digit).count();
+    (digits > 0).then(|| &rest[digits..])
 }
 
 /// The comment after a label's number (`(clamp part)`, `: eject`, `- lift`)

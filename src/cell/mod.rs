@@ -8,8 +8,8 @@ mod hint;
 mod label;
 pub use hint::{edit_distance, move_attempts, not_a_move_hint};
 pub use label::{
-    Header, actuator_comment, actuator_name, header_kind, looks_like_item, looks_like_move,
-    parse_actuator, step_comment, visible_text,
+    Header, actuator_comment, actuator_name, decimals, header_kind, looks_like_item,
+    looks_like_move, parse_actuator, step_comment, visible_text,
 };
 
 /// Largest actuator number accepted (`C999`).
@@ -110,6 +110,10 @@ fn digit(n: u32) -> char {
 
 /// Parses one move cell. Empty text is not a move; callers skip empty cells first.
 pub fn parse_move(text: &str) -> Result<CellMove, CellError> {
+    // `C4+1 0`: two numbers, or one mistyped; which is not ours to guess.
+    if hint::split_number(text) {
+        return Err(CellError::NotAMove);
+    }
     let norm = normalize(text);
     let rest = norm.strip_prefix('C').ok_or(CellError::NotAMove)?;
     let digits_end = rest

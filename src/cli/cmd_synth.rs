@@ -14,8 +14,9 @@ pub(crate) struct SynthArgs {
     /// Output folder; the results go to DIR/NAME/.
     #[arg(short, long, value_name = "DIR", default_value = "steptable-out")]
     pub(crate) output: PathBuf,
-    /// Read this sheet instead of the default choice.
-    #[arg(long, value_name = "NAME")]
+    /// Read this sheet instead of the default choice (a table's; a
+    /// sequence has none).
+    #[arg(long, value_name = "NAME", conflicts_with = "sequence")]
     pub(crate) sheet: Option<String>,
     /// Memory insertion: exact (proven minimal), ga (the paper's GA, with GP
     /// for the equations) or both (default; the better is kept).

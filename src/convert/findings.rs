@@ -118,6 +118,64 @@ fn shortened(input: &crate::emit::EmitInput, message: String) -> crate::diag::Di
     }
 }
 
+/// W008 when a timer's time is finer than the AWL's S5TIME or FST's
+/// hundredths hold (`T=15ms`), and one of those files is asked for: its
+/// preset there is longer, rounded up, than what the simulation proved and
+/// the other programs load.
+pub(super) fn rounded_presets(
+    input: &crate::emit::EmitInput,
+    settings: &crate::settings::Settings,
+) -> Option<crate::diag::Diagnostic> {
+    use crate::emit::OutputKind;
+    use crate::program::Action;
+    let awl = settings.formats.contains(&OutputKind::Awl);
+    let fst = settings.formats.contains(&OutputKind::Fst);
+    let program = input.program;
+    let actions = (program.init.iter())
+        .chain(program.steps.iter().flat_map(|s| &s.actions))
+        .chain(program.rungs.iter().flat_map(|r| &r.actions));
+    let mut said: Vec<String> = Vec::new();
+    for action in actions {
+        let Action::StartTimer(timer, ms) = *action else {
+            continue;
+        };
+        let mut held = Vec::new();
+        if awl && crate::emit::s5time::s5_ms(ms) != ms {
+            held.push(format!(
+                "{}.awl {} ms",
+                input.name,
+                crate::emit::s5time::s5_ms(ms)
+            ));
+        }
+        if fst && crate::emit::fst::fst_ms(ms) != ms {
+            held.push(format!(
+                "{}.fst.txt {} ms",
+                input.name,
+                crate::emit::fst::fst_ms(ms)
+            ));
+        }
+        let line = format!(
+            "{} for {ms} ms ({})",
+            input.symbols.ident(timer),
+            held.join(", ")
+        );
+        if !held.is_empty() && !said.contains(&line) {
+            said.push(line);
+        }
+    }
+    let (first, rest) = said.split_first()?;
+    let more = match rest.len() {
+        0 => String::new(),
+        _ => format!("; {}", rest.join("; ")),
+    };
+    Some(shortened(
+        input,
+        format!(
+            "{first}{more}: STEP 7's S5TIME and FST's presets count in steps of 10 ms or more, so the time is rounded up there; the simulation and the other programs use it as written (write a multiple of 10 ms to have one time everywhere)"
+        ),
+    ))
+}
+
 /// W008 when a name or comment of the engineer's holds characters the
 /// Windows-1252 code page lacks, and a file written in it is asked for
 /// (`.sdf`, FST, CoDeSys V2.3): there they are `?`.

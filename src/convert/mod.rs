@@ -506,6 +506,7 @@ pub fn generate_observed(
     }
     warnings.extend(findings::openplc_chart(&input, settings));
     warnings.extend(findings::code_page_losses(&input, settings));
+    warnings.extend(findings::rounded_presets(&input, settings));
     let refused = findings::retry_in_chart(&input, settings);
     if !refused.is_empty() {
         return Err(Failure::Input(refused));

@@ -5,6 +5,7 @@
 //! per cycle, as the step program says. English (`A`, `AN`, `JCN`, `I`, `Q`)
 //! or German (`U`, `UN`, `SPBN`, `E`, `A`) mnemonics follow `--mnemonic`.
 
+use super::s5time::{s5_ms, s5time};
 use minijinja::Value;
 use minijinja::value::Serde;
 use serde::Serialize;
@@ -227,30 +228,6 @@ fn timer_operand(input: &EmitInput, signal: Signal) -> String {
         .unwrap_or_else(|| "T 0".to_string())
 }
 
-/// S5TIME literal for a duration, never shorter than asked: the finest time
-/// base (10 ms, 100 ms, 1 s, 10 s) whose 999 steps reach it, rounded up to
-/// a whole step (at most 2H46M30S).
-fn s5time(ms: u32) -> String {
-    let ms = ms.min(9_990_000);
-    let ms = [10u32, 100, 1000, 10_000]
-        .into_iter()
-        .find(|base| ms.div_ceil(*base) <= 999)
-        .map_or(9_990_000, |base| ms.div_ceil(base) * base);
-    let (h, rest) = (ms / 3_600_000, ms % 3_600_000);
-    let (m, rest) = (rest / 60_000, rest % 60_000);
-    let (s, rest) = (rest / 1000, rest % 1000);
-    let mut text = "S5T#".to_string();
-    for (value, unit) in [(h, "H"), (m, "M"), (s, "S"), (rest, "MS")] {
-        if value > 0 {
-            text.push_str(&format!("{value}{unit}"));
-        }
-    }
-    if text.len() == 4 {
-        text.push_str("0MS");
-    }
-    text
-}
-
 /// Jump labels have at most four characters in STEP 7.
 fn label(n: usize) -> String {
     const DIGITS: &[u8] = b"0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ";
@@ -331,6 +308,12 @@ impl Networks<'_> {
                     let Some(t) = layout.timer(s) else { continue };
                     let word = format!("MW {}", t.preset_word);
                     let timer = timer_operand(input, s);
+                    // The comment says what the preset holds, where it
+                    // differs from the table's time (W008 said so too).
+                    let comment = match s5_ms(ms) {
+                        held if held != ms => format!("{comment} (S5TIME holds {held} ms)"),
+                        _ => comment,
+                    };
                     lines.push(line("L", s5time(ms), comment));
                     lines.push(line("T", word.clone(), t.preset_name.ident.clone()));
                     lines.push(line("S", Layout::m(t.run), t.run_name.ident.clone()));
@@ -599,57 +582,6 @@ pub fn render_sdf(input: &EmitInput, model: &Value) -> Result<String, templates:
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The time base STEP 7 stores a duration with: the finest that holds it in
-    /// 999 steps.
-    fn base_of(ms: u32) -> u32 {
-        [10u32, 100, 1000]
-            .into_iter()
-            .find(|base| ms <= 999 * base)
-            .unwrap_or(10_000)
-    }
-
-    /// Milliseconds of an S5TIME literal, as STEP 7 reads it.
-    fn literal_ms(text: &str) -> u32 {
-        let mut rest = text.strip_prefix("S5T#").unwrap();
-        let mut total = 0;
-        for (unit, factor) in [("H", 3_600_000), ("M", 60_000), ("S", 1000), ("MS", 1)] {
-            let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
-            let after = &rest[digits.len()..];
-            if !digits.is_empty()
-                && after.starts_with(unit)
-                && !after[unit.len()..].starts_with('S')
-            {
-                total += digits.parse::<u32>().unwrap() * factor;
-                rest = &after[unit.len()..];
-            }
-        }
-        assert!(rest.is_empty(), "{text}");
-        total
-    }
-
-    #[test]
-    fn s5time_literals() {
-        assert_eq!(s5time(3000), "S5T#3S");
-        assert_eq!(s5time(2400), "S5T#2S400MS");
-        assert_eq!(s5time(0), "S5T#0MS");
-        assert_eq!(s5time(u32::MAX), "S5T#2H46M30S");
-        // Never shorter than asked, and no longer than one step of the
-        // finest base that holds the time in 999 steps.
-        assert_eq!(s5time(15), "S5T#20MS");
-        assert_eq!(s5time(1005), "S5T#1S10MS");
-        assert_eq!(s5time(9990), "S5T#9S990MS");
-        assert_eq!(s5time(10_010), "S5T#10S100MS");
-        assert_eq!(s5time(61_005), "S5T#1M1S100MS");
-        assert_eq!(s5time(655_000), "S5T#10M55S");
-        for ms in [
-            10, 15, 999, 1005, 9990, 9999, 10_010, 99_901, 123_456, 655_000,
-        ] {
-            let got = literal_ms(&s5time(ms));
-            assert!(got >= ms && got - ms < base_of(got), "{ms} ms -> {got} ms");
-            assert!(got / base_of(got) <= 999, "{ms} ms -> {got} ms");
-        }
-    }
 
     #[test]
     fn labels_fit_four_characters() {

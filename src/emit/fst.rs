@@ -124,6 +124,10 @@ fn actions(
             // into the timer's preset register, then start it.
             Action::StartTimer(_, ms) => {
                 let number = operand.trim_start_matches('T');
+                let comment = match fst_ms(ms) {
+                    held if held != ms => format!("{comment} (FST holds {held} ms)"),
+                    _ => comment,
+                };
                 lines.push(("LOAD", format!("V{}", ms.div_ceil(10)), comment));
                 lines.push(("TO", format!("TP{number}"), "preset in 1/100 s".to_string()));
                 lines.push(("SET", operand, "timer runs".to_string()));
@@ -229,4 +233,10 @@ pub fn render(input: &EmitInput) -> Result<String, templates::TemplateError> {
     input
         .templates
         .render("program.fst.txt.j2", Value::from(Serde(&context)))
+}
+
+/// The milliseconds an FST preset of `ms` holds: hundredths of a second,
+/// rounded up.
+pub fn fst_ms(ms: u32) -> u32 {
+    ms.div_ceil(10) * 10
 }

@@ -17,6 +17,7 @@ pub mod ladder;
 pub mod lower;
 mod render;
 pub mod report;
+pub mod s5time;
 pub mod scl;
 pub mod sdf;
 pub mod sfc;

@@ -262,11 +262,38 @@ fn warn_on_numbers(
                 format!(" ({} is {word} {n} too)", grid.cell_name(*other))
             })
             .unwrap_or_default();
+        // `STEP 2.5`, a step put in between: named as written.
+        let written = grid
+            .cells
+            .iter()
+            .find(|c| c.pos == *pos)
+            .and_then(|c| match &c.value {
+                CellValue::Text(t) => Some(t.clone()),
+                _ => None,
+            })
+            .filter(|t| {
+                let number_end = t
+                    .trim()
+                    .find(|c: char| c.is_ascii_digit())
+                    .and_then(|start| {
+                        t.trim()[start..]
+                            .find(|c: char| !c.is_ascii_digit())
+                            .map(|i| start + i)
+                    });
+                number_end.is_some_and(|i| crate::cell::decimals(&t.trim()[i..]).is_some())
+            });
+        let label = match written {
+            Some(t) => {
+                let verb = says.rsplit_once(' ').map_or(says, |(verb, _)| verb);
+                format!("{verb} \"{}\" (labels are whole numbers)", t.trim())
+            }
+            None => format!("{says} {n}"),
+        };
         diags.warning(
             Code::W002StepNumber,
             grid.location(*pos),
             format!(
-                "this {says} {n} but is {one} {} of the table{twin}; {many} are numbered by their order",
+                "this {label} but is {one} {} of the table{twin}; {many} are numbered by their order",
                 k + 1
             ),
         );
@@ -423,6 +450,17 @@ fn why_lost(grid: &Grid, frame: &Frame, pos: CellPos, in_step_row: bool) -> Opti
                 "its row's STEP label in {} is a formula without a computed value, so the row is no step steptable can read",
                 grid.cell_name(label)
             ),
+            // `STEP 2a`: a label, but not one of a step.
+            Some(k)
+                if frame.labelled
+                    && let Some(text) = misread_label(grid, label) =>
+            {
+                format!(
+                    "its row (between STEP {k} and STEP {}) is labelled \"{text}\", which is not STEP and a whole number, so the row is no step; label it STEP {} (steps are numbered by their order), or move the cell into a step's row",
+                    k + 1,
+                    k + 1
+                )
+            }
             Some(k) if frame.labelled => {
                 format!(
                     "its row (between STEP {k} and STEP {}) has no STEP label; give it one, or move the cell into a step's row",
@@ -447,6 +485,13 @@ fn why_lost(grid: &Grid, frame: &Frame, pos: CellPos, in_step_row: bool) -> Opti
         let label_cell = frame.label_col.map(|col| CellPos::new(row, col));
         let label_held = label_cell.and_then(|at| grid.cells.iter().find(|c| c.pos == at));
         Some(match frame.label_col.filter(|_| frame.labelled) {
+            Some(_) if let Some(text) = misread_label(grid, label_cell) => format!(
+                "its row {} lies below the table's last step, STEP {} (row {}), and is labelled \"{text}\", which is not STEP and a whole number; label it STEP {} to make it a step",
+                row + 1,
+                frame.step_rows.len(),
+                last_row + 1,
+                frame.step_rows.len() + 1,
+            ),
             // Its label cell holds a note, not a label: no label to add.
             Some(col) if let Some(held) = label_held => format!(
                 "its row {} lies below the table's last step, STEP {} (row {}), and is no step: its label cell {} holds {}",
@@ -503,6 +548,18 @@ fn warn_ignored(grid: &Grid, pos: CellPos, value: &CellValue, why: &str, diags: 
             value.describe()
         ),
     );
+}
+
+/// The text of the label cell `at` when it reads as a step's label gone
+/// wrong (`STEP 2a`, `Step two`): a row the engineer meant as a step.
+fn misread_label(grid: &Grid, at: Option<CellPos>) -> Option<String> {
+    let at = at?;
+    let cell = grid.cells.iter().find(|c| c.pos == at)?;
+    let CellValue::Text(text) = &cell.value else {
+        return None;
+    };
+    let lower = text.trim().to_ascii_lowercase();
+    lower.starts_with("step").then(|| text.trim().to_string())
 }
 
 #[cfg(test)]

@@ -184,6 +184,7 @@ fn write_recorded(
         Found::None
     };
     let found_none = found == Found::None;
+    let read_first = found.clone();
     let mut recorded = match found {
         Found::Manifest(m) => m,
         Found::None => Manifest::default(),
@@ -249,6 +250,12 @@ fn write_recorded(
         .collect();
     problems.extend(in_place);
     if !problems.is_empty() {
+        // A run writing into the folder at the same time may have put its
+        // record and its files in place between our reading the one and
+        // looking at the others: look again with its record.
+        if folder.is_dir() && Manifest::read(folder) != read_first {
+            return write_recorded(folder, files, inputs, durability, made_by, links);
+        }
         return Err(WriteError::Taken(inputs.advise(problems)));
     }
     // Entries whose files are gone are dropped; the rest stay ours.

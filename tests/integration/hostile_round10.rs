@@ -347,3 +347,131 @@ fn settings_elsewhere_are_said_where_the_table_sheet_was_picked() {
     assert_eq!(code, Some(0), "{said}");
     assert!(said.contains("Config!A1: warning[W015]"), "{said}");
 }
+
+/// `check` of a CSV table: exit code and what was said.
+fn check_csv(text: &str) -> (Option<i32>, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.csv");
+    std::fs::write(&path, text).unwrap();
+    let output = steptable().arg("check").arg(&path).output().unwrap();
+    let said = [&output.stdout, &output.stderr].map(|b| String::from_utf8_lossy(b).into_owned());
+    (output.status.code(), said.concat())
+}
+
+/// The red team rt20 on the table's cells: a space between two digits is
+/// no longer dropped (`C4+1 0` was C4+10, an actuator of 11 sensors); a
+/// line break in a cell is shown as `\n` on the one line of its E010, with
+/// the `;` hint; `STEP 2.5` is named as written and gives no comment `5`;
+/// `STEP 2a` is said to be a label that is not STEP n.
+#[test]
+fn the_red_teams_look_at_the_tables_cells() {
+    for (cell, says) in [
+        (
+            "C4+1 0",
+            "a space splits a number: write C4+10 if that is meant",
+        ),
+        ("C1 +1 2", "write C1+12 if that is meant"),
+    ] {
+        let (code, said) = check_csv(&format!(",BRANCH 1\nSTEP 1,{cell}\nSTEP 2,C1-0\n"));
+        assert_eq!(code, Some(1), "{said}");
+        assert!(
+            said.contains("t.csv:2:2: error[E010]") && said.contains(says),
+            "{said}"
+        );
+    }
+    let (code, said) = check_csv(",BRANCH 1\nSTEP 1,\"C1+1\nT=2s\"\nSTEP 2,C1-0\n");
+    assert_eq!(code, Some(1), "{said}");
+    let line = said
+        .lines()
+        .find(|l| l.contains("E010"))
+        .unwrap_or_default();
+    assert!(
+        line.contains(
+            "\"C1+1\\nT=2s\" is not a move (separate items with `;`, not line breaks: C1+1; T=2s)"
+        ),
+        "{said}"
+    );
+
+    let decimal = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C2+1\nSTEP 2.5,C2-0\nSTEP 3,C1-0\n";
+    let (code, said) = check_csv(decimal);
+    assert_eq!(code, Some(0), "{said}");
+    assert!(
+        said.contains("t.csv:4:1: warning[W002]: this row is labelled \"STEP 2.5\" (labels are whole numbers) but is step 3"),
+        "{said}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("d.csv");
+    std::fs::write(&path, decimal).unwrap();
+    steptable()
+        .args(["convert", "--formats", "st", "-o"])
+        .arg(dir.path().join("out"))
+        .arg(&path)
+        .assert()
+        .success();
+    let st = std::fs::read_to_string(dir.path().join("out/d/d.st")).unwrap();
+    assert!(
+        st.contains("STEP 3: C2-0 *)") && !st.contains("(5)"),
+        "{st}"
+    );
+
+    let (code, said) = check_csv(",BRANCH 1\nSTEP 1,C1+1\nSTEP 2a,C1-0\n");
+    assert_eq!(code, Some(1), "{said}");
+    assert!(
+        said.contains("is labelled \"STEP 2a\", which is not STEP and a whole number"),
+        "{said}"
+    );
+}
+
+/// A dwell finer than the AWL's and FST's 10 ms steps is W008, and the
+/// comment beside the preset says what it holds (rt20 F1).
+#[test]
+fn a_dwell_rounded_up_in_awl_and_fst_is_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("d.csv");
+    std::fs::write(&path, ",BRANCH 1\nSTEP 1,C1+1;T=15ms\nSTEP 2,C1-0\n").unwrap();
+    let run = steptable()
+        .args(["convert", "--formats", "st,awl,fst", "-o"])
+        .arg(dir.path().join("out"))
+        .arg(&path)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{said}");
+    assert!(
+        said.contains("warning[W008]: dwell1 for 15 ms (d.awl 20 ms, d.fst.txt 20 ms)"),
+        "{said}"
+    );
+    let awl = std::fs::read_to_string(dir.path().join("out/d/d.awl")).unwrap();
+    assert!(
+        awl.contains("start dwell1 for 15 ms (S5TIME holds 20 ms)"),
+        "{awl}"
+    );
+    let fst = std::fs::read(dir.path().join("out/d/d.fst.txt")).unwrap();
+    assert!(String::from_utf8_lossy(&fst).contains("(FST holds 20 ms)"));
+    // Without those files, nothing to say.
+    let run = steptable()
+        .args(["convert", "--formats", "st", "-o"])
+        .arg(dir.path().join("st"))
+        .arg(&path)
+        .output()
+        .unwrap();
+    assert!(!String::from_utf8_lossy(&run.stderr).contains("W008"));
+}
+
+/// `synth --sequence … --sheet X`: a sequence has no sheet, refused rather
+/// than dropped (rt20 F8).
+#[test]
+fn synth_refuses_a_sheet_beside_a_sequence() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = steptable()
+        .args(["synth", "--sequence", "A1 A0", "--sheet", "X", "-o"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(1));
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        said.contains("cannot be used with '--sheet <NAME>'"),
+        "{said}"
+    );
+}
