@@ -113,6 +113,9 @@ pub struct Expanded {
     /// Folders that hold no table at all: a CI job pointed at the wrong
     /// folder must not hear that all is well.
     pub empty_folders: Vec<PathBuf>,
+    /// Paths that reached a file found before (`x.xlsx ./x.xlsx`), each
+    /// with the first: converted once, and said.
+    pub repeated: Vec<(PathBuf, PathBuf)>,
 }
 
 /// The files and patterns to convert, expanded. Folders are walked
@@ -162,7 +165,7 @@ pub fn expand_inputs(paths: &[PathBuf]) -> Expanded {
         }
     }
     // The same file named twice (a folder and a pattern) is converted once.
-    expanded.found = once_each(&expanded.found).0;
+    (expanded.found, expanded.repeated) = once_each(&expanded.found);
     expanded.outputs_skipped.sort();
     expanded.outputs_skipped.dedup();
     expanded

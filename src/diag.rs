@@ -311,7 +311,8 @@ impl fmt::Display for Diagnostic {
         let message = self
             .message
             .replace("\r\n", "\\n")
-            .replace(['\n', '\r'], "\\n");
+            .replace(['\n', '\r'], "\\n")
+            .replace('\t', "\\t");
         write!(
             f,
             "{}: {kind}[{}]: {message}",

@@ -139,25 +139,42 @@ fn split_by(text: &str, separators: &[char]) -> Option<Vec<String>> {
 /// `C4+1 0`, `C1 2+1`: a move whose number a space splits, with the
 /// space dropped.
 fn digits_split(text: &str) -> Option<String> {
-    let joined: String = text.split_whitespace().collect();
-    (split_number(text) && parse_item(&joined).is_ok()).then_some(joined)
-}
-
-/// Whether white space stands between two digits of `text`.
-pub(super) fn split_number(text: &str) -> bool {
     let chars: Vec<char> = text.trim().chars().collect();
-    chars.iter().enumerate().any(|(i, c)| {
-        c.is_whitespace()
-            && chars[..i]
-                .iter()
-                .rev()
-                .find(|c| !c.is_whitespace())
-                .is_some_and(char::is_ascii_digit)
+    let between_digits = |i: usize| {
+        chars[..i]
+            .iter()
+            .rev()
+            .find(|c| !c.is_whitespace())
+            .is_some_and(char::is_ascii_digit)
             && chars[i..]
                 .iter()
                 .find(|c| !c.is_whitespace())
                 .is_some_and(char::is_ascii_digit)
-    })
+    };
+    let joined: String = (0..chars.len())
+        .filter(|i| !(chars[*i].is_whitespace() && between_digits(*i)))
+        .map(|i| chars[i])
+        .collect();
+    (joined != text.trim() && parse_item(&joined).is_ok()).then_some(joined)
+}
+
+/// Whether white space stands between two digits of `text`.
+pub(super) fn split_number(text: &str) -> bool {
+    // A digit, white space, a digit: linear, one pass.
+    let mut last = None;
+    let mut spaced = false;
+    for c in text.chars() {
+        if c.is_whitespace() {
+            spaced = last.is_some_and(|l: char| l.is_ascii_digit());
+            continue;
+        }
+        if spaced && c.is_ascii_digit() {
+            return true;
+        }
+        spaced = false;
+        last = Some(c);
+    }
+    false
 }
 
 /// `C2+l`, `CI+1`, `C1+O` read with 1 and 0 for the look-alike letters,

@@ -318,6 +318,11 @@ pub enum ItemError {
 
 /// Parses one `;`-separated item.
 pub fn parse_item(text: &str) -> Result<CellItem, ItemError> {
+    // `T = 1 5 s`, `J:1 0 if I:x`: two numbers, or one mistyped, in any
+    // item (white space is dropped everywhere else).
+    if hint::split_number(text) {
+        return Err(ItemError::Move(CellError::NotAMove));
+    }
     let norm = normalize(text);
     if (norm.starts_with("I:") || norm.starts_with("Y:")) && name_has_space(text) {
         return Err(ItemError::BadName(format!(

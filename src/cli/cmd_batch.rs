@@ -66,6 +66,13 @@ pub(crate) fn run_batch(args: &BatchArgs) -> i32 {
             display_name(&expanded.outputs_skipped[0])
         ));
     }
+    for (again, first) in &expanded.repeated {
+        report.say(&format!(
+            "note: {} names the file {} again; converted once",
+            again.display(),
+            first.display()
+        ));
+    }
     let inputs = &expanded.found;
     let missing: &Vec<PathBuf> = &[&expanded.missing[..], &expanded.empty_folders[..]].concat();
     let jobs = job_count(args, &report);

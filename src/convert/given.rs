@@ -398,11 +398,23 @@ pub(super) fn names_of_the_whole_table(
     later.sort_by_key(|e| check::sheet_order(&e.at));
     entries.extend(later);
     use crate::emit::OutputKind;
-    let fst = settings
-        .formats
-        .iter()
-        .any(|k| matches!(k, OutputKind::Fst | OutputKind::FstAllocation));
-    check::check_entries(&entries, fst, diags);
+    let asked = |kinds: &[OutputKind]| kinds.iter().any(|k| settings.formats.contains(k));
+    let step7 = [OutputKind::Awl, OutputKind::SymbolTable];
+    let rockwell = [OutputKind::Rockwell, OutputKind::L5x];
+    let limits = check::Limits {
+        fst: asked(&[OutputKind::Fst, OutputKind::FstAllocation]),
+        longest: if asked(&step7) {
+            Some((
+                24,
+                "characters of a symbol STEP 7's symbol table (.sdf, .awl)",
+            ))
+        } else if asked(&rockwell) {
+            Some((40, "characters of a tag Studio 5000 (.L5X, .rockwell.csv)"))
+        } else {
+            None
+        },
+    };
+    check::check_entries(&entries, &limits, diags);
 }
 
 /// Supervision times (`--supervision`, SETTINGS `supervision`) checked

@@ -280,14 +280,45 @@ fn iso_designation(folded: &str) -> Option<u32> {
     iso.then(|| circuit.parse().ok()).flatten()
 }
 
+/// What the files asked for hold of a symbol: Festo FST tells apart only
+/// the first 9 characters; STEP 7's symbol table holds 24, Studio 5000's
+/// tags 40 (the shortest that binds, and its tool).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Limits {
+    pub fst: bool,
+    pub longest: Option<(usize, &'static str)>,
+}
+
 /// Every entry against every earlier one: the same name after case folding
 /// (two actuators with one name, an input named like an actuator), or the
 /// same first 9 characters in Festo FST when an FST file is written
 /// (`fst`: a STEP 7 or IEC program tells them apart). An error at the
 /// later entry.
-pub fn check_entries(entries: &[Entry], fst: bool, diags: &mut Diagnostics) {
+pub fn check_entries(entries: &[Entry], limits: &Limits, diags: &mut Diagnostics) {
+    let fst = limits.fst;
     let mut said: Vec<(Location, String)> = Vec::new();
     for (i, entry) in entries.iter().enumerate() {
+        // Longer than a file asked for holds: cut there, it would be
+        // another name, or two names one.
+        if let Some((longest, tool)) = limits.longest
+            && entry.symbol
+            && entry.name.chars().count() > longest
+            && !said.contains(&(entry.at.clone(), String::new()))
+        {
+            said.push((entry.at.clone(), String::new()));
+            diags.error(
+                Code::E015BadName,
+                entry.at.clone(),
+                format!(
+                    "{}{} has {} characters, more than the {longest} {tool} holds; give {} a shorter name, choose --designations paper or iso, or leave that file out (--formats)",
+                    entry.label,
+                    entry.name,
+                    entry.name.chars().count(),
+                    if entry.actuator.is_some() { "the actuator" } else { "it" }
+                ),
+            );
+            continue;
+        }
         let lower = entry.name.to_ascii_lowercase();
         for earlier in &entries[..i] {
             let same_actuator = entry.actuator.is_some() && entry.actuator == earlier.actuator;

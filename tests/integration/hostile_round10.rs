@@ -98,7 +98,7 @@ fn valve_types_under_no_header_or_with_a_placeholder_are_refused() {
             workbook(&[], &[("SETTINGS", typed)]),
             &[
                 "SETTINGS!C1: error[E046]",
-                "every value under it is a valve type",
+                "a value under it is a valve type",
             ],
         );
     }
@@ -370,7 +370,7 @@ fn the_red_teams_look_at_the_tables_cells() {
             "C4+1 0",
             "a space splits a number: write C4+10 if that is meant",
         ),
-        ("C1 +1 2", "write C1+12 if that is meant"),
+        ("C1 +1 2", "write C1 +12 if that is meant"),
     ] {
         let (code, said) = check_csv(&format!(",BRANCH 1\nSTEP 1,{cell}\nSTEP 2,C1-0\n"));
         assert_eq!(code, Some(1), "{said}");
@@ -473,5 +473,103 @@ fn synth_refuses_a_sheet_beside_a_sequence() {
     assert!(
         said.contains("cannot be used with '--sheet <NAME>'"),
         "{said}"
+    );
+}
+
+/// The red team rt21 on this round's rules. On SETTINGS, a value among
+/// other words in one cell (`modes: estop, required by CE`, `modes: stop
+/// and estp`, `target: siemens S7-1500`) is E046, not a note lost with
+/// exit 0; a number or a placeholder after a label (`Target: 30`, `Modes:
+/// n/a`) stays a note. A valve type beside `default` under `Type` is E046.
+/// A space between digits of a dwell or a jump is E010 (`T = 1 5 s` was
+/// 15 s). Under `names`, a symbol longer than STEP 7's 24 characters is
+/// E015 where the `.sdf` or `.awl` is written. `batch` says a file named
+/// twice; a tab in a message is shown as `\t`.
+#[test]
+fn the_red_teams_look_at_this_rounds_rules() {
+    for text in [
+        "modes: estop, required by CE",
+        "modes: stop and estp",
+        "modes: estop - required by CE",
+        "safety: watchdog plausibility",
+        "target: siemens S7-1500",
+    ] {
+        let rows: &[&[&str]] = &[&[text]];
+        refused(
+            "among.xlsx",
+            workbook(&[], &[("SETTINGS", rows)]),
+            &["SETTINGS!A1: error[E046]"],
+        );
+    }
+    for note in ["Target: 30", "Target: 30/min", "Modes: n/a", "Safety — TBD"] {
+        let rows: &[&[&str]] = &[&["target", "iec"], &[], &[note]];
+        let (code, said) = check(workbook(&[], &[("SETTINGS", rows)]));
+        assert_eq!(code, Some(0), "{note}: {said}");
+    }
+    let typed: &[&[&str]] = &[
+        &["actuator", "extend", "Type"],
+        &["C1", "2s", "52mono"],
+        &["C2", "2s", "default"],
+    ];
+    refused(
+        "default.xlsx",
+        workbook(&[], &[("SETTINGS", typed)]),
+        &[
+            "SETTINGS!C1: error[E046]",
+            "a value under it is a valve type",
+        ],
+    );
+    for (item, says) in [
+        ("T = 1 5 s", "write T = 15 s if that is meant"),
+        ("J:1 0 if I:rej", "write J:10 if I:rej if that is meant"),
+    ] {
+        let (code, said) = check_csv(&format!(",BRANCH 1\nSTEP 1,C1+1; {item}\nSTEP 2,C1-0\n"));
+        assert_eq!(code, Some(1), "{said}");
+        assert!(said.contains(says), "{said}");
+    }
+    let (_, said) = check_csv(",BRANCH 1\nSTEP 1,C1+1\tC2+1\nSTEP 2,C1-0\n");
+    assert!(said.contains("\"C1+1\\tC2+1\""), "{said}");
+
+    let dir = tempfile::tempdir().unwrap();
+    let rows: &[&[&str]] = &[
+        &["actuator", "extend"],
+        &["C1 (main_transfer_gripper_arm)", "1s"],
+    ];
+    let path = dir.path().join("long.xlsx");
+    std::fs::write(&path, workbook(&[], &[("SETTINGS", rows)])).unwrap();
+    let convert = |formats: &str| {
+        steptable()
+            .args([
+                "convert",
+                "--designations",
+                "names",
+                "--formats",
+                formats,
+                "-o",
+            ])
+            .arg(dir.path().join(formats))
+            .arg(&path)
+            .output()
+            .unwrap()
+    };
+    let sdf = convert("st,sdf");
+    assert_eq!(sdf.status.code(), Some(1));
+    let said = String::from_utf8_lossy(&sdf.stderr);
+    assert!(
+        said.contains("error[E015]") && said.contains("more than the 24 characters"),
+        "{said}"
+    );
+    assert!(convert("st,scl").status.success());
+
+    std::fs::copy(sample("oven.xlsx"), dir.path().join("oven.xlsx")).unwrap();
+    let run = steptable()
+        .current_dir(dir.path())
+        .args(["batch", "oven.xlsx", "./oven.xlsx", "-o", "out", "-q"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        stdout.contains("note: ./oven.xlsx names the file oven.xlsx again; converted once"),
+        "{stdout}"
     );
 }

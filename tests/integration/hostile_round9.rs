@@ -402,7 +402,7 @@ fn a_column_of_valves_or_times_under_an_unknown_header_is_refused() {
         (
             "Type",
             "52mono",
-            "every value under it is a valve type: head it `valve`",
+            "a value under it is a valve type: head it `valve`",
         ),
         (
             "out",

@@ -83,7 +83,7 @@ fn long_comments_are_cut_where_a_target_limits_them() {
         .arg(&input)
         .assert()
         .code(1)
-        .stderr(predicates::str::contains("SETTINGS!A2: error[E025]: C1 ("));
+        .stderr(predicates::str::contains("SETTINGS!A2: error[E015]: C1 ("));
 }
 
 /// A finding names an actuator each time it speaks of it: the 300-character

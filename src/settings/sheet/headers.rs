@@ -81,7 +81,7 @@ pub(super) fn unread_header(
         reader.mistyped(
                 cell.pos,
                 format!(
-                    "{} heads no column steptable reads, but every value under it is {meant}; nothing is written, since the actuators would lose them",
+                    "{} heads no column steptable reads, but {meant}; nothing is written, since the actuators would lose them",
                     cell.value.describe()
                 ),
                 diags,
@@ -130,17 +130,26 @@ fn names_column(word: &str, column: &str) -> bool {
 /// cells right below it, to the first gap; the first that fits neither
 /// ends the look (a sheet of many headers is read in linear time).
 fn column_of_values(reader: &Reader, header: CellPos) -> Option<&'static str> {
+    // The table's rows: each starts with an actuator's name (`C2`, `C2
+    // (lift)`); the first that does not ends the look.
+    let name_col = reader.row(header.row).next().map(|c| c.pos.col);
     let below = |row: u32| {
-        reader
-            .row(row)
+        let mut cells = reader.row(row);
+        let first = cells.next()?;
+        let names = Some(first.pos.col) == name_col
+            && crate::cell::actuator_name(&text_of(&first.value)).is_some();
+        names.then_some(())?;
+        std::iter::once(first)
+            .chain(cells)
             .find(|c| c.pos.col == header.col)
             .map(|c| text_of(&c.value))
     };
-    let (mut valves, mut times, mut any, mut placeholders) = (true, true, false, 0);
-    for value in (header.row + 1..).map_while(below).take(1000) {
+    let (mut times, mut any, mut placeholders) = (true, false, 0);
+    // A bounded look: many headers stacked in one column are each looked
+    // down from.
+    for value in (header.row + 1..).map_while(below).take(100) {
         // `-`, `n/a`: an actuator without one, not a note. A column of
-        // only those is no column of values (and, many headers stacked,
-        // would be looked down again from each).
+        // only those is no column of values.
         if placeholder(&value) {
             placeholders += 1;
             if placeholders > 16 {
@@ -150,17 +159,13 @@ fn column_of_values(reader: &Reader, header: CellPos) -> Option<&'static str> {
         }
         any = true;
         let kind = value_kind(&value);
-        valves &= kind == Some(VALVE);
-        times &= kind == Some(TIME);
-        if !valves && !times {
-            return None;
+        // One valve type is one valve lost (`52mono` beside `default`).
+        if kind == Some(VALVE) {
+            return Some("a value under it is a valve type: head it `valve`");
         }
+        times &= kind == Some(TIME);
     }
-    match (any, valves) {
-        (false, _) => None,
-        (_, true) => Some(VALVE),
-        _ => Some(TIME),
-    }
+    (any && times).then_some("every value under it is a time: head it `extend` or `retract`")
 }
 
 const VALVE: &str = "a valve type: head it `valve`";
@@ -179,10 +184,10 @@ pub(super) fn value_kind(value: &str) -> Option<&'static str> {
 }
 
 /// A cell written for "none" (`-`, `n/a`, `—`).
-fn placeholder(value: &str) -> bool {
+pub(super) fn placeholder(value: &str) -> bool {
     matches!(
         value.trim().to_ascii_lowercase().as_str(),
-        "-" | "--" | "—" | "–" | "n/a" | "na" | "none" | "?"
+        "-" | "--" | "—" | "–" | "n/a" | "na" | "none" | "?" | "tbd" | "tba"
     )
 }
 

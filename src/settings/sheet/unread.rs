@@ -189,7 +189,20 @@ fn one_cell_setting(
         ));
     }
     let valid = valid_value(label, rest, cell, grid);
-    let one_word = !rest.trim().contains(char::is_whitespace);
+    // `target: codesys3`: one word meant as a value, misspelt (not a
+    // number or a placeholder: `Target: 30`, `Modes: n/a` are notes).
+    let word = rest.trim();
+    let one_word = !word.contains(char::is_whitespace)
+        && word.starts_with(char::is_alphabetic)
+        && !super::headers::placeholder(word);
+    // `modes: estop, required by CE`, `modes: stop and estp`, `target:
+    // siemens S7-1500`: a value with a note or a typo beside it, where
+    // values come from a closed list.
+    let a_value_among = super::CLOSED_VALUES.contains(&label)
+        && word
+            .split(|c: char| c.is_whitespace() || matches!(c, ',' | ';' | '&' | '(' | ')'))
+            .filter(|t| !t.is_empty() && !t.eq_ignore_ascii_case("and"))
+            .any(|t| valid_value(label, t, cell, grid));
     let invalid = match valid {
         true => String::new(),
         false => format!(
@@ -197,7 +210,7 @@ fn one_cell_setting(
             super::value_problem(label, rest, cell, grid).unwrap_or_default()
         ),
     };
-    (valid || one_word).then(|| format!(
+    (valid || one_word || a_value_among).then(|| format!(
         "{describe} holds the setting {label} and its value in one cell{invalid}; write the value in the cell right of \"{label}\" (it was not read)"
     ))
 }
