@@ -263,7 +263,7 @@ fn fst_runs_in_the_interpreter_as_simulated() {
     let dir = tempfile::tempdir().unwrap();
     let cases = matrix(dir.path(), &["--formats", "fst"]);
     run_all(&cases, |c| {
-        let text = std::fs::read_to_string(c.file(".fst.txt")).unwrap();
+        let text = crate::engines::read_ansi(&c.file(".fst.txt")).unwrap();
         c.check_stepped(
             "FST interpreter",
             fst::run_stepped(&text, &c.trace, &c.festo),
@@ -286,7 +286,7 @@ fn a_wrong_fst_file_is_caught_with_its_scan_and_signal() {
     let case = press_case(dir.path());
     // y2+ where the program says y2- (O1.2 → O0.2 as STEP 3 hands over
     // to STEP 4, C2-0).
-    let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
+    let text = crate::engines::read_ansi(&case.file(".fst.txt")).unwrap();
     let swapped = swap_first_after(&text, "STEP 3", "SET     O1.2", "SET     O0.2");
     let err = case
         .check("FST", fst::run(&swapped, &case.trace, &case.festo))

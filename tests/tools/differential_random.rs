@@ -233,7 +233,7 @@ fn random_tables_run_as_simulated(engine: Engine) {
         let case = prepare(dir.path(), seed);
         let result = match engine {
             Engine::Fst => {
-                let text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
+                let text = crate::engines::read_ansi(&case.file(".fst.txt")).unwrap();
                 case.check("FST", fst::run(&text, &case.trace, &case.festo))
             }
             Engine::Scl => case.check_stepped("SCL", crate::differential_native::run_scl(&case)),

@@ -102,7 +102,7 @@ fn dwells_are_never_shorter_than_asked(engine: Engine) {
             "{text}: simulation {lasted} ms"
         );
         if engine == Engine::Fst {
-            let fst_text = std::fs::read_to_string(case.file(".fst.txt")).unwrap();
+            let fst_text = crate::engines::read_ansi(&case.file(".fst.txt")).unwrap();
             case.check("FST", fst::run(&fst_text, trace, &case.festo))
                 .unwrap();
         }

@@ -68,7 +68,7 @@ pub fn in_fst(what: &str, fixture: &str, valves: &str) {
     let dir = tempfile::tempdir().unwrap();
     let cases = cases(fixture, valves, dir.path(), &["--formats", "fst"]);
     run_all(&cases, |c| {
-        let text = std::fs::read_to_string(c.file(".fst.txt")).map_err(|e| e.to_string())?;
+        let text = crate::engines::read_ansi(&c.file(".fst.txt"))?;
         c.check_stepped(
             "FST interpreter",
             fst::run_stepped(&text, &c.trace, &c.festo),

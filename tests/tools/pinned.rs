@@ -87,7 +87,7 @@ fn pinned_addresses_run_in_every_engine_as_simulated() {
         &[&["START", "I3.0"], &["x22", "I0.0"], &["y2+", "O5.15"]],
         "fst",
     );
-    let text = std::fs::read_to_string(festo.file(".fst.txt")).unwrap();
+    let text = crate::engines::read_ansi(&festo.file(".fst.txt")).unwrap();
     assert!(text.contains("I3.0") && text.contains("O5.15"), "{text}");
     festo
         .check(

@@ -135,7 +135,7 @@ fn inside_a_dwell_awlsim_shows_the_dwells_step() {
 
 fn inside_a_dwell_the_fst_shows_the_dwells_step() {
     check("FST interpreter", |c| {
-        let text = std::fs::read_to_string(c.file(".fst.txt")).map_err(|e| e.to_string())?;
+        let text = crate::engines::read_ansi(&c.file(".fst.txt"))?;
         fst::run_stepped(&text, &c.trace, &c.festo)
     });
 }

@@ -387,9 +387,7 @@ pub fn run_written(case: &Case, format: &str, python: &Path) -> Result<Vec<Vec<b
             &case.allocation,
         ),
         _ => {
-            // Windows-1252, as Festo FST reads it.
-            let bytes = std::fs::read(case.file(".fst.txt")).map_err(|e| e.to_string())?;
-            let (text, _, _) = encoding_rs::WINDOWS_1252.decode(&bytes);
+            let text = read_ansi(&case.file(".fst.txt"))?;
             fst::run(&text, &case.trace, &case.festo)
         }
     }
@@ -426,4 +424,11 @@ pub fn on_two_threads<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> Vec<R>
             .flat_map(|h| h.join().expect("worker"))
             .collect()
     })
+}
+
+/// A file steptable writes in Windows-1252 (`.fst.txt`, `.sdf`), as the
+/// Windows tool reads it.
+pub fn read_ansi(path: &Path) -> Result<String, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(encoding_rs::WINDOWS_1252.decode(&bytes).0.into_owned())
 }
