@@ -337,15 +337,9 @@ fn convert_one(
                 // Something of the engineer's is in the way: said, kept.
                 Err(write::WriteError::Taken(problems)) => {
                     outcome.status = Status::Failed;
-                    // Nothing was written: no verdict to file. Each problem
-                    // is at an output's path, so it names its input too.
+                    // Nothing was written: no verdict to file.
                     (outcome.verdict, outcome.cycle_ms, outcome.hazards) = (None, None, None);
-                    outcome
-                        .diagnostics
-                        .extend(problems.into_iter().map(|mut d| {
-                            d.message = format!("(converting {}) {}", input.display(), d.message);
-                            d
-                        }));
+                    outcome.diagnostics.extend(problems);
                 }
                 Err(err) => {
                     outcome.status = Status::Internal;

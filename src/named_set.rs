@@ -30,7 +30,19 @@ impl NameList<'_> {
         if text.trim().is_empty() {
             return Ok(items);
         }
-        for raw in text.split(',') {
+        // `and` and `&` separate items as a comma does (`estop and reset`,
+        // `stop, estop, and reset`, as a SETTINGS cell is often written):
+        // no name holds a space.
+        let mut separated = String::with_capacity(text.len());
+        for word in text.replace('&', " and ").split(char::is_whitespace) {
+            if !word.eq_ignore_ascii_case("and") {
+                separated.push_str(word);
+                separated.push(' ');
+            } else if !separated.trim_end().ends_with(',') {
+                separated.push(',');
+            }
+        }
+        for raw in separated.split(',') {
             let item = raw.trim();
             let known = self
                 .names
@@ -95,5 +107,21 @@ mod tests {
         assert!(err.contains("has an empty item"), "{err}");
         assert!(err.contains("st, awl or all"), "{err}");
         assert_eq!(parse("st,pdf").unwrap_err(), "pdf is unknown");
+    }
+
+    #[test]
+    fn and_separates_items_as_a_comma_does() {
+        for text in [
+            "st and awl",
+            "ST AND awl",
+            "st & awl",
+            "st, and awl",
+            "st&awl",
+        ] {
+            assert_eq!(parse(text).unwrap(), ["st", "awl"], "{text}");
+        }
+        assert!(parse("st and").unwrap_err().contains("has an empty item"));
+        assert!(parse("st and st").unwrap_err().contains("given twice"));
+        assert_eq!(parse("standard").unwrap_err(), "standard is unknown");
     }
 }

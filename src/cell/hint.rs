@@ -88,6 +88,17 @@ pub fn not_a_move_hint(item: &str) -> String {
 /// move at all (a dwell typo). A move checked against the position such an
 /// item would have given is no error of its own.
 pub fn move_attempts(item: &str) -> Vec<Option<u32>> {
+    // `C1 0+1`: C1 as written, C10 with the space taken out; either may
+    // be the actuator meant.
+    if let Some(joined) = joined_digits(item) {
+        let mut both: Vec<Option<u32>> = actuators_named(item).into_iter().map(Some).collect();
+        if let Ok(m) = parse_move(&joined)
+            && !both.contains(&Some(m.actuator))
+        {
+            both.push(Some(m.actuator));
+        }
+        return both;
+    }
     let norm = normalize(item);
     if let Some(fixed) = digit_for_letter(&norm) {
         return vec![parse_move(&fixed).ok().map(|m| m.actuator)];
@@ -139,42 +150,39 @@ fn split_by(text: &str, separators: &[char]) -> Option<Vec<String>> {
 /// `C4+1 0`, `C1 2+1`: a move whose number a space splits, with the
 /// space dropped.
 fn digits_split(text: &str) -> Option<String> {
-    let chars: Vec<char> = text.trim().chars().collect();
-    let between_digits = |i: usize| {
-        chars[..i]
-            .iter()
-            .rev()
-            .find(|c| !c.is_whitespace())
-            .is_some_and(char::is_ascii_digit)
-            && chars[i..]
-                .iter()
-                .find(|c| !c.is_whitespace())
-                .is_some_and(char::is_ascii_digit)
-    };
-    let joined: String = (0..chars.len())
-        .filter(|i| !(chars[*i].is_whitespace() && between_digits(*i)))
-        .map(|i| chars[i])
-        .collect();
-    (joined != text.trim() && parse_item(&joined).is_ok()).then_some(joined)
+    let joined = joined_digits(text.trim())?;
+    parse_item(&joined).is_ok().then_some(joined)
+}
+
+/// `text` with the white space between two digits taken out (`C1 0+1` as
+/// `C10+1`), when there is any: one pass.
+fn joined_digits(text: &str) -> Option<String> {
+    let mut joined = String::with_capacity(text.len());
+    let mut pending = String::new();
+    let (mut last, mut split) = (None, false);
+    for c in text.chars() {
+        if c.is_whitespace() {
+            pending.push(c);
+            continue;
+        }
+        let between = !pending.is_empty()
+            && c.is_ascii_digit()
+            && last.is_some_and(|l: char| l.is_ascii_digit());
+        match between {
+            true => split = true,
+            false => joined.push_str(&pending),
+        }
+        pending.clear();
+        joined.push(c);
+        last = Some(c);
+    }
+    joined.push_str(&pending);
+    split.then_some(joined)
 }
 
 /// Whether white space stands between two digits of `text`.
 pub(super) fn split_number(text: &str) -> bool {
-    // A digit, white space, a digit: linear, one pass.
-    let mut last = None;
-    let mut spaced = false;
-    for c in text.chars() {
-        if c.is_whitespace() {
-            spaced = last.is_some_and(|l: char| l.is_ascii_digit());
-            continue;
-        }
-        if spaced && c.is_ascii_digit() {
-            return true;
-        }
-        spaced = false;
-        last = Some(c);
-    }
-    false
+    joined_digits(text).is_some()
 }
 
 /// `C2+l`, `CI+1`, `C1+O` read with 1 and 0 for the look-alike letters,

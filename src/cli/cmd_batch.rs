@@ -129,7 +129,7 @@ fn unmatched(missing: &[PathBuf], why: &str) -> Vec<Diagnostic> {
                 sheet: None,
                 cell: None,
             },
-            message: why.to_string(),
+            message: crate::read::dangling_link(path).unwrap_or_else(|| why.to_string()),
         })
         .collect()
 }

@@ -23,12 +23,19 @@ pub(crate) struct CheckArgs {
     /// Step-table files (.xlsx, .xlsm, .xls, .ods, .csv).
     #[arg(required = true)]
     pub(crate) inputs: Vec<PathBuf>,
+    /// Check as `convert --formats LIST` would: the names each file's tool
+    /// holds (FST's 9 characters only where an FST file is written).
+    #[arg(long, value_name = "LIST", value_parser = parse_formats)]
+    pub(crate) formats: Option<std::collections::BTreeSet<crate::emit::OutputKind>>,
     #[command(flatten)]
     pub(crate) common: CommonArgs,
 }
 
 pub(crate) fn run_check(args: &CheckArgs) -> i32 {
-    let settings = args.common.settings();
+    let mut settings = args.common.settings();
+    if let Some(formats) = &args.formats {
+        settings.formats = formats.clone();
+    }
     let report = Reporter::new(&args.common);
     let mut code = EXIT_OK;
     for input in &args.inputs {

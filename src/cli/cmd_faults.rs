@@ -27,6 +27,8 @@ pub(crate) fn run_faults(args: &FaultsArgs) -> i32 {
     let mut settings = args.common.settings();
     let report = Reporter::new(&args.common);
     args.sim.apply(&mut settings);
+    // The fault table is the one file written: no PLC tool's name limit.
+    settings.formats = [OutputKind::Faults].into();
     let options = crate::commands::faults::FaultsOptions {
         at_once: if args.pairs {
             2

@@ -49,6 +49,8 @@ pub(crate) fn run_simulate(args: &SimulateArgs) -> i32 {
     let reporter = Reporter::new(&args.common);
     args.sim.apply(&mut settings);
     settings.program.middle_stops = !args.no_middle_stop;
+    // What it draws holds names of any length: no tool's limit applies.
+    settings.formats = [OutputKind::Diagram, OutputKind::Report].into();
     let mut code = EXIT_OK;
     let names = convert::output_names(&args.inputs);
     let kept = write::Inputs::new(&args.inputs).named_by("--diagram");

@@ -46,7 +46,21 @@ pub fn run(
         inputs,
         settings.durability,
         Some(conversion.made_by.text()),
-    );
+    )
+    .map_err(|err| match err {
+        // Each problem is at an output's path: among several inputs, it
+        // names the one it belongs to too, in either message format.
+        WriteError::Taken(problems) => WriteError::Taken(
+            problems
+                .into_iter()
+                .map(|mut d| {
+                    d.message = format!("(converting {}) {}", input.display(), d.message);
+                    d
+                })
+                .collect(),
+        ),
+        err => err,
+    });
     Ok(ConvertRun {
         conversion,
         folder,

@@ -209,7 +209,7 @@ pub(super) fn code_page_losses(
     if lacked.is_empty() {
         return None;
     }
-    let chars: String = lacked.iter().map(|c| format!("\"{c}\" ")).collect();
+    let chars: String = lacked.iter().map(|c| format!("{} ", shown(*c))).collect();
     Some(shortened(
         input,
         format!(
@@ -218,6 +218,20 @@ pub(super) fn code_page_losses(
             chars
         ),
     ))
+}
+
+/// One character for a message: quoted where it shows on its own, by its
+/// code point where it does not (a combining mark left over a quote, a
+/// zero-width or other invisible character).
+fn shown(c: char) -> String {
+    let invisible = unicode_normalization::char::is_combining_mark(c)
+        || c.is_control()
+        || c.is_whitespace()
+        || matches!(c, '\u{200b}'..='\u{200f}' | '\u{2060}'..='\u{2064}' | '\u{feff}');
+    match invisible {
+        true => format!("U+{:04X}", u32::from(c)),
+        false => format!("\"{c}\""),
+    }
 }
 
 /// E048 at each jump back into its own step whose re-entry does something

@@ -80,11 +80,8 @@ pub fn read_path(path: &Path, sheet: Option<&str>, diags: &mut Diagnostics) -> O
     let meta = match std::fs::metadata(path) {
         Ok(meta) => meta,
         Err(err) => {
-            diags.error(
-                Code::E001Unreadable,
-                whole_file,
-                format!("cannot read file: {err}"),
-            );
+            let why = dangling_link(path).unwrap_or_else(|| format!("cannot read file: {err}"));
+            diags.error(Code::E001Unreadable, whole_file, why);
             return None;
         }
     };
@@ -245,6 +242,31 @@ fn format_name(format: Format) -> &'static str {
         Format::Ods => ".ods",
         Format::Csv => ".csv",
     }
+}
+
+/// What a path that cannot be opened is, when it is a symbolic link to
+/// nothing: `ls` lists it, so "no such file" alone would puzzle.
+pub fn dangling_link(path: &Path) -> Option<String> {
+    let target = std::fs::read_link(path).ok()?;
+    std::fs::metadata(path).is_err().then(|| {
+        format!(
+            "is a link to {}, which does not exist",
+            display_name(&target)
+        )
+    })
+}
+
+/// Text in Unicode's composed form (NFC): `A` followed by a combining
+/// diaeresis, as macOS and some copy-paste write it, becomes `Ä`, the one
+/// character every PLC tool and code page knows (as two, Windows-1252 has
+/// no place for the mark and a name's length is counted wrong). The same
+/// text, only spelt the usual way; ASCII and composed text are not copied.
+pub fn composed(text: String) -> String {
+    use unicode_normalization::{IsNormalized, UnicodeNormalization, is_nfc_quick};
+    if text.is_ascii() || is_nfc_quick(text.chars()) == IsNormalized::Yes {
+        return text;
+    }
+    text.nfc().collect()
 }
 
 #[cfg(test)]

@@ -158,8 +158,13 @@ pub fn actuator_entries(
                     Code::E015BadName,
                     name.at.clone(),
                     format!(
-                        "{label}\"{}\" gives no identifier (a name begins with a letter and holds only letters A-Z, digits and separators) under --designations names; rename it, or choose another scheme",
-                        name.text
+                        "{label}\"{}\" gives no identifier under --designations names: {}; {}or choose another scheme",
+                        name.text,
+                        why_no_identifier(&name.text),
+                        match ascii_spelling(&name.text) {
+                            Some(ascii) => format!("write it \"{ascii}\", "),
+                            None => "rename it, ".to_string(),
+                        }
                     ),
                 );
             }
@@ -371,4 +376,41 @@ pub fn check_entries(entries: &[Entry], limits: &Limits, diags: &mut Diagnostics
             break;
         }
     }
+}
+
+/// Why a name makes no identifier: a letter beyond A-Z (PLC identifiers
+/// are ASCII), or no letter A-Z to begin with.
+fn why_no_identifier(text: &str) -> String {
+    match text.chars().find(|c| c.is_alphanumeric() && !c.is_ascii()) {
+        Some(c) => {
+            format!("\"{c}\" is no letter A-Z, and PLC identifiers hold only those, digits and _")
+        }
+        None => "an identifier begins with a letter A-Z".to_string(),
+    }
+}
+
+/// The name spelt in ASCII as a German or French engineer writes it in a
+/// PLC (`Ölpumpe` as `Oelpumpe`, `Schieber Ä` as `Schieber Ae`, `é` as
+/// `e`), when that gives an identifier: a suggestion, never applied
+/// unasked (the name is the engineer's).
+fn ascii_spelling(text: &str) -> Option<String> {
+    use unicode_normalization::UnicodeNormalization;
+    let mut out = String::with_capacity(text.len() + 4);
+    for c in text.chars() {
+        match c {
+            'ä' => out.push_str("ae"),
+            'ö' => out.push_str("oe"),
+            'ü' => out.push_str("ue"),
+            'Ä' => out.push_str("Ae"),
+            'Ö' => out.push_str("Oe"),
+            'Ü' => out.push_str("Ue"),
+            'ß' => out.push_str("ss"),
+            c => out.extend(
+                c.to_string()
+                    .nfd()
+                    .filter(|d| !unicode_normalization::char::is_combining_mark(*d)),
+            ),
+        }
+    }
+    (out != text && super::scheme::stem(&out).is_some()).then_some(out)
 }

@@ -30,6 +30,9 @@ enum Input {
     /// The paper's example and, in `tpl/`, the templates with the ST one
     /// marked.
     PaperWithTemplates,
+    /// Two actuators named alike in FST's 9 characters (`gripper_arm`,
+    /// `gripper_arm2`), on a SETTINGS sheet.
+    AlikeNames,
     /// Nothing.
     None,
 }
@@ -179,6 +182,18 @@ fn table_cases(command: &'static str, out: &'static str) -> Vec<Case> {
             ),
         ),
     });
+    if command == "check" {
+        // FST's 9 characters bind only where its file is written, as in
+        // `convert --formats`.
+        cases.push(case(
+            command,
+            "--formats",
+            AlikeNames,
+            &["--designations", "names", "--formats", "st,awl"],
+            &["--designations", "names"],
+            Succeeds,
+        ));
+    }
     let simulates = command != "check";
     if command == "check" || writes_files {
         cases.extend([
@@ -839,6 +854,29 @@ fn prepare(dir: &Path, input: Input) {
                         &["STEP 2", "C2+1"],
                         &["STEP 3", "C2-0"],
                         &["STEP 4", "C1-0"],
+                    ],
+                ),
+            ],
+        ),
+        Input::AlikeNames => write_xlsx_sheets(
+            &inputs.join("t.xlsx"),
+            &[
+                (
+                    "SEQUENTIAL CONTROL DESCRIPTION",
+                    &[
+                        &["", "BRANCH 1"],
+                        &["STEP 1", "C1+1"],
+                        &["STEP 2", "C2+1"],
+                        &["STEP 3", "C2-0"],
+                        &["STEP 4", "C1-0"],
+                    ],
+                ),
+                (
+                    "SETTINGS",
+                    &[
+                        &["actuator", "name"],
+                        &["C1", "gripper_arm"],
+                        &["C2", "gripper_arm2"],
                     ],
                 ),
             ],

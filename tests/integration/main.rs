@@ -28,6 +28,7 @@ mod homing;
 mod hostile;
 mod hostile_messages;
 mod hostile_round10;
+mod hostile_round11;
 mod hostile_round3;
 mod hostile_round4;
 mod hostile_round5;

@@ -674,7 +674,7 @@ fn a_linked_output_folder_is_refused_but_a_linked_dash_o_is_not() {
         .assert()
         .code(1)
         .stderr(contains(
-            "x.st: error[E040]: an output goes here, and this is a link",
+            "x.st: error[E040]: (converting x.csv) an output goes here, and this is a link",
         ));
     assert_eq!(
         std::fs::read_to_string(work.join("mine.st")).unwrap(),

@@ -1,0 +1,235 @@
+//! The eleventh round of hostile input: what the red team rt21 found and
+//! the last session left. An `Ä` that macOS wrote as `A` and a combining
+//! mark came out as `A?` in the files Windows tools read; convert's JSON
+//! E040 named no input; `simulate` and `faults` refused names for FST's
+//! sake; `estop and reset` in a value cell was E030; `Ölpumpe` was said to
+//! begin with no letter; `C1 0+1` brought a second error; a link to
+//! nothing was "no such file". Each row goes through the binary.
+
+use crate::helpers::steptable;
+use crate::hostile_round9::workbook;
+
+/// Runs `convert` on `bytes` saved as `name` in a new folder; the folder,
+/// the exit code and what it said on stderr.
+fn convert(name: &str, bytes: Vec<u8>, args: &[&str]) -> (tempfile::TempDir, Option<i32>, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, bytes).unwrap();
+    let run = steptable()
+        .arg("convert")
+        .args(args)
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .arg(&path)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&run.stderr).to_string();
+    (dir, run.status.code(), said)
+}
+
+/// Text is read composed: an `Ä` written as `A` and U+0308 (macOS, some
+/// copy-paste) is `Ä` in the Windows-1252 files, not `A?`, with no W008; a
+/// mark with no composed form is W008 by its code point, not as an
+/// invisible quote (rt21 F11).
+#[test]
+fn decomposed_letters_are_read_composed() {
+    let rows: &[&[&str]] = &[
+        &["actuator", "extend"],
+        &["C1 (Zylinder A\u{308})", "1s"],
+        &["C2 (Hubzylinder)", "1s"],
+    ];
+    let (dir, code, said) = convert(
+        "nfd.xlsx",
+        workbook(&[], &[("SETTINGS", rows)]),
+        &["--formats", "st,sdf"],
+    );
+    assert_eq!(code, Some(0), "{said}");
+    assert!(!said.contains("W008"), "{said}");
+    let sdf = std::fs::read(dir.path().join("out/nfd/nfd.sdf")).unwrap();
+    assert!(sdf.contains(&0xC4) && !sdf.contains(&b'?'), "Ä is 0xC4");
+    let st = std::fs::read_to_string(dir.path().join("out/nfd/nfd.st")).unwrap();
+    assert!(st.contains("Zylinder \u{c4}") && !st.contains('\u{308}'));
+
+    let csv = ",BRANCH 1\nSTEP 1 (Teil pru\u{308}fen),C1+1\nSTEP 2 (q\u{308}),C1-0\n";
+    let (dir, code, said) = convert("nfd.csv", csv.into(), &["--formats", "st,sdf"]);
+    assert_eq!(code, Some(0), "{said}");
+    assert!(
+        said.contains("warning[W008]") && said.contains("U+0308") && !said.contains('\u{308}'),
+        "{said}"
+    );
+    let sdf = std::fs::read(dir.path().join("out/nfd/nfd.sdf")).unwrap();
+    assert!(sdf.windows(3).any(|w| w == b"pr\xfc"), "ü is 0xFC");
+}
+
+/// An E040 of `convert` names the input it belongs to, in JSON too, as
+/// batch's does: among several inputs the output's path alone does not
+/// say which was not converted (rt21 F13).
+#[test]
+fn a_taken_output_place_names_its_input_in_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("a.csv");
+    std::fs::write(&input, ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n").unwrap();
+    std::fs::create_dir_all(dir.path().join("out/a")).unwrap();
+    std::fs::write(dir.path().join("out/a/a.st"), "mine").unwrap();
+    let run = steptable()
+        .args(["convert", "--message-format", "json", "-o"])
+        .arg(dir.path().join("out"))
+        .arg(&input)
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(1));
+    let said = String::from_utf8_lossy(&run.stdout);
+    let line = said
+        .lines()
+        .find(|l| l.contains("\"E040\""))
+        .unwrap_or_else(|| panic!("{said}"));
+    assert!(
+        line.contains("(converting ") && line.contains("a.csv)"),
+        "{line}"
+    );
+    assert_eq!(
+        std::fs::read(dir.path().join("out/a/a.st")).unwrap(),
+        b"mine"
+    );
+}
+
+/// FST's 9 characters bind where an FST file is written: `simulate` and
+/// `faults` write none, and `check --formats` checks as `convert
+/// --formats` would; `check` alone as a default `convert` (rt21 F9).
+#[test]
+fn fsts_name_limit_binds_only_where_fst_is_written() {
+    let rows: &[&[&str]] = &[
+        &["actuator", "name"],
+        &["C1", "gripper_arm"],
+        &["C2", "gripper_arm2"],
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("dn.xlsx");
+    std::fs::write(&path, workbook(&[], &[("SETTINGS", rows)])).unwrap();
+    let run = |args: &[&str]| {
+        let out = steptable()
+            .args(args)
+            .args(["--designations", "names"])
+            .arg(&path)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        let said = String::from_utf8_lossy(&out.stderr).to_string()
+            + &String::from_utf8_lossy(&out.stdout);
+        (out.status.code(), said)
+    };
+    for args in [
+        &["simulate"][..],
+        &["faults", "-o", "f"],
+        &["check", "--formats", "st,awl,sdf"],
+    ] {
+        let (code, said) = run(args);
+        assert_eq!(code, Some(0), "{args:?}: {said}");
+        assert!(!said.contains("E025"), "{args:?}: {said}");
+    }
+    for args in [&["check"][..], &["check", "--formats", "st,fst"]] {
+        let (code, said) = run(args);
+        assert_eq!(code, Some(1), "{args:?}: {said}");
+        assert!(
+            said.contains("error[E025]") && said.contains("9 characters"),
+            "{said}"
+        );
+    }
+}
+
+/// `and` separates a list's items in the value cell as in one cell with
+/// the label, so E046's advice (write the value right of the label) gives
+/// the program asked for, not E030 (rt21 F17).
+#[test]
+fn and_separates_list_items_in_a_value_cell() {
+    let rows: &[&[&str]] = &[
+        &["modes", "estop and reset"],
+        &["safety", "watchdog & edge"],
+    ];
+    let (dir, code, said) = convert(
+        "and.xlsx",
+        workbook(&[], &[("SETTINGS", rows)]),
+        &["--formats", "st"],
+    );
+    assert_eq!(code, Some(0), "{said}");
+    let st = std::fs::read_to_string(dir.path().join("out/and/and.st")).unwrap();
+    assert!(
+        st.contains("ESTOP") && st.contains("RESET"),
+        "the modes asked for"
+    );
+    let rows: &[&[&str]] = &[&["modes", "estop and reset and estop"]];
+    let (_, code, said) = convert("twice.xlsx", workbook(&[], &[("SETTINGS", rows)]), &[]);
+    assert_eq!(code, Some(1), "{said}");
+    assert!(
+        said.contains("SETTINGS!B1: error[E030]") && said.contains("given twice"),
+        "{said}"
+    );
+}
+
+/// A name with an umlaut gives no identifier under `names`: the message
+/// says why (Ö is a letter, but not A-Z) and suggests the spelling PLC
+/// engineers use, which is not applied unasked (rt21 F10).
+#[test]
+fn a_name_with_an_umlaut_is_told_its_ascii_spelling() {
+    let rows: &[&[&str]] = &[
+        &["actuator", "name"],
+        &["C1", "Ölpumpe"],
+        &["C2", "2nd clamp"],
+    ];
+    let (_, code, said) = convert(
+        "umlaut.xlsx",
+        workbook(&[], &[("SETTINGS", rows)]),
+        &["--designations", "names"],
+    );
+    assert_eq!(code, Some(1), "{said}");
+    assert!(
+        said.contains("\"Ö\" is no letter A-Z") && said.contains("write it \"Oelpumpe\""),
+        "{said}"
+    );
+    assert!(!said.contains("begins with a letter and"), "{said}");
+    let clamp = said.lines().find(|l| l.contains("2nd clamp")).unwrap();
+    assert!(
+        clamp.contains("begins with a letter A-Z") && clamp.contains("rename it"),
+        "{clamp}"
+    );
+}
+
+/// A refused `C1 0+1` may have meant C1 or C10: neither's later move is a
+/// second error (rt21 F7), as with `C4+1 0`.
+#[test]
+fn a_split_actuator_number_makes_no_second_error() {
+    for (cell, later) in [("C1 0+1", "C10-0"), ("C1 0+1", "C1-0"), ("C1 2+1", "C12-0")] {
+        let csv = format!(",BRANCH 1\nSTEP 1,{cell}\nSTEP 2,C2+1\nSTEP 3,C2-0\nSTEP 4,{later}\n");
+        let (_, code, said) = convert("split.csv", csv.into_bytes(), &[]);
+        assert_eq!(code, Some(1), "{said}");
+        let errors: Vec<&str> = said.lines().filter(|l| l.contains("error[")).collect();
+        assert_eq!(errors.len(), 1, "{cell} / {later}: {said}");
+        assert!(errors[0].contains("split.csv:2:2: error[E010]"), "{said}");
+    }
+}
+
+/// A symbolic link to nothing is called one, by convert and by batch,
+/// rather than "no such file" for a name `ls` lists (rt21 F14).
+#[cfg(unix)]
+#[test]
+fn a_dangling_link_is_called_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let link = dir.path().join("dangling.csv");
+    std::os::unix::fs::symlink(dir.path().join("nowhere.csv"), &link).unwrap();
+    for command in ["convert", "batch"] {
+        let run = steptable()
+            .arg(command)
+            .arg(&link)
+            .arg("-o")
+            .arg(dir.path().join(command))
+            .output()
+            .unwrap();
+        let said = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(1), "{said}");
+        assert!(
+            said.contains("error[E001]: is a link to")
+                && said.contains("nowhere.csv, which does not exist"),
+            "{command}: {said}"
+        );
+    }
+}
