@@ -393,8 +393,23 @@ impl Diagnostics {
         self.items.len() - self.error_count()
     }
 
-    /// All diagnostics, sorted by position in the file so they read top to bottom.
+    /// All diagnostics, sorted by position in the file so they read top to
+    /// bottom. A cell refused says why once: its "not read" note (W003),
+    /// from a look at the cells left over, adds nothing beside its error.
     pub fn into_sorted(mut self) -> Vec<Diagnostic> {
+        let place = |l: &Location| Some((l.file.clone(), l.sheet.clone(), l.cell?));
+        let refused: std::collections::HashSet<_> = self
+            .items
+            .iter()
+            .filter(|d| d.severity == Severity::Error)
+            .filter_map(|d| place(&d.location))
+            .collect();
+        if !refused.is_empty() {
+            self.items.retain(|d| {
+                d.code != Code::W003Ignored
+                    || place(&d.location).is_none_or(|p| !refused.contains(&p))
+            });
+        }
         self.items.sort_by(|a, b| {
             let key = |d: &Diagnostic| {
                 (

@@ -357,6 +357,12 @@ pub(super) fn report_unused(
             CellValue::Text(t) => Some(t.as_str()),
             _ => None,
         };
+        // `STEP` over the column of STEP labels, in the row of BRANCH
+        // headers: the corner header many tables have, read as what it is.
+        let corner = frame.header_row == Some(row) && frame.label_col == Some(col);
+        if corner && text.is_some_and(heads_the_labels) {
+            continue;
+        }
         // Below the table, a row whose label cell holds a note (`Note, C1
         // first`) is a note: only what reads wholly as moves would be lost.
         let note_row = row > last_row
@@ -518,6 +524,15 @@ fn why_lost(grid: &Grid, frame: &Frame, pos: CellPos, in_step_row: bool) -> Opti
     } else {
         None
     }
+}
+
+/// A corner header over the STEP labels: `STEP`, `Steps`, `Step no.`.
+fn heads_the_labels(text: &str) -> bool {
+    let word = text.trim().trim_end_matches('.').to_ascii_lowercase();
+    matches!(
+        word.as_str(),
+        "step" | "steps" | "step no" | "step nr" | "step #"
+    )
 }
 
 /// Text that parses wholly as cell items, as a note never does.

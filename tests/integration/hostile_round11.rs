@@ -233,3 +233,68 @@ fn a_dangling_link_is_called_one() {
         );
     }
 }
+
+/// A setting with the table in a CSV is told the CSV's one advice, not
+/// "the cell right of" a sheet's, and is said once (no W003 at its cell
+/// beside the E046); a corner `STEP` over the labels is read as what it
+/// is (rt21 F18).
+#[test]
+fn a_setting_in_a_csv_gets_the_csvs_advice_once() {
+    let csv = "STEP,BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n\nsafety — watchdog\n";
+    let (_, code, said) = convert("corner.csv", csv.into(), &[]);
+    assert_eq!(code, Some(1), "{said}");
+    let e046 = said
+        .lines()
+        .find(|l| l.contains("error[E046]"))
+        .unwrap_or_else(|| panic!("{said}"));
+    assert!(
+        e046.contains("corner.csv:5:1") && e046.contains("a CSV file holds the step table only"),
+        "{e046}"
+    );
+    assert!(!e046.contains("cell right of"), "{e046}");
+    assert!(
+        !said.contains("W003"),
+        "no second word on the cell, none on STEP: {said}"
+    );
+    let (_, code, said) = convert("corner.xlsx", workbook(&["safety: watchdog"], &[]), &[]);
+    assert_eq!(code, Some(1), "{said}");
+    assert!(
+        said.contains(
+            "move it to the SETTINGS sheet, with its value in the cell right of \"safety\""
+        ),
+        "{said}"
+    );
+}
+
+/// A placeholder in the actuator table's valve or time cell stays refused
+/// (it may stand for a value still to come), and its E030 says that an
+/// empty cell gives the default; E046 over `Type` says to empty them
+/// (rt21 F5).
+#[test]
+fn a_placeholder_in_the_actuator_table_is_told_to_be_emptied() {
+    for (row, cell) in [
+        (&["C2", "1s", "1s", "-"][..], "SETTINGS!D3"),
+        (&["C2", "n/a", "1s", "52bi"][..], "SETTINGS!B3"),
+    ] {
+        let rows: &[&[&str]] = &[
+            &["actuator", "extend", "retract", "valve"],
+            &["C1", "1s", "1s", "52mono"],
+            row,
+        ];
+        let (_, code, said) = convert("ph.xlsx", workbook(&[], &[("SETTINGS", rows)]), &[]);
+        assert_eq!(code, Some(1), "{said}");
+        let e030 = said.lines().find(|l| l.contains("error[E030]")).unwrap();
+        assert!(e030.contains(&format!("{cell}: error[E030]")), "{e030}");
+        assert!(
+            e030.contains("leave the cell empty for the default"),
+            "{e030}"
+        );
+    }
+    let rows: &[&[&str]] = &[&["actuator", "Type"], &["C1", "52mono"], &["C2", "-"]];
+    let (_, code, said) = convert("type.xlsx", workbook(&[], &[("SETTINGS", rows)]), &[]);
+    assert_eq!(code, Some(1), "{said}");
+    assert!(
+        said.contains("head it `valve` (and empty any placeholder"),
+        "{said}"
+    );
+}

@@ -137,6 +137,12 @@ proptest! {
             };
             within(row, |p| p.0) && within(col, |p| p.1)
         };
+        // `STEP` in the corner over the labels is the column's header,
+        // read as what it is (no note).
+        let corner = labelled && row == top && col == 0;
+        if corner && STRAY[stray].trim().eq_ignore_ascii_case("step") {
+            return Ok(());
+        }
         if let Err(why) = seen(&rows, pos, in_body) {
             prop_assert!(false, "{}", why);
         }

@@ -302,6 +302,16 @@ fn actuator_name(
     }
 }
 
+/// The advice for a placeholder (`-`, `n/a`) in a cell of the actuator
+/// table: an empty cell is what gives the default, and a `-` might as
+/// well stand for a value to be filled in, so it is not read as one.
+fn empty_for_default(text: &str) -> &'static str {
+    match super::headers::placeholder(text) {
+        true => "; leave the cell empty for the default",
+        false => "",
+    }
+}
+
 /// A time typed as text without a unit (`1000`, `0.02`) is read as
 /// seconds, as a number cell is; typed as text, it may have meant
 /// milliseconds: W007 at the cell, with both spellings.
@@ -336,7 +346,7 @@ fn read_actuator_row<'g>(
             Err(why) => diags.error(
                 Code::E030BadSetting,
                 grid.location(cell.pos),
-                format!("valve of C{actuator}: {why}"),
+                format!("valve of C{actuator}: {why}{}", empty_for_default(&text)),
             ),
         }
     }
@@ -392,7 +402,10 @@ fn read_actuator_row<'g>(
                     "\"{text}\"{unit} is {ms} ms, and a stroke time is whole milliseconds from 1ms to 3600s"
                 )
             } else {
-                format!("\"{text}\" is not a time such as 1.5s or 800ms")
+                format!(
+                    "\"{text}\" is not a time such as 1.5s or 800ms{}",
+                    empty_for_default(&text)
+                )
             };
             diags.error(
                 Code::E030BadSetting,

@@ -6,6 +6,8 @@ use super::{COLUMNS, known_label, label_of, text_of, unread, valid_value};
 use crate::diag::{CellPos, Code, Diagnostics};
 use crate::read::{CellValue, Grid};
 
+const CSV_HOLDS_NO_SETTINGS: &str = "a CSV file holds the step table only: write them on a workbook's SETTINGS sheet (`steptable template` writes one), or give them on the command line where an option does";
+
 /// Settings written with the step table (on its sheet, or in a CSV), where
 /// settings are not read: a label with a valid value right of it on its
 /// row is E030, a misspelt label with one E046, a label and a valid value
@@ -14,9 +16,14 @@ use crate::read::{CellValue, Grid};
 pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
     let instead = match table.sheet {
         Some(_) => "move them to the SETTINGS sheet",
-        None => {
-            "a CSV file holds the step table only: write them on a workbook's SETTINGS sheet (`steptable template` writes one), or give them on the command line where an option does"
+        None => CSV_HOLDS_NO_SETTINGS,
+    };
+    // Where the value of one setting goes, as the sheet or file allows.
+    let value_right_of = |label: &str| match table.sheet {
+        Some(_) => {
+            format!("move it to the SETTINGS sheet, with its value in the cell right of {label}")
         }
+        None => CSV_HOLDS_NO_SETTINGS.replace("them", "it"),
     };
     let lost = "where settings are not read (the program would be made without it)";
     if let Some((header, row)) = actuator_table(table) {
@@ -37,7 +44,7 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
                 diags.error(
                     Code::E046MistypedSetting,
                     at,
-                    format!("\"{written}\" holds the setting {meant} and its value in one cell, lying with the step table, {lost}; write the value in the cell right of \"{meant}\" and {instead}"),
+                    format!("\"{written}\" holds the setting {meant} and its value in one cell, lying with the step table, {lost}; {}", value_right_of(&format!("\"{meant}\""))),
                 );
             }
             continue;
@@ -49,7 +56,7 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
             diags.error(
                 Code::E046MistypedSetting,
                 at,
-                format!("\"{written}\" reads as the setting `{meant}` misspelt, with its value in one cell, lying with the step table, {lost}; spell it `{meant}`, write the value in the cell right of it and {instead}"),
+                format!("\"{written}\" reads as the setting `{meant}` misspelt, with its value in one cell, lying with the step table, {lost}; spell it `{meant}` and {}", value_right_of("it")),
             );
             continue;
         }

@@ -161,7 +161,9 @@ fn column_of_values(reader: &Reader, header: CellPos) -> Option<&'static str> {
         let kind = value_kind(&value);
         // One valve type is one valve lost (`52mono` beside `default`).
         if kind == Some(VALVE) {
-            return Some("a value under it is a valve type: head it `valve`");
+            return Some(
+                "a value under it is a valve type: head it `valve` (and empty any placeholder under it, `-`, `n/a`: an empty cell gives the default valve)",
+            );
         }
         times &= kind == Some(TIME);
     }
