@@ -218,8 +218,25 @@ pub fn stamp(file: OutputFile, made: &MadeBy) -> Result<OutputFile, String> {
             .map_err(|e| format!("{}: cannot record how it was made: {e}", file.name))?;
         return Ok(OutputFile { bytes, ..file });
     }
-    let Ok(text) = String::from_utf8(file.bytes.clone()) else {
-        return Ok(file);
+    // The files Windows tools read in their ANSI code page are
+    // Windows-1252 already: read, stamped and written back in it.
+    let ansi = [
+        OutputKind::SymbolTable,
+        OutputKind::Fst,
+        OutputKind::FstAllocation,
+        OutputKind::CodesysV2,
+    ]
+    .iter()
+    .any(|k| file.name.ends_with(k.suffix()));
+    let text = match ansi {
+        true => encoding_rs::WINDOWS_1252
+            .decode_without_bom_handling(&file.bytes)
+            .0
+            .into_owned(),
+        false => match String::from_utf8(file.bytes.clone()) {
+            Ok(text) => text,
+            Err(_) => return Ok(file),
+        },
     };
     // The lists Windows tools import end their lines in CRLF; the line
     // added ends as the file's first line does.
@@ -257,10 +274,11 @@ pub fn stamp(file: OutputFile, made: &MadeBy) -> Result<OutputFile, String> {
     out.push_str(&comment);
     out.push_str(eol);
     out.push_str(&text[at..]);
-    Ok(OutputFile {
-        bytes: out.into_bytes(),
-        ..file
-    })
+    let bytes = match ansi {
+        true => crate::emit::windows_1252(&out),
+        false => out.into_bytes(),
+    };
+    Ok(OutputFile { bytes, ..file })
 }
 
 /// Every file of `files`, stamped.

@@ -161,13 +161,14 @@ fn joined_digits(text: &str) -> Option<String> {
     let mut pending = String::new();
     let (mut last, mut split) = (None, false);
     for c in text.chars() {
-        if c.is_whitespace() {
+        // A zero-width space or joiner is dropped as white space is.
+        let spacer = c.is_whitespace()
+            || matches!(c, '\u{200b}'..='\u{200f}' | '\u{2060}'..='\u{2064}' | '\u{feff}');
+        if spacer {
             pending.push(c);
             continue;
         }
-        let between = !pending.is_empty()
-            && c.is_ascii_digit()
-            && last.is_some_and(|l: char| l.is_ascii_digit());
+        let between = !pending.is_empty() && digit_like(c) && last.is_some_and(digit_like);
         match between {
             true => split = true,
             false => joined.push_str(&pending),
@@ -178,6 +179,17 @@ fn joined_digits(text: &str) -> Option<String> {
     }
     joined.push_str(&pending);
     split.then_some(joined)
+}
+
+/// A digit as the cell reader takes it: ASCII, or a sub-, superscript or
+/// full-width digit copy-paste left (`C₂-₁`, `C1 ０`).
+fn digit_like(c: char) -> bool {
+    let mut buffer = [0u8; 4];
+    if c.is_ascii() {
+        return c.is_ascii_digit();
+    }
+    let read = normalize(c.encode_utf8(&mut buffer));
+    !read.is_empty() && read.chars().all(|d| d.is_ascii_digit())
 }
 
 /// Whether white space stands between two digits of `text`.

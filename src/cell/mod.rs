@@ -6,11 +6,13 @@ use std::fmt;
 
 mod hint;
 mod label;
+mod unicode;
 pub use hint::{edit_distance, move_attempts, not_a_move_hint};
 pub use label::{
     Header, actuator_comment, actuator_name, decimals, header_kind, looks_like_item,
     looks_like_move, parse_actuator, step_comment, visible_text,
 };
+pub use unicode::composed;
 
 /// Largest actuator number accepted (`C999`).
 pub const MAX_ACTUATOR: u32 = 999;

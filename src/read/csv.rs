@@ -54,7 +54,7 @@ pub(super) fn read_csv(
                     format!("read as {encoding} text, not UTF-8"),
                 );
             }
-            super::composed(text)
+            crate::cell::composed(text)
         }
         Err(why) => {
             diags.error(Code::E002NotAWorkbook, whole_file, why);

@@ -438,7 +438,7 @@ fn cell_value(data: &Data) -> Option<CellValue> {
             if s.trim().is_empty() {
                 return None;
             }
-            CellValue::Text(super::composed(s.clone()))
+            CellValue::Text(crate::cell::composed(s.clone()))
         }
         Data::Int(i) => CellValue::Number(*i as f64),
         Data::Float(f) => CellValue::Number(*f),

@@ -153,21 +153,7 @@ pub fn actuator_entries(
             continue;
         }
         let Some(stem) = name.stem() else {
-            if naming.scheme == Scheme::Names {
-                diags.error(
-                    Code::E015BadName,
-                    name.at.clone(),
-                    format!(
-                        "{label}\"{}\" gives no identifier under --designations names: {}; {}or choose another scheme",
-                        name.text,
-                        why_no_identifier(&name.text),
-                        match ascii_spelling(&name.text) {
-                            Some(ascii) => format!("write it \"{ascii}\", "),
-                            None => "rename it, ".to_string(),
-                        }
-                    ),
-                );
-            }
+            without_identifier(naming, n, name, &label, &mut entries, diags);
             continue;
         };
         let origin = format!("for C{n} at {}", place(&name.at));
@@ -324,10 +310,11 @@ pub fn check_entries(entries: &[Entry], limits: &Limits, diags: &mut Diagnostics
             );
             continue;
         }
-        let lower = entry.name.to_ascii_lowercase();
+        // Unicode's case folding: `Kühler` and `KÜHLER` are one name.
+        let lower = entry.name.to_lowercase();
         for earlier in &entries[..i] {
             let same_actuator = entry.actuator.is_some() && entry.actuator == earlier.actuator;
-            let other = earlier.name.to_ascii_lowercase();
+            let other = earlier.name.to_lowercase();
             // A machine signal named like a button is E015 where it is
             // written (names::signal_problem), said once.
             let signal_and_button = (entry.button && earlier.actuator.is_none())
@@ -376,6 +363,45 @@ pub fn check_entries(entries: &[Entry], limits: &Limits, diags: &mut Diagnostics
             break;
         }
     }
+}
+
+/// An actuator's name that gives no identifier (`Ölpumpe`, `2nd clamp`):
+/// under `names` E015, saying why and how to write it; under the other
+/// schemes rows and comments still name the actuator by it, so it is an
+/// entry that two actuators may not share.
+fn without_identifier(
+    naming: &Naming,
+    n: u32,
+    name: &super::scheme::ActuatorName,
+    label: &str,
+    entries: &mut Vec<Entry>,
+    diags: &mut Diagnostics,
+) {
+    if naming.scheme != Scheme::Names {
+        entries.push(Entry {
+            name: name.text.trim().to_string(),
+            at: name.at.clone(),
+            origin: format!("for C{n} at {}", place(&name.at)),
+            label: label.to_string(),
+            actuator: Some(n),
+            symbol: false,
+            button: false,
+        });
+        return;
+    }
+    diags.error(
+        Code::E015BadName,
+        name.at.clone(),
+        format!(
+            "{label}\"{}\" gives no identifier under --designations names: {}; {}or choose another scheme",
+            name.text,
+            why_no_identifier(&name.text),
+            match ascii_spelling(&name.text) {
+                Some(ascii) => format!("write it \"{ascii}\", "),
+                None => "rename it, ".to_string(),
+            }
+        ),
+    );
 }
 
 /// Why a name makes no identifier: a letter beyond A-Z (PLC identifiers

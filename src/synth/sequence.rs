@@ -292,6 +292,18 @@ impl fmt::Display for Clash {
             .iter()
             .map(|(p, t)| format!("{t} (action {p})"))
             .collect();
+        // `A1 A0 A1 A0`: the same action each time, so the sensors alone
+        // know what to do next; what they cannot tell is which half of the
+        // cycle it is, and so where the cycle (and a STOP) ends.
+        let first = self.actions.first().map(|(_, t)| t);
+        if self.actions.iter().all(|(_, t)| Some(t) == first) {
+            return write!(
+                f,
+                "state met again: {} comes before {}; the action is the same, but only a memory tells the cycle's repeats apart, and so where the cycle ends",
+                self.state_text,
+                actions.join(" and ")
+            );
+        }
         write!(
             f,
             "signal clash: {} comes before {}",

@@ -298,3 +298,103 @@ fn a_placeholder_in_the_actuator_table_is_told_to_be_emptied() {
         "{said}"
     );
 }
+
+/// A repeated identical action is no signal clash: synth says the state
+/// is met again before the same action, and what the memories are for
+/// (rt20 F7); a true clash keeps its name.
+#[test]
+fn a_repeated_action_is_no_signal_clash() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |sequence: &str| {
+        let out = steptable()
+            .args(["synth", "--method", "exact", "--sequence", sequence, "-o"])
+            .arg(dir.path())
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{out:?}");
+        String::from_utf8_lossy(&out.stdout).to_string()
+    };
+    let said = run("A1 A0 A1 A0");
+    assert!(!said.contains("signal clash"), "{said}");
+    assert!(
+        said.contains("state met again: a=0 comes before A1 (action 1) and A1 (action 3)"),
+        "{said}"
+    );
+    assert!(run("A1 A0 B1 B0").contains("signal clash: a=0 b=0 comes before A1"));
+}
+
+/// A zero-width character or a space between two digits of any form
+/// (`C1+1<ZWSP>0`, `T=1<ZWSP>5s`, `C₁ ₀+1`, `C1 ０+1`) is E010, as a space
+/// between ASCII digits is: it was C1+10 and a 15 s dwell (rt22 F1, F2).
+#[test]
+fn any_gap_between_any_digits_is_refused() {
+    for cell in [
+        "C1+1\u{200b}0",
+        "C1+1\u{2060}0",
+        "C1+1\u{feff}0",
+        "C1+1; T=1\u{200b}5s",
+        "C\u{2081} \u{2080}+1",
+        "C1 \u{ff10}+1",
+    ] {
+        let csv = format!(",BRANCH 1\nSTEP 1,\"{cell}\"\nSTEP 2,C1-0\n");
+        let (_, code, said) = convert("gap.csv", csv.into_bytes(), &["--formats", "st"]);
+        assert_eq!(code, Some(1), "{cell:?}: {said}");
+        assert!(
+            said.contains("gap.csv:2:2: error[E010]"),
+            "{cell:?}: {said}"
+        );
+    }
+}
+
+/// Two actuators with one name that gives no identifier (`Ölpumpe`
+/// twice, `Kühler` and `KÜHLER`) are E025 as ASCII names are: a row
+/// naming it went to C1 without a word (rt22 F3).
+#[test]
+fn two_actuators_with_one_umlaut_name_are_refused() {
+    for (first, second) in [("Ölpumpe", "Ölpumpe"), ("Kühler", "KÜHLER")] {
+        let rows: &[&[&str]] = &[&["actuator", "name"], &["C1", first], &["C2", second]];
+        let (_, code, said) = convert("dup.xlsx", workbook(&[], &[("SETTINGS", rows)]), &[]);
+        assert_eq!(code, Some(1), "{first}/{second}: {said}");
+        assert!(
+            said.contains("SETTINGS!B3: error[E025]")
+                && said.contains("too; give them different names"),
+            "{said}"
+        );
+    }
+}
+
+/// The made-by line heads the Windows-1252 files of a German table too
+/// (it was dropped once the file held an `ß`), in that code page, with a
+/// file name macOS wrote decomposed composed (rt22 F4, F5).
+#[test]
+fn the_made_by_line_heads_the_code_page_files() {
+    let csv = ",BRANCH 1\nSTEP 1 (Schließen),C1+1\nSTEP 2,C1-0\n";
+    let (dir, code, said) = convert("O\u{308}l.csv", csv.into(), &["--formats", "fst,exp,st"]);
+    assert_eq!(code, Some(0), "{said}");
+    let folder = std::fs::read_dir(dir.path().join("out"))
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    for suffix in [".fst.txt", ".exp"] {
+        let file = std::fs::read_dir(&folder)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .find(|p| p.to_string_lossy().ends_with(suffix))
+            .unwrap();
+        let bytes = std::fs::read(&file).unwrap();
+        let made = bytes
+            .split(|b| *b == b'\n')
+            .find(|l| l.windows(7).any(|w| w == b"made by"))
+            .unwrap_or_else(|| panic!("{suffix}: no made-by line"));
+        assert!(
+            made.windows(2).any(|w| w == b"\xd6l"),
+            "{suffix}: Ö as 0xD6"
+        );
+        assert!(
+            bytes.contains(&0xDF) && std::str::from_utf8(&bytes).is_err(),
+            "{suffix}: ß"
+        );
+    }
+}
