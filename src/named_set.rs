@@ -34,13 +34,21 @@ impl NameList<'_> {
         // `stop, estop, and reset`, as a SETTINGS cell is often written):
         // no name holds a space.
         let mut separated = String::with_capacity(text.len());
+        let mut after_and = false;
         for word in text.replace('&', " and ").split(char::is_whitespace) {
-            if !word.eq_ignore_ascii_case("and") {
+            if word.is_empty() {
+                continue;
+            }
+            let and = word.eq_ignore_ascii_case("and");
+            // After a comma (`estop, and reset`) `and` separates nothing
+            // more; after another `and` it leaves an empty item.
+            if !and {
                 separated.push_str(word);
                 separated.push(' ');
-            } else if !separated.trim_end().ends_with(',') {
+            } else if after_and || !separated.trim_end().ends_with(',') {
                 separated.push(',');
             }
+            after_and = and;
         }
         for raw in separated.split(',') {
             let item = raw.trim();
@@ -52,7 +60,7 @@ impl NameList<'_> {
             let Some(&name) = known else {
                 return Err(if item.is_empty() {
                     format!(
-                        "\"{}\" has an empty item; write each name once between commas (expected {})",
+                        "\"{}\" has an empty item; write each name once, the names apart by commas or `and` (expected {})",
                         text.trim(),
                         self.expected
                     )
@@ -121,6 +129,17 @@ mod tests {
             assert_eq!(parse(text).unwrap(), ["st", "awl"], "{text}");
         }
         assert!(parse("st and").unwrap_err().contains("has an empty item"));
+        for text in [
+            "st and and awl",
+            "st & & awl",
+            "st & and awl",
+            "st,, and awl",
+        ] {
+            assert!(
+                parse(text).unwrap_err().contains("has an empty item"),
+                "{text}"
+            );
+        }
         assert!(parse("st and st").unwrap_err().contains("given twice"));
         assert_eq!(parse("standard").unwrap_err(), "standard is unknown");
     }

@@ -48,28 +48,31 @@ pub const SYNTH_OWN: &[&str] = &[
 /// Why a machine input or output may not have this (lower-case) name in a
 /// program with the operating-mode buttons `buttons` (lower case: `stop`,
 /// `estop`, `cont`, `reset_pb`): the one check every place a name enters
-/// goes through (table cells, SETTINGS rows). The name is refused when it,
-/// or the 9 characters Festo FST keeps of it, is reserved, or when either
-/// reads as a button in any case.
-pub fn signal_problem(name: &str, buttons: &[String]) -> Option<String> {
+/// goes through (table cells, SETTINGS rows). The name is refused when it
+/// is reserved or reads as a button in any case; where a Festo FST file is
+/// written (`fst`), also when the 9 characters FST keeps of it do.
+pub fn signal_problem(name: &str, buttons: &[String], fst: bool) -> Option<String> {
     let name = name.to_ascii_lowercase();
     let stem = fst_stem(&name);
     if let Some(reason) = reserved_name(&name) {
         return Some(format!("\"{name}\" cannot name a machine signal: {reason}"));
     }
-    if let Some(reason) = reserved_name(&stem) {
+    if fst && let Some(reason) = reserved_name(&stem) {
         return Some(format!(
-            "\"{name}\" cannot name a machine signal: Festo FST keeps its first {FST_SYMBOL_CHARS} characters, \"{stem}\", and {reason}"
+            "\"{name}\" cannot name a machine signal where a Festo FST file is written: FST keeps its first {FST_SYMBOL_CHARS} characters, \"{stem}\", and {reason}"
         ));
     }
     // The button of that very name before one that is only the same to
     // FST (`clamp_jog_in` is the retract jog, not `clamp_jog_out`).
-    let button = buttons
-        .iter()
-        .find(|b| b.eq_ignore_ascii_case(&name))
-        .or_else(|| buttons.iter().find(|b| same_in_fst(b, &name)))?;
+    if let Some(button) = buttons.iter().find(|b| b.eq_ignore_ascii_case(&name)) {
+        return Some(format!(
+            "\"{name}\" cannot name a machine signal while the program has the operating-mode button {} (IEC names ignore case): rename the signal, or leave that mode out",
+            button.to_ascii_uppercase()
+        ));
+    }
+    let button = buttons.iter().find(|b| fst && same_in_fst(b, &name))?;
     Some(format!(
-        "\"{name}\" cannot name a machine signal while the program has the operating-mode button {} (IEC names ignore case): rename the signal, or leave that mode out",
+        "\"{name}\" cannot name a machine signal while the program has the operating-mode button {} where a Festo FST file is written: FST keeps the first {FST_SYMBOL_CHARS} characters of both, \"{stem}\"; rename the signal, leave that mode out, or leave the FST files out (--formats)",
         button.to_ascii_uppercase()
     ))
 }
@@ -541,15 +544,19 @@ mod tests {
         for name in [
             "ld", "st", "s", "r", "in", "pt", "clk", "cal", "ret", "jmpc",
         ] {
-            assert_eq!(signal_problem(name, &[]), None, "{name}");
+            assert_eq!(signal_problem(name, &[], true), None, "{name}");
             assert!(synth_problem(name, &[name.to_string()]).is_some(), "{name}");
         }
         let buttons = ["estop".to_string(), "stop".to_string()];
-        assert!(signal_problem("estop", &buttons).unwrap().contains("ESTOP"));
-        assert!(signal_problem("EStop", &buttons).is_some());
-        assert_eq!(signal_problem("estop", &[]), None);
-        assert_eq!(signal_problem("stop_lamp", &buttons), None);
-        assert_eq!(signal_problem("vacuum", &buttons), None);
+        assert!(
+            signal_problem("estop", &buttons, true)
+                .unwrap()
+                .contains("ESTOP")
+        );
+        assert!(signal_problem("EStop", &buttons, true).is_some());
+        assert_eq!(signal_problem("estop", &[], true), None);
+        assert_eq!(signal_problem("stop_lamp", &buttons, true), None);
+        assert_eq!(signal_problem("vacuum", &buttons, true), None);
     }
 
     #[test]

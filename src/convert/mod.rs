@@ -133,7 +133,10 @@ fn finish_check(
     let has_settings = input.settings.is_some();
     crate::settings::written_elsewhere(&input.others, has_settings, &mut diags);
     let valves = &effective.simulation.machine.valves;
-    let table = table::build_for(&input.table, valves, &mut diags);
+    let writes_fst = [OutputKind::Fst, OutputKind::FstAllocation]
+        .iter()
+        .any(|k| effective.formats.contains(k));
+    let table = table::build_for(&input.table, valves, writes_fst, &mut diags);
     if let Some(table) = &table {
         by_name(table, &mut effective, &input.table.file, &mut diags);
         // A home order from the SETTINGS sheet is blamed on its cell; one
@@ -159,6 +162,7 @@ fn finish_check(
             home_order_at: home_order_at.as_ref(),
             reset: modes.reset,
             buttons: &buttons,
+            fst: writes_fst,
         };
         table::check_machine(table, &machine, &input.table, &mut diags);
         kind_times::kind_times(table, &mut effective, sheet_given.as_ref(), &mut diags);
@@ -185,13 +189,17 @@ fn finish_check(
         );
         effective.program.permissive = halt::resolve_held_inputs(
             table,
-            &buttons,
+            (&buttons, writes_fst),
             Row::StartPermissive,
             named.get(&Row::StartPermissive),
             &mut diags,
         );
-        effective.program.interlocks =
-            halt::resolve_interlocks(table, &buttons, named.get(&Row::Interlock), &mut diags);
+        effective.program.interlocks = halt::resolve_interlocks(
+            table,
+            (&buttons, writes_fst),
+            named.get(&Row::Interlock),
+            &mut diags,
+        );
         names_of_the_whole_table(table, &input.table, &effective, &buttons, &mut diags);
         delays_without_their_input(table, &effective, &input.table, &mut diags);
         rows_without_their_event(&effective, &mut diags);

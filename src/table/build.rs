@@ -23,13 +23,21 @@ struct RawCell {
 /// Builds the table from a sheet and checks it. Returns `None` when any error
 /// was found (all of them are in `diags`).
 pub fn build(grid: &Grid, diags: &mut Diagnostics) -> Option<StepTable> {
-    build_for(grid, &Valves::default(), diags)
+    build_for(grid, &Valves::default(), true, diags)
 }
 
 /// [`build`] for the valves the settings give by number: a position a
 /// kind cannot hold (E045) is said with the table's other errors, in one
 /// run, and no E022 then asks to complete that move.
-pub fn build_for(grid: &Grid, valves: &Valves, diags: &mut Diagnostics) -> Option<StepTable> {
+///
+/// `fst`: a Festo FST file is written, so a name whose first 9 characters
+/// are reserved is refused too (E015).
+pub fn build_for(
+    grid: &Grid,
+    valves: &Valves,
+    fst: bool,
+    diags: &mut Diagnostics,
+) -> Option<StepTable> {
     let errors_before = diags.error_count();
     let Some(frame) = find_frame(grid, diags) else {
         if diags.error_count() == errors_before {
@@ -137,7 +145,7 @@ pub fn build_for(grid: &Grid, valves: &Valves, diags: &mut Diagnostics) -> Optio
     }
     parsed.truncate(last_with_moves + 1);
 
-    let table = check::check(grid, &frame, parsed, (&refused, valves), diags);
+    let table = check::check(grid, &frame, parsed, (&refused, valves, fst), diags);
     if diags.error_count() > errors_before {
         None
     } else {

@@ -43,10 +43,11 @@ pub(super) fn check(
     grid: &Grid,
     frame: &Frame,
     parsed: Vec<Vec<(CellItem, CellPos, usize)>>,
-    (refused, valves): (&Refused, &Valves),
+    (refused, valves, fst): (&Refused, &Valves, bool),
     diags: &mut Diagnostics,
 ) -> Option<StepTable> {
     let mut rules = Rules::new(grid, refused, diags, &parsed);
+    rules.names.fst = fst;
     let mut steps = Vec::with_capacity(parsed.len());
     for (index, row) in parsed.into_iter().enumerate() {
         steps.push(rules.step(frame, index, row));
@@ -481,6 +482,9 @@ struct Names {
     inputs: Vec<Name>,
     outputs: Vec<Name>,
     first: BTreeMap<Name, (NameKind, CellPos)>,
+    /// A Festo FST file is written: the 9 characters it keeps of a name
+    /// count too.
+    fst: bool,
 }
 
 impl Names {
@@ -511,7 +515,7 @@ impl Names {
             }
             return;
         }
-        if let Some(why) = crate::names::signal_problem(name.as_str(), &[]) {
+        if let Some(why) = crate::names::signal_problem(name.as_str(), &[], self.fst) {
             diags.error(Code::E015BadName, grid.location(pos), why);
         }
         // Two names FST cannot tell apart are said by the one check over

@@ -385,6 +385,19 @@ pub(super) fn report_unused(
                 let message = format!("\"{text}\" lies outside the table and would be lost: {why}");
                 diags.error(Code::E010NotAMove, grid.location(cell.pos), message)
             }
+            // `C2+1` under the last STEP label: step 3 typed a column to
+            // the left, a row without a label.
+            _ if row > last_row
+                && frame.label_col == Some(col)
+                && text.is_some_and(reads_as_items) =>
+            {
+                let text = text.unwrap_or_default().trim();
+                lost(text, frame.step_rows.len());
+                let message = format!(
+                    "\"{text}\" lies outside the table and would be lost: it is in the column of STEP labels below the last step, a row without a STEP label (a move goes in a BRANCH column, beside its STEP n label)"
+                );
+                diags.error(Code::E010NotAMove, grid.location(cell.pos), message)
+            }
             Some(why)
                 if near_rows.contains(&row) && near_cols.contains(&col)
                     || in_step_row

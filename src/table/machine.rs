@@ -21,6 +21,9 @@ pub struct Machine<'a> {
     /// The (lower-case) names of the operating-mode buttons the program has
     /// (`stop`, `estop`, …): taken only when their mode is on.
     pub buttons: &'a [String],
+    /// A Festo FST file is written: the 9 characters it keeps of a name
+    /// may not read as a reserved word or a button either.
+    pub fst: bool,
 }
 
 /// Checks a built table against the machine it runs on: the valve types,
@@ -31,7 +34,7 @@ pub fn check_machine(table: &StepTable, machine: &Machine, grid: &Grid, diags: &
     check_positions(&table.actuators, &table.steps, machine.valves, grid, diags);
     check_valves(table, machine.valves, grid, diags);
     check_home_order(table, machine, grid, diags);
-    check_button_names(table, machine.buttons, grid, diags);
+    check_button_names(table, machine, grid, diags);
 }
 
 /// A machine input or output may be called `stop` unless the program has a
@@ -39,14 +42,16 @@ pub fn check_machine(table: &StepTable, machine: &Machine, grid: &Grid, diags: &
 /// buttons add to the one name check ([`crate::names::signal_problem`]),
 /// which the table's own build ran without them. Said at the name's first
 /// cell, whether a wait, a jump or an output switch.
-fn check_button_names(table: &StepTable, buttons: &[String], grid: &Grid, diags: &mut Diagnostics) {
+fn check_button_names(table: &StepTable, machine: &Machine, grid: &Grid, diags: &mut Diagnostics) {
+    let buttons = machine.buttons;
     for name in table.inputs.iter().chain(&table.outputs) {
         let name = name.as_str();
-        if crate::names::signal_problem(name, &[]).is_some() {
+        // Said by the table's own build already.
+        if crate::names::signal_problem(name, &[], machine.fst).is_some() {
             continue;
         }
-        let why =
-            crate::names::signal_problem(name, buttons).or_else(|| alias_problem(name, buttons));
+        let why = crate::names::signal_problem(name, buttons, machine.fst)
+            .or_else(|| alias_problem(name, buttons));
         if let (Some(why), Some(cell)) = (why, first_use(table, name)) {
             diags.error(Code::E015BadName, grid.location(cell), why);
         }

@@ -375,7 +375,10 @@ pub fn convert_sheets(
     if !settings.is_empty() {
         sheets.push(("SETTINGS", settings));
     }
-    let args: Vec<&str> = args.iter().copied().chain(["--formats", "st"]).collect();
+    // `--formats` of the case's own (a case about FST's names) stands.
+    let own = args.contains(&"--formats");
+    let formats: &[&str] = if own { &[] } else { &["--formats", "st"] };
+    let args: Vec<&str> = args.iter().chain(formats).copied().collect();
     convert_workbook(&sheets, &args, exit)
 }
 

@@ -398,3 +398,53 @@ fn the_made_by_line_heads_the_code_page_files() {
         );
     }
 }
+
+/// A signal whose first 9 characters read as a reserved word or a button
+/// (`start_memory`, `step_mode_sel` beside STEP_MODE) is refused only
+/// where an FST file is written, and said to be FST's cut, not IEC's case
+/// (rt22 F6).
+#[test]
+fn fsts_cut_of_a_signal_binds_only_where_fst_is_written() {
+    for (cell, modes) in [
+        ("C1+1; I:start_memory", "none"),
+        ("C1+1; I:step_mode_sel", "step"),
+    ] {
+        let csv = format!(",BRANCH 1\nSTEP 1,{cell}\nSTEP 2,C1-0\n");
+        let (_, code, said) = convert(
+            "cut.csv",
+            csv.clone().into_bytes(),
+            &["--formats", "st", "--modes", modes],
+        );
+        assert_eq!(code, Some(0), "{cell}: {said}");
+        let (_, code, said) = convert(
+            "cut.csv",
+            csv.into_bytes(),
+            &["--formats", "st,fst", "--modes", modes],
+        );
+        assert_eq!(code, Some(1), "{cell}: {said}");
+        assert!(
+            said.contains("cut.csv:2:2: error[E015]")
+                && said.contains("where a Festo FST file is written")
+                && !said.contains("IEC names ignore case"),
+            "{said}"
+        );
+    }
+}
+
+/// A move typed in the column of STEP labels below the last step would be
+/// lost: E010, as beside the table (rt22 F10); `and and` in a list is an
+/// empty item (rt22 F11).
+#[test]
+fn a_move_under_the_labels_and_an_empty_list_item_are_refused() {
+    let csv = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\nC2+1\n";
+    let (_, code, said) = convert("below.csv", csv.into(), &["--formats", "st"]);
+    assert_eq!(code, Some(1), "{said}");
+    assert!(
+        said.contains("below.csv:4:1: error[E010]") && said.contains("would be lost"),
+        "{said}"
+    );
+    let csv = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n";
+    let (_, code, said) = convert("list.csv", csv.into(), &["--modes", "stop and and estop"]);
+    assert_eq!(code, Some(1), "{said}");
+    assert!(said.contains("has an empty item"), "{said}");
+}

@@ -223,7 +223,7 @@ fn every_entry_point_refuses_every_kind_of_name_collision() {
             .path()
             .join(format!("{}.csv", what.replace([' ', ','], "_")));
         std::fs::write(&input, table_with(item, &off)).unwrap();
-        let (got, stderr, wrote) = convert(&input, &["--modes", modes, "--formats", "st"]);
+        let (got, stderr, wrote) = convert(&input, &["--modes", modes, "--formats", "st,fst"]);
         assert_eq!(got, *code, "{what}: {stderr}");
         if *code == 1 {
             assert!(
@@ -265,7 +265,7 @@ fn every_entry_point_refuses_every_kind_of_name_collision() {
         (
             "interlock cycle_req_lamp",
             &[&["interlock", "cycle_req_lamp"]],
-            "SETTINGS!B1: error[E015]: interlock: \"cycle_req_lamp\" cannot name a machine signal: Festo FST keeps its first 9 characters",
+            "SETTINGS!B1: error[E015]: interlock: \"cycle_req_lamp\" cannot name a machine signal where a Festo FST file is written: FST keeps its first 9 characters",
         ),
     ];
     for (what, settings, message) in settings_rows {

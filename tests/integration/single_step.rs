@@ -187,10 +187,10 @@ const CASES: &[Refused] = &[
         code_at: "TABLE!A2: error[E015]",
     },
     Refused {
-        what: "a name Festo FST cuts to STEP_MODE (its 9 characters)",
+        what: "a name Festo FST cuts to STEP_MODE (its 9 characters), an FST file written",
         table: &[&["C1+1"], &["I:step_modex"], &["C1-0"]],
         settings: &[],
-        args: &["--modes", "step"],
+        args: &["--modes", "step", "--formats", "st,fst"],
         code_at: "TABLE!A2: error[E015]",
     },
     Refused {

@@ -16,7 +16,7 @@ use crate::table::StepTable;
 /// backwards, or an item written twice is E030 at the cell.
 pub fn resolve_interlocks(
     table: &StepTable,
-    buttons: &[String],
+    (buttons, fst): (&[String], bool),
     row: Option<&NamedList>,
     diags: &mut Diagnostics,
 ) -> Vec<Interlock> {
@@ -91,7 +91,7 @@ pub fn resolve_interlocks(
         names: distinct,
         at: row.at.clone(),
     };
-    let inputs = resolve_held_inputs(table, buttons, Row::Interlock, Some(&names), diags);
+    let inputs = resolve_held_inputs(table, (buttons, fst), Row::Interlock, Some(&names), diags);
     items
         .iter()
         .filter_map(|(name, steps)| {
@@ -111,7 +111,7 @@ pub fn resolve_interlocks(
 /// belongs to its step); else E015 (the name) or E030 at the cell.
 pub fn resolve_held_inputs(
     table: &StepTable,
-    buttons: &[String],
+    (buttons, fst): (&[String], bool),
     which: Row,
     row: Option<&NamedList>,
     diags: &mut Diagnostics,
@@ -127,7 +127,7 @@ pub fn resolve_held_inputs(
         // name check, the program's buttons included); the rest is E030.
         let (code, why) = match crate::cell::Name::new(&lower) {
             Err(why) => (Code::E015BadName, why),
-            Ok(name) => match crate::names::signal_problem(&lower, buttons) {
+            Ok(name) => match crate::names::signal_problem(&lower, buttons, fst) {
                 Some(why) => (Code::E015BadName, why),
                 None if names.contains(&name) => {
                     (Code::E030BadSetting, format!("{lower} is named twice"))
