@@ -65,7 +65,14 @@ impl SideSheets<'_> {
 /// Whether the sheet `name` is the side sheet `wanted` (SETTINGS,
 /// ADDRESSES): the one comparison the reader makes of a side sheet's name.
 fn is_side(name: &str, wanted: &str) -> bool {
-    name.trim().eq_ignore_ascii_case(wanted)
+    let name = name.trim();
+    if name.is_ascii() && wanted.is_ascii() {
+        return name.eq_ignore_ascii_case(wanted);
+    }
+    // `Ablauf Ä` as macOS may store it (`A` and a combining mark), in any
+    // case.
+    let spelt = |t: &str| crate::cell::composed(t.trim().to_string()).to_lowercase();
+    spelt(name) == spelt(wanted)
 }
 
 /// E046 for a sheet whose name is a side sheet's misspelt (`Setting`,

@@ -448,3 +448,31 @@ fn a_move_under_the_labels_and_an_empty_list_item_are_refused() {
     assert_eq!(code, Some(1), "{said}");
     assert!(said.contains("has an empty item"), "{said}");
 }
+
+/// `--sheet "Ablauf Ä"` finds the sheet whose name holds `A` and a
+/// combining mark (rt22 F7); `???`, `default` and a load's `-` get the
+/// advice to leave the cell empty as `-` does (rt22 F15).
+#[test]
+fn a_sheet_name_and_more_placeholders_are_read_as_meant() {
+    let table: &[&[&str]] = &[&["", "BRANCH 1"], &["STEP 1", "C1+1"], &["STEP 2", "C1-0"]];
+    let bytes = workbook(&[], &[("Ablauf A\u{308}", table)]);
+    let (_, code, said) = convert(
+        "sheet.xlsx",
+        bytes,
+        &["--sheet", "Ablauf \u{c4}", "--formats", "st"],
+    );
+    assert_eq!(code, Some(0), "{said}");
+    for (valve, load) in [("???", ""), ("default", ""), ("52bi", "-")] {
+        let rows: &[&[&str]] = &[
+            &["actuator", "valve", "load"],
+            &["C1", "52mono", ""],
+            &["C2", valve, load],
+        ];
+        let (_, code, said) = convert("ph.xlsx", workbook(&[], &[("SETTINGS", rows)]), &[]);
+        assert_eq!(code, Some(1), "{said}");
+        assert!(
+            said.contains("error[E030]") && said.contains("leave the cell empty for the default"),
+            "{valve}/{load}: {said}"
+        );
+    }
+}

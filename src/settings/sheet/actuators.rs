@@ -361,7 +361,7 @@ fn read_actuator_row<'g>(
             None => diags.error(
                 Code::E030BadSetting,
                 grid.location(cell.pos),
-                format!("load of C{actuator}: \"{text}\" is not a drift in stroke per second from 0 to 10, such as 0.05"),
+                format!("load of C{actuator}: \"{text}\" is not a drift in stroke per second from 0 to 10, such as 0.05{}", empty_for_default(&text)),
             ),
         }
     }

@@ -187,10 +187,11 @@ pub(super) fn value_kind(value: &str) -> Option<&'static str> {
 
 /// A cell written for "none" (`-`, `n/a`, `—`).
 pub(super) fn placeholder(value: &str) -> bool {
+    let value = value.trim().to_ascii_lowercase();
     matches!(
-        value.trim().to_ascii_lowercase().as_str(),
-        "-" | "--" | "—" | "–" | "n/a" | "na" | "none" | "?" | "tbd" | "tba"
-    )
+        value.as_str(),
+        "-" | "—" | "–" | "n/a" | "na" | "none" | "tbd" | "tba" | "default"
+    ) || !value.is_empty() && value.chars().all(|c| c == '?' || c == '-')
 }
 
 /// The unit a time column's header states (`Extend time [ms]`, `retract
