@@ -7,9 +7,28 @@
 /// no place for the mark and a name's length is counted wrong). The same
 /// text, only spelt the usual way; ASCII and composed text are not copied.
 pub fn composed(text: String) -> String {
-    use unicode_normalization::{IsNormalized, UnicodeNormalization, is_nfc_quick};
-    if text.is_ascii() || is_nfc_quick(text.chars()) == IsNormalized::Yes {
-        return text;
+    match decomposed(&text) {
+        true => compose(&text),
+        false => text,
     }
+}
+
+/// [`composed`] of borrowed text, copied only where it changes.
+pub fn composed_str(text: &str) -> std::borrow::Cow<'_, str> {
+    match decomposed(text) {
+        true => std::borrow::Cow::Owned(compose(text)),
+        false => std::borrow::Cow::Borrowed(text),
+    }
+}
+
+/// Whether `text` may change when composed: never for ASCII or text
+/// already composed.
+fn decomposed(text: &str) -> bool {
+    use unicode_normalization::{IsNormalized, is_nfc_quick};
+    !text.is_ascii() && is_nfc_quick(text.chars()) != IsNormalized::Yes
+}
+
+fn compose(text: &str) -> String {
+    use unicode_normalization::UnicodeNormalization;
     text.nfc().collect()
 }

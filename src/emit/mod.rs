@@ -222,14 +222,7 @@ pub fn one_line(text: &str) -> String {
 pub fn windows_1252(text: &str) -> Vec<u8> {
     // `A` and a combining mark (a file name macOS wrote) as the one `Ä`
     // the code page has.
-    let owned;
-    let text = match text.is_ascii() {
-        true => text,
-        false => {
-            owned = crate::cell::composed(text.to_string());
-            owned.as_str()
-        }
-    };
+    let text = &*crate::cell::composed_str(text);
     let mut out = Vec::with_capacity(text.len());
     let mut buffer = [0u8; 4];
     for c in text.chars() {
@@ -248,14 +241,7 @@ pub fn windows_1252(text: &str) -> Vec<u8> {
 
 /// The characters of `text` the Windows-1252 code page lacks, each once.
 pub fn code_page_lacks(text: &str) -> Vec<char> {
-    let owned;
-    let text = match text.is_ascii() {
-        true => text,
-        false => {
-            owned = crate::cell::composed(text.to_string());
-            owned.as_str()
-        }
-    };
+    let text = &*crate::cell::composed_str(text);
     let mut lacked: Vec<char> = Vec::new();
     let mut buffer = [0u8; 4];
     for c in text.chars().filter(|c| !c.is_ascii()) {
