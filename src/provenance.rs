@@ -220,14 +220,9 @@ pub fn stamp(file: OutputFile, made: &MadeBy) -> Result<OutputFile, String> {
     }
     // The files Windows tools read in their ANSI code page are
     // Windows-1252 already: read, stamped and written back in it.
-    let ansi = [
-        OutputKind::SymbolTable,
-        OutputKind::Fst,
-        OutputKind::FstAllocation,
-        OutputKind::CodesysV2,
-    ]
-    .iter()
-    .any(|k| file.name.ends_with(k.suffix()));
+    let ansi = OutputKind::ALL
+        .iter()
+        .any(|k| k.windows_ansi() && file.name.ends_with(k.suffix()));
     let text = match ansi {
         true => encoding_rs::WINDOWS_1252
             .decode_without_bom_handling(&file.bytes)

@@ -162,8 +162,7 @@ fn joined_digits(text: &str) -> Option<String> {
     let (mut last, mut split) = (None, false);
     for c in text.chars() {
         // A zero-width space or joiner is dropped as white space is.
-        let spacer = c.is_whitespace()
-            || matches!(c, '\u{200b}'..='\u{200f}' | '\u{2060}'..='\u{2064}' | '\u{feff}');
+        let spacer = c.is_whitespace() || super::zero_width(c);
         if spacer {
             pending.push(c);
             continue;

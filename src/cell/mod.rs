@@ -12,7 +12,7 @@ pub use label::{
     Header, actuator_comment, actuator_name, decimals, header_kind, looks_like_item,
     looks_like_move, parse_actuator, step_comment, visible_text,
 };
-pub use unicode::{composed, composed_str};
+pub use unicode::{composed, composed_str, zero_width};
 
 /// Largest actuator number accepted (`C999`).
 pub const MAX_ACTUATOR: u32 = 999;

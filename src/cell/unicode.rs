@@ -32,3 +32,10 @@ fn compose(text: &str) -> String {
     use unicode_normalization::UnicodeNormalization;
     text.nfc().collect()
 }
+
+/// A character that takes no room (a zero-width space or joiner, a
+/// direction mark, a byte order mark): copy-paste leaves them, and neither
+/// eye nor message shows them.
+pub fn zero_width(c: char) -> bool {
+    matches!(c, '\u{200b}'..='\u{200f}' | '\u{2060}'..='\u{2064}' | '\u{feff}')
+}

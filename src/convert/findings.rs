@@ -227,7 +227,7 @@ fn shown(c: char) -> String {
     let invisible = unicode_normalization::char::is_combining_mark(c)
         || c.is_control()
         || c.is_whitespace()
-        || matches!(c, '\u{200b}'..='\u{200f}' | '\u{2060}'..='\u{2064}' | '\u{feff}');
+        || crate::cell::zero_width(c);
     match invisible {
         true => format!("U+{:04X}", u32::from(c)),
         false => format!("\"{c}\""),

@@ -402,7 +402,7 @@ pub(super) fn names_of_the_whole_table(
     let step7 = [OutputKind::Awl, OutputKind::SymbolTable];
     let rockwell = [OutputKind::Rockwell, OutputKind::L5x];
     let limits = check::Limits {
-        fst: asked(&[OutputKind::Fst, OutputKind::FstAllocation]),
+        fst: settings.writes_fst(),
         longest: if asked(&step7) {
             Some((
                 24,

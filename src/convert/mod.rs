@@ -133,9 +133,7 @@ fn finish_check(
     let has_settings = input.settings.is_some();
     crate::settings::written_elsewhere(&input.others, has_settings, &mut diags);
     let valves = &effective.simulation.machine.valves;
-    let writes_fst = [OutputKind::Fst, OutputKind::FstAllocation]
-        .iter()
-        .any(|k| effective.formats.contains(k));
+    let writes_fst = effective.writes_fst();
     let table = table::build_for(&input.table, valves, writes_fst, &mut diags);
     if let Some(table) = &table {
         by_name(table, &mut effective, &input.table.file, &mut diags);

@@ -208,6 +208,14 @@ pub fn option_for(label: &str) -> String {
 }
 
 impl Settings {
+    /// Whether a Festo FST file is written (`fst`, `fst-alloc`): only then
+    /// do the 9 characters FST keeps of a name have to tell it apart.
+    pub fn writes_fst(&self) -> bool {
+        [OutputKind::Fst, OutputKind::FstAllocation]
+            .iter()
+            .any(|k| self.formats.contains(k))
+    }
+
     /// Where the setting of `label` in force comes from, for a message:
     /// its SETTINGS cell (`SETTINGS!B5`), or the command line's option.
     pub fn origin(&self, label: &str) -> String {
