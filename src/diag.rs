@@ -345,6 +345,9 @@ impl Diagnostic {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Diagnostics {
     items: Vec<Diagnostic>,
+    /// Cells an error speaks for besides its own (a setting's value beside
+    /// the label it names): no "not read" note is said of them either.
+    spoken_for: Vec<Location>,
 }
 
 impl Diagnostics {
@@ -374,6 +377,12 @@ impl Diagnostics {
         });
     }
 
+    /// `location` is part of what an error said: the value of the label it
+    /// names, a row of the table it is at.
+    pub fn speaks_for(&mut self, location: Location) {
+        self.spoken_for.push(location);
+    }
+
     pub fn has_errors(&self) -> bool {
         self.items.iter().any(|d| d.severity == Severity::Error)
     }
@@ -398,11 +407,11 @@ impl Diagnostics {
     /// from a look at the cells left over, adds nothing beside its error.
     pub fn into_sorted(mut self) -> Vec<Diagnostic> {
         let place = |l: &Location| Some((l.file.clone(), l.sheet.clone(), l.cell?));
-        let refused: std::collections::HashSet<_> = self
-            .items
-            .iter()
-            .filter(|d| d.severity == Severity::Error)
-            .filter_map(|d| place(&d.location))
+        let errors = self.items.iter().filter(|d| d.severity == Severity::Error);
+        let refused: std::collections::HashSet<_> = errors
+            .map(|d| &d.location)
+            .chain(&self.spoken_for)
+            .filter_map(place)
             .collect();
         if !refused.is_empty() {
             self.items.retain(|d| {
@@ -428,6 +437,7 @@ impl Diagnostics {
 
     pub fn extend(&mut self, other: Diagnostics) {
         self.items.extend(other.items);
+        self.spoken_for.extend(other.spoken_for);
     }
 }
 

@@ -155,29 +155,51 @@ fn digits_split(text: &str) -> Option<String> {
 }
 
 /// `text` with the white space between two digits taken out (`C1 0+1` as
-/// `C10+1`), when there is any: one pass.
+/// `C10+1`), when there is any: one pass. A decimal separator beside the
+/// space splits a number too (`T=1, 5s`, `T=1 .5s`): taken out, it is
+/// `T=1,5s` or two items, which is not ours to guess.
 fn joined_digits(text: &str) -> Option<String> {
+    let chars: Vec<char> = text.chars().collect();
     let mut joined = String::with_capacity(text.len());
     let mut pending = String::new();
-    let (mut last, mut split) = (None, false);
-    for c in text.chars() {
+    // The last two characters that were no space, the latest first.
+    let (mut last, mut before_last): (Option<char>, Option<char>) = (None, None);
+    let mut split = false;
+    for (i, &c) in chars.iter().enumerate() {
         // A zero-width space or joiner is dropped as white space is.
         let spacer = c.is_whitespace() || super::zero_width(c);
         if spacer {
             pending.push(c);
             continue;
         }
-        let between = !pending.is_empty() && digit_like(c) && last.is_some_and(digit_like);
+        let split_here = match (last, before_last) {
+            // `1 5`
+            (Some(l), _) if digit_like(l) && digit_like(c) => true,
+            // `1, 5`
+            (Some(l), Some(b)) if decimal_separator(l) && digit_like(b) => digit_like(c),
+            // `1 .5`, `1 . 5`
+            (Some(l), _) if digit_like(l) && decimal_separator(c) => chars[i + 1..]
+                .iter()
+                .find(|n| !(n.is_whitespace() || super::zero_width(**n)))
+                .is_some_and(|n| digit_like(*n)),
+            _ => false,
+        };
+        let between = !pending.is_empty() && split_here;
         match between {
             true => split = true,
             false => joined.push_str(&pending),
         }
         pending.clear();
         joined.push(c);
+        before_last = last;
         last = Some(c);
     }
     joined.push_str(&pending);
     split.then_some(joined)
+}
+
+fn decimal_separator(c: char) -> bool {
+    matches!(c, '.' | ',')
 }
 
 /// A digit as the cell reader takes it: ASCII, or a sub-, superscript or
@@ -191,8 +213,9 @@ fn digit_like(c: char) -> bool {
     !read.is_empty() && read.chars().all(|d| d.is_ascii_digit())
 }
 
-/// Whether white space stands between two digits of `text`.
-pub(super) fn split_number(text: &str) -> bool {
+/// Whether white space splits a number of `text`: it stands between two
+/// digits, or beside the decimal separator between them.
+pub fn split_number(text: &str) -> bool {
     joined_digits(text).is_some()
 }
 

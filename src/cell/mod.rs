@@ -7,12 +7,12 @@ use std::fmt;
 mod hint;
 mod label;
 mod unicode;
-pub use hint::{edit_distance, move_attempts, not_a_move_hint};
+pub use hint::{edit_distance, move_attempts, not_a_move_hint, split_number};
 pub use label::{
     Header, actuator_comment, actuator_name, decimals, header_kind, looks_like_item,
     looks_like_move, parse_actuator, step_comment, visible_text,
 };
-pub use unicode::{composed, composed_str, zero_width};
+pub use unicode::{ascii_spelling, composed, composed_str, zero_width};
 
 /// Largest actuator number accepted (`C999`).
 pub const MAX_ACTUATOR: u32 = 999;
@@ -178,6 +178,16 @@ impl Name {
             .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'_');
         if text.is_empty() {
             return Err("the name is missing".to_string());
+        }
+        // `tür`: ü is a letter, but not one a PLC name may hold.
+        if let Some(c) = text.chars().find(|c| c.is_alphanumeric() && !c.is_ascii()) {
+            let spelt = ascii_spelling(text)
+                .filter(|s| Name::new(s).is_ok())
+                .map(|s| format!(" (write it \"{s}\")"))
+                .unwrap_or_default();
+            return Err(format!(
+                "\"{text}\" is not a name: \"{c}\" is no letter a-z, and a PLC name holds only those, digits and _{spelt}"
+            ));
         }
         if !valid_chars || !text.as_bytes()[0].is_ascii_lowercase() {
             return Err(format!(

@@ -39,3 +39,29 @@ fn compose(text: &str) -> String {
 pub fn zero_width(c: char) -> bool {
     matches!(c, '\u{200b}'..='\u{200f}' | '\u{2060}'..='\u{2064}' | '\u{feff}')
 }
+
+/// The name spelt in ASCII as a German or French engineer writes it in a
+/// PLC (`Ölpumpe` as `Oelpumpe`, `Schieber Ä` as `Schieber Ae`, `é` as
+/// `e`), when it differs from `text`: a suggestion, never applied
+/// unasked (the name is the engineer's).
+pub fn ascii_spelling(text: &str) -> Option<String> {
+    use unicode_normalization::UnicodeNormalization;
+    let mut out = String::with_capacity(text.len() + 4);
+    for c in text.chars() {
+        match c {
+            'ä' => out.push_str("ae"),
+            'ö' => out.push_str("oe"),
+            'ü' => out.push_str("ue"),
+            'Ä' => out.push_str("Ae"),
+            'Ö' => out.push_str("Oe"),
+            'Ü' => out.push_str("Ue"),
+            'ß' => out.push_str("ss"),
+            c => out.extend(
+                c.to_string()
+                    .nfd()
+                    .filter(|d| !unicode_normalization::char::is_combining_mark(*d)),
+            ),
+        }
+    }
+    (out != text).then_some(out)
+}

@@ -60,18 +60,22 @@ fn parse_keyed<T>(
 ) -> Result<Keyed<T>, String> {
     let mut by_number = Vec::new();
     let mut named = std::collections::BTreeMap::new();
+    // A terminal may pass `Ö` as O and a combining mark (macOS does): the
+    // table's names are read composed.
+    let text = crate::cell::composed_str(text);
     for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
         let key = item.split_once('=').map_or(item, |(k, _)| k).trim();
         let is_name = crate::cell::parse_actuator(key).is_none()
             && (crate::symbols::scheme_stem(key).is_some()
-                || crate::cell::iso_actuator(key).is_some())
+                || crate::cell::iso_actuator(key).is_some()
+                || engineers_name(key))
             && item.contains('=');
         if !is_name {
             by_number.push(item);
             continue;
         }
         let value = item.split_once('=').map_or("", |(_, v)| v);
-        let lower = key.to_ascii_lowercase();
+        let lower = key.to_lowercase();
         if named.insert(lower.clone(), one(item, value)?).is_some() {
             return Err(format!(
                 "\"{item}\": {lower} is given twice; give each actuator once"
@@ -82,6 +86,17 @@ fn parse_keyed<T>(
         numbered: numbered(&by_number.join(","))?,
         named,
     })
+}
+
+/// A name such as the SETTINGS actuator table may give, with a letter
+/// beyond A-Z (`Ölpumpe`, `Kühler`): the table's names may, and an option
+/// names an actuator as the table does.
+fn engineers_name(key: &str) -> bool {
+    !key.is_ascii()
+        && key.starts_with(char::is_alphabetic)
+        && key
+            .chars()
+            .all(|c| c.is_alphanumeric() || matches!(c, '_' | '-' | ' '))
 }
 
 pub(crate) type StrokeMap = Keyed<crate::stroke::Stroke>;

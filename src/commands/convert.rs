@@ -88,9 +88,22 @@ pub fn check(input: &Path, settings: &Settings) -> Result<CheckRun, Vec<Diagnost
         return Err(refused.into_iter().chain(checked.warnings).collect());
     }
     let allocation = convert::allocate(&program, &checked.settings, &checked.table.file)?;
+    // What the outputs asked for would lose or refuse, as convert says it.
+    let name = convert::output_name(input);
+    let mut warnings = checked.warnings;
+    match convert::output_findings(
+        &name,
+        &checked.table,
+        &checked.settings,
+        &program,
+        &allocation,
+    ) {
+        Ok(found) => warnings.extend(found),
+        Err(refused) => return Err(refused.into_iter().chain(warnings).collect()),
+    }
     Ok(CheckRun {
         table: checked.table,
         allocation,
-        warnings: checked.warnings,
+        warnings,
     })
 }

@@ -5,8 +5,12 @@
 //! STOP and which option adds them. The engineer should not have to open
 //! seventeen files to learn what steptable already knows.
 
+use crate::address::Allocation;
+use crate::diag::Diagnostic;
+use crate::emit::{EmitInput, OutputKind};
 use crate::faults::{FaultTable, Outcome};
-use crate::program::Modes;
+use crate::program::{Modes, StepProgram};
+use crate::settings::Settings;
 use crate::simulate::SimReport;
 use crate::symbols::SymbolTable;
 use crate::table::StepTable;
@@ -327,6 +331,58 @@ pub(super) fn openplc_chart(
             input.name,
         ),
     })
+}
+
+/// What the outputs asked for lose of the table as written (W008: a comment
+/// cut, a code page without a character, a preset rounded), and, as the
+/// error, a chart one of them cannot draw. `convert` and `check` say the same.
+pub(super) fn of(
+    input: &EmitInput,
+    settings: &Settings,
+) -> Result<Vec<Diagnostic>, Vec<Diagnostic>> {
+    let refused = retry_in_chart(input, settings);
+    if !refused.is_empty() {
+        return Err(refused);
+    }
+    let mut warnings = Vec::new();
+    if settings.formats.contains(&OutputKind::SymbolTable) {
+        warnings.extend(shortened_sdf_comments(input));
+    }
+    warnings.extend(openplc_chart(input, settings));
+    warnings.extend(code_page_losses(input, settings));
+    warnings.extend(rounded_presets(input, settings));
+    Ok(warnings)
+}
+
+/// [`of`] the outputs `settings` asks for, named `name`, before any
+/// run: what `check` says of them.
+pub fn output_findings(
+    name: &str,
+    table: &StepTable,
+    settings: &Settings,
+    program: &StepProgram,
+    allocation: &Allocation,
+) -> Result<Vec<Diagnostic>, Vec<Diagnostic>> {
+    let festo = super::festo_allocation(program, allocation);
+    let symbols = crate::symbols::SymbolTable::build(program, table, &settings.naming);
+    let input = EmitInput {
+        name,
+        table,
+        allocation,
+        festo: &festo,
+        program,
+        symbols: &symbols,
+        simulation: None,
+        faults: None,
+        mitigations: None,
+        io_trace: None,
+        settings: &[],
+        templates: &settings.templates,
+        scan_ms: settings.simulation.scan_ms,
+        diagram: settings.diagram,
+        pictures: None,
+    };
+    of(&input, settings)
 }
 
 #[cfg(test)]

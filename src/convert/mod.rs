@@ -4,6 +4,7 @@
 mod allocate;
 mod beside;
 pub use allocate::{allocate, festo_allocation};
+pub use findings::output_findings;
 mod findings;
 mod given;
 mod idle_rows;
@@ -507,16 +508,7 @@ pub fn generate_observed(
         diagram: settings.diagram,
         pictures: Some(&pictures),
     };
-    if settings.formats.contains(&OutputKind::SymbolTable) {
-        warnings.extend(findings::shortened_sdf_comments(&input));
-    }
-    warnings.extend(findings::openplc_chart(&input, settings));
-    warnings.extend(findings::code_page_losses(&input, settings));
-    warnings.extend(findings::rounded_presets(&input, settings));
-    let refused = findings::retry_in_chart(&input, settings);
-    if !refused.is_empty() {
-        return Err(Failure::Input(refused));
-    }
+    warnings.extend(findings::of(&input, settings).map_err(Failure::Input)?);
     // Only the fault table and the workbook show the fault analysis; it is
     // most of the work on a large table, so it runs only for them, and
     // beside the other outputs (on a core the analysis leaves idle: its

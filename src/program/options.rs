@@ -397,6 +397,9 @@ impl Modes {
     /// (the naming authority's `Naming::actuator_called`).
     pub fn parse_home_order(text: &str) -> Result<Vec<Vec<String>>, String> {
         let mut stages = Vec::new();
+        // Composed, as the table's names are read (a terminal may pass `Ö`
+        // as O and a combining mark).
+        let text = &*crate::cell::composed_str(text);
         for stage in text.split([',', ';']) {
             let mut actuators = Vec::new();
             // `C1&` or `&C2`: an actuator of the stage was lost.

@@ -248,12 +248,33 @@ fn format_name(format: Format) -> &'static str {
 /// nothing: `ls` lists it, so "no such file" alone would puzzle.
 pub fn dangling_link(path: &Path) -> Option<String> {
     let target = std::fs::read_link(path).ok()?;
-    std::fs::metadata(path).is_err().then(|| {
-        format!(
-            "is a link to {}, which does not exist",
-            display_name(&target)
-        )
-    })
+    if std::fs::metadata(path).is_ok() {
+        return None;
+    }
+    // Followed link by link: a chain names the link that leads nowhere, a
+    // loop is called one.
+    let mut said = format!("is a link to {}", display_name(&target));
+    let mut seen = vec![path.to_path_buf()];
+    let mut at = path.to_path_buf();
+    let mut target = target;
+    loop {
+        let next = match target.is_absolute() {
+            true => target.clone(),
+            false => at.parent().unwrap_or(Path::new("")).join(&target),
+        };
+        if seen.contains(&next) || seen.len() > 40 {
+            return Some(format!("{said}, and the links lead round in a loop"));
+        }
+        match std::fs::read_link(&next) {
+            Ok(further) => {
+                said.push_str(&format!(", a link to {}", display_name(&further)));
+                seen.push(next.clone());
+                at = next;
+                target = further;
+            }
+            Err(_) => return Some(format!("{said}, which does not exist")),
+        }
+    }
 }
 
 #[cfg(test)]

@@ -129,6 +129,9 @@ struct Reader<'g> {
     /// of many cells is read in time that grows with them, not their square.
     rows: BTreeMap<u32, Vec<&'g GridCell>>,
     seen: BTreeSet<CellPos>,
+    /// The actuator table's headers refused with E046 (row, column): the
+    /// values under them are part of that error.
+    refused_headers: BTreeSet<(u32, u32)>,
     settings: Given,
 }
 
@@ -148,6 +151,7 @@ impl<'g> Reader<'g> {
             cells,
             rows,
             seen: BTreeSet::new(),
+            refused_headers: BTreeSet::new(),
             settings: Given::default(),
         }
     }

@@ -415,28 +415,8 @@ fn why_no_identifier(text: &str) -> String {
     }
 }
 
-/// The name spelt in ASCII as a German or French engineer writes it in a
-/// PLC (`Ölpumpe` as `Oelpumpe`, `Schieber Ä` as `Schieber Ae`, `é` as
-/// `e`), when that gives an identifier: a suggestion, never applied
-/// unasked (the name is the engineer's).
+/// The name spelt in ASCII (`Ölpumpe` as `Oelpumpe`), when that gives an
+/// identifier: a suggestion, never applied unasked.
 fn ascii_spelling(text: &str) -> Option<String> {
-    use unicode_normalization::UnicodeNormalization;
-    let mut out = String::with_capacity(text.len() + 4);
-    for c in text.chars() {
-        match c {
-            'ä' => out.push_str("ae"),
-            'ö' => out.push_str("oe"),
-            'ü' => out.push_str("ue"),
-            'Ä' => out.push_str("Ae"),
-            'Ö' => out.push_str("Oe"),
-            'Ü' => out.push_str("Ue"),
-            'ß' => out.push_str("ss"),
-            c => out.extend(
-                c.to_string()
-                    .nfd()
-                    .filter(|d| !unicode_normalization::char::is_combining_mark(*d)),
-            ),
-        }
-    }
-    (out != text && super::scheme::stem(&out).is_some()).then_some(out)
+    crate::cell::ascii_spelling(text).filter(|out| super::scheme::stem(out).is_some())
 }

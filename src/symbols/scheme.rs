@@ -113,11 +113,15 @@ impl Naming {
     /// The actuator the engineer named `name` (as written, in any case, or
     /// as its identifier stem: `Gripper Arm`, `gripper_arm`).
     pub fn actuator_named(&self, name: &str) -> Option<u32> {
-        let name = name.trim();
-        let lower = name.to_ascii_lowercase();
+        // In any case and composed, as the duplicate-name check (E025)
+        // compares them: `ölpumpe` is `Ölpumpe`.
+        let lower = crate::cell::composed(name.trim().to_lowercase());
         self.actuators
             .iter()
-            .find(|(_, a)| a.text.eq_ignore_ascii_case(name) || a.stem().as_deref() == Some(&lower))
+            .find(|(_, a)| {
+                crate::cell::composed(a.text.to_lowercase()) == lower
+                    || a.stem().as_deref() == Some(&lower)
+            })
             .map(|(n, _)| *n)
     }
 
@@ -135,17 +139,22 @@ impl Naming {
     /// engineer's name) closest to `text`, for a "did you mean": within one
     /// letter in four.
     pub fn actuator_like(&self, text: &str, actuators: &[u32]) -> Option<String> {
-        let lower = text.trim().to_ascii_lowercase();
+        let lower = text.trim().to_lowercase();
         actuators
             .iter()
             .flat_map(|&n| {
                 let mut names = vec![format!("C{n}"), format!("{n}A1")];
-                names.extend(self.actuators.get(&n).and_then(ActuatorName::stem));
+                // A name beyond A-Z has no stem: it is offered as written.
+                names.extend(
+                    self.actuators
+                        .get(&n)
+                        .map(|a| a.stem().unwrap_or_else(|| a.text.clone())),
+                );
                 names
             })
             .map(|name| {
                 (
-                    crate::cell::edit_distance(&lower, &name.to_ascii_lowercase()),
+                    crate::cell::edit_distance(&lower, &name.to_lowercase()),
                     name,
                 )
             })

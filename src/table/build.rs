@@ -319,8 +319,9 @@ fn report_item_error(
             Code::E010NotAMove,
             location,
             format!(
-                "\"{}\" is not a move ({})",
+                "\"{}\" is not {} ({})",
                 part.trim(),
+                split_item_kind(part).unwrap_or("a move"),
                 not_a_move_hint(part)
             ),
         ),
@@ -343,6 +344,20 @@ fn report_item_error(
         ItemError::BadDwell(message) => diags.error(Code::E014BadDwell, location, message),
         ItemError::BadName(message) => diags.error(Code::E015BadName, location, message),
         ItemError::BadJump(message) => diags.error(Code::E017BadJump, location, message),
+    }
+}
+
+/// What a refused item whose number a space splits was written as (`T = 1
+/// 5 s` is a dwell, `J:1 0 if I:x` a jump), when it is no move.
+fn split_item_kind(part: &str) -> Option<&'static str> {
+    if !crate::cell::split_number(part) {
+        return None;
+    }
+    let upper = part.trim_start().to_ascii_uppercase();
+    match upper.chars().next() {
+        Some('T') => Some("a dwell as written"),
+        Some('J') => Some("a jump as written"),
+        _ => None,
     }
 }
 

@@ -29,6 +29,7 @@ mod hostile;
 mod hostile_messages;
 mod hostile_round10;
 mod hostile_round11;
+mod hostile_round12;
 mod hostile_round3;
 mod hostile_round4;
 mod hostile_round5;

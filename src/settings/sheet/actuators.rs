@@ -493,6 +493,11 @@ fn unread_value(
         )
     };
     match headed {
+        // Its header's E046 says what the column's values are: that is
+        // their word, not a second one each.
+        true if reader.refused_headers.contains(&(header_row, cell.pos.col)) => {
+            reader.seen.insert(cell.pos);
+        }
         true => {
             let column = message("in a column whose header names none steptable reads");
             reader.warn(cell.pos, format!("{column}; it was not read"), diags)

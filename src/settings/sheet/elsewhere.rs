@@ -32,6 +32,13 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
             table.location(header),
             format!("an actuator table (headed here, its first row at {}) lies with the step table, {lost}: the valves, stroke times, loads or names it gives would be lost; {instead}", table.cell_name(row)),
         );
+        // Its headers and rows, up to a blank row: the error is of them all.
+        let rows = table_rows(table, header);
+        for cell in table.cells.iter().filter(|c| c.pos.col >= header.col) {
+            if rows.contains(&cell.pos.row) {
+                diags.speaks_for(table.location(cell.pos));
+            }
+        }
     }
     for (i, cell) in table.cells.iter().enumerate() {
         let CellValue::Text(text) = &cell.value else {
@@ -74,6 +81,7 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
                     at,
                     format!("\"{written}\" and its value name a setting, but they lie with the step table, {lost}; {instead}"),
                 );
+                diags.speaks_for(table.location(value_cell.pos));
             }
         } else if let Some(meant) = unread::mistyped_label(&label)
             && valid_value(meant, &value, value_cell, table)
@@ -83,6 +91,7 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
                 at,
                 format!("\"{written}\" and its value read as the setting `{meant}` misspelt, lying with the step table, {lost}; spell it `{meant}`; {instead}"),
             );
+            diags.speaks_for(table.location(value_cell.pos));
         }
     }
 }
@@ -117,6 +126,21 @@ pub fn written_elsewhere(others: &[Grid], has_settings: bool, diags: &mut Diagno
             format!("the sheet \"{sheet}\" holds what reads as {which}, but settings are read from the sheet named SETTINGS only: not read, the program is made without them; {advice} if they are meant"),
         );
     }
+}
+
+/// The rows of the actuator table headed at `header`: its own and those
+/// below whose first cell is filled, up to a blank one.
+fn table_rows(grid: &Grid, header: CellPos) -> std::ops::Range<u32> {
+    let filled: std::collections::HashSet<CellPos> = grid
+        .cells
+        .iter()
+        .filter(|c| !text_of(&c.value).trim().is_empty())
+        .map(|c| c.pos)
+        .collect();
+    let end = (header.row + 1..)
+        .find(|row| !filled.contains(&CellPos::new(*row, header.col)))
+        .unwrap_or(header.row + 1);
+    header.row..end
 }
 
 /// An actuator table on a sheet where it is not read: a header whose

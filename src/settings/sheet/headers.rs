@@ -33,7 +33,10 @@ pub(super) fn unread_header(
         .unwrap_or("");
     let meant = misspelt_column(label)
         .or_else(|| misspelt_column(first).filter(|_| !COLUMNS.contains(&first)));
+    // Refused below (E046), the header speaks for the values under it.
+    let refused = (header.row, cell.pos.col);
     if let Some(meant) = meant.filter(|_| below) {
+        reader.refused_headers.insert(refused);
         reader.mistyped(
                 cell.pos,
                 format!(
@@ -64,6 +67,7 @@ pub(super) fn unread_header(
                     .join(" and ")
             ),
         };
+        reader.refused_headers.insert(refused);
         reader.mistyped(
                 cell.pos,
                 format!(
@@ -78,6 +82,7 @@ pub(super) fn unread_header(
     // `Type` over `52mono`, `out` over `3s`: values only a
     // column steptable reads holds, under a header naming none.
     if let Some(meant) = column_of_values(reader, cell.pos) {
+        reader.refused_headers.insert(refused);
         reader.mistyped(
                 cell.pos,
                 format!(

@@ -1,0 +1,219 @@
+//! The twelfth round of hostile input: what the red team rt22 found and
+//! the last session left. `T=1, 5s` was read as 1.5 s without a word; a
+//! split number in a dwell was "not a move"; `--stroke Ölpumpe=2s` was
+//! refused though the table names Ölpumpe; `check --formats sdf` said no
+//! W008 that convert says; `I:tür` was told to use letters; a chain of
+//! links was "does not exist"; a value beside a refused label got a second
+//! word. Each row goes through the binary.
+
+use crate::helpers::steptable;
+use crate::hostile_round9::workbook;
+
+/// Runs `command` on `bytes` saved as `name` in a new folder (convert
+/// writes into it); the exit code and what it said on stdout and stderr.
+fn run(command: &str, name: &str, bytes: Vec<u8>, args: &[&str]) -> (Option<i32>, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, bytes).unwrap();
+    let mut cmd = steptable();
+    cmd.arg(command).args(args).arg(&path);
+    if command == "convert" {
+        cmd.arg("-o").arg(dir.path().join("out"));
+    }
+    let output = cmd.output().unwrap();
+    let said = [&output.stdout, &output.stderr].map(|b| String::from_utf8_lossy(b).into_owned());
+    (output.status.code(), said.concat())
+}
+
+fn table_with(item: &str) -> Vec<u8> {
+    format!(",BRANCH 1\nSTEP 1,\"C1+1; {item}\"\nSTEP 2,C1-0\n").into_bytes()
+}
+
+/// A space beside a dwell's decimal separator splits its number as a space
+/// between two digits does: `T=1, 5s` is `T=1,5s` or `T=1` and a stray
+/// `5s`, which is not ours to guess (rt22 F9, MEDIUM: read as 1.5 s). Such
+/// an item is called a dwell or a jump, not "not a move" (rt22 F17).
+#[test]
+fn a_space_beside_a_decimal_separator_splits_the_number() {
+    for (item, meant) in [
+        ("T=1, 5s", "write T=1,5s"),
+        ("T=1. 5s", "write T=1.5s"),
+        ("T=1 .5s", "write T=1.5s"),
+        ("T=1 ,5s", "write T=1,5s"),
+        ("T=1 . 5s", "write T=1.5s"),
+        ("T = 1 5 s", "write T = 15 s"),
+    ] {
+        let (code, said) = run("check", "dwell.csv", table_with(item), &[]);
+        assert_eq!(code, Some(1), "{item}: {said}");
+        assert!(
+            said.contains("dwell.csv:2:2: error[E010]")
+                && said.contains("is not a dwell as written")
+                && said.contains(meant),
+            "{item}: {said}"
+        );
+    }
+    let (code, said) = run("check", "jump.csv", table_with("J:1 0 if I:x"), &[]);
+    assert_eq!(code, Some(1), "{said}");
+    assert!(said.contains("is not a jump as written"), "{said}");
+    // Written without the space, the same dwell is read.
+    for item in ["T=1,5s", "T=1.5s"] {
+        let (code, said) = run("check", "dwell.csv", table_with(item), &[]);
+        assert_eq!(code, Some(0), "{item}: {said}");
+    }
+}
+
+/// The command line names an actuator as the table does, beyond A-Z too
+/// (`--stroke Ölpumpe=2s`, `--valve`, `--home-order`), in any case and
+/// composed as a macOS terminal may not pass it (rt22 F8, MEDIUM).
+#[test]
+fn the_command_line_names_an_actuator_as_the_table_does() {
+    let settings: &[&[&str]] = &[&["actuator", "name"], &["C1", "Ölpumpe"]];
+    let bytes = || workbook(&[], &[("SETTINGS", settings)]);
+    let decomposed = "O\u{308}lpumpe";
+    // What a run printed, from its verdict on (each runs in its own folder).
+    let verdict = |said: String| said.split_once("passed").map(|(_, v)| v.to_string());
+    let plain = verdict(run("simulate", "u.xlsx", bytes(), &[]).1);
+    let slow = verdict(run("simulate", "u.xlsx", bytes(), &["--stroke", "C1=3s"]).1);
+    assert!(slow.is_some());
+    assert_ne!(plain, slow, "a 3 s stroke is slower");
+    for name in ["Ölpumpe", "ölpumpe", decomposed] {
+        let given = format!("{name}=3s");
+        let (code, said) = run("simulate", "u.xlsx", bytes(), &["--stroke", &given]);
+        assert_eq!(code, Some(0), "{name}: {said}");
+        assert_eq!(verdict(said), slow, "{name} is C1");
+    }
+    let valve = format!("{decomposed}=52mono");
+    let (code, said) = run("check", "u.xlsx", bytes(), &["--valve", &valve]);
+    assert_eq!(code, Some(0), "{said}");
+    let (code, said) = run(
+        "check",
+        "u.xlsx",
+        bytes(),
+        &[
+            "--modes",
+            "reset",
+            "--home-order",
+            &format!("{decomposed},C2"),
+        ],
+    );
+    assert_eq!(code, Some(0), "{said}");
+    // A name nobody has is E030 with the one the table has.
+    let (code, said) = run("simulate", "u.xlsx", bytes(), &["--stroke", "Olpumpe=3s"]);
+    assert_eq!(code, Some(1), "{said}");
+    assert!(
+        said.contains("error[E030]") && said.contains("did you mean Ölpumpe?"),
+        "{said}"
+    );
+}
+
+/// `check --formats LIST` says what `convert --formats LIST` says of the
+/// outputs: the code page's loss (W008) too (rt22 F18).
+#[test]
+fn check_says_what_the_code_page_loses() {
+    let csv = ",BRANCH 1\nSTEP 1 (links → rechts),C1+1\nSTEP 2,C1-0\n";
+    let (code, said) = run("check", "cp.csv", csv.into(), &["--formats", "sdf"]);
+    assert_eq!(code, Some(0), "{said}");
+    assert!(
+        said.contains("warning[W008]") && said.contains("cp.sdf") && said.contains("\"→\""),
+        "{said}"
+    );
+    let (code, said) = run("convert", "cp.csv", csv.into(), &["--formats", "sdf"]);
+    assert_eq!(code, Some(0), "{said}");
+    assert!(said.contains("warning[W008]"), "{said}");
+    let (code, said) = run("check", "cp.csv", csv.into(), &["--formats", "st"]);
+    assert_eq!(code, Some(0), "{said}");
+    assert!(!said.contains("W008"), "an ST file keeps the arrow: {said}");
+}
+
+/// A machine signal's name with a letter beyond a-z is told which letter
+/// and its ASCII spelling, as an actuator's name is (rt22 F16).
+#[test]
+fn a_signal_name_with_an_umlaut_is_told_its_ascii_spelling() {
+    for (item, spelt) in [("I:tür", "\"tuer\""), ("Y:Straße+", "\"strasse\"")] {
+        let (code, said) = run("check", "nm.csv", table_with(item), &[]);
+        assert_eq!(code, Some(1), "{said}");
+        assert!(
+            said.contains("error[E015]")
+                && said.contains("is no letter a-z")
+                && said.contains(&format!("write it {spelt}")),
+            "{item}: {said}"
+        );
+    }
+}
+
+/// A chain of links names the one that leads nowhere; links in a loop are
+/// called a loop, not "does not exist" (rt22 F14).
+#[cfg(unix)]
+#[test]
+fn a_chain_or_loop_of_links_is_said_as_it_is() {
+    use std::os::unix::fs::symlink;
+    let dir = tempfile::tempdir().unwrap();
+    let at = |name: &str| dir.path().join(name);
+    symlink("gone.csv", at("chain2.csv")).unwrap();
+    symlink("chain2.csv", at("chain1.csv")).unwrap();
+    symlink("loopB.csv", at("loopA.csv")).unwrap();
+    symlink("loopA.csv", at("loopB.csv")).unwrap();
+    for (input, said_of_it) in [
+        (
+            "chain1.csv",
+            "is a link to chain2.csv, a link to gone.csv, which does not exist",
+        ),
+        ("loopA.csv", "the links lead round in a loop"),
+    ] {
+        for command in ["convert", "batch"] {
+            let run = steptable()
+                .arg(command)
+                .arg(at(input))
+                .arg("-o")
+                .arg(at(command))
+                .output()
+                .unwrap();
+            let said = String::from_utf8_lossy(&run.stderr);
+            assert_eq!(run.status.code(), Some(1), "{said}");
+            assert!(said.contains(said_of_it), "{command} {input}: {said}");
+            assert!(
+                input == "chain1.csv" || !said.contains("does not exist"),
+                "{said}"
+            );
+        }
+    }
+}
+
+/// A value an error already speaks for gets no "not read" note of its own:
+/// the value beside a setting written with the table, the rows of an
+/// actuator table there, the values under a refused `Type` header (rt22
+/// F13).
+#[test]
+fn a_value_an_error_speaks_for_gets_no_second_word() {
+    let below = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n\n";
+    for (rows, code) in [
+        ("modes,all\n", "E030"),
+        ("mode,all\n", "E046"),
+        ("actuator,extend,retract\nC1,2s,1s\n", "E030"),
+    ] {
+        let (exit, said) = run("check", "w.csv", format!("{below}{rows}").into(), &[]);
+        assert_eq!(exit, Some(1), "{said}");
+        assert!(
+            said.contains(&format!("w.csv:5:1: error[{code}]")),
+            "{said}"
+        );
+        assert!(!said.contains("W003"), "{rows}: {said}");
+    }
+    let settings: &[&[&str]] = &[
+        &["actuator", "extend", "retract", "Type"],
+        &["C1", "", "", "52mono"],
+        &["C2", "", "", "-"],
+    ];
+    let (exit, said) = run(
+        "check",
+        "q.xlsx",
+        workbook(&[], &[("SETTINGS", settings)]),
+        &[],
+    );
+    assert_eq!(exit, Some(1), "{said}");
+    assert!(said.contains("SETTINGS!D1: error[E046]"), "{said}");
+    assert!(!said.contains("W003"), "{said}");
+    // A value beside a note steptable does not read is still named.
+    let (_, said) = run("check", "n.csv", format!("{below}remark,all\n").into(), &[]);
+    assert!(said.contains("W003"), "{said}");
+}
