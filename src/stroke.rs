@@ -38,6 +38,11 @@ impl Strokes {
 /// Parses a duration such as `1.5s`, `800ms` or `2 s` into milliseconds,
 /// from 1 ms to an hour. A bare number means seconds.
 pub fn parse_duration_ms(text: &str) -> Option<u32> {
+    // `1 5s`, `0, 8s`: 15 s or 1.5 s or two values, which is not ours to
+    // guess (white space is dropped everywhere else).
+    if crate::cell::split_number(text) {
+        return None;
+    }
     let t: String = text.chars().filter(|c| !c.is_whitespace()).collect();
     crate::cell::parse_duration_in(&t, 1..=3_600_000)
 }

@@ -52,10 +52,8 @@ pub fn not_a_move_hint(item: &str) -> String {
     if let Some(items) = split_by(text, &[' ', '\t', '\u{3000}']) {
         return format!("separate items with `;`, not spaces: {}", items.join("; "));
     }
-    if let Some(joined) = digits_split(text) {
-        return format!(
-            "a space splits a number: write {joined} if that is meant, or separate two items with `;`"
-        );
+    if digits_split(text).is_some() {
+        return split_number_hint(text).unwrap_or_default();
     }
     if let Some(fixed) = digit_for_letter(&norm) {
         return format!("did you mean {fixed}? A letter stands where a digit belongs");
@@ -155,33 +153,28 @@ fn digits_split(text: &str) -> Option<String> {
 }
 
 /// `text` with the white space between two digits taken out (`C1 0+1` as
-/// `C10+1`), when there is any: one pass. A decimal separator beside the
-/// space splits a number too (`T=1, 5s`, `T=1 .5s`): taken out, it is
-/// `T=1,5s` or two items, which is not ours to guess.
+/// `C10+1`), when there is any: one pass. A space beside a decimal
+/// separator splits a number too (`T=1, 5s`, `T=1 .5s`, `T=. 5s`): taken
+/// out, it is `T=1,5s` or two items, which is not ours to guess.
 fn joined_digits(text: &str) -> Option<String> {
-    let chars: Vec<char> = text.chars().collect();
     let mut joined = String::with_capacity(text.len());
     let mut pending = String::new();
     // The last two characters that were no space, the latest first.
     let (mut last, mut before_last): (Option<char>, Option<char>) = (None, None);
     let mut split = false;
-    for (i, &c) in chars.iter().enumerate() {
+    for c in text.chars() {
         // A zero-width space or joiner is dropped as white space is.
         let spacer = c.is_whitespace() || super::zero_width(c);
         if spacer {
             pending.push(c);
             continue;
         }
-        let split_here = match (last, before_last) {
-            // `1 5`
-            (Some(l), _) if digit_like(l) && digit_like(c) => true,
-            // `1, 5`
-            (Some(l), Some(b)) if decimal_separator(l) && digit_like(b) => digit_like(c),
-            // `1 .5`, `1 . 5`
-            (Some(l), _) if digit_like(l) && decimal_separator(c) => chars[i + 1..]
-                .iter()
-                .find(|n| !(n.is_whitespace() || super::zero_width(**n)))
-                .is_some_and(|n| digit_like(*n)),
+        // A decimal separator with a digit on its other side (`1. 5`,
+        // `1 .5`, `. 5`, `1. s`) is part of the number the space splits.
+        let number_at = |d: Option<char>| d.is_some_and(digit_like);
+        let split_here = match last {
+            Some(l) if digit_like(l) => digit_like(c) || decimal_separator(c),
+            Some(l) if decimal_separator(l) => digit_like(c) || number_at(before_last),
             _ => false,
         };
         let between = !pending.is_empty() && split_here;
@@ -211,6 +204,15 @@ fn digit_like(c: char) -> bool {
     }
     let read = normalize(c.encode_utf8(&mut buffer));
     !read.is_empty() && read.chars().all(|d| d.is_ascii_digit())
+}
+
+/// What to write for an item whose number a space splits, as a hint: the
+/// item with the space taken out, or two items.
+pub fn split_number_hint(text: &str) -> Option<String> {
+    let joined = joined_digits(text.trim())?;
+    Some(format!(
+        "a space splits a number: write {joined} if that is meant, or separate two items with `;`"
+    ))
 }
 
 /// Whether white space splits a number of `text`: it stands between two

@@ -6,13 +6,16 @@ use std::fmt;
 
 mod hint;
 mod label;
+mod name;
 mod unicode;
-pub use hint::{edit_distance, move_attempts, not_a_move_hint, split_number};
+pub use hint::{edit_distance, move_attempts, not_a_move_hint, split_number, split_number_hint};
 pub use label::{
     Header, actuator_comment, actuator_name, decimals, header_kind, looks_like_item,
     looks_like_move, parse_actuator, step_comment, visible_text,
 };
-pub use unicode::{ascii_spelling, composed, composed_str, zero_width};
+use name::raw_name_problem;
+pub use name::{MAX_NAME_CHARS, Name};
+pub use unicode::{ascii_spelling, composed, composed_str, folded, zero_width};
 
 /// Largest actuator number accepted (`C999`).
 pub const MAX_ACTUATOR: u32 = 999;
@@ -154,81 +157,10 @@ pub fn parse_move(text: &str) -> Result<CellMove, CellError> {
     })
 }
 
-/// Longest name of a machine input or output (`I:part_present`).
-pub const MAX_NAME_CHARS: usize = 16;
 /// Shortest and longest dwell accepted: FST counts timers in hundredths of a
 /// second in a 16-bit word, so 655.35 s is the most every target can hold.
 pub const MIN_DWELL_MS: u32 = 10;
 pub const MAX_DWELL_MS: u32 = 655_350;
-
-/// The name of a machine input or output: lower-case ASCII letters, digits
-/// and `_`, starting with a letter, at most [`MAX_NAME_CHARS`]. Stored inline
-/// so that signals stay `Copy`.
-#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct Name {
-    len: u8,
-    bytes: [u8; MAX_NAME_CHARS],
-}
-
-impl Name {
-    /// Checks and stores a name (already lower case).
-    pub fn new(text: &str) -> Result<Name, String> {
-        let valid_chars = text
-            .bytes()
-            .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'_');
-        if text.is_empty() {
-            return Err("the name is missing".to_string());
-        }
-        // `tür`: ü is a letter, but not one a PLC name may hold.
-        if let Some(c) = text.chars().find(|c| c.is_alphanumeric() && !c.is_ascii()) {
-            let spelt = ascii_spelling(text)
-                .filter(|s| Name::new(s).is_ok())
-                .map(|s| format!(" (write it \"{s}\")"))
-                .unwrap_or_default();
-            return Err(format!(
-                "\"{text}\" is not a name: \"{c}\" is no letter a-z, and a PLC name holds only those, digits and _{spelt}"
-            ));
-        }
-        if !valid_chars || !text.as_bytes()[0].is_ascii_lowercase() {
-            return Err(format!(
-                "\"{text}\" is not a name: use letters, digits and _, starting with a letter"
-            ));
-        }
-        if text.contains("__") || text.ends_with('_') {
-            return Err(format!(
-                "\"{text}\" is not a name: IEC 61131-3 forbids a double or trailing _"
-            ));
-        }
-        if text.len() > MAX_NAME_CHARS {
-            return Err(format!(
-                "\"{text}\" is longer than {MAX_NAME_CHARS} characters"
-            ));
-        }
-        let mut bytes = [0u8; MAX_NAME_CHARS];
-        bytes[..text.len()].copy_from_slice(text.as_bytes());
-        Ok(Name {
-            len: text.len() as u8,
-            bytes,
-        })
-    }
-
-    pub fn as_str(&self) -> &str {
-        // Only ASCII is ever stored.
-        std::str::from_utf8(&self.bytes[..self.len as usize]).unwrap_or("")
-    }
-}
-
-impl fmt::Display for Name {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-impl fmt::Debug for Name {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{:?}", self.as_str())
-    }
-}
 
 /// One thing a branch cell asks for; a cell holds one or more, split by `;`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -341,6 +273,9 @@ pub fn parse_item(text: &str) -> Result<CellItem, ItemError> {
             "\"{}\": a name has no spaces (write part_present, not part present)",
             text.trim()
         )));
+    }
+    if norm.starts_with("I:") || norm.starts_with("Y:") {
+        raw_name_problem(text).map_or(Ok(()), |why| Err(ItemError::BadName(why)))?;
     }
     if let Some(rest) = norm.strip_prefix("T=") {
         let ms = parse_dwell(rest).ok_or_else(|| {
@@ -476,6 +411,9 @@ pub fn iso_actuator(text: &str) -> Option<u32> {
 /// sign or a hex number (`1e1ms`, `-5ms`, `0x10ms`) is not, whatever its
 /// value, so the message says what to write instead of blaming the range.
 pub fn plain_time(text: &str) -> bool {
+    if split_number(text) {
+        return false;
+    }
     let t: String = text
         .chars()
         .filter(|c| !c.is_whitespace())

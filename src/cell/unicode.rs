@@ -65,3 +65,10 @@ pub fn ascii_spelling(text: &str) -> Option<String> {
     }
     (out != text).then_some(out)
 }
+
+/// `text` in one case for comparing names, with Unicode's full case
+/// mapping: `Straße` and `STRASSE`, `ΣΟΦΟΣ` and `σοφοσ`, `ﬁx` and `FIX` are
+/// one name. Composed first, so that a decomposed `Ö` is `Ö`.
+pub fn folded(text: &str) -> String {
+    composed_str(text.trim()).to_uppercase().to_lowercase()
+}

@@ -60,6 +60,7 @@ fn parse_keyed<T>(
 ) -> Result<Keyed<T>, String> {
     let mut by_number = Vec::new();
     let mut named = std::collections::BTreeMap::new();
+    let mut folded_keys = std::collections::HashSet::new();
     // A terminal may pass `Ö` as O and a combining mark (macOS does): the
     // table's names are read composed.
     let text = crate::cell::composed_str(text);
@@ -75,12 +76,13 @@ fn parse_keyed<T>(
             continue;
         }
         let value = item.split_once('=').map_or("", |(_, v)| v);
-        let lower = key.to_lowercase();
-        if named.insert(lower.clone(), one(item, value)?).is_some() {
+        // Kept as written (messages quote it); one name in any case once.
+        if !folded_keys.insert(crate::cell::folded(key)) {
             return Err(format!(
-                "\"{item}\": {lower} is given twice; give each actuator once"
+                "\"{item}\": {key} is given twice; give each actuator once"
             ));
         }
+        named.insert(key.to_string(), one(item, value)?);
     }
     Ok(Keyed {
         numbered: numbered(&by_number.join(","))?,

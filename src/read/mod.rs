@@ -262,8 +262,14 @@ pub fn dangling_link(path: &Path) -> Option<String> {
             true => target.clone(),
             false => at.parent().unwrap_or(Path::new("")).join(&target),
         };
-        if seen.contains(&next) || seen.len() > 40 {
+        if seen.contains(&next) {
             return Some(format!("{said}, and the links lead round in a loop"));
+        }
+        // The system follows 40 links at most.
+        if seen.len() > 40 {
+            return Some(format!(
+                "{said}, …: a chain of more than 40 links, which the system does not follow"
+            ));
         }
         match std::fs::read_link(&next) {
             Ok(further) => {

@@ -536,8 +536,12 @@ fn stop_actions(
             ["off"] => Some(StopAction::Off),
             ["hold"] => Some(StopAction::Hold),
             ["off", "after", time @ ..] | ["on", "for", time @ ..] => {
+                // `2 0s` is no time: a space splits its number.
+                let ms = match crate::cell::split_number(&time.join(" ")) {
+                    true => None,
+                    false => crate::cell::parse_duration_in(&time.concat(), 10..=655_000),
+                };
                 let time = time.concat();
-                let ms = crate::cell::parse_duration_in(&time, 10..=655_000);
                 if ms.is_some() && crate::cell::without_unit(&time) {
                     diags.warning(
                         Code::W007Assumed,

@@ -310,11 +310,12 @@ pub fn check_entries(entries: &[Entry], limits: &Limits, diags: &mut Diagnostics
             );
             continue;
         }
-        // Unicode's case folding: `Kühler` and `KÜHLER` are one name.
-        let lower = entry.name.to_lowercase();
+        // Unicode's case folding: `Kühler` and `KÜHLER`, `Straße` and
+        // `STRASSE` are one name.
+        let lower = crate::cell::folded(&entry.name);
         for earlier in &entries[..i] {
             let same_actuator = entry.actuator.is_some() && entry.actuator == earlier.actuator;
-            let other = earlier.name.to_lowercase();
+            let other = crate::cell::folded(&earlier.name);
             // A machine signal named like a button is E015 where it is
             // written (names::signal_problem), said once.
             let signal_and_button = (entry.button && earlier.actuator.is_none())

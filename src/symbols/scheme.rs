@@ -115,12 +115,11 @@ impl Naming {
     pub fn actuator_named(&self, name: &str) -> Option<u32> {
         // In any case and composed, as the duplicate-name check (E025)
         // compares them: `ölpumpe` is `Ölpumpe`.
-        let lower = crate::cell::composed(name.trim().to_lowercase());
+        let lower = crate::cell::folded(name);
         self.actuators
             .iter()
             .find(|(_, a)| {
-                crate::cell::composed(a.text.to_lowercase()) == lower
-                    || a.stem().as_deref() == Some(&lower)
+                crate::cell::folded(&a.text) == lower || a.stem().as_deref() == Some(&lower)
             })
             .map(|(n, _)| *n)
     }

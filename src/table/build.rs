@@ -318,12 +318,18 @@ fn report_item_error(
         ItemError::Move(CellError::NotAMove) => diags.error(
             Code::E010NotAMove,
             location,
-            format!(
-                "\"{}\" is not {} ({})",
-                part.trim(),
-                split_item_kind(part).unwrap_or("a move"),
-                not_a_move_hint(part)
-            ),
+            match split_item_kind(part) {
+                Some(kind) => format!(
+                    "\"{}\" is not {kind} ({})",
+                    part.trim(),
+                    crate::cell::split_number_hint(part).unwrap_or_default()
+                ),
+                None => format!(
+                    "\"{}\" is not a move ({})",
+                    part.trim(),
+                    not_a_move_hint(part)
+                ),
+            },
         ),
         ItemError::Move(CellError::BadActuator(n)) => diags.error(
             Code::E011BadActuator,
@@ -357,6 +363,8 @@ fn split_item_kind(part: &str) -> Option<&'static str> {
     match upper.chars().next() {
         Some('T') => Some("a dwell as written"),
         Some('J') => Some("a jump as written"),
+        Some('I') => Some("a wait as written"),
+        Some('Y') => Some("an output as written"),
         _ => None,
     }
 }

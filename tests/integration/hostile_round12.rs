@@ -217,3 +217,169 @@ fn a_value_an_error_speaks_for_gets_no_second_word() {
     let (_, said) = run("check", "n.csv", format!("{below}remark,all\n").into(), &[]);
     assert!(said.contains("W003"), "{said}");
 }
+
+/// A space inside a time on the SETTINGS sheet splits its number as it does
+/// in the table: a stroke time `1 5s` or `0, 8s`, a scan time `2 0ms`, a
+/// run-on `fan off after 2 0s` are refused at their cells, never joined
+/// (rt23 F1, HIGH: 15 s, 20 ms and 20 s with exit 0). A decimal comma that
+/// a comma file split off (`scantime: 0,02s` unquoted) is said as that
+/// (rt17 F5, HIGH: the setting vanished without a word).
+#[test]
+fn a_split_time_on_the_settings_sheet_is_refused() {
+    let settings: &[&[&str]] = &[
+        &["scan time", "2 0ms"],
+        &["modes", "stop, reset"],
+        &["on stop", "fan off after 2 0s"],
+        &[],
+        &["actuator", "extend", "retract"],
+        &["C1", "1 5s", "0, 8s"],
+        &["C2", "1. 5 s", "1 .5s"],
+    ];
+    let (code, said) = run(
+        "check",
+        "s.xlsx",
+        workbook(&[], &[("SETTINGS", settings)]),
+        &[],
+    );
+    assert_eq!(code, Some(1), "{said}");
+    for cell in ["B1", "B3", "B6", "C6", "B7", "C7"] {
+        assert!(
+            said.contains(&format!("SETTINGS!{cell}: error[E030]")),
+            "{cell}: {said}"
+        );
+    }
+    let (code, said) = run(
+        "check",
+        "s.xlsx",
+        workbook(&[], &[]),
+        &["--safety", "watchdog", "--supervision", "1=1 0s"],
+    );
+    assert_eq!(code, Some(1), "{said}");
+    assert!(said.contains("\"1=1 0s\": expected a time"), "{said}");
+    for line in ["scantime: 0,02s", ",,,scan time: 0,02s"] {
+        let csv = format!(",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n\n{line}\n");
+        let (code, said) = run("check", "c.csv", csv.into(), &[]);
+        assert_eq!(code, Some(1), "{line}: {said}");
+        assert!(
+            said.contains("error[E046]") && said.contains("split by the file's comma"),
+            "{line}: {said}"
+        );
+        assert!(!said.contains("W003"), "{said}");
+    }
+}
+
+/// The name of a wait or output is checked as typed: `I:part²` is no
+/// `part2`, a zero-width space in it is no space to drop (rt23 F2).
+#[test]
+fn a_signal_name_is_checked_as_typed() {
+    for (item, why) in [
+        ("I:part²", "\"²\" is no letter a-z"),
+        ("Y:part₂+", "\"₂\" is no letter a-z"),
+        ("I:part\u{200B}present", "the invisible character U+200B"),
+        ("I:ｐart", "\"ｐ\" is no letter a-z"),
+    ] {
+        let (code, said) = run("check", "n.csv", table_with(item), &[]);
+        assert_eq!(code, Some(1), "{item}: {said}");
+        assert!(
+            said.contains("error[E015]") && said.contains(why),
+            "{item}: {said}"
+        );
+    }
+    // A plus or minus the move reader takes still switches an output.
+    let (code, said) = run("check", "n.csv", table_with("Y:lamp\u{2212}"), &[]);
+    assert_eq!(code, Some(0), "{said}");
+}
+
+/// More spaces beside a decimal separator: `T=. 5s`, `T=1 .s`; a split
+/// wait or output is called one; `T= .5s` (a space after `=`) is read
+/// (rt23 F4, F5, and its wording).
+#[test]
+fn every_space_beside_a_separator_splits_a_dwell() {
+    for (item, kind) in [
+        ("T=. 5s", "a dwell"),
+        ("T=, 5s", "a dwell"),
+        ("T=1 .s", "a dwell"),
+        ("T=1. s", "a dwell"),
+        ("T=1 .5ms", "a dwell"),
+        ("J:5 .0 if I:x", "a jump"),
+        ("I:part=1 0", "a wait"),
+        ("Y:lamp1 0+", "an output"),
+    ] {
+        let (code, said) = run("check", "d.csv", table_with(item), &[]);
+        assert_eq!(code, Some(1), "{item}: {said}");
+        assert!(
+            said.contains(&format!(
+                "is not {kind} as written (a space splits a number"
+            )),
+            "{item}: {said}"
+        );
+    }
+    let (code, said) = run("check", "d.csv", table_with("T= .5s"), &[]);
+    assert_eq!(code, Some(0), "{said}");
+}
+
+/// Names are one in any case by Unicode's full case mapping: `FUSSPEDAL`
+/// names `Fußpedal`, and `straße` beside `STRASSE` is E025 (rt23 F7).
+#[test]
+fn names_are_compared_by_full_case_mapping() {
+    let settings: &[&[&str]] = &[&["actuator", "name"], &["C1", "Fußpedal"]];
+    let (code, said) = run(
+        "simulate",
+        "f.xlsx",
+        workbook(&[], &[("SETTINGS", settings)]),
+        &["--stroke", "FUSSPEDAL=3s"],
+    );
+    assert_eq!(code, Some(0), "{said}");
+    let settings: &[&[&str]] = &[&["actuator", "name"], &["C1", "straße"], &["C2", "STRASSE"]];
+    let (code, said) = run(
+        "check",
+        "f.xlsx",
+        workbook(&[], &[("SETTINGS", settings)]),
+        &[],
+    );
+    assert_eq!(code, Some(1), "{said}");
+    assert!(said.contains("error[E025]"), "{said}");
+}
+
+/// A long chain of links that ends at no loop is not called a loop; an
+/// actuator table written with the step table leaves its column of notes
+/// named (rt23 F3, F8).
+#[cfg(unix)]
+#[test]
+fn a_long_chain_and_a_note_column_are_said_as_they_are() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("l0.csv"),
+        ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n",
+    )
+    .unwrap();
+    for i in 1..=45 {
+        let link = dir.path().join(format!("l{i}.csv"));
+        std::os::unix::fs::symlink(format!("l{}.csv", i - 1), link).unwrap();
+    }
+    let run_on = steptable()
+        .arg("check")
+        .arg(dir.path().join("l45.csv"))
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&run_on.stderr);
+    assert_eq!(run_on.status.code(), Some(1), "{said}");
+    assert!(
+        said.contains("more than 40 links") && !said.contains("loop"),
+        "{said}"
+    );
+    let csv = ",BRANCH 1,,x\nSTEP 1,C1+1,,actuator,extend,retract,foo\nSTEP 2,C1-0,,C1,2s,1s,bar\n";
+    let (code, said) = run("check", "a.csv", csv.into(), &[]);
+    assert_eq!(code, Some(1), "{said}");
+    assert!(said.contains("2:4: error[E030]"), "{said}");
+    for cell in ["2:7", "3:7"] {
+        assert!(
+            said.contains(&format!("{cell}: warning[W003]")),
+            "{cell}: {said}"
+        );
+    }
+    assert!(
+        !said.contains("2:5: warning") && !said.contains("3:5: warning"),
+        "{said}"
+    );
+}

@@ -83,7 +83,7 @@ fn the_home_order_and_load_take_names_and_refuse_what_no_actuator_answers_to() {
             args: &["--valve", "lift=52mono,1A1=52bi", "--formats", "st"],
             exit: 1,
             says: &[
-                "h.xlsx: error[E030]: --valve lift=…: lift is C1, which --valve gives as 1a1 too; give each actuator once",
+                "h.xlsx: error[E030]: --valve lift=…: lift is C1, which --valve gives as 1A1 too; give each actuator once",
             ],
             never: &[],
         },

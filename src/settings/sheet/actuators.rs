@@ -460,6 +460,9 @@ fn headerless(reader: &mut Reader, cell: &GridCell, message: String, diags: &mut
 /// The milliseconds a time written in s or ms (a decimal comma or point)
 /// stands for, whatever its range: `0.5ms` is 0.5.
 fn time_in_ms(text: &str) -> Option<f64> {
+    if crate::cell::split_number(text) {
+        return None;
+    }
     let lower: String = text
         .chars()
         .filter(|c| !c.is_whitespace())

@@ -32,10 +32,18 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
             table.location(header),
             format!("an actuator table (headed here, its first row at {}) lies with the step table, {lost}: the valves, stroke times, loads or names it gives would be lost; {instead}", table.cell_name(row)),
         );
-        // Its headers and rows, up to a blank row: the error is of them all.
+        // Its rows up to a blank one, in its columns steptable reads: the
+        // error is of them all (a column of notes is said as ever).
         let rows = table_rows(table, header);
-        for cell in table.cells.iter().filter(|c| c.pos.col >= header.col) {
-            if rows.contains(&cell.pos.row) {
+        let read = |col: u32| {
+            col == header.col
+                || table.cells.iter().any(|c| {
+                    c.pos == CellPos::new(header.row, col)
+                        && label_of(&c.value).is_some_and(|l| COLUMNS.contains(&column_word(&l)))
+                })
+        };
+        for cell in table.cells.iter().filter(|c| rows.contains(&c.pos.row)) {
+            if read(cell.pos.col) {
                 diags.speaks_for(table.location(cell.pos));
             }
         }
@@ -46,6 +54,19 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
         };
         let at = table.location(cell.pos);
         let written = text.trim();
+        // `scantime: 0,02s` unquoted in a comma file: the decimal comma
+        // split the value into the next field, and neither half reads as a
+        // setting alone.
+        if let Some(split) = split_by_comma(table, i) {
+            let (meant, joined, next) = split;
+            diags.error(
+                Code::E046MistypedSetting,
+                at,
+                format!("\"{written}\" and the next field read as \"{joined}\", the setting `{meant}` and its value split by the file's comma (quote the cell, or write the value with a point), lying with the step table, {lost}; {}", value_right_of(&format!("\"{meant}\""))),
+            );
+            diags.speaks_for(table.location(next));
+            continue;
+        }
         if let Some((meant, value)) = unread::setting_in_text(text) {
             if valid_value(meant, value, cell, table) {
                 diags.error(
@@ -94,6 +115,36 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
             diags.speaks_for(table.location(value_cell.pos));
         }
     }
+}
+
+/// The setting a CSV's cell `i` and the field right of it make once joined
+/// by the comma between them, when neither reads as one alone: its label,
+/// the joined text, and the field's place.
+fn split_by_comma(table: &Grid, i: usize) -> Option<(&'static str, String, CellPos)> {
+    let cell = &table.cells[i];
+    let next = table.cells.get(i + 1)?;
+    let adjacent = next.pos.row == cell.pos.row && next.pos.col == cell.pos.col + 1;
+    if table.sheet.is_some() || !adjacent {
+        return None;
+    }
+    let (CellValue::Text(text), CellValue::Text(rest)) = (&cell.value, &next.value) else {
+        return None;
+    };
+    // Only a value whose digits the comma parted (`0,02s`, `1,5s`).
+    let parted = text.trim_end().ends_with(|c: char| c.is_ascii_digit())
+        && rest.starts_with(|c: char| c.is_ascii_digit());
+    if !parted {
+        return None;
+    }
+    let joined = format!("{},{}", text.trim(), rest.trim());
+    let as_written = unread::setting_in_text(&joined)
+        .into_iter()
+        .chain(unread::misspelt_setting_in_text(&joined));
+    let meant = as_written
+        .filter(|(meant, value)| valid_value(meant, value, cell, table))
+        .map(|(meant, _)| meant)
+        .next()?;
+    Some((meant, joined, next.pos))
 }
 
 /// Settings written on a workbook's sheet of another name (`Config`,
