@@ -16,6 +16,18 @@ pub enum Header {
 /// gripper`): engineers name their steps, and a label we do not recognise
 /// loses its row.
 pub fn header_kind(text: &str) -> Option<Header> {
+    // `STEP 1 0`: step 10, or step 1 with a note 0? Not ours to guess.
+    let word_end = text
+        .trim_start()
+        .find(|c: char| !c.is_alphabetic())
+        .unwrap_or(0);
+    let number: String = text.trim_start()[word_end..]
+        .chars()
+        .take_while(|c| c.is_whitespace() || c.is_ascii_digit())
+        .collect();
+    if super::split_number(&number) {
+        return None;
+    }
     let squeezed: String = text.chars().filter(|c| !c.is_whitespace()).collect();
     if let Some(header) = bare_header(&squeezed) {
         return Some(header);
@@ -186,6 +198,10 @@ pub fn actuator_name(text: &str) -> Option<u32> {
         .peek()
         .is_some_and(|c| c.is_alphanumeric() || *c == '_')
     {
+        return None;
+    }
+    // `C1 0`: C10, or C1 named 0? Not ours to guess.
+    if super::split_number(text) {
         return None;
     }
     number

@@ -66,9 +66,25 @@ pub fn ascii_spelling(text: &str) -> Option<String> {
     (out != text).then_some(out)
 }
 
-/// `text` in one case for comparing names, with Unicode's full case
-/// mapping: `Straße` and `STRASSE`, `ΣΟΦΟΣ` and `σοφοσ`, `ﬁx` and `FIX` are
-/// one name. Composed first, so that a decomposed `Ö` is `Ö`.
+/// `text` in one case for comparing names, as Unicode's full case folding
+/// has it: `Straße` and `STRASSE`, `ΣΟΦΟΣ` and `σοφος`, `ﬁx` and `FIX` are
+/// one name; `kırmızı` and `kirmizi` are two (a dotless ı folds to no i).
+/// Composed first, so that a decomposed `Ö` is `Ö`.
 pub fn folded(text: &str) -> String {
-    composed_str(text.trim()).to_uppercase().to_lowercase()
+    let lower = composed_str(text.trim()).to_lowercase();
+    let mut out = String::with_capacity(lower.len());
+    for c in lower.chars() {
+        match c {
+            'ß' | 'ẞ' => out.push_str("ss"),
+            'ς' => out.push('σ'),
+            'ﬀ' => out.push_str("ff"),
+            'ﬁ' => out.push_str("fi"),
+            'ﬂ' => out.push_str("fl"),
+            'ﬃ' => out.push_str("ffi"),
+            'ﬄ' => out.push_str("ffl"),
+            'ﬅ' | 'ﬆ' => out.push_str("st"),
+            c => out.push(c),
+        }
+    }
+    out
 }

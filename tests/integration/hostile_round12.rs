@@ -383,3 +383,55 @@ fn a_long_chain_and_a_note_column_are_said_as_they_are() {
         "{said}"
     );
 }
+
+/// Red team rt24: a comma CSV's setting whose label has a field of its own
+/// and whose decimal comma the file split (`scan time,0,02s`,
+/// `supervision,2=10,5s`) is E046, not a W003 with exit 0 (F1, HIGH); `C1
+/// 0` heading an actuator table's row is no C1 named 0 (F2, HIGH); `STEP 1
+/// 0` is no STEP 10 (F4); a dotless ı is no i (F5: `kırmızı` and `kirmizi`
+/// are two names).
+#[test]
+fn what_rt24_found_split_or_merged() {
+    for line in [
+        "scan time,0,02s",
+        "supervision,2=10,5s",
+        "supervision: 2=10,5s",
+    ] {
+        let csv = format!(",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n\n{line}\n");
+        let (code, said) = run("check", "c.csv", csv.into(), &[]);
+        assert_eq!(code, Some(1), "{line}: {said}");
+        assert!(
+            said.contains("c.csv:5:1: error[E046]") && said.contains("split by the file's comma"),
+            "{line}: {said}"
+        );
+        assert!(!said.contains("W003"), "{line}: {said}");
+    }
+    let settings: &[&[&str]] = &[&["actuator", "extend", "retract"], &["C1 0", "3s", "3s"]];
+    let (code, said) = run(
+        "check",
+        "a.xlsx",
+        workbook(&[], &[("SETTINGS", settings)]),
+        &[],
+    );
+    assert_eq!(code, Some(1), "{said}");
+    assert!(
+        said.contains("SETTINGS!A2: error[E030]") && said.contains("a space splits its number"),
+        "{said}"
+    );
+    let csv = ",BRANCH 1\nSTEP 1,C1+1\nSTEP 1 0,C1-0\n";
+    let (code, said) = run("check", "l.csv", csv.into(), &[]);
+    assert_eq!(code, Some(1), "{said}");
+    assert!(said.contains("l.csv:3:2: error[E010]"), "{said}");
+    let settings: &[&[&str]] = &[
+        &["actuator", "name"],
+        &["C1", "kırmızı"],
+        &["C2", "kirmizi"],
+    ];
+    let (code, said) = run(
+        "check",
+        "k.xlsx",
+        workbook(&[], &[("SETTINGS", settings)]),
+        &["--formats", "st"],
+    );
+    assert_eq!(code, Some(0), "two names: {said}");
+}

@@ -218,10 +218,15 @@ fn row_actuator(
             return RowStart::Note;
         }
         reader.seen.extend(values.iter().map(|c| c.pos));
+        // `C1 0`: a space splits its number.
+        let split = match crate::cell::split_number(&name) {
+            true => "a space splits its number; ",
+            false => "",
+        };
         reader.error(
             name_cell.pos,
             format!(
-                "\"{name}\" is not an actuator (expected C1 to C{}, optionally with a comment: C1 (clamp)); the row's values were not read",
+                "\"{name}\" is not an actuator ({split}expected C1 to C{}, optionally with a comment: C1 (clamp)); the row's values were not read",
                 crate::cell::MAX_ACTUATOR
             ),
             diags,

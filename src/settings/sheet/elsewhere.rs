@@ -4,7 +4,7 @@
 use super::headers::column_word;
 use super::{COLUMNS, known_label, label_of, text_of, unread, valid_value};
 use crate::diag::{CellPos, Code, Diagnostics};
-use crate::read::{CellValue, Grid};
+use crate::read::{CellValue, Grid, GridCell};
 
 const CSV_HOLDS_NO_SETTINGS: &str = "a CSV file holds the step table only: write them on a workbook's SETTINGS sheet (`steptable template` writes one), or give them on the command line where an option does";
 
@@ -62,9 +62,13 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
             diags.error(
                 Code::E046MistypedSetting,
                 at,
-                format!("\"{written}\" and the next field read as \"{joined}\", the setting `{meant}` and its value split by the file's comma (quote the cell, or write the value with a point), lying with the step table, {lost}; {}", value_right_of(&format!("\"{meant}\""))),
+                format!("\"{written}\" and the fields right of it read as \"{joined}\", the setting `{meant}` and its value split by the file's comma (quote the cell, or write the value with a point), lying with the step table, {lost}; {}", value_right_of(&format!("\"{meant}\""))),
             );
-            diags.speaks_for(table.location(next));
+            // The fields between it and the last are part of it.
+            let row = table.cells.iter().filter(|c| c.pos.row == next.row);
+            for c in row.filter(|c| c.pos.col > cell.pos.col && c.pos.col <= next.col) {
+                diags.speaks_for(table.location(c.pos));
+            }
             continue;
         }
         if let Some((meant, value)) = unread::setting_in_text(text) {
@@ -117,34 +121,60 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
     }
 }
 
-/// The setting a CSV's cell `i` and the field right of it make once joined
-/// by the comma between them, when neither reads as one alone: its label,
-/// the joined text, and the field's place.
+/// The setting a CSV's cell `i` and the fields right of it make once the
+/// comma between two of them is taken for a decimal comma (`scantime: 0` |
+/// `02s`, or `scan time` | `0` | `02s`), when they do not read as one
+/// without it: its label, the text joined, and the last field's place.
 fn split_by_comma(table: &Grid, i: usize) -> Option<(&'static str, String, CellPos)> {
-    let cell = &table.cells[i];
-    let next = table.cells.get(i + 1)?;
-    let adjacent = next.pos.row == cell.pos.row && next.pos.col == cell.pos.col + 1;
-    if table.sheet.is_some() || !adjacent {
+    if table.sheet.is_some() {
         return None;
     }
-    let (CellValue::Text(text), CellValue::Text(rest)) = (&cell.value, &next.value) else {
-        return None;
+    let cell = &table.cells[i];
+    // The field right of `at`, when it is the next one on the row.
+    let right_of = |at: usize| {
+        let (this, next) = (&table.cells[at], table.cells.get(at + 1)?);
+        let adjacent = next.pos.row == this.pos.row && next.pos.col == this.pos.col + 1;
+        adjacent.then_some(next)
+    };
+    let text = |c: &GridCell| match &c.value {
+        CellValue::Text(t) => Some(t.trim().to_string()),
+        _ => None,
     };
     // Only a value whose digits the comma parted (`0,02s`, `1,5s`).
-    let parted = text.trim_end().ends_with(|c: char| c.is_ascii_digit())
-        && rest.starts_with(|c: char| c.is_ascii_digit());
-    if !parted {
+    let parted = |left: &str, right: &str| {
+        left.ends_with(|c: char| c.is_ascii_digit())
+            && right.starts_with(|c: char| c.is_ascii_digit())
+    };
+    let next = right_of(i)?;
+    let (first, second) = (text(cell)?, text(next)?);
+    if parted(&first, &second) {
+        // Read with a decimal point too: in a list (`supervision`) a comma
+        // also parts items.
+        for point in [',', '.'] {
+            let joined = format!("{first}{point}{second}");
+            let as_written = unread::setting_in_text(&joined)
+                .into_iter()
+                .chain(unread::misspelt_setting_in_text(&joined));
+            let meant = as_written
+                .filter(|(meant, value)| valid_value(meant, value, cell, table))
+                .map(|(meant, _)| meant);
+            if let Some(meant) = meant.into_iter().next() {
+                return Some((meant, format!("{first},{second}"), next.pos));
+            }
+        }
+    }
+    // `scan time` | `0` | `02s`: the label in a field of its own.
+    let last = right_of(i + 1)?;
+    let third = text(last)?;
+    if !parted(&second, &third) {
         return None;
     }
-    let joined = format!("{},{}", text.trim(), rest.trim());
-    let as_written = unread::setting_in_text(&joined)
-        .into_iter()
-        .chain(unread::misspelt_setting_in_text(&joined));
-    let meant = as_written
-        .filter(|(meant, value)| valid_value(meant, value, cell, table))
-        .map(|(meant, _)| meant)
-        .next()?;
-    Some((meant, joined, next.pos))
+    let label = known_label(&cell.value)
+        .or_else(|| unread::mistyped_label(&label_of(&cell.value).unwrap_or_default()))?;
+    let valid = [',', '.']
+        .iter()
+        .any(|point| valid_value(label, &format!("{second}{point}{third}"), next, table));
+    valid.then(|| (label, format!("{first},{second},{third}"), last.pos))
 }
 
 /// Settings written on a workbook's sheet of another name (`Config`,
