@@ -35,15 +35,14 @@ pub fn written_with_table(table: &Grid, diags: &mut Diagnostics) {
         // Its rows up to a blank one, in its columns steptable reads: the
         // error is of them all (a column of notes is said as ever).
         let rows = table_rows(table, header);
-        let read = |col: u32| {
-            col == header.col
-                || table.cells.iter().any(|c| {
-                    c.pos == CellPos::new(header.row, col)
-                        && label_of(&c.value).is_some_and(|l| COLUMNS.contains(&column_word(&l)))
-                })
-        };
+        let read: std::collections::HashSet<u32> = (table.cells.iter())
+            .filter(|c| c.pos.row == header.row)
+            .filter(|c| label_of(&c.value).is_some_and(|l| COLUMNS.contains(&column_word(&l))))
+            .map(|c| c.pos.col)
+            .chain([header.col])
+            .collect();
         for cell in table.cells.iter().filter(|c| rows.contains(&c.pos.row)) {
-            if read(cell.pos.col) {
+            if read.contains(&cell.pos.col) {
                 diags.speaks_for(table.location(cell.pos));
             }
         }
