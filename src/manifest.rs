@@ -23,6 +23,19 @@ const HEADER: &str = "# steptable manifest: files steptable wrote in this folder
 /// What starts the line under a file's that says how it was made.
 const MADE_BY_INDENT: &str = "  ";
 
+/// What a made-by line (`made by steptable 0.1.0 from paper.xlsx: steptable
+/// convert …`, the `provenance` module's) names its outputs made from;
+/// `None` for a line not of that form.
+pub fn made_from(line: &str) -> Option<&str> {
+    let rest = line.strip_prefix("made by steptable ")?;
+    let (_, rest) = rest.split_once(" from ")?;
+    let end = [": steptable ", ": a library call"]
+        .iter()
+        .filter_map(|m| rest.find(m))
+        .min()?;
+    Some(&rest[..end])
+}
+
 /// Size and hash of a file's bytes as written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Stamp {
@@ -200,6 +213,16 @@ fn unescape(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The input a made-by line names, also one whose name holds a colon.
+    #[test]
+    fn a_made_by_line_names_its_input() {
+        let line = "made by steptable 0.1.0 from a: b.xlsx: steptable convert x; settings: y";
+        assert_eq!(made_from(line), Some("a: b.xlsx"));
+        let line = "made by steptable 0.1.0 from p.csv: a library call; settings: y";
+        assert_eq!(made_from(line), Some("p.csv"));
+        assert_eq!(made_from("# a note of yours"), None);
+    }
 
     #[test]
     fn a_manifest_reads_back_what_it_wrote_and_refuses_what_is_not_one() {

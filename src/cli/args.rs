@@ -314,6 +314,7 @@ pub(crate) fn parse_modes(text: &str) -> Result<Modes, String> {
 pub(crate) struct Supervision(pub(crate) std::collections::BTreeMap<usize, u32>);
 
 pub(crate) fn parse_supervision(text: &str) -> Result<Supervision, String> {
+    comma_in_a_number(text)?;
     crate::program::parse_supervision(text).map(Supervision)
 }
 
@@ -380,6 +381,28 @@ pub(crate) fn no_empty_item(text: &str) -> Result<(), String> {
             "\"{}\" has an empty item between its commas; give each item once (e.g. C1=52mono,C2=52bi)",
             text.trim()
         ));
+    }
+    comma_in_a_number(text)
+}
+
+/// `C1=0,8s`: a decimal comma the list's comma parts into `C1=0` and `8s`.
+/// Said as that, not as a bad value `0` and an item without `=` (rt24 F8).
+fn comma_in_a_number(text: &str) -> Result<(), String> {
+    let items: Vec<&str> = text.split(',').map(str::trim).collect();
+    for pair in items.windows(2) {
+        let (before, after) = (pair[0], pair[1]);
+        let ends_in_digit = before.contains('=') && before.ends_with(|c: char| c.is_ascii_digit());
+        if ends_in_digit && !after.contains('=') && after.starts_with(|c: char| c.is_ascii_digit())
+        {
+            let grouped = after.chars().take_while(char::is_ascii_digit).count() == 3;
+            let thousands = match grouped {
+                true => format!(", or {before}{after} for a thousands' comma"),
+                false => String::new(),
+            };
+            return Err(format!(
+                "\"{before},{after}\": the comma parts the list's items, so its number is split in two; write a decimal point ({before}.{after}){thousands}"
+            ));
+        }
     }
     Ok(())
 }

@@ -264,11 +264,16 @@ impl Run<'_> {
         ));
         for o in &failed {
             // A diagnostic names its file; other failures need the name added.
+            let input = display_name(&o.input);
             let first = match o.diagnostics.iter().find(|d| d.severity == Severity::Error) {
+                // At another file (E040: an input an output would replace):
+                // the line starts with the input that failed (rt25 F3).
+                Some(d) if !d.to_string().starts_with(&format!("{input}:")) => {
+                    format!("{input}: {d}")
+                }
                 Some(d) => d.to_string(),
                 None => format!(
-                    "{}: {}",
-                    display_name(&o.input),
+                    "{input}: {}",
                     o.message
                         .clone()
                         .unwrap_or_else(|| o.status.label().to_string())

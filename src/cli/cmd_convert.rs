@@ -126,6 +126,12 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
                 }
                 let inside =
                     |p: &std::path::Path| p.strip_prefix(folder).unwrap_or(p).display().to_string();
+                if !cleanup.replaced_from.is_empty() {
+                    report.say(&format!(
+                        "  replaced the outputs an earlier run made there from another input: {}",
+                        cleanup.replaced_from.join(", ")
+                    ));
+                }
                 if !cleanup.removed.is_empty() {
                     let names: Vec<String> = cleanup.removed.iter().map(|p| inside(p)).collect();
                     report.say(&format!(

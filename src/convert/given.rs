@@ -135,12 +135,17 @@ pub(super) fn overridden_by_the_command_line(
 ) {
     for (label, at) in &sheet.cells {
         if line.gives(label) {
+            // A board sets OpenPLC's addresses: --board, not a --target the
+            // engineer never gave, overrides the cell (rt25 F6).
+            let option = match (*label, line.board) {
+                ("target", Some(_)) => "--board (OpenPLC's addresses)".to_string(),
+                _ => crate::settings::option_for(label),
+            };
             diags.warning(
                 Code::W006NoEffect,
                 at.clone(),
                 format!(
-                    "{label}: {} on the command line wins over this cell; it was not used",
-                    crate::settings::option_for(label)
+                    "{label}: {option} on the command line wins over this cell; it was not used"
                 ),
             );
         }

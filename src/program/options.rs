@@ -409,10 +409,8 @@ impl Modes {
                     text.trim()
                 ));
             }
-            for item in stage.split(|c: char| c == '&' || c.is_whitespace()) {
-                if item.is_empty() {
-                    continue;
-                }
+            for item in stage_items(stage)? {
+                let item = item.as_str();
                 // A number, an ISO designation or a name (`gripper_arm`):
                 // which actuator it means, the naming authority says once
                 // the table's names are read.
@@ -468,9 +466,62 @@ impl Modes {
     }
 }
 
+/// The items of one home-order stage, parted at `&` and at spaces; `C 2`
+/// is C2, as the table and `--valve` read it (a `C` alone names nothing),
+/// and a number after an actuator (`C1 0`) is a split number, not an
+/// actuator of its own.
+fn stage_items(stage: &str) -> Result<Vec<String>, String> {
+    let mut items: Vec<String> = Vec::new();
+    for part in stage.split('&') {
+        let first = items.len();
+        for item in part.split_whitespace() {
+            joined(&mut items, first, item)?;
+        }
+    }
+    Ok(items)
+}
+
+/// Adds `item` to `items`, joined to the one before it in the same part
+/// of the stage (from `first`) where a space split an actuator's number.
+fn joined(items: &mut Vec<String>, first: usize, item: &str) -> Result<(), String> {
+    let digits = !item.is_empty() && item.chars().all(|c| c.is_ascii_digit());
+    if digits
+        && items.len() > first
+        && let Some(last) = items.last_mut()
+    {
+        if crate::cell::normalize(last) == "C" {
+            last.push_str(item);
+            return Ok(());
+        }
+        if crate::cell::parse_actuator(last).is_some() {
+            return Err(format!(
+                "\"{last} {item}\": a space splits the actuator's number (write {last}{item}, or part the actuators of a stage with &, C1&C2)"
+            ));
+        }
+    }
+    items.push(item.to_string());
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `C 2` is C2 in a home order as in the table; `C1 0` is a split
+    /// number, said so; `C1 C2` and `C1&2` stay two items (rt24 F6).
+    #[test]
+    fn a_space_inside_an_actuators_number_is_read_as_the_table_reads_it() {
+        let order = |t: &str| Modes::parse_home_order(t);
+        assert_eq!(order("C 2, c 1").unwrap(), [vec!["C2"], vec!["c1"]]);
+        assert_eq!(order("C3 C4&C 5").unwrap(), [vec!["C3", "C4", "C5"]]);
+        let split = order("C2, C1 0").unwrap_err();
+        assert!(split.contains("\"C1 0\": a space splits"), "{split}");
+        assert!(
+            order("C1&2")
+                .unwrap_err()
+                .contains("\"2\" is not an actuator")
+        );
+    }
 
     /// A run-on belongs to an event the program has: `on estop: fan off
     /// after 20s` without the emergency stop mode gives no run-on timer.

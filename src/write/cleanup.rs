@@ -21,6 +21,10 @@ pub struct Cleanup {
     /// why: they are the engineer's now, and no longer in the record (said
     /// once, and a later run would not replace them unasked).
     pub kept: Vec<(PathBuf, &'static str)>,
+    /// The inputs an earlier run made the files this one replaced from,
+    /// where they are not this run's (`a.csv` converted, then `a.xlsx`
+    /// into the same folder): said, as a rerun of the same table is not.
+    pub replaced_from: Vec<String>,
 }
 
 const CHANGED: &str = "changed since steptable wrote it (it may hold your edits)";
@@ -48,6 +52,7 @@ pub fn write_conversion(
         _ => Manifest::default(),
     };
     let (stale, kept) = sort_out(folder, files, &before, inputs);
+    let replaced_from = other_sources(&before, made_by);
     let written = write_outputs(folder, files, inputs, durability, made_by)?;
     let mut cleanup = Cleanup {
         removed: Vec::new(),
@@ -55,6 +60,7 @@ pub fn write_conversion(
             .iter()
             .map(|(name, why)| (folder.join(name), *why))
             .collect(),
+        replaced_from,
     };
     if stale.is_empty() && kept.is_empty() {
         return Ok((written, cleanup));
@@ -86,6 +92,24 @@ pub fn write_conversion(
         durability,
     )?;
     Ok((written, cleanup))
+}
+
+/// The inputs, other than this run's, that the earlier run's record says
+/// the files in the folder were made from.
+fn other_sources(before: &Manifest, made_by: Option<&str>) -> Vec<String> {
+    let Some(own) = made_by.and_then(manifest::made_from) else {
+        return Vec::new();
+    };
+    let mut sources: Vec<String> = before
+        .made_by
+        .values()
+        .filter_map(|line| manifest::made_from(line))
+        .filter(|source| *source != own)
+        .map(str::to_string)
+        .collect();
+    sources.sort();
+    sources.dedup();
+    sources
 }
 
 /// The files of an earlier run this one does not write, sorted into those

@@ -30,6 +30,7 @@ mod hostile_messages;
 mod hostile_round10;
 mod hostile_round11;
 mod hostile_round12;
+mod hostile_round13;
 mod hostile_round3;
 mod hostile_round4;
 mod hostile_round5;

@@ -48,6 +48,11 @@ impl Act {
         }
     }
 
+    /// Whether it presses (or holds) the button `signal`.
+    pub fn presses(self, signal: Signal) -> bool {
+        matches!(self, Act::Press(s) | Act::Hold(s) if s == signal)
+    }
+
     /// What it does, in words: `STOP pressed`, `x21 stuck at 0`.
     pub fn describe(self) -> String {
         match self {

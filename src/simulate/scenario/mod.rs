@@ -293,12 +293,15 @@ impl Script for Events<'_> {
             }
             !due
         });
-        for signal in let_go {
+        for &signal in &let_go {
             set(&mut world.operator, signal, false);
         }
         while self.next < self.events.len() && self.due(self.next, now) {
             let act = self.events[self.next].act;
-            if matches!(act, Act::Press(s) | Act::Hold(s) if is_down(&world.operator, s)) {
+            // Down, or let go in this very scan (a press 0.1 s after the
+            // last): the program reads it down in both scans.
+            let down = |s: Signal| is_down(&world.operator, s) || let_go.contains(&s);
+            if matches!(act, Act::Press(s) | Act::Hold(s) if down(s)) {
                 self.still_down.push(self.next);
             }
             match act {

@@ -34,6 +34,12 @@ fn lines(
             said.push_str(
                 " while still down: no new press for the program (a press holds its button 0.1 s, two scans at least)",
             );
+        } else if *t == 0 && event.act.presses(Signal::Reset) {
+            // The program takes RESET on its edge and a button held through
+            // power-up as none (docs/modes: no homing by itself at power-up).
+            said.push_str(
+                " at power-up: no press for the program, which takes a RESET held through power-up as none (press it once the PLC runs, a scan later or more)",
+            );
         }
         lines.push((*t, 0, said));
     }

@@ -1,0 +1,231 @@
+//! The thirteenth round of hostile input: what rt24 left and the red team
+//! rt25 found on the command line, in scenarios and in output folders. A
+//! home order refused `C 2`, which the table reads as C2; `--stroke
+//! C1=0,8s` was told `"0" is not a stroke time`; a RESET pressed at
+//! power-up and a press 0.1 s after the last were printed as presses the
+//! program never saw; `a.xlsx` converted into `a.csv`'s folder replaced its
+//! outputs without a word; batch's `failed:` line named the file that
+//! converted; W006 blamed a `--target` nobody gave. Each row goes through
+//! the binary.
+
+use crate::helpers::{sample, steptable};
+use crate::hostile_round9::workbook;
+
+/// Runs steptable with `args` in `dir`; the exit code and what it said on
+/// stdout and stderr.
+fn said(dir: &std::path::Path, args: &[&str]) -> (Option<i32>, String) {
+    let output = steptable().current_dir(dir).args(args).output().unwrap();
+    let said = [&output.stdout, &output.stderr].map(|b| String::from_utf8_lossy(b).into_owned());
+    (output.status.code(), said.concat())
+}
+
+/// `C 2` in a home order is C2, as the table and `--valve` read it; `C1 0`
+/// is a number a space splits, said so, on the SETTINGS sheet (E030) and on
+/// the command line (rt24 F6).
+#[test]
+fn a_home_order_reads_an_actuators_number_as_the_table_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let settings: &[&[&str]] = &[&["home order", "C 2, C1"]];
+    std::fs::write(
+        dir.path().join("spaced.xlsx"),
+        workbook(&[], &[("SETTINGS", settings)]),
+    )
+    .unwrap();
+    let (code, out) = said(dir.path(), &["check", "spaced.xlsx"]);
+    assert_eq!(code, Some(0), "{out}");
+    let (code, out) = said(
+        dir.path(),
+        &["check", "spaced.xlsx", "--home-order", "C 1, C 2"],
+    );
+    assert_eq!(code, Some(0), "{out}");
+
+    let settings: &[&[&str]] = &[&["home order", "C2, C1 0"]];
+    std::fs::write(
+        dir.path().join("split.xlsx"),
+        workbook(&[], &[("SETTINGS", settings)]),
+    )
+    .unwrap();
+    let (code, out) = said(dir.path(), &["check", "split.xlsx"]);
+    assert_eq!(code, Some(1), "{out}");
+    assert!(
+        out.contains("SETTINGS!B1: error[E030]") && out.contains("\"C1 0\": a space splits"),
+        "{out}"
+    );
+    let (code, out) = said(
+        dir.path(),
+        &["check", "spaced.xlsx", "--home-order", "C1 0"],
+    );
+    assert_ne!(code, Some(0), "{out}");
+    assert!(out.contains("\"C1 0\": a space splits"), "{out}");
+}
+
+/// A decimal comma in a command-line list is split by the list's comma:
+/// said as that, with what to write, not as a bad value and an item
+/// without `=` (rt24 F8, rt25 F1).
+#[test]
+fn a_decimal_comma_in_a_list_is_said_to_split_its_number() {
+    let dir = tempfile::tempdir().unwrap();
+    let paper = sample("paper_example.xlsx");
+    let paper = paper.to_str().unwrap();
+    for (option, value, hint) in [
+        ("--stroke", "C1=0,8s", "(C1=0.8s)"),
+        ("--stroke", "C2=1,5s/1s", "(C2=1.5s/1s)"),
+        (
+            "--stroke",
+            "C1=1,000ms",
+            "or C1=1000ms for a thousands' comma",
+        ),
+        ("--input-delay", "x=1,5s", "(x=1.5s)"),
+        ("--load", "C1=0,5", "(C1=0.5)"),
+        ("--supervision", "3=1,5s", "(3=1.5s)"),
+    ] {
+        let (code, out) = said(dir.path(), &["simulate", paper, option, value]);
+        assert_ne!(code, Some(0), "{option} {value}: {out}");
+        assert!(
+            out.contains("the comma parts the list's items") && out.contains(hint),
+            "{option} {value}: {out}"
+        );
+    }
+    // Two whole items stay two items.
+    let (code, out) = said(dir.path(), &["simulate", paper, "--stroke", "C1=1s,C2=2s"]);
+    assert_eq!(code, Some(0), "{out}");
+}
+
+/// A press the program never sees is not printed as a press alone: RESET
+/// pressed at power-up (the program takes a RESET held through power-up as
+/// none), and a press exactly 0.1 s after the last (let go and pressed in
+/// one scan) (rt25 F4, F5).
+#[test]
+fn a_press_the_program_never_sees_is_said_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let paper = sample("paper_example.xlsx");
+    let paper = paper.to_str().unwrap();
+    let (code, out) = said(
+        dir.path(),
+        &["simulate", paper, "--modes", "reset", "--press", "RESET@0s"],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        out.contains("RESET_PB pressed at power-up: no press for the program"),
+        "{out}"
+    );
+    assert!(!out.contains("homing starts"), "{out}");
+    let (code, out) = said(
+        dir.path(),
+        &[
+            "simulate",
+            paper,
+            "--modes",
+            "reset",
+            "--press",
+            "RESET@0.2s",
+            "--press",
+            "RESET@+100ms",
+        ],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        out.contains("--press RESET@+100ms: RESET_PB pressed while still down"),
+        "{out}"
+    );
+    // 10 ms later it is a press of its own, and homes again.
+    let (_, out) = said(
+        dir.path(),
+        &[
+            "simulate",
+            paper,
+            "--modes",
+            "reset",
+            "--press",
+            "RESET@0.2s",
+            "--press",
+            "RESET@+110ms",
+        ],
+    );
+    assert_eq!(out.matches("homing starts").count(), 2, "{out}");
+    assert!(!out.contains("still down"), "{out}");
+}
+
+/// Outputs an earlier run made from another input (`a.csv`, then
+/// `sub/a.xlsx` into the same folder) are replaced, and the run says from
+/// which; a rerun of the same table says nothing of it (rt25 F2).
+#[test]
+fn replacing_another_inputs_outputs_is_said() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    std::fs::copy(sample("paper_example.csv"), dir.path().join("a.csv")).unwrap();
+    std::fs::copy(
+        sample("drilling_station.xlsx"),
+        dir.path().join("sub/a.xlsx"),
+    )
+    .unwrap();
+    let convert = |input: &str| {
+        said(
+            dir.path(),
+            &["convert", input, "-o", "cv", "--formats", "st,io"],
+        )
+    };
+    let (code, out) = convert("a.csv");
+    assert_eq!(code, Some(0), "{out}");
+    let (_, out) = convert("a.csv");
+    assert!(!out.contains("replaced the outputs"), "{out}");
+    let (code, out) = convert("sub/a.xlsx");
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        out.contains("replaced the outputs an earlier run made there from another input: a.csv"),
+        "{out}"
+    );
+}
+
+/// batch's `failed:` line starts with the input that failed, also where
+/// its error is at another file (E040 at the input an output would
+/// replace) (rt25 F3).
+#[test]
+fn a_failed_line_starts_with_the_input_that_failed() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("plant/press")).unwrap();
+    std::fs::copy(
+        sample("paper_example.csv"),
+        dir.path().join("plant/press.csv"),
+    )
+    .unwrap();
+    std::fs::copy(
+        sample("drilling_station.xlsx"),
+        dir.path().join("plant/press/press.steptable.xlsx"),
+    )
+    .unwrap();
+    let (code, out) = said(
+        dir.path(),
+        &["batch", "plant", "-o", "plant", "--quiet", "-j", "1"],
+    );
+    assert_eq!(code, Some(1), "{out}");
+    let failed = out.lines().find(|l| l.contains("failed: ")).unwrap_or("");
+    assert!(
+        failed.starts_with("  failed: plant/press.csv: ") && failed.contains("error[E040]"),
+        "{out}"
+    );
+}
+
+/// A board on the command line overrides the sheet's target: W006 names
+/// `--board`, not a `--target` that was never given (rt25 F6).
+#[test]
+fn w006_names_the_option_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let settings: &[&[&str]] = &[&["target", "siemens"]];
+    std::fs::write(
+        dir.path().join("s.xlsx"),
+        workbook(&[], &[("SETTINGS", settings)]),
+    )
+    .unwrap();
+    let (code, out) = said(dir.path(), &["check", "s.xlsx", "--board", "rpi"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        out.contains("SETTINGS!B1: warning[W006]: target: --board (OpenPLC's addresses) on the command line wins"),
+        "{out}"
+    );
+    let (_, out) = said(dir.path(), &["check", "s.xlsx", "--target", "iec"]);
+    assert!(
+        out.contains("target: --target on the command line wins"),
+        "{out}"
+    );
+}
