@@ -356,6 +356,19 @@ fn parse_jump(text: &str, rest: &str) -> Result<CellItem, ItemError> {
         }
         _ => return Err(bad("the target is a step number or end")),
     };
+    // `J:e nd if …`: the spaces normalising drops would join a word split
+    // in two (rt23 F6).
+    let raw = text.split_once(':').map_or("", |(_, r)| r);
+    let Some(keyword) = raw.to_ascii_lowercase().find("if") else {
+        return Err(bad("a space splits its word if"));
+    };
+    let written = &raw[..keyword];
+    if written.trim().contains(char::is_whitespace) {
+        return Err(bad(&format!(
+            "a space splits its target \"{}\" (write end or the step's number)",
+            written.trim()
+        )));
+    }
     if !condition.starts_with("I:") {
         return Err(bad("the condition is a machine input, I:<name>"));
     }

@@ -12,10 +12,11 @@ use idle_rows::{guard_leaves_motion, halts_for_good, rows_without_their_event};
 mod jump_outputs;
 mod kind_times;
 mod untimed;
+use home_order::home_order_by_name;
+mod home_order;
 use given::{
-    by_name, delays_without_their_input, home_order_by_name, loads_without_effect,
-    names_of_the_whole_table, overridden_by_the_command_line, settings_without_their_actuator,
-    supervision_times,
+    by_name, delays_without_their_input, loads_without_effect, names_of_the_whole_table,
+    overridden_by_the_command_line, settings_without_their_actuator, supervision_times,
 };
 mod physics;
 mod placeholder_rows;

@@ -229,3 +229,52 @@ fn w006_names_the_option_given() {
         "{out}"
     );
 }
+
+/// Letters a space splits in a jump's target or keyword are not joined:
+/// `J:e nd if I:x` is no `J:end`, `J:end i f I:x` no jump (rt23 F6).
+#[test]
+fn a_jumps_word_split_by_a_space_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    for (item, why) in [
+        ("J:e nd if I:x", "a space splits its target \"e nd\""),
+        ("J:en d  if I:x", "a space splits its target \"en d\""),
+        ("J:end i f I:x", "a space splits its word if"),
+    ] {
+        let table = format!(",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,\"C1-0; {item}\"\n");
+        std::fs::write(dir.path().join("j.csv"), table).unwrap();
+        let (code, out) = said(dir.path(), &["check", "j.csv"]);
+        assert_eq!(code, Some(1), "{item}: {out}");
+        assert!(
+            out.contains("j.csv:3:2: error[E017]") && out.contains(why),
+            "{item}: {out}"
+        );
+    }
+}
+
+/// One actuator under two of its names in a home order is named with both
+/// spellings, not as `C1` twice (rt23 F9).
+#[test]
+fn a_home_order_naming_one_actuator_twice_says_both_spellings() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("h.csv"),
+        ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,C1-0\n",
+    )
+    .unwrap();
+    let (code, out) = said(
+        dir.path(),
+        &[
+            "check",
+            "h.csv",
+            "--modes",
+            "reset",
+            "--home-order",
+            "C1,1A1",
+        ],
+    );
+    assert_eq!(code, Some(1), "{out}");
+    assert!(
+        out.contains("error[E030]: the home order names C1 twice, as C1 and 1A1"),
+        "{out}"
+    );
+}

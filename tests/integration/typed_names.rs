@@ -92,7 +92,9 @@ fn the_home_order_and_load_take_names_and_refuse_what_no_actuator_answers_to() {
             sheets: &[("TABLE", TWO), ("SETTINGS", MODES)],
             args: &["--home-order", "clamp, 2A1, lift", "--formats", "st"],
             exit: 1,
-            says: &["h.xlsx: error[E030]: the home order names C2 twice (--home-order)"],
+            says: &[
+                "h.xlsx: error[E030]: the home order names C2 twice, as clamp and 2A1; name each actuator once (--home-order)",
+            ],
             never: &[],
         },
         Case {
