@@ -36,16 +36,17 @@ pub(super) fn unread_header(
     // Refused below (E046), the header speaks for the values under it.
     let refused = (header.row, cell.pos.col);
     if let Some(meant) = meant.filter(|_| below) {
-        reader.refused_headers.insert(refused);
-        reader.mistyped(
-                cell.pos,
-                format!(
-                    "{} heads no column steptable reads: did you mean `{meant}`? (expected {}); nothing is written, since the actuators would lose what the column holds",
-                    cell.value.describe(),
-                    COLUMNS.join(", ")
-                ),
-                diags,
-            );
+        refuse_column(
+            reader,
+            refused,
+            cell.pos,
+            format!(
+                "{} heads no column steptable reads: did you mean `{meant}`? (expected {}); nothing is written, since the actuators would lose what the column holds",
+                cell.value.describe(),
+                COLUMNS.join(", ")
+            ),
+            diags,
+        );
         return;
     }
     // `stroke time extend`, `solenoid valve`, `Load on extend`:
@@ -67,30 +68,32 @@ pub(super) fn unread_header(
                     .join(" and ")
             ),
         };
-        reader.refused_headers.insert(refused);
-        reader.mistyped(
-                cell.pos,
-                format!(
-                    "{} heads no column steptable reads: {which} (expected {}), or with a word naming none for a column of notes; nothing is written, since the actuators would lose what the column holds",
-                    cell.value.describe(),
-                    COLUMNS.join(", ")
-                ),
-                diags,
-            );
+        refuse_column(
+            reader,
+            refused,
+            cell.pos,
+            format!(
+                "{} heads no column steptable reads: {which} (expected {}), or with a word naming none for a column of notes; nothing is written, since the actuators would lose what the column holds",
+                cell.value.describe(),
+                COLUMNS.join(", ")
+            ),
+            diags,
+        );
         return;
     }
     // `Type` over `52mono`, `out` over `3s`: values only a
     // column steptable reads holds, under a header naming none.
     if let Some(meant) = column_of_values(reader, cell.pos) {
-        reader.refused_headers.insert(refused);
-        reader.mistyped(
-                cell.pos,
-                format!(
-                    "{} heads no column steptable reads, but {meant}; nothing is written, since the actuators would lose them",
-                    cell.value.describe()
-                ),
-                diags,
-            );
+        refuse_column(
+            reader,
+            refused,
+            cell.pos,
+            format!(
+                "{} heads no column steptable reads, but {meant}; nothing is written, since the actuators would lose them",
+                cell.value.describe()
+            ),
+            diags,
+        );
         return;
     }
     reader.warn(
@@ -259,4 +262,18 @@ fn misspelt_column(label: &str) -> Option<&'static str> {
     COLUMNS.iter().copied().find(|known| {
         crate::cell::edit_distance(label, known) == 1 || sorted(label) == sorted(known)
     })
+}
+
+/// E046 at the header `refused` (its row and column) of a column whose
+/// values would be lost: the header speaks for the values under it, which
+/// get no W003 of their own.
+fn refuse_column(
+    reader: &mut Reader,
+    refused: (u32, u32),
+    pos: CellPos,
+    message: String,
+    diags: &mut Diagnostics,
+) {
+    reader.refused_headers.insert(refused);
+    reader.mistyped(pos, message, diags);
 }
