@@ -58,9 +58,9 @@ pub struct Outcome {
     pub verdict: Option<String>,
     pub cycle_ms: Option<u64>,
     pub hazards: Option<usize>,
-    /// Files an earlier run wrote into the input's folder that this one
-    /// did not, kept for the engineer, each with why ([`write::Cleanup`]).
-    pub kept: Vec<(PathBuf, &'static str)>,
+    /// What the conversion did to the files an earlier run wrote into the
+    /// input's folder: replaced, removed, kept for the engineer.
+    pub cleanup: write::Cleanup,
 }
 
 impl Outcome {
@@ -78,7 +78,7 @@ impl Outcome {
             verdict: None,
             cycle_ms: None,
             hazards: None,
-            kept: Vec::new(),
+            cleanup: write::Cleanup::default(),
         }
     }
 
@@ -333,7 +333,7 @@ fn convert_one(
             });
             outcome.diagnostics = conversion.warnings;
             match run.written {
-                Ok((_, cleanup)) => outcome.kept = cleanup.kept,
+                Ok((_, cleanup)) => outcome.cleanup = cleanup,
                 // Something of the engineer's is in the way: said, kept.
                 Err(write::WriteError::Taken(problems)) => {
                     outcome.status = Status::Failed;

@@ -210,6 +210,16 @@ fn digit_like(c: char) -> bool {
 /// item with the space taken out, or two items.
 pub fn split_number_hint(text: &str) -> Option<String> {
     let joined = joined_digits(text.trim())?;
+    // `I:y=1 0`: joined, no input's value (0 or 1) either (rt27 F5).
+    let value = joined.rsplit_once('=').map_or("", |(_, v)| v.trim());
+    if joined.to_ascii_uppercase().contains("I:")
+        && value.len() > 1
+        && value.chars().all(|c| c.is_ascii_digit())
+    {
+        return Some(
+            "a space splits a number, and an input's value is 0 or 1: write one, or separate two items with `;`".to_string(),
+        );
+    }
     Some(format!(
         "a space splits a number: write {joined} if that is meant, or separate two items with `;`"
     ))

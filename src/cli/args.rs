@@ -389,20 +389,37 @@ pub(crate) fn no_empty_item(text: &str) -> Result<(), String> {
 /// Said as that, not as a bad value `0` and an item without `=` (rt24 F8).
 fn comma_in_a_number(text: &str) -> Result<(), String> {
     let items: Vec<&str> = text.split(',').map(str::trim).collect();
-    for pair in items.windows(2) {
-        let (before, after) = (pair[0], pair[1]);
-        let ends_in_digit = before.contains('=') && before.ends_with(|c: char| c.is_ascii_digit());
-        if ends_in_digit && !after.contains('=') && after.starts_with(|c: char| c.is_ascii_digit())
-        {
-            let grouped = after.chars().take_while(char::is_ascii_digit).count() == 3;
-            let thousands = match grouped {
-                true => format!(", or {before}{after} for a thousands' comma"),
-                false => String::new(),
-            };
-            return Err(format!(
-                "\"{before},{after}\": the comma parts the list's items, so its number is split in two; write a decimal point ({before}.{after}){thousands}"
-            ));
+    let digit_end = |t: &str| t.ends_with(|c: char| c.is_ascii_digit());
+    let parted = |before: &str, after: &str| {
+        digit_end(before) && !after.contains('=') && after.starts_with(|c: char| c.is_ascii_digit())
+    };
+    for (k, first) in items.iter().enumerate() {
+        if !first.contains('=') {
+            continue;
         }
+        // The item and every piece the commas split off it (`C1=1`,
+        // `5s/0`, `8s` of `C1=1,5s/0,8s`).
+        let mut pieces = vec![*first];
+        while let Some(next) = items.get(k + pieces.len()) {
+            match parted(pieces[pieces.len() - 1], next) {
+                true => pieces.push(next),
+                false => break,
+            }
+        }
+        if pieces.len() < 2 {
+            continue;
+        }
+        let grouped =
+            (pieces[1..].iter()).all(|p| p.chars().take_while(char::is_ascii_digit).count() == 3);
+        let thousands = match grouped {
+            true => format!(", or {} for a thousands' comma", pieces.concat()),
+            false => String::new(),
+        };
+        return Err(format!(
+            "\"{}\": the comma parts the list's items, so its number is split; write a decimal point ({}){thousands}",
+            pieces.join(","),
+            pieces.join(".")
+        ));
     }
     Ok(())
 }

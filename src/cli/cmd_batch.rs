@@ -281,23 +281,14 @@ impl Run<'_> {
             };
             report.say(&format!("  failed: {first}"));
         }
-        // What a rerun kept of an earlier run's files is said, as convert
-        // says it: the engineer's to remove.
-        for o in self.outcomes.iter().filter(|o| !o.kept.is_empty()) {
+        // What a rerun did to an earlier run's files is said, as convert
+        // says it: what it replaced or removed, what it kept for the
+        // engineer to remove.
+        for o in self.outcomes {
             let folder = args.output.join(&o.name);
-            let names: Vec<String> = o
-                .kept
-                .iter()
-                .map(|(p, why)| {
-                    let inside = p.strip_prefix(&folder).unwrap_or(p);
-                    format!("{} ({why})", inside.display())
-                })
-                .collect();
-            report.say(&format!(
-                "  kept in {}/ what an earlier run wrote there and this one did not, for you to remove: {}",
-                folder.display(),
-                names.join("; ")
-            ));
+            for line in super::cmd_convert::cleanup_lines(&o.cleanup, &folder, Some(&folder)) {
+                report.say(&line);
+            }
         }
     }
 }

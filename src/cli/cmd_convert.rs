@@ -124,31 +124,8 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
                 for line in &conversion.findings {
                     report.say(&format!("  {line}"));
                 }
-                let inside =
-                    |p: &std::path::Path| p.strip_prefix(folder).unwrap_or(p).display().to_string();
-                if !cleanup.replaced_from.is_empty() {
-                    report.say(&format!(
-                        "  replaced the outputs an earlier run made there from another input: {}",
-                        cleanup.replaced_from.join(", ")
-                    ));
-                }
-                if !cleanup.removed.is_empty() {
-                    let names: Vec<String> = cleanup.removed.iter().map(|p| inside(p)).collect();
-                    report.say(&format!(
-                        "  removed what an earlier run wrote there and this one did not: {}",
-                        names.join(", ")
-                    ));
-                }
-                if !cleanup.kept.is_empty() {
-                    let names: Vec<String> = cleanup
-                        .kept
-                        .iter()
-                        .map(|(p, why)| format!("{} ({why})", inside(p)))
-                        .collect();
-                    report.say(&format!(
-                        "  kept what an earlier run wrote there and this one did not, for you to remove: {}",
-                        names.join("; ")
-                    ));
+                for line in cleanup_lines(cleanup, folder, None) {
+                    report.say(&line);
                 }
             }
             Err(err) => {
@@ -158,4 +135,45 @@ pub(crate) fn run_convert(args: &ConvertArgs) -> i32 {
         }
     }
     code
+}
+
+/// What a conversion's cleanup did to the files an earlier run wrote into
+/// `folder`, one line each (none when it did nothing): the outputs of
+/// another input it replaced, the files it removed, the ones it kept for
+/// the engineer. `named` puts the folder in each line, for a batch's
+/// summary, where many folders are written.
+pub(super) fn cleanup_lines(
+    cleanup: &crate::write::Cleanup,
+    folder: &std::path::Path,
+    named: Option<&std::path::Path>,
+) -> Vec<String> {
+    let inside = |p: &std::path::Path| p.strip_prefix(folder).unwrap_or(p).display().to_string();
+    let there = match named {
+        Some(shown) => format!("in {}/ ", shown.display()),
+        None => String::new(),
+    };
+    let mut lines = Vec::new();
+    if !cleanup.replaced_from.is_empty() {
+        lines.push(format!(
+            "  replaced {there}the outputs an earlier run made there from another input: {}",
+            cleanup.replaced_from.join(", ")
+        ));
+    }
+    if !cleanup.removed.is_empty() {
+        let names: Vec<String> = cleanup.removed.iter().map(|p| inside(p)).collect();
+        lines.push(format!(
+            "  removed {there}what an earlier run wrote there and this one did not: {}",
+            names.join(", ")
+        ));
+    }
+    if !cleanup.kept.is_empty() {
+        let names: Vec<String> = (cleanup.kept.iter())
+            .map(|(p, why)| format!("{} ({why})", inside(p)))
+            .collect();
+        lines.push(format!(
+            "  kept {there}what an earlier run wrote there and this one did not, for you to remove: {}",
+            names.join("; ")
+        ));
+    }
+    lines
 }

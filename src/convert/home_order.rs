@@ -40,7 +40,26 @@ pub(super) fn home_order_by_name(
         let mut actuators = Vec::new();
         let mut items = stage.iter().enumerate();
         while let Some((i, item)) = items.next() {
-            match naming.actuator_called(item) {
+            // `C1 (clamp)`, as steptable prints it: the name must be C1's.
+            let (actuator, name) = crate::program::bracketed(item);
+            let called = naming.actuator_called(actuator);
+            if let (Some(n), Some(name)) = (called, name) {
+                let as_name = naming
+                    .actuator_called(name)
+                    .or_else(|| naming.actuator_called(&name.replace(' ', "_")));
+                if as_name != Some(n) {
+                    known = false;
+                    diags.error(
+                        Code::E030BadSetting,
+                        at.clone(),
+                        format!(
+                            "the home order names \"{item}\", but {name} is no name of {actuator}; write the actuator alone, or with its own name{source}"
+                        ),
+                    );
+                    continue;
+                }
+            }
+            match called {
                 // The same actuator under two of its names (`C1,1A1`):
                 // said with both, which the numbers no longer hold.
                 Some(n) if spelt.get(&n).is_some_and(|first| first != item) => {

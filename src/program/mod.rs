@@ -38,7 +38,7 @@ mod supervision;
 pub use build::build;
 pub use jumps::StepJump;
 pub use options::{
-    HaltPolicy, Interlock, Modes, ProgramOptions, RunOn, Safety, StopAction, StopEvent,
+    HaltPolicy, Interlock, Modes, ProgramOptions, RunOn, Safety, StopAction, StopEvent, bracketed,
 };
 pub use signal::{Alarm, Area, Signal};
 pub use signals::{Coils, Signals, jog_buttons};
@@ -255,6 +255,17 @@ impl StepProgram {
     /// rung that starts one with the preset: refused (E032) as a step's.
     pub fn homing_watchdogs_beyond_timers(&self) -> impl Iterator<Item = (&Rung, u32)> {
         (self.rungs.iter()).filter_map(|rung| Some((rung, watchdog_past_timers(&rung.actions)?)))
+    }
+    /// Whether the program takes the button `button` held through power-up
+    /// as no press: it acts on the button's rising edge, whose memory is
+    /// set at power-up (RESET always, START under the edge check).
+    pub fn no_press_at_power_up(&self, button: Signal) -> bool {
+        let memory = match button {
+            Signal::Start => Signal::StartMemory,
+            Signal::Reset => Signal::ResetMemory,
+            _ => return false,
+        };
+        self.init.contains(&Action::Set(memory))
     }
 
     /// Whether STOP acts at once (an `on stop` row) rather than letting

@@ -414,10 +414,11 @@ impl Modes {
                 // A number, an ISO designation or a name (`gripper_arm`):
                 // which actuator it means, the naming authority says once
                 // the table's names are read.
-                let named = crate::cell::parse_actuator(item).is_some()
-                    || crate::cell::iso_actuator(item).is_some()
-                    || item.starts_with(|c: char| c.is_alphabetic())
-                        && item
+                let (actuator, _) = bracketed(item);
+                let named = crate::cell::parse_actuator(actuator).is_some()
+                    || crate::cell::iso_actuator(actuator).is_some()
+                    || actuator.starts_with(|c: char| c.is_alphabetic())
+                        && actuator
                             .chars()
                             .all(|c| c.is_alphanumeric() || c == '_' || c == '-');
                 if !named {
@@ -474,11 +475,54 @@ fn stage_items(stage: &str) -> Result<Vec<String>, String> {
     let mut items: Vec<String> = Vec::new();
     for part in stage.split('&') {
         let first = items.len();
-        for item in part.split_whitespace() {
+        let mut words = part.split_whitespace();
+        while let Some(item) = words.next() {
+            if item.starts_with('(') {
+                named_as(&mut items, first, item, &mut words)?;
+                continue;
+            }
             joined(&mut items, first, item)?;
         }
     }
     Ok(items)
+}
+
+/// `C1 (clamp)`, as steptable prints an actuator: the name in brackets
+/// (its words up to the closing one) goes with the item before it, which
+/// the naming authority checks it names.
+fn named_as<'a>(
+    items: &mut [String],
+    first: usize,
+    opening: &'a str,
+    words: &mut impl Iterator<Item = &'a str>,
+) -> Result<(), String> {
+    let mut name = vec![opening];
+    while !name[name.len() - 1].ends_with(')') {
+        match words.next() {
+            Some(word) => name.push(word),
+            None => return Err(format!("\"{}\" has no closing bracket", name.join(" "))),
+        }
+    }
+    let name = name.join(" ");
+    match items.len() > first {
+        true => {
+            let last = items.len() - 1;
+            items[last] = format!("{} {name}", items[last]);
+            Ok(())
+        }
+        false => Err(format!(
+            "\"{name}\" follows no actuator: write the actuator before its name, C1 (clamp)"
+        )),
+    }
+}
+
+/// An item and the name it gives in brackets: `C1 (clamp)` → `C1`,
+/// `clamp`.
+pub fn bracketed(item: &str) -> (&str, Option<&str>) {
+    match item.strip_suffix(')').and_then(|i| i.split_once(" (")) {
+        Some((actuator, name)) => (actuator, Some(name.trim())),
+        None => (item, None),
+    }
 }
 
 /// Adds `item` to `items`, joined to the one before it in the same part
@@ -495,7 +539,7 @@ fn joined(items: &mut Vec<String>, first: usize, item: &str) -> Result<(), Strin
         }
         if crate::cell::parse_actuator(last).is_some() {
             return Err(format!(
-                "\"{last} {item}\": a space splits the actuator's number (write {last}{item}, or part the actuators of a stage with &, C1&C2)"
+                "\"{last} {item}\": a space splits the actuator's number (write {last}{item} if that is meant)"
             ));
         }
     }

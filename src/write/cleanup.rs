@@ -13,7 +13,7 @@ use crate::emit::OutputFile;
 use crate::manifest::{self, Found, Manifest};
 
 /// What the cleanup after a conversion did.
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone)]
 pub struct Cleanup {
     /// Files of an earlier run removed.
     pub removed: Vec<PathBuf>,

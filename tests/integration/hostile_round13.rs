@@ -278,3 +278,123 @@ fn a_home_order_naming_one_actuator_twice_says_both_spellings() {
         "{out}"
     );
 }
+
+/// The home order takes an actuator as steptable prints it, `C1 (clamp)`,
+/// the name in brackets checked to be the actuator's (rt27 F1).
+#[test]
+fn a_home_order_takes_an_actuator_as_steptable_prints_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let settings: &[&[&str]] = &[
+        &["modes", "reset"],
+        &[],
+        &["actuator", "valve"],
+        &["C1 (clamp)"],
+        &["C2 (gripper arm)"],
+    ];
+    std::fs::write(
+        dir.path().join("n.xlsx"),
+        workbook(&[], &[("SETTINGS", settings)]),
+    )
+    .unwrap();
+    let check = |order: &str| said(dir.path(), &["check", "n.xlsx", "--home-order", order]);
+    let (code, out) = check("C2 (gripper arm), C1 (clamp)");
+    assert_eq!(code, Some(0), "{out}");
+    let (code, out) = check("C2, C1 (lift)");
+    assert_eq!(code, Some(1), "{out}");
+    assert!(
+        out.contains("error[E030]: the home order names \"C1 (lift)\", but lift is no name of C1"),
+        "{out}"
+    );
+    let (code, out) = check("(clamp) C1, C2");
+    assert_ne!(code, Some(0), "{out}");
+    assert!(out.contains("\"(clamp)\" follows no actuator"), "{out}");
+}
+
+/// The fix told for an extend/retract pair with two decimal commas is
+/// itself accepted; a split input value is told it is 0 or 1, not to write
+/// 10 (rt27 F4, F5).
+#[test]
+fn the_fix_a_message_tells_is_one_that_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let paper = sample("paper_example.xlsx");
+    let paper = paper.to_str().unwrap();
+    let (code, out) = said(dir.path(), &["simulate", paper, "--stroke", "C1=1,5s/0,8s"]);
+    assert_ne!(code, Some(0), "{out}");
+    assert!(
+        out.contains("write a decimal point (C1=1.5s/0.8s)"),
+        "{out}"
+    );
+    let (code, out) = said(dir.path(), &["simulate", paper, "--stroke", "C1=1.5s/0.8s"]);
+    assert_eq!(code, Some(0), "{out}");
+
+    std::fs::write(
+        dir.path().join("v.csv"),
+        ",BRANCH 1\nSTEP 1,C1+1\nSTEP 2,\"C1-0; J:end if I:y=1 0\"\n",
+    )
+    .unwrap();
+    let (code, out) = said(dir.path(), &["check", "v.csv"]);
+    assert_eq!(code, Some(1), "{out}");
+    assert!(
+        out.contains("an input's value is 0 or 1") && !out.contains("I:y=10"),
+        "{out}"
+    );
+}
+
+/// START held through power-up under the edge check starts nothing, and
+/// the table says so, as it does for RESET (rt27 F6).
+#[test]
+fn start_at_power_up_under_the_edge_check_is_said_to_be_no_press() {
+    let dir = tempfile::tempdir().unwrap();
+    let paper = sample("paper_example.xlsx");
+    let paper = paper.to_str().unwrap();
+    let (code, out) = said(
+        dir.path(),
+        &["simulate", paper, "--safety", "edge", "--press", "START@0s"],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        out.contains("START pressed at power-up: no press for the program"),
+        "{out}"
+    );
+    assert!(!out.contains("step 1 "), "{out}");
+    // Without the edge check START is read by its level: it starts.
+    let (_, out) = said(dir.path(), &["simulate", paper, "--press", "START@0s"]);
+    assert!(!out.contains("at power-up"), "{out}");
+    assert!(out.contains("step 1 "), "{out}");
+}
+
+/// batch says what it did to an earlier run's files as convert does: the
+/// outputs of another input it replaced, the files it removed (rt27 F7).
+#[test]
+fn batch_says_what_it_replaced_and_removed() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("bin")).unwrap();
+    std::fs::copy(sample("paper_example.csv"), dir.path().join("bin/a.csv")).unwrap();
+    let batch = |formats: &str| {
+        said(
+            dir.path(),
+            &["batch", "bin", "-o", "ob", "-q", "--formats", formats],
+        )
+    };
+    let (code, out) = batch("st,io");
+    assert_eq!(code, Some(0), "{out}");
+    std::fs::remove_file(dir.path().join("bin/a.csv")).unwrap();
+    std::fs::copy(sample("oven.xlsx"), dir.path().join("bin/a.xlsx")).unwrap();
+    let (code, out) = batch("st,io");
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        out.contains(
+            "replaced in ob/a/ the outputs an earlier run made there from another input: a.csv"
+        ),
+        "{out}"
+    );
+    let (code, out) = batch("st");
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        out.contains(
+            "removed in ob/a/ what an earlier run wrote there and this one did not: a.io.csv"
+        ),
+        "{out}"
+    );
+    assert!(!out.contains("replaced"), "{out}");
+}

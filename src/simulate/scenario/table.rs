@@ -34,12 +34,16 @@ fn lines(
             said.push_str(
                 " while still down: no new press for the program (a press holds its button 0.1 s, two scans at least)",
             );
-        } else if *t == 0 && event.act.presses(Signal::Reset) {
-            // The program takes RESET on its edge and a button held through
-            // power-up as none (docs/modes: no homing by itself at power-up).
-            said.push_str(
-                " at power-up: no press for the program, which takes a RESET held through power-up as none (press it once the PLC runs, a scan later or more)",
-            );
+        } else if let Some(button) = (*t == 0)
+            .then(|| event.act.signal())
+            .filter(|&b| event.act.presses(b) && program.no_press_at_power_up(b))
+        {
+            // The program takes the button on its edge, and one held
+            // through power-up as none (no start, no homing by itself).
+            said.push_str(&format!(
+                " at power-up: no press for the program, which takes {} held through power-up as none (press it once the PLC runs, a scan later or more)",
+                (names.signal)(button)
+            ));
         }
         lines.push((*t, 0, said));
     }
