@@ -66,8 +66,11 @@ fn parse_keyed<T>(
     let text = crate::cell::composed_str(text);
     for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
         let key = item.split_once('=').map_or(item, |(k, _)| k).trim();
+        // `C2 (gripper arm)`, as steptable prints an actuator, is a name.
+        let printed = crate::program::bracketed(key).1.is_some();
         let is_name = crate::cell::parse_actuator(key).is_none()
-            && (crate::symbols::scheme_stem(key).is_some()
+            && (printed
+                || crate::symbols::scheme_stem(key).is_some()
                 || crate::cell::iso_actuator(key).is_some()
                 || engineers_name(key))
             && item.contains('=');
@@ -411,14 +414,19 @@ fn comma_in_a_number(text: &str) -> Result<(), String> {
         }
         let grouped =
             (pieces[1..].iter()).all(|p| p.chars().take_while(char::is_ascii_digit).count() == 3);
-        let thousands = match grouped {
-            true => format!(", or {} for a thousands' comma", pieces.concat()),
-            false => String::new(),
+        // Three digits after the comma may group thousands as well: both
+        // readings, the thousands first (`1,000ms` is rarely 1 ms).
+        let write = match grouped {
+            true => format!(
+                "write {} for a thousands' comma, or {} for a decimal one",
+                pieces.concat(),
+                pieces.join(".")
+            ),
+            false => format!("write a decimal point ({})", pieces.join(".")),
         };
         return Err(format!(
-            "\"{}\": the comma parts the list's items, so its number is split; write a decimal point ({}){thousands}",
-            pieces.join(","),
-            pieces.join(".")
+            "\"{}\": the comma parts the list's items, so its number is split; {write}",
+            pieces.join(",")
         ));
     }
     Ok(())

@@ -43,21 +43,22 @@ pub(super) fn home_order_by_name(
             // `C1 (clamp)`, as steptable prints it: the name must be C1's.
             let (actuator, name) = crate::program::bracketed(item);
             let called = naming.actuator_called(actuator);
-            if let (Some(n), Some(name)) = (called, name) {
-                let as_name = naming
-                    .actuator_called(name)
-                    .or_else(|| naming.actuator_called(&name.replace(' ', "_")));
-                if as_name != Some(n) {
-                    known = false;
-                    diags.error(
-                        Code::E030BadSetting,
-                        at.clone(),
-                        format!(
-                            "the home order names \"{item}\", but {name} is no name of {actuator}; write the actuator alone, or with its own name{source}"
-                        ),
-                    );
-                    continue;
-                }
+            if let (Some(_), Some(name)) = (called, name)
+                && called_as_printed(naming, item).is_none()
+            {
+                let name = match name.is_empty() {
+                    true => "()",
+                    false => name,
+                };
+                known = false;
+                diags.error(
+                    Code::E030BadSetting,
+                    at.clone(),
+                    format!(
+                        "the home order names \"{item}\", but {name} is no name of {actuator}; write the actuator alone, or with its own name{source}"
+                    ),
+                );
+                continue;
             }
             match called {
                 // The same actuator under two of its names (`C1,1A1`):
@@ -111,5 +112,22 @@ pub(super) fn home_order_by_name(
     }
     if known {
         settings.program.modes.home_order = Some(stages);
+    }
+}
+
+/// The actuator `text` names as the naming authority reads it, also as
+/// steptable prints an actuator, `C1 (clamp)`: then the name in brackets
+/// must be that actuator's too (`None` where it is not).
+pub(super) fn called_as_printed(naming: &crate::symbols::Naming, text: &str) -> Option<u32> {
+    let (actuator, name) = crate::program::bracketed(text);
+    let n = naming.actuator_called(actuator)?;
+    match name {
+        None => Some(n),
+        Some(name) => {
+            let as_name = naming
+                .actuator_called(name)
+                .or_else(|| naming.actuator_called(&name.replace(' ', "_")));
+            (as_name == Some(n)).then_some(n)
+        }
     }
 }

@@ -473,8 +473,15 @@ impl Modes {
 /// actuator of its own.
 fn stage_items(stage: &str) -> Result<Vec<String>, String> {
     let mut items: Vec<String> = Vec::new();
+    // `then`, as steptable prints a home order (`C2, then C1`), only joins.
+    let stage = match stage.trim_start().split_once(char::is_whitespace) {
+        Some((then, rest)) if then.eq_ignore_ascii_case("then") => rest,
+        _ => stage,
+    };
     for part in stage.split('&') {
         let first = items.len();
+        // `C2(gripper arm)`: the bracket parts the name as a space does.
+        let part = part.replace('(', " (");
         let mut words = part.split_whitespace();
         while let Some(item) = words.next() {
             if item.starts_with('(') {

@@ -73,7 +73,7 @@ fn a_decimal_comma_in_a_list_is_said_to_split_its_number() {
         (
             "--stroke",
             "C1=1,000ms",
-            "or C1=1000ms for a thousands' comma",
+            "write C1=1000ms for a thousands' comma, or C1=1.000ms",
         ),
         ("--input-delay", "x=1,5s", "(x=1.5s)"),
         ("--load", "C1=0,5", "(C1=0.5)"),
@@ -397,4 +397,63 @@ fn batch_says_what_it_replaced_and_removed() {
         "{out}"
     );
     assert!(!out.contains("replaced"), "{out}");
+}
+
+/// What convert prints of an actuator and of a home order reads back: the
+/// whole RESET line (`…, then C1 (clamp)`), `C2(gripper arm)` without the
+/// space, and `C2 (gripper arm)=2s` in `--stroke`, `--valve`, `--load`;
+/// empty brackets and another's name are refused (rt28 F1–F4).
+#[test]
+fn what_convert_prints_of_an_actuator_reads_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let settings: &[&[&str]] = &[
+        &["modes", "reset"],
+        &[],
+        &["actuator", "valve"],
+        &["C1 (clamp)"],
+        &["C2 (gripper arm)"],
+    ];
+    std::fs::write(
+        dir.path().join("n.xlsx"),
+        workbook(&[], &[("SETTINGS", settings)]),
+    )
+    .unwrap();
+    let (code, out) = said(
+        dir.path(),
+        &["convert", "n.xlsx", "-o", "o", "--formats", "st"],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    let printed = out
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("RESET homes "))
+        .unwrap_or_else(|| panic!("no RESET line: {out}"))
+        .to_string();
+    for order in [
+        printed.as_str(),
+        "C2 (gripper arm), then C1 (clamp)",
+        "C2(gripper arm),C1",
+    ] {
+        let (code, out) = said(dir.path(), &["check", "n.xlsx", "--home-order", order]);
+        assert_eq!(code, Some(0), "{order}: {out}");
+    }
+    let (code, out) = said(
+        dir.path(),
+        &["check", "n.xlsx", "--home-order", "C2 (), C1"],
+    );
+    assert_eq!(code, Some(1), "{out}");
+    assert!(out.contains("but () is no name of C2"), "{out}");
+    for (option, value) in [
+        ("--stroke", "C2 (gripper arm)=2s"),
+        ("--valve", "C1 (clamp)=52bi"),
+        ("--load", "1A1 (clamp)=0.1"),
+    ] {
+        let (code, out) = said(dir.path(), &["simulate", "n.xlsx", option, value]);
+        assert_eq!(code, Some(0), "{option} {value}: {out}");
+    }
+    let (code, out) = said(
+        dir.path(),
+        &["simulate", "n.xlsx", "--stroke", "C2 (clamp)=2s"],
+    );
+    assert_eq!(code, Some(1), "{out}");
+    assert!(out.contains("no actuator is named C2 (clamp)"), "{out}");
 }
