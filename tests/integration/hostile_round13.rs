@@ -19,6 +19,15 @@ fn said(dir: &std::path::Path, args: &[&str]) -> (Option<i32>, String) {
     (output.status.code(), said.concat())
 }
 
+/// `simulate` of the paper's example with `args`, as `said` gives it.
+fn simulate_paper(args: &[&str]) -> (Option<i32>, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let paper = sample("paper_example.xlsx");
+    let mut all = vec!["simulate", paper.to_str().unwrap()];
+    all.extend(args);
+    said(dir.path(), &all)
+}
+
 /// `C 2` in a home order is C2, as the table and `--valve` read it; `C1 0`
 /// is a number a space splits, said so, on the SETTINGS sheet (E030) and on
 /// the command line (rt24 F6).
@@ -64,9 +73,6 @@ fn a_home_order_reads_an_actuators_number_as_the_table_does() {
 /// without `=` (rt24 F8, rt25 F1).
 #[test]
 fn a_decimal_comma_in_a_list_is_said_to_split_its_number() {
-    let dir = tempfile::tempdir().unwrap();
-    let paper = sample("paper_example.xlsx");
-    let paper = paper.to_str().unwrap();
     for (option, value, hint) in [
         ("--stroke", "C1=0,8s", "(C1=0.8s)"),
         ("--stroke", "C2=1,5s/1s", "(C2=1.5s/1s)"),
@@ -79,7 +85,7 @@ fn a_decimal_comma_in_a_list_is_said_to_split_its_number() {
         ("--load", "C1=0,5", "(C1=0.5)"),
         ("--supervision", "3=1,5s", "(3=1.5s)"),
     ] {
-        let (code, out) = said(dir.path(), &["simulate", paper, option, value]);
+        let (code, out) = simulate_paper(&[option, value]);
         assert_ne!(code, Some(0), "{option} {value}: {out}");
         assert!(
             out.contains("the comma parts the list's items") && out.contains(hint),
@@ -87,7 +93,7 @@ fn a_decimal_comma_in_a_list_is_said_to_split_its_number() {
         );
     }
     // Two whole items stay two items.
-    let (code, out) = said(dir.path(), &["simulate", paper, "--stroke", "C1=1s,C2=2s"]);
+    let (code, out) = simulate_paper(&["--stroke", "C1=1s,C2=2s"]);
     assert_eq!(code, Some(0), "{out}");
 }
 
@@ -97,51 +103,35 @@ fn a_decimal_comma_in_a_list_is_said_to_split_its_number() {
 /// one scan) (rt25 F4, F5).
 #[test]
 fn a_press_the_program_never_sees_is_said_so() {
-    let dir = tempfile::tempdir().unwrap();
-    let paper = sample("paper_example.xlsx");
-    let paper = paper.to_str().unwrap();
-    let (code, out) = said(
-        dir.path(),
-        &["simulate", paper, "--modes", "reset", "--press", "RESET@0s"],
-    );
+    let (code, out) = simulate_paper(&["--modes", "reset", "--press", "RESET@0s"]);
     assert_eq!(code, Some(0), "{out}");
     assert!(
         out.contains("RESET_PB pressed at power-up: no press for the program"),
         "{out}"
     );
     assert!(!out.contains("homing starts"), "{out}");
-    let (code, out) = said(
-        dir.path(),
-        &[
-            "simulate",
-            paper,
-            "--modes",
-            "reset",
-            "--press",
-            "RESET@0.2s",
-            "--press",
-            "RESET@+100ms",
-        ],
-    );
+    let (code, out) = simulate_paper(&[
+        "--modes",
+        "reset",
+        "--press",
+        "RESET@0.2s",
+        "--press",
+        "RESET@+100ms",
+    ]);
     assert_eq!(code, Some(0), "{out}");
     assert!(
         out.contains("--press RESET@+100ms: RESET_PB pressed while still down"),
         "{out}"
     );
     // 10 ms later it is a press of its own, and homes again.
-    let (_, out) = said(
-        dir.path(),
-        &[
-            "simulate",
-            paper,
-            "--modes",
-            "reset",
-            "--press",
-            "RESET@0.2s",
-            "--press",
-            "RESET@+110ms",
-        ],
-    );
+    let (_, out) = simulate_paper(&[
+        "--modes",
+        "reset",
+        "--press",
+        "RESET@0.2s",
+        "--press",
+        "RESET@+110ms",
+    ]);
     assert_eq!(out.matches("homing starts").count(), 2, "{out}");
     assert!(!out.contains("still down"), "{out}");
 }
@@ -316,15 +306,13 @@ fn a_home_order_takes_an_actuator_as_steptable_prints_it() {
 #[test]
 fn the_fix_a_message_tells_is_one_that_reads() {
     let dir = tempfile::tempdir().unwrap();
-    let paper = sample("paper_example.xlsx");
-    let paper = paper.to_str().unwrap();
-    let (code, out) = said(dir.path(), &["simulate", paper, "--stroke", "C1=1,5s/0,8s"]);
+    let (code, out) = simulate_paper(&["--stroke", "C1=1,5s/0,8s"]);
     assert_ne!(code, Some(0), "{out}");
     assert!(
         out.contains("write a decimal point (C1=1.5s/0.8s)"),
         "{out}"
     );
-    let (code, out) = said(dir.path(), &["simulate", paper, "--stroke", "C1=1.5s/0.8s"]);
+    let (code, out) = simulate_paper(&["--stroke", "C1=1.5s/0.8s"]);
     assert_eq!(code, Some(0), "{out}");
 
     std::fs::write(
@@ -344,13 +332,7 @@ fn the_fix_a_message_tells_is_one_that_reads() {
 /// the table says so, as it does for RESET (rt27 F6).
 #[test]
 fn start_at_power_up_under_the_edge_check_is_said_to_be_no_press() {
-    let dir = tempfile::tempdir().unwrap();
-    let paper = sample("paper_example.xlsx");
-    let paper = paper.to_str().unwrap();
-    let (code, out) = said(
-        dir.path(),
-        &["simulate", paper, "--safety", "edge", "--press", "START@0s"],
-    );
+    let (code, out) = simulate_paper(&["--safety", "edge", "--press", "START@0s"]);
     assert_eq!(code, Some(0), "{out}");
     assert!(
         out.contains("START pressed at power-up: no press for the program"),
@@ -358,7 +340,7 @@ fn start_at_power_up_under_the_edge_check_is_said_to_be_no_press() {
     );
     assert!(!out.contains("step 1 "), "{out}");
     // Without the edge check START is read by its level: it starts.
-    let (_, out) = said(dir.path(), &["simulate", paper, "--press", "START@0s"]);
+    let (_, out) = simulate_paper(&["--press", "START@0s"]);
     assert!(!out.contains("at power-up"), "{out}");
     assert!(out.contains("step 1 "), "{out}");
 }
