@@ -153,7 +153,7 @@ pub(super) fn overridden_by_the_command_line(
     for ((actuator, what), at) in &sheet.actuator_cells {
         let n = *actuator;
         // An option may name the actuator (`--valve clamp=52bi`).
-        let is_n = |name: &String| super::home_order::called_as_printed(naming, name) == Some(n);
+        let is_n = |name: &String| naming.actuator_called(name) == Some(n);
         let (option, given) = match *what {
             "valve" => (
                 "valve",
@@ -206,7 +206,7 @@ pub(super) fn by_name(
             .actuator_like(name, &numbers)
             .map(|name| format!("; did you mean {name}?"))
             .unwrap_or_default();
-        let why = match super::home_order::called_as_printed(&naming, name) {
+        let why = match naming.actuator_called(name) {
             Some(n) if table.actuator(n).is_none() => {
                 format!(
                     "{name} is C{n}, which the table does not have; the setting would do nothing"
@@ -217,7 +217,7 @@ pub(super) fn by_name(
             }
             Some(n) => return Some(n),
             None if named.is_empty() => format!(
-                "no actuator is named {name}: the SETTINGS actuator table names none (C1 (clamp)){like}"
+                "no actuator is named {name}: the SETTINGS actuator table names none (a row such as C1 (clamp) names one){like}"
             ),
             None => format!(
                 "no actuator is named {name} (the actuator table names {}){like}",
@@ -233,7 +233,7 @@ pub(super) fn by_name(
     };
     let given = settings.given.clone();
     for (name, valve) in &given.named_valves {
-        let n = super::home_order::called_as_printed(&naming, name);
+        let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.valves.contains_key(&n));
         if let Some(n) = resolve("valve", name, numbered) {
             settings
@@ -245,7 +245,7 @@ pub(super) fn by_name(
         }
     }
     for (name, stroke) in &given.named_strokes {
-        let n = super::home_order::called_as_printed(&naming, name);
+        let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.strokes.contains_key(&n));
         if let Some(n) = resolve("stroke", name, numbered) {
             settings
@@ -257,7 +257,7 @@ pub(super) fn by_name(
         }
     }
     for (name, load) in &given.named_loads {
-        let n = super::home_order::called_as_printed(&naming, name);
+        let n = naming.actuator_called(name);
         let numbered = n.is_some_and(|n| given.loads.contains_key(&n));
         if let Some(n) = resolve("load", name, numbered) {
             settings.simulation.machine.loads.insert(n, *load);
@@ -273,7 +273,7 @@ pub(super) fn by_name(
     for (option, names) in options {
         let mut first: BTreeMap<u32, &String> = BTreeMap::new();
         for name in names {
-            let Some(n) = super::home_order::called_as_printed(&naming, name) else {
+            let Some(n) = naming.actuator_called(name) else {
                 continue;
             };
             if let Some(earlier) = first.insert(n, name) {

@@ -42,10 +42,12 @@ pub(super) fn home_order_by_name(
         while let Some((i, item)) = items.next() {
             // `C1 (clamp)`, as steptable prints it: the name must be C1's.
             let (actuator, name) = crate::program::bracketed(item);
-            let called = naming.actuator_called(actuator);
-            if let (Some(_), Some(name)) = (called, name)
-                && called_as_printed(naming, item).is_none()
-            {
+            let called = naming.actuator_called(item);
+            if let (None, Some(_), Some(name)) = (called, naming.actuator_called(actuator), name) {
+                let like = naming
+                    .actuator_like(name, &numbers)
+                    .map(|name| format!("; did you mean {name}?"))
+                    .unwrap_or_default();
                 let name = match name.is_empty() {
                     true => "()",
                     false => name,
@@ -55,7 +57,7 @@ pub(super) fn home_order_by_name(
                     Code::E030BadSetting,
                     at.clone(),
                     format!(
-                        "the home order names \"{item}\", but {name} is no name of {actuator}; write the actuator alone, or with its own name{source}"
+                        "the home order names \"{item}\", but {name} is no name of {actuator}; write the actuator alone, or with its own name{like}{source}"
                     ),
                 );
                 continue;
@@ -112,22 +114,5 @@ pub(super) fn home_order_by_name(
     }
     if known {
         settings.program.modes.home_order = Some(stages);
-    }
-}
-
-/// The actuator `text` names as the naming authority reads it, also as
-/// steptable prints an actuator, `C1 (clamp)`: then the name in brackets
-/// must be that actuator's too (`None` where it is not).
-pub(super) fn called_as_printed(naming: &crate::symbols::Naming, text: &str) -> Option<u32> {
-    let (actuator, name) = crate::program::bracketed(text);
-    let n = naming.actuator_called(actuator)?;
-    match name {
-        None => Some(n),
-        Some(name) => {
-            let as_name = naming
-                .actuator_called(name)
-                .or_else(|| naming.actuator_called(&name.replace(' ', "_")));
-            (as_name == Some(n)).then_some(n)
-        }
     }
 }

@@ -526,9 +526,16 @@ fn named_as<'a>(
 /// An item and the name it gives in brackets: `C1 (clamp)` → `C1`,
 /// `clamp`.
 pub fn bracketed(item: &str) -> (&str, Option<&str>) {
-    match item.strip_suffix(')').and_then(|i| i.split_once(" (")) {
-        Some((actuator, name)) => (actuator, Some(name.trim())),
-        None => (item, None),
+    // A name holds no bracket (E015): the first one opens the name.
+    match item
+        .trim()
+        .strip_suffix(')')
+        .and_then(|i| i.split_once('('))
+    {
+        Some((actuator, name)) if !actuator.trim().is_empty() => {
+            (actuator.trim(), Some(name.trim()))
+        }
+        _ => (item, None),
     }
 }
 

@@ -232,6 +232,17 @@ pub fn actuator_entries(
 /// rows take those too), or as one of the program's operating-mode
 /// buttons (`estop`, `jog1p`).
 fn reads_as_another(text: &str, n: u32, buttons: &[String]) -> Option<String> {
+    // `1A1 (x)`: an actuator as steptable prints it, which the lists and
+    // the home order read (`--valve "1A1 (x)=52mono"` would be C1's).
+    let (head, inner) = crate::program::bracketed(text);
+    if inner.is_some()
+        && let Some(other) =
+            crate::cell::parse_actuator(head).or_else(|| crate::cell::iso_actuator(head))
+    {
+        return Some(format!(
+            "it reads as actuator C{other} as steptable prints one ({head} (name)), which the options and the home order take"
+        ));
+    }
     let folded = crate::cell::normalize(text);
     if let Some(other) = folded
         .strip_prefix('C')

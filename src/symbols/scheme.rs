@@ -127,7 +127,27 @@ impl Naming {
     /// The actuator `text` names where a setting names one (`--home-order`,
     /// its SETTINGS row, `--valve`, `--stroke`, `--load`): its paper number
     /// (`C1`), its ISO designation (`1A1`) or the engineer's name (`clamp`).
+    /// Also as steptable prints an actuator, `C1 (clamp)` or `1A1(clamp)`:
+    /// then the name in brackets must be that actuator's too.
     pub fn actuator_called(&self, text: &str) -> Option<u32> {
+        // A name of its own first (`clamp (left)`): one that reads as an
+        // actuator printed so (`1A1 (x)`) is refused at its cell (E015).
+        if let Some(n) = self.actuator_plain(text) {
+            return Some(n);
+        }
+        let (actuator, name) = crate::program::bracketed(text.trim());
+        let n = self.actuator_plain(actuator)?;
+        let Some(name) = name else {
+            return Some(n);
+        };
+        let as_name = self
+            .actuator_plain(name)
+            .or_else(|| self.actuator_plain(&name.replace(' ', "_")));
+        (as_name == Some(n)).then_some(n)
+    }
+
+    /// The actuator `text` names with no name in brackets.
+    fn actuator_plain(&self, text: &str) -> Option<u32> {
         let text = text.trim();
         crate::cell::parse_actuator(text)
             .or_else(|| crate::cell::iso_actuator(text))

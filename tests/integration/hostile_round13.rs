@@ -439,3 +439,90 @@ fn what_convert_prints_of_an_actuator_reads_back() {
     assert_eq!(code, Some(1), "{out}");
     assert!(out.contains("no actuator is named C2 (clamp)"), "{out}");
 }
+
+/// A name of the engineer's own is read first (`x (x)` is C2's name, not
+/// C1 named x as printed); a name that reads as another actuator printed
+/// so (`1A1 (x)`) is refused; `C2(gripper arm)=…` and its decimal-comma
+/// fix read in a list; a misspelt name in brackets gets the closest; the
+/// made-by line credits the command line with what it gave (rt29).
+#[test]
+fn a_printed_actuator_and_a_name_with_brackets_are_told_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |file: &str, names: &[&str]| {
+        let mut rows: Vec<&[&str]> = vec![&["modes", "reset"], &[], &["actuator", "valve"]];
+        let names: Vec<[&str; 1]> = names.iter().map(|n| [*n]).collect();
+        rows.extend(names.iter().map(|n| &n[..]));
+        std::fs::write(dir.path().join(file), workbook(&[], &[("SETTINGS", &rows)])).unwrap();
+    };
+    write("own.xlsx", &["C1 (x)", "C2 (x (x))"]);
+    let (code, out) = said(
+        dir.path(),
+        &["simulate", "own.xlsx", "--stroke", "x (x)=3s"],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    // C2 slowed: its step takes about 3 s; C1's stays about 1 s.
+    let takes = |step: &str| {
+        let line = out
+            .lines()
+            .find(|l| l.trim_start().starts_with(step))
+            .unwrap_or("");
+        line.split_whitespace()
+            .nth(3)
+            .and_then(|d| d.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    assert!(takes("2 ") > 2.5 && takes("1 ") < 1.5, "{out}");
+
+    write("printed.xlsx", &["C1 (x)", "C2 (1A1 (x))"]);
+    let (code, out) = said(dir.path(), &["check", "printed.xlsx"]);
+    assert_eq!(code, Some(1), "{out}");
+    assert!(
+        out.contains("error[E015]")
+            && out.contains("it reads as actuator C1 as steptable prints one"),
+        "{out}"
+    );
+
+    write("arm.xlsx", &["C1 (clamp)", "C2 (gripper arm)"]);
+    let (code, out) = said(
+        dir.path(),
+        &["simulate", "arm.xlsx", "--stroke", "C2(gripper arm)=0,8s"],
+    );
+    assert_ne!(code, Some(0), "{out}");
+    assert!(out.contains("(C2(gripper arm)=0.8s)"), "{out}");
+    let (code, out) = said(
+        dir.path(),
+        &["simulate", "arm.xlsx", "--stroke", "C2(gripper arm)=0.8s"],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    let (code, out) = said(
+        dir.path(),
+        &[
+            "check",
+            "arm.xlsx",
+            "--home-order",
+            "C2 (gripper arm), then C1 (clmp)",
+        ],
+    );
+    assert_eq!(code, Some(1), "{out}");
+    assert!(out.contains("did you mean clamp?"), "{out}");
+    let (code, out) = said(
+        dir.path(),
+        &[
+            "convert",
+            "arm.xlsx",
+            "-o",
+            "o",
+            "--formats",
+            "st",
+            "--stroke",
+            "C2 (gripper arm)=2s",
+        ],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    let st = std::fs::read_to_string(dir.path().join("o/arm/arm.st")).unwrap();
+    let made = st.lines().next().unwrap_or("");
+    assert!(
+        made.contains("the SETTINGS sheet (actuator names, modes)"),
+        "{made}"
+    );
+}
