@@ -526,7 +526,8 @@ fn named_as<'a>(
 /// An item and the name it gives in brackets: `C1 (clamp)` → `C1`,
 /// `clamp`.
 pub fn bracketed(item: &str) -> (&str, Option<&str>) {
-    // A name holds no bracket (E015): the first one opens the name.
+    // The first bracket opens the name; a name of the engineer's own that
+    // holds brackets is read whole before this (`Naming::actuator_called`).
     match item
         .trim()
         .strip_suffix(')')
